@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace silk {
@@ -10,6 +11,12 @@ namespace silk {
 struct RawMesh {
   std::vector<std::array<double, 3>> positions;
   std::vector<std::array<int32_t, 3>> triangles;  // 0-based indices into positions
+  // Additive reader diagnostics (never affect positions/triangles).
+  int64_t polygons_triangulated = 0;   // input faces with > 3 corners, fan-triangulated
+  std::vector<std::string> warnings;   // e.g. ignored OBJ statements, skipped glTF primitives
 };
+
+// Writers take the same plain arrays.
+using OutputMesh = RawMesh;
 
 }  // namespace silk

@@ -1,0 +1,27 @@
+// silktok: tokenize, decode, check, inspect and repair Mesh Silksong token streams.
+#include <cstdio>
+
+#include "commands.h"
+
+namespace silktok {
+int& ExitCode() {
+  static int code = kExitOk;
+  return code;
+}
+}  // namespace silktok
+
+int main(int argc, char** argv) {
+  CLI::App app{"silktok — Mesh Silksong tokenizer tools (token format v1, 128 bins)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", SILK_VERSION_STRING);
+  silktok::RegisterEncodeCommand(app);
+  silktok::RegisterDecodeCommand(app);
+  silktok::RegisterStatsCommand(app);
+  silktok::RegisterRoundtripCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : silktok::kExitUsage;
+  }
+  return silktok::ExitCode();
+}

@@ -1,0 +1,152 @@
+// Grammar: the state machine of legal Mesh Silksong sequences over the full model vocabulary
+// (spec §9, §11), for constrained sampling and for checking streams token by token.
+//
+// Rules enforced (each documented at its code in grammar.cpp):
+//  * token kinds in packing order (C, root K O, U, then K O S X* B+ per vertex, U/E), EOS only
+//    after an E, PAD never;
+//  * S bits only at distances < N, X values strictly increasing in [8, N-10] (so only N>=18),
+//    B segments inside the previous layer with the §7.3 continuation minimum (layer 1: only 460);
+//  * canonical consistency of the self-layer rows (§11.2) and the layer-1 chain rule, kept as
+//    the set of layer sizes N at which the layer could still be closed: a token is accepted
+//    only if that set stays non-empty, U/E only when the current size is in it;
+//  * layer size <= 200, layer index <= 199, total length <= max_length (EOS included);
+//  * geometric rule: no edge joins two vertices at the same grid position (holds for all 154
+//    official streams; positions themselves DO repeat inside components, spec §3.6).
+// Liveness: every accepted prefix can be completed to a legal sequence (the legal mask is
+// never empty before EOS), up to the length budget estimate documented at MinCloseTokens.
+// Guarantee (tested): every accepted sequence decodes (BuildMesh) to a mesh whose every edge
+// has at most 2 faces, consistently oriented, no face with two corners at one position, and
+// exactly one mesh component per C token with vertices.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/status.h"
+#include "decoder/grammar_rejection.h"
+#include "decoder/layer_size_set.h"
+#include "decoder/token_mask.h"
+#include "tokenizer/layered_stream.h"
+
+namespace silk {
+
+// How self-layer rows that state a pair differently are treated (spec §11.2).
+enum class WindowRule : int32_t {
+  kCanonical = 0,  // the encoder's rule: refuse (mask) until consistent
+  kUnion = 1,      // the official decoder's rule: accept, the pair is an edge if either row says
+                   // so; each disagreement is recorded as a finding (repair of a likely false 0)
+};
+
+struct GrammarOptions {
+  int32_t max_length = 10240;  // tokens incl. EOS (spec §9); 0 = unlimited (long corpus streams)
+  WindowRule window_rule = WindowRule::kCanonical;
+  bool geometric_rules = true;  // zero-length edges refused
+};
+
+// One closed layer, reported to the progress callback.
+struct LayerProgress {
+  int32_t component = 0, layer = 0, layer_size = 0;
+  int64_t vertices_total = 0;  // all vertices read so far (closed layers)
+};
+
+// A disagreement of two rows about one in-layer pair, under WindowRule::kUnion.
+struct WindowFinding {
+  int32_t component = 0, layer = 0, row_a = 0, row_b = 0;  // the pair; a < b, layer-local
+};
+
+enum class GrammarPhase : uint8_t { kStart, kWantK, kWantO, kWantU0, kWantS, kAfterS, kAfterB, kAfterE, kEnded };
+
+class Grammar {
+ public:
+  explicit Grammar(GrammarOptions options = {});
+
+  void Reset();
+  // Accepts one id (0..10268). On rejection the state is unchanged.
+  Rejection Accept(int32_t id);
+  // The ids Accept would take now. Cached until the next Accept/Reset/Rewind.
+  const TokenMask& LegalMask();
+  // The only legal id, or -1.
+  int32_t Forced();
+  bool CanEnd() const { return phase_ == GrammarPhase::kAfterE; }
+  bool Ended() const { return phase_ == GrammarPhase::kEnded; }
+  Grammar Clone() const { return *this; }
+  // Back to the state after the first `prefix` accepted tokens (replays from the last layer
+  // start). Error if prefix > size().
+  Status Rewind(size_t prefix);
+
+  size_t size() const { return history_.size(); }
+  const std::vector<int32_t>& tokens() const { return history_; }
+  GrammarPhase phase() const { return phase_; }
+  // Components/layers/vertices read so far (the current layer is the last, possibly open).
+  const LayeredStream& stream() const { return stream_; }
+  // Layers closed so far in the current component (0 before the first U).
+  int32_t closed_layers() const { return closed_layers_; }
+  const std::vector<WindowFinding>& window_findings() const { return findings_; }
+  const GrammarOptions& options() const { return options_; }
+  // Called at every U/E (not copied by Clone, not replayed by Rewind).
+  void SetProgressCallback(std::function<void(const LayerProgress&)> cb) { progress_ = std::move(cb); }
+
+ private:
+  struct Checkpoint {
+    size_t token_index;
+    GrammarPhase phase;
+    int32_t layer, n_prev, closed_layers;
+    int64_t vertices_total;
+    size_t components, findings;
+  };
+
+  Rejection Reject(RejectReason r, int32_t id, const std::string& why) const;
+  void StartLayer();
+  void ResetLayerState();
+  void AddBetweenMask(int32_t min_start);
+  bool WindowOk(int32_t n_size, int32_t w) const;
+  int32_t BudgetMaxSize(int64_t extra) const;
+  int64_t FutureRowsCost(int32_t from_row, int32_t n_size) const;
+  bool ColumnsClear(int32_t s, int32_t c) const;
+  bool PositionForbidden(const QVec& p) const;
+  std::string ExplainClose(int32_t n_size) const;
+  void CloseLayer();
+  void RecordFindings();
+  void ComputeMask();
+  StreamLayer& cur_layer() { return stream_.components.back().layers.back(); }
+  const StreamLayer& cur_layer() const { return stream_.components.back().layers.back(); }
+  const StreamLayer& prev_layer() const {
+    const auto& ls = stream_.components.back().layers;
+    return ls[ls.size() - 2];
+  }
+  int32_t remaining() const;  // tokens still allowed (incl. EOS), large if unlimited
+
+  GrammarOptions options_;
+  GrammarPhase phase_ = GrammarPhase::kStart;
+  std::vector<int32_t> history_;
+  std::vector<Checkpoint> checkpoints_;
+  LayeredStream stream_;
+  std::vector<WindowFinding> findings_;
+  int32_t layer_ = 0, n_prev_ = 0, closed_layers_ = 0;
+  int64_t vertices_total_ = 0;
+
+  // Current layer: sizes at which it can still close; incoming forward X distances per row.
+  LayerSizeSet sizes_;
+  std::array<LayerSizeSet, 200> incoming_{};
+  std::array<uint8_t, 200> incoming_count_{};
+  int32_t incoming_total_ = 0;
+  // Current row.
+  LayerSizeSet row_sizes_;
+  std::array<uint8_t, 256> matched_{};
+  std::array<uint8_t, 200> g_desc_{};
+  int32_t g_count_ = 0, last_x_ = -1, last_s_ = -1, last_c_ = -1;
+  LayerSizeSet eq_cols_;  // previous-layer columns at the current vertex's position
+  bool eq_cols_any_ = false;
+  int32_t pending_block_ = -1;
+
+  TokenMask mask_;
+  bool mask_valid_ = false;
+  std::function<void(const LayerProgress&)> progress_;
+};
+
+// Checks a whole id array; returns the first rejection with its position in `*position`.
+Rejection CheckTokens(const std::vector<int32_t>& ids, const GrammarOptions& options, size_t* position,
+                      bool require_end = true);
+
+}  // namespace silk

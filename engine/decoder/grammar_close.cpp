@@ -1,0 +1,106 @@
+// Closing a layer: the geometric position rule, the explanation of a refused U/E (which
+// deferred rule of spec §11.2 fails at this size) and the findings of WindowRule::kUnion.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "decoder/grammar.h"
+
+namespace silk {
+
+// Geometric rule (not in the spec's grammar, satisfied by all 154 official streams): no edge
+// joins two vertices at one grid position. Checked when a vertex's position is read, against
+// the earlier rows of its layer that already state an edge to it (window bit or X value), and
+// against the previous layer when every vertex there sits at this position (no B could follow).
+bool Grammar::PositionForbidden(const QVec& p) const {
+  const auto& vs = cur_layer().vertices;
+  const int32_t b = static_cast<int32_t>(vs.size()) - 1;
+  for (int32_t a = std::max(0, b - 8); a < b; ++a)
+    if (((vs[a].window >> (b - a - 1)) & 1) && vs[a].pos == p) return true;
+  for (int32_t g = incoming_[b].Next(0); g >= 0; g = incoming_[b].Next(g + 1))
+    if (vs[b - g].pos == p) return true;
+  const auto& pv = prev_layer().vertices;
+  for (const auto& v : pv)
+    if (v.pos != p) return false;
+  return true;
+}
+
+void Grammar::CloseLayer() {
+  const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
+  ++closed_layers_;
+  vertices_total_ += n;
+  if (layer_ > 0 && options_.window_rule == WindowRule::kUnion) RecordFindings();
+  if (progress_) {
+    LayerProgress lp;
+    lp.component = static_cast<int32_t>(stream_.components.size()) - 1;
+    lp.layer = layer_;
+    lp.layer_size = n;
+    lp.vertices_total = vertices_total_;
+    progress_(lp);
+  }
+}
+
+namespace {
+bool HasExtra(const StreamVertex& v, int32_t e) {
+  for (int32_t x : v.extras)
+    if (x == e) return true;
+  return false;
+}
+}  // namespace
+
+// Pairs stated by one covering row and denied by the other (spec §11.2, §12.2 "token-level
+// consistency"): under the union rule they are edges, and each one is a repaired false 0.
+void Grammar::RecordFindings() {
+  const auto& vs = cur_layer().vertices;
+  const int32_t n = static_cast<int32_t>(vs.size());
+  const int32_t comp = static_cast<int32_t>(stream_.components.size()) - 1;
+  for (int32_t a = 0; a < n; ++a) {
+    for (int32_t b = a + 1; b < n; ++b) {
+      const int32_t g = b - a;
+      int32_t sa = -1, sb = -1;
+      if (g <= 8 && n - g <= 8) {
+        sa = (vs[a].window >> (g - 1)) & 1;
+        sb = (vs[b].window >> (n - g - 1)) & 1;
+      } else if (n >= 18 && g >= 9 && g <= n - 9) {
+        sa = HasExtra(vs[a], g - 1);
+        sb = HasExtra(vs[b], n - g - 1);
+      }
+      if (sa >= 0 && sa != sb) findings_.push_back(WindowFinding{comp, layer_, a, b});
+    }
+  }
+}
+
+std::string Grammar::ExplainClose(int32_t n) const {
+  const auto& vs = cur_layer().vertices;
+  const bool canonical = options_.window_rule == WindowRule::kCanonical;
+  for (int32_t b = 0; b < n; ++b) {
+    const auto& v = vs[b];
+    if (n <= 8 && v.window >= (1 << (n - 1)))
+      return "row " + std::to_string(b) + " has a window bit at a distance >= N (spec §11.2)";
+    if (canonical && layer_ == 1 && b < n - 1 && !(v.window & 1))
+      return "layer 1 rows " + std::to_string(b) + " and " + std::to_string(b + 1) +
+             " are not adjacent (chain rule, spec §11.2)";
+    for (int32_t e : v.extras)
+      if (e > n - 10) return "row " + std::to_string(b) + " has X value " + std::to_string(e) + " > N-10 (spec §6)";
+  }
+  if (canonical) {
+    for (int32_t a = 0; a < n; ++a)
+      for (int32_t b = a + 1; b < n; ++b) {
+        const int32_t g = b - a;
+        int32_t sa = -1, sb = -1;
+        if (g <= 8 && n - g <= 8) {
+          sa = (vs[a].window >> (g - 1)) & 1;
+          sb = (vs[b].window >> (n - g - 1)) & 1;
+        } else if (n >= 18 && g >= 9 && g <= n - 9) {
+          sa = HasExtra(vs[a], g - 1);
+          sb = HasExtra(vs[b], n - g - 1);
+        }
+        if (sa >= 0 && sa != sb)
+          return "rows " + std::to_string(a) + " and " + std::to_string(b) +
+                 " disagree about their pair (canonical consistency, spec §11.2)";
+      }
+  }
+  return "a zero-length edge or the length budget";
+}
+
+}  // namespace silk

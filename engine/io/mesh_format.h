@@ -1,0 +1,24 @@
+// MeshFormat: the input formats the io layer reads, and how a format is chosen from a file
+// name (extension) and, when the extension says nothing, from the first bytes.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace silk {
+
+enum class MeshFormat { kObj, kPly, kStl, kOff, kGltf, kGlb };
+
+const char* MeshFormatName(MeshFormat f);
+
+// Format from the file extension (case-insensitive), ignoring a trailing ".gz".
+std::optional<MeshFormat> MeshFormatFromPath(const std::string& path);
+
+// True when the path ends in ".gz" (case-insensitive).
+bool HasGzipSuffix(const std::string& path);
+
+// Format from magic bytes ("ply", "OFF", "glTF", "solid", "{"); nullopt when unsure.
+std::optional<MeshFormat> SniffMeshFormat(const uint8_t* data, size_t size);
+
+}  // namespace silk

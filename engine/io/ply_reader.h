@@ -1,0 +1,20 @@
+// Strict PLY reader (ascii, binary_little_endian, binary_big_endian): x/y/z of the "vertex"
+// element and the "vertex_indices"/"vertex_index" list of the "face" element; all other
+// properties and elements are parsed and skipped.
+#pragma once
+#include <string>
+#include <string_view>
+
+#include "core/status.h"
+#include "io/raw_mesh.h"
+#include "io/read_options.h"
+
+namespace silk {
+
+// Header counts are checked against the bytes that follow the header before anything is
+// allocated. A truncated body is an error naming the element and its index. Faces with more
+// than 3 corners are fan-triangulated. Float32 values (also in ascii files) are rounded to
+// float first, exactly as a binary file would store them.
+StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const ReadOptions& opts = {});
+
+}  // namespace silk

@@ -1,0 +1,21 @@
+// Error-message helpers shared by the readers: every message starts with the file name and,
+// when known, the line ("bad.obj:3: face index 5 out of range (4 vertices)").
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "core/status.h"
+
+namespace silk {
+
+inline Status ParseErrorAt(const std::string& name, int64_t line, const std::string& what) {
+  return ParseError(name + ":" + std::to_string(line) + ": " + what);
+}
+inline Status ParseErrorIn(const std::string& name, const std::string& what) {
+  return ParseError(name + ": " + what);
+}
+inline Status LimitErrorIn(const std::string& name, const std::string& what) {
+  return LimitExceeded(name + ": " + what);
+}
+
+}  // namespace silk

@@ -1,0 +1,14 @@
+// ReadOptions: resource limits every reader checks against header counts before it
+// allocates, so a lying header fails fast instead of exhausting memory.
+#pragma once
+#include <cstdint>
+
+namespace silk {
+
+struct ReadOptions {
+  uint64_t max_vertices = 50'000'000;  // never above INT32_MAX (triangle indices are int32)
+  uint64_t max_triangles = 50'000'000;
+  uint64_t max_file_bytes = uint64_t{4} << 30;  // also caps the size after gzip inflation
+};
+
+}  // namespace silk

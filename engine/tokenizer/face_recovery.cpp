@@ -1,0 +1,244 @@
+// Face recovery by oriented growth: faces are accepted one open edge at a time, forced
+// choices first, layer-order hints next, a local rule last; every accepted face keeps the
+// surface manifold and consistently oriented with its neighbours.
+#include "tokenizer/face_recovery.h"
+
+#include <algorithm>
+#include <deque>
+
+#include "tokenizer/layering_hints.h"
+
+namespace silk {
+namespace {
+
+class Grower {
+ public:
+  explicit Grower(const ComponentGraph& g) : g_(g) {
+    const size_t t = g.triangles.size(), e = g.edges.size();
+    orient_.assign(t, 0);
+    hint_.assign(t, 0);
+    count_.assign(e, 0);
+    dir_.assign(e, 0);
+  }
+
+  StatusOr<std::vector<std::array<int32_t, 3>>> Run(FaceRecoveryStats* stats) {
+    hints_ = LayeringHintFaces(g_);
+    for (const auto& h : hints_) {
+      const int32_t t = TriangleOf(h[0], h[1], h[2]);
+      if (t >= 0) hint_[t] = OrientationOf(t, h[0], h[1]);
+    }
+    stats_.triangles = static_cast<int32_t>(g_.triangles.size());
+    stats_.hint_faces = static_cast<int32_t>(hints_.size());
+    size_t next_hint = 0;
+    while (true) {
+      Drain();
+      if (ResolveDeferred()) continue;
+      // Start a new region: the next hint face that still fits.
+      bool seeded = false;
+      while (next_hint < hints_.size() && !seeded) {
+        const auto& h = hints_[next_hint++];
+        const int32_t t = TriangleOf(h[0], h[1], h[2]);
+        if (t >= 0 && orient_[t] == 0 && CanAdd(h[0], h[1], h[2])) {
+          Add(t, h[0], h[1], h[2]);
+          ++stats_.seeds;
+          seeded = true;
+        }
+      }
+      if (seeded) continue;
+      if (SeedUncovered()) continue;
+      break;
+    }
+    std::vector<std::array<int32_t, 3>> faces;
+    for (size_t t = 0; t < g_.triangles.size(); ++t) {
+      if (orient_[t] == 0) continue;
+      const auto& c = g_.triangles[t];
+      faces.push_back(orient_[t] > 0 ? std::array<int32_t, 3>{c[0], c[1], c[2]}
+                                     : std::array<int32_t, 3>{c[0], c[2], c[1]});
+    }
+    for (int8_t n : count_) stats_.uncovered_edges += n == 0;
+    if (stats) *stats = stats_;
+    return faces;
+  }
+
+ private:
+  int32_t TriangleOf(int32_t a, int32_t b, int32_t c) const {
+    const int32_t e = g_.EdgeOf(a, b);
+    if (e < 0) return -1;
+    for (int32_t t : g_.edge_triangles[e]) {
+      const auto& k = g_.triangles[t];
+      if (k[0] == c || k[1] == c || k[2] == c) return t;
+    }
+    return -1;
+  }
+  // +1 if p -> q is a directed edge of (k0, k1, k2), else -1.
+  int8_t OrientationOf(int32_t t, int32_t p, int32_t q) const {
+    const auto& k = g_.triangles[t];
+    if ((k[0] == p && k[1] == q) || (k[1] == p && k[2] == q) || (k[2] == p && k[0] == q)) return 1;
+    return -1;
+  }
+  // Bit of the directed edge p -> q on edge {p, q}.
+  static uint8_t DirBit(int32_t p, int32_t q) { return p < q ? 1 : 2; }
+
+  bool EdgeFree(int32_t p, int32_t q) const {
+    const int32_t e = g_.EdgeOf(p, q);
+    return count_[e] < 2 && !(dir_[e] & DirBit(p, q));
+  }
+  bool CanAdd(int32_t a, int32_t b, int32_t c) const { return EdgeFree(a, b) && EdgeFree(b, c) && EdgeFree(c, a); }
+
+  void Add(int32_t t, int32_t a, int32_t b, int32_t c) {
+    orient_[t] = OrientationOf(t, a, b);
+    const int32_t v[3] = {a, b, c};
+    for (int i = 0; i < 3; ++i) {
+      const int32_t p = v[i], q = v[(i + 1) % 3];
+      const int32_t e = g_.EdgeOf(p, q);
+      ++count_[e];
+      dir_[e] |= DirBit(p, q);
+      if (count_[e] == 1) work_.push_back(e);
+    }
+  }
+
+  // The open directed edge of edge e (count 1): returns (p, q) with p -> q used.
+  std::pair<int32_t, int32_t> OpenDir(int32_t e) const {
+    const auto [a, b] = g_.edges[e];
+    return (dir_[e] & 1) ? std::make_pair(a, b) : std::make_pair(b, a);
+  }
+
+  // Candidate apexes c for the face (q, p, c) across open edge e.
+  void Candidates(int32_t e, std::vector<int32_t>* out) const {
+    out->clear();
+    const auto [p, q] = OpenDir(e);
+    for (int32_t t : g_.edge_triangles[e]) {
+      if (orient_[t] != 0) continue;
+      const auto& k = g_.triangles[t];
+      const int32_t c = k[0] != p && k[0] != q ? k[0] : (k[1] != p && k[1] != q ? k[1] : k[2]);
+      if (CanAdd(q, p, c)) out->push_back(t);
+    }
+  }
+  int32_t Apex(int32_t t, int32_t e) const {
+    const auto [a, b] = g_.edges[e];
+    const auto& k = g_.triangles[t];
+    return k[0] != a && k[0] != b ? k[0] : (k[1] != a && k[1] != b ? k[1] : k[2]);
+  }
+  void AddAcross(int32_t e, int32_t t) {
+    const auto [p, q] = OpenDir(e);
+    Add(t, q, p, Apex(t, e));
+  }
+
+  // Accept every forced face reachable from the work list.
+  void Drain() {
+    std::vector<int32_t> cand;
+    while (!work_.empty()) {
+      const int32_t e = work_.front();
+      work_.pop_front();
+      if (count_[e] != 1) continue;
+      Candidates(e, &cand);
+      if (cand.empty()) continue;
+      if (cand.size() == 1) {
+        AddAcross(e, cand[0]);
+        ++stats_.forced;
+      } else {
+        deferred_.push_back(e);
+      }
+    }
+  }
+
+  // Re-examines deferred edges; accepts a forced one, else a hinted one, else one by rule.
+  bool ResolveDeferred() {
+    std::vector<int32_t> cand;
+    std::vector<int32_t> live;
+    for (int32_t e : deferred_) {
+      if (count_[e] != 1) continue;
+      Candidates(e, &cand);
+      if (cand.empty()) continue;
+      if (cand.size() == 1) {
+        AddAcross(e, cand[0]);
+        ++stats_.forced;
+        Compact();
+        return true;
+      }
+      live.push_back(e);
+    }
+    deferred_ = live;
+    if (live.empty()) return false;
+    for (int32_t e : live) {
+      Candidates(e, &cand);
+      const auto [p, q] = OpenDir(e);
+      for (int32_t t : cand) {
+        if (hint_[t] != 0 && hint_[t] == OrientationOf(t, q, p)) {
+          AddAcross(e, t);
+          ++stats_.resolved;
+          return true;
+        }
+      }
+    }
+    // Rule: the apex sharing the fewest neighbours with the edge's ends, then lowest id.
+    const int32_t e = live.front();
+    Candidates(e, &cand);
+    const auto [a, b] = g_.edges[e];
+    int32_t best = -1;
+    size_t best_score = 0;
+    for (int32_t t : cand) {
+      const int32_t c = Apex(t, e);
+      size_t s = CommonCount(c, a) + CommonCount(c, b);
+      if (best < 0 || s < best_score || (s == best_score && c < Apex(best, e))) {
+        best = t;
+        best_score = s;
+      }
+    }
+    AddAcross(e, best);
+    ++stats_.resolved;
+    return true;
+  }
+  void Compact() {}
+
+  size_t CommonCount(int32_t x, int32_t y) const {
+    const auto& nx = g_.neighbors[x];
+    const auto& ny = g_.neighbors[y];
+    size_t n = 0;
+    for (size_t i = 0, j = 0; i < nx.size() && j < ny.size();) {
+      if (nx[i] < ny[j]) ++i;
+      else if (nx[i] > ny[j]) ++j;
+      else { ++n; ++i; ++j; }
+    }
+    return n;
+  }
+
+  // A region no hint reaches: start from the first uncovered edge's first fitting triangle.
+  bool SeedUncovered() {
+    for (; next_uncovered_ < static_cast<int32_t>(g_.edges.size()); ++next_uncovered_) {
+      const int32_t e = next_uncovered_;
+      if (count_[e] != 0) continue;
+      for (int32_t t : g_.edge_triangles[e]) {
+        if (orient_[t] != 0) continue;
+        const auto& k = g_.triangles[t];
+        if (CanAdd(k[0], k[1], k[2])) { Add(t, k[0], k[1], k[2]); ++stats_.seeds; return true; }
+        if (CanAdd(k[0], k[2], k[1])) { Add(t, k[0], k[2], k[1]); ++stats_.seeds; return true; }
+      }
+    }
+    return false;
+  }
+
+  const ComponentGraph& g_;
+  std::vector<std::array<int32_t, 3>> hints_;
+  std::vector<int8_t> orient_, hint_, count_;
+  std::vector<uint8_t> dir_;
+  std::deque<int32_t> work_;
+  std::vector<int32_t> deferred_;
+  int32_t next_uncovered_ = 0;
+  FaceRecoveryStats stats_;
+};
+
+}  // namespace
+
+StatusOr<std::vector<std::array<int32_t, 3>>> RecoverFacesOfGraph(const ComponentGraph& g,
+                                                                   FaceRecoveryStats* stats) {
+  return Grower(g).Run(stats);
+}
+
+StatusOr<std::vector<std::array<int32_t, 3>>> RecoverComponentFaces(const ComponentLayers& layers,
+                                                                     FaceRecoveryStats* stats) {
+  SILK_ASSIGN_OR_RETURN(ComponentGraph g, BuildComponentGraph(layers));
+  return RecoverFacesOfGraph(g, stats);
+}
+
+}  // namespace silk
