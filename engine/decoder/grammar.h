@@ -75,6 +75,10 @@ class Grammar {
   // start). Error if prefix > size().
   Status Rewind(size_t prefix);
 
+  // Smallest layer size >= from at which the current layer could still close, -1 if none
+  // (for samplers that aim at a layer size; meaningful inside a layer of index >= 1).
+  int32_t NextClosableSize(int32_t from) const;
+
   size_t size() const { return history_.size(); }
   const std::vector<int32_t>& tokens() const { return history_; }
   GrammarPhase phase() const { return phase_; }

@@ -143,6 +143,12 @@ const TokenMask& Grammar::LegalMask() {
   return mask_;
 }
 
+int32_t Grammar::NextClosableSize(int32_t from) const {
+  // Inside a vertex's X list every size of the row set is still reachable (more X may follow).
+  if (phase_ == GrammarPhase::kAfterS) return row_sizes_.Next(from);
+  return sizes_.Next(from);
+}
+
 int32_t Grammar::Forced() { return LegalMask().Single(); }
 
 }  // namespace silk

@@ -1,0 +1,9 @@
+# silktok end-to-end checks (tests/tools/cli_checks.py): bad inputs, goldens, round trips.
+if(Python3_FOUND AND TARGET silktok)
+  foreach(mode bad golden roundtrip)
+    add_test(NAME silktok_cli_${mode}
+             COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/cli_checks.py ${mode}
+                     $<TARGET_FILE:silktok> ${SILK_SHARED_DIR_ABS})
+  endforeach()
+  set_tests_properties(silktok_cli_golden PROPERTIES LABELS slow)
+endif()
