@@ -235,6 +235,8 @@ Rejection Grammar::Accept(int32_t id) {
         if (n >= kMaxLayerSize)
           return Reject(RejectReason::kLayerTooLarge, id, "a layer holds at most 200 vertices (spec §1.3)");
         const int32_t next = sizes_.Next(n + 1);
+        if (next < 0 && remaining() < 4 * kMaxLayerSize + incoming_total_ + 260)
+          return Reject(RejectReason::kTooLong, id, "no room left for another vertex and the layer's end");
         if (next < 0)
           return Reject(RejectReason::kNotCanonical, id,
                         "the earlier rows of this layer only fit a layer of " + std::to_string(n) + " vertices");
@@ -308,6 +310,7 @@ Rejection Grammar::Accept(int32_t id) {
       }
       if (ok.Empty()) {
         cur_layer().vertices.back().window = 0;
+        if (budget_max < kMaxLayerSize) return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
         return Reject(beyond_only ? RejectReason::kWindowBeyondLayer : RejectReason::kNotCanonical, id,
                       "window " + std::to_string(w) +
                           " fits no layer size still possible (bits past the layer end, disagreement with an "
@@ -348,6 +351,8 @@ Rejection Grammar::Accept(int32_t id) {
             ok.Set(n);  // wrap-around statement echoing an earlier row's forward X (§6 twice-emitted pairs)
           }
         }
+        if (ok.Empty() && !range_only && budget_max < kMaxLayerSize)
+          return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
         if (ok.Empty())
           return Reject(range_only ? RejectReason::kXOutOfRange : RejectReason::kNotCanonical, id,
                         "X value " + std::to_string(e) +
@@ -379,6 +384,8 @@ Rejection Grammar::Accept(int32_t id) {
       const int32_t budget_max = BudgetMaxSize(1);
       for (int32_t n = row_sizes_.Next(0); n >= 0 && n <= budget_max; n = row_sizes_.Next(n + 1))
         if (!canonical || matched_[n] == g_count_) fin.Set(n);
+      if (fin.Empty() && budget_max < kMaxLayerSize)
+        return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
       if (fin.Empty())
         return Reject(RejectReason::kNotCanonical, id,
                       "the vertex's X values miss a pair an earlier row states (spec §11.2 canonical consistency)");

@@ -16,6 +16,7 @@ const char* MeshFormatName(MeshFormat f) {
     case MeshFormat::kOff: return "OFF";
     case MeshFormat::kGltf: return "glTF";
     case MeshFormat::kGlb: return "GLB";
+    case MeshFormat::kPmd: return "PMD";
   }
   return "unknown";
 }
@@ -42,6 +43,7 @@ std::optional<MeshFormat> MeshFormatFromPath(const std::string& path) {
   if (EndsWith(p, ".off")) return MeshFormat::kOff;
   if (EndsWith(p, ".gltf")) return MeshFormat::kGltf;
   if (EndsWith(p, ".glb")) return MeshFormat::kGlb;
+  if (EndsWith(p, ".pmd")) return MeshFormat::kPmd;
   return std::nullopt;
 }
 
@@ -51,6 +53,7 @@ std::optional<MeshFormat> SniffMeshFormat(const uint8_t* data, size_t size) {
     return size >= n && std::memcmp(data, magic, n) == 0;
   };
   if (starts("glTF")) return MeshFormat::kGlb;
+  if (starts("PSMD")) return MeshFormat::kPmd;
   if (starts("ply\n") || starts("ply\r\n")) return MeshFormat::kPly;
   if (starts("OFF") || starts("COFF") || starts("NOFF") || starts("CNOFF") || starts("STOFF"))
     return MeshFormat::kOff;

@@ -8,7 +8,7 @@
 
 namespace silk {
 
-enum class MeshFormat { kObj, kPly, kStl, kOff, kGltf, kGlb };
+enum class MeshFormat { kObj, kPly, kStl, kOff, kGltf, kGlb, kPmd };
 
 const char* MeshFormatName(MeshFormat f);
 
@@ -18,7 +18,7 @@ std::optional<MeshFormat> MeshFormatFromPath(const std::string& path);
 // True when the path ends in ".gz" (case-insensitive).
 bool HasGzipSuffix(const std::string& path);
 
-// Format from magic bytes ("ply", "OFF", "glTF", "solid", "{"); nullopt when unsure.
+// Format from magic bytes ("ply", "OFF", "glTF", "solid", "{", "PSMD"); nullopt when unsure.
 std::optional<MeshFormat> SniffMeshFormat(const uint8_t* data, size_t size);
 
 }  // namespace silk

@@ -9,6 +9,7 @@
 #include "io/gzip_inflate.h"
 #include "io/obj_reader.h"
 #include "io/off_reader.h"
+#include "io/pmd_reader.h"
 #include "io/ply_reader.h"
 #include "io/read_error.h"
 #include "io/stl_reader.h"
@@ -27,6 +28,7 @@ StatusOr<RawMesh> Dispatch(std::string_view bytes, MeshFormat fmt, const std::st
       case MeshFormat::kOff: return ReadOff(bytes, name, opts);
       case MeshFormat::kGltf: return ReadGltf(bytes, false, name, base_dir, from_memory, opts);
       case MeshFormat::kGlb: return ReadGltf(bytes, true, name, base_dir, from_memory, opts);
+      case MeshFormat::kPmd: return ReadPmd(bytes, name, opts);
     }
   } catch (const std::bad_alloc&) {
     return LimitErrorIn(name, "out of memory");
@@ -58,7 +60,7 @@ StatusOr<RawMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts)
   std::optional<MeshFormat> fmt = MeshFormatFromPath(path);
   const std::optional<MeshFormat> sniffed = SniffMeshFormat(data, bytes.size());
   if (!fmt) {
-    if (!sniffed) return Unsupported(path + ": unknown mesh format (extension not one of .obj .ply .stl .off .gltf .glb)");
+    if (!sniffed) return Unsupported(path + ": unknown mesh format (extension not one of .obj .ply .stl .off .gltf .glb .pmd)");
     fmt = sniffed;
   }
   // A .gltf that is really a GLB container is read as GLB; a .glb without the magic is an

@@ -12,7 +12,7 @@
 
 namespace silk {
 
-// .obj .ply .stl .off .gltf .glb, optionally followed by .gz (e.g. "x.ply.gz"). Unknown
+// .obj .ply .stl .off .gltf .glb .pmd, optionally followed by .gz (e.g. "x.ply.gz"). Unknown
 // extensions are sniffed from the first bytes. Every error message names the file.
 StatusOr<RawMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts = {});
 

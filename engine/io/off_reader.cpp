@@ -60,28 +60,32 @@ StatusOr<RawMesh> ReadOff(std::string_view text, const std::string& name, const 
   const uint64_t nv = static_cast<uint64_t>(counts[0]);
   const uint64_t nf = static_cast<uint64_t>(counts[1]);
 
-  // Plausibility before allocating: each record needs its own non-empty line.
+  // Plausibility before allocating: each record needs its own non-empty line. An
+  // implausible header is still read record by record (no reservation), so that a broken
+  // record is reported as such; running out of lines reports the header counts.
+  uint64_t data_lines = 0;
   {
     TextLines probe = lines;
-    uint64_t data_lines = 0;
     std::string_view l;
     while (data_lines < nv + nf && NextDataLine(&probe, &l)) ++data_lines;
-    if (nv > UINT64_MAX / 2 || nf > UINT64_MAX / 2 || data_lines < nv + nf)
-      return ParseErrorAt(name, counts_line, "header says " + std::to_string(nv) + " vertices and " +
-                                                 std::to_string(nf) + " faces but only " +
-                                                 std::to_string(data_lines) + " data lines follow");
   }
+  const bool plausible = data_lines >= nv + nf;
+  const Status too_few = ParseErrorAt(name, counts_line, "header says " + std::to_string(nv) + " vertices and " +
+                                                             std::to_string(nf) + " faces but only " +
+                                                             std::to_string(data_lines) + " data lines follow");
   const uint64_t max_vertices = std::min<uint64_t>(opts.max_vertices, INT32_MAX);
-  if (nv > max_vertices)
+  if (plausible && nv > max_vertices)
     return LimitErrorIn(name, std::to_string(nv) + " vertices exceed the limit " + std::to_string(max_vertices));
-  if (nf > opts.max_triangles)
+  if (plausible && nf > opts.max_triangles)
     return LimitErrorIn(name, std::to_string(nf) + " faces exceed the limit " + std::to_string(opts.max_triangles));
 
   RawMesh mesh;
-  mesh.positions.reserve(nv);
-  mesh.triangles.reserve(nf);
+  if (plausible) {
+    mesh.positions.reserve(nv);
+    mesh.triangles.reserve(nf);
+  }
   for (uint64_t i = 0; i < nv; ++i) {
-    NextDataLine(&lines, &line);
+    if (!NextDataLine(&lines, &line)) return too_few;
     const int64_t ln = lines.line_number();
     LineTokens toks(line);
     std::array<double, 3> p;
@@ -97,7 +101,7 @@ StatusOr<RawMesh> ReadOff(std::string_view text, const std::string& name, const 
   }
   std::vector<int32_t> corners;
   for (uint64_t f = 0; f < nf; ++f) {
-    NextDataLine(&lines, &line);
+    if (!NextDataLine(&lines, &line)) return too_few;
     const int64_t ln = lines.line_number();
     LineTokens toks(line);
     int64_t n = 0;

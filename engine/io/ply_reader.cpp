@@ -116,6 +116,8 @@ class PlyBodyReader {
   Status AddPosition(const PlyElement& e, uint64_t i, const std::array<double, 3>& p) {
     for (double c : p)
       if (!std::isfinite(c)) return ParseErrorIn(name_, Item(e, i) + ": non-finite coordinate");
+    if (mesh_->positions.size() >= std::min<uint64_t>(opts_.max_vertices, INT32_MAX))
+      return LimitErrorIn(name_, "more than " + std::to_string(opts_.max_vertices) + " vertices");
     mesh_->positions.push_back(p);
     return Status::Ok();
   }
@@ -296,9 +298,13 @@ StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const 
   if (!vertex) return ParseErrorIn(name, "no 'vertex' element");
 
   // Plausibility: every element's declared count must fit in the bytes after the header.
+  // Only a plausible header is trusted for allocation; an implausible one is still read
+  // (growing with the data actually present) so the error names the first missing item.
   const bool ascii = h.format == PlyFormat::kAscii;
   const uint64_t remaining = data.size() - h.body_offset;
+  const uint64_t slack = ascii ? 1 : 0;  // the last ascii line may lack its newline
   uint64_t needed = 0;
+  bool plausible = true;
   for (const ElementPlan& plan : plans) {
     const PlyElement& e = *plan.element;
     if (e.count == 0 || e.properties.empty()) continue;
@@ -310,27 +316,29 @@ StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const 
       else min_item += p.is_list ? PlyTypeSize(p.count_type) + values * PlyTypeSize(p.value_type)
                                  : PlyTypeSize(p.value_type);
     }
-    const uint64_t slack = ascii ? 1 : 0;  // the last ascii line may lack its newline
-    if (e.count > (remaining + slack) / min_item || needed + e.count * min_item > remaining + slack)
-      return ParseErrorAt(name, e.line, "element '" + e.name + "' declares " + std::to_string(e.count) +
-                                            " items (at least " + std::to_string(min_item) +
-                                            " bytes each) but only " + std::to_string(remaining) +
-                                            " bytes follow the header");
+    if (e.count > (remaining + slack) / min_item || needed + e.count * min_item > remaining + slack) {
+      plausible = false;
+      break;
+    }
     needed += e.count * min_item;
   }
   const uint64_t max_vertices = std::min<uint64_t>(opts.max_vertices, INT32_MAX);
-  if (vertex->count > max_vertices)
+  if (plausible && vertex->count > max_vertices)
     return LimitErrorIn(name, "header declares " + std::to_string(vertex->count) + " vertices (limit " +
                                   std::to_string(max_vertices) + ")");
-  if (face && face->count > opts.max_triangles)
+  if (plausible && face && face->count > opts.max_triangles)
     return LimitErrorIn(name, "header declares " + std::to_string(face->count) + " faces (limit " +
                                   std::to_string(opts.max_triangles) + ")");
 
   RawMesh mesh;
-  mesh.positions.reserve(vertex->count);
-  if (face) mesh.triangles.reserve(face->count);
+  if (plausible) {
+    mesh.positions.reserve(vertex->count);
+    if (face) mesh.triangles.reserve(face->count);
+  }
   PlyBodyReader reader(data, h, name, opts, &mesh);
   SILK_RETURN_IF_ERROR(reader.Read(plans, vertex->count));
+  if (!plausible)  // cannot happen: the body reader runs out of data first
+    return ParseErrorIn(name, "header counts do not fit in the " + std::to_string(remaining) + " bytes after the header");
   if (mesh.triangles.empty()) return ParseErrorIn(name, face ? "no faces" : "no faces (no 'face' element)");
   return mesh;
 }

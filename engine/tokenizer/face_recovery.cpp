@@ -85,16 +85,60 @@ class Grower {
   }
   bool CanAdd(int32_t a, int32_t b, int32_t c) const { return EdgeFree(a, b) && EdgeFree(b, c) && EdgeFree(c, a); }
 
-  void Add(int32_t t, int32_t a, int32_t b, int32_t c) {
+  void Add(int32_t t, int32_t a, int32_t b, int32_t c) { AddTo(t, a, b, c, &work_); }
+  void AddTo(int32_t t, int32_t a, int32_t b, int32_t c, std::deque<int32_t>* queue) {
     orient_[t] = OrientationOf(t, a, b);
+    log_.push_back(t);
     const int32_t v[3] = {a, b, c};
     for (int i = 0; i < 3; ++i) {
       const int32_t p = v[i], q = v[(i + 1) % 3];
       const int32_t e = g_.EdgeOf(p, q);
       ++count_[e];
       dir_[e] |= DirBit(p, q);
-      if (count_[e] == 1) work_.push_back(e);
+      if (count_[e] == 1) queue->push_back(e);
     }
+  }
+  // Undoes the faces added after log position `mark` (their directed edges were free).
+  void RevertTo(size_t mark) {
+    while (log_.size() > mark) {
+      const int32_t t = log_.back();
+      log_.pop_back();
+      const auto& k = g_.triangles[t];
+      const int32_t v[3] = {k[0], orient_[t] > 0 ? k[1] : k[2], orient_[t] > 0 ? k[2] : k[1]};
+      for (int i = 0; i < 3; ++i) {
+        const int32_t p = v[i], q = v[(i + 1) % 3];
+        const int32_t e = g_.EdgeOf(p, q);
+        --count_[e];
+        dir_[e] &= static_cast<uint8_t>(~DirBit(p, q));
+      }
+      orient_[t] = 0;
+    }
+  }
+
+  // Look-ahead: accept t across e, follow the forced faces it implies, count the open edges
+  // that end up with no candidate at all (a wrong face usually strands its neighbours).
+  int32_t TrialDeadEdges(int32_t e, int32_t t) {
+    const size_t mark = log_.size();
+    std::deque<int32_t> q;
+    const auto [p0, q0] = OpenDir(e);
+    AddTo(t, q0, p0, Apex(t, e), &q);
+    int32_t dead = 0, steps = 0;
+    std::vector<int32_t> cand;
+    while (!q.empty() && steps < kTrialSteps && budget_ > 0) {
+      const int32_t f = q.front();
+      q.pop_front();
+      ++steps;
+      --budget_;
+      if (count_[f] != 1) continue;
+      Candidates(f, &cand);
+      if (cand.empty()) ++dead;
+      else if (cand.size() == 1) {
+        const auto [p, r] = OpenDir(f);
+        AddTo(cand[0], r, p, Apex(cand[0], f), &q);
+      }
+    }
+    RevertTo(mark);
+    return dead;
   }
 
   // The open directed edge of edge e (count 1): returns (p, q) with p -> q used.
@@ -171,18 +215,22 @@ class Grower {
         }
       }
     }
-    // Rule: the apex sharing the fewest neighbours with the edge's ends, then lowest id.
+    // Look-ahead on the first live edge: fewest stranded edges, then the layer hint, then
+    // the apex sharing the fewest neighbours with the edge's ends, then the lowest id.
     const int32_t e = live.front();
     Candidates(e, &cand);
     const auto [a, b] = g_.edges[e];
+    const auto [p, q] = OpenDir(e);
     int32_t best = -1;
-    size_t best_score = 0;
+    std::array<int64_t, 4> best_key{};
     for (int32_t t : cand) {
       const int32_t c = Apex(t, e);
-      size_t s = CommonCount(c, a) + CommonCount(c, b);
-      if (best < 0 || s < best_score || (s == best_score && c < Apex(best, e))) {
+      const int64_t dead = budget_ > 0 ? TrialDeadEdges(e, t) : 0;
+      const int64_t hinted = (hint_[t] != 0 && hint_[t] == OrientationOf(t, q, p)) ? 0 : 1;
+      const std::array<int64_t, 4> key{dead, hinted, static_cast<int64_t>(CommonCount(c, a) + CommonCount(c, b)), c};
+      if (best < 0 || key < best_key) {
         best = t;
-        best_score = s;
+        best_key = key;
       }
     }
     AddAcross(e, best);
@@ -224,6 +272,10 @@ class Grower {
   std::vector<uint8_t> dir_;
   std::deque<int32_t> work_;
   std::vector<int32_t> deferred_;
+  std::vector<int32_t> log_;
+  int64_t budget_ = kLookAheadBudget;
+  static constexpr int32_t kTrialSteps = 4096;
+  static constexpr int64_t kLookAheadBudget = int64_t{1} << 26;
   int32_t next_uncovered_ = 0;
   FaceRecoveryStats stats_;
 };

@@ -53,6 +53,7 @@ TEST(BadCorpus, EveryFileFailsCleanlyAndQuickly) {
     auto m = ReadMeshFile(path);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_LT(secs, 3.0) << file;
+    std::printf("%-28s %6.3f s  %s\n", file.c_str(), secs, m.ok() ? "read (raw)" : m.status().ToString().c_str());
     if (it->second.reads_raw) {
       EXPECT_TRUE(m.ok()) << m.status().ToString();
     } else {

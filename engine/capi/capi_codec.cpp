@@ -1,0 +1,144 @@
+// C API: token sequences, encode (mesh -> tokens) and decode (tokens -> mesh).
+#include <algorithm>
+#include <chrono>
+#include <memory>
+
+#include "capi/capi_internal.h"
+#include "io/atomic_file.h"
+#include "io/token_text.h"
+#include "mesh/normalize.h"
+#include "tokenizer/quantize.h"
+#include "tokenizer/tokenizer.h"
+
+using silk::capi::Guard;
+using silk::capi::Ok;
+using silk::capi::SetError;
+
+extern "C" {
+
+silk_status silk_tokens_create(const int32_t* ids, size_t count, silk_tokens** out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(out, "silk_tokens_create: out is NULL");
+    *out = nullptr;
+    SILK_CAPI_REQUIRE(ids || count == 0, "silk_tokens_create: ids is NULL");
+    auto t = std::make_unique<silk_tokens>();
+    t->ids.assign(ids, ids + count);
+    *out = t.release();
+    return Ok();
+  });
+}
+
+silk_status silk_tokens_load(const char* path, silk_tokens** out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(out && path, "silk_tokens_load: NULL argument");
+    *out = nullptr;
+    auto r = silk::ReadTokenText(path);
+    if (!r.ok()) return SetError(r.status());
+    auto t = std::make_unique<silk_tokens>();
+    t->ids = std::move(*r);
+    *out = t.release();
+    return Ok();
+  });
+}
+
+silk_status silk_tokens_save(const silk_tokens* tokens, const char* path) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(tokens && path, "silk_tokens_save: NULL argument");
+    return SetError(silk::WriteFileAtomically(path, silk::FormatTokenText(tokens->ids)));
+  });
+}
+
+void silk_tokens_destroy(silk_tokens* tokens) { delete tokens; }
+size_t silk_tokens_count(const silk_tokens* tokens) { return tokens ? tokens->ids.size() : 0; }
+
+silk_status silk_tokens_copy(const silk_tokens* tokens, int32_t* out, size_t capacity) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(tokens && (out || tokens->ids.empty()), "silk_tokens_copy: NULL argument");
+    if (capacity < tokens->ids.size())
+      return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_tokens_copy: need " + std::to_string(tokens->ids.size()));
+    std::copy(tokens->ids.begin(), tokens->ids.end(), out);
+    return Ok();
+  });
+}
+
+silk_encode_params silk_encode_default_params(void) {
+  silk_encode_params p{};
+  p.normalize = 1;
+  p.normalize_bound = silk::kDefaultNormalizeBound;
+  p.nonmanifold_processing = 1;
+  return p;
+}
+
+silk_status silk_encode(const silk_mesh* mesh, const silk_encode_params* params, silk_tokens** out,
+                        silk_encode_stats* stats) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(mesh && out, "silk_encode: mesh or out is NULL");
+    *out = nullptr;
+    const silk_encode_params p = params ? *params : silk_encode_default_params();
+    SILK_CAPI_REQUIRE(!p.normalize || (p.normalize_bound > 0 && p.normalize_bound <= 1),
+                      "silk_encode: normalize_bound must lie in (0, 1]");
+    const auto t0 = std::chrono::steady_clock::now();
+    silk::RawMesh normalized;
+    if (p.normalize) {
+      auto n = silk::NormalizeMesh(mesh->mesh, p.normalize_bound);
+      if (!n.ok()) return SetError(n.status());
+      normalized = std::move(*n);
+    }
+    silk::EncodeOptions opt;
+    opt.nonmanifold_processing = p.nonmanifold_processing != 0;
+    auto r = silk::EncodeMesh(p.normalize ? normalized : mesh->mesh, opt);
+    if (!r.ok()) return SetError(r.status());
+    if (stats) {
+      const silk::EncodeStats& s = r->stats;
+      *stats = silk_encode_stats{};
+      stats->input_vertices = s.input_vertices;
+      stats->input_faces = s.input_faces;
+      stats->processed_vertices = s.processed_vertices;
+      stats->processed_faces = s.processed_faces;
+      stats->emitted_vertices = s.emitted_vertices;
+      stats->encodable_faces = s.encodable_faces;
+      stats->components_found = s.components_found;
+      stats->components_encoded = s.components_encoded;
+      stats->components_dropped_small = s.components_dropped_small;
+      stats->layers = s.layers;
+      stats->max_layer_size = s.max_layer_size;
+      stats->max_layer_count = s.max_layer_count;
+      stats->tokens = s.tokens;
+      stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    auto t = std::make_unique<silk_tokens>();
+    t->ids = std::move(r->tokens);
+    *out = t.release();
+    return Ok();
+  });
+}
+
+silk_decode_params silk_decode_default_params(void) {
+  silk_decode_params p{};
+  p.grid_coordinates = 0;
+  return p;
+}
+
+silk_status silk_decode(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(tokens && out, "silk_decode: tokens or out is NULL");
+    *out = nullptr;
+    const silk_decode_params p = params ? *params : silk_decode_default_params();
+    auto r = silk::DecodeTokens(tokens->ids);
+    if (!r.ok()) return SetError(r.status());
+    auto m = std::make_unique<silk_mesh>();
+    for (const silk::QVec& q : r->positions) {
+      if (p.grid_coordinates) m->mesh.positions.push_back({double(q.x), double(q.y), double(q.z)});
+      else
+        m->mesh.positions.push_back(
+            {silk::DequantizeCoord(q.x), silk::DequantizeCoord(q.y), silk::DequantizeCoord(q.z)});
+    }
+    m->mesh.triangles = r->faces;
+    m->triangle_component = r->face_component;
+    m->triangle_component.resize(m->mesh.triangles.size(), 0);
+    *out = m.release();
+    return Ok();
+  });
+}
+
+}  // extern "C"

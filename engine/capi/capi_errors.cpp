@@ -1,0 +1,106 @@
+// C API: per-thread error messages, status names, version, the log callback, vocabulary.
+#include <atomic>
+#include <mutex>
+
+#include "capi/capi_internal.h"
+#include "tokenizer/vocabulary_layout.h"
+
+namespace silk::capi {
+namespace {
+thread_local std::string g_last_error;
+std::mutex g_log_mu;
+silk_log_fn g_log_fn = nullptr;
+void* g_log_user = nullptr;
+
+silk_status CodeOf(StatusCode c) {
+  switch (c) {
+    case StatusCode::kOk: return SILK_OK;
+    case StatusCode::kInvalidArgument: return SILK_ERR_INVALID_ARGUMENT;
+    case StatusCode::kIoError: return SILK_ERR_IO;
+    case StatusCode::kParseError: return SILK_ERR_PARSE;
+    case StatusCode::kUnsupported: return SILK_ERR_UNSUPPORTED;
+    case StatusCode::kRefused: return SILK_ERR_REFUSED;
+    case StatusCode::kLimitExceeded: return SILK_ERR_LIMIT;
+    case StatusCode::kCancelled: return SILK_ERR_CANCELLED;
+    case StatusCode::kInternal: return SILK_ERR_INTERNAL;
+  }
+  return SILK_ERR_INTERNAL;
+}
+}  // namespace
+
+silk_status SetError(silk_status code, const std::string& message) {
+  g_last_error = message;
+  if (code != SILK_OK) Log(SILK_LOG_ERROR, message);
+  return code;
+}
+silk_status SetError(const Status& s) { return s.ok() ? Ok() : SetError(CodeOf(s.code()), s.message()); }
+silk_status Ok() {
+  g_last_error.clear();
+  return SILK_OK;
+}
+void Log(silk_log_level level, const std::string& message) {
+  std::lock_guard<std::mutex> lock(g_log_mu);
+  if (g_log_fn) g_log_fn(level, message.c_str(), g_log_user);
+}
+
+}  // namespace silk::capi
+
+extern "C" {
+
+const char* silk_last_error(void) { return silk::capi::g_last_error.c_str(); }
+
+const char* silk_status_name(silk_status s) {
+  switch (s) {
+    case SILK_OK: return "ok";
+    case SILK_ERR_INVALID_ARGUMENT: return "invalid argument";
+    case SILK_ERR_IO: return "I/O error";
+    case SILK_ERR_PARSE: return "parse error";
+    case SILK_ERR_UNSUPPORTED: return "unsupported";
+    case SILK_ERR_REFUSED: return "refused";
+    case SILK_ERR_LIMIT: return "limit exceeded";
+    case SILK_ERR_CANCELLED: return "cancelled";
+    case SILK_ERR_INTERNAL: return "internal error";
+    case SILK_ERR_BUFFER_TOO_SMALL: return "buffer too small";
+  }
+  return "unknown";
+}
+
+const char* silk_version(void) {
+#ifdef SILK_VERSION_STRING
+  return SILK_VERSION_STRING;
+#else
+  return "0";
+#endif
+}
+
+void silk_set_log_callback(silk_log_fn fn, void* user_data) {
+  std::lock_guard<std::mutex> lock(silk::capi::g_log_mu);
+  silk::capi::g_log_fn = fn;
+  silk::capi::g_log_user = user_data;
+}
+
+silk_vocab_info silk_vocab(void) {
+  namespace v = silk::vocab;
+  silk_vocab_info i{};
+  i.token_format_version = v::k_token_format_version;
+  i.format_vocab_size = v::k_format_vocab_size;
+  i.eos_id = v::k_eos_id;
+  i.pad_id = v::k_pad_id;
+  i.model_vocab_size = v::k_model_vocab_size;
+  i.c_id = v::kCBegin;
+  i.u_id = v::kUBegin;
+  i.e_id = v::kEBegin;
+  i.x_begin = v::kXBegin; i.x_end = v::kXEnd;
+  i.s_begin = v::kSBegin; i.s_end = v::kSEnd;
+  i.b_begin = v::kBBegin; i.b_end = v::kBEnd;
+  i.k_begin = v::kKBegin; i.k_end = v::kKEnd;
+  i.o_begin = v::kOBegin; i.o_end = v::kOEnd;
+  i.quant_bins = v::k_quant_bins;
+  i.layer_vertex_limit = v::k_layer_vertex_limit;
+  i.layer_count_limit = v::k_layer_count_limit;
+  i.max_faces = v::k_max_faces;
+  i.max_seq_length = v::k_max_seq_length;
+  return i;
+}
+
+}  // extern "C"

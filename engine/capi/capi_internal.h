@@ -1,0 +1,45 @@
+// Shared plumbing of the C API: handle structs, the per-thread error slot, and Guard(),
+// which turns Status and any C++ exception into a silk_status so nothing crosses the ABI.
+#pragma once
+#include <exception>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "core/status.h"
+#include "io/raw_mesh.h"
+#include "silk/silk.h"
+
+struct silk_mesh {
+  silk::RawMesh mesh;
+  std::vector<int32_t> triangle_component;
+};
+
+struct silk_tokens {
+  std::vector<int32_t> ids;
+};
+
+namespace silk::capi {
+
+silk_status SetError(silk_status code, const std::string& message);
+silk_status SetError(const Status& s);
+silk_status Ok();
+void Log(silk_log_level level, const std::string& message);
+
+template <typename F>
+silk_status Guard(F&& f) noexcept {
+  try {
+    return f();
+  } catch (const std::bad_alloc&) {
+    return SetError(SILK_ERR_LIMIT, "out of memory");
+  } catch (const std::exception& e) {
+    return SetError(SILK_ERR_INTERNAL, std::string("internal error: ") + e.what());
+  } catch (...) {
+    return SetError(SILK_ERR_INTERNAL, "internal error: unknown exception");
+  }
+}
+
+#define SILK_CAPI_REQUIRE(cond, what) \
+  if (!(cond)) return ::silk::capi::SetError(SILK_ERR_INVALID_ARGUMENT, what)
+
+}  // namespace silk::capi

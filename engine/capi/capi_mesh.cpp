@@ -1,0 +1,119 @@
+// C API: mesh handles (create from arrays, load, save, query-then-copy).
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <memory>
+
+#include "capi/capi_internal.h"
+#include "io/mesh_reader.h"
+#include "io/obj_writer.h"
+#include "io/ply_writer.h"
+
+using silk::capi::Guard;
+using silk::capi::Ok;
+using silk::capi::SetError;
+
+namespace {
+bool EndsWith(const std::string& s, const char* suf) {
+  const size_t n = std::strlen(suf);
+  if (s.size() < n) return false;
+  for (size_t i = 0; i < n; ++i)
+    if (std::tolower(static_cast<unsigned char>(s[s.size() - n + i])) != suf[i]) return false;
+  return true;
+}
+}  // namespace
+
+extern "C" {
+
+silk_status silk_mesh_create(const double* positions, size_t n_vertices, const int32_t* triangles,
+                             size_t n_triangles, silk_mesh** out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(out, "silk_mesh_create: out is NULL");
+    *out = nullptr;
+    SILK_CAPI_REQUIRE(positions || n_vertices == 0, "silk_mesh_create: positions is NULL");
+    SILK_CAPI_REQUIRE(triangles || n_triangles == 0, "silk_mesh_create: triangles is NULL");
+    auto m = std::make_unique<silk_mesh>();
+    m->mesh.positions.resize(n_vertices);
+    for (size_t i = 0; i < n_vertices; ++i)
+      for (int a = 0; a < 3; ++a) m->mesh.positions[i][a] = positions[3 * i + a];
+    m->mesh.triangles.resize(n_triangles);
+    for (size_t f = 0; f < n_triangles; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int32_t idx = triangles[3 * f + k];
+        if (idx < 0 || static_cast<size_t>(idx) >= n_vertices)
+          return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_mesh_create: triangle " + std::to_string(f) +
+                                                         " references vertex " + std::to_string(idx) + " of " +
+                                                         std::to_string(n_vertices));
+        m->mesh.triangles[f][k] = idx;
+      }
+    m->triangle_component.assign(n_triangles, 0);
+    *out = m.release();
+    return Ok();
+  });
+}
+
+silk_status silk_mesh_load(const char* path, silk_mesh** out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(out, "silk_mesh_load: out is NULL");
+    *out = nullptr;
+    SILK_CAPI_REQUIRE(path, "silk_mesh_load: path is NULL");
+    auto r = silk::ReadMeshFile(path);
+    if (!r.ok()) return SetError(r.status());
+    auto m = std::make_unique<silk_mesh>();
+    m->mesh = std::move(*r);
+    m->triangle_component.assign(m->mesh.triangles.size(), 0);
+    *out = m.release();
+    return Ok();
+  });
+}
+
+silk_status silk_mesh_save(const silk_mesh* mesh, const char* path) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(mesh && path, "silk_mesh_save: mesh or path is NULL");
+    const std::string p = path;
+    silk::Status st;
+    if (EndsWith(p, ".obj")) st = silk::WriteObjFile(p, mesh->mesh);
+    else if (EndsWith(p, ".ply")) st = silk::WritePlyFile(p, mesh->mesh);
+    else return SetError(SILK_ERR_UNSUPPORTED, p + ": unsupported output extension (use .obj or .ply)");
+    return SetError(st);
+  });
+}
+
+void silk_mesh_destroy(silk_mesh* mesh) { delete mesh; }
+size_t silk_mesh_vertex_count(const silk_mesh* mesh) { return mesh ? mesh->mesh.positions.size() : 0; }
+size_t silk_mesh_triangle_count(const silk_mesh* mesh) { return mesh ? mesh->mesh.triangles.size() : 0; }
+
+silk_status silk_mesh_copy_positions(const silk_mesh* mesh, double* out, size_t capacity) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(mesh && out, "silk_mesh_copy_positions: NULL argument");
+    const size_t n = mesh->mesh.positions.size() * 3;
+    if (capacity < n) return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_mesh_copy_positions: need " + std::to_string(n));
+    for (size_t i = 0; i < mesh->mesh.positions.size(); ++i)
+      for (int a = 0; a < 3; ++a) out[3 * i + a] = mesh->mesh.positions[i][a];
+    return Ok();
+  });
+}
+
+silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t capacity) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(mesh && out, "silk_mesh_copy_triangles: NULL argument");
+    const size_t n = mesh->mesh.triangles.size() * 3;
+    if (capacity < n) return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_mesh_copy_triangles: need " + std::to_string(n));
+    for (size_t f = 0; f < mesh->mesh.triangles.size(); ++f)
+      for (int k = 0; k < 3; ++k) out[3 * f + k] = mesh->mesh.triangles[f][k];
+    return Ok();
+  });
+}
+
+silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(mesh && out, "silk_mesh_copy_triangle_components: NULL argument");
+    const size_t n = mesh->triangle_component.size();
+    if (capacity < n)
+      return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_mesh_copy_triangle_components: need " + std::to_string(n));
+    std::copy(mesh->triangle_component.begin(), mesh->triangle_component.end(), out);
+    return Ok();
+  });
+}
+
+}  // extern "C"

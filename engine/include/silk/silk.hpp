@@ -1,0 +1,98 @@
+// silk.hpp — thin header-only C++ layer over silk.h: RAII handles and exceptions on the
+// C++ side only (the C boundary itself never throws).
+#pragma once
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "silk/silk.h"
+
+namespace silk_cpp {
+
+class Error : public std::runtime_error {
+ public:
+  Error(silk_status s, const std::string& msg) : std::runtime_error(msg), status_(s) {}
+  silk_status status() const { return status_; }
+
+ private:
+  silk_status status_;
+};
+
+inline void Check(silk_status s) {
+  if (s != SILK_OK) throw Error(s, std::string(silk_status_name(s)) + ": " + silk_last_error());
+}
+
+struct MeshDeleter {
+  void operator()(silk_mesh* m) const { silk_mesh_destroy(m); }
+};
+struct TokensDeleter {
+  void operator()(silk_tokens* t) const { silk_tokens_destroy(t); }
+};
+
+class Tokens {
+ public:
+  explicit Tokens(silk_tokens* t) : h_(t) {}
+  static Tokens FromIds(const std::vector<int32_t>& ids) {
+    silk_tokens* t = nullptr;
+    Check(silk_tokens_create(ids.data(), ids.size(), &t));
+    return Tokens(t);
+  }
+  static Tokens Load(const std::string& path) {
+    silk_tokens* t = nullptr;
+    Check(silk_tokens_load(path.c_str(), &t));
+    return Tokens(t);
+  }
+  std::vector<int32_t> ids() const {
+    std::vector<int32_t> v(silk_tokens_count(h_.get()));
+    if (!v.empty()) Check(silk_tokens_copy(h_.get(), v.data(), v.size()));
+    return v;
+  }
+  void Save(const std::string& path) const { Check(silk_tokens_save(h_.get(), path.c_str())); }
+  const silk_tokens* get() const { return h_.get(); }
+
+ private:
+  std::unique_ptr<silk_tokens, TokensDeleter> h_;
+};
+
+class Mesh {
+ public:
+  explicit Mesh(silk_mesh* m) : h_(m) {}
+  static Mesh FromArrays(const std::vector<double>& xyz, const std::vector<int32_t>& tris) {
+    silk_mesh* m = nullptr;
+    Check(silk_mesh_create(xyz.data(), xyz.size() / 3, tris.data(), tris.size() / 3, &m));
+    return Mesh(m);
+  }
+  static Mesh Load(const std::string& path) {
+    silk_mesh* m = nullptr;
+    Check(silk_mesh_load(path.c_str(), &m));
+    return Mesh(m);
+  }
+  void Save(const std::string& path) const { Check(silk_mesh_save(h_.get(), path.c_str())); }
+  std::vector<double> positions() const {
+    std::vector<double> v(3 * silk_mesh_vertex_count(h_.get()));
+    if (!v.empty()) Check(silk_mesh_copy_positions(h_.get(), v.data(), v.size()));
+    return v;
+  }
+  std::vector<int32_t> triangles() const {
+    std::vector<int32_t> v(3 * silk_mesh_triangle_count(h_.get()));
+    if (!v.empty()) Check(silk_mesh_copy_triangles(h_.get(), v.data(), v.size()));
+    return v;
+  }
+  Tokens Encode(const silk_encode_params& p = silk_encode_default_params(), silk_encode_stats* stats = nullptr) const {
+    silk_tokens* t = nullptr;
+    Check(silk_encode(h_.get(), &p, &t, stats));
+    return Tokens(t);
+  }
+  static Mesh Decode(const Tokens& t, const silk_decode_params& p = silk_decode_default_params()) {
+    silk_mesh* m = nullptr;
+    Check(silk_decode(t.get(), &p, &m));
+    return Mesh(m);
+  }
+  const silk_mesh* get() const { return h_.get(); }
+
+ private:
+  std::unique_ptr<silk_mesh, MeshDeleter> h_;
+};
+
+}  // namespace silk_cpp
