@@ -23,3 +23,6 @@ if ((${#missing[@]})); then
 else
   echo "setup: all system packages present"
 fi
+
+# onnxruntime (C library + headers) for engine/runtime and silkgen: not packaged in bookworm.
+bash "$(dirname "$0")/fetch_onnxruntime.sh"

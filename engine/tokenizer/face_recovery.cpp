@@ -30,6 +30,12 @@ class Grower {
     stats_.triangles = static_cast<int32_t>(g_.triangles.size());
     stats_.hint_faces = static_cast<int32_t>(hints_.size());
     size_t next_hint = 0;
+    if (kHintsFirst) {
+      for (const auto& h : hints_) {
+        const int32_t t = TriangleOf(h[0], h[1], h[2]);
+        if (t >= 0 && orient_[t] == 0 && CanAdd(h[0], h[1], h[2])) Add(t, h[0], h[1], h[2]);
+      }
+    }
     while (true) {
       Drain();
       if (ResolveDeferred()) continue;
@@ -225,7 +231,7 @@ class Grower {
     std::array<int64_t, 4> best_key{};
     for (int32_t t : cand) {
       const int32_t c = Apex(t, e);
-      const int64_t dead = budget_ > 0 ? TrialDeadEdges(e, t) : 0;
+      const int64_t dead = (kUseLookAhead && budget_ > 0) ? TrialDeadEdges(e, t) : 0;
       const int64_t hinted = (hint_[t] != 0 && hint_[t] == OrientationOf(t, q, p)) ? 0 : 1;
       const std::array<int64_t, 4> key{dead, hinted, static_cast<int64_t>(CommonCount(c, a) + CommonCount(c, b)), c};
       if (best < 0 || key < best_key) {
@@ -259,8 +265,8 @@ class Grower {
       for (int32_t t : g_.edge_triangles[e]) {
         if (orient_[t] != 0) continue;
         const auto& k = g_.triangles[t];
-        if (CanAdd(k[0], k[1], k[2])) { Add(t, k[0], k[1], k[2]); ++stats_.seeds; return true; }
         if (CanAdd(k[0], k[2], k[1])) { Add(t, k[0], k[2], k[1]); ++stats_.seeds; return true; }
+        if (CanAdd(k[0], k[1], k[2])) { Add(t, k[0], k[1], k[2]); ++stats_.seeds; return true; }
       }
     }
     return false;
@@ -275,6 +281,8 @@ class Grower {
   std::vector<int32_t> log_;
   int64_t budget_ = kLookAheadBudget;
   static constexpr int32_t kTrialSteps = 4096;
+  static constexpr bool kUseLookAhead = true;
+  static constexpr bool kHintsFirst = true;
   static constexpr int64_t kLookAheadBudget = int64_t{1} << 26;
   int32_t next_uncovered_ = 0;
   FaceRecoveryStats stats_;

@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""Writes the reader fuzzers' seed corpora under fuzz/corpus/<target>/: small valid meshes
+in every encoding (generated here) plus the project's own small golden and bad inputs.
+Usage: fuzz/make_seeds.py [path/to/shared]   (default: ../shared beside the repo)"""
+import base64, json, pathlib, shutil, struct, sys
+
+repo = pathlib.Path(__file__).resolve().parent.parent
+shared = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else repo.parent / "shared"
+out = repo / "fuzz" / "corpus"
+
+CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+CUBE_Q = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+CUBE_T = [t for q in CUBE_Q for t in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))]
+
+
+def put(target, name, data):
+    d = out / target
+    d.mkdir(parents=True, exist_ok=True)
+    (d / name).write_bytes(data if isinstance(data, bytes) else data.encode())
+
+
+def copy(target, src):
+    if src.exists() and src.stat().st_size < 100_000:
+        put(target, src.name, src.read_bytes())
+
+
+def ply(fmt):
+    e = "<" if fmt == "binary_little_endian" else ">"
+    head = (f"ply\nformat {fmt} 1.0\ncomment seed\nelement vertex 8\nproperty float x\nproperty float y\n"
+            "property float z\nproperty uchar red\nelement face 6\nproperty list uchar int vertex_indices\n"
+            "element edge 1\nproperty int v1\nproperty int v2\nend_header\n")
+    if fmt == "ascii":
+        body = "".join(f"{x} {y} {z} 7\n" for x, y, z in CUBE_V)
+        body += "".join("4 " + " ".join(map(str, q)) + "\n" for q in CUBE_Q) + "0 1\n"
+        return (head + body).encode()
+    body = b"".join(struct.pack(e + "fffB", *v, 7) for v in CUBE_V)
+    body += b"".join(struct.pack(e + "B4i", 4, *q) for q in CUBE_Q) + struct.pack(e + "ii", 0, 1)
+    return head.encode() + body
+
+
+def stl_binary(header):
+    h = header.ljust(80, b" ")[:80] + struct.pack("<I", len(CUBE_T))
+    return h + b"".join(struct.pack("<3f", 0, 0, 1) + b"".join(struct.pack("<3f", *CUBE_V[i]) for i in t) + b"\0\0"
+                        for t in CUBE_T)
+
+
+def stl_ascii():
+    s = "solid cube\n"
+    for t in CUBE_T:
+        s += " facet normal 0 0 1\n  outer loop\n"
+        s += "".join(f"   vertex {x} {y} {z}\n" for x, y, z in (CUBE_V[i] for i in t))
+        s += "  endloop\n endfacet\n"
+    return s + "endsolid cube\n"
+
+
+def gltf_parts():
+    pos = b"".join(struct.pack("<3f", *v) for v in CUBE_V)
+    idx = b"".join(struct.pack("<H", i) for t in CUBE_T for i in t)
+    buf = pos + idx
+    doc = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"translation": [1, 2, 3], "rotation": [0, 0.7071068, 0, 0.7071068], "scale": [2, 2, 2],
+                   "children": [1]}, {"mesh": 0, "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 5, 0, 1]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4},
+                                   {"attributes": {"POSITION": 0}, "indices": 1, "mode": 5}]}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3"},
+                      {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+                        {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+        "buffers": [{"byteLength": len(buf)}],
+    }
+    return doc, buf
+
+
+def glb(doc, buf):
+    j = json.dumps(doc).encode()
+    j += b" " * (-len(j) % 4)
+    buf += b"\0" * (-len(buf) % 4)
+    total = 12 + 8 + len(j) + 8 + len(buf)
+    return (b"glTF" + struct.pack("<II", 2, total) + struct.pack("<I", len(j)) + b"JSON" + j +
+            struct.pack("<I", len(buf)) + b"BIN\0" + buf)
+
+
+def main():
+    if out.exists():
+        shutil.rmtree(out)
+    # OBJ
+    put("obj_reader_fuzzer", "forms.obj", "# all face forms\nv 0 0 0\nv 1 0 0 1\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
+        "o a\ng b\nusemtl m\ns 1\nf 1/1/1 2/1/1 3/1/1\nf -4//1 -2//1 -1//1\nf 1/1 2/1 3/1 4/1\nl 1 2\n")
+    for g in ("cube", "octahedron", "nonmanifold_book", "dirty_cube"):
+        copy("obj_reader_fuzzer", shared / "spec/golden" / f"{g}.obj")
+    for b in ("empty.obj", "nan_coords.obj", "index_out_of_range.obj", "degenerate_only.obj", "garbage_bytes.obj"):
+        copy("obj_reader_fuzzer", shared / "corpus/bad" / b)
+    # PLY
+    for fmt in ("ascii", "binary_little_endian", "binary_big_endian"):
+        put("ply_reader_fuzzer", f"cube_{fmt}.ply", ply(fmt))
+    copy("ply_reader_fuzzer", shared / "corpus/bad/truncated_body.ply")
+    # STL
+    put("stl_reader_fuzzer", "cube_ascii.stl", stl_ascii())
+    put("stl_reader_fuzzer", "cube_binary.stl", stl_binary(b"binary seed"))
+    put("stl_reader_fuzzer", "cube_binary_solid_header.stl", stl_binary(b"solid but binary"))
+    # OFF
+    off = "OFF\n# cube\n8 6 0\n" + "".join(f"{x} {y} {z}\n" for x, y, z in CUBE_V)
+    off += "".join("4 " + " ".join(map(str, q)) + "\n" for q in CUBE_Q)
+    put("off_reader_fuzzer", "cube.off", off)
+    put("off_reader_fuzzer", "tri_inline_counts.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n")
+    # glTF / GLB
+    doc, buf = gltf_parts()
+    emb = json.loads(json.dumps(doc))
+    emb["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(buf).decode()
+    put("gltf_reader_fuzzer", "cube_embedded.gltf", json.dumps(emb, indent=1))
+    cyc = json.loads(json.dumps(emb))
+    cyc["nodes"][1]["children"] = [0]
+    put("gltf_reader_fuzzer", "cube_cycle.gltf", json.dumps(cyc))
+    put("glb_reader_fuzzer", "cube.glb", glb(doc, buf))
+    copy("glb_reader_fuzzer", shared / "corpus/bad/cube_obj_text.glb")
+    total = sum(f.stat().st_size for f in out.rglob("*") if f.is_file())
+    print(f"wrote seeds under {out} ({total} bytes)")
+
+
+main()

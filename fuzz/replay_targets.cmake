@@ -1,0 +1,19 @@
+# Corpus replay: each fuzz/*_fuzzer.cpp also builds as <name>_replay with replay_main.cpp
+# (any compiler, no libFuzzer), registered as a ctest test over fuzz/corpus/<name>/ and the
+# shared bad corpus. Included from tests/CMakeLists.txt so it runs in every test build.
+file(GLOB silk_fuzz_srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/fuzz/*_fuzzer.cpp)
+foreach(src ${silk_fuzz_srcs})
+  get_filename_component(name ${src} NAME_WE)
+  add_executable(${name}_replay ${src} ${PROJECT_SOURCE_DIR}/fuzz/replay_main.cpp)
+  target_link_libraries(${name}_replay PRIVATE silk_static)
+  target_include_directories(${name}_replay PRIVATE ${PROJECT_SOURCE_DIR}/fuzz)
+  set(replay_dirs)
+  if(EXISTS ${PROJECT_SOURCE_DIR}/fuzz/corpus/${name})
+    list(APPEND replay_dirs ${PROJECT_SOURCE_DIR}/fuzz/corpus/${name})
+  endif()
+  if(EXISTS ${SILK_SHARED_DIR_ABS}/corpus/bad)
+    list(APPEND replay_dirs ${SILK_SHARED_DIR_ABS}/corpus/bad)
+  endif()
+  add_test(NAME ${name}_replay COMMAND ${name}_replay ${replay_dirs})
+  set_tests_properties(${name}_replay PROPERTIES TIMEOUT 120)
+endforeach()

@@ -1,0 +1,79 @@
+// Seeded property test: random legal walks (ids drawn from the legal masks) always end with
+// EOS, CheckTokens accepts them, and their meshes satisfy the guarantees of grammar.h.
+// A failing walk is written to $TMPDIR/silk_walk_<seed>.tokens.txt for `silktok check`.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <random>
+#include <string>
+
+#include "decoder/grammar.h"
+#include "decoder/mesh_builder.h"
+#include "decoder/random_walk.h"
+#include "decoder/token_text.h"
+#include "tokenizer/vocabulary_layout.h"
+
+namespace silk {
+namespace {
+
+std::string Dump(uint64_t seed, const std::vector<int32_t>& ids) {
+  const char* tmp = std::getenv("TMPDIR");
+  const std::string path = std::string(tmp ? tmp : "/tmp") + "/silk_walk_" + std::to_string(seed) + ".tokens.txt";
+  (void)WriteTokenText(path, ids);
+  return path;
+}
+
+void RunWalks(uint64_t first_seed, int32_t count, const RandomWalkOptions& wo, bool check_mask) {
+  int64_t faces = 0, tokens = 0;
+  for (int32_t k = 0; k < count; ++k) {
+    const uint64_t seed = first_seed + static_cast<uint64_t>(k);
+    std::mt19937_64 rng(seed);
+    Grammar g;
+    std::vector<int32_t> ids = RandomLegalWalk(&g, &rng, wo);
+    ASSERT_TRUE(g.Ended()) << "walk did not end; replay: " << Dump(seed, ids);
+    tokens += static_cast<int64_t>(ids.size());
+    std::vector<int32_t> body(ids.begin(), ids.end() - 1);
+    size_t pos = 0;
+    Rejection r = CheckTokens(ids, GrammarOptions{}, &pos, false);
+    ASSERT_TRUE(r.ok()) << r.message << "; replay: " << Dump(seed, ids);
+    auto mesh = BuildMeshSoFar(g, MeshBuildOptions{}, nullptr);
+    ASSERT_TRUE(mesh.ok()) << mesh.status().ToString() << "; replay: " << Dump(seed, ids);
+    const std::string why = CheckMeshGuarantees(*mesh);
+    ASSERT_EQ(why, "") << "replay: " << Dump(seed, ids);
+    int32_t c_tokens = 0;
+    for (int32_t id : body) c_tokens += id == vocab::kCBegin;
+    ASSERT_EQ(mesh->components, c_tokens);
+    faces += static_cast<int64_t>(mesh->faces.size());
+    if (check_mask) {
+      // Mask == Accept for a sample of ids at every step.
+      Grammar h;
+      std::mt19937 pick(static_cast<uint32_t>(seed));
+      for (int32_t id : ids) {
+        const TokenMask m = h.LegalMask();
+        for (int t = 0; t < 24; ++t) {
+          const int32_t probe = std::uniform_int_distribution<int32_t>(0, TokenMask::kBits - 1)(pick);
+          Grammar c = h.Clone();
+          ASSERT_EQ(m.Test(probe), c.Accept(probe).ok()) << "probe " << probe << "; replay: " << Dump(seed, ids);
+        }
+        ASSERT_TRUE(h.Accept(id).ok());
+      }
+    }
+  }
+  EXPECT_GT(faces, count);  // every component has faces
+  ::testing::Test::RecordProperty("tokens", std::to_string(tokens));
+}
+
+TEST(GrammarRandomWalk, MaskMatchesAccept) { RunWalks(1000, 200, RandomWalkOptions{}, true); }
+
+TEST(GrammarRandomWalk, LargeLayersWithExtras) {
+  RandomWalkOptions wo;
+  wo.max_layer_size = 40;
+  wo.max_layers = 3;
+  wo.extra_x = 0.3;
+  RunWalks(50000, 200, wo, true);
+}
+
+TEST(GrammarRandomWalkSlow, TenThousandWalksSatisfyGuarantees) { RunWalks(1, 10000, RandomWalkOptions{}, false); }
+
+}  // namespace
+}  // namespace silk
