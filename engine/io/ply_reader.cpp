@@ -18,7 +18,7 @@ namespace silk {
 namespace {
 
 // What the reader does with each property of the element being read.
-enum class Role : uint8_t { kSkip, kX, kY, kZ, kFaceList };
+enum class Role : uint8_t { kSkip, kX, kY, kZ, kNx, kNy, kNz, kFaceList };
 
 struct ElementPlan {
   const PlyElement* element;
@@ -90,8 +90,8 @@ std::string Item(const PlyElement& e, uint64_t i) { return e.name + " " + std::t
 class PlyBodyReader {
  public:
   PlyBodyReader(std::string_view data, const PlyHeader& h, const std::string& name,
-                const ReadOptions& opts, RawMesh* mesh)
-      : data_(data), h_(h), name_(name), opts_(opts), mesh_(mesh) {}
+                const ReadOptions& opts, RawMesh* mesh, std::vector<std::array<double, 3>>* normals)
+      : data_(data), h_(h), name_(name), opts_(opts), mesh_(mesh), normals_(normals) {}
 
   Status Read(const std::vector<ElementPlan>& plans, uint64_t vertex_count) {
     vertex_count_ = vertex_count;
@@ -113,9 +113,15 @@ class PlyBodyReader {
                                    " ends past the end of the file");
   }
 
-  Status AddPosition(const PlyElement& e, uint64_t i, const std::array<double, 3>& p) {
+  Status AddPosition(const PlyElement& e, uint64_t i, const std::array<double, 3>& p,
+                     const std::array<double, 3>& n) {
     for (double c : p)
       if (!std::isfinite(c)) return ParseErrorIn(name_, Item(e, i) + ": non-finite coordinate");
+    if (normals_) {
+      for (double c : n)
+        if (!std::isfinite(c)) return ParseErrorIn(name_, Item(e, i) + ": non-finite normal");
+      normals_->push_back(n);
+    }
     if (mesh_->positions.size() >= std::min<uint64_t>(opts_.max_vertices, INT32_MAX))
       return LimitErrorIn(name_, "more than " + std::to_string(opts_.max_vertices) + " vertices");
     mesh_->positions.push_back(p);
@@ -144,7 +150,7 @@ class PlyBodyReader {
     const PlyElement& e = *plan.element;
     if (e.properties.empty()) return Status::Ok();
     const uint8_t* p = *pp;
-    std::array<double, 3> pos{0, 0, 0};
+    std::array<double, 3> pos{0, 0, 0}, nrm{0, 0, 0};
     for (uint64_t i = 0; i < e.count; ++i) {
       corners_.clear();
       for (size_t k = 0; k < e.properties.size(); ++k) {
@@ -155,6 +161,8 @@ class PlyBodyReader {
           if (static_cast<size_t>(end - p) < vs) return Truncated(e, i);
           if (role == Role::kX || role == Role::kY || role == Role::kZ)
             pos[static_cast<int>(role) - static_cast<int>(Role::kX)] = LoadDouble(p, prop.value_type, swap);
+          if (role == Role::kNx || role == Role::kNy || role == Role::kNz)
+            nrm[static_cast<int>(role) - static_cast<int>(Role::kNx)] = LoadDouble(p, prop.value_type, swap);
           p += vs;
           continue;
         }
@@ -171,7 +179,7 @@ class PlyBodyReader {
           p += static_cast<size_t>(n) * vs;
         }
       }
-      if (plan.is_vertex) SILK_RETURN_IF_ERROR(AddPosition(e, i, pos));
+      if (plan.is_vertex) SILK_RETURN_IF_ERROR(AddPosition(e, i, pos, nrm));
       if (plan.is_face) SILK_RETURN_IF_ERROR(AddFace(e, i));
     }
     *pp = p;
@@ -181,7 +189,7 @@ class PlyBodyReader {
   Status ReadAscii(const ElementPlan& plan, TextLines* lines) {
     const PlyElement& e = *plan.element;
     if (e.properties.empty()) return Status::Ok();
-    std::array<double, 3> pos{0, 0, 0};
+    std::array<double, 3> pos{0, 0, 0}, nrm{0, 0, 0};
     std::string_view line;
     for (uint64_t i = 0; i < e.count; ++i) {
       do {
@@ -203,6 +211,8 @@ class PlyBodyReader {
                                                "' for property '" + prop.name + "'");
           if (role == Role::kX || role == Role::kY || role == Role::kZ)
             pos[static_cast<int>(role) - static_cast<int>(Role::kX)] = v;
+          if (role == Role::kNx || role == Role::kNy || role == Role::kNz)
+            nrm[static_cast<int>(role) - static_cast<int>(Role::kNx)] = v;
           continue;
         }
         int64_t n;
@@ -230,7 +240,7 @@ class PlyBodyReader {
       }
       if (!toks.AtEnd()) return ParseErrorAt(name_, ln, Item(e, i) + ": extra values at end of line");
       if (plan.is_vertex) {
-        Status s = AddPosition(e, i, pos);
+        Status s = AddPosition(e, i, pos, nrm);
         if (!s.ok()) return ParseErrorAt(name_, ln, s.message().substr(name_.size() + 2));
       }
       if (plan.is_face) SILK_RETURN_IF_ERROR(AddFace(e, i));
@@ -243,13 +253,20 @@ class PlyBodyReader {
   const std::string& name_;
   const ReadOptions& opts_;
   RawMesh* mesh_;
+  std::vector<std::array<double, 3>>* normals_;  // null: normals not read
   uint64_t vertex_count_ = 0;
   std::vector<int32_t> corners_;
 };
 
 }  // namespace
 
-StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const ReadOptions& opts) {
+namespace {
+
+// Shared body of ReadPly and ReadPlyPointCloud: `normals` non-null reads nx/ny/nz when the
+// vertex element has all three (left empty otherwise) and allows a file without faces.
+StatusOr<RawMesh> ReadPlyImpl(std::string_view data, const std::string& name, const ReadOptions& opts,
+                              std::vector<std::array<double, 3>>* normals) {
+  const bool normals_requested = normals != nullptr;
   SILK_ASSIGN_OR_RETURN(PlyHeader h, ParsePlyHeader(data, name));
 
   // Plan: which element is the vertex / face element and what each property is used for.
@@ -278,6 +295,21 @@ StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const 
         }
         if (!found)
           return ParseErrorAt(name, e.line, std::string("vertex element has no property '") + axes[a] + "'");
+      }
+      if (normals) {
+        const char* naxes[3] = {"nx", "ny", "nz"};
+        int n_found = 0;
+        for (int a = 0; a < 3; ++a)
+          for (size_t k = 0; k < e.properties.size(); ++k)
+            if (e.properties[k].name == naxes[a] && !e.properties[k].is_list) ++n_found;
+        if (n_found == 3) {
+          for (int a = 0; a < 3; ++a)
+            for (size_t k = 0; k < e.properties.size(); ++k)
+              if (e.properties[k].name == naxes[a] && !e.properties[k].is_list)
+                plan.roles[k] = static_cast<Role>(static_cast<int>(Role::kNx) + a);
+        } else {
+          normals = nullptr;  // no (complete) normals: positions only
+        }
       }
     } else if (e.name == "face") {
       for (size_t k = 0; k < e.properties.size(); ++k) {
@@ -335,12 +367,26 @@ StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const 
     mesh.positions.reserve(vertex->count);
     if (face) mesh.triangles.reserve(face->count);
   }
-  PlyBodyReader reader(data, h, name, opts, &mesh);
+  PlyBodyReader reader(data, h, name, opts, &mesh, normals);
   SILK_RETURN_IF_ERROR(reader.Read(plans, vertex->count));
   if (!plausible)  // cannot happen: the body reader runs out of data first
     return ParseErrorIn(name, "header counts do not fit in the " + std::to_string(remaining) + " bytes after the header");
-  if (mesh.triangles.empty()) return ParseErrorIn(name, face ? "no faces" : "no faces (no 'face' element)");
+  if (mesh.triangles.empty() && !normals_requested)
+    return ParseErrorIn(name, face ? "no faces" : "no faces (no 'face' element)");
   return mesh;
+}
+
+}  // namespace
+
+StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const ReadOptions& opts) {
+  return ReadPlyImpl(data, name, opts, nullptr);
+}
+
+StatusOr<PlyPointCloud> ReadPlyPointCloud(std::string_view data, const std::string& name, const ReadOptions& opts) {
+  PlyPointCloud pc;
+  SILK_ASSIGN_OR_RETURN(pc.mesh, ReadPlyImpl(data, name, opts, &pc.normals));
+  if (pc.mesh.positions.empty()) return ParseErrorIn(name, "no vertices");
+  return pc;
 }
 
 }  // namespace silk

@@ -1,9 +1,11 @@
 // Strict PLY reader (ascii, binary_little_endian, binary_big_endian): x/y/z of the "vertex"
 // element and the "vertex_indices"/"vertex_index" list of the "face" element; all other
-// properties and elements are parsed and skipped.
+// properties and elements are parsed and skipped (ReadPlyPointCloud also reads nx/ny/nz).
 #pragma once
+#include <array>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/status.h"
 #include "io/raw_mesh.h"
@@ -16,5 +18,14 @@ namespace silk {
 // than 3 corners are fan-triangulated. Float32 values (also in ascii files) are rounded to
 // float first, exactly as a binary file would store them.
 StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const ReadOptions& opts = {});
+
+// A PLY that may be a point cloud: faces optional, per-vertex normals (nx, ny, nz) read when
+// the vertex element has all three (`normals` empty otherwise, else one per vertex).
+struct PlyPointCloud {
+  RawMesh mesh;
+  std::vector<std::array<double, 3>> normals;
+};
+StatusOr<PlyPointCloud> ReadPlyPointCloud(std::string_view data, const std::string& name,
+                                          const ReadOptions& opts = {});
 
 }  // namespace silk

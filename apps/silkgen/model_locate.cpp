@@ -1,0 +1,43 @@
+// The binary's own folder comes from /proc/self/exe, so the lookup works from any cwd.
+#include "model_locate.h"
+
+#include <unistd.h>
+
+#include <climits>
+
+#include "io/file_system.h"
+
+namespace silkgen {
+
+namespace {
+
+std::string ExeDir() {
+  char buf[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (n <= 0) return "";
+  std::string p(buf, static_cast<size_t>(n));
+  const size_t slash = p.rfind('/');
+  return slash == std::string::npos ? "" : p.substr(0, slash);
+}
+
+}  // namespace
+
+std::vector<std::string> DefaultModelCandidates() {
+  std::vector<std::string> c;
+  const std::string exe = ExeDir();
+#ifdef SILK_INSTALLED_MODEL_REL
+  if (!exe.empty()) c.push_back(exe + "/" + SILK_INSTALLED_MODEL_REL);
+#endif
+#ifdef SILK_SOURCE_MODEL_DIR
+  c.push_back(SILK_SOURCE_MODEL_DIR);
+#endif
+  return c;
+}
+
+std::string DefaultModelDir() {
+  for (const std::string& d : DefaultModelCandidates())
+    if (silk::IsRegularFile(d + "/model.json")) return d;
+  return "";
+}
+
+}  // namespace silkgen

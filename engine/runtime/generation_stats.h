@@ -1,0 +1,43 @@
+// GenerationStats: what one generation did and how long each phase took (silkgen --stats,
+// silk_generate_stats). Plain data, filled by Generator and the generation pipeline.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace silk {
+
+struct PhaseSeconds {
+  double load_input = 0;    // reading + normalising + surface sampling (pipeline)
+  double encoder = 0;       // encoder.onnx
+  double decoder = 0;       // decoder.onnx calls (all chunks)
+  double grammar = 0;       // legal masks + Accept
+  double sampling = 0;      // the sampling chain
+  double build_mesh = 0;    // tokens -> faces (+ hole handling)
+  double write_output = 0;  // pipeline
+  double total = 0;
+};
+
+struct GenerationStats {
+  int64_t tokens = 0;          // generated ids, EOS included when reached
+  int64_t forced_tokens = 0;   // ids the grammar forced (no sampling; model step skipped)
+  int64_t sampled_tokens = 0;
+  int64_t model_calls = 0;     // decoder.onnx runs
+  int64_t fed_positions = 0;   // positions written to the KV cache (BOS included)
+  int64_t resampled = 0;       // sample-then-check order: draws that were illegal
+  std::string stop_reason;     // "eos", "max_tokens", "max_faces"
+  int32_t faces = 0, vertices = 0, components = 0;
+  int32_t holes_found = 0, holes_repaired = 0, faces_added = 0, window_findings = 0;
+  int32_t open_edges = 0;
+  bool edge_manifold = false, watertight = false, consistently_oriented = false;
+  int64_t illegal_at = -1;     // unconstrained mode: index of the first id the grammar rejects
+  std::string illegal_reason;
+  int64_t kv_cache_bytes = 0;
+  int32_t threads = 0;
+  bool int8 = false;
+  PhaseSeconds seconds;
+  double generation_seconds = 0;  // encoder + token loop
+  double tokens_per_second = 0;   // tokens / token-loop seconds
+  double forced_share() const { return tokens ? static_cast<double>(forced_tokens) / tokens : 0; }
+};
+
+}  // namespace silk

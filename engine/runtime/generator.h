@@ -1,0 +1,77 @@
+// Generator: one constrained generation, point cloud -> token ids -> mesh. Holds the KV cache
+// between runs (reuse one Generator per thread). The grammar mask is applied before the
+// sampling chain; ids the grammar forces are appended without sampling and fed to the model
+// later as one chunk together with the next sampled id (chunked prefill of known tokens).
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "core/status.h"
+#include "decoder/mesh_builder.h"
+#include "runtime/generation_stats.h"
+#include "runtime/kv_cache.h"
+#include "runtime/model.h"
+#include "runtime/sampler.h"
+
+namespace silk {
+
+enum class SampleOrder {
+  kMaskFirst,        // sample among legal ids (default)
+  kSampleThenCheck,  // sample over all ids, fall back to the masked chain if illegal
+};
+
+struct GenerateOptions {
+  SamplingParams sampling;
+  int32_t max_tokens = 0;  // ids incl. EOS; 0 = the model's max_seq_len - 1
+  int32_t max_faces = 0;   // stop at the first layer close with at least this many faces; 0 = off
+  HolePolicy holes = HolePolicy::kOff;
+  bool unconstrained = false;  // no grammar mask (the grammar only watches; mesh = legal prefix)
+  bool skip_forced = true;     // false: run the model for forced ids too (measurement)
+  bool kv_in_place = true;     // false: naive copying cache (measurement)
+  SampleOrder order = SampleOrder::kMaskFirst;
+  bool record_trace = false;   // fill GenerateResult::trace (golden test reference check)
+};
+
+struct GenerateProgress {
+  int64_t tokens = 0, max_tokens = 0;
+  int32_t components = 0;  // started so far
+  int32_t faces = -1;      // at the last layer close, when max_faces is set; else -1
+  double seconds = 0;
+};
+
+struct GenerateCallbacks {
+  std::function<void(const GenerateProgress&)> progress;  // after every id
+  std::function<bool()> cancel;                           // true: stop (Status kCancelled)
+};
+
+// One generated id, for the reference check: forced or sampled, and the legal set it was
+// sampled from (ascending [begin, end) ranges; empty when forced or unconstrained).
+struct TraceStep {
+  int32_t id = 0;
+  bool forced = false;
+  std::vector<std::pair<int32_t, int32_t>> legal;
+};
+
+struct GenerateResult {
+  std::vector<int32_t> tokens;  // EOS included when reached; no BOS
+  DecodedMesh mesh;             // grid coordinates
+  MeshBuildReport report;
+  GenerationStats stats;
+  std::vector<TraceStep> trace;
+};
+
+class Generator {
+ public:
+  explicit Generator(const Model& model) : model_(model) {}
+  // `points`: n rows of 6 floats in the model's normalised frame (xyz, unit normal).
+  StatusOr<GenerateResult> Run(const std::vector<float>& points, const GenerateOptions& options,
+                               const GenerateCallbacks& callbacks = {});
+
+ private:
+  const Model& model_;
+  KvCache cache_;
+};
+
+}  // namespace silk

@@ -1,0 +1,124 @@
+// Model loading: model.json, then the ONNX sessions, whose inputs/outputs are checked against
+// docs/model_contract.md (names, element types, ranks, and every fixed dimension).
+#include "runtime/model_impl.h"
+
+#include <array>
+
+#include "io/file_system.h"
+#include "runtime/cpu_info.h"
+
+namespace silk {
+
+namespace {
+
+struct IoSpec {
+  const char* name;
+  ONNXTensorElementDataType type;
+  std::vector<int64_t> dims;  // -1: dynamic (not checked)
+};
+
+std::string DimsText(const std::vector<int64_t>& d) {
+  std::string s = "[";
+  for (size_t i = 0; i < d.size(); ++i) s += (i ? ", " : "") + (d[i] < 0 ? std::string("?") : std::to_string(d[i]));
+  return s + "]";
+}
+
+// Checks one side (inputs or outputs) of a session against the contract.
+Status CheckIo(Ort::Session& s, bool inputs, const std::vector<IoSpec>& want, const std::string& file) {
+  const size_t n = inputs ? s.GetInputCount() : s.GetOutputCount();
+  const char* side = inputs ? "inputs" : "outputs";
+  Ort::AllocatorWithDefaultOptions alloc;
+  if (n != want.size())
+    return Status(StatusCode::kUnsupported, file + ": has " + std::to_string(n) + " " + side + ", the contract has " +
+                                                std::to_string(want.size()));
+  for (size_t i = 0; i < n; ++i) {
+    const std::string name = inputs ? s.GetInputNameAllocated(i, alloc).get() : s.GetOutputNameAllocated(i, alloc).get();
+    const IoSpec* spec = nullptr;
+    for (const IoSpec& w : want)
+      if (name == w.name) spec = &w;
+    if (!spec) return Status(StatusCode::kUnsupported, file + ": unexpected " + side + " name '" + name + "'");
+    Ort::TypeInfo ti = inputs ? s.GetInputTypeInfo(i) : s.GetOutputTypeInfo(i);
+    auto t = ti.GetTensorTypeAndShapeInfo();
+    if (t.GetElementType() != spec->type)
+      return Status(StatusCode::kUnsupported, file + ": '" + name + "' has the wrong element type");
+    std::vector<int64_t> dims = t.GetShape();
+    bool ok = dims.size() == spec->dims.size();
+    for (size_t k = 0; ok && k < dims.size(); ++k) ok = spec->dims[k] < 0 || dims[k] < 0 || dims[k] == spec->dims[k];
+    if (!ok)
+      return Status(StatusCode::kUnsupported, file + ": '" + name + "' has shape " + DimsText(dims) +
+                                                  ", model.json implies " + DimsText(spec->dims));
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Model::Model(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Model::~Model() = default;
+const ModelConfig& Model::config() const { return impl_->config; }
+int Model::threads() const { return impl_->threads; }
+bool Model::int8() const { return impl_->int8; }
+
+StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const ModelLoadOptions& options) {
+  if (!IsDirectory(dir)) return IoError(dir + ": model folder not found");
+  SILK_ASSIGN_OR_RETURN(ModelConfig config, LoadModelConfig(dir));
+  auto impl = std::make_unique<Impl>();
+  impl->threads = options.threads > 0 ? options.threads : PhysicalCoreCount();
+  impl->int8 = options.int8;
+  std::string decoder_file = config.decoder_file;
+  if (options.int8) {
+    if (config.decoder_int8_file.empty())
+      return Unsupported(dir + "/model.json: no INT8 decoder (files.decoder_int8) in this model");
+    decoder_file = config.decoder_int8_file;
+  }
+  const std::string enc_path = dir + "/" + config.encoder_file, dec_path = dir + "/" + decoder_file;
+  for (const std::string& p : {enc_path, dec_path})
+    if (!IsRegularFile(p)) return IoError(p + ": missing (named in model.json)");
+
+  const ModelDims& d = config.dims;
+  const int64_t V = config.model_vocab_size;
+  const std::vector<int64_t> cross = {d.n_layers, 2, d.n_heads, d.n_latents, d.head_dim};
+  const std::vector<int64_t> kv = {-1, d.n_layers, 2, d.n_heads, d.head_dim};
+  constexpr auto kF = ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
+  constexpr auto kI = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64;
+  Status s = OrtGuard("loading " + dir, [&]() -> Status {
+    Ort::SessionOptions so = MakeOrtSessionOptions(impl->threads, options.allow_spinning);
+    impl->encoder = std::make_unique<Ort::Session>(OrtEnvironment(), enc_path.c_str(), so);
+    impl->decoder = std::make_unique<Ort::Session>(OrtEnvironment(), dec_path.c_str(), so);
+    SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, true, {{"points", kF, {1, -1, 6}}}, enc_path));
+    SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, false, {{"cross_kv", kF, cross}}, enc_path));
+    SILK_RETURN_IF_ERROR(CheckIo(*impl->decoder, true,
+                                 {{"input_ids", kI, {1, -1}}, {"positions", kI, {1, -1}},
+                                  {"past_kv", kF, kv}, {"cross_kv", kF, cross}},
+                                 dec_path));
+    SILK_RETURN_IF_ERROR(CheckIo(*impl->decoder, false, {{"logits", kF, {1, -1, V}}, {"new_kv", kF, kv}}, dec_path));
+    return Status::Ok();
+  });
+  SILK_RETURN_IF_ERROR(s);
+  impl->config = std::move(config);
+  return std::unique_ptr<Model>(new Model(std::move(impl)));
+}
+
+StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points) {
+  if (n_points <= 0) return InvalidArgument("encoder: no input points");
+  Ort::Value out{nullptr};
+  Status s = OrtGuard("encoder", [&]() -> Status {
+    const std::array<int64_t, 3> shape = {1, n_points, 6};
+    Ort::Value in = Ort::Value::CreateTensor<float>(model.cpu_memory, const_cast<float*>(points),
+                                                    static_cast<size_t>(n_points * 6), shape.data(), shape.size());
+    const char* in_names[] = {"points"};
+    const char* out_names[] = {"cross_kv"};
+    auto outs = model.encoder->Run(Ort::RunOptions{nullptr}, in_names, &in, 1, out_names, 1);
+    const ModelDims& d = model.config.dims;
+    auto shape_out = outs[0].GetTensorTypeAndShapeInfo().GetShape();
+    const std::vector<int64_t> want = {d.n_layers, 2, d.n_heads, d.n_latents, d.head_dim};
+    if (shape_out != want)
+      return InternalError("encoder: cross_kv has shape " + DimsText(shape_out) + ", expected " + DimsText(want));
+    out = std::move(outs[0]);
+    return Status::Ok();
+  });
+  SILK_RETURN_IF_ERROR(s);
+  return StatusOr<Ort::Value>(std::move(out));
+}
+
+}  // namespace silk

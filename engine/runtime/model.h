@@ -1,0 +1,37 @@
+// Model: a loaded model folder (model.json + encoder/decoder ONNX sessions). Immutable after
+// Load and safe to share between threads; each concurrent generation needs its own Generator.
+// onnxruntime stays out of this header (Impl in runtime/model_impl.h).
+#pragma once
+#include <memory>
+#include <string>
+
+#include "core/status.h"
+#include "runtime/model_config.h"
+
+namespace silk {
+
+struct ModelLoadOptions {
+  int threads = 0;             // onnxruntime intra-op threads; 0 = physical cores
+  bool int8 = false;           // use the INT8 decoder (files.decoder_int8); error if absent
+  bool allow_spinning = true;  // worker threads spin between ops (faster, burns CPU while idle)
+};
+
+class Model {
+ public:
+  struct Impl;
+  static StatusOr<std::unique_ptr<Model>> Load(const std::string& dir, const ModelLoadOptions& options = {});
+  ~Model();
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+
+  const ModelConfig& config() const;
+  int threads() const;       // the resolved thread count
+  bool int8() const;         // whether the INT8 decoder is in use
+  Impl& impl() const { return *impl_; }
+
+ private:
+  explicit Model(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace silk

@@ -1,0 +1,38 @@
+// ModelConfig: the model.json sidecar of a model folder (docs/model_contract.md), parsed and
+// checked against the vocabulary this engine was built with, so a mismatched model is refused
+// with a message instead of producing garbage.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "core/status.h"
+
+namespace silk {
+
+inline constexpr int32_t kSupportedModelVersion = 1;
+
+struct ModelDims {
+  int32_t d_model = 0, n_layers = 0, n_heads = 0, head_dim = 0, n_latents = 0;
+  int32_t n_points = 4096;
+  int32_t max_seq_len = 0;  // BOS + tokens incl. EOS
+  // Floats of one time step of the self-attention cache: n_layers * 2 * n_heads * head_dim.
+  int64_t kv_row_floats() const { return int64_t{n_layers} * 2 * n_heads * head_dim; }
+  int64_t cross_kv_floats() const { return int64_t{n_layers} * 2 * n_heads * n_latents * head_dim; }
+};
+
+struct ModelConfig {
+  std::string dir;  // folder holding model.json
+  std::string config_name;
+  int32_t model_version = 0, token_format_version = 0;
+  int32_t bos_id = 0, eos_id = 0, pad_id = 0, model_vocab_size = 0, embedding_rows = 0;
+  ModelDims dims;
+  double normalize_bound = 0.95;
+  std::string encoder_file, decoder_file, decoder_int8_file;  // relative to dir; int8 may be ""
+};
+
+// Parses `json_text` (name used in messages) and checks format, versions and vocabulary.
+StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::string& name);
+// Reads <dir>/model.json.
+StatusOr<ModelConfig> LoadModelConfig(const std::string& dir);
+
+}  // namespace silk

@@ -1,0 +1,25 @@
+// Model::Impl: the onnxruntime sessions behind a Model, with input/output names checked
+// against the contract at load time. Internal to the runtime layer.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/model.h"
+#include "runtime/ort_support.h"
+
+namespace silk {
+
+struct Model::Impl {
+  ModelConfig config;
+  int threads = 1;
+  bool int8 = false;
+  std::unique_ptr<Ort::Session> encoder, decoder;
+  Ort::MemoryInfo cpu_memory = Ort::MemoryInfo::CreateCpu(OrtArenaAllocator, OrtMemTypeDefault);
+};
+
+// Runs encoder.onnx on `n_points` rows of 6 floats (normalised xyz, unit normal); the result
+// is the cross_kv tensor [L, 2, H, M, D] that every decoder call then reads unchanged.
+StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points);
+
+}  // namespace silk

@@ -1,0 +1,33 @@
+// onnxruntime plumbing shared by the runtime: the process-wide Env, session options from our
+// settings, and OrtGuard, which turns Ort::Exception (and any other) into a Status so no
+// exception leaves the runtime layer.
+#pragma once
+#include <exception>
+#include <new>
+#include <string>
+
+#include <onnxruntime_cxx_api.h>
+
+#include "core/status.h"
+
+namespace silk {
+
+Ort::Env& OrtEnvironment();
+Ort::SessionOptions MakeOrtSessionOptions(int threads, bool allow_spinning);
+
+template <typename F>
+Status OrtGuard(const std::string& what, F&& f) noexcept {
+  try {
+    return f();
+  } catch (const Ort::Exception& e) {
+    return Status(StatusCode::kInternal, what + ": onnxruntime: " + e.what());
+  } catch (const std::bad_alloc&) {
+    return Status(StatusCode::kLimitExceeded, what + ": out of memory");
+  } catch (const std::exception& e) {
+    return Status(StatusCode::kInternal, what + ": " + e.what());
+  } catch (...) {
+    return Status(StatusCode::kInternal, what + ": unknown exception");
+  }
+}
+
+}  // namespace silk

@@ -1,0 +1,54 @@
+"""Model sizes. `micro` is the CPU-trainable default bundled model; tiny/small/paper follow the
+issue (paper = the Mesh Silksong scale: 1024 wide, 24 layers, 16 heads)."""
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+
+@dataclass(frozen=True)
+class ModelConfig:
+    name: str
+    d_model: int
+    n_layers: int
+    n_heads: int
+    n_latents: int  # perceiver latents the decoder cross-attends to
+    max_seq_len: int  # BOS + mesh tokens + EOS (docs/model_contract.md)
+    encoder_layers: int = 2  # self-attention blocks over the latents after the point cross-attention
+    ff_mult: int = 4
+    fourier_freqs: int = 8
+    n_points: int = 4096
+
+    @property
+    def head_dim(self) -> int:
+        assert self.d_model % self.n_heads == 0
+        return self.d_model // self.n_heads
+
+    @property
+    def max_tokens(self) -> int:
+        """Longest tokenizer output a training sample may have (BOS and EOS take two slots)."""
+        return self.max_seq_len - 2
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+CONFIGS = {
+    "micro": ModelConfig("micro", d_model=128, n_layers=3, n_heads=4, n_latents=64, max_seq_len=2048,
+                         encoder_layers=1),
+    "tiny": ModelConfig("tiny", d_model=256, n_layers=6, n_heads=4, n_latents=256, max_seq_len=10241),
+    "small": ModelConfig("small", d_model=512, n_layers=12, n_heads=8, n_latents=256, max_seq_len=10241,
+                         encoder_layers=4),
+    "paper": ModelConfig("paper", d_model=1024, n_layers=24, n_heads=16, n_latents=256, max_seq_len=10241,
+                         encoder_layers=8),
+}
+
+
+def get_config(name: str) -> ModelConfig:
+    try:
+        return CONFIGS[name]
+    except KeyError:
+        raise ValueError(f"unknown config '{name}' (known: {', '.join(CONFIGS)})") from None
+
+
+def config_from_dict(d: dict) -> ModelConfig:
+    return ModelConfig(**d)

@@ -1,0 +1,123 @@
+"""The Mesh Silksong generator: point encoder + decoder-only transformer whose pre-norm layers
+do causal self-attention, cross-attention to the point latents, then an MLP. Embeddings are
+token + type (spec §9) + learned absolute position (BOS at 0, mesh token t at t + 1)."""
+from __future__ import annotations
+
+import torch
+import torch.nn.functional as F
+from torch import nn
+
+from .configs import ModelConfig
+from .layers import FeedForward, MultiHeadAttention, attend, merge_heads, split_heads
+from .point_encoder import PointEncoder
+from .vocab import TYPE_CLASSES, load_vocab
+
+IGNORE_INDEX = -100
+
+
+class DecoderLayer(nn.Module):
+    def __init__(self, cfg: ModelConfig):
+        super().__init__()
+        d, h = cfg.d_model, cfg.n_heads
+        self.norm_self = nn.LayerNorm(d)
+        self.self_attn = MultiHeadAttention(d, h)
+        self.norm_cross = nn.LayerNorm(d)
+        self.cross_attn = MultiHeadAttention(d, h)
+        self.norm_ff = nn.LayerNorm(d)
+        self.ff = FeedForward(d, cfg.ff_mult)
+
+    def cross_kv(self, latents: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """This layer's cross-attention K/V of the latents, [B,H,M,D] each."""
+        return self.cross_attn.keys_values(latents)
+
+    def forward(self, x, cross_k, cross_v, past_k=None, past_v=None, allowed=None, fused=True):
+        """x [B,T,d]; past_k/v [B,H,P,D] or None. Returns (x, k_new, v_new) with k/v [B,H,T,D]."""
+        h = self.self_attn.n_heads
+        y = self.norm_self(x)
+        q = split_heads(self.self_attn.q(y), h)
+        k_new, v_new = self.self_attn.keys_values(y)
+        k = k_new if past_k is None else torch.cat([past_k, k_new], dim=2)
+        v = v_new if past_v is None else torch.cat([past_v, v_new], dim=2)
+        a = attend(q, k, v, causal=allowed is None, allowed=allowed, fused=fused)
+        x = x + self.self_attn.o(merge_heads(a))
+        y = self.norm_cross(x)
+        q = split_heads(self.cross_attn.q(y), h)
+        x = x + self.cross_attn.o(merge_heads(attend(q, cross_k, cross_v, fused=fused)))
+        x = x + self.ff(self.norm_ff(x))
+        return x, k_new, v_new
+
+
+class SilkModel(nn.Module):
+    def __init__(self, cfg: ModelConfig):
+        super().__init__()
+        vocab = load_vocab()
+        self.cfg = cfg
+        self.bos_id = vocab.bos_id
+        self.eos_id = vocab.eos_id
+        self.pad_id = vocab.pad_id
+        self.n_logits = vocab.model_vocab_size
+        d = cfg.d_model
+        self.encoder = PointEncoder(cfg)
+        self.tok_emb = nn.Embedding(vocab.embedding_rows, d)
+        self.type_emb = nn.Parameter(torch.zeros(len(TYPE_CLASSES), d))
+        self.register_buffer("type_of_id", torch.from_numpy(vocab.type_of_id()), persistent=False)
+        self.pos_emb = nn.Embedding(cfg.max_seq_len, d)
+        self.layers = nn.ModuleList(DecoderLayer(cfg) for _ in range(cfg.n_layers))
+        self.norm = nn.LayerNorm(d)
+        self.head = nn.Linear(d, self.n_logits)
+        self.apply(self._init)
+        nn.init.normal_(self.type_emb, std=0.02)
+
+    @staticmethod
+    def _init(m: nn.Module) -> None:
+        if isinstance(m, nn.Linear):
+            nn.init.normal_(m.weight, std=0.02)
+            if m.bias is not None:
+                nn.init.zeros_(m.bias)
+        elif isinstance(m, nn.Embedding):
+            nn.init.normal_(m.weight, std=0.02)
+
+    def embed(self, ids: torch.Tensor, positions: torch.Tensor) -> torch.Tensor:
+        types = torch.cat([torch.zeros_like(self.type_emb[:1]), self.type_emb], dim=0)
+        return self.tok_emb(ids) + types[self.type_of_id[ids]] + self.pos_emb(positions)
+
+    def encode_points(self, points: torch.Tensor) -> list[tuple[torch.Tensor, torch.Tensor]]:
+        """points [B,N,6] -> per layer (K, V) [B,H,M,D]."""
+        lat = self.encoder(points)
+        return [layer.cross_kv(lat) for layer in self.layers]
+
+    def forward(self, input_ids: torch.Tensor, points: torch.Tensor,
+                labels: torch.Tensor | None = None):
+        """Teacher forcing. input_ids [B,S] start with BOS (PAD after the end); positions 0..S-1.
+        Returns logits [B,S,10269], or (loss, logits) with labels (IGNORE_INDEX = not scored)."""
+        cross = self.encode_points(points)
+        pos = torch.arange(input_ids.shape[1], device=input_ids.device).unsqueeze(0)
+        x = self.embed(input_ids, pos)
+        for layer, (ck, cv) in zip(self.layers, cross):
+            x, _, _ = layer(x, ck, cv)
+        logits = self.head(self.norm(x))
+        if labels is None:
+            return logits
+        loss = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1),
+                               ignore_index=IGNORE_INDEX)
+        return loss, logits
+
+    def step(self, input_ids, positions, past, cross, fused=False):
+        """Incremental decoding with a KV cache, batch 1 layout of the ONNX decoder.
+
+        past: list per layer of (K, V) [1,H,P,D] (P may be 0); cross: list of (K, V) [1,H,M,D].
+        Key j is visible to a new token iff j <= its position (cache index = position)."""
+        x = self.embed(input_ids, positions)
+        k0 = past[0][0]
+        key_index = torch.cumsum(torch.ones_like(k0[0, 0, :, 0]), 0) - 1  # 0..P-1
+        new_index = positions[0].to(x.dtype)
+        all_index = torch.cat([key_index, new_index])
+        allowed = all_index.unsqueeze(0) <= new_index.unsqueeze(1)  # [T, P+T]
+        new = []
+        for layer, (pk, pv), (ck, cv) in zip(self.layers, past, cross):
+            x, kn, vn = layer(x, ck, cv, pk, pv, allowed=allowed, fused=fused)
+            new.append((kn, vn))
+        return self.head(self.norm(x)), new
+
+    def num_parameters(self) -> int:
+        return sum(p.numel() for p in self.parameters())

@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Makes tests/models/tiny/: a deterministic random-weight model in the exact format of
+docs/model_contract.md, small enough to commit (~280 KB), for the runtime's golden and
+determinism tests. Uses export/'s model code (silk_export) with a toy configuration and
+weights drawn N(0, 0.5) from a fixed seed (larger than training init, so logits have an O(1)
+spread and any runtime mistake changes the sampled ids).
+
+    python3 tests/models/make_tiny_model.py [--out tests/models/tiny]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "export"))
+
+import numpy as np  # noqa: E402
+import onnx  # noqa: E402
+import torch  # noqa: E402
+from onnx import helper, numpy_helper  # noqa: E402
+
+from silk_export.configs import ModelConfig  # noqa: E402
+from silk_export.model import SilkModel  # noqa: E402
+from silk_export.onnx_export import export_model  # noqa: E402
+
+SEED = 20240611
+# d_model 4 keeps the two 10,270 x d tables (embedding, output head) at ~160 KB each.
+TINY = ModelConfig("test-tiny", d_model=4, n_layers=2, n_heads=2, n_latents=4, max_seq_len=1024,
+                   encoder_layers=1, ff_mult=2, fourier_freqs=2, n_points=256)
+
+
+def shrink(path: Path, min_elems: int = 4096) -> None:
+    """Stores the big tables compactly to keep the committed files small: float32 initializers
+    as float16 + Cast, the int64 type table constant as uint8 + Cast. The graph still computes
+    in float32; the model's weights simply are these float16-representable values."""
+    m = onnx.load(str(path))
+    g = m.graph
+    casts = []
+    for init in list(g.initializer):
+        if init.data_type != onnx.TensorProto.FLOAT or np.prod(init.dims) < min_elems:
+            continue
+        arr = numpy_helper.to_array(init).astype(np.float16)
+        name = init.name
+        g.initializer.remove(init)
+        g.initializer.append(numpy_helper.from_array(arr, name + "_f16"))
+        casts.append(helper.make_node("Cast", [name + "_f16"], [name], to=onnx.TensorProto.FLOAT,
+                                      name=name + "_cast"))
+    nodes = casts[:]
+    for node in list(g.node):
+        nodes.append(node)
+        if node.op_type != "Constant":
+            continue
+        t = node.attribute[0].t
+        if t.data_type != onnx.TensorProto.INT64 or np.prod(t.dims) < min_elems:
+            continue
+        arr = numpy_helper.to_array(t)
+        if arr.min() < 0 or arr.max() > 255:
+            continue
+        out = node.output[0]
+        node.output[0] = out + "_u8"
+        node.attribute[0].t.CopyFrom(numpy_helper.from_array(arr.astype(np.uint8), t.name))
+        nodes.append(helper.make_node("Cast", [out + "_u8"], [out], to=onnx.TensorProto.INT64, name=out + "_cast"))
+    del g.node[:]
+    g.node.extend(nodes)
+    onnx.checker.check_model(m)
+    onnx.save(m, str(path))
+
+
+def make(out: Path) -> dict:
+    torch.manual_seed(SEED)
+    model = SilkModel(TINY)
+    with torch.no_grad():
+        for p in model.parameters():
+            p.normal_(0.0, 0.5)
+    meta = export_model(model, out, {"steps": 0, "data": None, "seed": SEED}, int8=False)
+    for f in ("encoder.onnx", "decoder.onnx"):
+        shrink(out / f)
+    # Keep the committed sidecar independent of which libsilk build happened to be around.
+    meta.get("versions", {}).pop("libsilk", None)
+    (out / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
+    return meta
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--out", default=str(REPO / "tests" / "models" / "tiny"))
+    a = ap.parse_args()
+    meta = make(Path(a.out))
+    sizes = {f.name: f.stat().st_size for f in sorted(Path(a.out).iterdir())}
+    print(json.dumps({"dims": meta["dims"], "bytes": sizes}, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
