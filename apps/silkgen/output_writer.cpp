@@ -3,6 +3,7 @@
 #include "output_writer.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>

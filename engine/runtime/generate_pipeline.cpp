@@ -99,14 +99,17 @@ StatusOr<PipelineResult> GenerateFromInput(Generator* generator, const ModelConf
   PipelineResult r;
   SILK_ASSIGN_OR_RETURN(r.generation, generator->Run(pts.rows, options, callbacks));
   r.output = ToInputFrame(r.generation.mesh, pts.transform);
-  GenerationStats& st = r.generation.stats;
-  st.seconds.load_input += prep;
-  const MeshVerdicts v = CheckMesh(r.output.mesh);
-  st.edge_manifold = v.edge_manifold;
-  st.watertight = v.watertight;
-  st.consistently_oriented = v.consistently_oriented;
-  st.open_edges = static_cast<int32_t>(v.boundary_edges);
+  r.generation.stats.seconds.load_input += prep;
+  FillVerdicts(r.output, &r.generation.stats);
   return r;
+}
+
+void FillVerdicts(const GeneratedMesh& mesh, GenerationStats* st) {
+  const MeshVerdicts v = CheckMesh(mesh.mesh);
+  st->edge_manifold = v.edge_manifold;
+  st->watertight = v.watertight;
+  st->consistently_oriented = v.consistently_oriented;
+  st->open_edges = static_cast<int32_t>(v.boundary_edges);
 }
 
 }  // namespace silk

@@ -45,6 +45,9 @@ struct GeneratedMesh {
 // Grid positions -> [-1, 1] (tokenizer dequantisation) -> input frame (UndoNormalization).
 GeneratedMesh ToInputFrame(const DecodedMesh& decoded, const NormalizeTransform& transform);
 
+// Edge-manifold / watertight / orientation verdicts and open edges of the output, into stats.
+void FillVerdicts(const GeneratedMesh& mesh, GenerationStats* stats);
+
 struct PipelineResult {
   GenerateResult generation;  // tokens, grid mesh, report, stats (verdicts filled in)
   GeneratedMesh output;

@@ -1,0 +1,36 @@
+// Carriage-return redraw; nothing is printed when stderr is redirected (logs stay clean).
+#include "progress_bar.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <string>
+
+namespace silkgen {
+
+ProgressBar::ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
+
+void ProgressBar::Update(const silk::GenerateProgress& p) {
+  if (!enabled_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
+  last_ = now;
+  drawn_ = true;
+  constexpr int kWidth = 30;
+  const double frac = p.max_tokens > 0 ? static_cast<double>(p.tokens) / p.max_tokens : 0;
+  const int fill = static_cast<int>(frac * kWidth);
+  std::string bar(static_cast<size_t>(fill), '#');
+  bar.resize(kWidth, '.');
+  std::fprintf(stderr, "\r[%s] %lld/%lld tokens  %d part(s)  %.1f tok/s ", bar.c_str(),
+               static_cast<long long>(p.tokens), static_cast<long long>(p.max_tokens), p.components,
+               p.seconds > 0 ? p.tokens / p.seconds : 0.0);
+  std::fflush(stderr);
+}
+
+void ProgressBar::Finish() {
+  if (!enabled_ || !drawn_) return;
+  std::fprintf(stderr, "\r%80s\r", "");
+  std::fflush(stderr);
+}
+
+}  // namespace silkgen

@@ -1,0 +1,23 @@
+// A one-line progress bar on stderr (only when stderr is a terminal), redrawn at most ten
+// times a second: tokens so far / cap, components, tokens per second.
+#pragma once
+#include <chrono>
+#include <cstdint>
+
+#include "runtime/generator.h"
+
+namespace silkgen {
+
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled);
+  void Update(const silk::GenerateProgress& p);
+  void Finish();  // clears the line
+
+ private:
+  bool enabled_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point last_;
+};
+
+}  // namespace silkgen
