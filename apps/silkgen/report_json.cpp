@@ -47,6 +47,7 @@ std::string StatsJson(const RunSettings& settings, const silk::PipelineResult& r
   j["input"] = {{"vertices", settings.input_vertices}, {"faces", settings.input_faces}, {"points", settings.points}};
   j["tokens"] = st.tokens;
   j["stop_reason"] = st.stop_reason;
+  if (!st.dead_end.empty()) j["grammar_dead_end"] = st.dead_end;
   j["faces"] = st.faces;
   j["vertices"] = st.vertices;
   j["components"] = st.components;

@@ -78,6 +78,10 @@ class Grammar {
   // Smallest layer size >= from at which the current layer could still close, -1 if none
   // (for samplers that aim at a layer size; meaningful inside a layer of index >= 1).
   int32_t NextClosableSize(int32_t from) const;
+  // In state kWantS: would window w keep layer size n_size possible? (sampler aid)
+  bool WindowFits(int32_t n_size, int32_t w) const {
+    return phase_ == GrammarPhase::kWantS && sizes_.Test(n_size) && WindowOk(n_size, w);
+  }
 
   size_t size() const { return history_.size(); }
   const std::vector<int32_t>& tokens() const { return history_; }

@@ -58,17 +58,33 @@ std::vector<int32_t> RandomLegalWalk(Grammar* g, std::mt19937_64* rng, const Ran
       std::vector<int32_t> cands;
       if (ph == GrammarPhase::kWantS) {
         cands = Members(m, vocab::kSBegin, vocab::kSEnd);
+        std::vector<int32_t> fit;
+        const int32_t aim = std::max(target, n);
+        for (int32_t id : cands)
+          if (g->WindowFits(aim, id - vocab::kSBegin)) fit.push_back(id);
+        if (!fit.empty()) cands.swap(fit);
+        if (!take(Pick(cands, rng))) break;
+        continue;
       } else {
         auto xs = Members(m, vocab::kXBegin, vocab::kXEnd);
         auto bs = Members(m, vocab::kBBegin, vocab::kBEnd);
-        cands = (!bs.empty() && (xs.empty() || unit(*rng) >= o.extra_x)) ? bs : xs;
+        std::shuffle(xs.begin(), xs.end(), *rng);
+        std::shuffle(bs.begin(), bs.end(), *rng);
+        const bool prefer_b = !bs.empty() && (xs.empty() || unit(*rng) >= o.extra_x);
+        cands = prefer_b ? bs : xs;
+        const auto& other = prefer_b ? xs : bs;
+        cands.insert(cands.end(), other.begin(), other.end());
       }
-      std::shuffle(cands.begin(), cands.end(), *rng);
       int32_t chosen = -1;
-      for (size_t i = 0; i < cands.size() && i < 64 && chosen < 0; ++i) {
+      const int32_t aim = std::max(target, n);
+      bool b_failed = false;  // all B ids end the X list alike: one failed trial rules them out
+      for (size_t i = 0, tried = 0; i < cands.size() && tried < 256 && chosen < 0; ++i) {
+        const bool is_b = cands[i] >= vocab::kBBegin && cands[i] < vocab::kBEnd;
+        if (is_b && b_failed) continue;
+        ++tried;
         Grammar trial = g->Clone();
-        if (trial.Accept(cands[i]).ok() && trial.NextClosableSize(std::max(target, n)) == std::max(target, n))
-          chosen = cands[i];
+        if (trial.Accept(cands[i]).ok() && trial.NextClosableSize(aim) == aim) chosen = cands[i];
+        else if (is_b) b_failed = true;
       }
       if (chosen < 0) chosen = cands.empty() ? m.Next(0) : cands[0];
       if (!take(chosen)) break;

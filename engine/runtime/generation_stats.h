@@ -24,7 +24,8 @@ struct GenerationStats {
   int64_t model_calls = 0;     // decoder.onnx runs
   int64_t fed_positions = 0;   // positions written to the KV cache (BOS included)
   int64_t resampled = 0;       // sample-then-check order: draws that were illegal
-  std::string stop_reason;     // "eos", "max_tokens", "max_faces"
+  std::string stop_reason;     // "eos", "max_tokens", "max_faces", "grammar_dead_end"
+  std::string dead_end;        // grammar_dead_end: where (a grammar bug; reported, not fatal)
   int32_t faces = 0, vertices = 0, components = 0;
   int32_t holes_found = 0, holes_repaired = 0, faces_added = 0, window_findings = 0;
   int32_t open_edges = 0;

@@ -28,6 +28,13 @@ std::vector<std::pair<int32_t, int32_t>> MaskRanges(const TokenMask& m) {
   return r;
 }
 
+// "N ids (last: a b c ...)" for internal-error messages.
+std::string TailText(const std::vector<int32_t>& ids) {
+  std::string s = std::to_string(ids.size()) + " ids (last:";
+  for (size_t i = ids.size() > 24 ? ids.size() - 24 : 0; i < ids.size(); ++i) s += " " + std::to_string(ids[i]);
+  return s + ")";
+}
+
 bool ClosesLayer(int32_t id) { return id == vocab::kUBegin || id == vocab::kEBegin; }
 
 }  // namespace
@@ -79,7 +86,13 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
       id = grammar.Forced();
       mask = &grammar.LegalMask();
       st.seconds.grammar += Since(t0);
-      if (mask->Empty()) return InternalError("generate: the grammar has no legal id at token " + std::to_string(res.tokens.size()));
+      if (mask->Empty()) {
+        // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
+        // rather than fail the whole run, and say so in the stats.
+        st.stop_reason = "grammar_dead_end";
+        st.dead_end = "no legal id after " + TailText(res.tokens);
+        break;
+      }
       forced = id >= 0;
     }
     if (!forced || !options.skip_forced) {
@@ -115,7 +128,9 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
     t0 = Clock::now();
     if (!options.unconstrained) {
       Rejection r = grammar.Accept(id);
-      if (!r.ok()) return InternalError("generate: sampled id " + std::to_string(id) + " was rejected: " + r.message);
+      if (!r.ok())
+        return InternalError("generate: id " + std::to_string(id) + " was rejected after " + TailText(res.tokens) + ": " +
+                             r.message);
     } else if (!illegal_seen) {
       Rejection r = grammar.Accept(id);
       if (!r.ok()) {
@@ -167,7 +182,8 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
   t0 = Clock::now();
   MeshBuildOptions bopt;
   bopt.holes = options.holes;
-  const bool complete = !options.unconstrained ? st.stop_reason != "max_faces" : (!illegal_seen && grammar.Ended());
+  const bool complete = !options.unconstrained ? st.stop_reason == "eos" || st.stop_reason == "max_tokens"
+                                               : (!illegal_seen && grammar.Ended());
   if (complete) {
     SILK_ASSIGN_OR_RETURN(res.mesh, BuildMesh(grammar.stream(), bopt, &res.report));
   } else {

@@ -23,6 +23,7 @@ StatusOr<ComponentGraph> BuildComponentGraph(const ComponentLayers& layers) {
     const int32_t n = static_cast<int32_t>(layers.layer_positions[l].size());
     g.vertex_count += n;
     g.layer_of.insert(g.layer_of.end(), n, l);
+    g.positions.insert(g.positions.end(), layers.layer_positions[l].begin(), layers.layer_positions[l].end());
   }
   g.layer_start.push_back(g.vertex_count);
   g.neighbors.resize(g.vertex_count);

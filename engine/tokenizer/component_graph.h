@@ -24,6 +24,7 @@ struct ComponentGraph {
   int32_t vertex_count = 0;
   std::vector<int32_t> layer_of;                 // per vertex
   std::vector<int32_t> layer_start;              // first vertex id of each layer (+ end)
+  std::vector<QVec> positions;                   // per vertex (decoded grid coordinates)
   std::vector<std::vector<int32_t>> neighbors;   // sorted
   std::vector<std::array<int32_t, 2>> edges;     // (a, b), a < b
   std::unordered_map<uint64_t, int32_t> edge_index;

@@ -17,7 +17,7 @@ from tqdm import tqdm
 
 from . import libsilk
 from .checkpoint import load_checkpoint, save_checkpoint
-from .configs import ModelConfig, get_config
+from .configs import ModelConfig, config_from_dict, get_config
 from .dataset_index import read_index
 from .losslog import LossLog, plot_losses
 from .model import SilkModel
@@ -54,6 +54,7 @@ class TrainArgs:
     max_seq_len: int = 0  # 0: the config's
     progress: bool = True
     rows_filter: dict = field(default_factory=dict)  # e.g. {"keys": [...]}: restrict training rows
+    model_config: dict | None = None  # a full ModelConfig as a dict instead of a named config
 
 
 def select_rows(rows: list[dict], split: str, cfg: ModelConfig, keys=None) -> list[dict]:
@@ -108,7 +109,7 @@ def accumulate_gradients(model, samples, device) -> tuple[float, int]:
         b = collate([s])
         loss, _ = model(b["input_ids"].to(device), b["points"].to(device), b["labels"].to(device))
         (loss * (n / total)).backward()
-        mean += float(loss) * n / total
+        mean += loss.item() * n / total
     return mean, total
 
 
@@ -133,7 +134,7 @@ def train(a: TrainArgs) -> dict:
         torch.set_num_threads(a.threads)
     device = torch.device("cuda" if a.device == "auto" and torch.cuda.is_available() else
                           ("cpu" if a.device == "auto" else a.device))
-    cfg = get_config(a.config)
+    cfg = config_from_dict(a.model_config) if a.model_config else get_config(a.config)
     if a.max_seq_len:
         cfg = dataclasses.replace(cfg, max_seq_len=a.max_seq_len)
     rng = seed_everything(a.seed)

@@ -3,7 +3,7 @@
 docs/model_contract.md, small enough to commit (~280 KB), for the runtime's golden and
 determinism tests. Uses export/'s model code (silk_export) with a toy configuration and
 weights drawn N(0, 0.5) from a fixed seed (larger than training init, so logits have an O(1)
-spread and any runtime mistake changes the sampled ids).
+spread and any runtime mistake changes the sampled ids), plus output biases toward U and E.
 
     python3 tests/models/make_tiny_model.py [--out tests/models/tiny]
 """
@@ -25,8 +25,10 @@ from onnx import helper, numpy_helper  # noqa: E402
 from silk_export.configs import ModelConfig  # noqa: E402
 from silk_export.model import SilkModel  # noqa: E402
 from silk_export.onnx_export import export_model  # noqa: E402
+from silk_export.vocab import load_vocab  # noqa: E402
 
 SEED = 20240611
+CLOSING_BIAS = {"U": 4.0, "E": 3.0, "X": -6.0}
 # d_model 4 keeps the two 10,270 x d tables (embedding, output head) at ~160 KB each.
 TINY = ModelConfig("test-tiny", d_model=4, n_layers=2, n_heads=2, n_latents=4, max_seq_len=1024,
                    encoder_layers=1, ff_mult=2, fourier_freqs=2, n_points=256)
@@ -72,9 +74,17 @@ def shrink(path: Path, min_elems: int = 4096) -> None:
 def make(out: Path) -> dict:
     torch.manual_seed(SEED)
     model = SilkModel(TINY)
+    vocab = load_vocab()
+    r = vocab.layout["ranges"]
     with torch.no_grad():
         for p in model.parameters():
             p.normal_(0.0, 0.5)
+        # A pure random walk almost never closes a layer (random X tokens alone push the layer
+        # size toward 200); these output biases make the toy model skip X and close layers and
+        # components early, so short runs end with EOS and decode to several small parts.
+        for name, bias in CLOSING_BIAS.items():
+            lo, hi = r[name] if name in r else (vocab.eos_id, vocab.eos_id + 1)
+            model.head.bias[lo:hi] += bias
     meta = export_model(model, out, {"steps": 0, "data": None, "seed": SEED}, int8=False)
     for f in ("encoder.onnx", "decoder.onnx"):
         shrink(out / f)

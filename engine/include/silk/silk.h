@@ -108,6 +108,93 @@ typedef struct silk_decode_params {
 SILK_API silk_decode_params silk_decode_default_params(void);
 SILK_API silk_status silk_decode(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out);
 
+/* ---- generation: point cloud or mesh -> generated mesh ---------------------------------
+ * Needs a libsilk built with onnxruntime (silk_generation_available() == 1); otherwise every
+ * call below returns SILK_ERR_UNSUPPORTED. A silk_model is immutable and may be shared by
+ * threads; a silk_generator (KV cache, scratch) serves one generation at a time. */
+typedef struct silk_model silk_model;
+typedef struct silk_generator silk_generator;
+
+SILK_API int32_t silk_generation_available(void);
+
+typedef struct silk_model_options {
+  int32_t threads; /* onnxruntime intra-op threads; 0 = physical cores (default) */
+  int32_t int8;    /* 1: the model's INT8 decoder (error if it has none); default 0 */
+} silk_model_options;
+SILK_API silk_model_options silk_model_default_options(void);
+/* dir holds model.json, encoder.onnx, decoder.onnx (docs/model_contract.md). A model of another
+ * format/token-format version is refused with SILK_ERR_UNSUPPORTED. options may be NULL. */
+SILK_API silk_status silk_model_load(const char* dir, const silk_model_options* options, silk_model** out);
+SILK_API void silk_model_destroy(silk_model* model);
+
+typedef struct silk_model_info {
+  char config[32]; /* model.json "config" (truncated) */
+  int32_t d_model, n_layers, n_heads, head_dim, n_latents, n_points, max_seq_len;
+  int32_t threads, int8;
+} silk_model_info;
+SILK_API silk_status silk_model_get_info(const silk_model* model, silk_model_info* out);
+
+SILK_API silk_status silk_generator_create(const silk_model* model, silk_generator** out);
+SILK_API void silk_generator_destroy(silk_generator* generator);
+
+typedef struct silk_generate_progress {
+  int64_t tokens, max_tokens;
+  int32_t components; /* started so far */
+  int32_t faces;      /* at the last layer end when max_faces is set, else -1 */
+  double seconds;
+} silk_generate_progress;
+/* Called after every generated id, on the calling thread. */
+typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* user_data);
+/* Polled before every id; non-zero stops the generation with SILK_ERR_CANCELLED. */
+typedef int32_t (*silk_cancel_fn)(void* user_data);
+
+typedef enum silk_hole_policy { SILK_HOLES_OFF = 0, SILK_HOLES_REPORT = 1, SILK_HOLES_REPAIR = 2 } silk_hole_policy;
+
+typedef struct silk_generate_params {
+  uint64_t seed;        /* default 0 */
+  double temperature;   /* default 0.5; 0 = greedy */
+  int32_t top_k;        /* default 50; 0 = off */
+  double top_p;         /* default 1.0 = off */
+  int32_t max_tokens;   /* ids incl. EOS; 0 = the model's limit (default) */
+  int32_t max_faces;    /* stop at the first layer end with >= this many faces; 0 = off */
+  int32_t holes;        /* silk_hole_policy, default SILK_HOLES_OFF */
+  int32_t unconstrained;/* 1: no grammar mask (mesh = legal prefix); default 0 */
+  int32_t n_points;     /* encoder points; 0 = the model's n_points (default) */
+  silk_progress_fn progress; /* may be NULL */
+  silk_cancel_fn cancel;     /* may be NULL */
+  void* user_data;           /* passed to both callbacks */
+} silk_generate_params;
+SILK_API silk_generate_params silk_generate_default_params(void);
+
+typedef enum silk_stop_reason {
+  SILK_STOP_EOS = 0,
+  SILK_STOP_MAX_TOKENS = 1,
+  SILK_STOP_MAX_FACES = 2,
+  SILK_STOP_GRAMMAR_DEAD_END = 3 /* no legal id left (a grammar bug; the closed part is returned) */
+} silk_stop_reason;
+
+typedef struct silk_generate_stats {
+  int64_t tokens, forced_tokens, sampled_tokens, model_calls;
+  int32_t stop_reason; /* silk_stop_reason */
+  int32_t faces, vertices, components;
+  int32_t holes_found, holes_repaired, faces_added;
+  int32_t edge_manifold, watertight, consistently_oriented, open_edges;
+  int64_t illegal_at; /* unconstrained: index of the first id the grammar rejects, else -1 */
+  double tokens_per_second;
+  double seconds_prepare, seconds_encoder, seconds_decoder, seconds_grammar, seconds_sampling,
+      seconds_build_mesh, seconds_total;
+} silk_generate_stats;
+
+/* Generates from a mesh (area-weighted surface samples with normals). The result is in the
+ * input's frame; silk_mesh_copy_triangle_components gives each triangle's part. out_tokens
+ * and stats may be NULL. */
+SILK_API silk_status silk_generate(silk_generator* generator, const silk_mesh* mesh, const silk_generate_params* params,
+                                   silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats);
+/* Same from a point cloud: points = n_points rows of 6 doubles (x y z nx ny nz), input frame. */
+SILK_API silk_status silk_generate_from_points(silk_generator* generator, const double* points, size_t n_points,
+                                               const silk_generate_params* params, silk_mesh** out_mesh,
+                                               silk_tokens** out_tokens, silk_generate_stats* stats);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

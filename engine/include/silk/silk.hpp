@@ -79,6 +79,11 @@ class Mesh {
     if (!v.empty()) Check(silk_mesh_copy_triangles(h_.get(), v.data(), v.size()));
     return v;
   }
+  std::vector<int32_t> triangle_components() const {
+    std::vector<int32_t> v(silk_mesh_triangle_count(h_.get()));
+    if (!v.empty()) Check(silk_mesh_copy_triangle_components(h_.get(), v.data(), v.size()));
+    return v;
+  }
   Tokens Encode(const silk_encode_params& p = silk_encode_default_params(), silk_encode_stats* stats = nullptr) const {
     silk_tokens* t = nullptr;
     Check(silk_encode(h_.get(), &p, &t, stats));
@@ -93,6 +98,67 @@ class Mesh {
 
  private:
   std::unique_ptr<silk_mesh, MeshDeleter> h_;
+};
+
+struct ModelDeleter {
+  void operator()(silk_model* m) const { silk_model_destroy(m); }
+};
+struct GeneratorDeleter {
+  void operator()(silk_generator* g) const { silk_generator_destroy(g); }
+};
+
+// A loaded model folder (shareable between threads).
+class Model {
+ public:
+  static Model Load(const std::string& dir, const silk_model_options& o = silk_model_default_options()) {
+    silk_model* m = nullptr;
+    Check(silk_model_load(dir.c_str(), &o, &m));
+    return Model(m);
+  }
+  silk_model_info info() const {
+    silk_model_info i;
+    Check(silk_model_get_info(h_.get(), &i));
+    return i;
+  }
+  const silk_model* get() const { return h_.get(); }
+
+ private:
+  explicit Model(silk_model* m) : h_(m) {}
+  std::unique_ptr<silk_model, ModelDeleter> h_;
+};
+
+// One generation at a time; keep one per thread. The model must outlive it.
+class Generator {
+ public:
+  explicit Generator(const Model& model) {
+    silk_generator* g = nullptr;
+    Check(silk_generator_create(model.get(), &g));
+    h_.reset(g);
+  }
+  Mesh Generate(const Mesh& input, const silk_generate_params& p = silk_generate_default_params(),
+                silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
+    silk_mesh* m = nullptr;
+    silk_tokens* t = nullptr;
+    Check(silk_generate(h_.get(), input.get(), &p, &m, tokens ? &t : nullptr, stats));
+    return Finish(m, t, tokens);
+  }
+  // points: rows of x y z nx ny nz.
+  Mesh GenerateFromPoints(const std::vector<double>& points,
+                          const silk_generate_params& p = silk_generate_default_params(),
+                          silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
+    silk_mesh* m = nullptr;
+    silk_tokens* t = nullptr;
+    Check(silk_generate_from_points(h_.get(), points.data(), points.size() / 6, &p, &m, tokens ? &t : nullptr, stats));
+    return Finish(m, t, tokens);
+  }
+
+ private:
+  static Mesh Finish(silk_mesh* m, silk_tokens* t, std::vector<int32_t>* tokens) {
+    Mesh mesh(m);
+    if (tokens) *tokens = Tokens(t).ids();
+    return mesh;
+  }
+  std::unique_ptr<silk_generator, GeneratorDeleter> h_;
 };
 
 }  // namespace silk_cpp

@@ -1,0 +1,37 @@
+"""Shared fixtures: libsilk is found as the package finds it ($SILK_LIBRARY, else build/ in the
+checkout); silktok is taken from the same build folder; spec files from the shared folder."""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from silk_export import libsilk
+from silk_export.paths import shared_dir
+
+
+@pytest.fixture(scope="session")
+def lib_path() -> Path:
+    path = Path(libsilk.library_path())
+    libsilk.lib()  # fails loudly with the build hint when no library is found
+    return path
+
+
+@pytest.fixture(scope="session")
+def silktok(lib_path) -> Path:
+    env = os.environ.get("SILKTOK")
+    exe = Path(env) if env else lib_path.resolve().parents[1] / "apps" / "silktok"
+    if not exe.is_file():
+        pytest.skip(f"silktok not built beside {lib_path} (set SILKTOK)")
+    return exe
+
+
+@pytest.fixture(scope="session")
+def golden_dir() -> Path:
+    return shared_dir() / "spec" / "golden"
+
+
+@pytest.fixture(scope="session")
+def dev_dir() -> Path:
+    return shared_dir() / "corpus" / "dev"
