@@ -15,6 +15,7 @@ RUN=${RUN:-$DATA_DIR/runs/micro-default}
 OUT=${OUT:-models/default}
 THREADS=${THREADS:-1}
 STAGES=${STAGES:-"build fetch install dataset train export eval card"}
+mkdir -p "$RUN/eval"
 export SILK_DATA_DIR=$DATA_DIR
 export SILK_LIBRARY=${SILK_LIBRARY:-$PWD/build/engine/libsilk.so}
 
@@ -41,12 +42,26 @@ if has export; then
 fi
 
 if has eval; then
-  silk-export generate --model "$RUN/checkpoint.pt" --out "$RUN/eval/test" --seed 0 \
-    $(python3 -c "import json,sys; rows=[json.loads(l) for l in open('$INDEX_DIR/index.jsonl')]; \
-print(' '.join('$DATA_DIR/0ad/'+r['file'] for r in rows if r['split']=='test' and r['refused'] is None \
-and r['tokens']<=2046][:16]))")
-  silk-export eval "$RUN/eval/test/generated" "$RUN/eval/test/reference" --out "$RUN/eval/test.json"
+  for split in val test dev; do
+    silk-export loss --checkpoint "$RUN/checkpoint.pt" --index "$INDEX_DIR/index.jsonl" --root "$DATA_DIR/0ad" \
+      --split "$split" --out "$RUN/eval/loss_$split.json"
+  done
+  # 16 meshes per split, evenly spaced by token count (<= 2,046 tokens). First the shipped ONNX
+  # model through the C++ runtime (silkgen: grammar-constrained, fp32, 1 thread) ...
+  SILKGEN=${SILKGEN:-build/apps/silkgen}
+  if [ -x "$SILKGEN" ]; then
+    for split in test dev; do
+      silk-export generate --runtime "$SILKGEN" --model "$OUT" --out "$RUN/eval/$split" --seed 0 \
+        --index "$INDEX_DIR/index.jsonl" --root "$DATA_DIR/0ad" --split "$split" --limit 16
+      silk-export eval "$RUN/eval/$split/generated" "$RUN/eval/$split/reference" --out "$RUN/eval/$split.json"
+    done
+  fi
+  # ... then the PyTorch checkpoint without a grammar mask (how often is raw sampling legal?).
+  silk-export generate --model "$RUN/checkpoint.pt" --out "$RUN/eval/torch_test" --seed 0 \
+    --index "$INDEX_DIR/index.jsonl" --root "$DATA_DIR/0ad" --split test --limit 16
+  silk-export eval "$RUN/eval/torch_test/generated" "$RUN/eval/torch_test/reference" \
+    --out "$RUN/eval/torch_test.json"
 fi
 
-has card && silk-export card --model-dir "$OUT" --run-dir "$RUN" --eval-json "$RUN/eval/test.json"
+has card && silk-export card --model-dir "$OUT" --run-dir "$RUN" ${BENCH_JSON:+--bench-json "$BENCH_JSON"}
 echo "train_default_model: done -> $OUT"

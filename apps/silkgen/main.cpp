@@ -33,6 +33,7 @@ int Fail(const silk::Status& s) { return Fail(s.message()); }
 int main(int argc, char** argv) {
   CLI::App app{"silkgen — generate a mesh from a point cloud or a mesh (Mesh Silksong, grammar-constrained)"};
   app.set_version_flag("--version", SILK_VERSION_STRING);
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // later options win
   std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path;
   int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
   double temperature = 0.5, top_p = 1.0;

@@ -298,13 +298,13 @@ Rejection Grammar::Accept(int32_t id) {
       const int32_t budget_max = BudgetMaxSize(2 + g);
       LayerSizeSet ok;
       bool beyond_only = true;
-      for (int32_t n = cand.Next(b + 1); n >= 0 && n <= budget_max; n = cand.Next(n + 1)) {
-        if (n >= b + 9) {
-          // No wrap-around bits at this size: only the layer-1 chain rule applies.
-          if (options_.window_rule == WindowRule::kCanonical && layer_ == 1 && !(w & 1)) continue;
-          ok.Set(n);
-          continue;
-        }
+      cand.KeepAtMost(budget_max);
+      // Sizes >= b+9: no wrap-around bits, only the layer-1 chain rule applies (bulk).
+      if (!(options_.window_rule == WindowRule::kCanonical && layer_ == 1 && !(w & 1))) {
+        ok = cand;
+        ok.KeepAtLeast(b + 9);
+      }
+      for (int32_t n = cand.Next(b + 1); n >= 0 && n < b + 9; n = cand.Next(n + 1)) {
         if (WindowOk(n, w)) ok.Set(n);
         else if (w < (1 << std::min(8, n - 1))) beyond_only = false;
       }
@@ -382,8 +382,13 @@ Rejection Grammar::Accept(int32_t id) {
         return Reject(RejectReason::kZeroLengthEdge, id, "B segment links two vertices at one position");
       LayerSizeSet fin;
       const int32_t budget_max = BudgetMaxSize(1);
-      for (int32_t n = row_sizes_.Next(0); n >= 0 && n <= budget_max; n = row_sizes_.Next(n + 1))
-        if (!canonical || matched_[n] == g_count_) fin.Set(n);
+      if (!canonical || g_count_ == 0) {
+        fin = row_sizes_;
+        fin.KeepAtMost(budget_max);
+      } else {
+        for (int32_t n = row_sizes_.Next(0); n >= 0 && n <= budget_max; n = row_sizes_.Next(n + 1))
+          if (matched_[n] == g_count_) fin.Set(n);
+      }
       if (fin.Empty() && budget_max < kMaxLayerSize)
         return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
       if (fin.Empty())

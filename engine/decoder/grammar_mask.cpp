@@ -98,6 +98,10 @@ void Grammar::ComputeMask() {
       const int32_t lo = std::max(last_x_ + 1, 8);
       const int32_t bm_x = BudgetMaxSize(3 + g_count_);
       int32_t maxhi = -1;
+      if (g_count_ == 0 || !canonical) {  // no required values: the largest size bounds the range
+        const int32_t n = row_sizes_.Prev(bm_x);
+        if (n >= 0) maxhi = canonical ? std::min(n - 10, n - 2 - b) : n - 10;
+      } else
       for (int32_t n = row_sizes_.Next(0); n >= 0 && n <= bm_x; n = row_sizes_.Next(n + 1)) {
         const int32_t hi = canonical ? std::min(n - 10, n - 2 - b) : n - 10;
         maxhi = std::max(maxhi, hi);
@@ -110,6 +114,8 @@ void Grammar::ComputeMask() {
       if (maxhi >= lo) mask_.SetRange(vocab::kXBegin + lo, vocab::kXBegin + maxhi + 1);
       const int32_t bm_b = BudgetMaxSize(1);
       bool can_b = false;
+      if (g_count_ == 0 || !canonical) can_b = row_sizes_.Next(0) >= 0 && row_sizes_.Next(0) <= bm_b;
+      else
       for (int32_t n = row_sizes_.Next(0); n >= 0 && n <= bm_b && !can_b; n = row_sizes_.Next(n + 1))
         can_b = !canonical || matched_[n] == g_count_;
       if (can_b) AddBetweenMask(0);

@@ -31,6 +31,15 @@ class LayerSizeSet {
       else w_[i] &= ~uint64_t{0} << (lo - base);
     }
   }
+  // Keeps only values <= hi.
+  void KeepAtMost(int32_t hi) {
+    for (int32_t i = 3; i >= 0; --i) {
+      int32_t base = i * 64;
+      if (hi >= base + 63) break;
+      if (hi < base) w_[i] = 0;
+      else w_[i] &= ~uint64_t{0} >> (63 - (hi - base));
+    }
+  }
   // Smallest member >= from, or -1.
   int32_t Next(int32_t from) const {
     if (from < 0) from = 0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "tokenizer/between_layer_cases.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {
@@ -63,6 +64,12 @@ std::vector<int32_t> RandomLegalWalk(Grammar* g, std::mt19937_64* rng, const Ran
         for (int32_t id : cands)
           if (g->WindowFits(aim, id - vocab::kSBegin)) fit.push_back(id);
         if (!fit.empty()) cands.swap(fit);
+        if (unit(*rng) < o.sparse) {
+          std::vector<int32_t> sparse;
+          for (int32_t id : cands)
+            if (__builtin_popcount(static_cast<unsigned>(id - vocab::kSBegin)) <= 2) sparse.push_back(id);
+          if (!sparse.empty()) cands.swap(sparse);
+        }
         if (!take(Pick(cands, rng))) break;
         continue;
       } else {
@@ -70,6 +77,12 @@ std::vector<int32_t> RandomLegalWalk(Grammar* g, std::mt19937_64* rng, const Ran
         auto bs = Members(m, vocab::kBBegin, vocab::kBEnd);
         std::shuffle(xs.begin(), xs.end(), *rng);
         std::shuffle(bs.begin(), bs.end(), *rng);
+        if (unit(*rng) < o.sparse) {
+          std::vector<int32_t> few;
+          for (int32_t id : bs)
+            if (__builtin_popcount(static_cast<unsigned>(BetweenCasePattern((id - vocab::kBBegin) % kBetweenCases))) <= 1) few.push_back(id);
+          if (!few.empty()) bs.swap(few);
+        }
         const bool prefer_b = !bs.empty() && (xs.empty() || unit(*rng) >= o.extra_x);
         cands = prefer_b ? bs : xs;
         const auto& other = prefer_b ? xs : bs;
@@ -104,9 +117,8 @@ std::vector<int32_t> RandomLegalWalk(Grammar* g, std::mt19937_64* rng, const Ran
         if (up) new_target(layer + 1);
         continue;
       }
-      auto ks = Members(m, vocab::kKBegin, vocab::kKEnd);
-      if (!ks.empty()) {
-        if (!take(Pick(ks, rng))) break;
+      if (m.Test(vocab::kKBegin)) {  // K ids are legal all together
+        if (!take(std::uniform_int_distribution<int32_t>(vocab::kKBegin, vocab::kKEnd - 1)(*rng))) break;
         continue;
       }
       if (!bs.empty()) {
@@ -116,9 +128,17 @@ std::vector<int32_t> RandomLegalWalk(Grammar* g, std::mt19937_64* rng, const Ran
       if (!take(m.Next(0))) break;
       continue;
     }
-    // K, O, U after the root: uniform over the legal ids.
-    std::vector<int32_t> all = Members(m, 0, TokenMask::kBits);
-    if (!take(Pick(all, rng))) break;
+    // K, O, U after the root: uniform over the legal ids (rejection sampling inside the class).
+    const int32_t lo = m.Next(0);
+    int32_t hi = lo;
+    for (int32_t id = lo; id >= 0; id = m.Next(id + 1)) hi = id;
+    int32_t id = -1;
+    for (int32_t t = 0; t < 64 && id < 0; ++t) {
+      const int32_t c = std::uniform_int_distribution<int32_t>(lo, hi)(*rng);
+      if (m.Test(c)) id = c;
+    }
+    if (id < 0) id = Pick(Members(m, 0, TokenMask::kBits), rng);
+    if (!take(id)) break;
   }
   return out;
 }

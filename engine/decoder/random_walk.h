@@ -16,6 +16,8 @@ struct RandomWalkOptions {
   int32_t max_layer_size = 12;  // target sizes are drawn from [1, max_layer_size]
   double extra_b = 0.15;        // chance of a continuation B token when legal
   double extra_x = 0.05;        // chance of a free X token when legal
+  double sparse = 0.85;         // chance of drawing S/B only among ids stating <= 2 edges
+                                // (keeps random graphs mesh-like; 0 = uniform over the mask)
 };
 
 // Runs one walk from `grammar`'s current state (normally reset) until EOS; returns the ids

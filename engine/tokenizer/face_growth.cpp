@@ -12,7 +12,7 @@ namespace {
 
 class Grower {
  public:
-  Grower(const ComponentGraph& g, const GrowConstraints& c) : g_(g), c_(c) {
+  Grower(const ComponentGraph& g, const GrowConstraints& c) : g_(g), c_(c), budget_(c.lookahead_budget) {
     const size_t t = g.triangles.size(), e = g.edges.size();
     orient_.assign(t, 0);
     hint_.assign(t, 0);
@@ -23,7 +23,11 @@ class Grower {
   std::vector<int8_t> Run(FaceRecoveryStats* stats) {
     for (const auto& f : c_.forced) {
       const int32_t t = TriangleOf(f[0], f[1], f[2]);
-      if (t >= 0 && orient_[t] == 0 && CanAdd(f[0], f[1], f[2])) Add(t, f[0], f[1], f[2]);
+      if (t >= 0 && orient_[t] == 0 && !Forbidden(t) && CanAdd(f[0], f[1], f[2])) Add(t, f[0], f[1], f[2]);
+    }
+    if (c_.only_forced) {
+      if (stats) *stats = stats_;
+      return std::move(orient_);
     }
     hints_ = LayeringHintFaces(g_);
     for (const auto& h : hints_) {
@@ -271,19 +275,18 @@ class Grower {
 
   const ComponentGraph& g_;
   const GrowConstraints& c_;
+  int64_t budget_;
   std::vector<std::array<int32_t, 3>> hints_;
   std::vector<int8_t> orient_, hint_, count_;
   std::vector<uint8_t> dir_;
   std::deque<int32_t> work_;
   std::vector<int32_t> deferred_;
   std::vector<int32_t> log_;
-  int64_t budget_ = kLookAheadBudget;
   static constexpr int32_t kTrialSteps = 4096;
   // Both measured on the dev corpus (golden_dev_decode_test): hints placed before growth
   // halve the reversed faces; the look-ahead removes a further ~15 % of the misses.
   static constexpr bool kUseLookAhead = true;
   static constexpr bool kHintsFirst = true;
-  static constexpr int64_t kLookAheadBudget = int64_t{1} << 26;
   int32_t next_uncovered_ = 0;
   FaceRecoveryStats stats_;
 };

@@ -16,6 +16,10 @@ struct GrowConstraints {
   std::vector<std::array<int32_t, 3>> forced;
   // Per triangle id of the graph (empty = none): never accepted.
   std::vector<char> forbidden;
+  // Place the forced faces and nothing else (the search's direct edits of a face set).
+  bool only_forced = false;
+  // Steps the look-ahead may spend (bounds one growth on arbitrary graphs).
+  int64_t lookahead_budget = int64_t{1} << 26;
 };
 
 // Orientation per triangle of g: +1 = face (c0, c1, c2), -1 = face (c0, c2, c1), 0 = not a

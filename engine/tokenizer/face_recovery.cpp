@@ -16,6 +16,13 @@ namespace {
 // defects the tokens cannot explain (unencoded edges, §5.4) cheap.
 constexpr int64_t kSearchWork = int64_t{1} << 24;
 constexpr int32_t kMaxEvaluations = 200;
+// More defects than max(this, vertices / kVerticesPerRepairableDefect) after the growth: not
+// a mesh the encoder produced (random or corrupted streams, e.g. grammar random walks); the
+// growth's answer is returned unsearched.
+constexpr int32_t kMaxDefectsToRepair = 48;
+constexpr int32_t kVerticesPerRepairableDefect = 32;
+// Look-ahead steps one search growth may spend, per unit (the first growth keeps the default).
+constexpr int64_t kSearchLookAheadPerUnit = 8;
 
 struct Candidate {
   GrowConstraints constraints;
@@ -50,6 +57,8 @@ StatusOr<std::vector<std::array<int32_t, 3>>> RecoverFacesOfGraph(const Componen
   std::vector<char> exhausted(static_cast<size_t>(g.vertex_count), 0);
   std::vector<int32_t> seen(tri_count, -1), incident;
   int32_t evals = 0, round = 0;
+  if (cur.verification.Score() > std::max(kMaxDefectsToRepair, g.vertex_count / kVerticesPerRepairableDefect))
+    st.search_budget_exhausted = true;
   while (cur.verification.Score() > 0 && !st.search_budget_exhausted) {
     int32_t focus = -1;
     for (int32_t v : cur.verification.suspects) {
@@ -69,20 +78,29 @@ StatusOr<std::vector<std::array<int32_t, 3>>> RecoverFacesOfGraph(const Componen
       }
     }
     // One change at the focus vertex, the growth redoes the rest: drop or flip a face it
-    // has, or impose a face it lacks in either winding. A change is kept when it removes a
+    // has (or drop it with no regrowth), or impose a face it lacks in either winding. A change is kept when it removes a
     // defect or moves the first defect later at the same count (a strict, well-founded
     // order, so the search cannot cycle).
     Candidate best;
     bool have_best = false;
     for (int32_t t : incident) {
-      for (int variant = 0; variant < 2; ++variant) {
+      for (int variant = 0; variant < 3; ++variant) {
         if (evals >= max_evals) {
           st.search_budget_exhausted = true;
           break;
         }
         GrowConstraints alt = cur.constraints;
+        alt.lookahead_budget = kSearchLookAheadPerUnit * unit;
         const int8_t o = cur.orient[static_cast<size_t>(t)];
-        if (o != 0 && variant == 0) {
+        if (variant == 2 && (o == 0 || cur.constraints.only_forced)) continue;
+        if (variant == 2) {  // drop the face and change nothing else (a hole the growth would refill)
+          alt.forced.clear();
+          for (size_t k = 0; k < tri_count; ++k)
+            if (cur.orient[k] != 0 && static_cast<int32_t>(k) != t) alt.forced.push_back(Oriented(g, static_cast<int32_t>(k), cur.orient[k]));
+          alt.forbidden.assign(tri_count, 0);
+          alt.forbidden[static_cast<size_t>(t)] = 1;
+          alt.only_forced = true;
+        } else if (o != 0 && variant == 0) {
           alt.forbidden.resize(tri_count, 0);
           alt.forbidden[static_cast<size_t>(t)] = 1;
         } else {

@@ -159,10 +159,11 @@ FaceVerification VerifyComponentFaces(const ComponentGraph& g, const std::vector
         if (LessYZX(g.positions[static_cast<size_t>(f[k])], g.positions[static_cast<size_t>(best)])) best = f[k];
       root_ok = root_ok || best == 0;
     }
-    if (!root_ok) {
+    if (!root_ok) {  // a face sorts before the root's faces, or the root's faces are wrong
       ++res.bad_runs;
       res.first_defect = 0;
       flag(0);
+      for (int32_t v : faces[static_cast<size_t>(order[0])]) flag(v);
     }
   }
   // §5.3 replayed per layer with the decoded earlier layers as the visited set.

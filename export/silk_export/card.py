@@ -27,7 +27,7 @@ def _fmt(x, nd=4):
     return "—" if x is None else (f"{x:.{nd}f}" if isinstance(x, float) else str(x))
 
 
-def write_card(model_dir: Path, run_dir: Path, eval_json: Path | None = None, bench_json: Path | None = None) -> Path:
+def write_card(model_dir: Path, run_dir: Path, bench_json: Path | None = None) -> Path:
     model_dir, run_dir = Path(model_dir), Path(run_dir)
     meta = _load(model_dir / "model.json") or {}
     run = _load(run_dir / "run.json") or {}
@@ -36,8 +36,6 @@ def write_card(model_dir: Path, run_dir: Path, eval_json: Path | None = None, be
     train = [r for r in recs if r["kind"] == "train"]
     val = [r for r in recs if r["kind"] == "val"]
     index_summary = _load(Path(args["index"]).parent / "summary.json") if args.get("index") else None
-    ev = _load(eval_json)
-    gen = _load(Path(eval_json).parent / "test" / "generate.json") if eval_json else None
     bench = _load(bench_json)
     dims = meta.get("dims", {})
     last = train[-10:]
@@ -91,16 +89,38 @@ def write_card(model_dir: Path, run_dir: Path, eval_json: Path | None = None, be
     L += ["", "Loss (nats/token, train moving mean and fixed val set):", "", "![loss](loss.png)", ""]
     if val:
         L += ["| step | val loss |", "|---|---|"] + [f"| {r['step']} | {r['loss']:.4f} |" for r in val] + [""]
-    if ev:
-        s = ev["summary"]
-        L += ["## Evaluation (test split)", ""]
-        if gen:
-            L += [f"Sampling (PyTorch, top-k 50, temperature 0.5) on {gen['inputs']} test meshes: EOS reached for "
-                  f"{gen['eos_rate']:.0%}; {gen['decoded_with_faces']} decoded to a mesh with faces.", ""]
-        L += ["| metric | value |", "|---|---|"]
-        L += [f"| {k} | {_fmt(v)} |" for k, v in s.items()]
-        L += ["", "CD/HD/NC/|NC| as in `export/silk_export/metrics.py` (both meshes normalised to ±0.95,",
-              "10,000 surface samples each); structure rates over the generated meshes.", ""]
+    losses = {sp: _load(run_dir / "eval" / f"loss_{sp}.json") for sp in ("val", "test", "dev")}
+    if any(losses.values()):
+        L += ["## Held-out loss", "", "Teacher-forced cross-entropy on every mesh of the split that fits",
+              "(no augmentation, fixed point samples):", "",
+              "| split | meshes | tokens | nats/token | bits/token | perplexity |", "|---|---|---|---|---|---|"]
+        L += [f"| {sp} | {r['meshes']} | {r['tokens']:,} | {r['loss']:.4f} | {r['bits_per_token']:.3f} | "
+              f"{r['perplexity']:.1f} |" for sp, r in losses.items() if r]
+        L.append("")
+    for sp, title in (("test", "test split, C++ runtime"), ("dev", "dev corpus, C++ runtime"),
+                      ("torch_test", "test split, PyTorch without grammar mask")):
+        ev = _load(run_dir / "eval" / f"{sp}.json")
+        gen = _load(run_dir / "eval" / sp / "generate.json")
+        if not (ev or gen):
+            continue
+        L += [f"## Generation ({title})", ""]
+        if gen and gen.get("runtime") == "silkgen":
+            tps = [m["tokens_per_second"] for m in gen["meshes"] if m.get("tokens_per_second")]
+            L += ["`silkgen` (grammar-constrained sampling, top-k 50, temperature 0.5, fp32 decoder, 1 thread)",
+                  f"with this model folder: {gen['inputs']} input meshes, stopped by EOS for {gen['eos_rate']:.0%},",
+                  f"{gen['decoded_with_faces']} produced a mesh with faces"
+                  + (f"; {sum(tps) / len(tps):.0f} tokens/s on average." if tps else "."), ""]
+        elif gen:
+            L += ["Unconstrained sampling with the PyTorch model (top-k 50, temperature 0.5, no grammar mask),",
+                  f"decoded by libsilk: {gen['inputs']} input meshes, EOS reached for {gen['eos_rate']:.0%},",
+                  f"{gen['decoded_with_faces']} decoded to a mesh with at least one face.", ""]
+            errs = [m.get("decode_error", "") for m in gen["meshes"] if m.get("decode_error")]
+            if errs:
+                L += [f"First decode error: `{errs[0][:160]}`", ""]
+        if ev and ev["summary"].get("evaluated"):
+            L += ["| metric | value |", "|---|---|"] + [f"| {k} | {_fmt(v)} |" for k, v in ev["summary"].items()]
+            L += ["", "CD/HD/NC/|NC| as in `export/silk_export/metrics.py` (generated vs input mesh, both",
+                  "normalised to ±0.95, 10,000 surface samples each); rates over the generated meshes.", ""]
     if bench:
         L += ["## Training throughput per config (this CPU)", "",
               f"Synthetic sequences, forward + backward + AdamW, {bench['machine']['threads']} thread(s):", "",

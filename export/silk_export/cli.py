@@ -1,4 +1,4 @@
-"""`silk-export` console script: dataset | train | export | eval | card | bench | generate."""
+"""`silk-export` console script: dataset | train | export | eval | card, plus bench | generate | loss."""
 from __future__ import annotations
 
 import argparse
@@ -51,10 +51,21 @@ def _cmd_eval(a) -> int:
     return 0
 
 
+def _cmd_loss(a) -> int:
+    from .split_loss import split_loss
+    from .mesh_files import default_0ad_root
+    res = split_loss(Path(a.checkpoint), Path(a.index), Path(a.root) if a.root else default_0ad_root(),
+                     a.split, a.limit, a.seed, a.threads)
+    text = json.dumps(res, indent=2)
+    if a.out:
+        Path(a.out).write_text(text + "\n")
+    print(text)
+    return 0
+
+
 def _cmd_card(a) -> int:
     from .card import write_card
-    path = write_card(Path(a.model_dir), Path(a.run_dir), Path(a.eval_json) if a.eval_json else None,
-                      Path(a.bench_json) if a.bench_json else None)
+    path = write_card(Path(a.model_dir), Path(a.run_dir), Path(a.bench_json) if a.bench_json else None)
     print(path)
     return 0
 
@@ -70,9 +81,20 @@ def _cmd_bench(a) -> int:
 
 
 def _cmd_generate(a) -> int:
-    from .generate import generate_paths
-    res = generate_paths(Path(a.model), [Path(p) for p in a.inputs], Path(a.out), a.max_tokens,
-                         a.temperature, a.top_k, a.seed)
+    from .generate import generate_paths, pick_from_index
+    from .mesh_files import default_0ad_root
+    inputs = [Path(p) for p in a.inputs]
+    if a.index:
+        inputs += pick_from_index(Path(a.index), Path(a.root) if a.root else default_0ad_root(), a.split,
+                                  a.limit, a.max_index_tokens)
+    if not inputs:
+        raise SystemExit("generate: no input meshes (give files or --index)")
+    if a.runtime:
+        from .generate import generate_with_runtime
+        res = generate_with_runtime(Path(a.runtime), Path(a.model), inputs, Path(a.out), a.seed, a.threads)
+    else:
+        res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens,
+                             a.temperature, a.top_k, a.seed, a.threads)
     print(json.dumps(res, indent=2))
     return 0
 
@@ -126,10 +148,20 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--out")
     v.set_defaults(fn=_cmd_eval)
 
+    lo = sub.add_parser("loss", help="teacher-forced cross-entropy of a checkpoint on one split (no augmentation)")
+    lo.add_argument("--checkpoint", required=True)
+    lo.add_argument("--index", required=True)
+    lo.add_argument("--root")
+    lo.add_argument("--split", default="test")
+    lo.add_argument("--limit", type=int, default=0, help="0: every mesh of the split that fits")
+    lo.add_argument("--seed", type=int, default=0)
+    lo.add_argument("--threads", type=int, default=1)
+    lo.add_argument("--out")
+    lo.set_defaults(fn=_cmd_loss)
+
     c = sub.add_parser("card", help="write MODEL_CARD.md into a model folder from a training run")
     c.add_argument("--model-dir", required=True)
     c.add_argument("--run-dir", required=True)
-    c.add_argument("--eval-json")
     c.add_argument("--bench-json")
     c.set_defaults(fn=_cmd_card)
 
@@ -144,13 +176,20 @@ def build_parser() -> argparse.ArgumentParser:
     b.set_defaults(fn=_cmd_bench)
 
     g = sub.add_parser("generate", help="sample meshes from point clouds of input meshes (PyTorch, KV cache)")
-    g.add_argument("--model", required=True, help="checkpoint.pt")
+    g.add_argument("--model", required=True, help="checkpoint.pt, or with --runtime an exported model folder")
+    g.add_argument("--runtime", help="path of silkgen: generate with the C++ runtime (grammar-constrained)")
     g.add_argument("--out", required=True)
     g.add_argument("--max-tokens", type=int, default=0)
     g.add_argument("--temperature", type=float, default=0.5)
     g.add_argument("--top-k", type=int, default=50)
     g.add_argument("--seed", type=int, default=0)
-    g.add_argument("inputs", nargs="+")
+    g.add_argument("--threads", type=int, default=1)
+    g.add_argument("--index", help="take inputs from an index (evenly spaced over one split)")
+    g.add_argument("--root", help="folder the index's paths are relative to (default: 0 A.D. cache)")
+    g.add_argument("--split", default="test")
+    g.add_argument("--limit", type=int, default=16)
+    g.add_argument("--max-index-tokens", type=int, default=2046, help="only index meshes up to this many tokens")
+    g.add_argument("inputs", nargs="*")
     g.set_defaults(fn=_cmd_generate)
     return p
 

@@ -1,9 +1,11 @@
-"""`silk-export generate`: sample token sequences from a checkpoint (PyTorch, KV cache, top-k)
-conditioned on the point cloud of each input mesh, decode them through libsilk, and write
-generated/<stem>.obj beside reference/<stem>.obj for `silk-export eval`."""
+"""`silk-export generate`: sample token sequences from a checkpoint (PyTorch, KV cache, top-k, no
+grammar mask) conditioned on the point cloud of each input mesh and decode them through libsilk,
+or run the C++ runtime (`silkgen`, grammar-constrained) on an exported model folder; either way
+write generated/<stem>.obj beside reference/<stem>.obj for `silk-export eval`."""
 from __future__ import annotations
 
 import json
+import subprocess
 import time
 from pathlib import Path
 
@@ -46,8 +48,20 @@ def sample_tokens(model: SilkModel, points: np.ndarray, max_tokens: int, tempera
     return np.asarray(out, np.int32), False
 
 
+def pick_from_index(index: Path, root: Path, split: str, limit: int, max_tokens: int) -> list[Path]:
+    """`limit` encodable meshes of one split, evenly spaced over the split sorted by token count."""
+    from .dataset_index import read_index
+    rows = sorted((r for r in read_index(index) if r["split"] == split and r.get("refused") is None
+                   and r.get("tokens") and r["tokens"] <= max_tokens), key=lambda r: (r["tokens"], r["key"]))
+    if limit and len(rows) > limit:
+        rows = [rows[round(i * (len(rows) - 1) / (limit - 1))] for i in range(limit)] if limit > 1 else rows[:1]
+    return [Path(root) / r["file"] for r in rows]
+
+
 def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_tokens: int = 0,
-                   temperature: float = 0.5, top_k: int = 50, seed: int = 0) -> dict:
+                   temperature: float = 0.5, top_k: int = 50, seed: int = 0, threads: int = 1) -> dict:
+    if threads:
+        torch.set_num_threads(threads)  # one token at a time: more threads only add sync cost
     model, _ = model_from_checkpoint(checkpoint)
     gen_dir, ref_dir = Path(out_dir) / "generated", Path(out_dir) / "reference"
     gen_dir.mkdir(parents=True, exist_ok=True)
@@ -74,6 +88,38 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
             row["decode_error"] = str(e)
         rows.append(row)
     summary = {"inputs": len(rows), "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
+               "decoded_with_faces": sum(1 for r in rows if r.get("faces")), "meshes": rows}
+    (Path(out_dir) / "generate.json").write_text(json.dumps(summary, indent=2) + "\n")
+    return summary
+
+
+def generate_with_runtime(silkgen: Path, model_dir: Path, inputs: list[Path], out_dir: Path, seed: int = 0,
+                          threads: int = 1, extra: list[str] | None = None) -> dict:
+    """Runs `silkgen` (the C++ runtime, grammar-constrained) per input with the exported model."""
+    gen_dir, ref_dir = Path(out_dir) / "generated", Path(out_dir) / "reference"
+    gen_dir.mkdir(parents=True, exist_ok=True)
+    ref_dir.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for p in tqdm(inputs, desc="silkgen", unit="mesh"):
+        stem = p.name.split(".")[0]
+        v, f = libsilk.load_arrays(p)
+        with libsilk.Mesh.from_arrays(normalize_vertices(v, 0.95), f) as ref:
+            ref.save(ref_dir / f"{stem}.obj")
+        stats = Path(out_dir) / f"{stem}.stats.json"
+        cmd = [str(silkgen), str(p), "-o", str(gen_dir / f"{stem}.obj"), "--model", str(model_dir),
+               "--seed", str(seed), "--threads", str(threads), "--stats", str(stats), "-q"] + (extra or [])
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        row = {"name": stem}
+        if r.returncode == 0 and stats.exists():
+            st = json.loads(stats.read_text())
+            row.update(tokens=st.get("tokens"), eos=st.get("stop_reason") == "eos", faces=st.get("faces"),
+                       stop_reason=st.get("stop_reason"), seconds=st.get("seconds", {}).get("total"),
+                       tokens_per_second=st.get("tokens_per_second"))
+        else:
+            row.update(eos=False, decode_error=(r.stderr or r.stdout).strip()[-300:])
+        rows.append(row)
+    summary = {"runtime": "silkgen", "inputs": len(rows),
+               "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
                "decoded_with_faces": sum(1 for r in rows if r.get("faces")), "meshes": rows}
     (Path(out_dir) / "generate.json").write_text(json.dumps(summary, indent=2) + "\n")
     return summary

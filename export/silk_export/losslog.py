@@ -52,7 +52,7 @@ def plot_losses(log_path: Path, png_path: Path, title: str = "") -> None:
     if tr:
         s, l = zip(*tr)
         ax.plot(s, l, lw=0.6, alpha=0.35, color="tab:blue")
-        k = max(1, len(l) // 50)
+        k = max(3, len(l) // 20)
         sm = [sum(l[max(0, i - k + 1):i + 1]) / len(l[max(0, i - k + 1):i + 1]) for i in range(len(l))]
         ax.plot(s, sm, lw=1.5, color="tab:blue", label="train (moving mean)")
     if va:

@@ -3,12 +3,19 @@ checkout); silktok is taken from the same build folder; spec files from the shar
 from __future__ import annotations
 
 import os
+import sys
 from pathlib import Path
 
 import pytest
 
-from silk_export import libsilk
-from silk_export.paths import shared_dir
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # works without `pip install -e export`
+
+import torch  # noqa: E402
+
+from silk_export import libsilk  # noqa: E402
+
+torch.set_num_threads(1)  # deterministic, and fast on a shared machine (no thread oversubscription)
+from silk_export.paths import shared_dir  # noqa: E402
 
 
 @pytest.fixture(scope="session")

@@ -113,5 +113,9 @@ def test_int8_decoder_runs_and_stays_close(exported):
     empty = np.zeros((0, c.n_layers, 2, c.n_heads, c.head_dim), np.float32)
     logits, _ = run_decoder(session(out / "decoder.int8.onnx"), ids, np.arange(64)[None], empty, cross)
     assert np.isfinite(logits).all()
+    # one thread, 64 rows: the case where onnxruntime 1.22.1 miscomputes a 10269-wide
+    # MatMulInteger (rows 31 and 63) unless the head stays fp32 (onnx_export.int8_unsafe_matmuls)
     assert np.abs(logits - ref).max() < 0.25  # quantization error, far below the logit spread
     assert float(np.corrcoef(logits.ravel(), ref.ravel())[0, 1]) > 0.99
+    ops = {n.op_type for n in onnx.load(str(out / "decoder.int8.onnx")).graph.node}
+    assert "MatMulInteger" in ops

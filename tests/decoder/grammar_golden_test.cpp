@@ -9,7 +9,7 @@
 
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
-#include "decoder/token_text.h"
+#include "io/token_text.h"
 #include "support/test_paths.h"
 #include "tokenizer/tokenizer.h"
 #include "tokenizer/vocabulary_layout.h"

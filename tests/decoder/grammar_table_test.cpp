@@ -4,12 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "decoder/grammar.h"
-#include "decoder/token_text.h"
+#include "io/token_text.h"
 #include "support/test_paths.h"
 
 namespace silk {
@@ -31,7 +32,7 @@ struct Case {
 std::string DumpReplay(const std::string& name, const std::vector<int32_t>& ids) {
   const char* tmp = std::getenv("TMPDIR");
   const std::string path = std::string(tmp ? tmp : "/tmp") + "/silk_grammar_" + name + ".tokens.txt";
-  (void)WriteTokenText(path, ids);
+  std::ofstream(path) << FormatTokenText(ids);
   return path;
 }
 

@@ -5,7 +5,9 @@ determinism tests. Uses export/'s model code (silk_export) with a toy configurat
 weights drawn N(0, 0.5) from a fixed seed (larger than training init, so logits have an O(1)
 spread and any runtime mistake changes the sampled ids), plus output biases toward U and E.
 
-    python3 tests/models/make_tiny_model.py [--out tests/models/tiny]
+    python3 tests/models/make_tiny_model.py [--out tests/models/tiny] [--points-ply FILE]
+
+Also writes tests/models/golden/torus_knot_points.ply, the golden test's point-cloud input.
 """
 from __future__ import annotations
 
@@ -94,10 +96,38 @@ def make(out: Path) -> dict:
     return meta
 
 
+def write_point_cloud(obj: Path, out: Path) -> None:
+    """The golden test's point-cloud input: the vertices of an OBJ with area-weighted vertex
+    normals, as a binary little-endian PLY (x y z nx ny nz floats, no faces)."""
+    v, f = [], []
+    for line in obj.read_text().splitlines():
+        parts = line.split()
+        if parts and parts[0] == "v":
+            v.append([float(x) for x in parts[1:4]])
+        elif parts and parts[0] == "f":
+            f.append([int(x.split("/")[0]) - 1 for x in parts[1:4]])
+    v, f = np.asarray(v, np.float64), np.asarray(f, np.int64)
+    fn = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    n = np.zeros_like(v)
+    for k in range(3):
+        np.add.at(n, f[:, k], fn)
+    n /= np.linalg.norm(n, axis=1, keepdims=True)
+    rows = np.hstack([v, n]).astype("<f4")
+    header = ("ply\nformat binary_little_endian 1.0\ncomment made by tests/models/make_tiny_model.py\n"
+              f"element vertex {len(rows)}\n" + "".join(f"property float {p}\n" for p in
+                                                       ("x", "y", "z", "nx", "ny", "nz")) + "end_header\n")
+    out.write_bytes(header.encode() + rows.tobytes())
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", default=str(REPO / "tests" / "models" / "tiny"))
+    ap.add_argument("--points-ply", default=str(REPO / "tests" / "models" / "golden" / "torus_knot_points.ply"),
+                    help="also write the golden point-cloud input here ('' = skip)")
     a = ap.parse_args()
+    if a.points_ply:
+        Path(a.points_ply).parent.mkdir(parents=True, exist_ok=True)
+        write_point_cloud(REPO / "samples" / "torus_knot.obj", Path(a.points_ply))
     meta = make(Path(a.out))
     sizes = {f.name: f.stat().st_size for f in sorted(Path(a.out).iterdir())}
     print(json.dumps({"dims": meta["dims"], "bytes": sizes}, indent=2))

@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""Generate a mesh through libsilk's C API from Python with nothing but ctypes.
+
+    python3 examples/generate_ctypes.py --library build/engine/libsilk.so \\
+        --model models/default --input samples/torus_knot.obj --out out.obj [--seed 1]
+
+Shows the whole API surface of generation: silk_model_load, silk_generator_create,
+silk_generate with progress and cancel callbacks, stats, the output mesh and its parts.
+--check additionally asserts the results (used by ctest capi_generate_ctypes).
+"""
+import argparse
+import ctypes as C
+import sys
+
+SILK_OK, SILK_ERR_CANCELLED = 0, 7
+
+
+class ModelOptions(C.Structure):
+    _fields_ = [("threads", C.c_int32), ("int8", C.c_int32)]
+
+
+class ModelInfo(C.Structure):
+    _fields_ = [("config", C.c_char * 32)] + [(n, C.c_int32) for n in (
+        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8")]
+
+
+class Progress(C.Structure):
+    _fields_ = [("tokens", C.c_int64), ("max_tokens", C.c_int64), ("components", C.c_int32),
+                ("faces", C.c_int32), ("seconds", C.c_double)]
+
+
+PROGRESS_FN = C.CFUNCTYPE(None, C.POINTER(Progress), C.c_void_p)
+CANCEL_FN = C.CFUNCTYPE(C.c_int32, C.c_void_p)
+
+
+class Params(C.Structure):
+    _fields_ = [("seed", C.c_uint64), ("temperature", C.c_double), ("top_k", C.c_int32), ("top_p", C.c_double),
+                ("max_tokens", C.c_int32), ("max_faces", C.c_int32), ("holes", C.c_int32),
+                ("unconstrained", C.c_int32), ("n_points", C.c_int32), ("progress", PROGRESS_FN),
+                ("cancel", CANCEL_FN), ("user_data", C.c_void_p)]
+
+
+class Stats(C.Structure):
+    _fields_ = ([(n, C.c_int64) for n in ("tokens", "forced_tokens", "sampled_tokens", "model_calls")] +
+                [(n, C.c_int32) for n in ("stop_reason", "faces", "vertices", "components", "holes_found",
+                                          "holes_repaired", "faces_added", "edge_manifold", "watertight",
+                                          "consistently_oriented", "open_edges")] +
+                [("illegal_at", C.c_int64), ("tokens_per_second", C.c_double)] +
+                [(n, C.c_double) for n in ("seconds_prepare", "seconds_encoder", "seconds_decoder",
+                                           "seconds_grammar", "seconds_sampling", "seconds_build_mesh",
+                                           "seconds_total")])
+
+
+def load(path):
+    lib = C.CDLL(path)
+    P = C.c_void_p
+    sig = {
+        "silk_last_error": (C.c_char_p, []),
+        "silk_generation_available": (C.c_int32, []),
+        "silk_model_default_options": (ModelOptions, []),
+        "silk_model_load": (C.c_int, [C.c_char_p, C.POINTER(ModelOptions), C.POINTER(P)]),
+        "silk_model_get_info": (C.c_int, [P, C.POINTER(ModelInfo)]),
+        "silk_model_destroy": (None, [P]),
+        "silk_generator_create": (C.c_int, [P, C.POINTER(P)]),
+        "silk_generator_destroy": (None, [P]),
+        "silk_generate_default_params": (Params, []),
+        "silk_generate": (C.c_int, [P, P, C.POINTER(Params), C.POINTER(P), C.POINTER(P), C.POINTER(Stats)]),
+        "silk_mesh_load": (C.c_int, [C.c_char_p, C.POINTER(P)]),
+        "silk_mesh_save": (C.c_int, [P, C.c_char_p]),
+        "silk_mesh_destroy": (None, [P]),
+        "silk_mesh_triangle_count": (C.c_size_t, [P]),
+        "silk_mesh_copy_triangle_components": (C.c_int, [P, C.POINTER(C.c_int32), C.c_size_t]),
+        "silk_tokens_count": (C.c_size_t, [P]),
+        "silk_tokens_destroy": (None, [P]),
+    }
+    for name, (res, args) in sig.items():
+        f = getattr(lib, name)
+        f.restype, f.argtypes = res, args
+    return lib
+
+
+def check(lib, status, what):
+    if status != SILK_OK:
+        raise RuntimeError(f"{what}: status {status}: {lib.silk_last_error().decode()}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--library", required=True)
+    ap.add_argument("--model", required=True)
+    ap.add_argument("--input", required=True)
+    ap.add_argument("--out")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--max-tokens", type=int, default=0)
+    ap.add_argument("--check", action="store_true")
+    a = ap.parse_args()
+
+    lib = load(a.library)
+    if not lib.silk_generation_available():
+        print("this libsilk has no generation (built without onnxruntime)")
+        return 1
+    opts = lib.silk_model_default_options()
+    opts.threads = 1
+    model, gen, mesh, out, tokens = C.c_void_p(), C.c_void_p(), C.c_void_p(), C.c_void_p(), C.c_void_p()
+    check(lib, lib.silk_model_load(a.model.encode(), C.byref(opts), C.byref(model)), "silk_model_load")
+    info = ModelInfo()
+    check(lib, lib.silk_model_get_info(model, C.byref(info)), "silk_model_get_info")
+    print(f"model {info.config.decode()}: {info.n_layers} layers, d {info.d_model}, {info.threads} thread(s)")
+    check(lib, lib.silk_generator_create(model, C.byref(gen)), "silk_generator_create")
+    check(lib, lib.silk_mesh_load(a.input.encode(), C.byref(mesh)), "silk_mesh_load")
+
+    seen = []
+
+    @PROGRESS_FN
+    def on_progress(p, _user):
+        seen.append(p.contents.tokens)
+
+    params = lib.silk_generate_default_params()
+    params.seed, params.max_tokens, params.progress = a.seed, a.max_tokens, on_progress
+    stats = Stats()
+    check(lib, lib.silk_generate(gen, mesh, C.byref(params), C.byref(out), C.byref(tokens), C.byref(stats)),
+          "silk_generate")
+    n_tri = lib.silk_mesh_triangle_count(out)
+    parts = (C.c_int32 * max(n_tri, 1))()
+    check(lib, lib.silk_mesh_copy_triangle_components(out, parts, n_tri), "copy components")
+    print(f"{stats.tokens} ids ({stats.forced_tokens} forced) -> {stats.faces} faces in "
+          f"{len(set(parts[:n_tri]))} part(s), {stats.tokens_per_second:.0f} tok/s, stop reason {stats.stop_reason}, "
+          f"manifold {bool(stats.edge_manifold)}, oriented {bool(stats.consistently_oriented)}")
+    if a.out:
+        check(lib, lib.silk_mesh_save(out, a.out.encode()), "silk_mesh_save")
+
+    failures = []
+    if a.check:
+        if not (stats.faces > 0 and n_tri == stats.faces and stats.edge_manifold and stats.consistently_oriented):
+            failures.append("result mesh")
+        if lib.silk_tokens_count(tokens) != stats.tokens or len(seen) < stats.tokens - 1 or seen != sorted(seen):
+            failures.append(f"tokens/progress ({lib.silk_tokens_count(tokens)}, {len(seen)} callbacks)")
+
+        @CANCEL_FN
+        def cancel_soon(_user):
+            cancel_soon.calls += 1
+            return 1 if cancel_soon.calls > 10 else 0
+        cancel_soon.calls = 0
+        params.cancel = cancel_soon
+        out2 = C.c_void_p()
+        st = lib.silk_generate(gen, mesh, C.byref(params), C.byref(out2), None, None)
+        if st != SILK_ERR_CANCELLED or out2.value:
+            failures.append(f"cancel gave status {st}")
+        bad = C.c_void_p()
+        st = lib.silk_model_load(b"/nonexistent/model", None, C.byref(bad))
+        if st == SILK_OK or b"not found" not in lib.silk_last_error():
+            failures.append(f"bad model dir gave status {st}")
+    for h, f in ((tokens, lib.silk_tokens_destroy), (out, lib.silk_mesh_destroy), (mesh, lib.silk_mesh_destroy),
+                 (gen, lib.silk_generator_destroy), (model, lib.silk_model_destroy)):
+        f(h)
+    for f in failures:
+        print("FAIL:", f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

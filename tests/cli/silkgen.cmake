@@ -1,0 +1,15 @@
+# silkgen end-to-end checks with the committed tiny model (tests/tools/silkgen_checks.py):
+# goldens + determinism, the Python onnxruntime reference loop (skipped without it), bad
+# inputs, output formats. Then the C API from Python (examples/generate_ctypes.py).
+if(Python3_FOUND AND TARGET silkgen)
+  foreach(mode golden reference bad formats)
+    add_test(NAME silkgen_${mode}
+             COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/silkgen_checks.py ${mode}
+                     $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR})
+  endforeach()
+  set_tests_properties(silkgen_reference PROPERTIES SKIP_RETURN_CODE 77)
+  add_test(NAME capi_generate_ctypes
+           COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/examples/generate_ctypes.py
+                   --library $<TARGET_FILE:silk> --model ${PROJECT_SOURCE_DIR}/tests/models/tiny
+                   --input ${PROJECT_SOURCE_DIR}/samples/torus_knot.obj --max-tokens 200 --check)
+endif()

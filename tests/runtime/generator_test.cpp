@@ -1,0 +1,175 @@
+// Whole generations with the tiny model: determinism, grammar validity of every result,
+// equivalence of the optimised paths (forced-token skipping, in-place cache) with the plain
+// ones, caps, callbacks and unconstrained mode.
+#include <gtest/gtest.h>
+
+#include "decoder/grammar.h"
+#include "decoder/mesh_builder.h"
+#include "runtime/generator.h"
+#include "runtime_test_util.h"
+#include "tokenizer/vocabulary_layout.h"
+
+namespace silk {
+namespace {
+
+GenerateOptions Options(uint64_t seed, int32_t max_tokens = 300) {
+  GenerateOptions o;
+  o.sampling.seed = seed;
+  o.sampling.temperature = 0.8;
+  o.sampling.top_k = 50;
+  o.max_tokens = max_tokens;
+  return o;
+}
+
+class GeneratorTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    model_ = testing::LoadTinyModel(1);
+    ASSERT_TRUE(model_);
+    points_ = testing::SamplePoints(*model_);
+    ASSERT_FALSE(points_.empty());
+  }
+  GenerateResult Run(const GenerateOptions& o, Generator* g = nullptr) {
+    Generator local(*model_);
+    auto r = (g ? g : &local)->Run(points_, o);
+    EXPECT_TRUE(r.ok()) << r.status().ToString();
+    return r.ok() ? std::move(*r) : GenerateResult{};
+  }
+  std::unique_ptr<Model> model_;
+  std::vector<float> points_;
+};
+
+TEST_F(GeneratorTest, SameSeedSameTokensAcrossRunsAndGenerators) {
+  Generator reused(*model_);
+  const auto a = Run(Options(5), &reused);
+  const auto b = Run(Options(5), &reused);  // cache reused
+  const auto c = Run(Options(5));           // fresh generator
+  ASSERT_GT(a.tokens.size(), 10u);
+  EXPECT_EQ(a.tokens, b.tokens);
+  EXPECT_EQ(a.tokens, c.tokens);
+  EXPECT_NE(a.tokens, Run(Options(6)).tokens);
+}
+
+// The grammar promises a non-empty legal set before EOS within the length budget (grammar.h,
+// "Liveness"). Generation with a token cap leans on that promise; a dead end is a grammar bug.
+TEST_F(GeneratorTest, GrammarStaysLiveUnderTheTokenBudget) {
+  for (uint64_t seed = 0; seed < 6; ++seed) {
+    const auto r = Run(Options(seed));
+    EXPECT_NE(r.stats.stop_reason, "grammar_dead_end") << "seed " << seed << ": " << r.stats.dead_end;
+  }
+}
+
+TEST_F(GeneratorTest, EveryResultIsALegalSequenceAndAGoodMesh) {
+  int ended = 0;
+  for (uint64_t seed = 0; seed < 8; ++seed) {
+    GenerateOptions o = Options(seed);
+    o.record_trace = true;
+    const auto r = Run(o);
+    ASSERT_FALSE(r.tokens.empty());
+    EXPECT_LE(r.tokens.size(), 300u);
+    if (r.stats.stop_reason != "eos") continue;
+    ++ended;
+    EXPECT_EQ(r.tokens.back(), vocab::k_eos_id);
+    GrammarOptions go;
+    go.max_length = 300;
+    size_t pos = 0;
+    Rejection rej = CheckTokens(r.tokens, go, &pos);
+    EXPECT_TRUE(rej.ok()) << "seed " << seed << " at " << pos << ": " << rej.message;
+    EXPECT_EQ(CheckMeshGuarantees(r.mesh), "") << "seed " << seed;
+    EXPECT_GT(r.mesh.faces.size(), 0u);
+    EXPECT_EQ(r.stats.tokens, static_cast<int64_t>(r.tokens.size()));
+    EXPECT_EQ(r.stats.forced_tokens + r.stats.sampled_tokens, r.stats.tokens);
+    // Forced ids skip the model: one decoder call per sampled id.
+    EXPECT_EQ(r.stats.model_calls, r.stats.sampled_tokens);
+    // BOS + every id before the last sampled one is in the cache; trailing forced ids are not.
+    size_t trailing_forced = 0;
+    for (size_t i = r.trace.size(); i > 0 && r.trace[i - 1].forced; --i) ++trailing_forced;
+    const size_t last_sampled = r.trace.size() - trailing_forced;  // 1-based index of it
+    EXPECT_EQ(r.stats.fed_positions, static_cast<int64_t>(last_sampled));
+  }
+  EXPECT_GE(ended, 3);
+}
+
+TEST_F(GeneratorTest, OptimisedPathsGiveTheSameTokens) {
+  const auto base = Run(Options(2));
+  GenerateOptions o = Options(2);
+  o.skip_forced = false;
+  const auto no_skip = Run(o);
+  EXPECT_EQ(base.tokens, no_skip.tokens);
+  EXPECT_GT(no_skip.stats.model_calls, base.stats.model_calls);
+  o = Options(2);
+  o.kv_in_place = false;
+  EXPECT_EQ(base.tokens, Run(o).tokens);
+  o = Options(2);
+  o.order = SampleOrder::kSampleThenCheck;
+  const auto stc = Run(o);
+  EXPECT_EQ(stc.tokens.back(), vocab::k_eos_id);
+  EXPECT_GT(stc.stats.resampled, 0);  // a random model proposes illegal ids
+}
+
+TEST_F(GeneratorTest, ThreadsDoNotChangeTokensOfTheTinyModel) {
+  auto two = testing::LoadTinyModel(2);
+  ASSERT_TRUE(two);
+  Generator g(*two);
+  auto r = g.Run(points_, Options(8));
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->tokens, Run(Options(8)).tokens);
+}
+
+TEST_F(GeneratorTest, CapsAndCallbacks) {
+  const auto small = Run(Options(4, 40));
+  EXPECT_LE(small.tokens.size(), 40u);
+  EXPECT_EQ(small.tokens.back(), vocab::k_eos_id);  // the grammar's budget closes in time
+
+  bool capped = false;
+  for (uint64_t seed = 0; seed < 6 && !capped; ++seed) {
+    GenerateOptions o = Options(seed, 0);
+    o.max_faces = 10;
+    const auto faces = Run(o);
+    if (faces.stats.stop_reason == "grammar_dead_end") continue;  // see GrammarStaysLive...
+    EXPECT_EQ(faces.stats.stop_reason, "max_faces");
+    EXPECT_GE(faces.stats.faces, 10);
+    capped = true;
+  }
+  EXPECT_TRUE(capped);
+
+  int64_t last = 0, calls = 0;
+  bool increasing = true;
+  GenerateCallbacks cb;
+  cb.progress = [&](const GenerateProgress& p) {
+    increasing = increasing && p.tokens > last;
+    last = p.tokens;
+    ++calls;
+  };
+  cb.cancel = [&]() { return calls >= 25; };
+  Generator g(*model_);
+  auto r = g.Run(points_, Options(4), cb);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kCancelled);
+  EXPECT_TRUE(increasing);
+  EXPECT_EQ(calls, 25);
+}
+
+TEST_F(GeneratorTest, UnconstrainedRecordsTheFirstIllegalId) {
+  GenerateOptions o = Options(1, 60);
+  o.unconstrained = true;
+  const auto r = Run(o);
+  EXPECT_EQ(r.stats.forced_tokens, 0);
+  EXPECT_LE(r.tokens.size(), 60u);
+  // A random model leaves the grammar quickly; the mesh is the legal prefix.
+  ASSERT_GE(r.stats.illegal_at, 0);
+  EXPECT_FALSE(r.stats.illegal_reason.empty());
+  EXPECT_EQ(CheckMeshGuarantees(r.mesh), "");
+}
+
+TEST_F(GeneratorTest, BadArguments) {
+  Generator g(*model_);
+  EXPECT_FALSE(g.Run({}, Options(0)).ok());
+  EXPECT_FALSE(g.Run(std::vector<float>(7, 0.f), Options(0)).ok());
+  GenerateOptions o = Options(0);
+  o.max_tokens = -1;
+  EXPECT_FALSE(g.Run(points_, o).ok());
+}
+
+}  // namespace
+}  // namespace silk

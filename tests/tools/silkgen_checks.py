@@ -1,0 +1,233 @@
+#!/usr/bin/env python3
+"""End-to-end checks of the silkgen binary with the committed tiny model, run by ctest
+(tests/cli/silkgen.cmake).
+
+  golden SILKGEN REPO [--update]  fixed inputs + seeds -> token files and OBJ meshes byte-identical
+                                  to tests/models/golden/*; the same run twice and with 2 threads
+                                  gives identical tokens. --update rewrites the expected files, but
+                                  only after the independent checks (reference mode) pass and the
+                                  run ended with EOS on an edge-manifold, consistently oriented mesh.
+  reference SILKGEN REPO          the runs' traces replayed by tests/models/reference_loop.py
+                                  (Python onnxruntime, own cache and sampler): ids identical
+  bad SILKGEN REPO                bad inputs/options/models: non-zero exit, a message naming the
+                                  problem on stderr, no output file left behind
+  formats SILKGEN REPO            .glb/.obj/.ply outputs and --stats JSON are complete and readable
+"""
+import json, os, pathlib, shutil, struct, subprocess, sys, tempfile
+
+CASES = [  # name, input (repo-relative), seed
+    ("torus_knot_s7", "samples/torus_knot.obj", 7),
+    ("points_s3", "tests/models/golden/torus_knot_points.ply", 3),
+]
+COMMON = ["--max-tokens", "300", "--threads", "1", "-q"]
+
+
+def run(cmd, check=True):
+    p = subprocess.run([str(c) for c in cmd], capture_output=True, text=True, timeout=300)
+    if check and p.returncode != 0:
+        raise SystemExit(f"command failed ({p.returncode}): {' '.join(map(str, cmd))}\n{p.stderr}")
+    return p
+
+
+def generate(silkgen, repo, tmp, name, rel, seed, extra=()):
+    model = repo / "tests/models/tiny"
+    out = tmp / f"{name}.obj"
+    tok = tmp / f"{name}.tokens.txt"
+    stats = tmp / f"{name}.json"
+    trace = tmp / f"{name}.trace.json"
+    run([silkgen, repo / rel, "-o", out, "--model", model, "--seed", seed, "--tokens", tok, "--stats", stats,
+         "--trace", trace, *COMMON, *extra])
+    return out, tok, json.loads(stats.read_text()), trace
+
+
+def reference(repo, trace, tok):
+    p = run([sys.executable, repo / "tests/models/reference_loop.py", repo / "tests/models/tiny", trace,
+             "--tokens", tok], check=False)
+    return p.returncode, (p.stdout + p.stderr).strip()
+
+
+def check_golden(silkgen, repo, update):
+    gold = repo / "tests/models/golden"
+    failures = []
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        for name, rel, seed in CASES:
+            out, tok, stats, trace = generate(silkgen, repo, tmp, name, rel, seed)
+            again = generate(silkgen, repo, tmp, name + "_again", rel, seed)
+            two = generate(silkgen, repo, tmp, name + "_t2", rel, seed, ["--threads", "2"])
+            if tok.read_bytes() != again[1].read_bytes():
+                failures.append(f"{name}: two runs with the same seed differ")
+            if tok.read_bytes() != two[1].read_bytes():
+                failures.append(f"{name}: 1 and 2 threads give different tokens")
+            if update:
+                rc, msg = reference(repo, trace, tok)
+                ok = (rc == 0 and stats["stop_reason"] == "eos" and stats["verdicts"]["edge_manifold"]
+                      and stats["verdicts"]["consistently_oriented"] and stats["faces"] > 0)
+                if not ok:
+                    failures.append(f"{name}: not updating, independent checks failed: rc={rc} {msg} {stats}")
+                    continue
+                shutil.copyfile(tok, gold / f"{name}.tokens.txt")
+                shutil.copyfile(out, gold / f"{name}.obj")
+                print(f"{name}: updated ({stats['tokens']} ids, {stats['faces']} faces); {msg}")
+                continue
+            for suffix, got in ((".tokens.txt", tok), (".obj", out)):
+                want = gold / (name + suffix)
+                if not want.exists():
+                    failures.append(f"{name}: missing {want}")
+                elif want.read_bytes() != got.read_bytes():
+                    failures.append(f"{name}: {suffix} differs from {want}")
+    return failures
+
+
+def check_reference(silkgen, repo):
+    failures = []
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        variants = [("a", "samples/torus_knot.obj", 7, []),
+                    ("b", "tests/models/golden/torus_knot_points.ply", 3, ["--temperature", "1", "--top-k", "0",
+                                                                           "--top-p", "0.9"]),
+                    ("c", "samples/torus_knot.obj", 5, ["--temperature", "0"])]
+        for name, rel, seed, extra in variants:
+            _, tok, _, trace = generate(silkgen, repo, tmp, name, rel, seed, extra)
+            rc, msg = reference(repo, trace, tok)
+            if rc == 77:
+                print(msg)
+                return None
+            print(f"{name}: {msg}")
+            if rc != 0:
+                failures.append(f"{name} ({' '.join(extra)}): {msg}")
+    return failures
+
+
+def check_bad(silkgen, repo):
+    failures = []
+    model = repo / "tests/models/tiny"
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        nonormals = tmp / "nonormals.ply"
+        nonormals.write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n")
+        garbage = tmp / "garbage.obj"
+        garbage.write_text("v 0 0 0\nf 1 2 3\n")
+        flat = tmp / "flat.obj"
+        flat.write_text("v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n")
+        newer = tmp / "newer_model"
+        shutil.copytree(model, newer)
+        meta = json.loads((newer / "model.json").read_text())
+        meta["model_version"] = 99
+        (newer / "model.json").write_text(json.dumps(meta))
+        other_tf = tmp / "other_tf_model"
+        shutil.copytree(model, other_tf)
+        meta = json.loads((other_tf / "model.json").read_text())
+        meta["token_format_version"] = 2
+        (other_tf / "model.json").write_text(json.dumps(meta))
+        broken = tmp / "broken_model"
+        shutil.copytree(model, broken)
+        (broken / "decoder.onnx").write_bytes(b"not an onnx file")
+        sample = repo / "samples/torus_knot.obj"
+        cases = [  # args, expected exit, words expected in stderr
+            ([tmp / "missing.obj", "-o", tmp / "o.obj", "--model", model], 2, ["missing.obj"]),
+            ([sample, "-o", tmp / "o.xyz", "--model", model], 1, ["o.xyz", "unknown output format"]),
+            ([sample, "-o", tmp / "o.obj", "--model", tmp / "nomodel"], 1, ["nomodel", "not found"]),
+            ([sample, "-o", tmp / "o.obj", "--model", newer], 1, ["model_version 99"]),
+            ([sample, "-o", tmp / "o.obj", "--model", other_tf], 1, ["token_format_version"]),
+            ([sample, "-o", tmp / "o.obj", "--model", broken], 1, ["decoder.onnx"]),
+            ([nonormals, "-o", tmp / "o.obj", "--model", model], 1, ["nonormals.ply", "normals"]),
+            ([garbage, "-o", tmp / "o.obj", "--model", model], 1, ["garbage.obj"]),
+            ([flat, "-o", tmp / "o.obj", "--model", model], 1, ["flat.obj", "area"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--seed", "abc"], 2, ["seed"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--repair", "maybe"], 2, ["repair"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--top-p", "1.5"], 2, ["top-p"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--int8"], 1, ["INT8"]),
+            ([sample, "-o", tmp / "nodir" / "o.obj", "--model", model, "--max-tokens", "40"], 1, ["nodir"]),
+        ]
+        for args, want_rc, words in cases:
+            p = run([silkgen, *args, "-q"], check=False)
+            label = " ".join(str(a).replace(str(tmp), "TMP") for a in args)
+            if p.returncode != want_rc:
+                failures.append(f"{label}: exit {p.returncode}, expected {want_rc}; stderr: {p.stderr.strip()}")
+            for w in words:
+                if w.lower() not in p.stderr.lower():
+                    failures.append(f"{label}: stderr lacks '{w}': {p.stderr.strip()}")
+        leftovers = [f.name for f in tmp.iterdir() if f.name.startswith("o.") or ".tmp" in f.name]
+        if leftovers:
+            failures.append(f"output files left behind: {leftovers}")
+    return failures
+
+
+def read_glb(path):
+    b = path.read_bytes()
+    magic, version, length = struct.unpack_from("<4sII", b, 0)
+    assert magic == b"glTF" and version == 2 and length == len(b), "bad GLB header"
+    jlen, jtype = struct.unpack_from("<I4s", b, 12)
+    assert jtype == b"JSON" and jlen % 4 == 0
+    return json.loads(b[20:20 + jlen])
+
+
+def check_formats(silkgen, repo):
+    failures = []
+    model = repo / "tests/models/tiny"
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        base = [repo / "samples/torus_knot.obj", "--model", model, "--seed", "7", *COMMON]
+        run([silkgen, *base, "-o", tmp / "m.glb", "--part-colors", "--stats", tmp / "s.json"])
+        run([silkgen, *base, "-o", tmp / "m.ply"])
+        run([silkgen, *base, "-o", tmp / "m.obj", "--repair", "repair"])
+        stats = json.loads((tmp / "s.json").read_text())
+        doc = read_glb(tmp / "m.glb")
+        names = [n["name"] for n in doc.get("nodes", [])]
+        if names != [f"part_{i:03d}" for i in range(stats["components"])]:
+            failures.append(f"glb node names {names} for {stats['components']} components")
+        for mesh in doc.get("meshes", []):
+            attrs = mesh["primitives"][0]["attributes"]
+            if not {"POSITION", "NORMAL", "COLOR_0"} <= set(attrs):
+                failures.append(f"glb attributes {sorted(attrs)}")
+        n_idx = sum(doc["accessors"][m["primitives"][0]["indices"]]["count"] for m in doc.get("meshes", []))
+        if n_idx != 3 * stats["faces"]:
+            failures.append(f"glb has {n_idx // 3} triangles, stats say {stats['faces']}")
+        for key in ("tokens", "faces", "components", "forced_share", "tokens_per_second", "seconds", "repairs",
+                    "verdicts", "stop_reason", "threads"):
+            if key not in stats:
+                failures.append(f"stats lacks '{key}'")
+        for key in ("encoder", "decoder", "grammar", "sampling", "build_mesh", "total"):
+            if key not in stats.get("seconds", {}):
+                failures.append(f"stats.seconds lacks '{key}'")
+        if not (tmp / "m.ply").read_bytes().startswith(b"ply\n"):
+            failures.append("ply output has no ply header")
+        faces = sum(1 for line in (tmp / "m.obj").read_text().splitlines() if line.startswith("f "))
+        if faces < stats["faces"]:
+            failures.append(f"obj with --repair repair has {faces} faces < {stats['faces']}")
+        p = run([silkgen, *base, "-o", tmp / "u.obj", "--unconstrained", "--stats", tmp / "u.json"])
+        u = json.loads((tmp / "u.json").read_text())
+        if "grammar" not in u or u["forced_tokens"] != 0:
+            failures.append(f"unconstrained stats: {u.get('grammar')}, forced {u.get('forced_tokens')}")
+        p = run([silkgen, *base, "-o", tmp / "r.obj", "--seed", "random"], check=False)
+        if p.returncode != 0:
+            failures.append(f"--seed random failed: {p.stderr}")
+    return failures
+
+
+def main():
+    mode, silkgen, repo = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+    update = "--update" in sys.argv[4:]
+    if mode == "golden":
+        failures = check_golden(silkgen, repo, update)
+    elif mode == "reference":
+        failures = check_reference(silkgen, repo)
+        if failures is None:
+            return 77
+    elif mode == "bad":
+        failures = check_bad(silkgen, repo)
+    elif mode == "formats":
+        failures = check_formats(silkgen, repo)
+    else:
+        print(__doc__)
+        return 2
+    for f in failures:
+        print("FAIL:", f)
+    print(f"silkgen {mode}: {'OK' if not failures else f'{len(failures)} failure(s)'}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
