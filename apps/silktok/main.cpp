@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
   silktok::RegisterDecodeCommand(app);
   silktok::RegisterStatsCommand(app);
   silktok::RegisterRoundtripCommand(app);
+  silktok::RegisterCheckCommand(app);
+  silktok::RegisterRepairCommand(app);
+  silktok::RegisterSampleCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

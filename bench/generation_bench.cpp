@@ -1,0 +1,333 @@
+// generation_bench: decoder throughput of exported models (bench/export_bench_models.py makes
+// random-weight tiny/small/paper models) through the runtime's KV cache, at depth 0-512 and
+// around 4,096 (prefill, then decode steps), fp32 and INT8, with peak RSS — printed beside the
+// official figures and beside the memory-bandwidth bound measured in the same run (bytes read
+// per token / read bandwidth of a streaming loop). Also: in-place vs copying KV cache, and the
+// generation loop's mask-first vs sample-then-check and forced-token skipping (tiny only).
+//
+//   generation_bench --models DIR [--configs tiny,small,paper] [--threads 2] [--steps 64]
+//                    [--budget 20] [--no-int8]
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "io/file_system.h"
+#include "runtime/decoder_runner.h"
+#include "runtime/generator.h"
+#include "runtime/model.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct Args {
+  std::string models;
+  std::vector<std::string> configs = {"tiny", "small", "paper"};
+  int threads = 2;
+  int steps = 64;
+  double budget = 20;  // seconds for the depth 0-512 window before it stops early
+  bool int8 = true;
+};
+
+// Official figures (tok/s, depth 0-512 and ~4,096) for tiny / small / paper.
+const std::map<std::string, std::pair<double, double>> kOfficial = {
+    {"tiny", {32.7, 20.4}}, {"small", {5.7, 3.3}}, {"paper", {2.4, 1.5}}};
+
+// Read bandwidth (GB/s): `threads` threads summing disjoint parts of a 512 MiB buffer; best of 3.
+double ReadBandwidth(int threads) {
+  const size_t n = (size_t{512} << 20) / sizeof(float);
+  std::vector<float> buf(n, 1.0f);
+  double best = 0;
+  for (int rep = 0; rep < 3; ++rep) {
+    std::atomic<double> sink{0};
+    auto t0 = Clock::now();
+    std::vector<std::thread> ts;
+    for (int t = 0; t < threads; ++t)
+      ts.emplace_back([&, t] {
+        const size_t lo = n * t / threads, hi = n * (t + 1) / threads;
+        float s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+        for (size_t i = lo; i + 3 < hi; i += 4) {
+          s0 += buf[i];
+          s1 += buf[i + 1];
+          s2 += buf[i + 2];
+          s3 += buf[i + 3];
+        }
+        double cur = sink.load();
+        while (!sink.compare_exchange_weak(cur, cur + s0 + s1 + s2 + s3)) {
+        }
+      });
+    for (auto& t : ts) t.join();
+    const double s = Since(t0);
+    best = std::max(best, n * sizeof(float) / s / 1e9);
+    if (sink.load() < 0) std::printf("?");
+  }
+  return best;
+}
+
+double PeakRssMiB() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;
+}
+
+int64_t FileSize(const std::string& path) {
+  FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return 0;
+  std::fseek(f, 0, SEEK_END);
+  const long s = std::ftell(f);
+  std::fclose(f);
+  return s;
+}
+
+struct Result {
+  double load_s = 0, encoder_s = 0;
+  double tps_shallow = 0;
+  int shallow_steps = 0;
+  double prefill_tps = 0, tps_deep = 0;
+  double bound_shallow = 0, bound_deep = 0;
+  double rss_mib = 0;
+  int64_t weight_bytes = 0;
+  double copy_ms = -1, inplace_ms = -1;  // per step at depth ~4,096 (tiny only)
+};
+
+// Everything for one model + precision; runs in a child process (separate peak RSS).
+bool Measure(const Args& a, const std::string& name, bool int8, double bandwidth, Result* r) {
+  const std::string dir = a.models + "/" + name;
+  silk::ModelLoadOptions lo;
+  lo.threads = a.threads;
+  lo.int8 = int8;
+  auto t0 = Clock::now();
+  auto model = silk::Model::Load(dir, lo);
+  if (!model.ok()) {
+    std::fprintf(stderr, "%s: %s\n", name.c_str(), model.status().ToString().c_str());
+    return false;
+  }
+  r->load_s = Since(t0);
+  const silk::ModelConfig& c = (*model)->config();
+  const silk::ModelDims& d = c.dims;
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> u(-0.9f, 0.9f);
+  std::vector<float> pts(static_cast<size_t>(d.n_points) * 6);
+  for (auto& v : pts) v = u(rng);
+  t0 = Clock::now();
+  auto cross = silk::RunEncoder((*model)->impl(), pts.data(), d.n_points);
+  if (!cross.ok()) return false;
+  r->encoder_s = Since(t0);
+  float* cross_data = cross->GetTensorMutableData<float>();
+
+  // Bytes read per generated token: decoder weights except the two embedding tables (one row
+  // each is read), the cross K/V, and the self K/V of the prefix.
+  const std::string dec = dir + "/" + (int8 ? c.decoder_int8_file : c.decoder_file);
+  r->weight_bytes = FileSize(dec) - int64_t{c.embedding_rows + d.max_seq_len} * d.d_model * 4;
+  const double kv_row_bytes = d.kv_row_floats() * 4.0, cross_bytes = d.cross_kv_floats() * 4.0;
+  auto bound = [&](double depth) { return bandwidth * 1e9 / (r->weight_bytes + cross_bytes + depth * kv_row_bytes); };
+
+  const int64_t deep = 4096;
+  silk::KvCache cache;
+  if (!cache.Reserve(deep + a.steps + 1, d.kv_row_floats()).ok()) return false;
+  std::uniform_int_distribution<int32_t> tok(0, c.eos_id - 1);
+  auto feed_steps = [&](silk::DecoderRunner& runner, int n, double budget_s, int stop_depth) {
+    int done = 0;
+    auto ts = Clock::now();
+    while (done < n && cache.length() < stop_depth) {
+      const int32_t id = tok(rng);
+      if (!runner.Feed(&id, 1).ok()) return std::make_pair(done, Since(ts));
+      ++done;
+      if (budget_s > 0 && Since(ts) > budget_s) break;
+    }
+    return std::make_pair(done, Since(ts));
+  };
+  {  // depth 0-512: BOS, then single steps until depth 512 (or the time budget).
+    silk::DecoderRunner runner((*model)->impl(), &cache, cross_data);
+    const int32_t bos = c.bos_id;
+    if (!runner.Feed(&bos, 1).ok()) return false;
+    auto [n, s] = feed_steps(runner, 511, a.budget, 512);
+    r->shallow_steps = n;
+    r->tps_shallow = n / s;
+    r->bound_shallow = bound(n / 2.0);
+  }
+  {  // ~4,096: prefill 4,032 known tokens in chunks, then `steps` single steps.
+    cache.Clear();
+    silk::DecoderRunner runner((*model)->impl(), &cache, cross_data);
+    std::vector<int32_t> ids(static_cast<size_t>(deep - a.steps));
+    ids[0] = c.bos_id;
+    for (size_t i = 1; i < ids.size(); ++i) ids[i] = tok(rng);
+    auto tp = Clock::now();
+    if (!runner.Feed(ids.data(), static_cast<int64_t>(ids.size())).ok()) return false;
+    r->prefill_tps = ids.size() / Since(tp);
+    auto [n, s] = feed_steps(runner, a.steps, 0, deep + a.steps);
+    r->tps_deep = n / s;
+    r->bound_deep = bound(deep);
+    if (name == "tiny" && !int8) {  // in-place vs naive copy, same depth
+      for (silk::KvMode mode : {silk::KvMode::kCopy, silk::KvMode::kInPlace}) {
+        cache.Clear();
+        silk::DecoderRunner r2((*model)->impl(), &cache, cross_data, mode);
+        if (!r2.Feed(ids.data(), static_cast<int64_t>(ids.size())).ok()) return false;
+        auto tm = Clock::now();
+        int k = 0;
+        for (; k < 32; ++k) {
+          const int32_t id = tok(rng);
+          if (!r2.Feed(&id, 1).ok()) return false;
+        }
+        (mode == silk::KvMode::kCopy ? r->copy_ms : r->inplace_ms) = Since(tm) / k * 1e3;
+      }
+    }
+  }
+  r->rss_mib = PeakRssMiB();
+  return true;
+}
+
+// The generation loop on the tiny model (random weights, grammar on): sampling order and
+// forced-token skipping compared on identical runs.
+void CompareLoop(const Args& a) {
+  silk::ModelLoadOptions lo;
+  lo.threads = a.threads;
+  auto model = silk::Model::Load(a.models + "/tiny", lo);
+  if (!model.ok()) return;
+  const int n = (*model)->config().dims.n_points;
+  std::vector<float> pts(static_cast<size_t>(n) * 6);
+  std::mt19937 rng(2);
+  std::normal_distribution<float> g;
+  for (int i = 0; i < n; ++i) {  // unit sphere with outward normals
+    float v[3] = {g(rng), g(rng), g(rng)};
+    const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int k = 0; k < 3; ++k) pts[6 * i + k] = pts[6 * i + 3 + k] = v[k] / len;
+  }
+  silk::Generator gen(**model);
+  struct Variant {
+    const char* name;
+    silk::SampleOrder order;
+    bool skip;
+  };
+  std::printf("\nGeneration loop, tiny random model, grammar on, 3 seeds x max 1,024 ids:\n");
+  std::printf("  %-34s %8s %8s %9s %11s %11s %9s\n", "variant", "ids", "forced", "calls", "sample us/id",
+              "grammar us/id", "tok/s");
+  for (const Variant& v : {Variant{"mask-first, skip forced (default)", silk::SampleOrder::kMaskFirst, true},
+                           Variant{"mask-first, model for forced ids", silk::SampleOrder::kMaskFirst, false},
+                           Variant{"sample-then-check, skip forced", silk::SampleOrder::kSampleThenCheck, true}}) {
+    int64_t ids = 0, forced = 0, calls = 0, resampled = 0;
+    double samp = 0, gram = 0, loop = 0;
+    for (uint64_t seed = 0; seed < 3; ++seed) {
+      silk::GenerateOptions o;
+      o.sampling.seed = seed;
+      o.sampling.temperature = 0.5;
+      o.sampling.top_k = 50;
+      o.max_tokens = 1024;
+      o.order = v.order;
+      o.skip_forced = v.skip;
+      auto r = gen.Run(pts, o);
+      if (!r.ok()) continue;
+      ids += r->stats.tokens;
+      forced += r->stats.forced_tokens;
+      calls += r->stats.model_calls;
+      resampled += r->stats.resampled;
+      samp += r->stats.seconds.sampling;
+      gram += r->stats.seconds.grammar;
+      loop += r->stats.tokens / std::max(1e-9, r->stats.tokens_per_second);
+    }
+    std::printf("  %-34s %8lld %8lld %9lld %11.1f %11.1f %9.1f", v.name, static_cast<long long>(ids),
+                static_cast<long long>(forced), static_cast<long long>(calls), samp / ids * 1e6, gram / ids * 1e6,
+                ids / loop);
+    if (v.order == silk::SampleOrder::kSampleThenCheck)
+      std::printf("  (%lld of %lld draws illegal)", static_cast<long long>(resampled),
+                  static_cast<long long>(ids - forced));
+    std::printf("\n");
+  }
+}
+
+bool ParseArgs(int argc, char** argv, Args* a) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    if (k == "--models") a->models = next();
+    else if (k == "--threads") a->threads = std::atoi(next().c_str());
+    else if (k == "--steps") a->steps = std::atoi(next().c_str());
+    else if (k == "--budget") a->budget = std::atof(next().c_str());
+    else if (k == "--no-int8") a->int8 = false;
+    else if (k == "--configs") {
+      a->configs.clear();
+      std::stringstream ss(next());
+      for (std::string c; std::getline(ss, c, ',');) a->configs.push_back(c);
+    } else {
+      return false;
+    }
+  }
+  return !a->models.empty() && a->threads > 0 && a->steps > 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (!ParseArgs(argc, argv, &a)) {
+    std::fprintf(stderr,
+                 "usage: generation_bench --models DIR [--configs tiny,small,paper] [--threads 2] [--steps 64] "
+                 "[--budget 20] [--no-int8]\n  (make DIR with: python3 bench/export_bench_models.py --out DIR)\n");
+    return 2;
+  }
+  const double bw = ReadBandwidth(a.threads);
+  std::printf("generation_bench: %d threads, read bandwidth %.1f GB/s (%d-thread streaming sum, best of 3)\n",
+              a.threads, bw, a.threads);
+  std::printf("%-6s %-5s %7s %7s | %-25s | %-33s | %8s\n", "config", "prec", "load s", "enc s",
+              "depth 0-512: tok/s (bound)", "depth ~4096: prefill, tok/s (bound)", "peak RSS");
+  for (const std::string& name : a.configs) {
+    if (!silk::IsRegularFile(a.models + "/" + name + "/model.json")) {
+      std::printf("%-6s skipped (no model in %s/%s)\n", name.c_str(), a.models.c_str(), name.c_str());
+      continue;
+    }
+    for (bool int8 : {false, true}) {
+      if (int8 && !a.int8) continue;
+      int fd[2];
+      if (pipe(fd) != 0) return 1;
+      const pid_t pid = fork();
+      if (pid == 0) {
+        close(fd[0]);
+        Result r;
+        const bool ok = Measure(a, name, int8, bw, &r);
+        if (write(fd[1], &r, sizeof(r)) != static_cast<ssize_t>(sizeof(r))) _exit(3);
+        _exit(ok ? 0 : 1);
+      }
+      close(fd[1]);
+      Result r;
+      const bool got = read(fd[0], &r, sizeof(r)) == static_cast<ssize_t>(sizeof(r));
+      close(fd[0]);
+      int status = 0;
+      waitpid(pid, &status, 0);
+      if (!got || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::printf("%-6s %-5s failed (see stderr)\n", name.c_str(), int8 ? "int8" : "fp32");
+        continue;
+      }
+      const auto off = kOfficial.count(name) ? kOfficial.at(name) : std::make_pair(0.0, 0.0);
+      std::printf("%-6s %-5s %7.2f %7.3f | %7.1f (%7.1f)%s | %8.0f, %7.1f (%7.1f) | %6.0f MiB\n", name.c_str(),
+                  int8 ? "int8" : "fp32", r.load_s, r.encoder_s, r.tps_shallow, r.bound_shallow,
+                  r.shallow_steps < 511 ? "*" : " ", r.prefill_tps, r.tps_deep, r.bound_deep, r.rss_mib);
+      if (!int8)
+        std::printf("%-6s %-5s %15s | official %5.1f            | official %14.1f          |\n", "", "", "",
+                    off.first, off.second);
+      if (r.copy_ms >= 0)
+        std::printf("       KV cache at depth ~4096: naive copy %.2f ms/step, in place %.2f ms/step (%.1fx)\n",
+                    r.copy_ms, r.inplace_ms, r.copy_ms / r.inplace_ms);
+    }
+  }
+  std::printf("(* = depth 0-512 window stopped early by the --budget; bound = bandwidth / (decoder weights "
+              "read + cross K/V + self K/V at that depth))\n");
+  if (std::find(a.configs.begin(), a.configs.end(), "tiny") != a.configs.end() &&
+      silk::IsRegularFile(a.models + "/tiny/model.json"))
+    CompareLoop(a);
+  return 0;
+}

@@ -1,0 +1,50 @@
+# ctest install_consumer: installs the build into a scratch prefix, then checks that
+#  * a tiny consumer project configures with find_package(silk), builds and runs;
+#  * libonnxruntime sits next to libsilk and the installed binaries find it through their
+#    $ORIGIN RPATH (LD_LIBRARY_PATH cleared);
+#  * the installed silkgen generates with the tiny model.
+# Usage: cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DWORK_DIR=.. -DGENERATOR=.. -DHAVE_ORT=ON|OFF -P install_check.cmake
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+set(ENV{LD_LIBRARY_PATH} "")
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(LAST_OUTPUT "${out}${err}" PARENT_SCOPE)
+endfunction()
+
+run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
+foreach(f include/silk/silk.h include/silk/silk.hpp bin/silktok lib/cmake/silk/silkConfig.cmake)
+  if(NOT EXISTS "${prefix}/${f}")
+    message(FATAL_ERROR "not installed: ${f}")
+  endif()
+endforeach()
+file(GLOB libsilk "${prefix}/lib*/libsilk.so*")
+if(NOT libsilk)
+  message(FATAL_ERROR "libsilk.so not installed")
+endif()
+if(HAVE_ORT)
+  file(GLOB ort "${prefix}/lib*/libonnxruntime.so*")
+  list(LENGTH ort n_ort)
+  if(n_ort LESS 2)
+    message(FATAL_ERROR "libonnxruntime.so (+ soname link) not installed next to libsilk: ${ort}")
+  endif()
+  if(NOT EXISTS "${prefix}/bin/silkgen")
+    message(FATAL_ERROR "silkgen not installed")
+  endif()
+  run("${prefix}/bin/silkgen" "${SOURCE_DIR}/samples/torus_knot.obj" -o "${WORK_DIR}/gen.glb"
+      --model "${SOURCE_DIR}/tests/models/tiny" --max-tokens 100 --threads 1 -q)
+  if(NOT EXISTS "${WORK_DIR}/gen.glb")
+    message(FATAL_ERROR "installed silkgen wrote no output")
+  endif()
+endif()
+run("${prefix}/bin/silktok" --version)
+
+run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/install/consumer" -B "${WORK_DIR}/consumer" -G "${GENERATOR}"
+    "-DCMAKE_PREFIX_PATH=${prefix}")
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/consumer")
+run("${WORK_DIR}/consumer/consumer" "${SOURCE_DIR}/tests/models/tiny")
+message(STATUS "consumer: ${LAST_OUTPUT}")
