@@ -25,6 +25,9 @@
 #include <thread>
 #include <vector>
 
+#include <time.h>
+
+#include "decoder/grammar.h"
 #include "io/file_system.h"
 #include "runtime/decoder_runner.h"
 #include "runtime/generator.h"
@@ -48,34 +51,29 @@ struct Args {
 const std::map<std::string, std::pair<double, double>> kOfficial = {
     {"tiny", {32.7, 20.4}}, {"small", {5.7, 3.3}}, {"paper", {2.4, 1.5}}};
 
-// Read bandwidth (GB/s): `threads` threads summing disjoint parts of a 512 MiB buffer; best of 3.
+// Read bandwidth (GB/s): `threads` threads XOR-reducing disjoint parts of a 512 MiB buffer (an
+// integer reduction the compiler vectorises, so the loop is bound by memory, not by adds);
+// best of 3.
 double ReadBandwidth(int threads) {
-  const size_t n = (size_t{512} << 20) / sizeof(float);
-  std::vector<float> buf(n, 1.0f);
+  const size_t n = (size_t{512} << 20) / sizeof(uint64_t);
+  std::vector<uint64_t> buf(n);
+  for (size_t i = 0; i < n; ++i) buf[i] = i * 0x9E3779B97F4A7C15ull;
   double best = 0;
+  std::atomic<uint64_t> sink{0};
   for (int rep = 0; rep < 3; ++rep) {
-    std::atomic<double> sink{0};
     auto t0 = Clock::now();
     std::vector<std::thread> ts;
     for (int t = 0; t < threads; ++t)
       ts.emplace_back([&, t] {
         const size_t lo = n * t / threads, hi = n * (t + 1) / threads;
-        float s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-        for (size_t i = lo; i + 3 < hi; i += 4) {
-          s0 += buf[i];
-          s1 += buf[i + 1];
-          s2 += buf[i + 2];
-          s3 += buf[i + 3];
-        }
-        double cur = sink.load();
-        while (!sink.compare_exchange_weak(cur, cur + s0 + s1 + s2 + s3)) {
-        }
+        uint64_t x = 0;
+        for (size_t i = lo; i < hi; ++i) x ^= buf[i];
+        sink.fetch_xor(x);
       });
     for (auto& t : ts) t.join();
-    const double s = Since(t0);
-    best = std::max(best, n * sizeof(float) / s / 1e9);
-    if (sink.load() < 0) std::printf("?");
+    best = std::max(best, n * sizeof(uint64_t) / Since(t0) / 1e9);
   }
+  if (sink.load() == 42) std::printf(" ");
   return best;
 }
 
@@ -173,24 +171,29 @@ bool Measure(const Args& a, const std::string& name, bool int8, double bandwidth
     auto [n, s] = feed_steps(runner, a.steps, 0, deep + a.steps);
     r->tps_deep = n / s;
     r->bound_deep = bound(deep);
-    if (name == "tiny" && !int8) {  // in-place vs naive copy, same depth
-      for (silk::KvMode mode : {silk::KvMode::kCopy, silk::KvMode::kInPlace}) {
-        cache.Clear();
-        silk::DecoderRunner r2((*model)->impl(), &cache, cross_data, mode);
-        if (!r2.Feed(ids.data(), static_cast<int64_t>(ids.size())).ok()) return false;
-        auto tm = Clock::now();
-        int k = 0;
-        for (; k < 32; ++k) {
-          const int32_t id = tok(rng);
-          if (!r2.Feed(&id, 1).ok()) return false;
+    if (name == "tiny" && !int8) {  // in-place vs naive copy at the same depth, interleaved
+      double sec[2] = {0, 0};
+      const int64_t depth = cache.length();
+      for (int round = 0; round < 4; ++round)
+        for (int m = 0; m < 2; ++m) {
+          silk::DecoderRunner r2((*model)->impl(), &cache, cross_data, m ? silk::KvMode::kInPlace : silk::KvMode::kCopy);
+          auto tm = Clock::now();
+          for (int k = 0; k < 8; ++k) {
+            const int32_t id = tok(rng);
+            if (!r2.Feed(&id, 1).ok()) return false;
+          }
+          sec[m] += Since(tm);
+          cache.Truncate(depth);  // same depth for every round
         }
-        (mode == silk::KvMode::kCopy ? r->copy_ms : r->inplace_ms) = Since(tm) / k * 1e3;
-      }
+      r->copy_ms = sec[0] / 32 * 1e3;
+      r->inplace_ms = sec[1] / 32 * 1e3;
     }
   }
   r->rss_mib = PeakRssMiB();
   return true;
 }
+
+void SamplerMicro(const silk::Model& model, const std::vector<float>& pts);
 
 // The generation loop on the tiny model (random weights, grammar on): sampling order and
 // forced-token skipping compared on identical runs.
@@ -208,7 +211,13 @@ void CompareLoop(const Args& a) {
     const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     for (int k = 0; k < 3; ++k) pts[6 * i + k] = pts[6 * i + 3 + k] = v[k] / len;
   }
+  SamplerMicro(**model, pts);
   silk::Generator gen(**model);
+  {  // warm-up: first-run allocations and page faults are not any variant's cost
+    silk::GenerateOptions o;
+    o.max_tokens = 256;
+    (void)gen.Run(pts, o);
+  }
   struct Variant {
     const char* name;
     silk::SampleOrder order;
@@ -217,37 +226,121 @@ void CompareLoop(const Args& a) {
   std::printf("\nGeneration loop, tiny random model, grammar on, 3 seeds x max 1,024 ids:\n");
   std::printf("  %-34s %8s %8s %9s %11s %11s %9s\n", "variant", "ids", "forced", "calls", "sample us/id",
               "grammar us/id", "tok/s");
-  for (const Variant& v : {Variant{"mask-first, skip forced (default)", silk::SampleOrder::kMaskFirst, true},
-                           Variant{"mask-first, model for forced ids", silk::SampleOrder::kMaskFirst, false},
-                           Variant{"sample-then-check, skip forced", silk::SampleOrder::kSampleThenCheck, true}}) {
+  const Variant variants[3] = {{"mask-first, skip forced (default)", silk::SampleOrder::kMaskFirst, true},
+                               {"mask-first, model for forced ids", silk::SampleOrder::kMaskFirst, false},
+                               {"sample-then-check, skip forced", silk::SampleOrder::kSampleThenCheck, true}};
+  struct Sum {
     int64_t ids = 0, forced = 0, calls = 0, resampled = 0;
     double samp = 0, gram = 0, loop = 0;
-    for (uint64_t seed = 0; seed < 3; ++seed) {
+  } sums[3];
+  for (uint64_t seed = 0; seed < 3; ++seed)  // interleaved, so load changes hit every variant
+    for (int k = 0; k < 3; ++k) {
       silk::GenerateOptions o;
       o.sampling.seed = seed;
       o.sampling.temperature = 0.5;
       o.sampling.top_k = 50;
       o.max_tokens = 1024;
-      o.order = v.order;
-      o.skip_forced = v.skip;
+      o.order = variants[k].order;
+      o.skip_forced = variants[k].skip;
       auto r = gen.Run(pts, o);
       if (!r.ok()) continue;
-      ids += r->stats.tokens;
-      forced += r->stats.forced_tokens;
-      calls += r->stats.model_calls;
-      resampled += r->stats.resampled;
-      samp += r->stats.seconds.sampling;
-      gram += r->stats.seconds.grammar;
-      loop += r->stats.tokens / std::max(1e-9, r->stats.tokens_per_second);
+      Sum& s = sums[k];
+      s.ids += r->stats.tokens;
+      s.forced += r->stats.forced_tokens;
+      s.calls += r->stats.model_calls;
+      s.resampled += r->stats.resampled;
+      s.samp += r->stats.seconds.sampling;
+      s.gram += r->stats.seconds.grammar;
+      s.loop += r->stats.tokens / std::max(1e-9, r->stats.tokens_per_second);
     }
-    std::printf("  %-34s %8lld %8lld %9lld %11.1f %11.1f %9.1f", v.name, static_cast<long long>(ids),
-                static_cast<long long>(forced), static_cast<long long>(calls), samp / ids * 1e6, gram / ids * 1e6,
-                ids / loop);
-    if (v.order == silk::SampleOrder::kSampleThenCheck)
-      std::printf("  (%lld of %lld draws illegal)", static_cast<long long>(resampled),
-                  static_cast<long long>(ids - forced));
+  for (int k = 0; k < 3; ++k) {
+    const Sum& s = sums[k];
+    if (!s.ids) continue;
+    std::printf("  %-34s %8lld %8lld %9lld %11.1f %11.1f %9.1f", variants[k].name, static_cast<long long>(s.ids),
+                static_cast<long long>(s.forced), static_cast<long long>(s.calls), s.samp / s.ids * 1e6,
+                s.gram / s.ids * 1e6, s.ids / s.loop);
+    if (variants[k].order == silk::SampleOrder::kSampleThenCheck)
+      std::printf("  (%lld of %lld draws illegal)", static_cast<long long>(s.resampled),
+                  static_cast<long long>(s.ids - s.forced));
     std::printf("\n");
   }
+}
+
+double ThreadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+// Sampling-order micro-benchmark on real (logits, legal mask) pairs recorded from a constrained
+// run of the tiny model; thread CPU time, so other processes' load does not enter.
+void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
+  const silk::ModelConfig& c = model.config();
+  auto cross = silk::RunEncoder(model.impl(), pts.data(), c.dims.n_points);
+  if (!cross.ok()) return;
+  silk::KvCache cache;
+  if (!cache.Reserve(600, c.dims.kv_row_floats()).ok()) return;
+  silk::GrammarOptions go;
+  go.max_length = 599;
+  silk::SamplingParams sp;
+  sp.temperature = 0.5;
+  sp.top_k = 50;
+  silk::Sampler sampler(sp);
+  std::vector<std::vector<float>> logits;
+  std::vector<silk::TokenMask> masks;
+  double mask_cpu = 0;
+  int64_t mask_calls = 0;
+  for (int sequence = 0; sequence < 20 && logits.size() < 400; ++sequence) {  // until 400 sampled steps
+    cache.Clear();
+    silk::DecoderRunner runner(model.impl(), &cache, cross->GetTensorMutableData<float>());
+    silk::Grammar grammar(go);
+    std::vector<int32_t> pending = {c.bos_id};
+    while (!grammar.Ended() && logits.size() < 400) {
+      double t0 = ThreadCpuSeconds();
+      const int32_t forced = grammar.Forced();
+      const silk::TokenMask& m = grammar.LegalMask();
+      mask_cpu += ThreadCpuSeconds() - t0;
+      ++mask_calls;
+      if (m.Empty()) break;
+      int32_t id = forced;
+      if (forced < 0) {
+        if (!runner.Feed(pending.data(), static_cast<int64_t>(pending.size())).ok()) return;
+        pending.clear();
+        logits.emplace_back(runner.last_logits(), runner.last_logits() + c.model_vocab_size);
+        masks.push_back(m);
+        id = sampler.Sample(runner.last_logits(), &m);
+      }
+      if (!grammar.Accept(id).ok() || id == c.eos_id) break;
+      pending.push_back(id);
+    }
+  }
+  if (logits.empty()) return;
+  const int reps = 20;
+  double cpu[2] = {0, 0};
+  int64_t illegal = 0;
+  for (int order = 0; order < 2; ++order) {
+    silk::Sampler s(sp);
+    const double t0 = ThreadCpuSeconds();
+    for (int r = 0; r < reps; ++r)
+      for (size_t i = 0; i < logits.size(); ++i) {
+        if (order == 0) {
+          (void)s.Sample(logits[i].data(), &masks[i]);
+        } else {
+          const int32_t id = s.Sample(logits[i].data(), nullptr);
+          if (!masks[i].Test(id)) {
+            illegal += r == 0;
+            (void)s.Sample(logits[i].data(), &masks[i]);
+          }
+        }
+      }
+    cpu[order] = (ThreadCpuSeconds() - t0) / (reps * logits.size());
+  }
+  std::printf("\nSampling order on %zu recorded steps of the tiny model (thread CPU time per sampled id):\n"
+              "  legal mask (grammar, needed by both): %.1f us per id\n"
+              "  mask-first:        %.1f us\n  sample-then-check: %.1f us (%lld of %zu unmasked draws illegal -> "
+              "second, masked draw)\n",
+              logits.size(), mask_cpu / mask_calls * 1e6, cpu[0] * 1e6, cpu[1] * 1e6, static_cast<long long>(illegal),
+              logits.size());
 }
 
 bool ParseArgs(int argc, char** argv, Args* a) {

@@ -21,6 +21,10 @@ class KvCache {
   float* row(int64_t t) { return data_.get() + t * row_floats_; }
   const float* data() const { return data_.get(); }
   void Extend(int64_t n) { length_ += n; }
+  // Forgets positions from n on (rewinding a generation; the rows are simply overwritten).
+  void Truncate(int64_t n) {
+    if (n >= 0 && n < length_) length_ = n;
+  }
   int64_t bytes() const { return allocated_ * static_cast<int64_t>(sizeof(float)); }
 
  private:

@@ -10,6 +10,7 @@
 #include "tokenizer/layering.h"
 #include "tokenizer/nonmanifold_split.h"
 #include "tokenizer/orientation_repair.h"
+#include "tokenizer/processed_encoder.h"
 #include "tokenizer/refusal.h"
 #include "tokenizer/rotation_lists.h"
 #include "tokenizer/self_layer_encoder.h"
@@ -61,6 +62,20 @@ StreamComponent EncodeComponent(const ProcessedMesh& mesh, const ComponentLayers
 }
 
 }  // namespace
+
+StatusOr<LayeredStream> EncodeProcessedMesh(ProcessedMesh mesh) {
+  NonManifoldStats nms;
+  SILK_RETURN_IF_ERROR(SplitNonManifoldVertices(mesh, &nms));
+  SILK_ASSIGN_OR_RETURN(FaceAdjacency adj, BuildFaceAdjacency(mesh));
+  int32_t flipped = 0;
+  SILK_RETURN_IF_ERROR(RepairOrientation(mesh, adj, &flipped));
+  SILK_ASSIGN_OR_RETURN(ComponentSplit split, FindComponents(mesh, adj));
+  SILK_ASSIGN_OR_RETURN(RotationLists rot, BuildRotationLists(mesh, split.kept));
+  SILK_ASSIGN_OR_RETURN(Layering lay, BuildLayers(mesh, split.kept, rot));
+  LayeredStream stream;
+  for (const ComponentLayers& cl : lay.components) stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
+  return stream;
+}
 
 StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions& options) {
   EncodeResult res;

@@ -6,17 +6,15 @@
 
 #include <cstdio>
 #include <fstream>
-#include <map>
 #include <sstream>
 #include <string>
-#include <tuple>
 
 #include "face_compare.h"
 #include "support/test_paths.h"
 #include "tokenizer/face_recovery.h"
 #include "tokenizer/face_verification.h"
-#include "tokenizer/layer_adjacency.h"
 #include "tokenizer/token_reader.h"
+#include "truth_mapping.h"
 
 namespace silk {
 namespace {
@@ -36,8 +34,6 @@ std::vector<std::string> OkNames() {
   return names;
 }
 
-std::tuple<int32_t, int32_t, int32_t> T(const QVec& q) { return {q.x, q.y, q.z}; }
-
 TEST(GoldenDevVerifySlow, TruthReplaysAndRecoveryScoresNoWorse) {
   int comps = 0, truth_exact = 0, ours_exact = 0, worse = 0, truth_score = 0, ours_score = 0;
   for (const auto& name : OkNames()) {
@@ -48,36 +44,9 @@ TEST(GoldenDevVerifySlow, TruthReplaysAndRecoveryScoresNoWorse) {
     auto unencodable = testing::ReadCoordFaces(base + ".unencodable.txt");
     for (size_t ci = 0; ci < stream->components.size(); ++ci) {
       const StreamComponent& comp = stream->components[ci];
-      ComponentLayers layers;
-      int32_t prev = 0;
-      for (size_t l = 0; l < comp.layers.size(); ++l) {
-        std::vector<QVec> pos;
-        for (const auto& v : comp.layers[l].vertices) pos.push_back(v.pos);
-        if (l > 0) layers.adjacency.push_back(*DecodeLayerAdjacency(comp.layers[l], prev));
-        prev = static_cast<int32_t>(pos.size());
-        layers.layer_positions.push_back(pos);
-      }
-      auto g = BuildComponentGraph(layers);
+      auto g = BuildComponentGraph(testing::LayersOfComponent(comp));
       ASSERT_TRUE(g.ok());
-      std::map<std::tuple<int32_t, int32_t, int32_t>, int32_t> id;
-      std::map<std::tuple<int32_t, int32_t, int32_t>, int32_t> dup;
-      for (int32_t v = 0; v < g->vertex_count; ++v) {
-        ++dup[T(g->positions[v])];
-        id[T(g->positions[v])] = v;
-      }
-      std::vector<std::array<int32_t, 3>> truth;
-      for (const auto& f : processed) {
-        bool bad = false;
-        for (const auto& u : unencodable) bad = bad || u == f;
-        std::array<int32_t, 3> t{};
-        for (int k = 0; k < 3 && !bad; ++k) {
-          auto it = id.find(T(f[k]));
-          if (it == id.end() || dup[T(f[k])] > 1) bad = true;
-          else t[k] = it->second;
-        }
-        if (!bad && g->EdgeOf(t[0], t[1]) >= 0 && g->EdgeOf(t[1], t[2]) >= 0 && g->EdgeOf(t[0], t[2]) >= 0)
-          truth.push_back(t);
-      }
+      const auto truth = testing::TruthOnGraph(*g, processed, unencodable);
       FaceRecoveryStats st;
       auto ours = RecoverFacesOfGraph(*g, &st);
       ASSERT_TRUE(ours.ok());
