@@ -13,6 +13,7 @@ struct FaceRecoveryStats {
   int32_t uncovered_edges = 0;    // edges left without any face
   int32_t verify_failures = 0;    // verification defects of the returned set (0 = replays exactly)
   int32_t search_evaluations = 0; // candidate face sets grown and verified by the search
+  int32_t pair_evaluations = 0;   // of which by the pairwise step (two edits at once)
   bool search_budget_exhausted = false;
 };
 

@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "face_compare.h"
+#include "miss_proof.h"
 #include "mesh/normalize.h"
 #include "support/golden_files.h"
 #include "support/test_paths.h"
@@ -29,16 +30,7 @@ namespace {
 
 using testing::CoordFace;
 using Coord = std::tuple<int32_t, int32_t, int32_t>;
-using FaceKey = std::array<Coord, 3>;
-
 Coord C(const QVec& q) { return {q.x, q.y, q.z}; }
-FaceKey Canon(const QVec& a, const QVec& b, const QVec& c) {
-  FaceKey k{C(a), C(b), C(c)};
-  int m = 0;
-  for (int i = 1; i < 3; ++i)
-    if (k[i] < k[m]) m = i;
-  return {k[m], k[(m + 1) % 3], k[(m + 2) % 3]};
-}
 
 std::vector<std::string> OkNames() {
   std::ifstream in(testing::SharedPath("spec/golden-dev/INDEX.tsv"));
@@ -68,20 +60,11 @@ TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
     ++meshes;
     const auto processed = testing::ReadCoordFaces(base + ".processed.txt");
     const auto unencodable = testing::ReadCoordFaces(base + ".unencodable.txt");
-    std::set<FaceKey> unenc_keys, got;
     std::set<Coord> unenc_corners;
-    for (const auto& f : unencodable) {
-      unenc_keys.insert(Canon(f[0], f[1], f[2]));
+    for (const auto& f : unencodable)
       for (const auto& q : f) unenc_corners.insert(C(q));
-    }
-    const auto decoded = testing::FacesAsCoords(*mesh);
-    for (const auto& f : decoded) got.insert(Canon(f[0], f[1], f[2]));
-    std::vector<std::pair<CoordFace, bool>> bad;  // face, reversed
-    for (const auto& f : processed) {
-      if (unenc_keys.count(Canon(f[0], f[1], f[2]))) continue;
-      if (got.count(Canon(f[0], f[1], f[2]))) continue;
-      bad.push_back({f, got.count(Canon(f[0], f[2], f[1])) > 0});
-    }
+    const auto target = testing::RepresentableFaces(processed, unencodable);
+    const auto bad = testing::MissedFaces(testing::FacesAsCoords(*mesh), target);
     // The official processed faces in the encoder's own order (from the OBJ): face order
     // breaks sort-key ties (§4.1) and is not in the tokens, so the proof uses this order.
     RawMesh raw;
@@ -91,23 +74,17 @@ TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
     auto official = EncodeMesh(*norm);
     ASSERT_TRUE(official.ok());
     // Per decoded component: its faces re-encode to its own stream (token-equivalent).
-    std::vector<char> comp_equal(static_cast<size_t>(mesh->components), 0);
+    const std::vector<char> comp_equal = testing::ComponentsReencoding(*mesh, *stream, official->processed_faces);
     {
       std::vector<int32_t> base(static_cast<size_t>(mesh->components) + 1, 0);
       for (int32_t c : mesh->vertex_component) ++base[static_cast<size_t>(c) + 1];
       for (size_t c = 0; c + 1 < base.size(); ++c) base[c + 1] += base[c];
-      std::vector<std::vector<std::array<int32_t, 3>>> faces(comp_equal.size());
-      for (size_t i = 0; i < mesh->faces.size(); ++i) {
-        const int32_t c = mesh->face_component[i], b = base[static_cast<size_t>(c)];
-        faces[static_cast<size_t>(c)].push_back({mesh->faces[i][0] - b, mesh->faces[i][1] - b, mesh->faces[i][2] - b});
-      }
       for (size_t c = 0; c < comp_equal.size(); ++c) {
-        std::vector<QVec> pos(mesh->positions.begin() + base[c], mesh->positions.begin() + base[c + 1]);
-        comp_equal[c] = testing::ComponentReencodesTo(pos, faces[c], official->processed_faces, stream->components[c]);
         ++components;
         equal_components += comp_equal[c];
         // Sanity of the method: the official faces of a component without unencodable faces
         // or coincident vertices, mapped by coordinates, must re-encode to the same stream.
+        std::vector<QVec> pos(mesh->positions.begin() + base[c], mesh->positions.begin() + base[c + 1]);
         auto g = BuildComponentGraph(testing::LayersOfComponent(stream->components[c]));
         ASSERT_TRUE(g.ok());
         const auto truth = testing::TruthOnGraph(*g, processed, unencodable);
@@ -120,21 +97,11 @@ TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
       }
     }
     if (bad.empty()) continue;
-    // Components holding all three corners of a face (by coordinates).
-    std::map<Coord, std::set<int32_t>> comps_at;
-    for (size_t v = 0; v < mesh->positions.size(); ++v) comps_at[C(mesh->positions[v])].insert(mesh->vertex_component[v]);
     std::map<int32_t, std::pair<int, int>> scores;  // component -> (truth, ours)
     for (const auto& [f, reversed] : bad) {
       ++wrong;
-      std::set<int32_t> cs = comps_at[C(f[0])];
-      for (int k = 1; k < 3; ++k) {
-        std::set<int32_t> keep;
-        for (int32_t c : comps_at[C(f[k])])
-          if (cs.count(c)) keep.insert(c);
-        cs = keep;
-      }
-      bool proven = !cs.empty();
-      for (int32_t c : cs) proven = proven && comp_equal[static_cast<size_t>(c)];
+      const std::set<int32_t> cs = testing::ComponentsAtCorners(*mesh, f);
+      const bool proven = testing::MissIsProvenAmbiguous(*mesh, comp_equal, f);
       bool near = false;
       for (const auto& q : f) near = near || unenc_corners.count(C(q)) > 0;
       int ts = -1, os = -1;

@@ -1,0 +1,85 @@
+// Missed-face listing and token-equivalence proof per component; see miss_proof.h.
+#include "miss_proof.h"
+
+#include <map>
+#include <tuple>
+
+#include "token_equivalence.h"
+
+namespace silk::testing {
+namespace {
+
+using Coord = std::tuple<int32_t, int32_t, int32_t>;
+using FaceKey = std::array<Coord, 3>;
+
+Coord C(const QVec& q) { return {q.x, q.y, q.z}; }
+// Same corners in the same cyclic order = same key.
+FaceKey Canon(const QVec& a, const QVec& b, const QVec& c) {
+  FaceKey k{C(a), C(b), C(c)};
+  int m = 0;
+  for (int i = 1; i < 3; ++i)
+    if (k[i] < k[m]) m = i;
+  return {k[m], k[(m + 1) % 3], k[(m + 2) % 3]};
+}
+
+}  // namespace
+
+std::vector<CoordFace> RepresentableFaces(const std::vector<CoordFace>& processed,
+                                          const std::vector<CoordFace>& unencodable) {
+  std::set<FaceKey> excluded;
+  for (const auto& f : unencodable) excluded.insert(Canon(f[0], f[1], f[2]));
+  std::vector<CoordFace> out;
+  for (const auto& f : processed)
+    if (!excluded.count(Canon(f[0], f[1], f[2]))) out.push_back(f);
+  return out;
+}
+
+std::vector<MissedFace> MissedFaces(const std::vector<CoordFace>& decoded, const std::vector<CoordFace>& target) {
+  std::set<FaceKey> got;
+  for (const auto& f : decoded) got.insert(Canon(f[0], f[1], f[2]));
+  std::vector<MissedFace> out;
+  for (const auto& f : target) {
+    if (got.count(Canon(f[0], f[1], f[2]))) continue;
+    out.push_back({f, got.count(Canon(f[0], f[2], f[1])) > 0});
+  }
+  return out;
+}
+
+std::vector<char> ComponentsReencoding(const DecodedMesh& mesh, const LayeredStream& stream,
+                                       const std::vector<CoordFace>& order_reference) {
+  const size_t n = static_cast<size_t>(mesh.components);
+  std::vector<int32_t> base(n + 1, 0);
+  for (int32_t c : mesh.vertex_component) ++base[static_cast<size_t>(c) + 1];
+  for (size_t c = 0; c < n; ++c) base[c + 1] += base[c];
+  std::vector<std::vector<std::array<int32_t, 3>>> faces(n);
+  for (size_t i = 0; i < mesh.faces.size(); ++i) {
+    const int32_t c = mesh.face_component[i], b = base[static_cast<size_t>(c)];
+    faces[static_cast<size_t>(c)].push_back({mesh.faces[i][0] - b, mesh.faces[i][1] - b, mesh.faces[i][2] - b});
+  }
+  std::vector<char> out(n, 0);
+  for (size_t c = 0; c < n && c < stream.components.size(); ++c) {
+    std::vector<QVec> pos(mesh.positions.begin() + base[c], mesh.positions.begin() + base[c + 1]);
+    out[c] = ComponentReencodesTo(pos, faces[c], order_reference, stream.components[c]);
+  }
+  return out;
+}
+
+std::set<int32_t> ComponentsAtCorners(const DecodedMesh& mesh, const CoordFace& f) {
+  std::set<int32_t> at[3];
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    for (int k = 0; k < 3; ++k)
+      if (mesh.positions[v] == f[k]) at[k].insert(mesh.vertex_component[v]);
+  std::set<int32_t> out;
+  for (int32_t c : at[0])
+    if (at[1].count(c) && at[2].count(c)) out.insert(c);
+  return out;
+}
+
+bool MissIsProvenAmbiguous(const DecodedMesh& mesh, const std::vector<char>& reencoding, const CoordFace& f) {
+  const std::set<int32_t> cs = ComponentsAtCorners(mesh, f);
+  bool proven = !cs.empty();
+  for (int32_t c : cs) proven = proven && reencoding[static_cast<size_t>(c)];
+  return proven;
+}
+
+}  // namespace silk::testing
