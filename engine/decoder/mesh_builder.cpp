@@ -93,7 +93,8 @@ StatusOr<ComponentBuild> Layers(const StreamComponent& comp, int32_t closed_laye
 }
 
 // Fan-triangulates `loop` (hole winding) from the first apex whose chords are new edges,
-// join vertices of equal or adjacent layers and never two corners at one position.
+// join vertices of equal or adjacent layers, never two corners at one position and never
+// a zero-area face.
 bool FillLoop(const std::vector<int32_t>& loop, const ComponentBuild& cb, std::set<uint64_t>* edges,
               std::vector<std::array<int32_t, 3>>* faces, HoleReport* rep) {
   const int32_t k = static_cast<int32_t>(loop.size());
@@ -109,8 +110,10 @@ bool FillLoop(const std::vector<int32_t>& loop, const ComponentBuild& cb, std::s
     }
     for (int32_t t = 1; t + 1 < k && ok; ++t) {
       const int32_t a = loop[(apex + t) % k], b = loop[(apex + t + 1) % k];
+      // Distinct corners are not enough: a fill face must also have non-zero area
+      // (guarantee: no degenerate face; found by grammar_fuzzer).
       ok = cb.positions[v0] != cb.positions[a] && cb.positions[v0] != cb.positions[b] &&
-           cb.positions[a] != cb.positions[b];
+           cb.positions[a] != cb.positions[b] && !Collinear(cb.positions[v0], cb.positions[a], cb.positions[b]);
     }
     if (!ok) continue;
     for (int32_t t = 1; t + 1 < k; ++t) faces->push_back({v0, loop[(apex + t) % k], loop[(apex + t + 1) % k]});
