@@ -2,9 +2,12 @@
 # Installs everything Silk needs on a fresh Debian bookworm machine (idempotent; network only
 # through the package managers). Skips apt entirely when every package is already present.
 set -euo pipefail
+REPO="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$REPO"
 
 APT_PACKAGES=(
   build-essential cmake ninja-build pkg-config python3
+  python3-pip                # scripts/fetch_onnxruntime.sh: pip download of the onnxruntime wheel
   libopenmesh-dev libglm-dev libtinygltf-dev libstb-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev zlib1g-dev
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
@@ -25,4 +28,27 @@ else
 fi
 
 # onnxruntime (C library + headers) for engine/runtime and silkgen: not packaged in bookworm.
-bash "$(dirname "$0")/fetch_onnxruntime.sh"
+bash "$REPO/scripts/fetch_onnxruntime.sh"
+
+# Python side (export/: dataset through libsilk, training, ONNX export, evaluation; pytest).
+# PyPI's torch is the CUDA build (~3 GB) and runs on the CPU. Quick no-op when installed.
+if python3 - <<'PY' 2>/dev/null
+import importlib.metadata as m, sys
+want = {}
+for line in open("export/requirements.txt"):
+    line = line.split("#")[0].strip()
+    if line:
+        name, _, ver = line.partition("==")
+        want[name] = ver
+for name, ver in want.items():
+    have = m.version(name)
+    if ver and have.split("+")[0] != ver:
+        sys.exit(1)
+PY
+then
+  echo "setup: Python packages present"
+else
+  echo "setup: installing Python packages (export/requirements.txt)"
+  # PIP_BREAK_SYSTEM_PACKAGES: Debian's own python3 is "externally managed" (PEP 668).
+  PIP_BREAK_SYSTEM_PACKAGES=1 python3 -m pip install -q --disable-pip-version-check -r export/requirements.txt
+fi

@@ -8,6 +8,9 @@ JOBS=${JOBS:-$(nproc)}
 bash scripts/build.sh
 (cd build && ctest --output-on-failure -j "$JOBS")
 
+echo "=== export/ (pytest, through build/engine/libsilk.so) ==="
+SILK_LIBRARY="$PWD/build/engine/libsilk.so" python3 -m pytest -q export/tests
+
 echo "=== sanitizer build (ASan + UBSan) ==="
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSILK_SANITIZE=ON -DSILK_BUILD_BENCH=OFF >/dev/null
 cmake --build build-asan -j "$JOBS"

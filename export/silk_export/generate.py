@@ -23,7 +23,8 @@ from .pointcloud import point_cloud
 @torch.no_grad()
 def sample_tokens(model: SilkModel, points: np.ndarray, max_tokens: int, temperature: float, top_k: int,
                   generator: torch.Generator) -> tuple[np.ndarray, bool]:
-    """Returns (format ids without BOS/EOS, whether EOS was produced)."""
+    """Samples at most max_tokens ids (EOS included). Returns (format ids without BOS/EOS, whether
+    EOS was produced)."""
     model.eval()
     c = model.cfg
     cross = model.encode_points(torch.from_numpy(points).unsqueeze(0))
@@ -31,7 +32,7 @@ def sample_tokens(model: SilkModel, points: np.ndarray, max_tokens: int, tempera
     past = [(empty, empty) for _ in range(c.n_layers)]
     ids = torch.tensor([[model.bos_id]])
     out = []
-    for pos in range(min(max_tokens, c.max_tokens) + 1):
+    for pos in range(min(max_tokens, c.max_seq_len - 1)):  # ids sampled, EOS included
         logits, new = model.step(ids, torch.tensor([[pos]]), past, cross, fused=False)
         past = [(torch.cat([pk, kn], 2), torch.cat([pv, vn], 2)) for (pk, pv), (kn, vn) in zip(past, new)]
         lg = logits[0, -1].clone()
@@ -77,7 +78,7 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
             ref.save(ref_dir / f"{stem}.obj")
         t0 = time.time()
         pts = point_cloud(vn, f, rng, n=model.cfg.n_points, noise=False)
-        toks, eos = sample_tokens(model, pts, max_tokens or model.cfg.max_tokens, temperature, top_k, g)
+        toks, eos = sample_tokens(model, pts, max_tokens or model.cfg.max_seq_len - 1, temperature, top_k, g)
         row = {"name": stem, "tokens": int(toks.size), "eos": eos, "seconds": round(time.time() - t0, 2)}
         try:
             with libsilk.decode(toks) as m:

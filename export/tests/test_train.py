@@ -80,3 +80,17 @@ def test_resume_reproduces_the_uninterrupted_run(data, tmp_path):
     assert ck["step"] == 6
     for (n, p), (_, q) in zip(a.state_dict().items(), b.state_dict().items()):
         assert torch.equal(p, q), n
+
+
+def test_generate_samples_legal_ids_and_writes_the_layout(data, tmp_path, golden_dir):
+    from silk_export.generate import generate_paths, pick_from_index
+
+    train(args(data, tmp_path / "run", 2))
+    root, index, rows = data
+    picked = pick_from_index(index, root, "train", 2, 10_000)
+    assert len(picked) == 2 and all(p.exists() for p in picked)
+    res = generate_paths(tmp_path / "run" / "checkpoint.pt", picked, tmp_path / "gen", max_tokens=20, seed=1)
+    assert res["inputs"] == 2 and (tmp_path / "gen" / "generate.json").exists()
+    for row in res["meshes"]:
+        assert row["tokens"] + row["eos"] <= 20  # at most max_tokens ids, EOS included
+        assert (tmp_path / "gen" / "reference" / f"{row['name']}.obj").exists()
