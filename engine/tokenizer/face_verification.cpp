@@ -176,6 +176,18 @@ FaceVerification VerifyComponentFaces(const ComponentGraph& g, const std::vector
     int32_t pos = begin;
     std::vector<int32_t> contribs;  // layer L-1 vertices that added to layer L, in order
     for (int32_t u = g.layer_start[L - 1]; u < g.layer_start[L]; ++u) {
+      // An edge of u to the expected layer-L vertex that lies in no 3-cycle is in no face,
+      // yet the encoder's run put its end here (its face was unencodable, §5.4). No face
+      // set can produce it: count it (not a search target: not flagged, not first_defect)
+      // and collect it as the tokens say, so the later runs of this layer stay aligned.
+      if (pos < end) {
+        const int32_t e = g.EdgeOf(u, pos);
+        if (e >= 0 && g.edge_triangles[static_cast<size_t>(e)].empty()) {
+          ++res.bad_runs;
+          collected[static_cast<size_t>(pos)] = 1;
+          while (pos < end && collected[static_cast<size_t>(pos)]) ++pos;
+        }
+      }
       cs.assign(corners.begin() + corner_begin[u], corners.begin() + corner_begin[u + 1]);
       bool ok = !cs.empty() && RotationOf(cs, &rot, &starts, &next);
       bool matched = false;

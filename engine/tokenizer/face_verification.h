@@ -33,7 +33,9 @@ struct FaceVerification {
 // layers 0..last-1, so a prefix of closed layers is checked as far as it goes. Layers are
 // replayed independently (visited = the decoded earlier layers), so one defect does not
 // spoil the rest. Face sort-key ties (§4.1) make a vertex's start face ambiguous: any tied
-// start that reproduces the layer is accepted. Work O(faces log faces + vertices + edges).
+// start that reproduces the layer is accepted. A decoded edge into the expected layer
+// vertex that lies in no 3-cycle (no face can hold it, §5.4) counts one defect and keeps the
+// layer aligned, without naming a suspect. Work O(faces log faces + vertices + edges).
 FaceVerification VerifyComponentFaces(const ComponentGraph& g, const std::vector<std::array<int32_t, 3>>& faces);
 
 }  // namespace silk
