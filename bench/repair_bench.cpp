@@ -1,6 +1,9 @@
 // Repair measured (spec §12.2): single 1-bits cleared in the self-layer (S window bit, X value)
-// or between-layer (B window bit, row re-encoded) tokens of closed golden meshes; share of
-// corrupted streams whose decoded mesh is watertight with hole policy off vs repair.
+// or between-layer (B window bit, row re-encoded) tokens of closed meshes — the closed goldens
+// and generated UV spheres, tori and capped cylinders of several sizes; share of corrupted
+// streams whose decoded mesh is watertight with hole policy off vs repair, per corruption kind
+// and per shape family.
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -9,6 +12,8 @@
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
 #include "io/token_text.h"
+#include "mesh/normalize.h"
+#include "tokenizer/tokenizer.h"
 #include "tokenizer/between_layer_cases.h"
 #include "tokenizer/between_layer_decoder.h"
 #include "tokenizer/between_layer_encoder.h"
@@ -39,11 +44,79 @@ void Measure(const LayeredStream& s, Tally* t) {
   if (b.ok() && IsWatertight(*b)) ++t->tight_repair;
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
+// Closed UV sphere: rings x segments quads plus two pole fans.
+RawMesh Sphere(int rings, int segs) {
+  RawMesh m;
+  m.positions.push_back({0, 1, 0});
+  for (int r = 1; r < rings; ++r)
+    for (int k = 0; k < segs; ++k) {
+      const double th = kPi * r / rings, ph = 2 * kPi * k / segs;
+      m.positions.push_back({std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)});
+    }
+  m.positions.push_back({0, -1, 0});
+  const int south = static_cast<int>(m.positions.size()) - 1;
+  auto at = [&](int r, int k) { return 1 + (r - 1) * segs + (k % segs); };
+  for (int k = 0; k < segs; ++k) m.triangles.push_back({0, at(1, k + 1), at(1, k)});
+  for (int r = 1; r + 1 < rings; ++r)
+    for (int k = 0; k < segs; ++k) {
+      m.triangles.push_back({at(r, k), at(r, k + 1), at(r + 1, k + 1)});
+      m.triangles.push_back({at(r, k), at(r + 1, k + 1), at(r + 1, k)});
+    }
+  for (int k = 0; k < segs; ++k) m.triangles.push_back({south, at(rings - 1, k), at(rings - 1, k + 1)});
+  return m;
+}
+
+// Torus with major radius 1, minor radius `minor`.
+RawMesh Torus(int nu, int nv, double minor) {
+  RawMesh m;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
+      m.positions.push_back({(1 + minor * std::cos(v)) * std::cos(u), minor * std::sin(v), (1 + minor * std::cos(v)) * std::sin(u)});
+    }
+  auto at = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return m;
+}
+
+// Capped cylinder: `rows` rings of `segs` vertices, fan caps around two centre vertices.
+RawMesh Cylinder(int segs, int rows) {
+  RawMesh m;
+  for (int r = 0; r < rows; ++r)
+    for (int k = 0; k < segs; ++k) {
+      const double a = 2 * kPi * k / segs;
+      m.positions.push_back({std::cos(a), 2.0 * r / (rows - 1) - 1.0, std::sin(a)});
+    }
+  const int bottom = static_cast<int>(m.positions.size());
+  m.positions.push_back({0, -1, 0});
+  m.positions.push_back({0, 1, 0});
+  auto at = [&](int r, int k) { return r * segs + (k % segs); };
+  for (int r = 0; r + 1 < rows; ++r)
+    for (int k = 0; k < segs; ++k) {
+      m.triangles.push_back({at(r, k), at(r + 1, k + 1), at(r, k + 1)});
+      m.triangles.push_back({at(r, k), at(r + 1, k), at(r + 1, k + 1)});
+    }
+  for (int k = 0; k < segs; ++k) {
+    m.triangles.push_back({bottom, at(0, k), at(0, k + 1)});
+    m.triangles.push_back({bottom + 1, at(rows - 1, k + 1), at(rows - 1, k)});
+  }
+  return m;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : "../shared/spec/golden";
   std::map<std::string, Tally> tallies;
+  // (family, stream) pairs: the closed goldens as official token files, then generated shapes
+  // encoded by the tokenizer.
+  std::vector<std::pair<std::string, LayeredStream>> bases;
   for (const char* name : {"cube", "tetrahedron", "octahedron", "icosphere2", "torus", "torus_12x8", "torus_24x6",
                            "cylinder_capped"}) {
     auto ids = ReadTokenText(dir + "/" + name + ".tokens.txt");
@@ -55,7 +128,23 @@ int main(int argc, char** argv) {
     go.max_length = 0;
     Grammar g(go);
     for (int32_t id : *ids) (void)g.Accept(id);
-    const LayeredStream base = g.stream();
+    bases.emplace_back("golden", g.stream());
+  }
+  std::vector<std::pair<std::string, RawMesh>> shapes;
+  for (int n : {6, 10, 16}) shapes.emplace_back("sphere", Sphere(n, 2 * n));
+  for (int n : {8, 12, 20}) shapes.emplace_back("torus", Torus(2 * n, n, 0.35));
+  for (int n : {6, 12, 24}) shapes.emplace_back("cylinder", Cylinder(n, n / 2 + 2));
+  for (const auto& [family, mesh] : shapes) {
+    auto norm = NormalizeMesh(mesh);
+    if (!norm.ok()) return 1;
+    auto enc = EncodeMesh(*norm);
+    if (!enc.ok()) {
+      std::fprintf(stderr, "%s: %s\n", family.c_str(), enc.status().ToString().c_str());
+      return 1;
+    }
+    bases.emplace_back(family, enc->stream);
+  }
+  for (const auto& [family, base] : bases) {
     for (size_t c = 0; c < base.components.size(); ++c)
       for (size_t l = 1; l < base.components[c].layers.size(); ++l) {
         const auto& layer = base.components[c].layers[l];
@@ -67,12 +156,14 @@ int main(int argc, char** argv) {
               LayeredStream s = base;
               s.components[c].layers[l].vertices[v].window &= ~(1 << bit);
               Measure(s, &tallies["S window bit"]);
+              Measure(s, &tallies[family + " / S window bit"]);
             }
           for (size_t x = 0; x < vx.extras.size(); ++x) {
             LayeredStream s = base;
             auto& ex = s.components[c].layers[l].vertices[v].extras;
             ex.erase(ex.begin() + static_cast<long>(x));
             Measure(s, &tallies["X value"]);
+            Measure(s, &tallies[family + " / X value"]);
           }
           if (l < 2) continue;  // layer-1 rows are the single root bit
           StreamLayer one;
@@ -88,13 +179,14 @@ int main(int argc, char** argv) {
             bt.clear();
             EncodeBetweenLayerRow(prev_n, cols, &bt);
             Measure(s, &tallies["B column"]);
+            Measure(s, &tallies[family + " / B column"]);
           }
         }
       }
-  }
-  std::printf("%-14s %7s %9s %12s %15s\n", "corruption", "streams", "accepted", "tight(off)", "tight(repair)");
+    }
+  std::printf("%-26s %7s %9s %12s %15s\n", "corruption", "streams", "accepted", "tight(off)", "tight(repair)");
   for (const auto& [k, t] : tallies)
-    std::printf("%-14s %7d %9d %5d (%4.1f%%) %7d (%4.1f%%)\n", k.c_str(), t.total, t.accepted, t.tight_off,
+    std::printf("%-26s %7d %9d %5d (%4.1f%%) %7d (%4.1f%%)\n", k.c_str(), t.total, t.accepted, t.tight_off,
                 100.0 * t.tight_off / std::max(1, t.total), t.tight_repair, 100.0 * t.tight_repair / std::max(1, t.total));
   return 0;
 }
