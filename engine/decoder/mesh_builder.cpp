@@ -8,6 +8,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "tokenizer/collinear.h"
 #include "tokenizer/component_graph.h"
 #include "tokenizer/face_recovery.h"
 #include "tokenizer/layer_adjacency.h"
@@ -16,12 +17,6 @@ namespace silk {
 namespace {
 
 uint64_t Key(int32_t a, int32_t b) { return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b); }
-
-bool Collinear(const QVec& a, const QVec& b, const QVec& c) {
-  const int64_t ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
-  const int64_t vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
-  return uy * vz - uz * vy == 0 && uz * vx - ux * vz == 0 && ux * vy - uy * vx == 0;
-}
 
 // Open loops of one component's faces (local indices): chains of reversed open half-edges.
 std::vector<std::vector<int32_t>> OpenLoops(const std::vector<std::array<int32_t, 3>>& faces, int32_t* open_edges) {

@@ -1,10 +1,13 @@
 // Builds the component's edge graph from per-layer adjacency and enumerates its 3-cycles by
-// sorted-neighbour intersection (each triangle once, corners ascending).
+// sorted-neighbour intersection (each triangle once, corners ascending). Zero-area 3-cycles
+// (collinear corners) are left out: the encoder drops such faces (§2.4), so none is a face.
 #include "tokenizer/component_graph.h"
 
 #include <algorithm>
 #include <string>
 #include <utility>
+
+#include "tokenizer/collinear.h"
 
 namespace silk {
 
@@ -75,6 +78,9 @@ StatusOr<ComponentGraph> BuildComponentGraph(const ComponentLayers& layers) {
     std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
     for (int32_t c : common) {
       if (c <= b) continue;
+      if (Collinear(g.positions[static_cast<size_t>(a)], g.positions[static_cast<size_t>(b)],
+                    g.positions[static_cast<size_t>(c)]))
+        continue;
       if (static_cast<int64_t>(g.triangles.size()) >= kMaxComponentTriangles) {
         return LimitExceeded("component has more than " + std::to_string(kMaxComponentTriangles) +
                              " 3-cycles; not a mesh the encoder can produce");

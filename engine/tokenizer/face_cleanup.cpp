@@ -6,17 +6,13 @@
 #include <cmath>
 #include <string>
 
+#include "tokenizer/collinear.h"
+
 namespace silk {
 namespace {
 
 int64_t PackGrid(const QVec& q) {
   return (static_cast<int64_t>(q.x) << 16) | (static_cast<int64_t>(q.y) << 8) | q.z;
-}
-
-bool Collinear(const QVec& a, const QVec& b, const QVec& c) {
-  const int64_t ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
-  const int64_t vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
-  return uy * vz - uz * vy == 0 && uz * vx - ux * vz == 0 && ux * vy - uy * vx == 0;
 }
 
 }  // namespace

@@ -244,6 +244,17 @@ FaceVerification VerifyComponentFaces(const ComponentGraph& g, const std::vector
       flag_prev_neighbours(pos, L - 1);
     }
   }
+  // The last layer has no run to replay, but its vertices must still have one fan each (the
+  // encoder splits a vertex with two fans, §3): a detached fan there is a defect too.
+  if (layer_count >= 1) {
+    for (int32_t u = g.layer_start[layer_count - 1]; u < g.layer_start[layer_count]; ++u) {
+      cs.assign(corners.begin() + corner_begin[u], corners.begin() + corner_begin[u + 1]);
+      if (cs.empty() || RotationOf(cs, &rot, &starts, &next)) continue;
+      ++res.bad_runs;
+      res.first_defect = std::min(res.first_defect, u);
+      flag(u);
+    }
+  }
   // Every decoded edge is an edge of some face.
   std::vector<char> covered(g.edges.size(), 0);
   for (const auto& f : faces)
