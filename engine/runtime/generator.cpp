@@ -6,6 +6,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "decoder/grammar.h"
 #include "runtime/decoder_runner.h"
@@ -49,6 +53,9 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
   if (options.max_tokens < 0 || options.max_faces < 0) return InvalidArgument("generate: negative cap");
   const int32_t cap = options.max_tokens > 0 ? std::min(options.max_tokens, model_cap) : model_cap;
   if (cap < 2) return InvalidArgument("generate: max_tokens must be at least 2");
+  const SamplingParams& sp = options.sampling;
+  if (!std::isfinite(sp.temperature) || sp.temperature < 0 || sp.top_k < 0 || !(sp.top_p >= 0 && sp.top_p <= 1))
+    return InvalidArgument("generate: need temperature >= 0, top_k >= 0 and top_p in [0, 1]");
 
   GenerateResult res;
   GenerationStats& st = res.stats;

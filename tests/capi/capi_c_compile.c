@@ -1,4 +1,5 @@
-/* Compiles silk.h as plain C (C99) and exercises it: encode a tetrahedron, decode it back. */
+/* Compiles silk.h as plain C (C99) and exercises it: encode a tetrahedron, decode it back,
+ * and the generation entry points' argument/availability errors. */
 #include <stdio.h>
 #include <string.h>
 
@@ -22,6 +23,17 @@ int main(void) {
   if (silk_mesh_triangle_count(back) != 4 || silk_mesh_vertex_count(back) != 4) return 5;
   /* errors: NULL arguments give a status and a message, never a crash */
   if (silk_encode(NULL, NULL, &tokens, NULL) != SILK_ERR_INVALID_ARGUMENT || strlen(silk_last_error()) == 0) return 6;
+  /* generation entry points exist in every build; without onnxruntime they say so */
+  {
+    silk_generate_params gp = silk_generate_default_params();
+    silk_model* model = NULL;
+    silk_mesh* out = NULL;
+    silk_status st = silk_model_load("/nonexistent-model-dir", NULL, &model);
+    if (gp.top_k != 50 || gp.temperature != 0.5 || gp.max_tokens != 0) return 7;
+    if (st == SILK_OK || model != NULL || strlen(silk_last_error()) == 0) return 8;
+    if (!silk_generation_available() && st != SILK_ERR_UNSUPPORTED) return 9;
+    if (silk_generate(NULL, mesh, &gp, &out, NULL, NULL) != SILK_ERR_INVALID_ARGUMENT || out != NULL) return 10;
+  }
   silk_mesh_destroy(back);
   silk_tokens_destroy(tokens);
   silk_mesh_destroy(mesh);

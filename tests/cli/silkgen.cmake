@@ -1,8 +1,9 @@
 # silkgen end-to-end checks with the committed tiny model (tests/tools/silkgen_checks.py):
-# goldens + determinism, the Python onnxruntime reference loop (skipped without it), bad
+# goldens (ids; meshes separately, they follow the decoder's face recovery) + determinism, the
+# Python onnxruntime reference loop (skipped without it), bad
 # inputs, output formats. Then the C API from Python (examples/generate_ctypes.py).
 if(Python3_FOUND AND TARGET silkgen)
-  foreach(mode golden reference bad formats)
+  foreach(mode golden golden_mesh reference bad formats)
     add_test(NAME silkgen_${mode}
              COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/silkgen_checks.py ${mode}
                      $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR})

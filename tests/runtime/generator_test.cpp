@@ -3,6 +3,8 @@
 // ones, caps, callbacks and unconstrained mode.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
 #include "runtime/generator.h"
@@ -168,6 +170,12 @@ TEST_F(GeneratorTest, BadArguments) {
   EXPECT_FALSE(g.Run(std::vector<float>(7, 0.f), Options(0)).ok());
   GenerateOptions o = Options(0);
   o.max_tokens = -1;
+  EXPECT_FALSE(g.Run(points_, o).ok());
+  o = Options(0);
+  o.sampling.top_p = 1.5;
+  EXPECT_EQ(g.Run(points_, o).status().code(), StatusCode::kInvalidArgument);
+  o = Options(0);
+  o.sampling.temperature = std::nan("");
   EXPECT_FALSE(g.Run(points_, o).ok());
 }
 

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "token_equivalence.h"
+#include "truth_mapping.h"
 
 namespace silk::testing {
 namespace {
@@ -80,6 +81,55 @@ bool MissIsProvenAmbiguous(const DecodedMesh& mesh, const std::vector<char>& ree
   bool proven = !cs.empty();
   for (int32_t c : cs) proven = proven && reencoding[static_cast<size_t>(c)];
   return proven;
+}
+
+AugmentedReencoding ComponentsReencodingWithUnencodable(const DecodedMesh& mesh, const LayeredStream& stream,
+                                                        const std::vector<CoordFace>& processed,
+                                                        const std::vector<CoordFace>& unencodable,
+                                                        const std::vector<CoordFace>& order_reference) {
+  const size_t n = static_cast<size_t>(mesh.components);
+  AugmentedReencoding out{std::vector<char>(n, 0), std::vector<char>(n, 0), std::vector<char>(n, 0)};
+  if (unencodable.empty()) return out;
+  // Component vertex ranges and our faces in component-local ids (as ComponentsReencoding).
+  std::vector<int32_t> base(n + 1, 0);
+  for (int32_t c : mesh.vertex_component) ++base[static_cast<size_t>(c) + 1];
+  for (size_t c = 0; c < n; ++c) base[c + 1] += base[c];
+  std::vector<std::vector<std::array<int32_t, 3>>> ours(n);
+  for (size_t i = 0; i < mesh.faces.size(); ++i) {
+    const int32_t c = mesh.face_component[i], b = base[static_cast<size_t>(c)];
+    ours[static_cast<size_t>(c)].push_back({mesh.faces[i][0] - b, mesh.faces[i][1] - b, mesh.faces[i][2] - b});
+  }
+  for (size_t c = 0; c < n && c < stream.components.size(); ++c) {
+    std::map<Coord, int> count;  // grid coordinate -> vertices of this component there
+    for (int32_t v = base[c]; v < base[c + 1]; ++v) ++count[C(mesh.positions[static_cast<size_t>(v)])];
+    std::vector<CoordFace> touching;
+    bool ambiguous = false;
+    for (const auto& f : unencodable) {
+      bool touches = false;
+      for (const auto& q : f) {
+        auto it = count.find(C(q));
+        touches = touches || it != count.end();
+        ambiguous = ambiguous || (it != count.end() && it->second > 1);
+      }
+      if (touches) touching.push_back(f);
+    }
+    if (touching.empty() || ambiguous) continue;
+    auto g = BuildComponentGraph(LayersOfComponent(stream.components[c]));
+    if (!g.ok()) continue;
+    const auto extra = TruthOnGraph(*g, touching, {});
+    if (extra.size() != touching.size()) continue;  // some touching face does not map whole
+    out.checked[c] = 1;
+    const std::vector<QVec> pos(mesh.positions.begin() + base[c], mesh.positions.begin() + base[c + 1]);
+    auto with_extra = [&](std::vector<std::array<int32_t, 3>> faces) {
+      faces.insert(faces.end(), extra.begin(), extra.end());
+      return ComponentReencodesTo(pos, faces, order_reference, stream.components[c]);
+    };
+    // Soundness: the official faces of this component (coordinate-mapped, unencodable ones
+    // excluded and re-added above) must give the input tokens, else the method says nothing here.
+    out.truth_equal[c] = with_extra(TruthOnGraph(*g, processed, unencodable));
+    out.ours_equal[c] = with_extra(ours[c]);
+  }
+  return out;
 }
 
 }  // namespace silk::testing

@@ -2,11 +2,15 @@
 """End-to-end checks of the silkgen binary with the committed tiny model, run by ctest
 (tests/cli/silkgen.cmake).
 
-  golden SILKGEN REPO [--update]  fixed inputs + seeds -> token files and OBJ meshes byte-identical
-                                  to tests/models/golden/*; the same run twice and with 2 threads
-                                  gives identical tokens. --update rewrites the expected files, but
-                                  only after the independent checks (reference mode) pass and the
-                                  run ended with EOS on an edge-manifold, consistently oriented mesh.
+  golden SILKGEN REPO [--update]  fixed inputs + seeds -> token files byte-identical to
+                                  tests/models/golden/*.tokens.txt; the same run twice and with 2
+                                  threads gives identical tokens. --update rewrites the expected
+                                  files (tokens and meshes), but only after the independent checks
+                                  (reference mode) pass and the run ended with EOS on an
+                                  edge-manifold, consistently oriented mesh.
+  golden_mesh SILKGEN REPO        the same runs' OBJ output byte-identical to tests/models/golden/*.obj
+                                  (separate because it also follows the decoder's face recovery:
+                                  an intended change there needs `golden ... --update`)
   reference SILKGEN REPO          the runs' traces replayed by tests/models/reference_loop.py
                                   (Python onnxruntime, own cache and sampler): ids identical
   bad SILKGEN REPO                bad inputs/options/models: non-zero exit, a message naming the
@@ -46,7 +50,7 @@ def reference(repo, trace, tok):
     return p.returncode, (p.stdout + p.stderr).strip()
 
 
-def check_golden(silkgen, repo, update):
+def check_golden(silkgen, repo, update, what=(".tokens.txt",)):
     gold = repo / "tests/models/golden"
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -71,6 +75,8 @@ def check_golden(silkgen, repo, update):
                 print(f"{name}: updated ({stats['tokens']} ids, {stats['faces']} faces); {msg}")
                 continue
             for suffix, got in ((".tokens.txt", tok), (".obj", out)):
+                if suffix not in what:
+                    continue
                 want = gold / (name + suffix)
                 if not want.exists():
                     failures.append(f"{name}: missing {want}")
@@ -212,6 +218,8 @@ def main():
     update = "--update" in sys.argv[4:]
     if mode == "golden":
         failures = check_golden(silkgen, repo, update)
+    elif mode == "golden_mesh":
+        failures = check_golden(silkgen, repo, False, what=(".obj",))
     elif mode == "reference":
         failures = check_reference(silkgen, repo)
         if failures is None:
