@@ -116,8 +116,24 @@ AugmentedReencoding ComponentsReencodingWithUnencodable(const DecodedMesh& mesh,
     if (touching.empty() || ambiguous) continue;
     auto g = BuildComponentGraph(LayersOfComponent(stream.components[c]));
     if (!g.ok()) continue;
-    const auto extra = TruthOnGraph(*g, touching, {});
-    if (extra.size() != touching.size()) continue;  // some touching face does not map whole
+    // Map the touching faces by grid coordinate (each corner unique in the component, checked
+    // above). Not TruthOnGraph: that also requires the three edges in the graph, and the edges
+    // of unencodable faces are typically exactly the ones the tokens do not carry.
+    std::map<Coord, int32_t> id;
+    for (int32_t v = base[c]; v < base[c + 1]; ++v) id[C(mesh.positions[static_cast<size_t>(v)])] = v - base[c];
+    std::vector<std::array<int32_t, 3>> extra;
+    for (const auto& f : touching) {
+      std::array<int32_t, 3> t{};
+      bool whole = true;
+      for (int k = 0; k < 3 && whole; ++k) {
+        auto it = id.find(C(f[k]));
+        whole = it != id.end();
+        if (whole) t[k] = it->second;
+      }
+      if (!whole) break;  // a corner outside this component: ambiguous, skip it
+      extra.push_back(t);
+    }
+    if (extra.size() != touching.size()) continue;
     out.checked[c] = 1;
     const std::vector<QVec> pos(mesh.positions.begin() + base[c], mesh.positions.begin() + base[c + 1]);
     auto with_extra = [&](std::vector<std::array<int32_t, 3>> faces) {

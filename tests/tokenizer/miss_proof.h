@@ -39,11 +39,12 @@ bool MissIsProvenAmbiguous(const DecodedMesh& mesh, const std::vector<char>& ree
 // Components with unencodable faces (§5.4): the real mesh holds faces the tokens cannot carry
 // (they still sit in the rotation lists), so no decoded face set re-encodes to the stream
 // alone. For each decoded component touched by an unencodable face (a corner at the grid
-// coordinate of one of its vertices), those faces are mapped to its vertex ids (TruthOnGraph)
-// and added both to our decoded faces and to the official processed faces of the component;
+// coordinate of one of its vertices), those faces are mapped to its vertex ids by grid
+// coordinate and added both to our decoded faces and to the official processed faces of the component;
 // each set is re-encoded (ComponentReencodesTo). The component is not checked when the
 // mapping is ambiguous: a touching face has a corner coordinate held by two vertices of the
-// component, or does not map whole (corner elsewhere, edge absent from the graph).
+// component, or has a corner outside it. (Their edges need not be in the component graph,
+// unlike TruthOnGraph: the tokens mostly do not carry them.)
 struct AugmentedReencoding {
   std::vector<char> checked;      // per component: touched by unencodable faces, mapping unambiguous
   std::vector<char> truth_equal;  // official faces + unencodable re-encode to the stream (soundness)
