@@ -117,6 +117,22 @@ bool Grammar::WindowOk(int32_t n_size, int32_t w) const {
   return true;
 }
 
+// Close to the length limit? Otherwise every completion of the current layer fits: it costs at
+// most this row's echoes + B + 199 rows of K O S B + all echoes + a forward X + E + EOS.
+bool Grammar::BudgetTight() const {
+  return remaining() < 4 * kMaxLayerSize + 2 * static_cast<int64_t>(incoming_total_) + 16;
+}
+
+// Phase kAfterS: fewest tokens that end the sequence if the layer closes with n_size vertices:
+// the current row's missing echoes (canonical) and its B, `future` = FutureRowsCost(b+1,
+// n_size) for the later rows (K O S, their echoes, B), then E and EOS. Every token of this
+// completion is admitted by the mask, so it is the exact minimum the budget checks use.
+int64_t Grammar::RowFinishCost(int32_t n_size, int64_t future) const {
+  const bool canonical = options_.window_rule == WindowRule::kCanonical;
+  const int64_t missing = canonical ? g_count_ - matched_[n_size] : 0;
+  return missing + 1 + future + 2;
+}
+
 // Largest layer size whose completion fits the length budget, given `row_rest` tokens still
 // needed by the current row (after the token being accepted) and `extra` reserved tokens.
 int32_t Grammar::BudgetMaxSize(int64_t extra) const {
@@ -336,22 +352,36 @@ Rejection Grammar::Accept(int32_t id) {
         if (e < 8 || e > kMaxLayerSize - 10)
           return Reject(RejectReason::kXOutOfRange, id, "X value " + std::to_string(e) + " outside [8, 190] (spec §6)");
         const int32_t target = b + e + 1;  // forward partner if the layer is longer than target
-        const int32_t budget_max = BudgetMaxSize(3 + g_count_);
+        // Length budget, exact (see RowFinishCost): a forward X adds one echo to a later row,
+        // an echo removes one from this row, a free wrap-around X (kUnion) changes nothing.
+        const bool tight = BudgetTight();
+        const int64_t rem = remaining();
         LayerSizeSet ok;
-        bool range_only = true;
+        bool range_only = true, budget_hit = false;
+        int64_t future = 0;
+        int32_t row = b + 1;
         for (int32_t n = row_sizes_.Next(0); n >= 0; n = row_sizes_.Next(n + 1)) {
           if (e > n - 10) continue;  // §6: X values <= N-10
           range_only = false;
-          if (n > budget_max) continue;
+          if (tight)
+            for (; row < n; ++row) future += 4 + incoming_count_[row];
+          const int64_t cost = tight ? RowFinishCost(n, future) : 0;
+          int64_t need = -1;
           if (e < n - 1 - b) {
-            ok.Set(n);  // forward statement to a later row: free now, that row must echo it
+            need = cost + 2;  // forward statement to a later row: free now, that row must echo it
           } else if (!canonical) {
-            ok.Set(n);
+            need = cost + 1;
           } else if (matched_[n] < g_count_ && e == n - 1 - g_desc_[matched_[n]]) {
-            ok.Set(n);  // wrap-around statement echoing an earlier row's forward X (§6 twice-emitted pairs)
+            need = cost;  // wrap-around statement echoing an earlier row's forward X (§6 twice-emitted pairs)
           }
+          if (need < 0) continue;
+          if (tight && need > rem) {
+            budget_hit = true;
+            continue;
+          }
+          ok.Set(n);
         }
-        if (ok.Empty() && !range_only && budget_max < kMaxLayerSize)
+        if (ok.Empty() && budget_hit)
           return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
         if (ok.Empty())
           return Reject(range_only ? RejectReason::kXOutOfRange : RejectReason::kNotCanonical, id,

@@ -12,8 +12,10 @@
 //  * layer size <= 200, layer index <= 199, total length <= max_length (EOS included);
 //  * geometric rule: no edge joins two vertices at the same grid position (holds for all 154
 //    official streams; positions themselves DO repeat inside components, spec §3.6).
-// Liveness: every accepted prefix can be completed to a legal sequence (the legal mask is
-// never empty before EOS), up to the length budget estimate documented at MinCloseTokens.
+// Liveness: every accepted prefix can be completed to a legal sequence within max_length (the
+// legal mask is never empty before EOS). Near the cap each token is admitted only if the exact
+// cheapest completion after it (finish the row, close at the cheapest size, E, EOS; see
+// RowFinishCost/BudgetMaxSize) still fits, and that completion only uses admitted tokens.
 // Guarantee (tested): every accepted sequence decodes (BuildMesh) to a mesh whose every edge
 // has at most 2 faces, consistently oriented, no face with two corners at one position, and
 // exactly one mesh component per C token with vertices.
@@ -110,6 +112,8 @@ class Grammar {
   void AddBetweenMask(int32_t min_start);
   bool WindowOk(int32_t n_size, int32_t w) const;
   int32_t BudgetMaxSize(int64_t extra) const;
+  bool BudgetTight() const;
+  int64_t RowFinishCost(int32_t n_size, int64_t future) const;
   int64_t FutureRowsCost(int32_t from_row, int32_t n_size) const;
   bool ColumnsClear(int32_t s, int32_t c) const;
   bool PositionForbidden(const QVec& p) const;

@@ -96,22 +96,29 @@ void Grammar::ComputeMask() {
     case GrammarPhase::kAfterS: {
       const int32_t b = static_cast<int32_t>(cur_layer().vertices.size()) - 1;
       const int32_t lo = std::max(last_x_ + 1, 8);
-      const int32_t bm_x = BudgetMaxSize(3 + g_count_);
-      int32_t maxhi = -1;
-      if (g_count_ == 0 || !canonical) {  // no required values: the largest size bounds the range
-        const int32_t n = row_sizes_.Prev(bm_x);
-        if (n >= 0) maxhi = canonical ? std::min(n - 10, n - 2 - b) : n - 10;
-      } else
-      for (int32_t n = row_sizes_.Next(0); n >= 0 && n <= bm_x; n = row_sizes_.Next(n + 1)) {
-        const int32_t hi = canonical ? std::min(n - 10, n - 2 - b) : n - 10;
-        maxhi = std::max(maxhi, hi);
-        if (canonical && matched_[n] < g_count_) {
+      // Mirrors the X case of Accept: per size, forward X need cost+2 tokens, a free
+      // wrap-around X (kUnion) cost+1, the next echo cost (RowFinishCost).
+      const bool tight = BudgetTight();
+      int32_t fwd_hi = -1;
+      int64_t future = 0;
+      int32_t row = b + 1;
+      // Unconstrained and no required values: the largest size bounds the range.
+      const int32_t first = (!tight && (g_count_ == 0 || !canonical)) ? row_sizes_.Max() : row_sizes_.Next(0);
+      for (int32_t n = first; n >= 0; n = row_sizes_.Next(n + 1)) {
+        if (tight)
+          for (; row < n; ++row) future += 4 + incoming_count_[row];
+        const int64_t cost = tight ? RowFinishCost(n, future) : 0;
+        const int32_t xhi = std::min(n - 10, kMaxLayerSize - 10);
+        if (!tight || cost + 2 <= rem) fwd_hi = std::max(fwd_hi, std::min(xhi, n - 2 - b));
+        if (!canonical) {
+          const int32_t wlo = std::max(lo, n - 1 - b);
+          if ((!tight || cost + 1 <= rem) && wlo <= xhi) mask_.SetRange(vocab::kXBegin + wlo, vocab::kXBegin + xhi + 1);
+        } else if (matched_[n] < g_count_ && (!tight || cost <= rem)) {
           const int32_t e = n - 1 - g_desc_[matched_[n]];
-          if (e >= lo && e <= n - 10) mask_.Set(vocab::kXBegin + e);
+          if (e >= lo && e <= xhi) mask_.Set(vocab::kXBegin + e);
         }
       }
-      maxhi = std::min(maxhi, kMaxLayerSize - 10);
-      if (maxhi >= lo) mask_.SetRange(vocab::kXBegin + lo, vocab::kXBegin + maxhi + 1);
+      if (fwd_hi >= lo) mask_.SetRange(vocab::kXBegin + lo, vocab::kXBegin + fwd_hi + 1);
       const int32_t bm_b = BudgetMaxSize(1);
       bool can_b = false;
       if (g_count_ == 0 || !canonical) can_b = row_sizes_.Next(0) >= 0 && row_sizes_.Next(0) <= bm_b;
