@@ -28,7 +28,7 @@ StatusOr<Layering> BuildLayers(const ProcessedMesh& mesh, const std::vector<Comp
   int32_t max_layer = 0;
 
   for (const Component& comp : kept) {
-    ComponentLayers cl;
+    ComponentVertexLayers cl;
     const VertexId root = ComponentRoot(mesh, comp);
     cl.layers.push_back({root});
     visited[static_cast<size_t>(root.get())] = 1;

@@ -9,12 +9,12 @@
 
 namespace silk {
 
-struct ComponentLayers {
+struct ComponentVertexLayers {
   std::vector<std::vector<VertexId>> layers;  // layers[0] = {root}
 };
 
 struct Layering {
-  std::vector<ComponentLayers> components;  // one per kept component, emission order
+  std::vector<ComponentVertexLayers> components;  // one per kept component, emission order
   std::vector<int32_t> layer_of;            // by VertexId; -1 = not emitted
   std::vector<int32_t> index_in_layer;      // by VertexId; -1 = not emitted
 };

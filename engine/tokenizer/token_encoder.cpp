@@ -24,7 +24,7 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
 // Fills the S/X/B parts of every vertex of one component's layers.
-StreamComponent EncodeComponent(const ProcessedMesh& mesh, const ComponentLayers& cl, const Layering& lay,
+StreamComponent EncodeComponent(const ProcessedMesh& mesh, const ComponentVertexLayers& cl, const Layering& lay,
                                 const RotationLists& rot) {
   StreamComponent sc;
   sc.layers.resize(cl.layers.size());
@@ -73,7 +73,7 @@ StatusOr<LayeredStream> EncodeProcessedMesh(ProcessedMesh mesh) {
   SILK_ASSIGN_OR_RETURN(RotationLists rot, BuildRotationLists(mesh, split.kept));
   SILK_ASSIGN_OR_RETURN(Layering lay, BuildLayers(mesh, split.kept, rot));
   LayeredStream stream;
-  for (const ComponentLayers& cl : lay.components) stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
+  for (const ComponentVertexLayers& cl : lay.components) stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
   return stream;
 }
 
@@ -121,7 +121,7 @@ StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions
                       " found)");
 
   res.stream.components.reserve(split.kept.size());
-  for (const ComponentLayers& cl : lay.components) res.stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
+  for (const ComponentVertexLayers& cl : lay.components) res.stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
   auto t6 = Clock::now();
   st.times.codecs = Seconds(t5, t6);
 
@@ -150,7 +150,7 @@ StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions
   for (char u : used) st.processed_vertices += u;
   st.processed_faces = static_cast<int32_t>(res.processed_faces.size());
   st.encodable_faces = st.processed_faces - static_cast<int32_t>(res.unencodable_faces.size());
-  for (const ComponentLayers& cl : lay.components) {
+  for (const ComponentVertexLayers& cl : lay.components) {
     st.layers += static_cast<int32_t>(cl.layers.size());
     if (static_cast<int32_t>(cl.layers.size()) > st.max_layer_count) st.max_layer_count = static_cast<int32_t>(cl.layers.size());
     for (const auto& l : cl.layers) {
