@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Generates from every dev-corpus mesh with the bundled model, grammar on vs --unconstrained
+# (same weights, seed 0, 1 thread, 512-token cap), summarises silkgen's verdicts and runs
+# `silk-export eval` (CD/HD/NC/|NC| + structure) on the grammar outputs.
+# Usage: scripts/eval_dev_generation.sh [OUT_DIR=out/dev_generation] [MAX_TOKENS=512]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out="${1:-out/dev_generation}"; max_tokens="${2:-512}"
+shared="${SILK_SHARED_DIR:-../shared}"
+for mode in grammar unconstrained; do
+  mkdir -p "$out/$mode"
+  extra=(); [ "$mode" = unconstrained ] && extra=(--unconstrained)
+  for f in "$shared"/corpus/dev/*.obj; do
+    n=$(basename "$f" .obj)
+    ./build/apps/silkgen "$f" -o "$out/$mode/$n.obj" --seed 0 --threads 1 --max-tokens "$max_tokens" \
+      "${extra[@]}" --stats "$out/$mode/$n.json" >/dev/null 2>"$out/$mode/$n.err" || true
+  done
+done
+python3 - "$out" <<'PY'
+import glob, json, sys
+out = sys.argv[1]
+for mode in ("grammar", "unconstrained"):
+    runs = [json.load(open(f)) for f in sorted(glob.glob(f"{out}/{mode}/*.json"))]
+    with_faces = [r for r in runs if r.get("faces", 0) > 0]
+    ok = [r for r in with_faces if r["verdicts"]["edge_manifold"] and r["verdicts"]["consistently_oriented"]]
+    print(f"{mode}: {len(runs)} runs, {len(with_faces)} with faces, {len(ok)} edge-manifold and consistently "
+          f"oriented, {sum(r['verdicts']['watertight'] for r in runs)} watertight, "
+          f"{sum(r.get('faces', 0) for r in runs)} faces, {sum(r['seconds']['total'] for r in runs):.1f} s")
+PY
+mkdir -p "$out/ref"
+for f in "$out"/grammar/*.obj; do ln -sf "$(cd "$shared/corpus/dev" && pwd)/$(basename "$f")" "$out/ref/$(basename "$f")"; done
+silk-export eval "$out/grammar" "$out/ref" --out "$out/eval.json" >/dev/null
+python3 -c "import json,sys; print(json.dumps(json.load(open(sys.argv[1]))['summary']))" "$out/eval.json"
