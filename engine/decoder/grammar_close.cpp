@@ -46,6 +46,22 @@ bool HasExtra(const StreamVertex& v, int32_t e) {
     if (x == e) return true;
   return false;
 }
+
+// How rows a < b of a layer of size n state their pair (spec §11.2): *sa, *sb = 0/1 when the
+// pair is covered by both rows (windows for N <= 9-style distances, extras for N >= 18),
+// -1 when the rows do not both cover it.
+void PairStatements(const std::vector<StreamVertex>& vs, int32_t n, int32_t a, int32_t b, int32_t* sa,
+                    int32_t* sb) {
+  const int32_t g = b - a;
+  *sa = *sb = -1;
+  if (g <= 8 && n - g <= 8) {
+    *sa = (vs[a].window >> (g - 1)) & 1;
+    *sb = (vs[b].window >> (n - g - 1)) & 1;
+  } else if (n >= 18 && g >= 9 && g <= n - 9) {
+    *sa = HasExtra(vs[a], g - 1);
+    *sb = HasExtra(vs[b], n - g - 1);
+  }
+}
 }  // namespace
 
 // Pairs stated by one covering row and denied by the other (spec §11.2, §12.2 "token-level
@@ -56,15 +72,8 @@ void Grammar::RecordFindings() {
   const int32_t comp = static_cast<int32_t>(stream_.components.size()) - 1;
   for (int32_t a = 0; a < n; ++a) {
     for (int32_t b = a + 1; b < n; ++b) {
-      const int32_t g = b - a;
-      int32_t sa = -1, sb = -1;
-      if (g <= 8 && n - g <= 8) {
-        sa = (vs[a].window >> (g - 1)) & 1;
-        sb = (vs[b].window >> (n - g - 1)) & 1;
-      } else if (n >= 18 && g >= 9 && g <= n - 9) {
-        sa = HasExtra(vs[a], g - 1);
-        sb = HasExtra(vs[b], n - g - 1);
-      }
+      int32_t sa, sb;
+      PairStatements(vs, n, a, b, &sa, &sb);
       if (sa >= 0 && sa != sb) findings_.push_back(WindowFinding{comp, layer_, a, b});
     }
   }
@@ -86,15 +95,8 @@ std::string Grammar::ExplainClose(int32_t n) const {
   if (canonical) {
     for (int32_t a = 0; a < n; ++a)
       for (int32_t b = a + 1; b < n; ++b) {
-        const int32_t g = b - a;
-        int32_t sa = -1, sb = -1;
-        if (g <= 8 && n - g <= 8) {
-          sa = (vs[a].window >> (g - 1)) & 1;
-          sb = (vs[b].window >> (n - g - 1)) & 1;
-        } else if (n >= 18 && g >= 9 && g <= n - 9) {
-          sa = HasExtra(vs[a], g - 1);
-          sb = HasExtra(vs[b], n - g - 1);
-        }
+        int32_t sa, sb;
+        PairStatements(vs, n, a, b, &sa, &sb);
         if (sa >= 0 && sa != sb)
           return "rows " + std::to_string(a) + " and " + std::to_string(b) +
                  " disagree about their pair (canonical consistency, spec §11.2)";

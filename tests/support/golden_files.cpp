@@ -123,6 +123,13 @@ bool ReadPlainObj(const std::string& path, silk::RawMesh* mesh) {
   return true;
 }
 
+std::vector<std::string> GoldenDevOkNames() {
+  std::vector<std::string> names;
+  for (const auto& row : ReadIndexTsv(SharedPath("spec/golden-dev/INDEX.tsv")))
+    if (row.count("status") && row.at("status") == "ok") names.push_back(row.at("name"));
+  return names;
+}
+
 std::vector<std::string> GoldenNames() {
   std::vector<std::string> names;
   const std::string dir = SharedPath("spec/golden");

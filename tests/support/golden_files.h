@@ -31,6 +31,9 @@ std::vector<std::map<std::string, std::string>> ReadIndexTsv(const std::string& 
 // each group minus one; nothing welded or cleaned (spec/golden/README.md step 1).
 bool ReadPlainObj(const std::string& path, silk::RawMesh* mesh);
 
+// Names of the golden-dev meshes the official code encodes (INDEX.tsv status "ok").
+std::vector<std::string> GoldenDevOkNames();
+
 // The 14 hand-made golden names in shared/spec/golden/.
 std::vector<std::string> GoldenNames();
 

@@ -32,25 +32,10 @@ using testing::CoordFace;
 using Coord = std::tuple<int32_t, int32_t, int32_t>;
 Coord C(const QVec& q) { return {q.x, q.y, q.z}; }
 
-std::vector<std::string> OkNames() {
-  std::ifstream in(testing::SharedPath("spec/golden-dev/INDEX.tsv"));
-  std::vector<std::string> names;
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string name, status;
-    std::getline(ss, name, '\t');
-    std::getline(ss, status, '\t');
-    if (status == "ok") names.push_back(name);
-  }
-  return names;
-}
-
 TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
   int64_t wrong = 0, proven_comp = 0, early = 0, near_unenc = 0, other = 0;
   int meshes = 0, components = 0, equal_components = 0, truth_checked = 0, truth_equal = 0;
-  for (const auto& name : OkNames()) {
+  for (const auto& name : testing::GoldenDevOkNames()) {
     const std::string base = testing::SharedPath("spec/golden-dev/" + name);
     const auto ids = testing::ReadIds(base + ".tokens.txt");
     auto stream = ReadTokens(ids);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "face_compare.h"
+#include "support/golden_files.h"
 #include "support/test_paths.h"
 #include "tokenizer/face_recovery.h"
 #include "tokenizer/face_verification.h"
@@ -19,24 +20,9 @@
 namespace silk {
 namespace {
 
-std::vector<std::string> OkNames() {
-  std::ifstream in(testing::SharedPath("spec/golden-dev/INDEX.tsv"));
-  std::vector<std::string> names;
-  std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string name, status;
-    std::getline(ss, name, '\t');
-    std::getline(ss, status, '\t');
-    if (status == "ok") names.push_back(name);
-  }
-  return names;
-}
-
 TEST(GoldenDevVerifySlow, TruthReplaysAndRecoveryScoresNoWorse) {
   int comps = 0, truth_exact = 0, ours_exact = 0, worse = 0, truth_score = 0, ours_score = 0;
-  for (const auto& name : OkNames()) {
+  for (const auto& name : testing::GoldenDevOkNames()) {
     const std::string base = testing::SharedPath("spec/golden-dev/" + name);
     auto stream = ReadTokens(testing::ReadIds(base + ".tokens.txt"));
     ASSERT_TRUE(stream.ok());
