@@ -20,7 +20,7 @@ import torch  # noqa: E402
 
 from silk_export.configs import get_config  # noqa: E402
 from silk_export.model import SilkModel  # noqa: E402
-from silk_export.onnx_export import export_model  # noqa: E402
+from silk_export.onnx_export import MODEL_VERSION, export_model  # noqa: E402
 
 
 def main() -> int:
@@ -33,7 +33,9 @@ def main() -> int:
     torch.set_num_threads(2)
     for name in a.configs:
         out = Path(a.out) / name
-        if (out / "model.json").exists() and (a.no_int8 or (out / "decoder.int8.onnx").exists()):
+        current = (out / "model.json").exists() and \
+            json.loads((out / "model.json").read_text()).get("model_version") == MODEL_VERSION
+        if current and (a.no_int8 or (out / "decoder.int8.onnx").exists()):
             print(f"{name}: already in {out}")
             continue
         t0 = time.time()

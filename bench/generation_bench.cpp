@@ -137,7 +137,7 @@ bool Measure(const Args& a, const std::string& name, bool int8, double bandwidth
 
   const int64_t deep = 4096;
   silk::KvCache cache;
-  if (!cache.Reserve(deep + a.steps + 1, d.kv_row_floats()).ok()) return false;
+  if (!cache.Reserve(deep + a.steps + 1, silk::ModelKvShape(d)).ok()) return false;
   std::uniform_int_distribution<int32_t> tok(0, c.eos_id - 1);
   auto feed_steps = [&](silk::DecoderRunner& runner, int n, double budget_s, int stop_depth) {
     int done = 0;
@@ -279,7 +279,7 @@ void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
   auto cross = silk::RunEncoder(model.impl(), pts.data(), c.dims.n_points);
   if (!cross.ok()) return;
   silk::KvCache cache;
-  if (!cache.Reserve(600, c.dims.kv_row_floats()).ok()) return;
+  if (!cache.Reserve(600, silk::ModelKvShape(c.dims)).ok()) return;
   silk::GrammarOptions go;
   go.max_length = 599;
   silk::SamplingParams sp;

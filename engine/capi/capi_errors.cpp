@@ -4,6 +4,9 @@
 
 #include "capi/capi_internal.h"
 #include "tokenizer/vocabulary_layout.h"
+#ifdef SILK_HAVE_RUNTIME
+#include "runtime/ort_support.h"
+#endif
 
 namespace silk::capi {
 namespace {
@@ -26,6 +29,17 @@ silk_status CodeOf(StatusCode c) {
   }
   return SILK_ERR_INTERNAL;
 }
+
+#ifdef SILK_HAVE_RUNTIME
+// onnxruntime's log lines, forwarded to the user's callback (verbose/info/warning/error/fatal).
+void ForwardOrt(int severity, const char* message, void*) {
+  Log(severity >= ORT_LOGGING_LEVEL_ERROR     ? SILK_LOG_ERROR
+      : severity == ORT_LOGGING_LEVEL_WARNING ? SILK_LOG_WARN
+      : severity == ORT_LOGGING_LEVEL_INFO    ? SILK_LOG_INFO
+                                              : SILK_LOG_DEBUG,
+      message);
+}
+#endif
 }  // namespace
 
 silk_status SetError(silk_status code, const std::string& message) {
@@ -74,9 +88,15 @@ const char* silk_version(void) {
 }
 
 void silk_set_log_callback(silk_log_fn fn, void* user_data) {
-  std::lock_guard<std::mutex> lock(silk::capi::g_log_mu);
-  silk::capi::g_log_fn = fn;
-  silk::capi::g_log_user = user_data;
+  {
+    std::lock_guard<std::mutex> lock(silk::capi::g_log_mu);
+    silk::capi::g_log_fn = fn;
+    silk::capi::g_log_user = user_data;
+  }
+#ifdef SILK_HAVE_RUNTIME
+  // Outside g_log_mu: the forwarder takes the sink's lock, then g_log_mu.
+  silk::SetOrtLogSink(fn ? silk::capi::ForwardOrt : nullptr, nullptr);
+#endif
 }
 
 silk_vocab_info silk_vocab(void) {

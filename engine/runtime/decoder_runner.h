@@ -1,9 +1,11 @@
-// DecoderRunner: feeds known tokens to decoder.onnx and keeps the KV cache. In kInPlace mode
-// past_kv is a tensor over the cache prefix and new_kv is bound as an output at offset P
-// (no copy, no allocation per step); kCopy is the naive baseline (fresh past_kv copy, ORT-
-// allocated outputs copied back) kept for the measurement in docs/runtime.md.
+// DecoderRunner: feeds known tokens to decoder.onnx and keeps the KV cache. In kInPlace mode each
+// layer's past_key/past_value is a tensor over its whole cache block and present_* is bound to
+// the same memory, so onnxruntime's GroupQueryAttention reads the prefix in place and writes only
+// the new rows (no copy, no allocation per step); kCopy is the naive baseline (fresh compact
+// prefix copies in, onnxruntime-allocated outputs copied back) kept for docs/runtime.md.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "runtime/kv_cache.h"
@@ -15,8 +17,10 @@ enum class KvMode { kInPlace, kCopy };
 
 class DecoderRunner {
  public:
-  // `cross_kv` ([L, 2, H, M, D] floats from the encoder) must outlive the runner. `max_chunk` bounds the tokens per decoder call (the
-  // logits buffer holds max_chunk rows).
+  // `cross_kv` ([L, 2, H, M, D] floats from the encoder) must outlive the runner; each layer's
+  // cross_key/cross_value input is a view into it. The cache must have been reserved with the
+  // model's KvShape. `max_chunk` bounds the tokens per decoder call (the logits buffer holds
+  // max_chunk rows).
   DecoderRunner(const Model::Impl& model, KvCache* cache, float* cross_kv, KvMode mode = KvMode::kInPlace,
                 int64_t max_chunk = 256);
 
@@ -35,10 +39,15 @@ class DecoderRunner {
   KvMode mode_;
   int64_t max_chunk_;
   int64_t vocab_;
+  std::vector<std::string> in_names_, out_names_;
+  std::vector<const char*> in_ptrs_, out_ptrs_;
   std::vector<int64_t> ids_, positions_;
   std::vector<float> logits_;     // [max_chunk, V] (kInPlace: the bound output)
   const float* last_logits_ = nullptr;
   int64_t calls_ = 0;
 };
+
+// The model's cache shape (layers, heads, head width).
+KvShape ModelKvShape(const ModelDims& dims);
 
 }  // namespace silk

@@ -70,7 +70,7 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
   float* cross_data = cross.GetTensorMutableData<float>();
 
   // Cache: BOS + every id but the last (EOS is never fed).
-  SILK_RETURN_IF_ERROR(cache_.Reserve(cap, cfg.dims.kv_row_floats()));
+  SILK_RETURN_IF_ERROR(cache_.Reserve(cap, ModelKvShape(cfg.dims)));
   st.kv_cache_bytes = cap * cfg.dims.kv_row_floats() * static_cast<int64_t>(sizeof(float));
   DecoderRunner runner(m, &cache_, cross_data, options.kv_in_place ? KvMode::kInPlace : KvMode::kCopy);
 

@@ -12,7 +12,7 @@ namespace silk {
 namespace {
 
 struct IoSpec {
-  const char* name;
+  std::string name;
   ONNXTensorElementDataType type;
   std::vector<int64_t> dims;  // -1: dynamic (not checked)
 };
@@ -53,6 +53,21 @@ Status CheckIo(Ort::Session& s, bool inputs, const std::vector<IoSpec>& want, co
 
 }  // namespace
 
+std::vector<std::string> DecoderInputNames(int64_t n_layers) {
+  std::vector<std::string> names = {"input_ids", "positions", "seqlens_k", "total_sequence_length"};
+  for (const char* group : {"past_", "cross_"})
+    for (int64_t l = 0; l < n_layers; ++l)
+      for (const char* kv : {"key_", "value_"}) names.push_back(group + std::string(kv) + std::to_string(l));
+  return names;
+}
+
+std::vector<std::string> DecoderOutputNames(int64_t n_layers) {
+  std::vector<std::string> names = {"logits"};
+  for (int64_t l = 0; l < n_layers; ++l)
+    for (const char* kv : {"key_", "value_"}) names.push_back("present_" + std::string(kv) + std::to_string(l));
+  return names;
+}
+
 Model::Model(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Model::~Model() = default;
 const ModelConfig& Model::config() const { return impl_->config; }
@@ -78,20 +93,28 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   const ModelDims& d = config.dims;
   const int64_t V = config.model_vocab_size;
   const std::vector<int64_t> cross = {d.n_layers, 2, d.n_heads, d.n_latents, d.head_dim};
-  const std::vector<int64_t> kv = {-1, d.n_layers, 2, d.n_heads, d.head_dim};
   constexpr auto kF = ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
   constexpr auto kI = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64;
+  constexpr auto kI32 = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;
+  std::vector<IoSpec> dec_in = {{"input_ids", kI, {1, -1}},
+                                {"positions", kI, {1, -1}},
+                                {"seqlens_k", kI32, {1}},
+                                {"total_sequence_length", kI32, {}}};
+  std::vector<IoSpec> dec_out = {{"logits", kF, {1, -1, V}}};
+  for (const std::string& name : DecoderInputNames(d.n_layers))
+    if (name.rfind("past_", 0) == 0) dec_in.push_back({name, kF, {1, d.n_heads, -1, d.head_dim}});
+  for (const std::string& name : DecoderInputNames(d.n_layers))
+    if (name.rfind("cross_", 0) == 0) dec_in.push_back({name, kF, {1, d.n_heads, d.n_latents, d.head_dim}});
+  for (const std::string& name : DecoderOutputNames(d.n_layers))
+    if (name != "logits") dec_out.push_back({name, kF, {1, d.n_heads, -1, d.head_dim}});
   Status s = OrtGuard("loading " + dir, [&]() -> Status {
     Ort::SessionOptions so = MakeOrtSessionOptions(impl->threads, options.allow_spinning);
     impl->encoder = std::make_unique<Ort::Session>(OrtEnvironment(), enc_path.c_str(), so);
     impl->decoder = std::make_unique<Ort::Session>(OrtEnvironment(), dec_path.c_str(), so);
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, true, {{"points", kF, {1, -1, 6}}}, enc_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, false, {{"cross_kv", kF, cross}}, enc_path));
-    SILK_RETURN_IF_ERROR(CheckIo(*impl->decoder, true,
-                                 {{"input_ids", kI, {1, -1}}, {"positions", kI, {1, -1}},
-                                  {"past_kv", kF, kv}, {"cross_kv", kF, cross}},
-                                 dec_path));
-    SILK_RETURN_IF_ERROR(CheckIo(*impl->decoder, false, {{"logits", kF, {1, -1, V}}, {"new_kv", kF, kv}}, dec_path));
+    SILK_RETURN_IF_ERROR(CheckIo(*impl->decoder, true, dec_in, dec_path));
+    SILK_RETURN_IF_ERROR(CheckIo(*impl->decoder, false, dec_out, dec_path));
     return Status::Ok();
   });
   SILK_RETURN_IF_ERROR(s);

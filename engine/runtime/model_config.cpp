@@ -41,7 +41,9 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   SILK_RETURN_IF_ERROR(GetInt(j, "model_version", name, &c.model_version));
   if (c.model_version != kSupportedModelVersion)
     return Bad(name, "model_version " + std::to_string(c.model_version) + " is not supported (this engine reads " +
-                         std::to_string(kSupportedModelVersion) + ")");
+                         std::to_string(kSupportedModelVersion) +
+                         (c.model_version < kSupportedModelVersion ? "; re-export the checkpoint with `silk-export export`)"
+                                                                   : "; a newer libsilk is needed)"));
   if (j.value("token_format", std::string()) != vocab::k_token_format)
     return Bad(name, std::string("token_format is not \"") + vocab::k_token_format + "\"");
   SILK_RETURN_IF_ERROR(GetInt(j, "token_format_version", name, &c.token_format_version));
@@ -80,6 +82,9 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   if (m.d_model <= 0 || m.n_layers <= 0 || m.n_heads <= 0 || m.head_dim <= 0 || m.n_latents <= 0 ||
       m.n_points <= 0 || m.max_seq_len < 2)
     return Status(StatusCode::kParseError, dn + ": every dimension must be positive (max_seq_len >= 2)");
+  if (m.head_dim % 8 != 0 || m.d_model != m.n_heads * m.head_dim)
+    return Bad(name, "dims.head_dim " + std::to_string(m.head_dim) +
+                         " must be a multiple of 8 and d_model = n_heads * head_dim (docs/model_contract.md)");
   if (m.max_seq_len > vocab::k_max_seq_length + 1)
     return Bad(name, "dims.max_seq_len " + std::to_string(m.max_seq_len) + " exceeds the format's " +
                          std::to_string(vocab::k_max_seq_length) + " tokens + BOS");

@@ -9,7 +9,9 @@
 
 namespace silk {
 
-inline constexpr int32_t kSupportedModelVersion = 1;
+// 2: per-layer head-major self-attention caches shared between past_* and present_*
+// (GroupQueryAttention); 1 had one time-major past_kv tensor and is refused (re-export it).
+inline constexpr int32_t kSupportedModelVersion = 2;
 
 struct ModelDims {
   int32_t d_model = 0, n_layers = 0, n_heads = 0, head_dim = 0, n_latents = 0;

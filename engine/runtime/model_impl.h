@@ -18,6 +18,12 @@ struct Model::Impl {
   Ort::MemoryInfo cpu_memory = Ort::MemoryInfo::CreateCpu(OrtArenaAllocator, OrtMemTypeDefault);
 };
 
+// decoder.onnx's input and output names in contract order (docs/model_contract.md):
+// input_ids, positions, seqlens_k, total_sequence_length, past_{key,value}_l, cross_{key,value}_l;
+// logits, present_{key,value}_l.
+std::vector<std::string> DecoderInputNames(int64_t n_layers);
+std::vector<std::string> DecoderOutputNames(int64_t n_layers);
+
 // Runs encoder.onnx on `n_points` rows of 6 floats (normalised xyz, unit normal); the result
 // is the cross_kv tensor [L, 2, H, M, D] that every decoder call then reads unchanged.
 StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points);

@@ -2,10 +2,30 @@
 // intra-op thread pools sized by the caller.
 #include "runtime/ort_support.h"
 
+#include <mutex>
+#include <string>
+
 namespace silk {
 
+namespace {
+std::mutex g_sink_mu;
+OrtLogSink g_sink = nullptr;
+void* g_sink_user = nullptr;
+
+void ForwardOrtLog(void*, OrtLoggingLevel severity, const char*, const char*, const char*, const char* message) {
+  std::lock_guard<std::mutex> lock(g_sink_mu);
+  if (g_sink) g_sink(static_cast<int>(severity), (std::string("onnxruntime: ") + message).c_str(), g_sink_user);
+}
+}  // namespace
+
+void SetOrtLogSink(OrtLogSink sink, void* user_data) {
+  std::lock_guard<std::mutex> lock(g_sink_mu);
+  g_sink = sink;
+  g_sink_user = user_data;
+}
+
 Ort::Env& OrtEnvironment() {
-  static Ort::Env env(ORT_LOGGING_LEVEL_WARNING, "silk");
+  static Ort::Env env(ORT_LOGGING_LEVEL_WARNING, "silk", ForwardOrtLog, nullptr);
   return env;
 }
 

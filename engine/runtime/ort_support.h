@@ -13,6 +13,12 @@
 namespace silk {
 
 Ort::Env& OrtEnvironment();
+
+// onnxruntime's own log lines (warnings and errors; their text also reaches the caller inside
+// the returned Status) go to this sink instead of stderr. Default: none, nothing is printed.
+// `severity` is onnxruntime's OrtLoggingLevel. Process-wide, thread-safe.
+using OrtLogSink = void (*)(int severity, const char* message, void* user_data);
+void SetOrtLogSink(OrtLogSink sink, void* user_data);
 Ort::SessionOptions MakeOrtSessionOptions(int threads, bool allow_spinning);
 
 template <typename F>

@@ -18,9 +18,13 @@ class ModelConfig:
     fourier_freqs: int = 8
     n_points: int = 4096
 
+    def __post_init__(self):
+        if self.d_model % self.n_heads or (self.d_model // self.n_heads) % 8:
+            raise ValueError(f"config {self.name}: d_model / n_heads must be a whole multiple of 8 "
+                             "(onnxruntime's GroupQueryAttention in the exported decoder needs it)")
+
     @property
     def head_dim(self) -> int:
-        assert self.d_model % self.n_heads == 0
         return self.d_model // self.n_heads
 
     @property

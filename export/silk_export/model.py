@@ -33,18 +33,29 @@ class DecoderLayer(nn.Module):
     def forward(self, x, cross_k, cross_v, past_k=None, past_v=None, allowed=None, fused=True):
         """x [B,T,d]; past_k/v [B,H,P,D] or None. Returns (x, k_new, v_new) with k/v [B,H,T,D]."""
         h = self.self_attn.n_heads
-        y = self.norm_self(x)
-        q = split_heads(self.self_attn.q(y), h)
-        k_new, v_new = self.self_attn.keys_values(y)
-        k = k_new if past_k is None else torch.cat([past_k, k_new], dim=2)
-        v = v_new if past_v is None else torch.cat([past_v, v_new], dim=2)
-        a = attend(q, k, v, causal=allowed is None, allowed=allowed, fused=fused)
-        x = x + self.self_attn.o(merge_heads(a))
+
+        def self_attention(y):
+            q = self.self_attn.q(y)
+            k_new, v_new = self.self_attn.keys_values(y)
+            k = k_new if past_k is None else torch.cat([past_k, k_new], dim=2)
+            v = v_new if past_v is None else torch.cat([past_v, v_new], dim=2)
+            a = attend(split_heads(q, h), k, v, causal=allowed is None, allowed=allowed, fused=fused)
+            return merge_heads(a), (k_new, v_new)
+
+        x, (k_new, v_new) = self.block(x, cross_k, cross_v, self_attention, fused)
+        return x, k_new, v_new
+
+    def block(self, x, cross_k, cross_v, self_attention, fused=True):
+        """The layer's residual structure with the self-attention step supplied by the caller:
+        self_attention(normed x [B,T,d]) -> (heads merged [B,T,d], anything to hand back), using
+        self.self_attn's projections. Training and the ONNX decoder graph differ only there."""
+        a, extra = self_attention(self.norm_self(x))
+        x = x + self.self_attn.o(a)
         y = self.norm_cross(x)
-        q = split_heads(self.cross_attn.q(y), h)
+        q = split_heads(self.cross_attn.q(y), self.cross_attn.n_heads)
         x = x + self.cross_attn.o(merge_heads(attend(q, cross_k, cross_v, fused=fused)))
         x = x + self.ff(self.norm_ff(x))
-        return x, k_new, v_new
+        return x, extra
 
 
 class SilkModel(nn.Module):

@@ -9,12 +9,12 @@ from pathlib import Path
 import torch
 
 from . import __version__
-from .onnx_graphs import DecoderGraph, EncoderGraph
+from .onnx_graphs import DecoderGraph, EncoderGraph, decoder_input_names, decoder_output_names
 from .model import SilkModel
 from .vocab import load_vocab
 
 OPSET = 17
-MODEL_VERSION = 1
+MODEL_VERSION = 2
 
 
 def export_encoder(model: SilkModel, path: Path) -> None:
@@ -29,14 +29,18 @@ def export_decoder(model: SilkModel, path: Path) -> None:
     t, p = 3, 5
     ids = torch.tensor([[model.bos_id, 0, 5700]], dtype=torch.int64)
     pos = torch.arange(p, p + t, dtype=torch.int64).unsqueeze(0)
-    past = torch.randn(p, c.n_layers, 2, c.n_heads, c.head_dim)
-    cross = torch.randn(c.n_layers, 2, c.n_heads, c.n_latents, c.head_dim)
-    torch.onnx.export(DecoderGraph(model), (ids, pos, past, cross), str(path),
-                      input_names=["input_ids", "positions", "past_kv", "cross_kv"],
-                      output_names=["logits", "new_kv"],
-                      dynamic_axes={"input_ids": {1: "T"}, "positions": {1: "T"}, "past_kv": {0: "P"},
-                                    "logits": {1: "T"}, "new_kv": {0: "T"}},
-                      opset_version=OPSET, do_constant_folding=True, dynamo=False)
+    seqlens_k = torch.tensor([p + t - 1], dtype=torch.int32)
+    total = torch.tensor(p + t, dtype=torch.int32)
+    past = [torch.randn(1, c.n_heads, p, c.head_dim) for _ in range(2 * c.n_layers)]
+    cross = [torch.randn(1, c.n_heads, c.n_latents, c.head_dim) for _ in range(2 * c.n_layers)]
+    in_names, out_names = decoder_input_names(c.n_layers), decoder_output_names(c.n_layers)
+    axes = {"input_ids": {1: "T"}, "positions": {1: "T"}, "logits": {1: "T"}}
+    axes.update({name: {2: "C"} for name in in_names if name.startswith("past_")})
+    axes.update({name: {2: "C_present"} for name in out_names if name.startswith("present_")})
+    torch.onnx.export(DecoderGraph(model), (ids, pos, seqlens_k, total, *past, *cross), str(path),
+                      input_names=in_names, output_names=out_names, dynamic_axes=axes,
+                      opset_version=OPSET, custom_opsets={"com.microsoft": 1}, do_constant_folding=True,
+                      dynamo=False)
 
 
 def int8_unsafe_matmuls(path: Path) -> list[str]:

@@ -1,10 +1,12 @@
-"""The two graphs of docs/model_contract.md as thin nn.Modules over SilkModel: batch 1,
-time-major self-attention K/V [P, L, 2, H, D], per-layer cross K/V [L, 2, H, M, D]."""
+"""The two graphs of docs/model_contract.md (model_version 2) as thin nn.Modules over SilkModel.
+The decoder's self-attention is onnxruntime's GroupQueryAttention over one head-major cache per
+layer and K/V, so the runtime can share past_* and present_* and nothing is copied per step."""
 from __future__ import annotations
 
 import torch
 from torch import nn
 
+from .layers import attend, merge_heads, split_heads
 from .model import SilkModel
 
 
@@ -20,27 +22,66 @@ class EncoderGraph(nn.Module):
         return torch.stack([torch.stack([k[0], v[0]], dim=0) for k, v in kv], dim=0)
 
 
-def split_past(past_kv: torch.Tensor, n_layers: int) -> list[tuple[torch.Tensor, torch.Tensor]]:
-    """[P,L,2,H,D] -> per layer (K, V) [1,H,P,D]."""
-    return [(past_kv[:, l, 0].permute(1, 0, 2).unsqueeze(0), past_kv[:, l, 1].permute(1, 0, 2).unsqueeze(0))
-            for l in range(n_layers)]
+def decoder_input_names(n_layers: int) -> list[str]:
+    names = ["input_ids", "positions", "seqlens_k", "total_sequence_length"]
+    names += [f"past_{kv}_{l}" for l in range(n_layers) for kv in ("key", "value")]
+    names += [f"cross_{kv}_{l}" for l in range(n_layers) for kv in ("key", "value")]
+    return names
 
 
-def join_new(new: list[tuple[torch.Tensor, torch.Tensor]]) -> torch.Tensor:
-    """per layer (K, V) [1,H,T,D] -> [T,L,2,H,D]."""
-    return torch.stack([torch.stack([k[0].permute(1, 0, 2), v[0].permute(1, 0, 2)], dim=1) for k, v in new], dim=1)
+def decoder_output_names(n_layers: int) -> list[str]:
+    return ["logits"] + [f"present_{kv}_{l}" for l in range(n_layers) for kv in ("key", "value")]
+
+
+class GroupQueryAttention(torch.autograd.Function):
+    """Exported as com.microsoft GroupQueryAttention (num_heads = kv_num_heads = H, scale
+    1/sqrt(D), no rotary). The eager forward, run only while tracing, is the same computation
+    for an unshared cache: past [1,H,P,D] holds positions 0..P-1 and present = past + new."""
+
+    @staticmethod
+    def forward(ctx, q, k, v, past_k, past_v, seqlens_k, total, n_heads: int):
+        k_all = torch.cat([past_k, split_heads(k, n_heads)], dim=2)
+        v_all = torch.cat([past_v, split_heads(v, n_heads)], dim=2)
+        t, p = q.shape[1], past_k.shape[2]
+        allowed = torch.ones(t, p + t, dtype=torch.bool).tril(diagonal=p)
+        a = attend(split_heads(q, n_heads), k_all, v_all, allowed=allowed, fused=False)
+        return merge_heads(a), k_all, v_all
+
+    @staticmethod
+    def symbolic(g, q, k, v, past_k, past_v, seqlens_k, total, n_heads: int):
+        out, present_k, present_v = g.op("com.microsoft::GroupQueryAttention", q, k, v, past_k, past_v, seqlens_k,
+                                         total, num_heads_i=n_heads, kv_num_heads_i=n_heads, outputs=3)
+        out.setType(q.type())  # onnx has no shape inference for the contrib op: state the shapes
+        present_k.setType(past_k.type())
+        present_v.setType(past_v.type())
+        return out, present_k, present_v
 
 
 class DecoderGraph(nn.Module):
-    """(input_ids [1,T], positions [1,T], past_kv [P,L,2,H,D], cross_kv [L,2,H,M,D])
-    -> (logits [1,T,10269], new_kv [T,L,2,H,D])."""
+    """(input_ids [1,T], positions [1,T], seqlens_k [1] = P+T-1, total_sequence_length [] = P+T,
+    past_key_l / past_value_l [1,H,C,D], cross_key_l / cross_value_l [1,H,M,D])
+    -> (logits [1,T,10269], present_key_l / present_value_l [1,H,C',D]).
+
+    With C >= P+T and present bound to the past buffer, the new rows land at P..P+T-1 in place
+    (C' = C); with past of exactly P rows and present left to onnxruntime, C' = P+T."""
 
     def __init__(self, model: SilkModel):
         super().__init__()
         self.model = model
 
-    def forward(self, input_ids, positions, past_kv, cross_kv):
-        n = self.model.cfg.n_layers
-        cross = [(cross_kv[l, 0].unsqueeze(0), cross_kv[l, 1].unsqueeze(0)) for l in range(n)]
-        logits, new = self.model.step(input_ids, positions, split_past(past_kv, n), cross, fused=False)
-        return logits, join_new(new)
+    def forward(self, input_ids, positions, seqlens_k, total_sequence_length, *caches):
+        m = self.model
+        n, h = m.cfg.n_layers, m.cfg.n_heads
+        past, cross = caches[:2 * n], caches[2 * n:]
+        x = m.embed(input_ids, positions)
+        present = []
+        for l, layer in enumerate(m.layers):
+            def self_attention(y, layer=layer, l=l):
+                a, k_all, v_all = GroupQueryAttention.apply(
+                    layer.self_attn.q(y), layer.self_attn.k(y), layer.self_attn.v(y), past[2 * l], past[2 * l + 1],
+                    seqlens_k, total_sequence_length, h)
+                return a, (k_all, v_all)
+
+            x, kv = layer.block(x, cross[2 * l], cross[2 * l + 1], self_attention, fused=False)
+            present += list(kv)
+        return (m.head(m.norm(x)), *present)

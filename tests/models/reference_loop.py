@@ -4,7 +4,8 @@ API: given a trace written by `silkgen --trace` (the encoder points, every gener
 the grammar forced it, and the legal set it was sampled from), this script
 
   1. runs encoder.onnx on the same points,
-  2. replays the generation with its own KV cache (numpy concatenation, no shared code) and its
+  2. replays the generation with its own KV cache (compact per-layer arrays that onnxruntime
+     returns grown by the new rows, i.e. the unshared mode of the contract; no shared code) and its
      own copy of the sampling chain (SplitMix64, temperature -> top-k -> top-p) and requires
      every sampled id to come out identical,
   3. runs decoder.onnx once over the whole sequence (no cache) and requires the logits at the
@@ -107,8 +108,24 @@ def main() -> int:
     dec = ort.InferenceSession(f"{a.model}/{meta['files']['decoder']}", so, providers=["CPUExecutionProvider"])
 
     points = np.asarray(trace["points"], dtype=np.float32).reshape(1, -1, 6)
-    cross = enc.run(None, {"points": points})[0]
-    past = np.zeros((0, d["n_layers"], 2, d["n_heads"], d["head_dim"]), np.float32)
+    cross = enc.run(None, {"points": points})[0]  # [L, 2, H, M, D]
+    n_layers = d["n_layers"]
+    kv_names = [f"{kv}_{l}" for l in range(n_layers) for kv in ("key", "value")]
+    cross_feeds = {f"cross_{name}": np.ascontiguousarray(cross[i // 2, i % 2][None]) for i, name in enumerate(kv_names)}
+    empty = np.zeros((1, d["n_heads"], 0, d["head_dim"]), np.float32)
+
+    def run(ids_, first, past_):
+        """decoder.onnx on ids_ at positions first..; returns (logits, the grown per-layer cache)."""
+        n = len(ids_)
+        feeds = {"input_ids": np.asarray([ids_], np.int64),
+                 "positions": np.arange(first, first + n, dtype=np.int64)[None, :],
+                 "seqlens_k": np.asarray([first + n - 1], np.int32),
+                 "total_sequence_length": np.asarray(first + n, np.int32), **cross_feeds}
+        feeds.update({f"past_{name}": past_[i] for i, name in enumerate(kv_names)})
+        outs = dec.run(None, feeds)
+        return outs[0], outs[1:]
+
+    past = [empty] * len(kv_names)
 
     rng = SplitMix64(int(s["seed"]))
     pending = [bos]
@@ -120,11 +137,7 @@ def main() -> int:
             ids.append(step["id"])
             pending.append(step["id"])
             continue
-        n = len(pending)
-        positions = np.arange(len(fed), len(fed) + n, dtype=np.int64)[None, :]
-        logits, new_kv = dec.run(None, {"input_ids": np.asarray([pending], np.int64), "positions": positions,
-                                        "past_kv": past, "cross_kv": cross})
-        past = np.concatenate([past, new_kv], axis=0)
+        logits, past = run(pending, len(fed), past)
         fed += pending
         row = logits[0, -1]
         candidates = [i for b, e in step["legal"] for i in range(b, e)]
@@ -142,9 +155,7 @@ def main() -> int:
     # One pass over the whole sequence without a cache.
     full = [bos] + ids[:-1] if ids and ids[-1] == meta["vocab"]["eos_id"] else [bos] + ids
     full = full[: max(p for p, _ in checked) + 1] if checked else full
-    logits, _ = dec.run(None, {"input_ids": np.asarray([full], np.int64),
-                               "positions": np.arange(len(full), dtype=np.int64)[None, :],
-                               "past_kv": past[:0], "cross_kv": cross})
+    logits, _ = run(full, 0, [empty] * len(kv_names))
     worst = 0.0
     for p, row in checked:
         worst = max(worst, float(np.abs(logits[0, p] - row).max()))

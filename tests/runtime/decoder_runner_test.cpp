@@ -21,7 +21,7 @@ Fed FeedAll(const Model& model, const std::vector<int32_t>& ids, int64_t chunk, 
   auto cross = RunEncoder(model.impl(), testing::SamplePoints(model).data(), model.config().dims.n_points);
   EXPECT_TRUE(cross.ok());
   KvCache cache;
-  EXPECT_TRUE(cache.Reserve(64, model.config().dims.kv_row_floats()).ok());
+  EXPECT_TRUE(cache.Reserve(64, ModelKvShape(model.config().dims)).ok());
   DecoderRunner runner(model.impl(), &cache, cross->GetTensorMutableData<float>(), mode);
   for (size_t i = 0; i < ids.size(); i += chunk) {
     const int64_t n = std::min<int64_t>(chunk, ids.size() - i);
@@ -30,7 +30,8 @@ Fed FeedAll(const Model& model, const std::vector<int32_t>& ids, int64_t chunk, 
   }
   Fed f;
   f.logits.assign(runner.last_logits(), runner.last_logits() + model.config().model_vocab_size);
-  f.cache.assign(cache.data(), cache.data() + cache.length() * cache.row_floats());
+  f.cache.resize(static_cast<size_t>(cache.length() * cache.shape().position_floats()));
+  cache.CopyTimeMajor(f.cache.data());
   f.calls = runner.calls();
   return f;
 }
@@ -71,7 +72,7 @@ TEST(DecoderRunner, RefusesOverflow) {
   auto cross = RunEncoder(model->impl(), testing::SamplePoints(*model).data(), model->config().dims.n_points);
   ASSERT_TRUE(cross.ok());
   KvCache cache;
-  ASSERT_TRUE(cache.Reserve(2, model->config().dims.kv_row_floats()).ok());
+  ASSERT_TRUE(cache.Reserve(2, ModelKvShape(model->config().dims)).ok());
   DecoderRunner runner(model->impl(), &cache, cross->GetTensorMutableData<float>());
   const int32_t ids[3] = {10269, 0, 1};
   Status s = runner.Feed(ids, 3);

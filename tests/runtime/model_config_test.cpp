@@ -30,7 +30,7 @@ TEST(ModelConfig, TinyModelParses) {
   ASSERT_TRUE(c.ok()) << c.status().ToString();
   EXPECT_EQ(c->bos_id, 10269);
   EXPECT_EQ(c->dims.n_layers, 2);
-  EXPECT_EQ(c->dims.kv_row_floats(), 2 * 2 * 2 * 2);
+  EXPECT_EQ(c->dims.kv_row_floats(), 2 * 2 * 2 * 8);
   EXPECT_EQ(c->encoder_file, "encoder.onnx");
   EXPECT_TRUE(c->decoder_int8_file.empty());
 }
@@ -43,7 +43,8 @@ TEST(ModelConfig, RefusesMismatches) {
   };
   const std::vector<Case> cases = {
       {"format", [](auto& j) { j["format"] = "other"; }, "silk-model"},
-      {"model version", [](auto& j) { j["model_version"] = 2; }, "model_version 2"},
+      {"older model version", [](auto& j) { j["model_version"] = 1; }, "re-export"},
+      {"newer model version", [](auto& j) { j["model_version"] = 3; }, "newer libsilk"},
       {"token format", [](auto& j) { j["token_format"] = "meshgpt"; }, "token_format"},
       {"token format version", [](auto& j) { j["token_format_version"] = 2; }, "token_format_version"},
       {"eos", [](auto& j) { j["vocab"]["eos_id"] = 5; }, "eos_id"},
@@ -51,6 +52,7 @@ TEST(ModelConfig, RefusesMismatches) {
       {"rows", [](auto& j) { j["vocab"]["embedding_rows"] = 10269; }, "embedding_rows"},
       {"missing dims", [](auto& j) { j.erase("dims"); }, "dims"},
       {"zero dim", [](auto& j) { j["dims"]["n_heads"] = 0; }, "positive"},
+      {"head width", [](auto& j) { j["dims"]["head_dim"] = 4; }, "multiple of 8"},
       {"too long", [](auto& j) { j["dims"]["max_seq_len"] = 20000; }, "max_seq_len"},
       {"file path", [](auto& j) { j["files"]["decoder"] = "../x.onnx"; }, "plain names"},
       {"bound", [](auto& j) { j["normalize_bound"] = 3; }, "normalize_bound"},
