@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Writes the reader fuzzers' seed corpora under fuzz/corpus/<target>/: small valid meshes
-in every encoding (generated here) plus the project's own small golden and bad inputs.
+in every encoding (generated here) plus the project's own small golden and bad inputs; also
+point-cloud PLYs and model.json files. Only the folders of the targets below are replaced.
 Usage: fuzz/make_seeds.py [path/to/shared]   (default: ../shared beside the repo)"""
 import base64, json, pathlib, shutil, struct, sys
 
@@ -35,6 +36,28 @@ def ply(fmt):
         return (head + body).encode()
     body = b"".join(struct.pack(e + "fffB", *v, 7) for v in CUBE_V)
     body += b"".join(struct.pack(e + "B4i", 4, *q) for q in CUBE_Q) + struct.pack(e + "ii", 0, 1)
+    return head.encode() + body
+
+
+def ply_points(fmt, normals=True, faces=False, double=False):
+    """A PLY point cloud (the cube's corners, outward normals), optionally with the cube's faces."""
+    e = "<" if fmt == "binary_little_endian" else ">"
+    t = "double" if double else "float"
+    props = ["x", "y", "z"] + (["nx", "ny", "nz"] if normals else [])
+    head = f"ply\nformat {fmt} 1.0\nelement vertex 8\n" + "".join(f"property {t} {p}\n" for p in props)
+    if faces:
+        head += "element face 6\nproperty list uchar int vertex_indices\n"
+    head += "end_header\n"
+    rows = [list(v) + ([c - 0.5 for c in v] if normals else []) for v in CUBE_V]
+    if fmt == "ascii":
+        body = "".join(" ".join(repr(float(x)) for x in r) + "\n" for r in rows)
+        if faces:
+            body += "".join("4 " + " ".join(map(str, q)) + "\n" for q in CUBE_Q)
+        return (head + body).encode()
+    code = "d" if double else "f"
+    body = b"".join(struct.pack(e + code * len(r), *r) for r in rows)
+    if faces:
+        body += b"".join(struct.pack(e + "B4i", 4, *q) for q in CUBE_Q)
     return head.encode() + body
 
 
@@ -81,9 +104,14 @@ def glb(doc, buf):
             struct.pack("<I", len(buf)) + b"BIN\0" + buf)
 
 
+OWNED = ("obj_reader_fuzzer", "ply_reader_fuzzer", "ply_point_cloud_fuzzer", "stl_reader_fuzzer", "off_reader_fuzzer",
+         "gltf_reader_fuzzer", "glb_reader_fuzzer", "model_config_fuzzer")
+
+
 def main():
-    if out.exists():
-        shutil.rmtree(out)
+    for target in OWNED:  # the token/grammar/pmd corpora are made elsewhere and keep regressions
+        if (out / target).exists():
+            shutil.rmtree(out / target)
     # OBJ
     put("obj_reader_fuzzer", "forms.obj", "# all face forms\nv 0 0 0\nv 1 0 0 1\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
         "o a\ng b\nusemtl m\ns 1\nf 1/1/1 2/1/1 3/1/1\nf -4//1 -2//1 -1//1\nf 1/1 2/1 3/1 4/1\nl 1 2\n")
@@ -95,6 +123,21 @@ def main():
     for fmt in ("ascii", "binary_little_endian", "binary_big_endian"):
         put("ply_reader_fuzzer", f"cube_{fmt}.ply", ply(fmt))
     copy("ply_reader_fuzzer", shared / "corpus/bad/truncated_body.ply")
+    # PLY point clouds (silkgen's input): with/without normals, float/double, with faces
+    put("ply_point_cloud_fuzzer", "points_normals_ascii.ply", ply_points("ascii"))
+    put("ply_point_cloud_fuzzer", "points_normals_le.ply", ply_points("binary_little_endian"))
+    put("ply_point_cloud_fuzzer", "points_normals_be_double.ply", ply_points("binary_big_endian", double=True))
+    put("ply_point_cloud_fuzzer", "points_only_ascii.ply", ply_points("ascii", normals=False))
+    put("ply_point_cloud_fuzzer", "cube_with_normals.ply", ply_points("binary_little_endian", faces=True))
+    # model.json sidecars (docs/model_contract.md)
+    copy("model_config_fuzzer", repo / "tests/models/tiny/model.json")
+    meta = json.loads((repo / "tests/models/tiny/model.json").read_text())
+    meta.pop("versions", None)
+    meta.pop("training", None)
+    put("model_config_fuzzer", "minimal.json", json.dumps(meta, separators=(",", ":")))
+    meta["files"]["decoder_int8"] = "decoder.int8.onnx"
+    meta["dims"]["head_dim"] = 12
+    put("model_config_fuzzer", "bad_head_dim.json", json.dumps(meta))
     # STL
     put("stl_reader_fuzzer", "cube_ascii.stl", stl_ascii())
     put("stl_reader_fuzzer", "cube_binary.stl", stl_binary(b"binary seed"))

@@ -82,7 +82,7 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   if (m.d_model <= 0 || m.n_layers <= 0 || m.n_heads <= 0 || m.head_dim <= 0 || m.n_latents <= 0 ||
       m.n_points <= 0 || m.max_seq_len < 2)
     return Status(StatusCode::kParseError, dn + ": every dimension must be positive (max_seq_len >= 2)");
-  if (m.head_dim % 8 != 0 || m.d_model != m.n_heads * m.head_dim)
+  if (m.head_dim % 8 != 0 || int64_t{m.d_model} != int64_t{m.n_heads} * m.head_dim)
     return Bad(name, "dims.head_dim " + std::to_string(m.head_dim) +
                          " must be a multiple of 8 and d_model = n_heads * head_dim (docs/model_contract.md)");
   if (m.max_seq_len > vocab::k_max_seq_length + 1)
