@@ -1,6 +1,8 @@
 // model.json parsing and the compatibility checks of docs/model_contract.md.
 #include "runtime/model_config.h"
 
+#include <cstdint>
+
 #include <nlohmann/json.hpp>
 
 #include "io/file_bytes.h"
@@ -21,7 +23,24 @@ Status GetInt(const Json& obj, const char* key, const std::string& where, int32_
   auto it = obj.find(key);
   if (it == obj.end() || !it->is_number_integer())
     return Status(StatusCode::kParseError, where + ": missing integer field '" + key + "'");
-  *out = it->get<int32_t>();
+  const bool in_range = it->is_number_unsigned() ? it->get<uint64_t>() <= uint64_t{INT32_MAX}
+                                                 : it->get<int64_t>() >= INT32_MIN && it->get<int64_t>() <= INT32_MAX;
+  if (!in_range) return Status(StatusCode::kParseError, where + ": integer field '" + key + "' is out of range");
+  *out = static_cast<int32_t>(it->get<int64_t>());
+  return Status::Ok();
+}
+
+// Reads an optional string field (`fallback` when absent); any other type is an error (never
+// an exception: this parser sees user files).
+Status GetString(const Json& obj, const char* key, const std::string& where, const std::string& fallback,
+                 std::string* out) {
+  auto it = obj.find(key);
+  if (it == obj.end()) {
+    *out = fallback;
+    return Status::Ok();
+  }
+  if (!it->is_string()) return Status(StatusCode::kParseError, where + ": field '" + key + "' is not a string");
+  *out = it->get<std::string>();
   return Status::Ok();
 }
 
@@ -36,7 +55,11 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   Json j = Json::parse(json_text, nullptr, /*allow_exceptions=*/false);
   if (j.is_discarded() || !j.is_object()) return Status(StatusCode::kParseError, name + ": not a JSON object");
   ModelConfig c;
-  if (j.value("format", std::string()) != "silk-model")
+  std::string format, token_format;
+  SILK_RETURN_IF_ERROR(GetString(j, "format", name, "", &format));
+  SILK_RETURN_IF_ERROR(GetString(j, "token_format", name, "", &token_format));
+  SILK_RETURN_IF_ERROR(GetString(j, "config", name, "", &c.config_name));
+  if (format != "silk-model")
     return Bad(name, "\"format\" is not \"silk-model\" (not a Silk model folder?)");
   SILK_RETURN_IF_ERROR(GetInt(j, "model_version", name, &c.model_version));
   if (c.model_version != kSupportedModelVersion)
@@ -44,12 +67,11 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
                          std::to_string(kSupportedModelVersion) +
                          (c.model_version < kSupportedModelVersion ? "; re-export the checkpoint with `silk-export export`)"
                                                                    : "; a newer libsilk is needed)"));
-  if (j.value("token_format", std::string()) != vocab::k_token_format)
+  if (token_format != vocab::k_token_format)
     return Bad(name, std::string("token_format is not \"") + vocab::k_token_format + "\"");
   SILK_RETURN_IF_ERROR(GetInt(j, "token_format_version", name, &c.token_format_version));
   SILK_RETURN_IF_ERROR(
       CheckEqual(name, "token_format_version", c.token_format_version, vocab::k_token_format_version));
-  c.config_name = j.value("config", std::string());
 
   auto v = j.find("vocab");
   if (v == j.end() || !v->is_object()) return Status(StatusCode::kParseError, name + ": missing object 'vocab'");
@@ -101,10 +123,11 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   auto f = j.find("files");
   c.encoder_file = "encoder.onnx";
   c.decoder_file = "decoder.onnx";
-  if (f != j.end() && f->is_object()) {
-    c.encoder_file = f->value("encoder", c.encoder_file);
-    c.decoder_file = f->value("decoder", c.decoder_file);
-    c.decoder_int8_file = f->value("decoder_int8", std::string());
+  if (f != j.end()) {
+    if (!f->is_object()) return Status(StatusCode::kParseError, name + ": 'files' is not an object");
+    SILK_RETURN_IF_ERROR(GetString(*f, "encoder", name + " files", "encoder.onnx", &c.encoder_file));
+    SILK_RETURN_IF_ERROR(GetString(*f, "decoder", name + " files", "decoder.onnx", &c.decoder_file));
+    SILK_RETURN_IF_ERROR(GetString(*f, "decoder_int8", name + " files", "", &c.decoder_int8_file));
   }
   for (const std::string* s : {&c.encoder_file, &c.decoder_file, &c.decoder_int8_file})
     if (s->find('/') != std::string::npos || s->find('\\') != std::string::npos || *s == "..")

@@ -53,6 +53,11 @@ TEST(ModelConfig, RefusesMismatches) {
       {"missing dims", [](auto& j) { j.erase("dims"); }, "dims"},
       {"zero dim", [](auto& j) { j["dims"]["n_heads"] = 0; }, "positive"},
       {"head width", [](auto& j) { j["dims"]["head_dim"] = 4; }, "multiple of 8"},
+      // Wrong JSON types are errors, never exceptions (found by model_config_fuzzer).
+      {"file name type", [](auto& j) { j["files"]["encoder"] = 5; }, "not a string"},
+      {"format type", [](auto& j) { j["format"] = 1; }, "not a string"},
+      {"files type", [](auto& j) { j["files"] = "encoder.onnx"; }, "not an object"},
+      {"int range", [](auto& j) { j["dims"]["d_model"] = 4294967312LL; }, "out of range"},
       {"too long", [](auto& j) { j["dims"]["max_seq_len"] = 20000; }, "max_seq_len"},
       {"file path", [](auto& j) { j["files"]["decoder"] = "../x.onnx"; }, "plain names"},
       {"bound", [](auto& j) { j["normalize_bound"] = 3; }, "normalize_bound"},
