@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 
 namespace silk {
 namespace {
@@ -27,11 +26,9 @@ TEST(OffReader, CountsOnHeaderLine) {
   EXPECT_EQ(m->triangles.size(), 1u);
 }
 
-TEST(OffReader, LyingHeaderFailsFast) {
-  auto t0 = std::chrono::steady_clock::now();
+TEST(OffReader, LyingHeaderFailsBeforeAllocating) {
   auto m = ReadOff("OFF\n353535235358 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "big.off");
   ASSERT_FALSE(m.ok());
-  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(1));
   EXPECT_NE(m.status().message().find("big.off:2: header says 353535235358 vertices"), std::string::npos)
       << m.status().message();
 }

@@ -15,6 +15,7 @@
 
 #include "io/mesh_reader.h"
 #include "io_test_util.h"
+#include "support/golden_files.h"
 #include "support/test_paths.h"
 
 namespace silk {
@@ -257,14 +258,6 @@ TEST(PmdReader, RandomBytesAndFlipsNeverCrash) {
   EXPECT_GT(accepted, 0);  // flips inside normals/UVs/weights are harmless
 }
 
-std::vector<std::string> SplitTabs(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, '\t')) out.push_back(cell);
-  return out;
-}
-
 // The dev OBJ files were converted from these PMDs keeping positions (6 decimals) and
 // triangles: same counts, same triangles, positions within the rounding of 6 decimals.
 TEST(PmdDevCorpus, MatchesObjSourcesSkippedUnlessSILK_0AD_MESHESIsSet) {
@@ -272,26 +265,15 @@ TEST(PmdDevCorpus, MatchesObjSourcesSkippedUnlessSILK_0AD_MESHESIsSet) {
   if (!meshes || !*meshes)
     GTEST_SKIP() << "SILK_0AD_MESHES not set: run scripts/fetch_0ad.sh and point it at the "
                     "extracted art/meshes folder to compare the 160 dev meshes with their PMD sources";
-  std::ifstream manifest(testing::SharedPath("corpus/dev/MANIFEST.tsv"));
-  ASSERT_TRUE(manifest) << "MANIFEST.tsv not found";
-  std::string line;
-  ASSERT_TRUE(std::getline(manifest, line));
-  const std::vector<std::string> header = SplitTabs(line);
-  int col_file = -1, col_source = -1;
-  for (size_t i = 0; i < header.size(); ++i) {
-    if (header[i] == "file") col_file = static_cast<int>(i);
-    if (header[i] == "source") col_source = static_cast<int>(i);
-  }
-  ASSERT_GE(col_file, 0);
-  ASSERT_GE(col_source, 0);
+  const auto rows = testing::ReadTsvRows(testing::SharedPath("corpus/dev/MANIFEST.tsv"));
+  ASSERT_FALSE(rows.empty()) << "MANIFEST.tsv not found or empty";
   const std::string prefix = "0ad-data:art/meshes/";
   int compared = 0;
   double max_diff = 0;
-  while (std::getline(manifest, line)) {
-    if (line.empty()) continue;
-    const std::vector<std::string> cells = SplitTabs(line);
-    const std::string& file = cells.at(col_file);
-    const std::string& source = cells.at(col_source);
+  for (const auto& row : rows) {
+    ASSERT_TRUE(row.count("file") && row.count("source")) << "MANIFEST.tsv columns";
+    const std::string& file = row.at("file");
+    const std::string& source = row.at("source");
     ASSERT_EQ(source.rfind(prefix, 0), 0u) << source;
     auto obj = ReadMeshFile(testing::SharedPath("corpus/dev/" + file));
     auto pmd = ReadMeshFile(std::string(meshes) + "/" + source.substr(prefix.size()));

@@ -64,7 +64,7 @@ bool ReadProcessedFile(const std::string& path, std::vector<GridFace>* faces) {
   return true;
 }
 
-std::vector<std::map<std::string, std::string>> ReadIndexTsv(const std::string& path) {
+std::vector<std::map<std::string, std::string>> ReadTsvRows(const std::string& path) {
   std::vector<std::map<std::string, std::string>> rows;
   std::ifstream in(path);
   std::string line;
@@ -125,7 +125,7 @@ bool ReadPlainObj(const std::string& path, silk::RawMesh* mesh) {
 
 std::vector<std::string> GoldenDevOkNames() {
   std::vector<std::string> names;
-  for (const auto& row : ReadIndexTsv(SharedPath("spec/golden-dev/INDEX.tsv")))
+  for (const auto& row : ReadTsvRows(SharedPath("spec/golden-dev/INDEX.tsv")))
     if (row.count("status") && row.at("status") == "ok") names.push_back(row.at("name"));
   return names;
 }

@@ -24,8 +24,9 @@ GridFace ReversedFace(const GridFace& f);
 GridFace UnorientedFace(const GridFace& f);
 bool ReadProcessedFile(const std::string& path, std::vector<GridFace>* faces);  // missing file -> empty, true
 
-// shared/spec/golden-dev/INDEX.tsv as rows of column -> value.
-std::vector<std::map<std::string, std::string>> ReadIndexTsv(const std::string& path);
+// A tab-separated file with a header row (golden-dev INDEX.tsv, corpus/dev MANIFEST.tsv) as
+// rows of column -> value; empty lines skipped, missing file -> no rows.
+std::vector<std::map<std::string, std::string>> ReadTsvRows(const std::string& path);
 
 // The reference drivers' plain OBJ parse: every `v` line, every `f` line's first index of
 // each group minus one; nothing welded or cleaned (spec/golden/README.md step 1).

@@ -36,7 +36,7 @@ bool ExpectedRefusal(const std::string& status, const std::string& message, Refu
 }
 
 TEST(GoldenDevEncodeSlow, AllMeshesMatchOfficial) {
-  const auto rows = testing::ReadIndexTsv(testing::SharedPath("spec/golden-dev/INDEX.tsv"));
+  const auto rows = testing::ReadTsvRows(testing::SharedPath("spec/golden-dev/INDEX.tsv"));
   ASSERT_EQ(rows.size(), 160u);
   int ok_match = 0, ok_total = 0, refused_match = 0, refused_total = 0;
   int64_t tokens_total = 0, processed_total = 0, encodable_total = 0;
