@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the mesh-reader fuzzers one after another (one core), each for the given time, with a
+# Runs the libFuzzer targets (default: all of fuzz/*_fuzzer.cpp) one after another (one core), each for the given time, with a
 # fresh scratch corpus per target seeded from fuzz/corpus/<target> (+ matching bad inputs).
 # Usage: scripts/fuzz.sh [-b] [seconds_per_target=600] [target...]
 #   -b  detach (setsid nohup) and return at once; follow /tmp/fuzzlogs/<target>.log
@@ -18,7 +18,7 @@ secs="${1:-600}"
 shift || true
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
-  targets=(obj_reader_fuzzer ply_reader_fuzzer stl_reader_fuzzer off_reader_fuzzer gltf_reader_fuzzer glb_reader_fuzzer)
+  for src in "$repo"/fuzz/*_fuzzer.cpp; do targets+=("$(basename "$src" .cpp)"); done  # every target
 fi
 build="${BUILD_DIR:-$repo/build-fuzz}"
 shared="${SILK_SHARED_DIR:-$repo/../shared}"
