@@ -47,7 +47,8 @@ Status DecoderRunner::RunChunk(const int32_t* ids, int64_t n) {
     ids_[i] = ids[i];
     positions_[i] = P + i;
   }
-  int32_t seqlens_k = static_cast<int32_t>(P + n - 1), total = static_cast<int32_t>(P + n);
+  seqlens_k_ = static_cast<int32_t>(P + n - 1);
+  total_ = static_cast<int32_t>(P + n);
   if (logits_.size() < static_cast<size_t>(max_chunk_ * vocab_)) logits_.resize(max_chunk_ * vocab_);
   return OrtGuard("decoder", [&]() -> Status {
     const Ort::MemoryInfo& mem = model_.cpu_memory;
@@ -56,44 +57,50 @@ Status DecoderRunner::RunChunk(const int32_t* ids, int64_t n) {
     const std::array<int64_t, 4> cache_shape = {1, H, mode_ == KvMode::kInPlace ? C : P, D};
     const std::array<int64_t, 4> cross_shape = {1, H, M, D};
     const std::array<int64_t, 3> logit_shape = {1, n, vocab_};
-    std::vector<Ort::Value> inputs;
-    inputs.reserve(in_names_.size());
-    inputs.push_back(Ort::Value::CreateTensor<int64_t>(mem, ids_.data(), n, tok_shape.data(), 2));
-    inputs.push_back(Ort::Value::CreateTensor<int64_t>(mem, positions_.data(), n, tok_shape.data(), 2));
-    inputs.push_back(Ort::Value::CreateTensor<int32_t>(mem, &seqlens_k, 1, one.data(), 1));
-    inputs.push_back(Ort::Value::CreateTensor<int32_t>(mem, &total, 1, nullptr, 0));
-    std::vector<std::vector<float>> compact;  // kCopy: fresh prefix copies, [H, P, D] each
-    for (int64_t l = 0; l < L; ++l)
-      for (int kv = 0; kv < 2; ++kv) {
-        float* past = cache_->block(l, kv);
-        size_t count = static_cast<size_t>(H * C * D);
-        if (mode_ == KvMode::kCopy) {
-          compact.emplace_back(static_cast<size_t>(std::max<int64_t>(1, H * P * D)));
-          for (int64_t h = 0; h < H; ++h)
-            std::memcpy(compact.back().data() + h * P * D, past + h * C * D, static_cast<size_t>(P * D) * sizeof(float));
-          past = compact.back().data();
-          count = static_cast<size_t>(H * P * D);
+    // Values 0..3 change every call; the per-layer cache and cross views (and, in place, the
+    // present outputs over the same blocks) are made once and reused.
+    const bool in_place = mode_ == KvMode::kInPlace;
+    if (!in_place || in_values_.empty() || views_of_ != cache_->block(0, 0) || views_capacity_ != C) {
+      views_of_ = cache_->block(0, 0);  // a re-reserved cache gets fresh views
+      views_capacity_ = C;
+      in_values_.clear();
+      out_values_.clear();
+      for (int i = 0; i < 4; ++i) in_values_.emplace_back(nullptr);
+      out_values_.emplace_back(nullptr);
+      compact_.clear();  // kCopy: fresh prefix copies, [H, P, D] each
+      for (int64_t l = 0; l < L; ++l)
+        for (int kv = 0; kv < 2; ++kv) {
+          float* past = cache_->block(l, kv);
+          size_t count = static_cast<size_t>(H * C * D);
+          if (!in_place) {
+            compact_.emplace_back(static_cast<size_t>(std::max<int64_t>(1, H * P * D)));
+            for (int64_t h = 0; h < H; ++h)
+              std::memcpy(compact_.back().data() + h * P * D, past + h * C * D,
+                          static_cast<size_t>(P * D) * sizeof(float));
+            past = compact_.back().data();
+            count = static_cast<size_t>(H * P * D);
+          } else {
+            out_values_.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
+          }
+          in_values_.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
         }
-        inputs.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
-      }
-    for (int64_t l = 0; l < L; ++l)
-      for (int kv = 0; kv < 2; ++kv)
-        inputs.push_back(Ort::Value::CreateTensor<float>(mem, cross_kv_ + (l * 2 + kv) * H * M * D,
-                                                         static_cast<size_t>(H * M * D), cross_shape.data(), 4));
-    if (mode_ == KvMode::kInPlace) {
-      std::vector<Ort::Value> outputs;
-      outputs.reserve(out_names_.size());
-      outputs.push_back(Ort::Value::CreateTensor<float>(mem, logits_.data(), static_cast<size_t>(n * vocab_),
-                                                        logit_shape.data(), 3));
       for (int64_t l = 0; l < L; ++l)
         for (int kv = 0; kv < 2; ++kv)
-          outputs.push_back(Ort::Value::CreateTensor<float>(mem, cache_->block(l, kv), static_cast<size_t>(H * C * D),
-                                                            cache_shape.data(), 4));
-      model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), inputs.data(), inputs.size(), out_ptrs_.data(),
-                          outputs.data(), outputs.size());
+          in_values_.push_back(Ort::Value::CreateTensor<float>(mem, cross_kv_ + (l * 2 + kv) * H * M * D,
+                                                               static_cast<size_t>(H * M * D), cross_shape.data(), 4));
+    }
+    in_values_[0] = Ort::Value::CreateTensor<int64_t>(mem, ids_.data(), n, tok_shape.data(), 2);
+    in_values_[1] = Ort::Value::CreateTensor<int64_t>(mem, positions_.data(), n, tok_shape.data(), 2);
+    in_values_[2] = Ort::Value::CreateTensor<int32_t>(mem, &seqlens_k_, 1, one.data(), 1);
+    in_values_[3] = Ort::Value::CreateTensor<int32_t>(mem, &total_, 1, nullptr, 0);
+    if (in_place) {
+      out_values_[0] = Ort::Value::CreateTensor<float>(mem, logits_.data(), static_cast<size_t>(n * vocab_),
+                                                       logit_shape.data(), 3);
+      model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
+                          out_ptrs_.data(), out_values_.data(), out_values_.size());
       last_logits_ = logits_.data() + (n - 1) * vocab_;
     } else {
-      auto outs = model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), inputs.data(), inputs.size(),
+      auto outs = model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
                                       out_ptrs_.data(), out_ptrs_.size());
       for (int64_t l = 0; l < L; ++l)
         for (int kv = 0; kv < 2; ++kv) {

@@ -42,6 +42,15 @@ class DecoderRunner {
   std::vector<std::string> in_names_, out_names_;
   std::vector<const char*> in_ptrs_, out_ptrs_;
   std::vector<int64_t> ids_, positions_;
+  int32_t seqlens_k_ = 0, total_ = 0;
+  // Tensors over ids_/positions_/seqlens_k_/total_ (remade per call), then the per-layer cache
+  // and cross views; out: logits, then (kInPlace) present views over the same cache blocks.
+  // kInPlace builds the views once (again if the cache is re-reserved); the cross buffer must
+  // stay where it is for the runner's life.
+  std::vector<Ort::Value> in_values_, out_values_;
+  const float* views_of_ = nullptr;
+  int64_t views_capacity_ = 0;
+  std::vector<std::vector<float>> compact_;  // kCopy only
   std::vector<float> logits_;     // [max_chunk, V] (kInPlace: the bound output)
   const float* last_logits_ = nullptr;
   int64_t calls_ = 0;
