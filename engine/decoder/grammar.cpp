@@ -150,6 +150,16 @@ int32_t Grammar::BudgetMaxSize(int64_t extra) const {
   return best + 1;
 }
 
+Rejection Grammar::CheckBSegment(int32_t id, int32_t s, int32_t c) const {
+  if (s + BetweenCaseLastOne(c) > n_prev_ - 1)
+    return Reject(RejectReason::kBOutsidePrevLayer, id,
+                  "segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
+                      " but the previous layer has " + std::to_string(n_prev_) + " vertices (spec §11.3)");
+  if (options_.geometric_rules && !ColumnsClear(s, c))
+    return Reject(RejectReason::kZeroLengthEdge, id, "B segment links two vertices at one position");
+  return Rejection{};
+}
+
 bool Grammar::ColumnsClear(int32_t s, int32_t c) const {
   if (!eq_cols_any_) return true;
   if (eq_cols_.Test(s)) return false;
@@ -205,12 +215,7 @@ Rejection Grammar::Accept(int32_t id) {
           return Reject(RejectReason::kBContinuation, id,
                         "B start " + std::to_string(s) + " below the continuation minimum " +
                             std::to_string(BetweenNextMinStart(last_s_, last_c_)) + " (spec §7.3)");
-        if (s + BetweenCaseLastOne(c) > n_prev_ - 1)
-          return Reject(RejectReason::kBOutsidePrevLayer, id,
-                        "segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
-                            " but the previous layer has " + std::to_string(n_prev_) + " vertices (spec §11.3)");
-        if (options_.geometric_rules && !ColumnsClear(s, c))
-          return Reject(RejectReason::kZeroLengthEdge, id, "B segment links two vertices at one position");
+        if (Rejection bad = CheckBSegment(id, s, c); !bad.ok()) return bad;
         const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
         if (rem_after < FutureRowsCost(n, std::max(n, sizes_.Next(n))) + 2 &&
             remaining() < 4 * kMaxLayerSize + incoming_total_ + 260)
@@ -404,12 +409,7 @@ Rejection Grammar::Accept(int32_t id) {
       }
       if (k != Kind::kB) return wrong();
       const int32_t r = id - vocab::kBBegin, s = r / kBetweenCases, c = r % kBetweenCases;
-      if (s + BetweenCaseLastOne(c) > n_prev_ - 1)
-        return Reject(RejectReason::kBOutsidePrevLayer, id,
-                      "segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
-                          " but the previous layer has " + std::to_string(n_prev_) + " vertices (spec §11.3)");
-      if (options_.geometric_rules && !ColumnsClear(s, c))
-        return Reject(RejectReason::kZeroLengthEdge, id, "B segment links two vertices at one position");
+      if (Rejection bad = CheckBSegment(id, s, c); !bad.ok()) return bad;
       LayerSizeSet fin;
       const int32_t budget_max = BudgetMaxSize(1);
       if (!canonical || g_count_ == 0) {

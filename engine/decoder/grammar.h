@@ -116,6 +116,9 @@ class Grammar {
   int64_t RowFinishCost(int32_t n_size, int64_t future) const;
   int64_t FutureRowsCost(int32_t from_row, int32_t n_size) const;
   bool ColumnsClear(int32_t s, int32_t c) const;
+  // A B segment (start s, case c) must end inside the previous layer and, with geometric rules,
+  // not link two vertices at one position (spec §11.3); shared by the first and later B tokens.
+  Rejection CheckBSegment(int32_t id, int32_t s, int32_t c) const;
   bool PositionForbidden(const QVec& p) const;
   std::string ExplainClose(int32_t n_size) const;
   void CloseLayer();

@@ -46,20 +46,6 @@ T LoadRaw(const uint8_t* p, bool swap) {
   return v;
 }
 
-double LoadDouble(const uint8_t* p, PlyType t, bool swap) {
-  switch (t) {
-    case PlyType::kInt8: return LoadRaw<int8_t>(p, swap);
-    case PlyType::kUInt8: return LoadRaw<uint8_t>(p, swap);
-    case PlyType::kInt16: return LoadRaw<int16_t>(p, swap);
-    case PlyType::kUInt16: return LoadRaw<uint16_t>(p, swap);
-    case PlyType::kInt32: return LoadRaw<int32_t>(p, swap);
-    case PlyType::kUInt32: return LoadRaw<uint32_t>(p, swap);
-    case PlyType::kFloat32: return LoadRaw<float>(p, swap);
-    case PlyType::kFloat64: return LoadRaw<double>(p, swap);
-  }
-  return 0;
-}
-
 int64_t LoadInt(const uint8_t* p, PlyType t, bool swap) {  // integer types only
   switch (t) {
     case PlyType::kInt8: return LoadRaw<int8_t>(p, swap);
@@ -70,6 +56,12 @@ int64_t LoadInt(const uint8_t* p, PlyType t, bool swap) {  // integer types only
     case PlyType::kUInt32: return LoadRaw<uint32_t>(p, swap);
     default: return 0;
   }
+}
+
+double LoadDouble(const uint8_t* p, PlyType t, bool swap) {
+  if (t == PlyType::kFloat32) return LoadRaw<float>(p, swap);
+  if (t == PlyType::kFloat64) return LoadRaw<double>(p, swap);
+  return static_cast<double>(LoadInt(p, t, swap));  // every PLY integer type is exact in a double
 }
 
 // Parses an ascii value of type t; float32 values are rounded to float.

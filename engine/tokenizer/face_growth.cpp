@@ -177,21 +177,26 @@ class Grower {
     Add(t, q, p, Apex(t, e));
   }
 
+  // Candidates of open edge e (none if e is no longer open); accepts the face when exactly one
+  // is possible. Returns the number of candidates.
+  size_t TakeIfForced(int32_t e, std::vector<int32_t>* cand) {
+    if (count_[e] != 1) return 0;
+    Candidates(e, cand);
+    if (cand->size() == 1) {
+      AddAcross(e, (*cand)[0]);
+      ++stats_.forced;
+    }
+    return cand->size();
+  }
+
   // Accept every forced face reachable from the work list.
   void Drain() {
     std::vector<int32_t> cand;
     while (!work_.empty()) {
       const int32_t e = work_.front();
       work_.pop_front();
-      if (count_[e] != 1) continue;
-      Candidates(e, &cand);
-      if (cand.empty()) continue;
-      if (cand.size() == 1) {
-        AddAcross(e, cand[0]);
-        ++stats_.forced;
-      } else {
-        deferred_.push_back(e);
-      }
+      const size_t n = TakeIfForced(e, &cand);
+      if (n > 1) deferred_.push_back(e);
     }
   }
 
@@ -200,15 +205,9 @@ class Grower {
     std::vector<int32_t> cand;
     std::vector<int32_t> live;
     for (int32_t e : deferred_) {
-      if (count_[e] != 1) continue;
-      Candidates(e, &cand);
-      if (cand.empty()) continue;
-      if (cand.size() == 1) {
-        AddAcross(e, cand[0]);
-        ++stats_.forced;
-        return true;
-      }
-      live.push_back(e);
+      const size_t n = TakeIfForced(e, &cand);
+      if (n == 1) return true;
+      if (n > 1) live.push_back(e);
     }
     deferred_ = live;
     if (live.empty()) return false;
