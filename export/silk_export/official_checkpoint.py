@@ -18,6 +18,10 @@ from .vocab import TYPE_CLASSES, load_vocab
 
 # Values no tensor shape reveals (ARCHITECTURE.md §6), at the release's settings.
 RELEASE_DEFAULTS = {"encoder_heads": 12, "qk_scale": 10.0, "n_points": 4096}
+# Sizes of the release checkpoint (ARCHITECTURE.md §2), for random-weight models of its shape.
+RELEASE_SIZES = {"token_rows": 10269, "d_model": 1024, "n_layers": 24, "n_heads": 16, "attn_head_dim": 64,
+                 "memory_slots": 4, "context_dim": 1024, "ff_mult": 4, "n_queries": 257, "encoder_width": 768,
+                 "encoder_layers": 8, "fourier_freqs": 8, "max_seq_len": 10241}
 _TYPE_VECTOR_OF_CLASS = dict(zip(TYPE_CLASSES, ("matrix_in0_embed", "matrix_in1_embed", "matrix_out_embed",
                                                 "block_embed", "offset_embed")))
 

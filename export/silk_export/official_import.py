@@ -16,7 +16,8 @@ from pathlib import Path
 from . import fidelity
 from .official_card import write_official_card
 from .official_checkpoint import load_official
-from .onnx_export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar)
+from .onnx_export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
+                          transpose_linears)
 from .vocab import load_vocab
 
 PRECISIONS = ("fp32", "int8", "int4", "auto")
@@ -53,6 +54,24 @@ def _variants(folder: Path, precision: str, int4_block: int, int4_accuracy: int)
     return files
 
 
+def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: int = INT4_BLOCK_SIZE,
+                   int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32) -> dict:
+    """After export_graphs (drop the PyTorch model first: quantization loads the fp32 graph): the
+    quantized decoders `precision` asks for, their fidelity/speed figures and the default decoder.
+    Updates `files` (model.json "files"); returns the figures."""
+    files.update(_variants(folder, precision, int4_block, int4_accuracy))
+    for name in ("decoder.int8.onnx", "decoder.int4.onnx"):
+        if has_external_data(folder / name):
+            files.setdefault("external_data", []).append(name + ".data")
+    variants = {k: v for k, v in files.items() if k.startswith("decoder")}
+    _say(f"fidelity and speed of {', '.join(variants)} ({fidelity_tokens} greedy tokens x 2 probes)")
+    vocab = load_vocab()
+    figures = fidelity.measure(folder, variants, vocab.bos_id, vocab.eos_id, cfg.n_points, fidelity_tokens)
+    files["default_decoder"] = fidelity.choose(figures) if precision == "auto" else \
+        {"fp32": "decoder", "int8": "decoder_int8", "int4": "decoder_int4"}[precision]
+    return figures
+
+
 def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", config_path: Path | None = None,
                     force: bool = False, progress: bool = True, int4_block: int = INT4_BLOCK_SIZE,
                     int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32,
@@ -73,22 +92,13 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
     shutil.rmtree(tmp, ignore_errors=True)
     try:
         _say("exporting encoder.onnx and decoder.onnx (fp32)")
-        files = export_graphs(model, tmp)
+        files = export_graphs(transpose_linears(model), tmp)
         del model
         gc.collect()
-        files.update(_variants(tmp, precision, int4_block, int4_accuracy))
-        for name in ("decoder.int8.onnx", "decoder.int4.onnx"):
-            if has_external_data(tmp / name):
-                files.setdefault("external_data", []).append(name + ".data")
-        variants = {k: v for k, v in files.items() if k.startswith("decoder")}
-        _say(f"fidelity and speed of {', '.join(variants)} ({fidelity_tokens} greedy tokens x 2 probes)")
-        vocab = load_vocab()
-        figures = fidelity.measure(tmp, variants, vocab.bos_id, vocab.eos_id, cfg.n_points, fidelity_tokens)
-        chosen = fidelity.choose(figures) if precision == "auto" else \
-            {"fp32": "decoder", "int8": "decoder_int8", "int4": "decoder_int4"}[precision]
-        files["default_decoder"] = chosen
+        figures = write_variants(tmp, files, cfg, precision, int4_block, int4_accuracy, fidelity_tokens)
         source = {"file": checkpoint.name, "sha256": sha256_of(checkpoint), "bytes": checkpoint.stat().st_size,
                   "licence": licence}
+        chosen = files["default_decoder"]
         extra = {"source": source,
                  "import": {"load": asdict(report), "precision": precision,
                             "int4": {"block_size": int4_block, "accuracy_level": int4_accuracy},

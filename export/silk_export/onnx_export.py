@@ -82,6 +82,30 @@ def export_graph(module: torch.nn.Module, args: tuple, path: Path, **kwargs) -> 
         shutil.rmtree(work, ignore_errors=True)
 
 
+class TransposedLinear(torch.nn.Module):
+    """nn.Linear with its weight stored as [in, out]: exported as MatMul on the initializer itself,
+    so constant folding makes no transposed copy of every weight (2 GB at the release size)."""
+
+    def __init__(self, linear: torch.nn.Linear):
+        super().__init__()
+        self.weight_t = torch.nn.Parameter(linear.weight.detach().t().contiguous(), requires_grad=False)
+        self.bias = linear.bias
+
+    def forward(self, x: torch.Tensor) -> torch.Tensor:
+        y = torch.matmul(x, self.weight_t)
+        return y if self.bias is None else y + self.bias
+
+
+def transpose_linears(model: torch.nn.Module) -> torch.nn.Module:
+    """In place, one layer at a time (never two copies of all weights): every nn.Linear becomes a
+    TransposedLinear computing the same. For a model that is exported and then dropped."""
+    for module in list(model.modules()):
+        for name, child in list(module.named_children()):
+            if type(child) is torch.nn.Linear:
+                setattr(module, name, TransposedLinear(child))
+    return model
+
+
 def export_encoder(model, path: Path, fixed_points: bool = False) -> list[str]:
     """fixed_points: the point count is cfg.n_points in the graph (contract v3), else dynamic."""
     n = model.cfg.n_points if fixed_points else 128

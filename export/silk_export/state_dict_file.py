@@ -85,9 +85,10 @@ class TorchFile:
         self.path = Path(path)
         self.metadata = {}
         try:
-            obj = torch.load(self.path, map_location="cpu", weights_only=True, mmap=True)
-        except RuntimeError:  # legacy (non-zip) format cannot be memory-mapped
-            obj = torch.load(self.path, map_location="cpu", weights_only=True)
+            try:
+                obj = torch.load(self.path, map_location="cpu", weights_only=True, mmap=True)
+            except RuntimeError:  # the legacy (non-zip) format cannot be memory-mapped
+                obj = torch.load(self.path, map_location="cpu", weights_only=True)
         except Exception as e:  # noqa: BLE001 - unpickling errors come in many types
             raise StateDictError(f"{self.path}: not a readable PyTorch state dict ({e})") from None
         for key in ("state_dict", "model", "module"):

@@ -140,3 +140,21 @@ def test_bad_checkpoint_is_an_error_naming_the_key(state, tmp_path, capsys, how,
     if how == "renamed":
         assert "missing key 'to_logits.bias'" in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.safetensors"]
+
+
+@pytest.mark.parametrize("damage, message", [
+    (lambda b: b[:5], "too short"),
+    (lambda b: struct.pack("<Q", 1 << 40) + b[8:], "header length"),
+    (lambda b: b[:8] + b"{" * 8 + b[16:], "not JSON"),
+    (lambda b: b.replace(b'"F16"', b'"I64"', 1), "dtype I64 is not supported"),
+    (lambda b: b[:-2], "do not fit"),
+])
+def test_damaged_safetensors_is_a_clear_error(tmp_path, damage, message):
+    from silk_export.state_dict_file import StateDictError, open_state_dict
+    good = tmp_path / "good.safetensors"
+    write_safetensors(good, {"a": torch.ones(3, dtype=torch.float16), "b": torch.ones(2, 2, dtype=torch.float16)})
+    bad = tmp_path / "bad.safetensors"
+    bad.write_bytes(damage(good.read_bytes()))
+    with pytest.raises(StateDictError, match=message):
+        open_state_dict(bad)
+    assert torch.equal(open_state_dict(good).read("b"), torch.ones(2, 2, dtype=torch.float16))
