@@ -189,6 +189,15 @@ def int8_unsafe_matmuls(path: Path) -> list[str]:
             and shapes[n.input[1]][-1] % 16 != 0]
 
 
+def logits_head_matmuls(path: Path) -> list[str]:
+    """The weight MatMul(s) producing the 10269 logits."""
+    import onnx
+    m = onnx.load(str(path), load_external_data=False)
+    shapes = {i.name: list(i.dims) for i in m.graph.initializer}
+    width = load_vocab().model_vocab_size
+    return [n.name for n in m.graph.node if n.op_type == "MatMul" and shapes.get(n.input[1], [0])[-1] == width]
+
+
 def quantize_decoder(src: Path, dst: Path) -> None:
     """Dynamic INT8 quantization of the weight MatMuls (activations quantized at run time)."""
     from onnxruntime.quantization import QuantType, quantize_dynamic
@@ -199,11 +208,15 @@ def quantize_decoder(src: Path, dst: Path) -> None:
 
 def quantize_decoder_int4(src: Path, dst: Path, block_size: int = 32, accuracy_level: int = 4) -> None:
     """4-bit weight-only quantization of the weight MatMuls (com.microsoft MatMulNBits, symmetric,
-    `block_size` weights per scale; accuracy_level 4 = int8 activations in the kernel)."""
+    `block_size` weights per scale; accuracy_level 4 = int8 activations in the kernel). The logits
+    head stays fp32: 2 % of the weights, but 4-bit noise on it moves every logit directly."""
+    import logging
+
     import onnx
     from onnxruntime.quantization.matmul_nbits_quantizer import MatMulNBitsQuantizer
+    logging.getLogger("onnxruntime.quantization.matmul_nbits_quantizer").setLevel(logging.WARNING)  # per-node INFO
     q = MatMulNBitsQuantizer(onnx.load(str(src)), block_size=block_size, is_symmetric=True,
-                             accuracy_level=accuracy_level)
+                             accuracy_level=accuracy_level, nodes_to_exclude=logits_head_matmuls(src))
     q.process()
     q.model.save_model_to_file(str(dst), use_external_data_format=False)
 
