@@ -34,7 +34,7 @@ def test_training_point_cloud_uses_the_library(lib_path):
     want, _, _ = libsilk.prepare_points(V, F, "silk", n_points=256, seed=seed)
     assert np.array_equal(pts, want)
     p, n = pointcloud.sample_surface(V, F, 500, np.random.default_rng(1))
-    assert p.shape == (500, 3) and (p.min(axis=0) >= -1e-6).all() and (p.max(axis=0) <= [2, 1, 1] + 1e-6).all()
+    assert p.shape == (500, 3) and (p.min(axis=0) >= -1e-6).all() and (p.max(axis=0) <= np.array([2, 1, 1]) + 1e-6).all()
     np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1, atol=1e-6)
 
 
