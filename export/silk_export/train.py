@@ -20,7 +20,7 @@ from .checkpoint import load_checkpoint, save_checkpoint
 from .configs import ModelConfig, config_from_dict, get_config
 from .dataset_index import read_index
 from .losslog import LossLog, plot_losses
-from .model import SilkModel
+from .architectures import build_model
 from .resample import ProgressiveBalancedSampler
 from .samples import MeshCache, TooLong, collate
 from .schedule import cosine_lr
@@ -147,7 +147,7 @@ def train(a: TrainArgs) -> dict:
     sampler = ProgressiveBalancedSampler([r["processed_faces"] for r in train_rows], a.steps)
     val = fixed_val_samples(a.root, val_rows, cfg, a.val_meshes, a.seed) if a.val_every and val_rows else []
 
-    model = SilkModel(cfg).to(device)
+    model = build_model(cfg).to(device)
     opt = torch.optim.AdamW(model.parameters(), lr=a.lr, betas=(0.9, 0.99), weight_decay=a.weight_decay)
     log = LossLog(out)
     ckpt_path = out / "checkpoint.pt"
