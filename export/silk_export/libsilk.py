@@ -297,20 +297,19 @@ def prepare_points(positions: np.ndarray, triangles: np.ndarray | None, kind: st
     transform = np.zeros(4, dtype=np.float64)
     rows = ctypes.c_size_t()
     seed = ctypes.c_uint64(int(seed) & (2**64 - 1))
-    if triangles is None:
-        cloud = np.ascontiguousarray(positions, dtype=np.float64).reshape(-1, 6)
-        args = (None, cloud.ctypes.data_as(_c_double_p), cloud.shape[0])
-        _check(L.silk_prepare_points(*args, ctypes.byref(params), seed, None, 0, ctypes.byref(rows), None))
+
+    def run(*source) -> np.ndarray:  # size query, then the rows
+        _check(L.silk_prepare_points(*source, ctypes.byref(params), seed, None, 0, ctypes.byref(rows), None))
         out = np.empty((rows.value, 6), dtype=np.float32)
-        _check(L.silk_prepare_points(*args, ctypes.byref(params), seed,
+        _check(L.silk_prepare_points(*source, ctypes.byref(params), seed,
                                      out.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), out.size,
                                      ctypes.byref(rows), transform.ctypes.data_as(_c_double_p)))
+        return out
+
+    if triangles is None:
+        cloud = np.ascontiguousarray(positions, dtype=np.float64).reshape(-1, 6)
+        out = run(None, cloud.ctypes.data_as(_c_double_p), cloud.shape[0])
     else:
         with Mesh.from_arrays(positions, triangles) as m:
-            args = (m.handle, None, 0)
-            _check(L.silk_prepare_points(*args, ctypes.byref(params), seed, None, 0, ctypes.byref(rows), None))
-            out = np.empty((rows.value, 6), dtype=np.float32)
-            _check(L.silk_prepare_points(*args, ctypes.byref(params), seed,
-                                         out.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), out.size,
-                                         ctypes.byref(rows), transform.ctypes.data_as(_c_double_p)))
+            out = run(m.handle, None, 0)
     return out, transform[:3].copy(), float(transform[3])
