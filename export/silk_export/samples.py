@@ -31,11 +31,13 @@ class Sample:
 
 
 def make_sample(v: np.ndarray, f: np.ndarray, rng: np.random.Generator, max_tokens: int,
-                augment: bool = True, n_points: int = 4096, key: str = "") -> Sample:
-    """Raises TooLong, libsilk.SilkRefused (e.g. a layer over 200 vertices) or ValueError."""
+                augment: bool = True, n_points: int = 4096, key: str = "", tokens=None) -> Sample:
+    """Raises TooLong, libsilk.SilkRefused (e.g. a layer over 200 vertices) or ValueError.
+    tokens: the un-augmented mesh's tokens when already known (a dataset cache); augment=False only."""
     if augment:
         v, _ = augment_vertices(v, rng)
-    tokens, _ = libsilk.encode_arrays(v, f, normalize=True, normalize_bound=BOUND, nonmanifold_processing=True)
+    if tokens is None or augment:
+        tokens, _ = libsilk.encode_arrays(v, f, normalize=True, normalize_bound=BOUND, nonmanifold_processing=True)
     if tokens.size == 0 or tokens.size > max_tokens:
         raise TooLong(f"{key}: {tokens.size} tokens (max {max_tokens})")
     pts = point_cloud(normalize_vertices(v, BOUND), f, rng, n=n_points, noise=augment)
