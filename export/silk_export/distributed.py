@@ -87,10 +87,12 @@ def wrap_model(model: torch.nn.Module, env: DistEnv) -> torch.nn.Module:
         return model
     if env.fsdp:
         from torch.distributed.device_mesh import init_device_mesh
-        from torch.distributed.fsdp import fully_shard
+        from torch.distributed.fsdp import fully_shard, register_fsdp_forward_method
         mesh = init_device_mesh(env.device.type, (env.world,))
         for block in shardable_blocks(model):
             fully_shard(block, mesh=mesh)
+            for name in getattr(block, "fsdp_forward_methods", ()):  # called outside forward()
+                register_fsdp_forward_method(block, name)
         fully_shard(model, mesh=mesh)
         return model
     from torch.nn.parallel import DistributedDataParallel

@@ -17,6 +17,8 @@ IGNORE_INDEX = -100
 
 
 class DecoderLayer(nn.Module):
+    fsdp_forward_methods = ("cross_kv",)  # SilkModel calls it before the layers run (distributed.py)
+
     def __init__(self, cfg: ModelConfig):
         super().__init__()
         d, h = cfg.d_model, cfg.n_heads
