@@ -10,13 +10,12 @@ import time
 from collections import Counter
 from pathlib import Path
 
-import numpy as np
 from tqdm import tqdm
 
 from . import libsilk
 from .mesh_files import list_meshes
 from .paths import shared_dir
-from .shard_store import Shard, ShardWriter, shard_name
+from .shard_store import Shard, ShardWriter, shard_name, write_refused
 from .splits import TRAIN, DevExclusion, assign_split, load_dev_exclusion, shape_key
 
 DATASET_FORMAT = "silk-dataset/1"
@@ -36,24 +35,22 @@ def dev_exclusion(dev_dir: Path | None, pmd_root: Path | None = None) -> DevExcl
 
 
 def encode_one(key: str, path: Path, root: Path, dev: DevExclusion | None):
-    """(index row, tokens, float32 positions, triangles); arrays are None for a refused mesh.
-    Tokens are those of the stored float32 positions, so the cache is self-consistent.
+    """(index row, tokens, positions, triangles); arrays are None for a refused mesh.
     dev=None: no split assignment (every mesh is training data)."""
     row = {"key": key, "file": path.relative_to(root).as_posix()}
     arrays = (None, None, None)
     try:
-        v64, f = libsilk.load_arrays(path)
-        v = v64.astype(np.float32)
+        v, f = libsilk.load_arrays(path)
         row.update(vertices=int(v.shape[0]), faces=int(f.shape[0]))
-        row["split"] = TRAIN if dev is None else assign_split(key, shape_key(v64, f.shape[0]), dev)
-        tokens, stats = libsilk.encode_arrays(v.astype(np.float64), f)
+        row["split"] = TRAIN if dev is None else assign_split(key, shape_key(v, f.shape[0]), dev)
+        tokens, stats = libsilk.encode_arrays(v, f)
         row.update(tokens=int(tokens.size), processed_faces=int(stats["processed_faces"]),
                    layers=int(stats["layers"]), max_layer_size=int(stats["max_layer_size"]), refused=None)
         arrays = (tokens, v, f)
     except libsilk.SilkRefused as e:
-        row.update(tokens=None, refused=e.reason)
+        row.update(tokens=None, refused=e.reason, detail=e.message)
     except libsilk.SilkError as e:
-        row.update(tokens=None, refused=f"error:{e.name}")
+        row.update(tokens=None, refused=f"error:{e.name}", detail=e.message)
     if "split" not in row:
         row["split"] = TRAIN if dev is None else assign_split(key, "", dev)
     return (row, *arrays)
@@ -96,8 +93,7 @@ def merge_shards(out_dir: Path) -> dict:
     rows.sort(key=lambda r: r["order"])
     write_rows(out_dir / "index.jsonl", rows)
     with open(out_dir / "refused.tsv", "w") as fh:
-        fh.write("key\tfile\treason\n")
-        fh.writelines(f"{r['key']}\t{r['file']}\t{r['refused']}\n" for r in rows if r["refused"])
+        write_refused(fh, [r for r in rows if r["refused"]])
     info = Shard(out_dir / names[0]).info
     summary = {
         "root": info["root"], "meshes": len(rows), "shards": n,

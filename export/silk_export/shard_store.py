@@ -2,12 +2,13 @@
 encoded. Raw little-endian arrays, appended while the job runs (constant memory), plus offsets:
 
   tokens.i16    int16  all token sequences back to back (ids < 10269 fit; no BOS/EOS/PAD)
-  vertices.f32  float32 [V, 3] positions as loaded (training re-tokenises after augmentation)
+  vertices.f64  float64 [V, 3] positions exactly as loaded (training re-tokenises after
+                augmentation; float32 would change the tokens of a few meshes in a hundred)
   faces.i32     int32 [F, 3] triangles, indices local to their mesh
   offsets.npy   int64 [n + 1, 3] start of mesh i in (tokens, vertices, faces); row n = the ends
   meshes.jsonl  one row per listed file, encoded or refused (the index rows; encoded ones carry
                 `slot`, their position in the arrays)
-  refused.tsv   key, file, named reason of every mesh libsilk refused or could not read
+  refused.tsv   key, file, named reason, message of every mesh libsilk refused or could not read
   shard.json    format, shard i/N, counts
 
 A shard folder appears only complete: it is written as `<name>.tmp` and renamed at the end."""
@@ -38,6 +39,14 @@ def parse_shard(text: str) -> tuple[int, int]:
     return i, n
 
 
+def write_refused(fh, rows: list[dict]) -> None:
+    """refused.tsv: key, file, named reason, libsilk's message (tabs and newlines blanked)."""
+    fh.write("key\tfile\treason\tdetail\n")
+    for r in rows:
+        detail = " ".join(str(r.get("detail", "")).split())
+        fh.write(f"{r['key']}\t{r['file']}\t{r['refused']}\t{detail}\n")
+
+
 class ShardWriter:
     def __init__(self, out_dir: Path, i: int, n: int):
         self.final = Path(out_dir) / shard_name(i, n)
@@ -46,10 +55,10 @@ class ShardWriter:
             shutil.rmtree(self.dir)
         self.dir.mkdir(parents=True)
         self.i, self.n = i, n
-        self._files = {k: open(self.dir / k, "wb") for k in ("tokens.i16", "vertices.f32", "faces.i32")}
+        self._files = {k: open(self.dir / k, "wb") for k in ("tokens.i16", "vertices.f64", "faces.i32")}
         self._rows = open(self.dir / "meshes.jsonl", "w")
         self.offsets = [(0, 0, 0)]
-        self.refused: list[tuple[str, str, str]] = []
+        self.refused: list[dict] = []
 
     def add(self, row: dict, tokens=None, vertices=None, faces=None) -> None:
         """An encoded mesh (with its arrays) or a refused one (row['refused'] set, no arrays)."""
@@ -58,12 +67,12 @@ class ShardWriter:
                 raise ValueError(f"{row['key']}: token id {int(tokens.max())} does not fit int16")
             row = {**row, "slot": len(self.offsets) - 1}
             self._files["tokens.i16"].write(np.ascontiguousarray(tokens, TOKEN_DTYPE).tobytes())
-            self._files["vertices.f32"].write(np.ascontiguousarray(vertices, np.float32).tobytes())
+            self._files["vertices.f64"].write(np.ascontiguousarray(vertices, np.float64).tobytes())
             self._files["faces.i32"].write(np.ascontiguousarray(faces, np.int32).tobytes())
             t, v, f = self.offsets[-1]
             self.offsets.append((t + tokens.size, v + vertices.shape[0], f + faces.shape[0]))
         else:
-            self.refused.append((row["key"], row["file"], row["refused"]))
+            self.refused.append(row)
         self._rows.write(json.dumps(row) + "\n")
 
     def close(self, summary: dict) -> Path:
@@ -71,8 +80,7 @@ class ShardWriter:
             fh.close()
         np.save(self.dir / "offsets.npy", np.asarray(self.offsets, np.int64))
         with open(self.dir / "refused.tsv", "w") as fh:
-            fh.write("key\tfile\treason\n")
-            fh.writelines(f"{k}\t{f}\t{r}\n" for k, f, r in self.refused)
+            write_refused(fh, self.refused)
         info = {"format": FORMAT, "shard": self.i, "of": self.n, "encoded": len(self.offsets) - 1,
                 "refused": len(self.refused), **summary}
         (self.dir / "shard.json").write_text(json.dumps(info, indent=2) + "\n")
@@ -93,7 +101,7 @@ class Shard:
         self.offsets = np.load(self.path / "offsets.npy")
         t, v, f = (int(x) for x in self.offsets[-1])
         self.tokens = self._map("tokens.i16", TOKEN_DTYPE, (t,))
-        self.vertices = self._map("vertices.f32", np.float32, (v, 3))
+        self.vertices = self._map("vertices.f64", np.float64, (v, 3))
         self.faces = self._map("faces.i32", np.int32, (f, 3))
 
     def _map(self, name: str, dtype, shape):
