@@ -7,8 +7,8 @@ from pathlib import Path
 
 import torch
 
+from .architectures import build_model
 from .configs import config_from_dict
-from .model import SilkModel
 
 
 def save_state(path: Path, config: dict, model_state: dict, optim_state: dict | None, step: int,
@@ -24,8 +24,8 @@ def load_checkpoint(path: Path, map_location="cpu") -> dict:
     return torch.load(path, map_location=map_location, weights_only=False)
 
 
-def model_from_checkpoint(path: Path) -> tuple[SilkModel, dict]:
+def model_from_checkpoint(path: Path):
     ck = load_checkpoint(path)
-    model = SilkModel(config_from_dict(ck["config"]))
+    model = build_model(config_from_dict(ck["config"]))
     model.load_state_dict(ck["model"])
     return model.eval(), ck

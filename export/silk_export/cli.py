@@ -1,4 +1,5 @@
-"""`silk-export` console script: dataset | train | export | eval | card, plus bench | generate | loss."""
+"""`silk-export` console script: dataset | train | export | import-official | eval | card, plus
+bench | generate | loss."""
 from __future__ import annotations
 
 import argparse
@@ -52,6 +53,18 @@ def _cmd_export(a) -> int:
                 "seed": ck.get("args", {}).get("seed")}
     meta = export_model(model, Path(a.out), training, int8=not a.no_int8)
     print(json.dumps(meta, indent=2))
+    return 0
+
+
+def _cmd_import_official(a) -> int:
+    from .official_import import import_official
+    from .state_dict_file import StateDictError
+    try:
+        import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,
+                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens)
+    except (StateDictError, ValueError) as e:
+        print(f"silk-export import-official: error: {e}", file=sys.stderr)
+        return 2
     return 0
 
 
@@ -167,6 +180,21 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--data", help="training data description for model.json")
     e.add_argument("--no-int8", action="store_true")
     e.set_defaults(fn=_cmd_export)
+
+    i = sub.add_parser("import-official", help="released Mesh Silksong checkpoint -> Silk model folder "
+                       "(.safetensors / .pt / .bin; docs/model_contract.md v3)")
+    i.add_argument("checkpoint", help="model.safetensors (F32/F16/BF16) or a PyTorch state dict (.pt/.bin)")
+    i.add_argument("-o", "--out", required=True, help="model folder to create")
+    i.add_argument("--precision", default="auto", choices=["fp32", "int8", "int4", "auto"],
+                   help="default decoder: auto = the fastest variant that passes the fidelity check")
+    i.add_argument("--config", help="JSON in the official fixture's config.json format: values no shape "
+                   "reveals (point_encoder.heads, point_encoder.num_points, decoder.qk_norm_scale)")
+    i.add_argument("--force", action="store_true", help="replace OUT if it exists")
+    i.add_argument("--int4-block-size", type=int, default=32)
+    i.add_argument("--int4-accuracy-level", type=int, default=4)
+    i.add_argument("--fidelity-tokens", type=int, default=32, help="greedy tokens per probe cloud")
+    i.add_argument("--no-progress", action="store_true")
+    i.set_defaults(fn=_cmd_import_official)
 
     v = sub.add_parser("eval", help="CD / HD / NC / |NC| and structure of generated vs reference meshes")
     v.add_argument("generated", help="mesh file or folder")

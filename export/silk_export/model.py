@@ -33,6 +33,11 @@ class DecoderLayer(nn.Module):
         """This layer's cross-attention K/V of the latents, [B,H,M,D] each."""
         return self.cross_attn.keys_values(latents)
 
+    def self_qkv(self, y: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        """Self-attention q, k, v of the normed input, [B,T,d] each (what the ONNX graph feeds GQA)."""
+        a = self.self_attn
+        return a.q(y), a.k(y), a.v(y)
+
     def forward(self, x, cross_k, cross_v, past_k=None, past_v=None, allowed=None, fused=True):
         """x [B,T,d]; past_k/v [B,H,P,D] or None. Returns (x, k_new, v_new) with k/v [B,H,T,D]."""
         h = self.self_attn.n_heads
@@ -101,6 +106,9 @@ class SilkModel(nn.Module):
         lat = self.encoder(points)
         return [layer.cross_kv(lat) for layer in self.layers]
 
+    def logits(self, x: torch.Tensor) -> torch.Tensor:
+        return self.head(self.norm(x))
+
     def forward(self, input_ids: torch.Tensor, points: torch.Tensor,
                 labels: torch.Tensor | None = None):
         """Teacher forcing. input_ids [B,S] start with BOS (PAD after the end); positions 0..S-1.
@@ -113,7 +121,7 @@ class SilkModel(nn.Module):
                 x = checkpoint(lambda x, ck, cv, layer=layer: layer(x, ck, cv)[0], x, ck, cv, use_reentrant=False)
             else:
                 x, _, _ = layer(x, ck, cv)
-        logits = self.head(self.norm(x))
+        logits = self.logits(x)
         if labels is None:
             return logits
         loss = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1),
@@ -135,7 +143,7 @@ class SilkModel(nn.Module):
         for layer, (pk, pv), (ck, cv) in zip(self.layers, past, cross):
             x, kn, vn = layer(x, ck, cv, pk, pv, allowed=allowed, fused=fused)
             new.append((kn, vn))
-        return self.head(self.norm(x)), new
+        return self.logits(x), new
 
     def num_parameters(self) -> int:
         return sum(p.numel() for p in self.parameters())

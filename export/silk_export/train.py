@@ -23,7 +23,7 @@ from .configs import ModelConfig, config_from_dict, get_config
 from .dataset_index import build_index, read_index
 from .distributed import DistEnv, full_state, gradient_sync, init_distributed, load_full_state, wrap_model
 from .losslog import LossLog, plot_losses
-from .model import SilkModel
+from .architectures import build_model as architecture_model
 from .resample import ProgressiveBalancedSampler
 from .samples import MeshCache, TooLong, collate
 from .schedule import cosine_lr
@@ -228,7 +228,7 @@ def freeze_unused(model) -> None:
 def build_model(a: TrainArgs, cfg: ModelConfig, env: DistEnv):
     """(wrapped model for training, the plain module, optimizer)."""
     torch.manual_seed(a.seed)  # the same initial weights on every rank
-    plain = SilkModel(cfg)
+    plain = architecture_model(cfg)
     freeze_unused(plain)
     plain.gradient_checkpointing = a.grad_checkpoint
     plain.to(env.device)

@@ -42,3 +42,8 @@ def golden_dir() -> Path:
 @pytest.fixture(scope="session")
 def dev_dir() -> Path:
     return shared_dir() / "corpus" / "dev"
+
+
+@pytest.fixture(scope="session")
+def shared() -> Path:
+    return shared_dir()
