@@ -35,7 +35,8 @@ def _cmd_train(a) -> int:
                      config=a.config, steps=a.steps, batch_size=a.batch_size, micro_batch=a.micro_batch,
                      lr=a.lr, lr_min=a.lr_min, warmup=a.warmup, seed=a.seed, threads=a.threads,
                      device=a.device, precision=a.precision, grad_checkpoint=a.grad_checkpoint, fsdp=a.fsdp,
-                     workers=a.workers, init_from=a.init_from or "", log_every=a.log_every,
+                     workers=a.workers, init_from=a.init_from or "", init_config=a.init_config or "",
+                     log_every=a.log_every,
                      val_every=a.val_every, val_meshes=a.val_meshes, ckpt_minutes=a.ckpt_minutes,
                      max_minutes=a.max_minutes, resume=not a.no_resume, augment=not a.no_augment,
                      max_seq_len=a.max_seq_len, progress=not a.no_progress)
@@ -162,7 +163,10 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--grad-checkpoint", action="store_true", help="recompute decoder layers in backward")
     t.add_argument("--fsdp", action="store_true", help="shard parameters/gradients/optimizer (FSDP2) instead of DDP")
     t.add_argument("--workers", type=int, default=0, help="DataLoader processes per rank preparing samples")
-    t.add_argument("--init-from", help="fine-tune a released-format checkpoint (model.safetensors)")
+    t.add_argument("--init-from", help="fine-tune a released-format Mesh Silksong checkpoint (model.safetensors, "
+                   ".pt/.bin; the official architecture, loaded as import-official does)")
+    t.add_argument("--init-config", help="with --init-from: JSON in the official fixture's config.json format "
+                   "(values no shape reveals, as import-official --config)")
     t.add_argument("--log-every", type=int, default=10)
     t.add_argument("--val-every", type=int, default=200)
     t.add_argument("--val-meshes", type=int, default=32)

@@ -25,9 +25,10 @@ def dataset_rows(path: Path) -> list[dict]:
 
 
 class ShardedSource:
-    def __init__(self, path: Path, rows: list[dict]):
+    def __init__(self, path: Path, rows: list[dict], points_kind: str = "silk"):
         self.path = Path(path)
         self.rows = rows
+        self.points_kind = points_kind
         names = json.loads((self.path / "dataset.json").read_text())["shards"]
         self._names = names
         self._shards: dict[int, Shard] = {}  # opened lazily (cheap; also in DataLoader workers)
@@ -53,4 +54,5 @@ class ShardedSource:
         """Without augmentation the cached tokens are used (no tokenisation at all)."""
         v, f = self.arrays(i)
         cached = None if augment else self.tokens(i)
-        return make_sample(v, f, rng, max_tokens, augment, n_points, key=self.rows[i]["key"], tokens=cached)
+        return make_sample(v, f, rng, max_tokens, augment, n_points, key=self.rows[i]["key"], tokens=cached,
+                           points_kind=self.points_kind)

@@ -24,6 +24,7 @@ from .dataset_index import build_index, read_index
 from .distributed import DistEnv, full_state, gradient_sync, init_distributed, load_full_state, wrap_model
 from .losslog import LossLog, plot_losses
 from .architectures import build_model as architecture_model
+from .architectures import get_architecture
 from .resample import ProgressiveBalancedSampler
 from .samples import MeshCache, TooLong, collate
 from .schedule import cosine_lr
@@ -56,7 +57,8 @@ class TrainArgs:
     grad_checkpoint: bool = False
     fsdp: bool = False
     workers: int = 0  # DataLoader worker processes per rank
-    init_from: str = ""  # released-format checkpoint to fine-tune
+    init_from: str = ""  # released-format checkpoint to fine-tune (official architecture)
+    init_config: str = ""  # its config.json (official fixture format) for values no shape reveals
     log_every: int = 10
     val_every: int = 200
     val_meshes: int = 32
@@ -184,7 +186,9 @@ class TrainingData:
 
 def open_data(a: TrainArgs, env: DistEnv, cfg: ModelConfig, out: Path) -> TrainingData:
     """--data DATASET (dataset.json), --data FOLDER (rank 0 caches it under OUT/data first, every
-    mesh as training data), or --index with --root."""
+    mesh as training data), or --index with --root. Point clouds follow the architecture's
+    pre-processing (official: merge, 50 K surface samples, float16 rounding, draw)."""
+    kind = get_architecture(cfg.arch).preprocessing(cfg)["kind"]
     if a.data:
         path = Path(a.data)
         if not is_dataset(path):
@@ -193,11 +197,11 @@ def open_data(a: TrainArgs, env: DistEnv, cfg: ModelConfig, out: Path) -> Traini
                 build_index(Path(a.data), path, all_train=True)
             env.barrier()
         rows = dataset_rows(path)
-        make = lambda rs: ShardedSource(path, rs)  # noqa: E731
+        make = lambda rs: ShardedSource(path, rs, kind)  # noqa: E731
         desc = str(a.data)
     else:
         rows = read_index(Path(a.index))
-        make = lambda rs: MeshCache(a.root, rs)  # noqa: E731
+        make = lambda rs: MeshCache(a.root, rs, kind)  # noqa: E731
         desc = str(a.index)
     train_rows = select_rows(rows, "train", cfg, a.rows_filter.get("keys"))
     if not train_rows:
@@ -225,16 +229,30 @@ def freeze_unused(model) -> None:
     model.zero_grad(set_to_none=True)
 
 
-def build_model(a: TrainArgs, cfg: ModelConfig, env: DistEnv):
+def initial_model(a: TrainArgs, env: DistEnv):
+    """A fresh model of the run's config, or with --init-from the released-format checkpoint
+    loaded through the importer (official architecture; its config comes from the weights)."""
+    if not a.init_from:
+        torch.manual_seed(a.seed)  # the same initial weights on every rank
+        return architecture_model(model_config(a))
+    from .official_checkpoint import load_official
+    model, _ = load_official(Path(a.init_from), Path(a.init_config) if a.init_config else None,
+                             progress=a.progress and env.is_main)
+    if a.max_seq_len and a.max_seq_len != model.cfg.max_seq_len:
+        raise SystemExit(f"--max-seq-len: the checkpoint's positions fix it at {model.cfg.max_seq_len}")
+    return model
+
+
+def build_model(a: TrainArgs, env: DistEnv):
     """(wrapped model for training, the plain module, optimizer)."""
-    torch.manual_seed(a.seed)  # the same initial weights on every rank
-    plain = architecture_model(cfg)
+    plain = initial_model(a, env)
     freeze_unused(plain)
     plain.gradient_checkpointing = a.grad_checkpoint
     plain.to(env.device)
     model = wrap_model(plain, env)
     lr, _, _ = a.schedule()
-    opt = torch.optim.AdamW([p for p in model.parameters() if p.requires_grad], lr=lr, betas=(0.9, 0.99), weight_decay=a.weight_decay)
+    opt = torch.optim.AdamW([p for p in model.parameters() if p.requires_grad], lr=lr, betas=(0.9, 0.99),
+                            weight_decay=a.weight_decay)
     return model, plain, opt
 
 
@@ -253,10 +271,10 @@ class Trainer:
         self.out.mkdir(parents=True, exist_ok=True)
         if a.threads:
             torch.set_num_threads(a.threads)
-        self.cfg = model_config(a)
         seed_everything(a.seed)
+        self.model, self.plain, self.opt = build_model(a, env)
+        self.cfg = self.plain.cfg
         self.data = open_data(a, env, self.cfg, self.out)
-        self.model, self.plain, self.opt = build_model(a, self.cfg, env)
         self.amp = autocast_for(env.device, a.precision)
         self.micro = a.micro_batch or (1 if env.device.type == "cpu" else a.batch_size // env.world)
         self.slots = rank_slots(a.batch_size, env.rank, env.world)
