@@ -59,10 +59,8 @@ def assert_same_state(a: dict, b: dict) -> None:
 
 
 @pytest.fixture(scope="module")
-def runs(golden_dir, tmp_path_factory):
-    data = tmp_path_factory.mktemp("meshes")
-    for m in MESHES:
-        shutil.copy(golden_dir / f"{m}.obj", data / f"{m}.obj")
+def runs(golden_dir, tmp_path_factory, mesh_folder):
+    data = mesh_folder(golden_dir, MESHES)
     d = tmp_path_factory.mktemp("runs")
     main(train_argv(data, d / "one"))  # single process, in this interpreter
     main(train_argv(data, d / "one_split", "--max-minutes", "1e-9"))  # stops after step 1

@@ -5,7 +5,6 @@ loss; `export` writes a model folder (model.json v3, arch official) that silkgen
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 
 import numpy as np
@@ -28,10 +27,8 @@ def fixture_dir(shared):
 
 
 @pytest.fixture(scope="module")
-def run(dev_dir, fixture_dir, tmp_path_factory):
-    data = tmp_path_factory.mktemp("dev4")
-    for m in SMALL_DEV:
-        shutil.copy(dev_dir / f"{m}.obj", data / f"{m}.obj")
+def run(dev_dir, fixture_dir, tmp_path_factory, mesh_folder):
+    data = mesh_folder(dev_dir, SMALL_DEV)
     out = tmp_path_factory.mktemp("ft")
     torch.set_num_threads(1)
     assert main(["train", "--data", str(data), "--init-from", str(fixture_dir / "model.safetensors"),

@@ -3,7 +3,6 @@ checkpoint ends with exactly the weights of an uninterrupted one."""
 from __future__ import annotations
 
 import json
-import shutil
 
 import numpy as np
 import pytest
@@ -22,10 +21,8 @@ MESHES = ["cube", "octahedron", "tetrahedron", "torus_12x8", "two_components", "
 
 
 @pytest.fixture(scope="module")
-def data(golden_dir, dev_dir, tmp_path_factory):
-    root = tmp_path_factory.mktemp("meshes")
-    for m in MESHES:
-        shutil.copy(golden_dir / f"{m}.obj", root / f"{m}.obj")
+def data(golden_dir, dev_dir, tmp_path_factory, mesh_folder):
+    root = mesh_folder(golden_dir, MESHES)
     out = tmp_path_factory.mktemp("index")
     summary = build_index(root, out, dev_dir)
     assert summary["meshes"] == len(MESHES) and not summary["refusals"]
