@@ -191,6 +191,9 @@ def open_data(a: TrainArgs, env: DistEnv, cfg: ModelConfig, out: Path) -> Traini
     kind = get_architecture(cfg.arch).preprocessing(cfg)["kind"]
     if a.data:
         path = Path(a.data)
+        if not is_dataset(path) and (path / "index.jsonl").is_file():
+            raise SystemExit(f"--data {path}: an index without dataset.json (an older `silk-export dataset`); "
+                             "rebuild it, or pass it as --index with --root")
         if not is_dataset(path):
             path = out / "data"
             if env.is_main and not is_dataset(path):
