@@ -1,4 +1,4 @@
-"""`python3 -m silk_export ...`: the same commands as the `silk-export` console script."""
+"""`python -m silk_export ...` (and `torchrun ... -m silk_export train ...`): the console script."""
 import sys
 
 from .cli import main

@@ -11,12 +11,12 @@ from .architectures import build_model
 from .configs import config_from_dict
 
 
-def save_checkpoint(path: Path, model, optimizer, step: int, extra: dict) -> None:
+def save_state(path: Path, config: dict, model_state: dict, optim_state: dict | None, step: int,
+               extra: dict) -> None:
+    """Writes a checkpoint from state dicts (training gathers them from DDP/FSDP first)."""
     path = Path(path)
     tmp = path.with_suffix(path.suffix + ".tmp")
-    torch.save({"config": model.cfg.to_dict(), "model": model.state_dict(),
-                "optimizer": optimizer.state_dict() if optimizer is not None else None,
-                "step": step, **extra}, tmp)
+    torch.save({"config": config, "model": model_state, "optimizer": optim_state, "step": step, **extra}, tmp)
     os.replace(tmp, path)
 
 

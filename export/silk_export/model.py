@@ -6,6 +6,7 @@ from __future__ import annotations
 import torch
 import torch.nn.functional as F
 from torch import nn
+from torch.utils.checkpoint import checkpoint
 
 from .configs import ModelConfig
 from .layers import FeedForward, MultiHeadAttention, attend, merge_heads, split_heads
@@ -16,6 +17,8 @@ IGNORE_INDEX = -100
 
 
 class DecoderLayer(nn.Module):
+    fsdp_forward_methods = ("cross_kv",)  # SilkModel calls it before the layers run (distributed.py)
+
     def __init__(self, cfg: ModelConfig):
         super().__init__()
         d, h = cfg.d_model, cfg.n_heads
@@ -83,6 +86,7 @@ class SilkModel(nn.Module):
         self.head = nn.Linear(d, self.n_logits)
         self.apply(self._init)
         nn.init.normal_(self.type_emb, std=0.02)
+        self.gradient_checkpointing = False  # training: recompute each decoder layer in backward
 
     @staticmethod
     def _init(m: nn.Module) -> None:
@@ -113,7 +117,10 @@ class SilkModel(nn.Module):
         pos = torch.arange(input_ids.shape[1], device=input_ids.device).unsqueeze(0)
         x = self.embed(input_ids, pos)
         for layer, (ck, cv) in zip(self.layers, cross):
-            x, _, _ = layer(x, ck, cv)
+            if self.gradient_checkpointing and self.training:
+                x = checkpoint(lambda x, ck, cv, layer=layer: layer(x, ck, cv)[0], x, ck, cv, use_reentrant=False)
+            else:
+                x, _, _ = layer(x, ck, cv)
         logits = self.logits(x)
         if labels is None:
             return logits

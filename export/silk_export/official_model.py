@@ -12,6 +12,7 @@ from __future__ import annotations
 import torch
 import torch.nn.functional as F
 from torch import nn
+from torch.utils.checkpoint import checkpoint
 
 from .configs import ModelConfig
 from .layers import attend, merge_heads, split_heads
@@ -73,6 +74,8 @@ class GluFeedForward(nn.Module):
 
 
 class OfficialBlock(nn.Module):
+    fsdp_forward_methods = ("cross_kv", "block")  # the entry points OfficialModel calls (distributed.py)
+
     def __init__(self, cfg: ModelConfig):
         super().__init__()
         d, h, dh = cfg.d_model, cfg.n_heads, cfg.head_dim
@@ -124,6 +127,7 @@ class OfficialModel(nn.Module):
         self.final_norm = nn.LayerNorm(d)
         self.to_logits = nn.Linear(d, self.n_logits)
         self.init_buffers()
+        self.gradient_checkpointing = False  # training: recompute each decoder layer in backward
         assert len(TYPE_VECTOR_NAMES) == len(TYPE_CLASSES)
 
     def init_buffers(self) -> None:
@@ -173,7 +177,11 @@ class OfficialModel(nn.Module):
                 q, k, v = (split_heads(t, self.cfg.n_heads) for t in layer.self_qkv(y))
                 return merge_heads(attend(q, k, v, causal=True, scale=self.cfg.qk_scale)), None
 
-            x, _ = layer.block(x, ck, cv, causal)
+            if self.gradient_checkpointing and self.training:
+                x = checkpoint(lambda x, ck, cv, layer=layer, f=causal: layer.block(x, ck, cv, f)[0], x, ck, cv,
+                               use_reentrant=False)
+            else:
+                x, _ = layer.block(x, ck, cv, causal)
         logits = self.logits(x)
         if labels is None:
             return logits
