@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"off", "report", "repair"}))->capture_default_str();
   app.add_flag("--unconstrained", unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
   app.add_option("--stats", stats_path, "Write run figures as JSON");
-  app.add_option("--tokens", tokens_path, "Write the generated ids, one per line");
+  app.add_option("--tokens", tokens_path, "Write the generated ids, one per line (EOS 10267 last when one was generated)");
   app.add_option("--points", n_points, "Encoder points to sample (0 = the model's n_points)")->check(CLI::Range(0, 1 << 20));
   app.add_option("--decoder", decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
       ->check(CLI::IsMember({"fp32", "int8", "int4"}));

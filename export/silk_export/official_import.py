@@ -110,6 +110,8 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
         meta["import"]["seconds"] = round(time.time() - t0, 1)
         (tmp / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
         write_official_card(tmp, meta)
+        for f in tmp.iterdir():
+            f.chmod(0o644)  # onnxruntime writes external data files 0600
         if out_dir.exists():
             shutil.rmtree(out_dir)
         tmp.replace(out_dir)

@@ -63,18 +63,59 @@ def _copy(src, dst, length: int | None) -> int:
     return n
 
 
-def export_graph(module: torch.nn.Module, args: tuple, path: Path, **kwargs) -> list[str]:
+def write_weights_external(path: Path, module: torch.nn.Module) -> list[str]:
+    """For a graph exported with export_params=False (its weights are graph inputs named by the
+    module's state_dict keys): streams each weight into `<name>.data` and turns the input into an
+    initializer stored there. Only one tensor is ever copied at a time."""
+    import onnx
+    m = onnx.load(str(path))
+    state = module.state_dict(keep_vars=True)
+    data_name = path.name + ".data"
+    inputs = []
+    with open(path.parent / data_name, "wb") as out:
+        for inp in m.graph.input:
+            t = state.get(inp.name)
+            if t is None:
+                inputs.append(inp)
+                continue
+            arr = t.detach().float().contiguous().numpy()
+            offset = -(-out.tell() // DATA_ALIGN) * DATA_ALIGN
+            out.seek(offset)
+            out.write(memoryview(arr).cast("B"))
+            tensor = onnx.TensorProto(name=inp.name, data_type=onnx.TensorProto.FLOAT, dims=arr.shape,
+                                      data_location=onnx.TensorProto.EXTERNAL)
+            for key, value in (("location", data_name), ("offset", offset), ("length", arr.nbytes)):
+                entry = tensor.external_data.add()
+                entry.key, entry.value = key, str(value)
+            m.graph.initializer.append(tensor)
+    del m.graph.input[:]
+    m.graph.input.extend(inputs)
+    onnx.save(m, str(path))
+    return [data_name]
+
+
+def export_graph(module: torch.nn.Module, args: tuple, path: Path, external: bool = False, **kwargs) -> list[str]:
     """torch.onnx.export into an empty folder of its own (a large graph's per-tensor files must not
-    meet another graph's), then moved to `path`. Returns its external data file names."""
+    meet another graph's), then moved to `path`. Returns its external data file names.
+
+    external: weights go to `<name>.data` without ever being serialised into one protobuf (the
+    exporter's in-memory copies of a 2 GB graph would need ~6 GB more); no constant folding then
+    (the weights are not constants while tracing), so use it with pre-transposed Linears
+    (transpose_linears) and let onnxruntime fold the rest at load."""
     work = path.parent / f".{path.name}.export"
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
     try:
         with torch.no_grad(), warnings.catch_warnings():
             warnings.simplefilter("ignore")  # tracer warnings about shape-dependent Python values
-            torch.onnx.export(module, args, str(work / path.name), opset_version=OPSET, do_constant_folding=True,
-                              dynamo=False, **kwargs)
-        data = gather_external_data(work / path.name)
+            torch.onnx.export(module, args, str(work / path.name), opset_version=OPSET,
+                              do_constant_folding=not external, export_params=not external, dynamo=False, **kwargs)
+        if external:
+            data = write_weights_external(work / path.name, module)
+            if len(onnx_inputs(work / path.name)) != len(kwargs["input_names"]):
+                raise RuntimeError(f"{path.name}: weights left as graph inputs after the external export")
+        else:
+            data = gather_external_data(work / path.name)
         for name in [path.name, *data]:
             (work / name).replace(path.parent / name)
         return data
@@ -106,6 +147,11 @@ def transpose_linears(model: torch.nn.Module) -> torch.nn.Module:
     return model
 
 
+def onnx_inputs(path: Path) -> list[str]:
+    import onnx
+    return [i.name for i in onnx.load(str(path), load_external_data=False).graph.input]
+
+
 def export_encoder(model, path: Path, fixed_points: bool = False) -> list[str]:
     """fixed_points: the point count is cfg.n_points in the graph (contract v3), else dynamic."""
     n = model.cfg.n_points if fixed_points else 128
@@ -114,7 +160,7 @@ def export_encoder(model, path: Path, fixed_points: bool = False) -> list[str]:
                         output_names=["cross_kv"], dynamic_axes=axes)
 
 
-def export_decoder(model, path: Path) -> list[str]:
+def export_decoder(model, path: Path, external: bool = False) -> list[str]:
     c = model.cfg
     t, p = 3, 5
     ids = torch.tensor([[model.bos_id, 0, 5700]], dtype=torch.int64)
@@ -127,7 +173,7 @@ def export_decoder(model, path: Path) -> list[str]:
     axes = {"input_ids": {1: "T"}, "positions": {1: "T"}, "logits": {1: "T"}}
     axes.update({name: {2: "C"} for name in in_names if name.startswith("past_")})
     axes.update({name: {2: "C_present"} for name in out_names if name.startswith("present_")})
-    return export_graph(DecoderGraph(model), (ids, pos, seqlens_k, total, *past, *cross), path,
+    return export_graph(DecoderGraph(model), (ids, pos, seqlens_k, total, *past, *cross), path, external,
                         input_names=in_names, output_names=out_names, dynamic_axes=axes,
                         custom_opsets={"com.microsoft": 1})
 
@@ -143,6 +189,15 @@ def int8_unsafe_matmuls(path: Path) -> list[str]:
             and shapes[n.input[1]][-1] % 16 != 0]
 
 
+def logits_head_matmuls(path: Path) -> list[str]:
+    """The weight MatMul(s) producing the 10269 logits."""
+    import onnx
+    m = onnx.load(str(path), load_external_data=False)
+    shapes = {i.name: list(i.dims) for i in m.graph.initializer}
+    width = load_vocab().model_vocab_size
+    return [n.name for n in m.graph.node if n.op_type == "MatMul" and shapes.get(n.input[1], [0])[-1] == width]
+
+
 def quantize_decoder(src: Path, dst: Path) -> None:
     """Dynamic INT8 quantization of the weight MatMuls (activations quantized at run time)."""
     from onnxruntime.quantization import QuantType, quantize_dynamic
@@ -153,11 +208,15 @@ def quantize_decoder(src: Path, dst: Path) -> None:
 
 def quantize_decoder_int4(src: Path, dst: Path, block_size: int = 32, accuracy_level: int = 4) -> None:
     """4-bit weight-only quantization of the weight MatMuls (com.microsoft MatMulNBits, symmetric,
-    `block_size` weights per scale; accuracy_level 4 = int8 activations in the kernel)."""
+    `block_size` weights per scale; accuracy_level 4 = int8 activations in the kernel). The logits
+    head stays fp32: 2 % of the weights, but 4-bit noise on it moves every logit directly."""
+    import logging
+
     import onnx
     from onnxruntime.quantization.matmul_nbits_quantizer import MatMulNBitsQuantizer
+    logging.getLogger("onnxruntime.quantization.matmul_nbits_quantizer").setLevel(logging.WARNING)  # per-node INFO
     q = MatMulNBitsQuantizer(onnx.load(str(src)), block_size=block_size, is_symmetric=True,
-                             accuracy_level=accuracy_level)
+                             accuracy_level=accuracy_level, nodes_to_exclude=logits_head_matmuls(src))
     q.process()
     q.model.save_model_to_file(str(dst), use_external_data_format=False)
 
@@ -202,14 +261,22 @@ def sidecar(cfg: ModelConfig, training: dict, files: dict, extra: dict | None = 
     return meta
 
 
-def export_graphs(model, out_dir: Path) -> dict:
-    """encoder.onnx + decoder.onnx (fp32) into out_dir; returns model.json "files"."""
+def decoder_weight_bytes(model) -> int:
+    """fp32 bytes of what the decoder graph holds (everything but the point encoder)."""
+    skip = {id(p) for name, p in model.named_parameters() if "encoder" in name}
+    return 4 * sum(p.numel() for p in model.parameters() if id(p) not in skip)
+
+
+def export_graphs(model, out_dir: Path, external_over: int = 1 << 30) -> dict:
+    """encoder.onnx + decoder.onnx (fp32) into out_dir; returns model.json "files". A decoder
+    holding more than `external_over` bytes of weights is written with external data (see
+    export_graph; the release-size official decoder: 1.94 GB)."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     model = model.float().eval()
     fixed_points = get_architecture(model.cfg.arch).model_version >= 3
     data = export_encoder(model, out_dir / "encoder.onnx", fixed_points)
-    data += export_decoder(model, out_dir / "decoder.onnx")
+    data += export_decoder(model, out_dir / "decoder.onnx", decoder_weight_bytes(model) > external_over)
     files = {"encoder": "encoder.onnx", "decoder": "decoder.onnx"}
     if data:
         files["external_data"] = data

@@ -113,3 +113,22 @@ def test_greedy_reproduces_official_loop(fixture_dir, cross_kv, decoder):
     want = fixture_tokens(fixture_dir, "greedy.txt")
     assert len(want) == 100 and -1 not in want
     assert onnx_decode.greedy(decoder, cross_kv, 10269, 10267, 100) == want
+
+
+def test_external_data_export_is_the_same_network(fixture_dir, tmp_path):
+    """The large-model path (weights streamed into decoder.onnx.data, never one big protobuf)
+    gives the same logits, and the INT8 quantizer reads it."""
+    from silk_export.onnx_export import export_graphs, quantize_decoder, transpose_linears
+    model, _ = load_official(fixture_dir / "model.safetensors", fixture_dir / "config.json", progress=False)
+    files = export_graphs(transpose_linears(model), tmp_path, external_over=0)
+    assert files["external_data"] == ["decoder.onnx.data"] and (tmp_path / "decoder.onnx.data").exists()
+    assert (tmp_path / "decoder.onnx").stat().st_size < 1 << 20
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["decoder.onnx", "decoder.onnx.data", "encoder.onnx"]
+    points = np.load(fixture_dir / "points.npy")[None]
+    cross = onnx_decode.session(tmp_path / "encoder.onnx").run(None, {"points": points})[0]
+    ids = [10269] + fixture_tokens(fixture_dir, "tokens.txt")
+    got = onnx_decode.teacher_forced(onnx_decode.session(tmp_path / "decoder.onnx"), cross, ids)
+    assert np.abs(got - np.load(fixture_dir / "logits_teacher_forced.npy")).max() <= TOL
+    quantize_decoder(tmp_path / "decoder.onnx", tmp_path / "decoder.int8.onnx")
+    int8 = onnx_decode.teacher_forced(onnx_decode.session(tmp_path / "decoder.int8.onnx"), cross, ids)
+    assert (int8.argmax(-1) == got.argmax(-1)).mean() >= 0.9

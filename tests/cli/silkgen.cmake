@@ -21,7 +21,7 @@ if(Python3_FOUND AND TARGET silkgen)
     add_test(NAME official_fixture_greedy
              COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/official_fixture_check.py
                      $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR} ${SILK_SHARED_DIR})
-    set_tests_properties(official_fixture_greedy PROPERTIES SKIP_RETURN_CODE 77
+    set_tests_properties(official_fixture_greedy PROPERTIES SKIP_RETURN_CODE 77 LABELS slow
                          ENVIRONMENT "SILK_LIBRARY=$<TARGET_FILE:silk>")
     add_test(NAME capi_generate_ctypes
              COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/examples/generate_ctypes.py

@@ -6,7 +6,8 @@ on COPIES of the committed tiny model made at test time:
              them (tokens compared with the v2 model run with the same explicit settings); the
              official pre-processing runs; an INT4 default decoder is used when its file exists
   errors     missing external data, a default decoder without its file, an encoder whose fixed
-             point count differs from dims.n_points (needs the onnx package, else skipped)
+             point count differs from dims.n_points; a decoder stored with external data loads and
+             gives the same ids (the last two need the onnx package, else skipped)
   raw        --raw-points: the points reach the encoder exactly as written (float32 and float64
              PLY, checked through --trace), --tokens works without -o, and a wrong point count,
              a mesh input, or a non-finite value are clear errors
@@ -132,6 +133,15 @@ def check_errors(silkgen, repo, tmp):
     onnx.save(enc, str(fixed / "encoder.onnx"))
     expect_fail(failures, "encoder point count", run([silkgen, sample, "--model", fixed, "--tokens", tmp / "t", "-q"]),
                 ["takes 128 points", "n_points is 256"])
+    # A decoder whose weights live in external data next to it loads (sessions from paths).
+    ext_ok = v3_model(repo, tmp / "v3_external", files={"external_data": ["decoder.onnx.data"]})
+    dec = onnx.load(str(ext_ok / "decoder.onnx"))
+    onnx.save_model(dec, str(ext_ok / "decoder.onnx"), save_as_external_data=True, all_tensors_to_one_file=True,
+                    location="decoder.onnx.data", size_threshold=0)
+    plain, _, _ = tokens_of(silkgen, v3_model(repo, tmp / "v3_plain"), sample, tmp, "plain", ["--seed", "3"])
+    got, _, err = tokens_of(silkgen, ext_ok, sample, tmp, "external", ["--seed", "3"])
+    if got is None or got != plain or (ext_ok / "decoder.onnx").stat().st_size > 100000:
+        failures.append(f"decoder with external data: {err or 'tokens differ / data not external'}")
     return failures
 
 
