@@ -66,6 +66,8 @@ class Grammar {
   void Reset();
   // Accepts one id (0..10268). On rejection the state is unchanged.
   Rejection Accept(int32_t id);
+  // What Accept(id) would answer now, without changing anything (same code path: Step).
+  Rejection Check(int32_t id) const;
   // The ids Accept would take now. Cached until the next Accept/Reset/Rewind.
   const TokenMask& LegalMask();
   // The only legal id, or -1.
@@ -112,7 +114,8 @@ class Grammar {
   void AddBetweenMask(int32_t min_start);
   bool WindowOk(int32_t n_size, int32_t w) const;
   int32_t BudgetMaxSize(int64_t extra) const;
-  bool BudgetTight() const;
+  bool FarFromCap(int64_t extra = 0) const;
+  Rejection Step(int32_t id, bool commit);
   int64_t RowFinishCost(int32_t n_size, int64_t future) const;
   int64_t FutureRowsCost(int32_t from_row, int32_t n_size) const;
   bool ColumnsClear(int32_t s, int32_t c) const;
