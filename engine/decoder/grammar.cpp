@@ -68,7 +68,7 @@ int32_t Grammar::remaining() const {
   return options_.max_length - static_cast<int32_t>(history_.size());
 }
 
-Rejection Grammar::Reject(RejectReason r, int32_t id, const std::string& why) const {
+Rejection Grammar::MakeRejection(RejectReason r, int32_t id, const std::string& why) const {
   return Rejection{r, "token " + std::to_string(history_.size()) + " (id " + std::to_string(id) + "): " + why};
 }
 
@@ -154,10 +154,11 @@ int32_t Grammar::BudgetMaxSize(int64_t extra) const {
 Rejection Grammar::CheckBSegment(int32_t id, int32_t s, int32_t c) const {
   if (s + BetweenCaseLastOne(c) > n_prev_ - 1)
     return Reject(RejectReason::kBOutsidePrevLayer, id,
-                  "segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
-                      " but the previous layer has " + std::to_string(n_prev_) + " vertices (spec §11.3)");
+        [&] { return std::string("segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
+                      " but the previous layer has " + std::to_string(n_prev_) + " vertices (spec §11.3)"); });
   if (options_.geometric_rules && !ColumnsClear(s, c))
-    return Reject(RejectReason::kZeroLengthEdge, id, "B segment links two vertices at one position");
+    return Reject(RejectReason::kZeroLengthEdge, id,
+        [&] { return std::string("B segment links two vertices at one position"); });
   return Rejection{};
 }
 
@@ -170,9 +171,14 @@ bool Grammar::ColumnsClear(int32_t s, int32_t c) const {
   return true;
 }
 
-Rejection Grammar::Check(int32_t id) const {
-  // Step with commit = false reads the state only (every branch returns before its first write).
-  return const_cast<Grammar*>(this)->Step(id, false);
+Rejection Grammar::Check(int32_t id, bool with_message) const {
+  // Step with commit = false reads the state only (every branch returns before its first write);
+  // `messages_` only decides whether a refusal's text is built.
+  Grammar* self = const_cast<Grammar*>(this);
+  self->messages_ = with_message;
+  Rejection r = self->Step(id, false);
+  self->messages_ = true;
+  return r;
 }
 
 // One place for every acceptance rule: with commit = false it only answers, with commit = true
@@ -180,17 +186,22 @@ Rejection Grammar::Check(int32_t id) const {
 // `if (!commit) return Rejection{};`.
 Rejection Grammar::Step(int32_t id, bool commit) {
   const Kind k = KindOf(id);
-  if (k == Kind::kBad) return Reject(RejectReason::kOutOfVocabulary, id, "id outside 0..10268");
-  if (phase_ == GrammarPhase::kEnded) return Reject(RejectReason::kAfterEos, id, "nothing may follow EOS");
-  if (k == Kind::kPad) return Reject(RejectReason::kPadToken, id, "PAD is padding, never a sequence token (spec §9)");
+  if (k == Kind::kBad) return Reject(RejectReason::kOutOfVocabulary, id,
+      [&] { return std::string("id outside 0..10268"); });
+  if (phase_ == GrammarPhase::kEnded) return Reject(RejectReason::kAfterEos, id,
+      [&] { return std::string("nothing may follow EOS"); });
+  if (k == Kind::kPad) return Reject(RejectReason::kPadToken, id,
+      [&] { return std::string("PAD is padding, never a sequence token (spec §9)"); });
   // Spec §9: at most max_length tokens including EOS.
   if (options_.max_length > 0 && static_cast<int64_t>(history_.size()) + 1 > options_.max_length)
-    return Reject(RejectReason::kTooLong, id, "sequence longer than the length limit");
+    return Reject(RejectReason::kTooLong, id, [&] { return std::string("sequence longer than the length limit"); });
   if (k == Kind::kEos && phase_ != GrammarPhase::kAfterE)
-    return Reject(RejectReason::kEosNotAfterE, id, "EOS only directly after the E of a component (spec §11.4)");
+    return Reject(RejectReason::kEosNotAfterE, id,
+        [&] { return std::string("EOS only directly after the E of a component (spec §11.4)"); });
 
   auto wrong = [&]() {
-    return Reject(RejectReason::kWrongClass, id, std::string("expected ") + PhaseExpects(phase_) + " (spec §11.1)");
+    return Reject(RejectReason::kWrongClass, id,
+        [&] { return std::string(std::string("expected ") + PhaseExpects(phase_) + " (spec §11.1)"); });
   };
   const int32_t rem_after = remaining() - 1;
 
@@ -205,7 +216,7 @@ Rejection Grammar::Step(int32_t id, bool commit) {
       }
       if (k != Kind::kC) return wrong();
       if (rem_after < kMinComponentTokens)  // C + the smallest component + EOS must fit
-        return Reject(RejectReason::kTooLong, id, "no room left for a whole component");
+        return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left for a whole component"); });
       if (!commit) return Rejection{};
       history_.push_back(id);
       stream_.components.emplace_back();
@@ -224,12 +235,12 @@ Rejection Grammar::Step(int32_t id, bool commit) {
         const int32_t r = id - vocab::kBBegin, s = r / kBetweenCases, c = r % kBetweenCases;
         if (s < BetweenNextMinStart(last_s_, last_c_))
           return Reject(RejectReason::kBContinuation, id,
-                        "B start " + std::to_string(s) + " below the continuation minimum " +
-                            std::to_string(BetweenNextMinStart(last_s_, last_c_)) + " (spec §7.3)");
+              [&] { return std::string("B start " + std::to_string(s) + " below the continuation minimum " +
+                            std::to_string(BetweenNextMinStart(last_s_, last_c_)) + " (spec §7.3)"); });
         if (Rejection bad = CheckBSegment(id, s, c); !bad.ok()) return bad;
         const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
         if (!FarFromCap() && rem_after < FutureRowsCost(n, std::max(n, sizes_.Next(n))) + 2)
-          return Reject(RejectReason::kTooLong, id, "no room left to close the layer");
+          return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to close the layer"); });
         if (!commit) return Rejection{};
         history_.push_back(id);
         cur_layer().vertices.back().between.push_back(BetweenToken{s, c});
@@ -240,13 +251,14 @@ Rejection Grammar::Step(int32_t id, bool commit) {
       if (phase_ == GrammarPhase::kAfterB && (k == Kind::kU || k == Kind::kE)) {
         const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
         if (!sizes_.Test(n))
-          return Reject(RejectReason::kLayerNotClosable, id, "layer of " + std::to_string(n) +
-                        " vertices cannot close: " + ExplainClose(n));
+          return Reject(RejectReason::kLayerNotClosable, id, [&] { return std::string("layer of " + std::to_string(n) +
+                        " vertices cannot close: " + ExplainClose(n)); });
         if (k == Kind::kU) {
           if (layer_ >= kMaxLayerIndex)
-            return Reject(RejectReason::kTooManyLayers, id, "layer index 200 would follow (spec §5.3)");
+            return Reject(RejectReason::kTooManyLayers, id,
+                [&] { return std::string("layer index 200 would follow (spec §5.3)"); });
           if (rem_after < 4 + 1 + 1)
-            return Reject(RejectReason::kTooLong, id, "no room for another layer");
+            return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room for another layer"); });
         }
         if (!commit) return Rejection{};
         history_.push_back(id);
@@ -266,15 +278,18 @@ Rejection Grammar::Step(int32_t id, bool commit) {
       const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
       if (phase_ == GrammarPhase::kAfterB) {
         if (n >= kMaxLayerSize)
-          return Reject(RejectReason::kLayerTooLarge, id, "a layer holds at most 200 vertices (spec §1.3)");
+          return Reject(RejectReason::kLayerTooLarge, id,
+              [&] { return std::string("a layer holds at most 200 vertices (spec §1.3)"); });
         const int32_t next = sizes_.Next(n + 1);
         if (next < 0 && !FarFromCap())
-          return Reject(RejectReason::kTooLong, id, "no room left for another vertex and the layer's end");
+          return Reject(RejectReason::kTooLong, id,
+              [&] { return std::string("no room left for another vertex and the layer's end"); });
         if (next < 0)
           return Reject(RejectReason::kNotCanonical, id,
-                        "the earlier rows of this layer only fit a layer of " + std::to_string(n) + " vertices");
+              [&] { return "the earlier rows of this layer only fit a layer of " + std::to_string(n) + " vertices"; });
         if (rem_after + 1 < FutureRowsCost(n, next) + 2)
-          return Reject(RejectReason::kTooLong, id, "no room left for another vertex and the layer's end");
+          return Reject(RejectReason::kTooLong, id,
+              [&] { return std::string("no room left for another vertex and the layer's end"); });
       }
       if (!commit) return Rejection{};
       history_.push_back(id);
@@ -287,7 +302,8 @@ Rejection Grammar::Step(int32_t id, bool commit) {
       if (k != Kind::kO) return wrong();
       const QVec p = VertexOfTokens(pending_block_, id);
       if (layer_ > 0 && options_.geometric_rules && PositionForbidden(p))
-        return Reject(RejectReason::kZeroLengthEdge, id, "vertex at the position of a vertex it is linked to");
+        return Reject(RejectReason::kZeroLengthEdge, id,
+            [&] { return std::string("vertex at the position of a vertex it is linked to"); });
       if (!commit) return Rejection{};
       history_.push_back(id);
       auto& v = cur_layer().vertices.back();
@@ -311,7 +327,8 @@ Rejection Grammar::Step(int32_t id, bool commit) {
       break;
     }
     case GrammarPhase::kWantU0: {
-      if (k == Kind::kE) return Reject(RejectReason::kLayerZeroSize, id, "E directly after the root: a component needs layer 1 (spec §8.3)");
+      if (k == Kind::kE) return Reject(RejectReason::kLayerZeroSize, id,
+          [&] { return std::string("E directly after the root: a component needs layer 1 (spec §8.3)"); });
       if (k != Kind::kU) return wrong();
       if (!commit) return Rejection{};
       history_.push_back(id);
@@ -344,11 +361,13 @@ Rejection Grammar::Step(int32_t id, bool commit) {
         else if (w < (1 << std::min(kSelfWindow, n - 1))) beyond_only = false;
       }
       if (ok.Empty()) {
-        if (budget_max < kMaxLayerSize) return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
-        return Reject(beyond_only ? RejectReason::kWindowBeyondLayer : RejectReason::kNotCanonical, id,
-                      "window " + std::to_string(w) +
-                          " fits no layer size still possible (bits past the layer end, disagreement with an "
-                          "earlier row, the layer-1 chain or a zero-length edge; spec §11.2)");
+        if (budget_max < kMaxLayerSize) return Reject(RejectReason::kTooLong, id,
+            [&] { return std::string("no room left to finish the layer"); });
+        return Reject(beyond_only ? RejectReason::kWindowBeyondLayer : RejectReason::kNotCanonical, id, [&] {
+          return "window " + std::to_string(w) +
+                 " fits no layer size still possible (bits past the layer end, disagreement with an "
+                 "earlier row, the layer-1 chain or a zero-length edge; spec §11.2)";
+        });
       }
       if (!commit) return Rejection{};
       history_.push_back(id);
@@ -368,9 +387,11 @@ Rejection Grammar::Step(int32_t id, bool commit) {
       if (k == Kind::kX) {
         const int32_t e = id - vocab::kXBegin;
         if (e <= last_x_)
-          return Reject(RejectReason::kXNotIncreasing, id, "X values must increase within a vertex (spec §11.2)");
+          return Reject(RejectReason::kXNotIncreasing, id,
+              [&] { return std::string("X values must increase within a vertex (spec §11.2)"); });
         if (e < kMinX || e > kMaxX)
-          return Reject(RejectReason::kXOutOfRange, id, "X value " + std::to_string(e) + " outside [8, 190] (spec §6)");
+          return Reject(RejectReason::kXOutOfRange, id,
+              [&] { return std::string("X value " + std::to_string(e) + " outside [8, 190] (spec §6)"); });
         const int32_t target = b + e + 1;  // forward partner if the layer is longer than target
         // Length budget, exact (see RowFinishCost): a forward X adds one echo to a later row,
         // an echo removes one from this row, a free wrap-around X (kUnion) changes nothing.
@@ -402,11 +423,12 @@ Rejection Grammar::Step(int32_t id, bool commit) {
           ok.Set(n);
         }
         if (ok.Empty() && budget_hit)
-          return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
+          return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to finish the layer"); });
         if (ok.Empty())
-          return Reject(range_only ? RejectReason::kXOutOfRange : RejectReason::kNotCanonical, id,
-                        "X value " + std::to_string(e) +
-                            " fits no layer size still possible (needs N >= e+10 and agreement with earlier rows; spec §11.2)");
+          return Reject(range_only ? RejectReason::kXOutOfRange : RejectReason::kNotCanonical, id, [&] {
+            return "X value " + std::to_string(e) +
+                   " fits no layer size still possible (needs N >= e+10 and agreement with earlier rows; spec §11.2)";
+          });
         if (!commit) return Rejection{};
         history_.push_back(id);
         cur_layer().vertices.back().extras.push_back(e);
@@ -436,10 +458,13 @@ Rejection Grammar::Step(int32_t id, bool commit) {
           if (matched_[n] == g_count_) fin.Set(n);
       }
       if (fin.Empty() && budget_max < kMaxLayerSize)
-        return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
+        return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to finish the layer"); });
       if (fin.Empty())
         return Reject(RejectReason::kNotCanonical, id,
-                      "the vertex's X values miss a pair an earlier row states (spec §11.2 canonical consistency)");
+            [&] {
+              return std::string(
+                  "the vertex's X values miss a pair an earlier row states (spec §11.2 canonical consistency)");
+            });
       if (!commit) return Rejection{};
       history_.push_back(id);
       sizes_ = fin;

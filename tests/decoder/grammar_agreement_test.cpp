@@ -25,7 +25,7 @@ namespace {
 int32_t FirstDisagreement(Grammar* g) {
   const TokenMask m = g->LegalMask();
   for (int32_t id = 0; id < TokenMask::kBits; ++id)
-    if (m.Test(id) != g->Check(id).ok()) return id;
+    if (m.Test(id) != g->Check(id, false).ok()) return id;
   return -1;
 }
 
