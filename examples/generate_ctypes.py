@@ -16,12 +16,13 @@ SILK_OK, SILK_ERR_CANCELLED = 0, 7
 
 
 class ModelOptions(C.Structure):
-    _fields_ = [("threads", C.c_int32), ("int8", C.c_int32)]
+    _fields_ = [("threads", C.c_int32), ("decoder", C.c_int32)]  # silk_decoder_precision
 
 
 class ModelInfo(C.Structure):
     _fields_ = [("config", C.c_char * 32)] + [(n, C.c_int32) for n in (
-        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8")]
+        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8",
+        "decoder", "arch", "encoder_points")]
 
 
 class Progress(C.Structure):
@@ -37,7 +38,8 @@ class Params(C.Structure):
     _fields_ = [("seed", C.c_uint64), ("temperature", C.c_double), ("top_k", C.c_int32), ("top_p", C.c_double),
                 ("max_tokens", C.c_int32), ("max_faces", C.c_int32), ("holes", C.c_int32),
                 ("unconstrained", C.c_int32), ("n_points", C.c_int32), ("progress", PROGRESS_FN),
-                ("cancel", CANCEL_FN), ("user_data", C.c_void_p)]
+                ("cancel", CANCEL_FN), ("user_data", C.c_void_p), ("top_p_temperature", C.c_double),
+                ("preprocessing", C.c_int32), ("raw_points", C.c_int32)]
 
 
 class Stats(C.Structure):

@@ -32,6 +32,8 @@ Json SettingsJson(const RunSettings& s) {
               {"temperature", o.sampling.temperature},
               {"top_k", o.sampling.top_k},
               {"top_p", o.sampling.top_p},
+              {"top_p_temperature", o.sampling.top_p_temperature},
+              {"preprocessing", s.preprocessing},
               {"max_tokens", o.max_tokens},
               {"max_faces", o.max_faces},
               {"repair", HolesName(o.holes)},
@@ -58,6 +60,7 @@ std::string StatsJson(const RunSettings& settings, const silk::PipelineResult& r
   j["tokens_per_second"] = st.tokens_per_second;
   j["threads"] = st.threads;
   j["int8"] = st.int8;
+  j["decoder"] = st.decoder;
   j["kv_cache_bytes"] = st.kv_cache_bytes;
   j["seconds"] = {{"load_input", st.seconds.load_input}, {"encoder", st.seconds.encoder},
                   {"decoder", st.seconds.decoder},       {"grammar", st.seconds.grammar},

@@ -11,6 +11,7 @@ namespace silkgen {
 
 struct RunSettings {
   std::string input, output, model_dir, model_config;
+  std::string preprocessing;  // "silk", "official" or "raw" (--raw-points)
   bool point_cloud = false;
   int32_t input_vertices = 0, input_faces = 0, points = 0;
   silk::GenerateOptions options;

@@ -28,12 +28,15 @@ using silk::capi::SetError;
 namespace {
 
 #if defined(SILK_HAVE_RUNTIME)
-silk::GenerateOptions ToOptions(const silk_generate_params& p) {
+// Negative sampling fields take the model's defaults (model.json "sampling").
+silk::GenerateOptions ToOptions(const silk_generate_params& p, const silk::ModelConfig& config) {
   silk::GenerateOptions o;
+  o.sampling = config.sampling;
   o.sampling.seed = p.seed;
-  o.sampling.temperature = p.temperature;
-  o.sampling.top_k = p.top_k;
-  o.sampling.top_p = p.top_p;
+  if (p.temperature >= 0) o.sampling.temperature = p.temperature;
+  if (p.top_k >= 0) o.sampling.top_k = p.top_k;
+  if (p.top_p >= 0) o.sampling.top_p = p.top_p;
+  if (p.top_p_temperature >= 0) o.sampling.top_p_temperature = p.top_p_temperature;
   o.max_tokens = p.max_tokens;
   o.max_faces = p.max_faces;
   o.holes = p.holes == SILK_HOLES_REPAIR ? silk::HolePolicy::kRepair
@@ -97,9 +100,18 @@ silk_status RunGeneration(silk_generator* g, const silk::GenerationInput& input,
                           silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
   const silk_generate_params p = params ? *params : silk_generate_default_params();
   if (p.n_points < 0) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generate: n_points is negative");
+  if (p.preprocessing > SILK_PREPROCESS_OFFICIAL)
+    return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generate: preprocessing is not a silk_preprocess_kind");
+  if (p.raw_points && !input.point_cloud)
+    return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generate: raw_points needs a point cloud");
+  const silk::ModelConfig& config = g->owner->model->config();
+  silk::PreprocessingParams prep = silk::ModelPreprocessing(config, p.n_points);
+  if (p.preprocessing >= 0 && p.preprocessing != static_cast<int32_t>(prep.kind))
+    prep = p.preprocessing == SILK_PREPROCESS_OFFICIAL ? silk::OfficialPreprocessing(prep.n_points)
+                                                       : silk::SilkPreprocessing(prep.normalize_bound, prep.n_points);
   const auto t0 = std::chrono::steady_clock::now();
-  auto r = silk::GenerateFromInput(&g->generator, g->owner->model->config(), input, ToOptions(p), ToCallbacks(p),
-                                   p.n_points);
+  auto r = silk::GenerateFromInput(&g->generator, config, input, ToOptions(p, config), ToCallbacks(p),
+                                   p.raw_points ? nullptr : &prep);
   if (!r.ok()) return SetError(r.status());
   r->generation.stats.seconds.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   auto mesh = std::make_unique<silk_mesh>();
@@ -134,7 +146,7 @@ int32_t silk_generation_available(void) {
 silk_model_options silk_model_default_options(void) {
   silk_model_options o;
   o.threads = 0;
-  o.int8 = 0;
+  o.decoder = SILK_DECODER_DEFAULT;
   return o;
 }
 
@@ -142,9 +154,11 @@ silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));
   p.seed = 0;
-  p.temperature = 0.5;
-  p.top_k = 50;
-  p.top_p = 1.0;
+  p.temperature = -1;  // the model's (model.json "sampling")
+  p.top_k = -1;
+  p.top_p = -1;
+  p.top_p_temperature = -1;
+  p.preprocessing = -1;  // the model's (model.json "preprocessing")
   p.holes = SILK_HOLES_OFF;
   return p;
 }
@@ -159,7 +173,11 @@ silk_status silk_model_load(const char* dir, const silk_model_options* options, 
     SILK_CAPI_REQUIRE(o.threads >= 0, "silk_model_load: threads is negative");
     silk::ModelLoadOptions lo;
     lo.threads = o.threads;
-    lo.int8 = o.int8 != 0;
+    SILK_CAPI_REQUIRE(o.decoder >= SILK_DECODER_DEFAULT && o.decoder <= SILK_DECODER_INT4,
+                      "silk_model_load: decoder is not a silk_decoder_precision");
+    if (o.decoder == SILK_DECODER_INT8) lo.decoder = silk::DecoderPrecision::kInt8;
+    if (o.decoder == SILK_DECODER_FP32) lo.decoder = silk::DecoderPrecision::kFp32;
+    if (o.decoder == SILK_DECODER_INT4) lo.decoder = silk::DecoderPrecision::kInt4;
     auto m = silk::Model::Load(dir, lo);
     if (!m.ok()) return SetError(m.status());
     auto h = std::make_unique<silk_model>();
@@ -196,7 +214,24 @@ silk_status silk_model_get_info(const silk_model* model, silk_model_info* out) {
     out->n_points = c.dims.n_points;
     out->max_seq_len = c.dims.max_seq_len;
     out->threads = model->model->threads();
-    out->int8 = model->model->int8();
+    const silk::DecoderPrecision d = model->model->precision();
+    out->int8 = d == silk::DecoderPrecision::kInt8;
+    out->decoder = d == silk::DecoderPrecision::kInt8 ? SILK_DECODER_INT8
+                   : d == silk::DecoderPrecision::kInt4 ? SILK_DECODER_INT4 : SILK_DECODER_FP32;
+    out->arch = c.arch == silk::ModelArch::kOfficial ? 1 : 0;
+    out->encoder_points = static_cast<int32_t>(model->model->encoder_points());
+    return Ok();
+#else
+    return SetError(SILK_ERR_UNSUPPORTED, kNoRuntime);
+#endif
+  });
+}
+
+silk_status silk_model_get_preprocess_params(const silk_model* model, silk_preprocess_params* out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(model && out, "silk_model_get_preprocess_params: NULL argument");
+#if defined(SILK_HAVE_RUNTIME)
+    *out = silk::capi::ToCPreprocess(model->model->config().preprocessing);
     return Ok();
 #else
     return SetError(SILK_ERR_UNSUPPORTED, kNoRuntime);

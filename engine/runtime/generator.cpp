@@ -54,13 +54,15 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
   const int32_t cap = options.max_tokens > 0 ? std::min(options.max_tokens, model_cap) : model_cap;
   if (cap < 2) return InvalidArgument("generate: max_tokens must be at least 2");
   const SamplingParams& sp = options.sampling;
-  if (!std::isfinite(sp.temperature) || sp.temperature < 0 || sp.top_k < 0 || !(sp.top_p >= 0 && sp.top_p <= 1))
-    return InvalidArgument("generate: need temperature >= 0, top_k >= 0 and top_p in [0, 1]");
+  if (!std::isfinite(sp.temperature) || sp.temperature < 0 || sp.top_k < 0 || !(sp.top_p >= 0 && sp.top_p <= 1) ||
+      !(sp.top_p_temperature >= 0 && std::isfinite(sp.top_p_temperature)))
+    return InvalidArgument("generate: need temperature >= 0, top_k >= 0, top_p in [0, 1] and top_p_temperature >= 0");
 
   GenerateResult res;
   GenerationStats& st = res.stats;
   st.threads = m.threads;
-  st.int8 = m.int8;
+  st.int8 = m.precision == DecoderPrecision::kInt8;
+  st.decoder = DecoderPrecisionName(m.precision);
   const auto t_start = Clock::now();
 
   // Encoder: cross-attention K/V once per input.

@@ -66,6 +66,15 @@ class DecodeParams(ctypes.Structure):
     _fields_ = [("grid_coordinates", ctypes.c_int32)]
 
 
+class PreprocessParams(ctypes.Structure):
+    _fields_ = [("kind", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
+                ("merge_distance_fraction", ctypes.c_double), ("surface_samples", ctypes.c_int32),
+                ("round_float16", ctypes.c_int32), ("n_points", ctypes.c_int32)]
+
+
+PREPROCESS_KINDS = {"silk": 0, "official": 1}
+
+
 def library_candidates() -> list[Path]:
     """Built libraries in the checkout, in the order they are tried."""
     first = REPO_ROOT / "build" / "engine" / "libsilk.so"
@@ -105,6 +114,11 @@ def _declare(lib: ctypes.CDLL) -> None:
         "silk_encode_default_params": (EncodeParams, []),
         "silk_encode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams),
                                        ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(EncodeStats)]),
+        "silk_preprocess_default_params": (PreprocessParams, [ctypes.c_int32]),
+        "silk_prepare_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
+                                               ctypes.POINTER(PreprocessParams), ctypes.c_uint64,
+                                               ctypes.POINTER(ctypes.c_float), ctypes.c_size_t,
+                                               ctypes.POINTER(ctypes.c_size_t), _c_double_p]),
         "silk_decode_default_params": (DecodeParams, []),
         "silk_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
                                        ctypes.POINTER(ctypes.c_void_p)]),
@@ -264,3 +278,38 @@ def decode(tokens: np.ndarray, grid_coordinates: bool = False) -> Mesh:
         return Mesh(mh)
     finally:
         L.silk_tokens_destroy(th)
+
+
+def prepare_points(positions: np.ndarray, triangles: np.ndarray | None, kind: str = "silk",
+                   n_points: int = 4096, seed: int = 0, **overrides) -> tuple[np.ndarray, np.ndarray, float]:
+    """The encoder's points by libsilk's pre-processing (silk_prepare_points), the same code
+    generation runs: a mesh (triangles given) or an oriented cloud (positions [N, 6], triangles
+    None). `kind` "silk" or "official" picks the defaults; `overrides` set PreprocessParams
+    fields (normalize_bound, merge_distance_fraction, surface_samples, round_float16).
+    Returns (float32 [n, 6] normalised xyz + normal, centre [3], scale): model = (input - centre) * scale."""
+    L = lib()
+    params = L.silk_preprocess_default_params(PREPROCESS_KINDS[kind])
+    params.n_points = int(n_points)
+    for name, value in overrides.items():
+        if name not in dict(PreprocessParams._fields_) or name in ("kind", "n_points"):
+            raise TypeError(f"prepare_points: unknown pre-processing field '{name}'")
+        setattr(params, name, type(getattr(params, name))(value))
+    transform = np.zeros(4, dtype=np.float64)
+    rows = ctypes.c_size_t()
+    seed = ctypes.c_uint64(int(seed) & (2**64 - 1))
+
+    def run(*source) -> np.ndarray:  # size query, then the rows
+        _check(L.silk_prepare_points(*source, ctypes.byref(params), seed, None, 0, ctypes.byref(rows), None))
+        out = np.empty((rows.value, 6), dtype=np.float32)
+        _check(L.silk_prepare_points(*source, ctypes.byref(params), seed,
+                                     out.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), out.size,
+                                     ctypes.byref(rows), transform.ctypes.data_as(_c_double_p)))
+        return out
+
+    if triangles is None:
+        cloud = np.ascontiguousarray(positions, dtype=np.float64).reshape(-1, 6)
+        out = run(None, cloud.ctypes.data_as(_c_double_p), cloud.shape[0])
+    else:
+        with Mesh.from_arrays(positions, triangles) as m:
+            out = run(m.handle, None, 0)
+    return out, transform[:3].copy(), float(transform[3])
