@@ -66,6 +66,12 @@ bool FillLoop(const std::vector<int32_t>& loop, const ComponentMesh& cb, std::se
   const int32_t k = static_cast<int32_t>(loop.size());
   std::set<int32_t> distinct(loop.begin(), loop.end());
   if (static_cast<int32_t>(distinct.size()) != k) return false;
+  // A 3-loop that is the border of one existing face (an isolated triangle, or a face whose
+  // three neighbours are missing) would be closed by that face reversed: a duplicate face, a
+  // two-sided "pillow". Larger loops always fill with a new chord in every face.
+  if (k == 3)
+    for (const auto& f : *faces)
+      if (std::set<int32_t>(f.begin(), f.end()) == distinct) return false;
   auto has = [&](int32_t a, int32_t b) { return edges->count(Key(std::min(a, b), std::max(a, b))) > 0; };
   for (int32_t apex = 0; apex < k; ++apex) {
     const int32_t v0 = loop[apex];
@@ -231,6 +237,7 @@ StatusOr<DecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOpti
 std::string CheckMeshGuarantees(const DecodedMesh& mesh) {
   std::unordered_map<uint64_t, int32_t> undirected;
   std::set<uint64_t> directed;
+  std::set<std::array<int32_t, 3>> corner_sets;
   std::vector<int32_t> faces_per_component(static_cast<size_t>(std::max(mesh.components, 0)), 0);
   for (size_t i = 0; i < mesh.faces.size(); ++i) {
     const auto& f = mesh.faces[i];
@@ -242,6 +249,9 @@ std::string CheckMeshGuarantees(const DecodedMesh& mesh) {
         mesh.positions[f[0]] == mesh.positions[f[2]])
       return at + "two corners at one position";
     if (Collinear(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]])) return at + "zero area";
+    std::array<int32_t, 3> sorted = f;
+    std::sort(sorted.begin(), sorted.end());
+    if (!corner_sets.insert(sorted).second) return at + "duplicate of an earlier face (same corners)";
     const int32_t c = mesh.face_component[i];
     for (int k = 0; k < 3; ++k)
       if (mesh.vertex_component[f[k]] != c) return at + "corners of different components";

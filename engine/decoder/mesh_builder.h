@@ -87,7 +87,8 @@ StatusOr<DecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOpti
 
 // Structural guarantees of grammar.h, checked on a mesh: "" when they hold, else the first
 // failure (edge with > 2 faces, directed edge twice, repeated corner/position, face spanning
-// two components, component without faces, vertex whose faces form two or more fans).
+// two components, component without faces, two faces on the same three corners, vertex whose
+// faces form two or more fans).
 std::string CheckMeshGuarantees(const DecodedMesh& mesh);
 
 // True when every edge of every face has exactly two faces (mesh_checks' verdict).
