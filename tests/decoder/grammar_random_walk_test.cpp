@@ -90,10 +90,22 @@ void RunWalks(uint64_t first_seed, int32_t count, const RandomWalkOptions& wo, b
     ASSERT_EQ(mesh->components, c_tokens);
     faces += static_cast<int64_t>(mesh->faces.size());
     if (check_mask) {
-      // Mask == Accept for a sample of ids at every step.
+      // Mask == Accept for a sample of ids at every step; at every U/E the cached incremental
+      // mesh (closed components reused) equals the mesh built from scratch.
       Grammar h;
+      MeshBuildCache cache;
       std::mt19937 pick(static_cast<uint32_t>(seed));
       for (int32_t id : ids) {
+        if (h.size() > 0 && (h.tokens().back() == vocab::kUBegin || h.tokens().back() == vocab::kEBegin)) {
+          MeshBuildReport with_cache, fresh;
+          auto a = BuildMeshSoFar(h, mo, &with_cache, &cache);
+          auto b = BuildMeshSoFar(h, mo, &fresh);
+          ASSERT_TRUE(a.ok() && b.ok());
+          ASSERT_EQ(a->faces, b->faces) << "replay: " << Dump(seed, ids);
+          ASSERT_EQ(a->positions, b->positions);
+          ASSERT_EQ(with_cache.vertices_split, fresh.vertices_split);
+          ASSERT_EQ(with_cache.holes.size(), fresh.holes.size());
+        }
         const TokenMask m = h.LegalMask();
         for (int t = 0; t < 6; ++t) {
           const int32_t probe = std::uniform_int_distribution<int32_t>(0, TokenMask::kBits - 1)(pick);
