@@ -217,9 +217,10 @@ int main(int argc, char** argv) {
   if (!quiet)
     std::fprintf(stderr,
                  "silkgen: %lld tokens (%s, %.0f%% forced) -> %d faces, %d part(s); %.1f tok/s, %.2f s total; "
-                 "manifold %s, watertight %s, oriented %s\n",
+                 "edge-manifold %s, vertex-manifold %s, oriented %s, watertight %s\n",
                  static_cast<long long>(st.tokens), st.stop_reason.c_str(), 100.0 * st.forced_share(), st.faces,
                  st.components, st.tokens_per_second, st.seconds.total, st.edge_manifold ? "yes" : "no",
-                 st.watertight ? "yes" : "no", st.consistently_oriented ? "yes" : "no");
+                 st.vertex_manifold ? "yes" : "no", st.consistently_oriented ? "yes" : "no",
+                 st.watertight ? "yes" : "no");
   return kExitOk;
 }

@@ -67,8 +67,10 @@ std::string StatsJson(const RunSettings& settings, const silk::PipelineResult& r
                   {"sampling", st.seconds.sampling},     {"build_mesh", st.seconds.build_mesh},
                   {"write_output", st.seconds.write_output}, {"total", st.seconds.total}};
   j["repairs"] = {{"holes_found", st.holes_found}, {"holes_repaired", st.holes_repaired},
-                  {"faces_added", st.faces_added}, {"window_findings", st.window_findings}};
-  j["verdicts"] = {{"edge_manifold", st.edge_manifold}, {"watertight", st.watertight},
+                  {"faces_added", st.faces_added}, {"window_findings", st.window_findings},
+                  {"fan_gaps_closed", st.fan_gaps_closed}, {"vertices_split", st.vertices_split}};
+  j["verdicts"] = {{"edge_manifold", st.edge_manifold}, {"vertex_manifold", st.vertex_manifold},
+                   {"nonmanifold_vertices", st.nonmanifold_vertices}, {"watertight", st.watertight},
                    {"consistently_oriented", st.consistently_oriented}, {"open_edges", st.open_edges}};
   if (settings.options.unconstrained)
     j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};

@@ -90,6 +90,10 @@ void FillStats(const silk::GenerationStats& s, silk_generate_stats* out) {
   out->seconds_sampling = s.seconds.sampling;
   out->seconds_build_mesh = s.seconds.build_mesh;
   out->seconds_total = s.seconds.total;
+  out->vertex_manifold = s.vertex_manifold;
+  out->nonmanifold_vertices = s.nonmanifold_vertices;
+  out->fan_gaps_closed = s.fan_gaps_closed;
+  out->vertices_split = s.vertices_split;
 }
 
 silk_status RunGeneration(silk_generator* g, const silk::GenerationInput& input, const silk_generate_params* params,

@@ -82,6 +82,7 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
   Sampler sampler(options.sampling);
   std::vector<int32_t> pending = {cfg.bos_id};
   int32_t faces_at_close = -1;
+  MeshBuildCache so_far_cache;  // --max-faces: closed components are built once
   bool illegal_seen = false;
   const auto t_loop = Clock::now();
 
@@ -162,7 +163,7 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
     pending.push_back(id);
     if (options.max_faces > 0 && !illegal_seen && ClosesLayer(id)) {
       t0 = Clock::now();
-      auto so_far = BuildMeshSoFar(grammar, MeshBuildOptions{}, nullptr);
+      auto so_far = BuildMeshSoFar(grammar, MeshBuildOptions{}, nullptr, &so_far_cache);
       st.seconds.build_mesh += Since(t0);
       if (so_far.ok()) faces_at_close = static_cast<int32_t>(so_far->faces.size());
       if (faces_at_close >= options.max_faces) {
@@ -205,6 +206,8 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
   st.holes_found = static_cast<int32_t>(res.report.holes.size());
   for (const HoleReport& h : res.report.holes) st.holes_repaired += h.repaired ? 1 : 0;
   st.faces_added = res.report.faces_added;
+  st.fan_gaps_closed = res.report.fan_gaps_closed;
+  st.vertices_split = res.report.vertices_split;
   st.window_findings = static_cast<int32_t>(res.report.window_findings.size());
   return res;
 }
