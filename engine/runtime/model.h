@@ -11,7 +11,8 @@
 namespace silk {
 
 struct ModelLoadOptions {
-  int threads = 0;             // onnxruntime intra-op threads; 0 = physical cores
+  int threads = 0;             // intra-op threads of the process's shared pool (sized by the first
+                               // model loaded); 0 = physical cores; at most MaxThreads()
   bool int8 = false;           // use the INT8 decoder (files.decoder_int8); error if absent
   bool allow_spinning = true;  // worker threads spin between ops (faster, burns CPU while idle)
 };
@@ -25,7 +26,7 @@ class Model {
   Model& operator=(const Model&) = delete;
 
   const ModelConfig& config() const;
-  int threads() const;       // the resolved thread count
+  int threads() const;       // threads of the shared pool
   bool int8() const;         // whether the INT8 decoder is in use
   Impl& impl() const { return *impl_; }
 

@@ -102,8 +102,12 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   SILK_RETURN_IF_ERROR(GetInt(*d, "max_seq_len", dn, &c.dims.max_seq_len));
   const ModelDims& m = c.dims;
   if (m.d_model <= 0 || m.n_layers <= 0 || m.n_heads <= 0 || m.head_dim <= 0 || m.n_latents <= 0 ||
-      m.n_points <= 0 || m.max_seq_len < 2)
-    return Status(StatusCode::kParseError, dn + ": every dimension must be positive (max_seq_len >= 2)");
+      m.n_points <= 0)
+    return Status(StatusCode::kParseError, dn + ": every dimension must be positive");
+  if (m.max_seq_len < kMinMeshTokens + 1)
+    return Status(StatusCode::kParseError, dn + ": max_seq_len " + std::to_string(m.max_seq_len) +
+                                               " leaves room for fewer ids than the smallest mesh (" +
+                                               std::to_string(kMinMeshTokens) + " + BOS)");
   if (m.head_dim % 8 != 0 || int64_t{m.d_model} != int64_t{m.n_heads} * m.head_dim)
     return Bad(name, "dims.head_dim " + std::to_string(m.head_dim) +
                          " must be a multiple of 8 and d_model = n_heads * head_dim (docs/model_contract.md)");
