@@ -20,6 +20,11 @@ _c_double_p = ctypes.POINTER(ctypes.c_double)
 
 SILK_OK = 0
 SILK_ERR_REFUSED = 5
+SILK_ERR_CANCELLED = 7
+SILK_ERR_BUFFER_TOO_SMALL = 9
+SILK_ERR_BUSY = 10
+STOP_REASONS = {-1: "running", 0: "eos", 1: "max_tokens", 2: "max_faces", 3: "grammar_dead_end", 4: "cancelled"}
+HOLES = {"off": 0, "report": 1, "repair": 2}
 
 
 class SilkError(RuntimeError):
@@ -66,6 +71,52 @@ class DecodeParams(ctypes.Structure):
     _fields_ = [("grid_coordinates", ctypes.c_int32)]
 
 
+class ModelOptions(ctypes.Structure):
+    _fields_ = [("threads", ctypes.c_int32), ("int8", ctypes.c_int32)]
+
+
+class ModelInfo(ctypes.Structure):
+    _fields_ = [("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in (
+        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8")]
+
+
+class GenerateProgress(ctypes.Structure):
+    _fields_ = [("tokens", ctypes.c_int64), ("max_tokens", ctypes.c_int64), ("components", ctypes.c_int32),
+                ("faces", ctypes.c_int32), ("seconds", ctypes.c_double)]
+
+
+PROGRESS_FN = ctypes.CFUNCTYPE(None, ctypes.POINTER(GenerateProgress), ctypes.c_void_p)
+CANCEL_FN = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_void_p)
+
+
+class GenerateParams(ctypes.Structure):
+    _fields_ = [("seed", ctypes.c_uint64), ("temperature", ctypes.c_double), ("top_k", ctypes.c_int32),
+                ("top_p", ctypes.c_double), ("max_tokens", ctypes.c_int32), ("max_faces", ctypes.c_int32),
+                ("holes", ctypes.c_int32), ("unconstrained", ctypes.c_int32), ("n_points", ctypes.c_int32),
+                ("debug_flags", ctypes.c_int32), ("progress", PROGRESS_FN), ("cancel", CANCEL_FN),
+                ("user_data", ctypes.c_void_p)]
+
+
+class GenerateStats(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_int64) for n in ("tokens", "forced_tokens", "sampled_tokens", "model_calls")] + [
+        (n, ctypes.c_int32) for n in ("stop_reason", "faces", "vertices", "components", "holes_found",
+                                      "holes_repaired", "faces_added", "edge_manifold", "watertight",
+                                      "consistently_oriented", "open_edges")] + [
+        ("illegal_at", ctypes.c_int64), ("tokens_per_second", ctypes.c_double)] + [
+        (n, ctypes.c_double) for n in ("seconds_prepare", "seconds_encoder", "seconds_decoder", "seconds_grammar",
+                                       "seconds_sampling", "seconds_build_mesh", "seconds_total")]
+
+    def as_dict(self) -> dict:
+        d = {name: getattr(self, name) for name, _ in self._fields_}
+        d["stop_reason"] = STOP_REASONS.get(self.stop_reason, str(self.stop_reason))
+        return d
+
+
+class GenerateInput(ctypes.Structure):
+    _fields_ = [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("n_points", ctypes.c_size_t),
+                ("raw", ctypes.c_int32)]
+
+
 def library_candidates() -> list[Path]:
     """Built libraries in the checkout, in the order they are tried."""
     first = REPO_ROOT / "build" / "engine" / "libsilk.so"
@@ -108,6 +159,30 @@ def _declare(lib: ctypes.CDLL) -> None:
         "silk_decode_default_params": (DecodeParams, []),
         "silk_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
                                        ctypes.POINTER(ctypes.c_void_p)]),
+        "silk_generation_available": (ctypes.c_int32, []),
+        "silk_model_default_options": (ModelOptions, []),
+        "silk_model_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ModelOptions),
+                                           ctypes.POINTER(ctypes.c_void_p)]),
+        "silk_model_destroy": (None, [ctypes.c_void_p]),
+        "silk_model_get_info": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ModelInfo)]),
+        "silk_generator_create": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+        "silk_generator_destroy": (None, [ctypes.c_void_p]),
+        "silk_generate_default_params": (GenerateParams, []),
+        "silk_generator_start": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
+                                                ctypes.POINTER(GenerateParams)]),
+        "silk_generator_advance": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.c_int32,
+                                                  ctypes.POINTER(ctypes.c_int32)]),
+        "silk_generator_cancel": (None, [ctypes.c_void_p]),
+        "silk_generator_tokens": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+        "silk_generator_mesh": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+        "silk_generator_stats": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateStats)]),
+        "silk_generator_finish": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p),
+                                                 ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
+        "silk_generator_report_json": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.c_char_p,
+                                                      ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)]),
+        "silk_generate_input_run": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
+                                                   ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
+                                                   ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
     }
     for name, (res, args) in sig.items():
         fn = getattr(lib, name)
@@ -264,3 +339,148 @@ def decode(tokens: np.ndarray, grid_coordinates: bool = False) -> Mesh:
         return Mesh(mh)
     finally:
         L.silk_tokens_destroy(th)
+
+
+class Model:
+    """A loaded model folder (silk_model). Generators keep it alive; close() may come first."""
+
+    def __init__(self, model_dir: str | os.PathLike, threads: int = 0, int8: bool = False):
+        L = lib()
+        opts = L.silk_model_default_options()
+        opts.threads, opts.int8 = int(threads), int(bool(int8))
+        self._h = ctypes.c_void_p()
+        _check(L.silk_model_load(os.fsencode(model_dir), ctypes.byref(opts), ctypes.byref(self._h)))
+
+    def info(self) -> dict:
+        i = ModelInfo()
+        _check(lib().silk_model_get_info(self._h, ctypes.byref(i)))
+        d = {name: getattr(i, name) for name, _ in ModelInfo._fields_}
+        d["config"] = i.config.decode(errors="replace")
+        return d
+
+    def close(self) -> None:
+        if self._h:
+            lib().silk_model_destroy(self._h)
+            self._h = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def generate_params(seed: int = 0, temperature: float = 0.5, top_k: int = 50, top_p: float = 1.0,
+                    max_tokens: int = 0, max_faces: int = 0, repair: str = "off", n_points: int = 0) -> GenerateParams:
+    p = lib().silk_generate_default_params()
+    p.seed, p.temperature, p.top_k, p.top_p = int(seed), float(temperature), int(top_k), float(top_p)
+    p.max_tokens, p.max_faces, p.n_points = int(max_tokens), int(max_faces), int(n_points)
+    if repair not in HOLES:
+        raise ValueError(f"repair must be one of {sorted(HOLES)}, not {repair!r}")
+    p.holes = HOLES[repair]
+    return p
+
+
+class Generator:
+    """One generation at a time (silk_generator), step-wise or in one call. Use one per thread."""
+
+    def __init__(self, model: Model):
+        self._model = model  # the C side keeps its own reference too
+        self._h = ctypes.c_void_p()
+        _check(lib().silk_generator_create(model._h, ctypes.byref(self._h)))
+        self._keep = None  # input arrays referenced by a started generation
+
+    def _input(self, mesh: Mesh | None, points: np.ndarray | None) -> GenerateInput:
+        gi = GenerateInput()
+        if mesh is not None:
+            gi.mesh = mesh.handle
+            self._keep = mesh
+        else:
+            pts = np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 6)
+            gi.points, gi.n_points = pts.ctypes.data_as(_c_double_p), pts.shape[0]
+            self._keep = pts
+        return gi
+
+    def start(self, mesh: Mesh | None = None, points: np.ndarray | None = None, **params) -> None:
+        p = generate_params(**params)
+        _check(lib().silk_generator_start(self._h, ctypes.byref(self._input(mesh, points)), ctypes.byref(p)))
+
+    def advance(self, max_ids: int = 1, until_layer: bool = False) -> bool:
+        """Adds up to max_ids ids (or up to the next completed layer); True once finished."""
+        done = ctypes.c_int32()
+        _check(lib().silk_generator_advance(self._h, int(max_ids), 1 if until_layer else 0, ctypes.byref(done)))
+        return bool(done.value)
+
+    def cancel(self) -> None:
+        lib().silk_generator_cancel(self._h)
+
+    def tokens(self) -> np.ndarray:
+        h = ctypes.c_void_p()
+        _check(lib().silk_generator_tokens(self._h, ctypes.byref(h)))
+        return _tokens_to_numpy(h)
+
+    def mesh_so_far(self) -> Mesh:
+        h = ctypes.c_void_p()
+        _check(lib().silk_generator_mesh(self._h, ctypes.byref(h)))
+        return Mesh(h)
+
+    def stats(self) -> dict:
+        st = GenerateStats()
+        _check(lib().silk_generator_stats(self._h, ctypes.byref(st)))
+        return st.as_dict()
+
+    def finish(self) -> tuple[Mesh, np.ndarray, dict]:
+        mh, th, st = ctypes.c_void_p(), ctypes.c_void_p(), GenerateStats()
+        _check(lib().silk_generator_finish(self._h, ctypes.byref(mh), ctypes.byref(th), ctypes.byref(st)))
+        self._keep = None
+        return Mesh(mh), _tokens_to_numpy(th), st.as_dict()
+
+    def report_json(self, trace: bool = False) -> str:
+        L, size = lib(), ctypes.c_size_t()
+        status = L.silk_generator_report_json(self._h, int(trace), None, 0, ctypes.byref(size))
+        if status != SILK_ERR_BUFFER_TOO_SMALL:
+            _check(status)
+        buf = ctypes.create_string_buffer(size.value)
+        _check(L.silk_generator_report_json(self._h, int(trace), buf, size.value, ctypes.byref(size)))
+        return buf.value.decode()
+
+    def generate(self, mesh: Mesh | None = None, points: np.ndarray | None = None,
+                 progress=None, cancel=None, **params) -> tuple[Mesh, np.ndarray, dict]:
+        """One call: (mesh in the input's frame, ids, stats). progress(dict) after every id;
+        cancel() -> truthy stops with SilkError(status=SILK_ERR_CANCELLED)."""
+        p = generate_params(**params)
+        if progress is not None:
+            p.progress = PROGRESS_FN(lambda pr, _u: progress({n: getattr(pr[0], n) for n, _ in GenerateProgress._fields_}))
+        if cancel is not None:
+            p.cancel = CANCEL_FN(lambda _u: 1 if cancel() else 0)
+        gi = self._input(mesh, points)
+        mh, th, st = ctypes.c_void_p(), ctypes.c_void_p(), GenerateStats()
+        try:
+            _check(lib().silk_generate_input_run(self._h, ctypes.byref(gi), ctypes.byref(p), ctypes.byref(mh),
+                                                 ctypes.byref(th), ctypes.byref(st)))
+        finally:
+            self._keep = None
+        return Mesh(mh), _tokens_to_numpy(th), st.as_dict()
+
+    def close(self) -> None:
+        if self._h:
+            lib().silk_generator_destroy(self._h)
+            self._h = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
