@@ -1,5 +1,5 @@
-"""ctypes binding of libsilk's C API (silk.h) for the add-on: pure Python (Debian's Blender has
-no numpy), only the calls the operators use. The library is the copy beside the add-on
+"""The add-on's use of libsilk's C API (silk.h) over ctypes: pure Python (Debian's Blender has
+no numpy); the declarations come from silk_c. The library is the copy beside the add-on
 (lib/libsilk.so*) or $SILK_LIBRARY; a missing one raises SilkLibraryMissing naming the paths."""
 from __future__ import annotations
 
@@ -7,16 +7,11 @@ import ctypes
 import glob
 import os
 
+from . import silk_c  # the C declarations, shared with export/silk_export (a copy in the zip)
+from .silk_c import SILK_ERR_CANCELLED, SILK_OK, GenerateInput, GenerateStats  # noqa: F401
+
 ADDON_DIR = os.path.dirname(os.path.abspath(__file__))
 BUNDLED_MODEL = os.path.join(ADDON_DIR, "model")
-
-SILK_OK, SILK_ERR_CANCELLED, SILK_ERR_BUFFER_TOO_SMALL = 0, 7, 9
-STOP_REASONS = {-1: "running", 0: "eos", 1: "max_tokens", 2: "max_faces", 3: "grammar_dead_end", 4: "cancelled"}
-HOLES = {"OFF": 0, "REPORT": 1, "REPAIR": 2}
-
-_i32p = ctypes.POINTER(ctypes.c_int32)
-_f64p = ctypes.POINTER(ctypes.c_double)
-_vpp = ctypes.POINTER(ctypes.c_void_p)
 
 
 class SilkError(RuntimeError):
@@ -28,79 +23,6 @@ class SilkError(RuntimeError):
 class SilkLibraryMissing(RuntimeError):
     pass
 
-
-class ModelOptions(ctypes.Structure):
-    _fields_ = [("threads", ctypes.c_int32), ("int8", ctypes.c_int32)]
-
-
-class GenerateProgress(ctypes.Structure):
-    _fields_ = [("tokens", ctypes.c_int64), ("max_tokens", ctypes.c_int64), ("components", ctypes.c_int32),
-                ("faces", ctypes.c_int32), ("seconds", ctypes.c_double)]
-
-
-PROGRESS_FN = ctypes.CFUNCTYPE(None, ctypes.POINTER(GenerateProgress), ctypes.c_void_p)
-CANCEL_FN = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_void_p)
-
-
-class GenerateParams(ctypes.Structure):
-    _fields_ = [("seed", ctypes.c_uint64), ("temperature", ctypes.c_double), ("top_k", ctypes.c_int32),
-                ("top_p", ctypes.c_double), ("max_tokens", ctypes.c_int32), ("max_faces", ctypes.c_int32),
-                ("holes", ctypes.c_int32), ("unconstrained", ctypes.c_int32), ("n_points", ctypes.c_int32),
-                ("debug_flags", ctypes.c_int32), ("progress", PROGRESS_FN), ("cancel", CANCEL_FN),
-                ("user_data", ctypes.c_void_p)]
-
-
-class GenerateStats(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int64) for n in ("tokens", "forced_tokens", "sampled_tokens", "model_calls")] + [
-        (n, ctypes.c_int32) for n in ("stop_reason", "faces", "vertices", "components", "holes_found",
-                                      "holes_repaired", "faces_added", "edge_manifold", "watertight",
-                                      "consistently_oriented", "open_edges")] + [
-        ("illegal_at", ctypes.c_int64), ("tokens_per_second", ctypes.c_double)] + [
-        (n, ctypes.c_double) for n in ("seconds_prepare", "seconds_encoder", "seconds_decoder", "seconds_grammar",
-                                       "seconds_sampling", "seconds_build_mesh", "seconds_total")]
-
-    def as_dict(self) -> dict:
-        d = {name: getattr(self, name) for name, _ in self._fields_}
-        d["stop_reason"] = STOP_REASONS.get(self.stop_reason, str(self.stop_reason))
-        return d
-
-
-class GenerateInput(ctypes.Structure):
-    _fields_ = [("mesh", ctypes.c_void_p), ("points", _f64p), ("n_points", ctypes.c_size_t), ("raw", ctypes.c_int32)]
-
-
-_SIGNATURES = {
-    "silk_last_error": (ctypes.c_char_p, []),
-    "silk_version": (ctypes.c_char_p, []),
-    "silk_generation_available": (ctypes.c_int32, []),
-    "silk_mesh_create": (ctypes.c_int, [_f64p, ctypes.c_size_t, _i32p, ctypes.c_size_t, _vpp]),
-    "silk_mesh_load": (ctypes.c_int, [ctypes.c_char_p, _vpp]),
-    "silk_mesh_save": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p]),
-    "silk_mesh_destroy": (None, [ctypes.c_void_p]),
-    "silk_mesh_vertex_count": (ctypes.c_size_t, [ctypes.c_void_p]),
-    "silk_mesh_triangle_count": (ctypes.c_size_t, [ctypes.c_void_p]),
-    "silk_mesh_copy_positions": (ctypes.c_int, [ctypes.c_void_p, _f64p, ctypes.c_size_t]),
-    "silk_mesh_copy_triangles": (ctypes.c_int, [ctypes.c_void_p, _i32p, ctypes.c_size_t]),
-    "silk_mesh_copy_triangle_components": (ctypes.c_int, [ctypes.c_void_p, _i32p, ctypes.c_size_t]),
-    "silk_tokens_load": (ctypes.c_int, [ctypes.c_char_p, _vpp]),
-    "silk_tokens_save": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p]),
-    "silk_tokens_destroy": (None, [ctypes.c_void_p]),
-    "silk_encode": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_void_p, _vpp, ctypes.c_void_p]),
-    "silk_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_void_p, _vpp]),
-    "silk_model_default_options": (ModelOptions, []),
-    "silk_model_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ModelOptions), _vpp]),
-    "silk_model_destroy": (None, [ctypes.c_void_p]),
-    "silk_generator_create": (ctypes.c_int, [ctypes.c_void_p, _vpp]),
-    "silk_generator_destroy": (None, [ctypes.c_void_p]),
-    "silk_generate_default_params": (GenerateParams, []),
-    "silk_generator_start": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
-                                            ctypes.POINTER(GenerateParams)]),
-    "silk_generator_advance": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.c_int32, _i32p]),
-    "silk_generator_cancel": (None, [ctypes.c_void_p]),
-    "silk_generator_mesh": (ctypes.c_int, [ctypes.c_void_p, _vpp]),
-    "silk_generator_stats": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateStats)]),
-    "silk_generator_finish": (ctypes.c_int, [ctypes.c_void_p, _vpp, _vpp, ctypes.POINTER(GenerateStats)]),
-}
 
 _lib = None
 
@@ -125,9 +47,7 @@ def lib() -> ctypes.CDLL:
             handle = ctypes.CDLL(path)
         except OSError as e:
             raise SilkLibraryMissing(f"Silk: cannot load libsilk from {path}: {e}") from e
-        for name, (res, args) in _SIGNATURES.items():
-            fn = getattr(handle, name)
-            fn.restype, fn.argtypes = res, args
+        silk_c.declare(handle)
         _lib = handle
     return _lib
 
@@ -220,7 +140,7 @@ class Generation:
             self.model = None
         p = L.silk_generate_default_params()
         p.seed, p.temperature, p.top_k = seed, temperature, top_k
-        p.max_faces, p.max_tokens, p.holes = max_faces, max_tokens, HOLES[repair]
+        p.max_faces, p.max_tokens, p.holes = max_faces, max_tokens, silk_c.HOLES[repair.lower()]
         gi = GenerateInput()
         if source is not None:
             gi.mesh = source.handle
