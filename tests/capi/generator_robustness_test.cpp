@@ -425,4 +425,45 @@ TEST_F(CapiGeneration, StepWiseMatchesOneCallAndGrowsByLayers) {
   silk_generator_destroy(g);
 }
 
+TEST_F(CapiGeneration, RawPointsReproduceTheTracedEncoderInput) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  silk_generate_params p = Params(4);
+  p.debug_flags = SILK_DEBUG_RECORD_TRACE;
+  silk_mesh* out = nullptr;
+  silk_tokens* t = nullptr;
+  ASSERT_EQ(silk_generate(g, mesh_, &p, &out, &t, nullptr), SILK_OK) << silk_last_error();
+  std::vector<int32_t> want(silk_tokens_count(t));
+  silk_tokens_copy(t, want.data(), want.size());
+  silk_tokens_destroy(t);
+  silk_mesh_destroy(out);
+  size_t size = 0;
+  ASSERT_EQ(silk_generator_report_json(g, 1, nullptr, 0, &size), SILK_ERR_BUFFER_TOO_SMALL);
+  std::string json(size, '\0');
+  ASSERT_EQ(silk_generator_report_json(g, 1, &json[0], json.size(), &size), SILK_OK) << silk_last_error();
+  // The trace's "points": the encoder input (model frame), 9 significant digits = float32 exact.
+  const size_t at = json.find("\"points\":[");
+  ASSERT_NE(at, std::string::npos);
+  std::vector<double> points;
+  const char* c = json.c_str() + at + 9;  // at the [; each number follows [ or ,
+  while (*c != ']') {
+    char* end = nullptr;
+    points.push_back(std::strtod(c + 1, &end));
+    c = end;
+  }
+  ASSERT_EQ(points.size() % 6, 0u);
+  silk_generate_input in{};
+  in.points = points.data();
+  in.n_points = points.size() / 6;
+  in.raw = 1;
+  silk_generate_params q = Params(4);
+  ASSERT_EQ(silk_generate_input_run(g, &in, &q, &out, &t, nullptr), SILK_OK) << silk_last_error();
+  std::vector<int32_t> got(silk_tokens_count(t));
+  silk_tokens_copy(t, got.data(), got.size());
+  EXPECT_EQ(got, want);
+  silk_tokens_destroy(t);
+  silk_mesh_destroy(out);
+  silk_generator_destroy(g);
+}
+
 }  // namespace
