@@ -9,6 +9,7 @@ _c_int32_p = ctypes.POINTER(ctypes.c_int32)
 _c_double_p = ctypes.POINTER(ctypes.c_double)
 
 SILK_OK = 0
+SILK_ERR_INVALID_ARGUMENT = 1
 SILK_ERR_REFUSED = 5
 SILK_ERR_CANCELLED = 7
 SILK_ERR_BUFFER_TOO_SMALL = 9
@@ -67,8 +68,8 @@ class GenerateParams(ctypes.Structure):
     _fields_ = [("seed", ctypes.c_uint64), ("temperature", ctypes.c_double), ("top_k", ctypes.c_int32),
                 ("top_p", ctypes.c_double), ("max_tokens", ctypes.c_int32), ("max_faces", ctypes.c_int32),
                 ("holes", ctypes.c_int32), ("unconstrained", ctypes.c_int32), ("n_points", ctypes.c_int32),
-                ("debug_flags", ctypes.c_int32), ("progress", PROGRESS_FN), ("cancel", CANCEL_FN),
-                ("user_data", ctypes.c_void_p)]
+                ("progress", PROGRESS_FN), ("cancel", CANCEL_FN), ("user_data", ctypes.c_void_p),
+                ("debug_flags", ctypes.c_int32)]
 
 
 class GenerateStats(ctypes.Structure):
@@ -139,6 +140,12 @@ SIGNATURES = {
                                              ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
     "silk_generator_report_json": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.c_char_p,
                                                   ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)]),
+    "silk_generate": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(GenerateParams),
+                                     ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_void_p),
+                                     ctypes.POINTER(GenerateStats)]),
+    "silk_generate_from_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
+                                                 ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
+                                                 ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
     "silk_generate_input_run": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
                                                ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
                                                ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),

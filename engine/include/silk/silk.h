@@ -200,10 +200,10 @@ typedef struct silk_generate_params {
   int32_t holes;        /* silk_hole_policy, default SILK_HOLES_OFF */
   int32_t unconstrained;/* 1: no grammar mask (mesh = legal prefix); default 0 */
   int32_t n_points;     /* encoder points; 0 = the model's n_points (default) */
-  int32_t debug_flags;  /* SILK_DEBUG_* bits; default 0 */
   silk_progress_fn progress; /* may be NULL */
   silk_cancel_fn cancel;     /* may be NULL */
   void* user_data;           /* passed to both callbacks */
+  int32_t debug_flags;       /* SILK_DEBUG_* bits; default 0 */
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
 
