@@ -1,9 +1,12 @@
 #!/usr/bin/env python3
 """Exports random-weight models of the tiny / small / paper shapes (export/silk_export/configs.py)
-for bench/generation_bench.cpp, at bench time (never committed: paper is ~2 GB in fp32).
-Each goes to OUT/<config>/ with model.json, encoder.onnx, decoder.onnx, decoder.int8.onnx.
+and of the released official network ("official": arch official at the release size, 601 M
+parameters) for bench/generation_bench.cpp, at bench time (never committed: paper is ~2 GB in
+fp32, official ~2.4 GB). Each goes to OUT/<config>/ with model.json, encoder.onnx, decoder.onnx,
+decoder.int8.onnx; "official" also gets decoder.int4.onnx and the importer's fidelity figures
+(model.json "import.fidelity": top-1 agreement and KL of each variant vs fp32).
 
-    python3 bench/export_bench_models.py --out /tmp/silk-bench-models [--configs tiny small paper]
+    python3 bench/export_bench_models.py --out /tmp/silk-bench-models [--configs tiny small paper official]
 """
 from __future__ import annotations
 
@@ -18,9 +21,29 @@ sys.path.insert(0, str(REPO / "export"))
 
 import torch  # noqa: E402
 
+from silk_export.architectures import get_architecture  # noqa: E402
 from silk_export.configs import get_config  # noqa: E402
 from silk_export.model import SilkModel  # noqa: E402
-from silk_export.onnx_export import MODEL_VERSION, export_model  # noqa: E402
+from silk_export.onnx_export import export_graphs, export_model, sidecar, transpose_linears  # noqa: E402
+
+RANDOM = {"steps": 0, "data": "random weights (benchmark)"}
+
+
+def export_official(out: Path, seed: int, int4_block: int, int4_accuracy: int) -> int:
+    """Release-size official network, random weights; all three decoders + fidelity figures."""
+    from silk_export.official_checkpoint import RELEASE_SIZES, official_config
+    from silk_export.official_import import write_variants
+    from silk_export.official_model import OfficialModel
+    model = OfficialModel(official_config(RELEASE_SIZES, {})).init_random(seed=seed)
+    cfg, params = model.cfg, model.num_parameters()
+    files = export_graphs(transpose_linears(model), out)
+    del model
+    figures = write_variants(out, files, cfg, "auto", int4_block, int4_accuracy)
+    meta = sidecar(cfg, {**RANDOM, "seed": seed}, files,
+                   {"import": {"fidelity": figures, "int4": {"block_size": int4_block,
+                                                             "accuracy_level": int4_accuracy}}})
+    (out / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
+    return params
 
 
 def main() -> int:
@@ -29,24 +52,29 @@ def main() -> int:
     ap.add_argument("--configs", nargs="+", default=["tiny", "small", "paper"])
     ap.add_argument("--no-int8", action="store_true")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--int4-block-size", type=int, default=32)
+    ap.add_argument("--int4-accuracy-level", type=int, default=4)
     a = ap.parse_args()
     torch.set_num_threads(2)
     for name in a.configs:
         out = Path(a.out) / name
+        version = get_architecture("official" if name == "official" else "silk").model_version
         current = (out / "model.json").exists() and \
-            json.loads((out / "model.json").read_text()).get("model_version") == MODEL_VERSION
+            json.loads((out / "model.json").read_text()).get("model_version") == version
         if current and (a.no_int8 or (out / "decoder.int8.onnx").exists()):
             print(f"{name}: already in {out}")
             continue
         t0 = time.time()
         torch.manual_seed(a.seed)
-        model = SilkModel(get_config(name))
-        export_model(model, out, {"steps": 0, "data": "random weights (benchmark)", "seed": a.seed},
-                     int8=not a.no_int8)
+        if name == "official":
+            params = export_official(out, a.seed, a.int4_block_size, a.int4_accuracy_level)
+        else:
+            model = SilkModel(get_config(name))
+            params = model.num_parameters()
+            export_model(model, out, {**RANDOM, "seed": a.seed}, int8=not a.no_int8)
+            del model
         sizes = {f.name: round(f.stat().st_size / 2**20, 1) for f in sorted(out.iterdir())}
-        print(json.dumps({"config": name, "params": model.num_parameters(), "MiB": sizes,
-                          "seconds": round(time.time() - t0, 1)}))
-        del model
+        print(json.dumps({"config": name, "params": params, "MiB": sizes, "seconds": round(time.time() - t0, 1)}))
     return 0
 
 

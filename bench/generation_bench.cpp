@@ -136,7 +136,7 @@ bool Measure(const Args& a, const std::string& name, bool int8, const double ban
   const std::string dir = a.models + "/" + name;
   silk::ModelLoadOptions lo;
   lo.threads = a.threads;
-  lo.int8 = int8;
+  lo.decoder = int8 ? silk::DecoderPrecision::kInt8 : silk::DecoderPrecision::kFp32;
   auto t0 = Clock::now();
   auto model = silk::Model::Load(dir, lo);
   if (!model.ok()) {

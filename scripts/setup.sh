@@ -54,3 +54,18 @@ else
   # PIP_BREAK_SYSTEM_PACKAGES: Debian's own python3 is "externally managed" (PEP 668).
   PIP_BREAK_SYSTEM_PACKAGES=1 python3 -m pip install -q --disable-pip-version-check -r export/requirements.txt
 fi
+
+# The export/ package itself (editable), so `silk-export` is on the PATH. Quick no-op when the
+# installed copy already points at this checkout.
+if python3 - "$REPO/export" <<'PY' 2>/dev/null
+import importlib.metadata as m, json, sys
+dist = m.distribution("silk-export")
+url = json.loads(dist.read_text("direct_url.json") or "{}").get("url", "")
+sys.exit(0 if url.rstrip("/").endswith(sys.argv[1].rstrip("/")) else 1)
+PY
+then
+  echo "setup: silk-export installed (editable, this checkout)"
+else
+  echo "setup: installing export/ (pip install -e export: the silk-export command)"
+  PIP_BREAK_SYSTEM_PACKAGES=1 python3 -m pip install -q --disable-pip-version-check --no-deps -e "$REPO/export"
+fi

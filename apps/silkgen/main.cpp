@@ -50,26 +50,33 @@ void WriteTextFile(const std::string& path, const std::string& text) {
 
 struct Args {
   std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path;
-  int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0, top_k = 50;
-  double temperature = 0.5, top_p = 1.0;
-  bool unconstrained = false, int8 = false, part_colors = false, quiet = false;
+  int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
+  // Sampling, pre-processing and decoder precision default to model.json's; these sentinels
+  // (negative / empty) mean "not given" (silk_generate_params' -1).
+  double temperature = -1, top_p = -1, top_p_temperature = -1;
+  int top_k = -1;
+  std::string decoder, preprocessing;
+  bool unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
 };
 
 void AddOptions(CLI::App& app, Args& a) {
   app.add_option("input", a.input, "Point-cloud PLY with normals (nx ny nz), or a mesh: PLY OBJ STL OFF glTF GLB")
       ->required()->check(CLI::ExistingFile);
-  app.add_option("-o,--output", a.output, "Output mesh: .glb (one node per part), .obj or .ply")->required();
+  app.add_option("-o,--output", a.output, "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
   app.add_option("--model", a.model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx); default: the bundled model");
   app.add_option("--seed", a.seed_text, "Random seed (integer) or 'random'")->capture_default_str();
   app.add_option("--threads", a.threads, "onnxruntime threads (0 = physical cores)")->check(CLI::Range(0, 1024))
       ->capture_default_str();
-  app.add_option("--temperature", a.temperature, "Sampling temperature (0 = greedy)")->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
-  app.add_option("--top-k", a.top_k, "Keep the k most likely legal ids (0 = off)")->check(CLI::Range(0, 10269))
-      ->capture_default_str();
-  app.add_option("--top-p", a.top_p, "Nucleus: keep the smallest set with this much probability (1 = off)")
-      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  app.add_option("--temperature", a.temperature, "Sampling temperature (0 = greedy); default: model.json's")
+      ->check(CLI::Range(0.0, 100.0));
+  app.add_option("--top-k", a.top_k, "Keep the k most likely legal ids (0 = off); default: model.json's")
+      ->check(CLI::Range(0, 10269));
+  app.add_option("--top-p", a.top_p, "Nucleus: keep the smallest set with this much probability (1 = off); default: "
+                 "model.json's")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--top-p-temperature", a.top_p_temperature,
+                 "Compute top-p at this temperature on the top-k logits (official chain; 0 = at --temperature); "
+                 "default: model.json's")->check(CLI::Range(0.0, 100.0));
   app.add_option("--max-tokens", a.max_tokens, "Cap on generated ids incl. EOS (0 = the model's limit)")
       ->check(CLI::Range(0, 10240))->capture_default_str();
   app.add_option("--max-faces", a.max_faces, "Stop at the first layer end with at least this many faces (0 = off)")
@@ -78,9 +85,16 @@ void AddOptions(CLI::App& app, Args& a) {
       ->check(CLI::IsMember({"off", "report", "repair"}))->capture_default_str();
   app.add_flag("--unconstrained", a.unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
   app.add_option("--stats", a.stats_path, "Write run figures as JSON");
-  app.add_option("--tokens", a.tokens_path, "Write the generated ids, one per line");
+  app.add_option("--tokens", a.tokens_path, "Write the generated ids, one per line (EOS 10267 last when one was generated)");
   app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")->check(CLI::Range(0, 1 << 20));
-  app.add_flag("--int8", a.int8, "Use the model's INT8 decoder");
+  app.add_option("--decoder", a.decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
+      ->check(CLI::IsMember({"fp32", "int8", "int4"}));
+  app.add_flag("--int8", a.int8, "Same as --decoder int8");
+  app.add_option("--preprocessing", a.preprocessing, "Point pre-processing: silk or official; default: model.json's")
+      ->check(CLI::IsMember({"silk", "official"}));
+  app.add_flag("--raw-points", a.raw_points,
+               "The input is the encoder's point cloud, used exactly as given (x y z nx ny nz PLY with the model's "
+               "point count; no normalisation, resampling or rounding); the output stays in the model's frame");
   app.add_flag("--part-colors", a.part_colors, "GLB: a distinct COLOR_0 per part");
   app.add_flag("-q,--quiet", a.quiet, "No settings, progress or summary on stderr");
   // Measurement switches (docs/runtime.md), not needed for normal use.
@@ -112,6 +126,10 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.temperature = a.temperature;
   p.top_k = a.top_k;
   p.top_p = a.top_p;
+  p.top_p_temperature = a.top_p_temperature;
+  p.preprocessing = a.preprocessing.empty() ? -1 : a.preprocessing == "official" ? SILK_PREPROCESS_OFFICIAL
+                                                                                  : SILK_PREPROCESS_SILK;
+  p.raw_points = a.raw_points ? 1 : 0;
   p.max_tokens = a.max_tokens;
   p.max_faces = a.max_faces;
   p.holes = a.repair == "repair" ? SILK_HOLES_REPAIR : a.repair == "report" ? SILK_HOLES_REPORT : SILK_HOLES_OFF;
@@ -137,19 +155,29 @@ const char* StopName(int32_t r) {
 int Run(const Args& a, uint64_t seed) {
   silk_model_options mo = silk_model_default_options();
   mo.threads = a.threads;
-  mo.int8 = a.int8 ? 1 : 0;
+  const std::string decoder = a.int8 ? "int8" : a.decoder;
+  mo.decoder = decoder == "int8" ? SILK_DECODER_INT8 : decoder == "int4" ? SILK_DECODER_INT4
+               : decoder == "fp32" ? SILK_DECODER_FP32 : SILK_DECODER_DEFAULT;
   silk_cpp::Model model = silk_cpp::Model::Load(a.model_dir, mo);
   silk_cpp::Mesh input = silk_cpp::Mesh::Load(a.input);
   const silk_model_info info = model.info();
   silk_generate_params p = ToParams(a, seed);
   if (!a.quiet) {
+    // Sampling values not given on the command line are the model's (model.json "sampling").
+    auto given = [](double v) { return v >= 0 ? std::to_string(v).substr(0, 6) : std::string("model"); };
     std::fprintf(stderr,
-                 "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads%s)\n"
-                 "  seed %llu  temperature %g  top-k %d  top-p %g  max-tokens %d  max-faces %d  repair %s%s\n",
+                 "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
+                 "%s decoder)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
+                 "  points  %s\n",
                  silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
-                 input.triangle_count(), a.output.c_str(), a.model_dir.c_str(), info.config, info.threads,
-                 a.int8 ? ", INT8" : "", static_cast<unsigned long long>(seed), a.temperature, a.top_k, a.top_p,
-                 a.max_tokens, a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "");
+                 input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
+                 info.config, info.threads,
+                 info.decoder == SILK_DECODER_INT8 ? "INT8" : info.decoder == SILK_DECODER_INT4 ? "INT4" : "fp32",
+                 static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
+                 a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens,
+                 a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
+                 a.raw_points ? "raw (used as given, model frame)"
+                              : a.preprocessing.empty() ? "the model's pre-processing" : a.preprocessing.c_str());
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };
@@ -164,7 +192,7 @@ int Run(const Args& a, uint64_t seed) {
 
   silk_save_params sp = silk_save_default_params();
   sp.part_colors = a.part_colors ? 1 : 0;
-  result.Save(a.output, sp);
+  if (!a.output.empty()) result.Save(a.output, sp);
   if (!a.tokens_path.empty()) silk_cpp::Tokens::FromIds(ids).Save(a.tokens_path);
   if (!a.trace_path.empty()) WriteTextFile(a.trace_path, generator.ReportJson(true));
   if (!a.stats_path.empty()) WriteTextFile(a.stats_path, generator.ReportJson(false));
@@ -193,7 +221,12 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   // Settings that can be checked before any work.
-  if (std::string e = CheckOutputPath(a.output); !e.empty()) return Fail(e);
+  if (a.output.empty() && a.tokens_path.empty()) {
+    std::fprintf(stderr, "silkgen: give -o/--output (a mesh) or --tokens (the ids), or both\n");
+    return kExitUsage;
+  }
+  if (!a.output.empty())
+    if (std::string e = CheckOutputPath(a.output); !e.empty()) return Fail(e);
   uint64_t seed = 0;
   if (!ParseSeed(a.seed_text, &seed)) {
     std::fprintf(stderr, "silkgen: --seed: '%s' is neither an unsigned integer nor 'random'\n", a.seed_text.c_str());

@@ -24,19 +24,26 @@ silk_status Busy(const char* function) {
   return SetError(SILK_ERR_BUSY, std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
 }
 
-// Checks the C params (enum and flag ranges) and maps them onto the runtime's options.
-silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p) {
+// Checks the C params (enum and flag ranges) and maps them onto the runtime's options; negative
+// sampling fields take the model's defaults (model.json "sampling").
+silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, const silk::ModelConfig& config) {
   if (p.holes < SILK_HOLES_OFF || p.holes > SILK_HOLES_REPAIR)
     return silk::InvalidArgument("holes " + std::to_string(p.holes) + " is not a silk_hole_policy (0..2)");
   if (p.unconstrained != 0 && p.unconstrained != 1) return silk::InvalidArgument("unconstrained takes 0 or 1");
   if (p.debug_flags & ~kAllDebugFlags)
     return silk::InvalidArgument("debug_flags " + std::to_string(p.debug_flags) + " has unknown bits");
   if (p.n_points < 0) return silk::InvalidArgument("n_points is negative");
+  if (p.preprocessing < -1 || p.preprocessing > SILK_PREPROCESS_OFFICIAL)
+    return silk::InvalidArgument("preprocessing " + std::to_string(p.preprocessing) +
+                                 " is not a silk_preprocess_kind (-1 = the model's, 0..1)");
+  if (p.raw_points != 0 && p.raw_points != 1) return silk::InvalidArgument("raw_points takes 0 or 1");
   silk::GenerateOptions o;
+  o.sampling = config.sampling;
   o.sampling.seed = p.seed;
-  o.sampling.temperature = p.temperature;
-  o.sampling.top_k = p.top_k;
-  o.sampling.top_p = p.top_p;
+  if (p.temperature >= 0) o.sampling.temperature = p.temperature;
+  if (p.top_k >= 0) o.sampling.top_k = p.top_k;
+  if (p.top_p >= 0) o.sampling.top_p = p.top_p;
+  if (p.top_p_temperature >= 0) o.sampling.top_p_temperature = p.top_p_temperature;
   o.max_tokens = p.max_tokens;
   o.max_faces = p.max_faces;
   o.holes = p.holes == SILK_HOLES_REPAIR ? silk::HolePolicy::kRepair
@@ -69,8 +76,6 @@ silk::GenerateCallbacks ToCallbacks(silk_generator* g, const silk_generate_param
 // The caller's input as the runtime's GenerationInput (mesh, point cloud, or raw points).
 silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in) {
   if ((in.mesh != nullptr) == (in.points != nullptr)) return silk::InvalidArgument("give exactly one of mesh, points");
-  if (in.raw != 0 && in.raw != 1) return silk::InvalidArgument("raw takes 0 or 1");
-  if (in.raw && !in.points) return silk::InvalidArgument("raw needs points");
   silk::GenerationInput out;
   if (in.mesh) {
     out.mesh = in.mesh->mesh;
@@ -92,31 +97,24 @@ silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in) {
   return out;
 }
 
-// Prepares the encoder's points: raw ones as given, else normalised and sampled (PrepareModelPoints).
-silk::Status PreparePoints(silk_generator* g, const silk::GenerationInput& in, bool raw, int32_t n_points,
-                           uint64_t seed) {
+// Prepares the encoder's points: raw ones as given (RawModelPoints), else the model's
+// pre-processing (model.json "preprocessing", or the kind the params name).
+silk::Status PreparePoints(silk_generator* g, const silk::GenerationInput& in, const silk_generate_params& p) {
   const silk::ModelConfig& cfg = g->model->config();
-  if (raw) {
-    g->points.clear();
-    for (size_t i = 0; i < in.mesh.positions.size(); ++i) {
-      for (double v : in.mesh.positions[i]) {
-        if (!std::isfinite(v)) return silk::InvalidArgument("raw point " + std::to_string(i) + " is not finite");
-        g->points.push_back(static_cast<float>(v));
-      }
-      for (double v : in.normals[i]) g->points.push_back(static_cast<float>(v));
-    }
-    g->transform = silk::NormalizeTransform{};
-    return silk::Status::Ok();
-  }
-  SILK_ASSIGN_OR_RETURN(silk::ModelPoints pts, silk::PrepareModelPoints(in, n_points > 0 ? n_points : cfg.dims.n_points,
-                                                                        seed, cfg.normalize_bound));
+  silk::PreprocessingParams prep = silk::ModelPreprocessing(cfg, p.n_points);
+  if (p.preprocessing >= 0 && p.preprocessing != static_cast<int32_t>(prep.kind))
+    prep = p.preprocessing == SILK_PREPROCESS_OFFICIAL ? silk::OfficialPreprocessing(prep.n_points)
+                                                       : silk::SilkPreprocessing(prep.normalize_bound, prep.n_points);
+  SILK_ASSIGN_OR_RETURN(silk::PreparedPoints pts, p.raw_points ? silk::RawModelPoints(in, cfg.dims.n_points)
+                                                               : silk::PrepareModelPoints(in, prep, p.seed));
   g->points = std::move(pts.rows);
   g->transform = pts.transform;
+  g->settings.preprocessing = p.raw_points ? "raw" : silk::PreprocessingKindName(prep.kind);
   return silk::Status::Ok();
 }
 
 silk_status Start(silk_generator* g, const silk_generate_input& input, const silk_generate_params& p) {
-  auto options = ToOptions(p);
+  auto options = ToOptions(p, g->model->config());
   if (!options.ok()) return SetError(options.status().WithContext("silk_generator_start: "));
   // Input problems name the input's file when it came from one.
   const std::string context = input.mesh && !input.mesh->source.empty() ? input.mesh->source + ": " : "input: ";
@@ -128,14 +126,15 @@ silk_status Start(silk_generator* g, const silk_generate_input& input, const sil
   s = GenerationSettings{};
   s.input_name = input.mesh ? (input.mesh->source.empty() ? "mesh" : input.mesh->source) : "points";
   s.point_cloud = in->point_cloud;
-  s.raw = input.raw != 0;
+  s.raw = p.raw_points != 0;
   s.input_vertices = static_cast<int32_t>(in->mesh.positions.size());
   s.input_faces = static_cast<int32_t>(in->mesh.triangles.size());
   s.params = p;
+  s.options = *options;
   const silk::GenerateCallbacks cb = ToCallbacks(g, p);
   if (cb.cancel()) return SetError(SILK_ERR_CANCELLED, "generation cancelled");
   const auto t0 = Clock::now();
-  if (silk::Status st = PreparePoints(g, *in, s.raw, p.n_points, p.seed); !st.ok())
+  if (silk::Status st = PreparePoints(g, *in, p); !st.ok())
     return SetError(st.WithContext(context));
   g->prepare_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   s.points = static_cast<int32_t>(g->points.size() / 6);
@@ -208,9 +207,11 @@ silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));
   p.seed = 0;
-  p.temperature = 0.5;
-  p.top_k = 50;
-  p.top_p = 1.0;
+  p.temperature = -1;  // the model's (model.json "sampling")
+  p.top_k = -1;
+  p.top_p = -1;
+  p.top_p_temperature = -1;
+  p.preprocessing = -1;  // the model's (model.json "preprocessing")
   p.holes = SILK_HOLES_OFF;
   return p;
 }

@@ -17,12 +17,15 @@ struct silk_model {
   std::shared_ptr<silk::Model> model;
 };
 
-// What the report needs to say about the last generation besides its stats.
+// What the report needs to say about the last generation besides its stats (the settings as
+// given; the resolved sampling values are in GenerationStats::sampling).
 struct GenerationSettings {
   std::string input_name;
+  std::string preprocessing;  // "silk", "official" or "raw"
   bool point_cloud = false, raw = false;
   int32_t input_vertices = 0, input_faces = 0, points = 0;
   silk_generate_params params{};
+  silk::GenerateOptions options;  // resolved (model.json defaults applied)
 };
 
 struct silk_generator {

@@ -9,6 +9,7 @@
 
 #include "core/status.h"
 #include "io/raw_mesh.h"
+#include "mesh/point_preprocessing.h"
 #include "silk/silk.h"
 
 struct silk_mesh {
@@ -27,6 +28,9 @@ namespace silk::capi {
 silk_status SetError(silk_status code, const std::string& message);
 silk_status SetError(const Status& s);
 silk_status Ok();
+// Pre-processing parameters across the boundary (capi_preprocess.cpp).
+silk_preprocess_params ToCPreprocess(const PreprocessingParams& p);
+PreprocessingParams FromCPreprocess(const silk_preprocess_params& p);
 void Log(silk_log_level level, const std::string& message);
 
 template <typename F>

@@ -16,7 +16,7 @@ int32_t silk_generation_available(void) { return 1; }
 silk_model_options silk_model_default_options(void) {
   silk_model_options o;
   o.threads = 0;
-  o.int8 = 0;
+  o.decoder = SILK_DECODER_DEFAULT;
   return o;
 }
 
@@ -26,10 +26,13 @@ silk_status silk_model_load(const char* dir, const silk_model_options* options, 
     *out = nullptr;
     SILK_CAPI_REQUIRE(dir, "silk_model_load: dir is NULL");
     const silk_model_options o = options ? *options : silk_model_default_options();
-    SILK_CAPI_REQUIRE(o.int8 == 0 || o.int8 == 1, "silk_model_load: int8 takes 0 or 1");
+    SILK_CAPI_REQUIRE(o.decoder >= SILK_DECODER_DEFAULT && o.decoder <= SILK_DECODER_INT4,
+                      "silk_model_load: decoder is not a silk_decoder_precision (0..3)");
     silk::ModelLoadOptions lo;
     lo.threads = o.threads;
-    lo.int8 = o.int8 != 0;
+    if (o.decoder == SILK_DECODER_INT8) lo.decoder = silk::DecoderPrecision::kInt8;
+    if (o.decoder == SILK_DECODER_FP32) lo.decoder = silk::DecoderPrecision::kFp32;
+    if (o.decoder == SILK_DECODER_INT4) lo.decoder = silk::DecoderPrecision::kInt4;
     auto m = silk::Model::Load(dir, lo);
     if (!m.ok()) return SetError(m.status());
     auto h = std::make_unique<silk_model>();
@@ -39,7 +42,8 @@ silk_status silk_model_load(const char* dir, const silk_model_options* options, 
       silk::capi::Log(SILK_LOG_WARN, std::string(dir) + ": threads " + std::to_string(o.threads) +
                                          " ignored: the process's shared pool has " + std::to_string(pool));
     silk::capi::Log(SILK_LOG_INFO, std::string("loaded model ") + dir + " (" + h->model->config().config_name + ", " +
-                                       std::to_string(pool) + " threads" + (o.int8 ? ", INT8)" : ")"));
+                                       std::to_string(pool) + " threads, " +
+                                       silk::DecoderPrecisionName(h->model->precision()) + " decoder)");
     *out = h.release();
     return Ok();
   });
@@ -61,7 +65,20 @@ silk_status silk_model_get_info(const silk_model* model, silk_model_info* out) {
     out->n_points = c.dims.n_points;
     out->max_seq_len = c.dims.max_seq_len;
     out->threads = model->model->threads();
-    out->int8 = model->model->int8();
+    const silk::DecoderPrecision d = model->model->precision();
+    out->int8 = d == silk::DecoderPrecision::kInt8;
+    out->decoder = d == silk::DecoderPrecision::kInt8 ? SILK_DECODER_INT8
+                   : d == silk::DecoderPrecision::kInt4 ? SILK_DECODER_INT4 : SILK_DECODER_FP32;
+    out->arch = c.arch == silk::ModelArch::kOfficial ? 1 : 0;
+    out->encoder_points = static_cast<int32_t>(model->model->encoder_points());
+    return Ok();
+  });
+}
+
+silk_status silk_model_get_preprocess_params(const silk_model* model, silk_preprocess_params* out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(model && out, "silk_model_get_preprocess_params: NULL argument");
+    *out = silk::capi::ToCPreprocess(model->model->config().preprocessing);
     return Ok();
   });
 }

@@ -13,13 +13,15 @@ silk_status NoRuntime() { return silk::capi::SetError(SILK_ERR_UNSUPPORTED, kNoR
 extern "C" {
 
 int32_t silk_generation_available(void) { return 0; }
-silk_model_options silk_model_default_options(void) { return silk_model_options{0, 0}; }
+silk_model_options silk_model_default_options(void) { return silk_model_options{0, SILK_DECODER_DEFAULT}; }
 silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));
-  p.temperature = 0.5;
-  p.top_k = 50;
-  p.top_p = 1.0;
+  p.temperature = -1;
+  p.top_k = -1;
+  p.top_p = -1;
+  p.top_p_temperature = -1;
+  p.preprocessing = -1;
   return p;
 }
 silk_status silk_model_load(const char*, const silk_model_options*, silk_model** out) {
@@ -28,6 +30,7 @@ silk_status silk_model_load(const char*, const silk_model_options*, silk_model**
 }
 void silk_model_destroy(silk_model*) {}
 silk_status silk_model_get_info(const silk_model*, silk_model_info*) { return NoRuntime(); }
+silk_status silk_model_get_preprocess_params(const silk_model*, silk_preprocess_params*) { return NoRuntime(); }
 silk_status silk_generator_create(const silk_model*, silk_generator** out) {
   if (out) *out = nullptr;
   return NoRuntime();

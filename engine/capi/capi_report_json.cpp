@@ -21,15 +21,17 @@ const char* HolesName(int32_t h) {
 
 Json SettingsJson(const silk_generator& g) {
   const silk_generate_params& p = g.settings.params;
+  const SamplingParams& sp = g.settings.options.sampling;  // resolved: model.json defaults applied
   return Json{{"input", g.settings.input_name},
               {"model", g.model->config().dir},
               {"model_config", g.model->config().config_name},
               {"point_cloud_input", g.settings.point_cloud},
-              {"raw_points", g.settings.raw},
-              {"seed", p.seed},
-              {"temperature", p.temperature},
-              {"top_k", p.top_k},
-              {"top_p", p.top_p},
+              {"seed", sp.seed},
+              {"temperature", sp.temperature},
+              {"top_k", sp.top_k},
+              {"top_p", sp.top_p},
+              {"top_p_temperature", sp.top_p_temperature},
+              {"preprocessing", g.settings.preprocessing},
               {"max_tokens", p.max_tokens},
               {"max_faces", p.max_faces},
               {"repair", HolesName(p.holes)},
@@ -54,6 +56,7 @@ Json StatsJson(const silk_generator& g) {
   j["tokens_per_second"] = st.tokens_per_second;
   j["threads"] = st.threads;
   j["int8"] = st.int8;
+  j["decoder"] = st.decoder;
   j["kv_cache_bytes"] = st.kv_cache_bytes;
   j["seconds"] = {{"load_input", st.seconds.load_input}, {"encoder", st.seconds.encoder},
                   {"decoder", st.seconds.decoder},       {"grammar", st.seconds.grammar},

@@ -52,29 +52,31 @@ Status ValidateGenerationInput(const GenerationInput& in) {
   return Status::Ok();
 }
 
-StatusOr<ModelPoints> PrepareModelPoints(const GenerationInput& in, int32_t n_points, uint64_t seed, double bound) {
+StatusOr<PreparedPoints> PrepareModelPoints(const GenerationInput& in, const PreprocessingParams& params,
+                                            uint64_t seed) {
   SILK_RETURN_IF_ERROR(ValidateGenerationInput(in));
-  if (n_points <= 0) return InvalidArgument("point count must be positive");
-  ModelPoints out;
-  SILK_ASSIGN_OR_RETURN(out.transform, ComputeNormalization(in.mesh, bound));
-  const RawMesh normalized = ApplyNormalization(in.mesh, out.transform);
-  std::vector<OrientedPoint> pts;
-  if (in.point_cloud) {
-    pts.reserve(normalized.positions.size());
-    for (size_t i = 0; i < normalized.positions.size(); ++i) {
-      const auto& n = in.normals[i];
-      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      pts.push_back({normalized.positions[i], {n[0] / len, n[1] / len, n[2] / len}});
-    }
-    pts = SubsamplePoints(pts, n_points, seed);
-  } else {
-    SILK_ASSIGN_OR_RETURN(pts, SampleSurface(normalized, n_points, seed));
-  }
-  out.rows.reserve(pts.size() * 6);
-  for (const OrientedPoint& p : pts) {
-    for (double v : p.position) out.rows.push_back(static_cast<float>(v));
-    for (double v : p.normal) out.rows.push_back(static_cast<float>(v));
-  }
+  return PreparePoints(in.mesh, in.point_cloud ? &in.normals : nullptr, params, seed);
+}
+
+PreprocessingParams ModelPreprocessing(const ModelConfig& config, int32_t n_points) {
+  PreprocessingParams p = config.preprocessing;
+  if (n_points > 0) p.n_points = n_points;
+  return p;
+}
+
+StatusOr<PreparedPoints> RawModelPoints(const GenerationInput& in, int32_t n_points) {
+  if (!in.point_cloud) return InvalidArgument("raw points need a point-cloud PLY (x y z nx ny nz, no faces)");
+  if (in.mesh.positions.size() != static_cast<size_t>(n_points))
+    return InvalidArgument("raw points: the file has " + std::to_string(in.mesh.positions.size()) +
+                           " points, the model takes " + std::to_string(n_points));
+  PreparedPoints out;
+  out.rows.reserve(in.mesh.positions.size() * 6);
+  for (size_t i = 0; i < in.mesh.positions.size(); ++i)
+    for (const auto* v : {&in.mesh.positions[i], &in.normals[i]})
+      for (double x : *v) {
+        if (!std::isfinite(x)) return InvalidArgument("raw points: point " + std::to_string(i) + " is not finite");
+        out.rows.push_back(static_cast<float>(x));
+      }
   return out;
 }
 
@@ -91,12 +93,14 @@ GeneratedMesh ToInputFrame(const DecodedMesh& decoded, const NormalizeTransform&
 
 StatusOr<PipelineResult> GenerateFromInput(Generator* generator, const ModelConfig& config,
                                            const GenerationInput& input, const GenerateOptions& options,
-                                           const GenerateCallbacks& callbacks, int32_t n_points) {
+                                           const GenerateCallbacks& callbacks,
+                                           const PreprocessingParams* preprocessing) {
   SILK_RETURN_IF_ERROR(CheckGenerateOptions(options));
   if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
   const auto t0 = std::chrono::steady_clock::now();
-  SILK_ASSIGN_OR_RETURN(ModelPoints pts, PrepareModelPoints(input, n_points > 0 ? n_points : config.dims.n_points,
-                                                            options.sampling.seed, config.normalize_bound));
+  SILK_ASSIGN_OR_RETURN(PreparedPoints pts, preprocessing
+                                                ? PrepareModelPoints(input, *preprocessing, options.sampling.seed)
+                                                : RawModelPoints(input, config.dims.n_points));
   const double prep = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   PipelineResult r;
   SILK_ASSIGN_OR_RETURN(r.generation, generator->Run(pts.rows, options, callbacks));

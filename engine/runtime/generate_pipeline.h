@@ -10,6 +10,7 @@
 #include "core/status.h"
 #include "io/raw_mesh.h"
 #include "mesh/normalize.h"
+#include "mesh/point_preprocessing.h"
 #include "runtime/generator.h"
 
 namespace silk {
@@ -26,15 +27,17 @@ StatusOr<GenerationInput> LoadGenerationInput(const std::string& path);
 // Checks a caller-built input (sizes, finite values, index ranges).
 Status ValidateGenerationInput(const GenerationInput& input);
 
-struct ModelPoints {
-  std::vector<float> rows;  // n * 6: normalised xyz, unit normal
-  NormalizeTransform transform;
-};
+// The model's pre-processing (model.json "preprocessing", mesh/point_preprocessing.h) on a
+// validated input: normalised points and the transform back to the input frame.
+StatusOr<PreparedPoints> PrepareModelPoints(const GenerationInput& input, const PreprocessingParams& params,
+                                            uint64_t seed);
+// The model's pre-processing with n_points (0: the model's own).
+PreprocessingParams ModelPreprocessing(const ModelConfig& config, int32_t n_points = 0);
 
-// Normalises (bounding box to +-bound) and takes n_points: area-weighted surface samples of a
-// mesh, or a seeded subset of a point cloud (all points if it has fewer).
-StatusOr<ModelPoints> PrepareModelPoints(const GenerationInput& input, int32_t n_points, uint64_t seed,
-                                         double bound);
+// A point cloud used exactly as given (silkgen --raw-points): no normalisation, resampling or
+// rounding, identity transform (the output stays in the model's frame). Its point count must
+// be `n_points`; every value must be finite.
+StatusOr<PreparedPoints> RawModelPoints(const GenerationInput& input, int32_t n_points);
 
 struct GeneratedMesh {
   RawMesh mesh;                             // input frame
@@ -56,10 +59,11 @@ struct PipelineResult {
   GeneratedMesh output;
 };
 
-// PrepareModelPoints (n_points 0 = the model's n_points) + Generator::Run + ToInputFrame +
-// verdicts; stats.seconds.load_input covers the point preparation.
+// PrepareModelPoints with `preprocessing` (null: RawModelPoints with the model's n_points) +
+// Generator::Run + ToInputFrame + verdicts; stats.seconds.load_input covers the preparation.
 StatusOr<PipelineResult> GenerateFromInput(Generator* generator, const ModelConfig& config,
                                            const GenerationInput& input, const GenerateOptions& options,
-                                           const GenerateCallbacks& callbacks = {}, int32_t n_points = 0);
+                                           const GenerateCallbacks& callbacks,
+                                           const PreprocessingParams* preprocessing);
 
 }  // namespace silk

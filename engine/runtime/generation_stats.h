@@ -35,6 +35,7 @@ struct GenerationStats {
   int64_t kv_cache_bytes = 0;
   int32_t threads = 0;
   bool int8 = false;
+  std::string decoder = "fp32";  // decoder precision in use: fp32, int8, int4
   PhaseSeconds seconds;
   double generation_seconds = 0;  // encoder + token loop
   double tokens_per_second = 0;   // tokens / token-loop seconds

@@ -56,8 +56,9 @@ Status CheckGenerateOptions(const GenerateOptions& options) {
     return InvalidArgument("generate: max_tokens " + std::to_string(options.max_tokens) + " is below " +
                            std::to_string(kMinMeshTokens) + ", the ids of the smallest mesh (one triangle)");
   const SamplingParams& sp = options.sampling;
-  if (!std::isfinite(sp.temperature) || sp.temperature < 0 || sp.top_k < 0 || !(sp.top_p >= 0 && sp.top_p <= 1))
-    return InvalidArgument("generate: need temperature >= 0, top_k >= 0 and top_p in [0, 1]");
+  if (!std::isfinite(sp.temperature) || sp.temperature < 0 || sp.top_k < 0 || !(sp.top_p >= 0 && sp.top_p <= 1) ||
+      !(sp.top_p_temperature >= 0 && std::isfinite(sp.top_p_temperature)))
+    return InvalidArgument("generate: need temperature >= 0, top_k >= 0, top_p in [0, 1] and top_p_temperature >= 0");
   return Status::Ok();
 }
 
@@ -137,7 +138,8 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   Session& s = *session_;
   GenerationStats& st = s.res.stats;
   st.threads = m.threads;
-  st.int8 = m.int8;
+  st.int8 = m.precision == DecoderPrecision::kInt8;
+  st.decoder = DecoderPrecisionName(m.precision);
   st.seconds.encoder = encoder_seconds;
   st.kv_cache_bytes = cap * cfg.dims.kv_row_floats() * static_cast<int64_t>(sizeof(float));
   s.pending = {cfg.bos_id};

@@ -51,6 +51,17 @@ Status CheckIo(Ort::Session& s, bool inputs, const std::vector<IoSpec>& want, co
   return Status::Ok();
 }
 
+// The encoder's fixed point count from its input shape, which must match dims.n_points.
+StatusOr<int64_t> EncoderPoints(Ort::Session& s, int32_t n_points, const std::string& file) {
+  Ort::TypeInfo ti = s.GetInputTypeInfo(0);
+  const std::vector<int64_t> dims = ti.GetTensorTypeAndShapeInfo().GetShape();
+  const int64_t n = dims.size() == 3 ? dims[1] : -1;
+  if (n >= 0 && n != n_points)
+    return Unsupported(file + ": the encoder takes " + std::to_string(n) + " points, model.json dims.n_points is " +
+                       std::to_string(n_points));
+  return n < 0 ? int64_t{-1} : n;
+}
+
 }  // namespace
 
 std::vector<std::string> DecoderInputNames(int64_t n_layers) {
@@ -72,7 +83,8 @@ Model::Model(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Model::~Model() = default;
 const ModelConfig& Model::config() const { return impl_->config; }
 int Model::threads() const { return impl_->threads; }
-bool Model::int8() const { return impl_->int8; }
+DecoderPrecision Model::precision() const { return impl_->precision; }
+int64_t Model::encoder_points() const { return impl_->encoder_points; }
 
 StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const ModelLoadOptions& options) {
   if (!IsDirectory(dir)) return IoError(dir + ": model folder not found");
@@ -81,12 +93,13 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
     return InvalidArgument("threads " + std::to_string(options.threads) + " is outside 0.." +
                            std::to_string(MaxThreads()) + " (0 = physical cores)");
   auto impl = std::make_unique<Impl>();
-  impl->int8 = options.int8;
-  std::string decoder_file = config.decoder_file;
-  if (options.int8) {
-    if (config.decoder_int8_file.empty())
-      return Unsupported(dir + "/model.json: no INT8 decoder (files.decoder_int8) in this model");
-    decoder_file = config.decoder_int8_file;
+  impl->precision = options.decoder.value_or(config.default_decoder);
+  const std::string decoder_file = config.DecoderFile(impl->precision);
+  if (decoder_file.empty()) {
+    const std::string p = DecoderPrecisionName(impl->precision);
+    std::string upper;
+    for (char ch : p) upper += static_cast<char>(ch >= 'a' && ch <= 'z' ? ch - 'a' + 'A' : ch);
+    return Unsupported(dir + "/model.json: no " + upper + " decoder (files.decoder_" + p + ") in this model");
   }
   const std::string enc_path = dir + "/" + config.encoder_file, dec_path = dir + "/" + decoder_file;
   for (const std::string& p : {enc_path, dec_path})
@@ -116,6 +129,7 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
     impl->encoder = std::make_unique<Ort::Session>(env, enc_path.c_str(), so);
     impl->decoder = std::make_unique<Ort::Session>(env, dec_path.c_str(), so);
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, true, {{"points", kF, {1, -1, 6}}}, enc_path));
+    SILK_ASSIGN_OR_RETURN(impl->encoder_points, EncoderPoints(*impl->encoder, config.dims.n_points, enc_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, false, {{"cross_kv", kF, cross}}, enc_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->decoder, true, dec_in, dec_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->decoder, false, dec_out, dec_path));
@@ -128,6 +142,9 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
 
 StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points) {
   if (n_points <= 0) return InvalidArgument("encoder: no input points");
+  if (model.encoder_points >= 0 && n_points != model.encoder_points)
+    return InvalidArgument("encoder: got " + std::to_string(n_points) + " points, the model's encoder takes exactly " +
+                           std::to_string(model.encoder_points));
   Ort::Value out{nullptr};
   Status s = OrtGuard("encoder", [&]() -> Status {
     const std::array<int64_t, 3> shape = {1, n_points, 6};

@@ -3,6 +3,7 @@
 // onnxruntime stays out of this header (Impl in runtime/model_impl.h).
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/status.h"
@@ -13,7 +14,8 @@ namespace silk {
 struct ModelLoadOptions {
   int threads = 0;             // intra-op threads of the process's shared pool (sized by the first
                                // model loaded); 0 = physical cores; at most MaxThreads()
-  bool int8 = false;           // use the INT8 decoder (files.decoder_int8); error if absent
+  // Decoder precision; unset = model.json's files.default_decoder. Error if the file is absent.
+  std::optional<DecoderPrecision> decoder;
   bool allow_spinning = true;  // worker threads spin between ops (faster, burns CPU while idle)
 };
 
@@ -27,7 +29,9 @@ class Model {
 
   const ModelConfig& config() const;
   int threads() const;       // threads of the shared pool
-  bool int8() const;         // whether the INT8 decoder is in use
+  DecoderPrecision precision() const;  // the decoder in use
+  // The encoder graph's fixed point count (input "points" dimension 1); -1 when dynamic.
+  int64_t encoder_points() const;
   Impl& impl() const { return *impl_; }
 
  private:

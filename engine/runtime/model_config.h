@@ -4,14 +4,24 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/status.h"
+#include "mesh/point_preprocessing.h"
+#include "runtime/sampler.h"
 
 namespace silk {
 
 // 2: per-layer head-major self-attention caches shared between past_* and present_*
 // (GroupQueryAttention); 1 had one time-major past_kv tensor and is refused (re-export it).
-inline constexpr int32_t kSupportedModelVersion = 2;
+// 3: same graphs, plus arch, preprocessing, sampling, INT4 and external-data files in
+// model.json (docs/model_contract.md); 2 still loads with the defaults of Silk's own model.
+inline constexpr int32_t kOldestModelVersion = 2;
+inline constexpr int32_t kSupportedModelVersion = 3;
+
+enum class ModelArch { kSilk, kOfficial };
+enum class DecoderPrecision { kFp32, kInt8, kInt4 };
+const char* DecoderPrecisionName(DecoderPrecision p);  // "fp32", "int8", "int4"
 
 // The fewest ids a complete mesh takes (one triangle with its layer ends and EOS); a smaller
 // max_tokens or max_seq_len - 1 can only end in an empty mesh and is refused up front.
@@ -31,14 +41,25 @@ struct ModelConfig {
   std::string config_name;
   int32_t model_version = 0, token_format_version = 0;
   int32_t bos_id = 0, eos_id = 0, pad_id = 0, model_vocab_size = 0, embedding_rows = 0;
+  ModelArch arch = ModelArch::kSilk;
   ModelDims dims;
-  double normalize_bound = 0.95;
-  std::string encoder_file, decoder_file, decoder_int8_file;  // relative to dir; int8 may be ""
+  PreprocessingParams preprocessing;  // v2: Silk's kind with the top-level normalize_bound
+  SamplingParams sampling;            // defaults for silkgen / the C API (seed unused)
+  // Relative to dir; int8/int4 may be "". external_data: files the ONNX graphs reference.
+  std::string encoder_file, decoder_file, decoder_int8_file, decoder_int4_file;
+  DecoderPrecision default_decoder = DecoderPrecision::kFp32;
+  std::vector<std::string> external_data;
+  std::string source_file, source_sha256, source_licence;  // "source" (optional)
+  // The decoder file of a precision ("" when the model has none).
+  const std::string& DecoderFile(DecoderPrecision p) const;
 };
+
+// silkgen's sampling defaults before model.json carried them (v2 models keep them).
+SamplingParams DefaultSamplingParams();
 
 // Parses `json_text` (name used in messages) and checks format, versions and vocabulary.
 StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::string& name);
-// Reads <dir>/model.json.
+// Reads <dir>/model.json and checks that every file it names (external data included) exists.
 StatusOr<ModelConfig> LoadModelConfig(const std::string& dir);
 
 }  // namespace silk

@@ -13,7 +13,8 @@ namespace silk {
 struct Model::Impl {
   ModelConfig config;
   int threads = 1;
-  bool int8 = false;
+  DecoderPrecision precision = DecoderPrecision::kFp32;
+  int64_t encoder_points = -1;  // fixed N of encoder.onnx, -1: dynamic
   std::unique_ptr<Ort::Session> encoder, decoder;
   Ort::MemoryInfo cpu_memory = Ort::MemoryInfo::CreateCpu(OrtArenaAllocator, OrtMemTypeDefault);
 };

@@ -2,7 +2,11 @@
 // Python reference loop: candidates in ascending id order; scores logit/temperature in double;
 // stable sort by score descending (ties: lower id first); top-k cut; softmax in double
 // (max-subtracted, std::exp); top-p cut at the smallest prefix whose mass reaches top_p;
-// u = Uniform() * kept mass; first index whose running sum exceeds u.
+// u = Uniform() * kept mass; first index whose running sum exceeds u. The official chain
+// (top_p_temperature > 0) replaces the top-p cut: probabilities exp((logit - top) / top_p_temperature)
+// in double over the top-k survivors, normalised; an id is kept while the mass before it is
+// <= top_p (ARCHITECTURE.md §4: the cumulative mass shifted right by one), then the draw is at
+// `temperature`.
 #include "runtime/sampler.h"
 
 #include <algorithm>
@@ -44,11 +48,13 @@ int32_t Sampler::SampleFrom(const float* logits, const std::vector<int32_t>& can
   } else {
     std::sort(scored_.begin(), scored_.end(), better);
   }
+  const bool official = params_.top_p_temperature > 0;
+  if (official && params_.top_p < 1.0) keep = OfficialTopP(logits, keep);
   probs_.resize(keep);
   const double top = scored_[0].first;
   double mass = 0;
   for (size_t i = 0; i < keep; ++i) mass += (probs_[i] = std::exp(scored_[i].first - top));
-  if (params_.top_p < 1.0) {
+  if (!official && params_.top_p < 1.0) {
     double run = 0;
     size_t n = 0;
     while (n < keep) {
@@ -65,6 +71,19 @@ int32_t Sampler::SampleFrom(const float* logits, const std::vector<int32_t>& can
     if (run > u) return scored_[i].second;
   }
   return scored_[keep - 1].second;
+}
+
+size_t Sampler::OfficialTopP(const float* logits, size_t keep) {
+  probs_.resize(keep);
+  const double t = params_.top_p_temperature, top = logits[scored_[0].second];
+  double mass = 0;
+  for (size_t i = 0; i < keep; ++i) mass += (probs_[i] = std::exp((logits[scored_[i].second] - top) / t));
+  double before = 0;  // normalised mass of the ids ahead of i
+  for (size_t i = 0; i < keep; ++i) {
+    if (before > params_.top_p) return i;
+    before += probs_[i] / mass;
+  }
+  return keep;
 }
 
 }  // namespace silk

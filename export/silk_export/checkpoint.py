@@ -7,16 +7,16 @@ from pathlib import Path
 
 import torch
 
+from .architectures import build_model
 from .configs import config_from_dict
-from .model import SilkModel
 
 
-def save_checkpoint(path: Path, model, optimizer, step: int, extra: dict) -> None:
+def save_state(path: Path, config: dict, model_state: dict, optim_state: dict | None, step: int,
+               extra: dict) -> None:
+    """Writes a checkpoint from state dicts (training gathers them from DDP/FSDP first)."""
     path = Path(path)
     tmp = path.with_suffix(path.suffix + ".tmp")
-    torch.save({"config": model.cfg.to_dict(), "model": model.state_dict(),
-                "optimizer": optimizer.state_dict() if optimizer is not None else None,
-                "step": step, **extra}, tmp)
+    torch.save({"config": config, "model": model_state, "optimizer": optim_state, "step": step, **extra}, tmp)
     os.replace(tmp, path)
 
 
@@ -24,8 +24,8 @@ def load_checkpoint(path: Path, map_location="cpu") -> dict:
     return torch.load(path, map_location=map_location, weights_only=False)
 
 
-def model_from_checkpoint(path: Path) -> tuple[SilkModel, dict]:
+def model_from_checkpoint(path: Path):
     ck = load_checkpoint(path)
-    model = SilkModel(config_from_dict(ck["config"]))
+    model = build_model(config_from_dict(ck["config"]))
     model.load_state_dict(ck["model"])
     return model.eval(), ck

@@ -1,4 +1,5 @@
-"""`silk-export` console script: dataset | train | export | eval | card, plus bench | generate | loss."""
+"""`silk-export` console script: dataset | train | export | import-official | eval | card, plus
+bench | generate | loss."""
 from __future__ import annotations
 
 import argparse
@@ -8,24 +9,40 @@ from pathlib import Path
 
 
 def _cmd_dataset(a) -> int:
-    from .dataset_index import build_index
+    from .dataset_index import build_index, build_shard, merge_shards
     from .mesh_files import default_0ad_root
+    from .shard_store import parse_shard
     root = Path(a.root) if a.root else default_0ad_root()
-    summary = build_index(root, Path(a.out), Path(a.dev_dir) if a.dev_dir else None, a.limit)
+    dev = Path(a.dev_dir) if a.dev_dir else None
+    if a.merge:
+        summary = merge_shards(Path(a.out))
+    elif a.shard:
+        path = build_shard(root, Path(a.out), parse_shard(a.shard), dev, a.limit, a.all_train)
+        summary = json.loads((path / "shard.json").read_text())
+    else:
+        summary = build_index(root, Path(a.out), dev, a.limit, a.all_train)
     print(json.dumps(summary, indent=2))
     return 0
 
 
 def _cmd_train(a) -> int:
+    import os
     from .train import TrainArgs, train
     from .mesh_files import default_0ad_root
-    args = TrainArgs(index=a.index, root=a.root or str(default_0ad_root()), out=a.out, config=a.config,
-                     steps=a.steps, batch_size=a.batch_size, lr=a.lr, lr_min=a.lr_min, warmup=a.warmup,
-                     seed=a.seed, threads=a.threads, device=a.device, log_every=a.log_every,
+    if not (a.index or a.data):
+        raise SystemExit("train: give --data (dataset folder or folder of meshes) or --index")
+    args = TrainArgs(index=a.index or "", root=a.root or str(default_0ad_root()), out=a.out, data=a.data or "",
+                     config=a.config, steps=a.steps, batch_size=a.batch_size, micro_batch=a.micro_batch,
+                     lr=a.lr, lr_min=a.lr_min, warmup=a.warmup, seed=a.seed, threads=a.threads,
+                     device=a.device, precision=a.precision, grad_checkpoint=a.grad_checkpoint, fsdp=a.fsdp,
+                     workers=a.workers, init_from=a.init_from or "", init_config=a.init_config or "",
+                     log_every=a.log_every,
                      val_every=a.val_every, val_meshes=a.val_meshes, ckpt_minutes=a.ckpt_minutes,
                      max_minutes=a.max_minutes, resume=not a.no_resume, augment=not a.no_augment,
-                     max_seq_len=a.max_seq_len)
-    print(json.dumps(train(args), indent=2))
+                     max_seq_len=a.max_seq_len, progress=not a.no_progress)
+    res = train(args)
+    if os.environ.get("RANK", "0") == "0":
+        print(json.dumps(res, indent=2))
     return 0
 
 
@@ -37,6 +54,18 @@ def _cmd_export(a) -> int:
                 "seed": ck.get("args", {}).get("seed")}
     meta = export_model(model, Path(a.out), training, int8=not a.no_int8)
     print(json.dumps(meta, indent=2))
+    return 0
+
+
+def _cmd_import_official(a) -> int:
+    from .official_import import import_official
+    from .state_dict_file import StateDictError
+    try:
+        import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,
+                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens)
+    except (StateDictError, ValueError) as e:
+        print(f"silk-export import-official: error: {e}", file=sys.stderr)
+        return 2
     return 0
 
 
@@ -104,26 +133,41 @@ def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="silk-export", description=__doc__)
     sub = p.add_subparsers(dest="cmd", required=True)
 
-    d = sub.add_parser("dataset", help="index a mesh collection through libsilk (splits, token counts)")
-    d.add_argument("--root", help="0 A.D. cache ($SILK_DATA_DIR/0ad, default) or any folder of meshes")
-    d.add_argument("--out", required=True, help="folder for index.jsonl and summary.json")
+    d = sub.add_parser("dataset", help="encode a mesh collection through libsilk into a sharded token cache")
+    d.add_argument("--root", help="0 A.D. cache ($SILK_DATA_DIR/0ad, default) or any folder tree of meshes")
+    d.add_argument("--out", required=True, help="dataset folder (shards, index.jsonl, dataset.json, refused.tsv)")
+    d.add_argument("--shard", help="I/N: build only shard I of N (files I, I+N, ...); then --merge")
+    d.add_argument("--merge", action="store_true", help="merge the finished shards in --out into the index")
     d.add_argument("--dev-dir", help="dev corpus folder (default: <shared>/corpus/dev)")
+    d.add_argument("--all-train", action="store_true", help="every mesh is training data (no splits, no dev exclusion)")
     d.add_argument("--limit", type=int, help="index only the first N files (sorted)")
     d.set_defaults(fn=_cmd_dataset)
 
-    t = sub.add_parser("train", help="train a model on an index (resumes from OUT/checkpoint.pt)")
-    t.add_argument("--index", required=True)
+    t = sub.add_parser("train", help="train a model (resumes from OUT/checkpoint.pt); runs under torchrun too")
+    t.add_argument("--data", help="dataset folder from `silk-export dataset`, or any folder of meshes (quick runs)")
+    t.add_argument("--index", help="index.jsonl of mesh files under --root (instead of --data)")
     t.add_argument("--root", help="folder the index's `file` paths are relative to (default: 0 A.D. cache)")
     t.add_argument("--out", required=True)
     t.add_argument("--config", default="micro", choices=["micro", "tiny", "small", "paper"])
     t.add_argument("--steps", type=int, default=1000)
-    t.add_argument("--batch-size", type=int, default=4)
-    t.add_argument("--lr", type=float, default=1e-4)
-    t.add_argument("--lr-min", type=float, default=5e-5)
-    t.add_argument("--warmup", type=int, default=0)
+    t.add_argument("--batch-size", type=int, default=4, help="global batch: sequences per step over all ranks")
+    t.add_argument("--micro-batch", type=int, default=0,
+                   help="sequences per forward/backward, the rest accumulated (0: 1 on CPU, the rank's share on CUDA)")
+    t.add_argument("--lr", type=float, help="peak LR (default 1e-4; 2e-5 with --init-from)")
+    t.add_argument("--lr-min", type=float, help="final LR (default 5e-5; 2e-6 with --init-from)")
+    t.add_argument("--warmup", type=int, help="warm-up steps (default 0; min(200, steps/10) with --init-from)")
     t.add_argument("--seed", type=int, default=0)
     t.add_argument("--threads", type=int, default=0)
     t.add_argument("--device", default="auto")
+    t.add_argument("--precision", default="auto", choices=["auto", "fp32", "bf16"],
+                   help="auto: bf16 autocast on CUDA, fp32 on CPU")
+    t.add_argument("--grad-checkpoint", action="store_true", help="recompute decoder layers in backward")
+    t.add_argument("--fsdp", action="store_true", help="shard parameters/gradients/optimizer (FSDP2) instead of DDP")
+    t.add_argument("--workers", type=int, default=0, help="DataLoader processes per rank preparing samples")
+    t.add_argument("--init-from", help="fine-tune a released-format Mesh Silksong checkpoint (model.safetensors, "
+                   ".pt/.bin; the official architecture, loaded as import-official does)")
+    t.add_argument("--init-config", help="with --init-from: JSON in the official fixture's config.json format "
+                   "(values no shape reveals, as import-official --config)")
     t.add_argument("--log-every", type=int, default=10)
     t.add_argument("--val-every", type=int, default=200)
     t.add_argument("--val-meshes", type=int, default=32)
@@ -132,6 +176,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--max-seq-len", type=int, default=0, help="override the config's max_seq_len")
     t.add_argument("--no-resume", action="store_true")
     t.add_argument("--no-augment", action="store_true")
+    t.add_argument("--no-progress", action="store_true")
     t.set_defaults(fn=_cmd_train)
 
     e = sub.add_parser("export", help="checkpoint -> ONNX model folder (docs/model_contract.md)")
@@ -140,6 +185,21 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--data", help="training data description for model.json")
     e.add_argument("--no-int8", action="store_true")
     e.set_defaults(fn=_cmd_export)
+
+    i = sub.add_parser("import-official", help="released Mesh Silksong checkpoint -> Silk model folder "
+                       "(.safetensors / .pt / .bin; docs/model_contract.md v3)")
+    i.add_argument("checkpoint", help="model.safetensors (F32/F16/BF16) or a PyTorch state dict (.pt/.bin)")
+    i.add_argument("-o", "--out", required=True, help="model folder to create")
+    i.add_argument("--precision", default="auto", choices=["fp32", "int8", "int4", "auto"],
+                   help="default decoder: auto = the fastest variant that passes the fidelity check")
+    i.add_argument("--config", help="JSON in the official fixture's config.json format: values no shape "
+                   "reveals (point_encoder.heads, point_encoder.num_points, decoder.qk_norm_scale)")
+    i.add_argument("--force", action="store_true", help="replace OUT if it exists")
+    i.add_argument("--int4-block-size", type=int, default=32)
+    i.add_argument("--int4-accuracy-level", type=int, default=4)
+    i.add_argument("--fidelity-tokens", type=int, default=32, help="greedy tokens per probe cloud")
+    i.add_argument("--no-progress", action="store_true")
+    i.set_defaults(fn=_cmd_import_official)
 
     v = sub.add_parser("eval", help="CD / HD / NC / |NC| and structure of generated vs reference meshes")
     v.add_argument("generated", help="mesh file or folder")

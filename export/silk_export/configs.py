@@ -1,5 +1,7 @@
 """Model sizes. `micro` is the CPU-trainable default bundled model; tiny/small/paper follow the
-issue (paper = the Mesh Silksong scale: 1024 wide, 24 layers, 16 heads)."""
+issue (paper = the Mesh Silksong scale: 1024 wide, 24 layers, 16 heads). `arch` picks the network
+(silk_export.architectures): "silk" (ours) or "official" (the released Mesh Silksong network,
+whose extra sizes are the fields after `arch`; 0 = not used by the architecture)."""
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
@@ -17,15 +19,25 @@ class ModelConfig:
     ff_mult: int = 4
     fourier_freqs: int = 8
     n_points: int = 4096
+    arch: str = "silk"
+    attn_head_dim: int = 0  # official: attention width per head (heads x 64 need not equal d_model)
+    context_dim: int = 0  # official: width of the conditioner output the decoder cross-attends to
+    n_queries: int = 0  # official: point-encoder queries (257 = 1 + 256 latents)
+    memory_slots: int = 0  # official: cross-attention memory key/values prepended per layer
+    encoder_width: int = 0  # official: point-encoder width W
+    encoder_heads: int = 0  # official: point-encoder heads (no shape reveals it)
+    qk_scale: float = 0.0  # official: attention scale after L2 qk-norm (10)
 
     def __post_init__(self):
-        if self.d_model % self.n_heads or (self.d_model // self.n_heads) % 8:
-            raise ValueError(f"config {self.name}: d_model / n_heads must be a whole multiple of 8 "
+        if self.attn_head_dim == 0 and self.d_model % self.n_heads:
+            raise ValueError(f"config {self.name}: d_model must be a multiple of n_heads")
+        if self.head_dim % 8:
+            raise ValueError(f"config {self.name}: the head width must be a whole multiple of 8 "
                              "(onnxruntime's GroupQueryAttention in the exported decoder needs it)")
 
     @property
     def head_dim(self) -> int:
-        return self.d_model // self.n_heads
+        return self.attn_head_dim or self.d_model // self.n_heads
 
     @property
     def max_tokens(self) -> int:

@@ -1,6 +1,8 @@
-"""`silk-export dataset`: one pass over a mesh collection through libsilk, writing index.jsonl
-(key, file, split, faces, token count, refusal) that training reads. Tokens are not stored:
-training tokenizes online after augmentation."""
+"""`silk-export dataset`: one pass over a mesh collection through libsilk. A build job encodes
+one shard of the sorted file list (`--shard I/N`: files I, I+N, I+2N, ...) into a compact
+cache (shard_store.py); merging the N shards writes dataset.json (the shard list), index.jsonl
+(one row per mesh in file order: key, file, split, faces, token count, refusal, shard, slot),
+refused.tsv and summary.json. Training streams from the shards (sharded_dataset.py)."""
 from __future__ import annotations
 
 import json
@@ -13,7 +15,10 @@ from tqdm import tqdm
 from . import libsilk
 from .mesh_files import list_meshes
 from .paths import shared_dir
-from .splits import DevExclusion, assign_split, load_dev_exclusion, shape_key
+from .shard_store import Shard, ShardWriter, shard_name, write_refused
+from .splits import TRAIN, DevExclusion, assign_split, load_dev_exclusion, shape_key
+
+DATASET_FORMAT = "silk-dataset/1"
 
 
 def dev_exclusion(dev_dir: Path | None, pmd_root: Path | None = None) -> DevExclusion:
@@ -29,49 +34,97 @@ def dev_exclusion(dev_dir: Path | None, pmd_root: Path | None = None) -> DevExcl
     return ex
 
 
-def index_one(key: str, path: Path, root: Path, dev: DevExclusion) -> dict:
+def encode_one(key: str, path: Path, root: Path, dev: DevExclusion | None):
+    """(index row, tokens, positions, triangles); arrays are None for a refused mesh.
+    dev=None: no split assignment (every mesh is training data)."""
     row = {"key": key, "file": path.relative_to(root).as_posix()}
+    arrays = (None, None, None)
     try:
-        with libsilk.Mesh.load(path) as m:
-            v = m.positions()
-            n_faces = m.triangle_count()
-            row.update(vertices=int(v.shape[0]), faces=int(n_faces))
-            row["split"] = assign_split(key, shape_key(v, n_faces), dev)
-            tokens, stats = libsilk.encode(m)
-            row.update(tokens=int(tokens.size), processed_faces=int(stats["processed_faces"]),
-                       layers=int(stats["layers"]), max_layer_size=int(stats["max_layer_size"]),
-                       refused=None)
+        v, f = libsilk.load_arrays(path)
+        row.update(vertices=int(v.shape[0]), faces=int(f.shape[0]))
+        row["split"] = TRAIN if dev is None else assign_split(key, shape_key(v, f.shape[0]), dev)
+        tokens, stats = libsilk.encode_arrays(v, f)
+        row.update(tokens=int(tokens.size), processed_faces=int(stats["processed_faces"]),
+                   layers=int(stats["layers"]), max_layer_size=int(stats["max_layer_size"]), refused=None)
+        arrays = (tokens, v, f)
     except libsilk.SilkRefused as e:
-        row.update(tokens=None, refused=e.reason)
+        row.update(tokens=None, refused=e.reason, detail=e.message)
     except libsilk.SilkError as e:
-        row.update(tokens=None, refused=f"error:{e.name}")
+        row.update(tokens=None, refused=f"error:{e.name}", detail=e.message)
     if "split" not in row:
-        row["split"] = assign_split(key, "", dev)
-    return row
+        row["split"] = TRAIN if dev is None else assign_split(key, "", dev)
+    return (row, *arrays)
 
 
-def build_index(root: Path, out_dir: Path, dev_dir: Path | None = None, limit: int | None = None) -> dict:
-    root, out_dir = Path(root), Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
+def build_shard(root: Path, out_dir: Path, shard: tuple[int, int] = (0, 1), dev_dir: Path | None = None,
+                limit: int | None = None, all_train: bool = False, progress: bool = True) -> Path:
+    """Encodes files shard[0], shard[0] + N, ... of the sorted listing into out_dir/shard-I-of-N."""
+    root, (i, n) = Path(root), shard
     files = list_meshes(root)
     if limit:
         files = files[:limit]
-    dev = dev_exclusion(dev_dir, pmd_root=root if (root / "art" / "meshes").is_dir() else None)
+    dev = None if all_train else dev_exclusion(
+        dev_dir, pmd_root=root if (root / "art" / "meshes").is_dir() else None)
+    writer = ShardWriter(Path(out_dir), i, n)
     t0 = time.time()
-    rows = [index_one(k, p, root, dev) for k, p in tqdm(files, desc="index", unit="mesh")]
-    tmp = out_dir / "index.jsonl.tmp"
-    with open(tmp, "w") as fh:
-        for r in rows:
-            fh.write(json.dumps(r) + "\n")
-    tmp.replace(out_dir / "index.jsonl")
+    mine = list(range(i, len(files), n))
+    for order in tqdm(mine, desc=f"shard {i}/{n}", unit="mesh", disable=not progress):
+        key, path = files[order]
+        row, tokens, v, f = encode_one(key, path, root, dev)
+        writer.add({**row, "order": order}, tokens, v, f)
+    return writer.close({"root": str(root), "files_total": len(files), "all_train": all_train,
+                         "seconds": round(time.time() - t0, 1)})
+
+
+def merge_shards(out_dir: Path) -> dict:
+    """Checks that every shard of one build is there and writes the dataset's index files."""
+    out_dir = Path(out_dir)
+    found = sorted(p for p in out_dir.glob("shard-*-of-*") if p.is_dir() and not p.name.endswith(".tmp"))
+    if not found:
+        raise ValueError(f"{out_dir}: no finished shard-I-of-N folders to merge")
+    n = Shard(found[0]).info["of"]
+    names = [shard_name(i, n) for i in range(n)]
+    missing = [s for s in names if not (out_dir / s).is_dir()]
+    if missing:
+        raise ValueError(f"{out_dir}: shards missing: {', '.join(missing)}")
+    rows = []
+    for s, name in enumerate(names):
+        rows += [{**r, "shard": s} for r in Shard(out_dir / name).rows()]
+    rows.sort(key=lambda r: r["order"])
+    write_rows(out_dir / "index.jsonl", rows)
+    with open(out_dir / "refused.tsv", "w") as fh:
+        write_refused(fh, [r for r in rows if r["refused"]])
+    info = Shard(out_dir / names[0]).info
     summary = {
-        "root": str(root), "meshes": len(rows), "seconds": round(time.time() - t0, 1),
+        "root": info["root"], "meshes": len(rows), "shards": n,
         "splits": dict(Counter(r["split"] for r in rows)),
         "encodable_by_split": dict(Counter(r["split"] for r in rows if r["refused"] is None)),
         "refusals": dict(Counter(r["refused"] for r in rows if r["refused"])),
     }
     (out_dir / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    (out_dir / "dataset.json").write_text(json.dumps(
+        {"format": DATASET_FORMAT, "shards": names, "meshes": len(rows), "all_train": info["all_train"]},
+        indent=2) + "\n")
     return summary
+
+
+def build_index(root: Path, out_dir: Path, dev_dir: Path | None = None, limit: int | None = None,
+                all_train: bool = False) -> dict:
+    """Unsharded build: one shard, then the merge (index.jsonl, summary.json, dataset.json)."""
+    t0 = time.time()
+    for old in Path(out_dir).glob("shard-*-of-*"):  # a previous build with another N
+        if old.is_dir() and old.name != shard_name(0, 1):
+            raise ValueError(f"{out_dir} holds {old.name}; use an empty folder")
+    build_shard(root, out_dir, (0, 1), dev_dir, limit, all_train)
+    return {**merge_shards(out_dir), "seconds": round(time.time() - t0, 1)}
+
+
+def write_rows(path: Path, rows: list[dict]) -> None:
+    tmp = Path(path).with_suffix(".jsonl.tmp")
+    with open(tmp, "w") as fh:
+        for r in rows:
+            fh.write(json.dumps(r) + "\n")
+    tmp.replace(path)
 
 
 def read_index(path: Path) -> list[dict]:

@@ -1,5 +1,5 @@
 """Numpy geometry shared by the data pipeline and evaluation: the spec §2.1 bounding-box
-normalisation, per-face areas and normals."""
+normalisation (surface sampling is libsilk's, see pointcloud.py)."""
 from __future__ import annotations
 
 import numpy as np
@@ -16,18 +16,3 @@ def normalize_vertices(v: np.ndarray, bound: float = 0.95) -> np.ndarray:
     scale = (2 * bound) / extent if extent > 0 else 1.0
     return (v - center) * scale
 
-
-def face_cross(v: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Un-normalised face normals (cross products), float64 [F,3]."""
-    a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
-    return np.cross(b - a, c - a)
-
-
-def face_areas_normals(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(areas [F], unit normals [F,3]; zero vector for degenerate faces)."""
-    cr = face_cross(np.asarray(v, np.float64), np.asarray(f, np.int64))
-    norm = np.linalg.norm(cr, axis=1)
-    normals = np.zeros_like(cr)
-    ok = norm > 0
-    normals[ok] = cr[ok] / norm[ok, None]
-    return 0.5 * norm, normals

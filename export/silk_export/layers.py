@@ -10,14 +10,16 @@ from torch import nn
 
 
 def attend(q: torch.Tensor, k: torch.Tensor, v: torch.Tensor, causal: bool = False,
-           allowed: torch.Tensor | None = None, fused: bool = True) -> torch.Tensor:
+           allowed: torch.Tensor | None = None, fused: bool = True,
+           scale: float | None = None) -> torch.Tensor:
     """q [B,H,T,D], k/v [B,H,S,D] -> [B,H,T,D].
 
     causal: query i sees keys 0..i (T == S). allowed: bool [T,S] mask (export path).
-    fused=False spells the computation out with standard ops only (what goes into ONNX)."""
+    fused=False spells the computation out with standard ops only (what goes into ONNX).
+    scale: score factor (default 1/sqrt(D))."""
     if fused and allowed is None:
-        return F.scaled_dot_product_attention(q, k, v, is_causal=causal)
-    scores = torch.matmul(q, k.transpose(-1, -2)) * (1.0 / math.sqrt(q.shape[-1]))
+        return F.scaled_dot_product_attention(q, k, v, is_causal=causal, scale=scale)
+    scores = torch.matmul(q, k.transpose(-1, -2)) * (scale or 1.0 / math.sqrt(q.shape[-1]))
     if causal:
         t, s = scores.shape[-2], scores.shape[-1]
         allowed = torch.ones(t, s, dtype=torch.bool, device=q.device).tril()

@@ -217,10 +217,12 @@ class Model(_Handle):
 
     _destroy = "silk_model_destroy"
 
-    def __init__(self, model_dir: str | os.PathLike, threads: int = 0, int8: bool = False):
+    def __init__(self, model_dir: str | os.PathLike, threads: int = 0, decoder: str = "default"):
         L = lib()
         opts = L.silk_model_default_options()
-        opts.threads, opts.int8 = int(threads), int(bool(int8))
+        if decoder not in DECODERS:
+            raise ValueError(f"decoder must be one of {sorted(DECODERS)}, not {decoder!r}")
+        opts.threads, opts.decoder = int(threads), DECODERS[decoder]
         self._h = ctypes.c_void_p()
         _check(L.silk_model_load(os.fsencode(model_dir), ctypes.byref(opts), ctypes.byref(self._h)))
 
@@ -233,8 +235,9 @@ class Model(_Handle):
 
 
 
-def generate_params(seed: int = 0, temperature: float = 0.5, top_k: int = 50, top_p: float = 1.0,
+def generate_params(seed: int = 0, temperature: float = -1, top_k: int = -1, top_p: float = -1,
                     max_tokens: int = 0, max_faces: int = 0, repair: str = "off", n_points: int = 0) -> GenerateParams:
+    """silk_generate_params; negative sampling values mean the model's (model.json "sampling")."""
     p = lib().silk_generate_default_params()
     p.seed, p.temperature, p.top_k, p.top_p = int(seed), float(temperature), int(top_k), float(top_p)
     p.max_tokens, p.max_faces, p.n_points = int(max_tokens), int(max_faces), int(n_points)
@@ -326,3 +329,38 @@ class Generator(_Handle):
         finally:
             self._keep = None
         return Mesh(mh), _tokens_to_numpy(th), st.as_dict()
+
+
+def prepare_points(positions: np.ndarray, triangles: np.ndarray | None, kind: str = "silk",
+                   n_points: int = 4096, seed: int = 0, **overrides) -> tuple[np.ndarray, np.ndarray, float]:
+    """The encoder's points by libsilk's pre-processing (silk_prepare_points), the same code
+    generation runs: a mesh (triangles given) or an oriented cloud (positions [N, 6], triangles
+    None). `kind` "silk" or "official" picks the defaults; `overrides` set PreprocessParams
+    fields (normalize_bound, merge_distance_fraction, surface_samples, round_float16).
+    Returns (float32 [n, 6] normalised xyz + normal, centre [3], scale): model = (input - centre) * scale."""
+    L = lib()
+    params = L.silk_preprocess_default_params(PREPROCESS_KINDS[kind])
+    params.n_points = int(n_points)
+    for name, value in overrides.items():
+        if name not in dict(PreprocessParams._fields_) or name in ("kind", "n_points"):
+            raise TypeError(f"prepare_points: unknown pre-processing field '{name}'")
+        setattr(params, name, type(getattr(params, name))(value))
+    transform = np.zeros(4, dtype=np.float64)
+    rows = ctypes.c_size_t()
+    seed = ctypes.c_uint64(int(seed) & (2**64 - 1))
+
+    def run(*source) -> np.ndarray:  # size query, then the rows
+        _check(L.silk_prepare_points(*source, ctypes.byref(params), seed, None, 0, ctypes.byref(rows), None))
+        out = np.empty((rows.value, 6), dtype=np.float32)
+        _check(L.silk_prepare_points(*source, ctypes.byref(params), seed,
+                                     out.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), out.size,
+                                     ctypes.byref(rows), transform.ctypes.data_as(_c_double_p)))
+        return out
+
+    if triangles is None:
+        cloud = np.ascontiguousarray(positions, dtype=np.float64).reshape(-1, 6)
+        out = run(None, cloud.ctypes.data_as(_c_double_p), cloud.shape[0])
+    else:
+        with Mesh.from_arrays(positions, triangles) as m:
+            out = run(m.handle, None, 0)
+    return out, transform[:3].copy(), float(transform[3])

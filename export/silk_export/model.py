@@ -6,6 +6,7 @@ from __future__ import annotations
 import torch
 import torch.nn.functional as F
 from torch import nn
+from torch.utils.checkpoint import checkpoint
 
 from .configs import ModelConfig
 from .layers import FeedForward, MultiHeadAttention, attend, merge_heads, split_heads
@@ -16,6 +17,8 @@ IGNORE_INDEX = -100
 
 
 class DecoderLayer(nn.Module):
+    fsdp_forward_methods = ("cross_kv",)  # SilkModel calls it before the layers run (distributed.py)
+
     def __init__(self, cfg: ModelConfig):
         super().__init__()
         d, h = cfg.d_model, cfg.n_heads
@@ -29,6 +32,11 @@ class DecoderLayer(nn.Module):
     def cross_kv(self, latents: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         """This layer's cross-attention K/V of the latents, [B,H,M,D] each."""
         return self.cross_attn.keys_values(latents)
+
+    def self_qkv(self, y: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        """Self-attention q, k, v of the normed input, [B,T,d] each (what the ONNX graph feeds GQA)."""
+        a = self.self_attn
+        return a.q(y), a.k(y), a.v(y)
 
     def forward(self, x, cross_k, cross_v, past_k=None, past_v=None, allowed=None, fused=True):
         """x [B,T,d]; past_k/v [B,H,P,D] or None. Returns (x, k_new, v_new) with k/v [B,H,T,D]."""
@@ -78,6 +86,7 @@ class SilkModel(nn.Module):
         self.head = nn.Linear(d, self.n_logits)
         self.apply(self._init)
         nn.init.normal_(self.type_emb, std=0.02)
+        self.gradient_checkpointing = False  # training: recompute each decoder layer in backward
 
     @staticmethod
     def _init(m: nn.Module) -> None:
@@ -97,6 +106,9 @@ class SilkModel(nn.Module):
         lat = self.encoder(points)
         return [layer.cross_kv(lat) for layer in self.layers]
 
+    def logits(self, x: torch.Tensor) -> torch.Tensor:
+        return self.head(self.norm(x))
+
     def forward(self, input_ids: torch.Tensor, points: torch.Tensor,
                 labels: torch.Tensor | None = None):
         """Teacher forcing. input_ids [B,S] start with BOS (PAD after the end); positions 0..S-1.
@@ -105,8 +117,11 @@ class SilkModel(nn.Module):
         pos = torch.arange(input_ids.shape[1], device=input_ids.device).unsqueeze(0)
         x = self.embed(input_ids, pos)
         for layer, (ck, cv) in zip(self.layers, cross):
-            x, _, _ = layer(x, ck, cv)
-        logits = self.head(self.norm(x))
+            if self.gradient_checkpointing and self.training:
+                x = checkpoint(lambda x, ck, cv, layer=layer: layer(x, ck, cv)[0], x, ck, cv, use_reentrant=False)
+            else:
+                x, _, _ = layer(x, ck, cv)
+        logits = self.logits(x)
         if labels is None:
             return logits
         loss = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1),
@@ -128,7 +143,7 @@ class SilkModel(nn.Module):
         for layer, (pk, pv), (ck, cv) in zip(self.layers, past, cross):
             x, kn, vn = layer(x, ck, cv, pk, pv, allowed=allowed, fused=fused)
             new.append((kn, vn))
-        return self.head(self.norm(x)), new
+        return self.logits(x), new
 
     def num_parameters(self) -> int:
         return sum(p.numel() for p in self.parameters())

@@ -31,23 +31,28 @@ class Sample:
 
 
 def make_sample(v: np.ndarray, f: np.ndarray, rng: np.random.Generator, max_tokens: int,
-                augment: bool = True, n_points: int = 4096, key: str = "") -> Sample:
-    """Raises TooLong, libsilk.SilkRefused (e.g. a layer over 200 vertices) or ValueError."""
+                augment: bool = True, n_points: int = 4096, key: str = "", tokens=None,
+                points_kind: str = "silk") -> Sample:
+    """Raises TooLong, libsilk.SilkRefused (e.g. a layer over 200 vertices) or ValueError.
+    tokens: the un-augmented mesh's tokens when already known (a dataset cache); augment=False only.
+    points_kind: the architecture's point pre-processing (model.json `preprocessing.kind`)."""
     if augment:
         v, _ = augment_vertices(v, rng)
-    tokens, _ = libsilk.encode_arrays(v, f, normalize=True, normalize_bound=BOUND, nonmanifold_processing=True)
+    if tokens is None or augment:
+        tokens, _ = libsilk.encode_arrays(v, f, normalize=True, normalize_bound=BOUND, nonmanifold_processing=True)
     if tokens.size == 0 or tokens.size > max_tokens:
         raise TooLong(f"{key}: {tokens.size} tokens (max {max_tokens})")
-    pts = point_cloud(normalize_vertices(v, BOUND), f, rng, n=n_points, noise=augment)
+    pts = point_cloud(normalize_vertices(v, BOUND), f, rng, n=n_points, noise=augment, kind=points_kind)
     return Sample(tokens, pts, key)
 
 
 class MeshCache:
     """Raw (positions, triangles) per index row, loaded once through libsilk."""
 
-    def __init__(self, root: Path, rows: list[dict]):
+    def __init__(self, root: Path, rows: list[dict], points_kind: str = "silk"):
         self.root = Path(root)
         self.rows = rows
+        self.points_kind = points_kind
         self._arrays: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
     def __len__(self) -> int:
@@ -61,7 +66,8 @@ class MeshCache:
     def sample(self, i: int, rng: np.random.Generator, max_tokens: int, augment: bool = True,
                n_points: int = 4096) -> Sample:
         v, f = self.arrays(i)
-        return make_sample(v, f, rng, max_tokens, augment, n_points, key=self.rows[i]["key"])
+        return make_sample(v, f, rng, max_tokens, augment, n_points, key=self.rows[i]["key"],
+                           points_kind=self.points_kind)
 
 
 def collate(samples: list[Sample]) -> dict[str, torch.Tensor]:

@@ -46,13 +46,24 @@ class DecodeParams(ctypes.Structure):
     _fields_ = [("grid_coordinates", ctypes.c_int32)]
 
 
+class PreprocessParams(ctypes.Structure):
+    _fields_ = [("kind", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
+                ("merge_distance_fraction", ctypes.c_double), ("surface_samples", ctypes.c_int32),
+                ("round_float16", ctypes.c_int32), ("n_points", ctypes.c_int32)]
+
+
+PREPROCESS_KINDS = {"silk": 0, "official": 1}
+DECODERS = {"default": 0, "int8": 1, "fp32": 2, "int4": 3}  # silk_decoder_precision
+
+
 class ModelOptions(ctypes.Structure):
-    _fields_ = [("threads", ctypes.c_int32), ("int8", ctypes.c_int32)]
+    _fields_ = [("threads", ctypes.c_int32), ("decoder", ctypes.c_int32)]  # silk_decoder_precision
 
 
 class ModelInfo(ctypes.Structure):
     _fields_ = [("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in (
-        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8")]
+        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8",
+        "decoder", "arch", "encoder_points")]
 
 
 class GenerateProgress(ctypes.Structure):
@@ -69,7 +80,8 @@ class GenerateParams(ctypes.Structure):
                 ("top_p", ctypes.c_double), ("max_tokens", ctypes.c_int32), ("max_faces", ctypes.c_int32),
                 ("holes", ctypes.c_int32), ("unconstrained", ctypes.c_int32), ("n_points", ctypes.c_int32),
                 ("progress", PROGRESS_FN), ("cancel", CANCEL_FN), ("user_data", ctypes.c_void_p),
-                ("debug_flags", ctypes.c_int32)]
+                ("top_p_temperature", ctypes.c_double), ("preprocessing", ctypes.c_int32),
+                ("raw_points", ctypes.c_int32), ("debug_flags", ctypes.c_int32)]
 
 
 class GenerateStats(ctypes.Structure):
@@ -88,8 +100,7 @@ class GenerateStats(ctypes.Structure):
 
 
 class GenerateInput(ctypes.Structure):
-    _fields_ = [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("n_points", ctypes.c_size_t),
-                ("raw", ctypes.c_int32)]
+    _fields_ = [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("n_points", ctypes.c_size_t)]
 
 
 SIGNATURES = {
@@ -116,6 +127,12 @@ SIGNATURES = {
     "silk_encode_default_params": (EncodeParams, []),
     "silk_encode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams),
                                    ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(EncodeStats)]),
+    "silk_preprocess_default_params": (PreprocessParams, [ctypes.c_int32]),
+    "silk_prepare_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
+                                           ctypes.POINTER(PreprocessParams), ctypes.c_uint64,
+                                           ctypes.POINTER(ctypes.c_float), ctypes.c_size_t,
+                                           ctypes.POINTER(ctypes.c_size_t), _c_double_p]),
+    "silk_model_get_preprocess_params": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(PreprocessParams)]),
     "silk_decode_default_params": (DecodeParams, []),
     "silk_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
                                    ctypes.POINTER(ctypes.c_void_p)]),

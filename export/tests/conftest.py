@@ -3,6 +3,7 @@ checkout); silktok is taken from the same build folder; spec files from the shar
 from __future__ import annotations
 
 import os
+import shutil
 import sys
 from pathlib import Path
 
@@ -42,3 +43,19 @@ def golden_dir() -> Path:
 @pytest.fixture(scope="session")
 def dev_dir() -> Path:
     return shared_dir() / "corpus" / "dev"
+
+
+@pytest.fixture(scope="session")
+def shared() -> Path:
+    return shared_dir()
+
+
+@pytest.fixture(scope="session")
+def mesh_folder(tmp_path_factory):
+    """mesh_folder(src_dir, names) -> a new folder holding copies of src_dir/<name>.obj."""
+    def make(src: Path, names) -> Path:
+        dest = tmp_path_factory.mktemp("meshes")
+        for n in names:
+            shutil.copy(Path(src) / f"{n}.obj", dest / f"{n}.obj")
+        return dest
+    return make

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from silk_export import libsilk
-from silk_export.dataset_index import dev_exclusion, index_one
+from silk_export.dataset_index import dev_exclusion, encode_one
 from silk_export.mesh_files import default_0ad_root
 from silk_export.paths import data_dir
 from silk_export.splits import DEV, hash_split, read_dev_manifest, shape_key
@@ -51,8 +51,8 @@ def test_dev_meshes_and_copies_get_dev_split(dev, dev_dir, tmp_path):
         # the dev OBJ itself under its public.zip path, and a same-shape copy under another path
         copy = tmp_path / "copy.obj"
         copy.write_bytes((dev_dir / r["file"]).read_bytes())
-        assert index_one(r["zip_path"], dev_dir / r["file"], dev_dir, dev)["split"] == DEV
-        assert index_one("art/meshes/other/" + r["file"], copy, tmp_path, dev)["split"] == DEV
+        assert encode_one(r["zip_path"], dev_dir / r["file"], dev_dir, dev)[0]["split"] == DEV
+        assert encode_one("art/meshes/other/" + r["file"], copy, tmp_path, dev)[0]["split"] == DEV
 
 
 def test_real_0ad_dev_sources_are_excluded(dev, dev_dir):
@@ -60,7 +60,7 @@ def test_real_0ad_dev_sources_are_excluded(dev, dev_dir):
     if not (root / "art" / "meshes").is_dir():
         pytest.skip("0 A.D. meshes not fetched (scripts/fetch_0ad.sh)")
     for r in read_dev_manifest(dev_dir / "MANIFEST.tsv"):
-        row = index_one(r["zip_path"], root / r["zip_path"], root, dev)
+        row = encode_one(r["zip_path"], root / r["zip_path"], root, dev)[0]
         assert row["split"] == DEV, r["zip_path"]
         assert row["faces"] == int(r["faces"])
 

@@ -3,7 +3,6 @@ checkpoint ends with exactly the weights of an uninterrupted one."""
 from __future__ import annotations
 
 import json
-import shutil
 
 import numpy as np
 import pytest
@@ -22,10 +21,8 @@ MESHES = ["cube", "octahedron", "tetrahedron", "torus_12x8", "two_components", "
 
 
 @pytest.fixture(scope="module")
-def data(golden_dir, dev_dir, tmp_path_factory):
-    root = tmp_path_factory.mktemp("meshes")
-    for m in MESHES:
-        shutil.copy(golden_dir / f"{m}.obj", root / f"{m}.obj")
+def data(golden_dir, dev_dir, tmp_path_factory, mesh_folder):
+    root = mesh_folder(golden_dir, MESHES)
     out = tmp_path_factory.mktemp("index")
     summary = build_index(root, out, dev_dir)
     assert summary["meshes"] == len(MESHES) and not summary["refusals"]
@@ -94,3 +91,20 @@ def test_generate_samples_legal_ids_and_writes_the_layout(data, tmp_path, golden
     for row in res["meshes"]:
         assert row["tokens"] + row["eos"] <= 20  # at most max_tokens ids, EOS included
         assert (tmp_path / "gen" / "reference" / f"{row['name']}.obj").exists()
+
+
+def test_workers_checkpointing_and_micro_batches_keep_the_losses(data, tmp_path):
+    """DataLoader workers and gradient checkpointing change nothing; padded micro-batches of 3
+    (instead of one sequence at a time) and bf16 autocast change only rounding."""
+    torch.set_num_threads(1)
+
+    def run_losses(name, **kw):
+        train(args(data, tmp_path / name, 4, **kw))
+        return [json.loads(x)["loss"] for x in open(tmp_path / name / "log.jsonl")]
+
+    base = run_losses("base")
+    assert run_losses("workers", workers=2, grad_checkpoint=True) == base
+    np.testing.assert_allclose(run_losses("micro", micro_batch=3), base, atol=1e-4)
+    bf16 = run_losses("bf16", precision="bf16")
+    assert bf16 != base  # autocast is on
+    np.testing.assert_allclose(bf16, base, atol=0.1)

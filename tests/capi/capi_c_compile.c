@@ -1,5 +1,5 @@
 /* Compiles silk.h as plain C (C99) and exercises it: encode a tetrahedron, decode it back,
- * and the generation entry points' argument/availability errors. */
+ * the generation entry points' argument/availability errors, and the point pre-processing. */
 #include <stdio.h>
 #include <string.h>
 
@@ -29,10 +29,29 @@ int main(void) {
     silk_model* model = NULL;
     silk_mesh* out = NULL;
     silk_status st = silk_model_load("/nonexistent-model-dir", NULL, &model);
-    if (gp.top_k != 50 || gp.temperature != 0.5 || gp.max_tokens != 0) return 7;
+    /* sampling and pre-processing default to "the model's" (-1) */
+    if (gp.top_k != -1 || gp.temperature != -1 || gp.top_p_temperature != -1 || gp.preprocessing != -1 ||
+        gp.max_tokens != 0 || gp.raw_points != 0)
+      return 7;
     if (st == SILK_OK || model != NULL || strlen(silk_last_error()) == 0) return 8;
     if (!silk_generation_available() && st != SILK_ERR_UNSUPPORTED) return 9;
     if (silk_generate(NULL, mesh, &gp, &out, NULL, NULL) != SILK_ERR_INVALID_ARGUMENT || out != NULL) return 10;
+  }
+  /* pre-processing works in every build: size query, then the official kind's rows */
+  {
+    silk_preprocess_params pp = silk_preprocess_default_params(SILK_PREPROCESS_OFFICIAL);
+    size_t rows = 0;
+    float buf[6 * 64];
+    double transform[4];
+    pp.n_points = 64;
+    if (pp.surface_samples != 50000 || pp.round_float16 != 1) return 11;
+    if (silk_prepare_points(mesh, NULL, 0, &pp, 1, NULL, 0, &rows, NULL) != SILK_OK || rows != 64) return 12;
+    if (silk_prepare_points(mesh, NULL, 0, &pp, 1, buf, 10, &rows, NULL) != SILK_ERR_BUFFER_TOO_SMALL) return 13;
+    if (silk_prepare_points(mesh, NULL, 0, &pp, 1, buf, 6 * 64, &rows, transform) != SILK_OK) return 14;
+    if (transform[3] != 1.9 || buf[0] < -0.951f || buf[0] > 0.951f) return 15;
+    if (silk_prepare_points(mesh, xyz, 2, &pp, 1, buf, 6 * 64, &rows, NULL) != SILK_ERR_INVALID_ARGUMENT) return 16;
+    pp.kind = 7;
+    if (silk_prepare_points(mesh, NULL, 0, &pp, 1, buf, 6 * 64, &rows, NULL) != SILK_ERR_INVALID_ARGUMENT) return 17;
   }
   silk_mesh_destroy(back);
   silk_tokens_destroy(tokens);

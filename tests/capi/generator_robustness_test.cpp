@@ -276,7 +276,7 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
   silk_tokens_destroy(t);
   if (silk_generation_available()) {
     silk_model_options o = silk_model_default_options();
-    o.int8 = 2;
+    o.decoder = 7;
     silk_model* model = nullptr;
     EXPECT_EQ(silk_model_load(TinyModel().c_str(), &o, &model), SILK_ERR_INVALID_ARGUMENT);
     ASSERT_EQ(silk_model_load(TinyModel().c_str(), nullptr, &model), SILK_OK) << silk_last_error();
@@ -455,8 +455,8 @@ TEST_F(CapiGeneration, RawPointsReproduceTheTracedEncoderInput) {
   silk_generate_input in{};
   in.points = points.data();
   in.n_points = points.size() / 6;
-  in.raw = 1;
   silk_generate_params q = Params(4);
+  q.raw_points = 1;
   ASSERT_EQ(silk_generate_input_run(g, &in, &q, &out, &t, nullptr), SILK_OK) << silk_last_error();
   std::vector<int32_t> got(silk_tokens_count(t));
   silk_tokens_copy(t, got.data(), got.size());

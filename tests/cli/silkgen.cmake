@@ -9,7 +9,20 @@ if(Python3_FOUND AND TARGET silkgen)
                      $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR})
   endforeach()
   set_tests_properties(silkgen_reference PROPERTIES SKIP_RETURN_CODE 77)
+  # model.json v3 on copies of the tiny model made at test time (tests/tools/silkgen_v3_checks.py).
+  foreach(mode defaults errors raw)
+    add_test(NAME silkgen_v3_${mode}
+             COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/silkgen_v3_checks.py ${mode}
+                     $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR})
+  endforeach()
   if(NOT SILK_SANITIZE)  # python cannot load an ASan-instrumented libsilk
+    # The official architecture end to end: fixture imported at test time, silkgen's greedy ids
+    # = the official loop's (tests/tools/official_fixture_check.py; skipped without its deps).
+    add_test(NAME official_fixture_greedy
+             COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/official_fixture_check.py
+                     $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR} ${SILK_SHARED_DIR})
+    set_tests_properties(official_fixture_greedy PROPERTIES SKIP_RETURN_CODE 77 LABELS slow
+                         ENVIRONMENT "SILK_LIBRARY=$<TARGET_FILE:silk>")
     add_test(NAME capi_generate_ctypes
              COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/examples/generate_ctypes.py
                      --library $<TARGET_FILE:silk> --model ${PROJECT_SOURCE_DIR}/tests/models/tiny

@@ -100,6 +100,9 @@ def main() -> int:
     if s.get("unconstrained"):
         print("reference_loop: unconstrained traces are not checked")
         return 1
+    if float(s.get("top_p_temperature", 0)) > 0:
+        print("reference_loop: the official top-p chain (top_p_temperature > 0) is not reproduced here")
+        return 1
     d = meta["dims"]
     bos = meta["vocab"]["bos_id"]
     so = ort.SessionOptions()

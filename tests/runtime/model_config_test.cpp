@@ -44,7 +44,7 @@ TEST(ModelConfig, RefusesMismatches) {
   const std::vector<Case> cases = {
       {"format", [](auto& j) { j["format"] = "other"; }, "silk-model"},
       {"older model version", [](auto& j) { j["model_version"] = 1; }, "re-export"},
-      {"newer model version", [](auto& j) { j["model_version"] = 3; }, "newer libsilk"},
+      {"newer model version", [](auto& j) { j["model_version"] = 4; }, "newer libsilk"},
       {"token format", [](auto& j) { j["token_format"] = "meshgpt"; }, "token_format"},
       {"token format version", [](auto& j) { j["token_format_version"] = 2; }, "token_format_version"},
       {"eos", [](auto& j) { j["vocab"]["eos_id"] = 5; }, "eos_id"},
@@ -70,15 +70,141 @@ TEST(ModelConfig, RefusesMismatches) {
   EXPECT_FALSE(ParseModelConfig("not json", "x").ok());
 }
 
-TEST(ModelLoad, MissingFolderAndInt8AreClearErrors) {
+// The committed tiny model is version 2: Silk's arch, Silk's pre-processing with its
+// normalize_bound, silkgen's former sampling defaults, the fp32 decoder.
+TEST(ModelConfig, Version2Defaults) {
+  auto c = LoadModelConfig(testing::TinyModelDir());
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_EQ(c->model_version, 2);
+  EXPECT_EQ(c->arch, ModelArch::kSilk);
+  EXPECT_EQ(c->preprocessing.kind, PreprocessingKind::kSilk);
+  EXPECT_EQ(c->preprocessing.normalize_bound, 0.95);
+  EXPECT_EQ(c->preprocessing.n_points, c->dims.n_points);
+  EXPECT_EQ(c->preprocessing.surface_samples, 0);
+  EXPECT_FALSE(c->preprocessing.round_float16);
+  EXPECT_EQ(c->sampling.temperature, 0.5);
+  EXPECT_EQ(c->sampling.top_k, 50);
+  EXPECT_EQ(c->sampling.top_p, 1.0);
+  EXPECT_EQ(c->sampling.top_p_temperature, 0.0);
+  EXPECT_EQ(c->default_decoder, DecoderPrecision::kFp32);
+  EXPECT_TRUE(c->external_data.empty());
+  nlohmann::json j = TinyJson();
+  j["normalize_bound"] = 0.5;
+  auto b = ParseModelConfig(j.dump(), "model.json");
+  ASSERT_TRUE(b.ok());
+  EXPECT_EQ(b->preprocessing.normalize_bound, 0.5);
+}
+
+nlohmann::json OfficialV3() {
+  nlohmann::json j = TinyJson();
+  j["model_version"] = 3;
+  j["arch"] = "official";
+  j.erase("normalize_bound");
+  j["dims"] = {{"d_model", 32}, {"n_layers", 2}, {"n_heads", 2}, {"head_dim", 64},
+               {"n_latents", 261}, {"n_points", 4096}, {"max_seq_len", 512}};
+  j["preprocessing"] = {{"kind", "official"}, {"normalize_bound", 0.95}, {"merge_distance_fraction", 0.01},
+                        {"surface_samples", 50000}, {"round_float16", true}, {"n_points", 4096}};
+  j["sampling"] = {{"temperature", 0.5}, {"top_k", 50}, {"top_p", 0.95}, {"top_p_temperature", 1.0}};
+  j["files"] = {{"encoder", "encoder.onnx"}, {"decoder", "decoder.onnx"}, {"decoder_int8", "decoder.int8.onnx"},
+                {"decoder_int4", "decoder.int4.onnx"}, {"default_decoder", "decoder_int4"},
+                {"external_data", {"decoder.onnx.data"}}};
+  j["source"] = {{"file", "model.safetensors"}, {"sha256", "ab12"}, {"licence", "see the model card"}};
+  return j;
+}
+
+TEST(ModelConfig, Version3Official) {
+  auto c = ParseModelConfig(OfficialV3().dump(), "model.json");
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_EQ(c->arch, ModelArch::kOfficial);
+  EXPECT_EQ(c->dims.d_model, 32);  // narrower than heads * head_dim: allowed for "official"
+  const PreprocessingParams& p = c->preprocessing;
+  EXPECT_EQ(p.kind, PreprocessingKind::kOfficial);
+  EXPECT_EQ(p.merge_distance_fraction, 0.01);
+  EXPECT_EQ(p.surface_samples, 50000);
+  EXPECT_TRUE(p.round_float16);
+  EXPECT_EQ(c->sampling.top_p, 0.95);
+  EXPECT_EQ(c->sampling.top_p_temperature, 1.0);
+  EXPECT_EQ(c->default_decoder, DecoderPrecision::kInt4);
+  EXPECT_EQ(c->DecoderFile(DecoderPrecision::kInt4), "decoder.int4.onnx");
+  EXPECT_EQ(c->external_data, std::vector<std::string>{"decoder.onnx.data"});
+  EXPECT_EQ(c->source_sha256, "ab12");
+  // Without "preprocessing" an official model gets the official defaults; a silk one Silk's.
+  nlohmann::json j = OfficialV3();
+  j.erase("preprocessing");
+  j.erase("sampling");
+  auto d = ParseModelConfig(j.dump(), "model.json");
+  ASSERT_TRUE(d.ok()) << d.status().ToString();
+  EXPECT_EQ(d->preprocessing.kind, PreprocessingKind::kOfficial);
+  EXPECT_EQ(d->preprocessing.surface_samples, 50000);
+  EXPECT_EQ(d->sampling.top_k, 50);
+  // Fields a v3 file leaves out of "preprocessing" take the kind's defaults.
+  j["preprocessing"] = {{"kind", "official"}, {"surface_samples", 8192}};
+  auto e = ParseModelConfig(j.dump(), "model.json");
+  ASSERT_TRUE(e.ok()) << e.status().ToString();
+  EXPECT_EQ(e->preprocessing.surface_samples, 8192);
+  EXPECT_TRUE(e->preprocessing.round_float16);
+}
+
+TEST(ModelConfig, Version3RefusesEveryBadField) {
+  struct Case {
+    const char* what;
+    std::function<void(nlohmann::json&)> edit;
+    const char* needle;
+  };
+  const std::vector<Case> cases = {
+      {"arch value", [](auto& j) { j["arch"] = "gpt"; }, "arch \"gpt\""},
+      {"arch type", [](auto& j) { j["arch"] = 2; }, "'arch' is not a string"},
+      {"arch missing", [](auto& j) { j.erase("arch"); }, "arch"},
+      {"silk dims", [](auto& j) { j["arch"] = "silk"; j["preprocessing"]["kind"] = "silk"; }, "n_heads * head_dim"},
+      {"preprocessing type", [](auto& j) { j["preprocessing"] = 1; }, "'preprocessing' is not an object"},
+      {"kind", [](auto& j) { j["preprocessing"]["kind"] = "fancy"; }, "preprocessing.kind"},
+      {"bound", [](auto& j) { j["preprocessing"]["normalize_bound"] = 1.5; }, "preprocessing.normalize_bound"},
+      {"bound type", [](auto& j) { j["preprocessing"]["normalize_bound"] = "x"; }, "'normalize_bound' is not a number"},
+      {"merge", [](auto& j) { j["preprocessing"]["merge_distance_fraction"] = -0.1; }, "merge_distance_fraction"},
+      {"samples", [](auto& j) { j["preprocessing"]["surface_samples"] = -1; }, "surface_samples"},
+      {"samples type", [](auto& j) { j["preprocessing"]["surface_samples"] = 1.5; }, "surface_samples"},
+      {"round type", [](auto& j) { j["preprocessing"]["round_float16"] = 1; }, "round_float16"},
+      {"points", [](auto& j) { j["preprocessing"]["n_points"] = 2048; }, "differs from dims.n_points"},
+      {"sampling type", [](auto& j) { j["sampling"] = "hot"; }, "'sampling' is not an object"},
+      {"temperature", [](auto& j) { j["sampling"]["temperature"] = -1; }, "sampling.temperature"},
+      {"temperature type", [](auto& j) { j["sampling"]["temperature"] = "warm"; }, "'temperature' is not a number"},
+      {"top_k", [](auto& j) { j["sampling"]["top_k"] = 20000; }, "sampling.top_k"},
+      {"top_p", [](auto& j) { j["sampling"]["top_p"] = 0; }, "sampling.top_p"},
+      {"top_p_temperature", [](auto& j) { j["sampling"]["top_p_temperature"] = -2; }, "sampling.top_p_temperature"},
+      {"int4 name", [](auto& j) { j["files"]["decoder_int4"] = "../d.onnx"; }, "plain names"},
+      {"int4 type", [](auto& j) { j["files"]["decoder_int4"] = 4; }, "'decoder_int4' is not a string"},
+      {"default decoder", [](auto& j) { j["files"]["default_decoder"] = "decoder_int2"; }, "files.default_decoder"},
+      {"default decoder absent file", [](auto& j) { j["files"].erase("decoder_int4"); }, "files.decoder_int4 is not given"},
+      {"external data type", [](auto& j) { j["files"]["external_data"] = "x.data"; }, "files.external_data"},
+      {"external data entry", [](auto& j) { j["files"]["external_data"] = {1}; }, "files.external_data"},
+      {"external data path", [](auto& j) { j["files"]["external_data"] = {"/etc/passwd"}; }, "plain names"},
+      {"source type", [](auto& j) { j["source"] = "hf"; }, "'source' is not an object"},
+      {"source sha type", [](auto& j) { j["source"]["sha256"] = 5; }, "'sha256' is not a string"},
+      {"latents", [](auto& j) { j["dims"]["n_latents"] = 1 << 20; }, "implausibly large"},
+  };
+  for (const Case& c : cases) {
+    nlohmann::json j = OfficialV3();
+    c.edit(j);
+    auto r = ParseModelConfig(j.dump(), "model.json");
+    ASSERT_FALSE(r.ok()) << c.what;
+    EXPECT_NE(r.status().message().find(c.needle), std::string::npos) << c.what << ": " << r.status().message();
+  }
+}
+
+TEST(ModelLoad, MissingFolderAndPrecisionsAreClearErrors) {
   auto m = Model::Load(testing::TinyModelDir() + "/nope");
   ASSERT_FALSE(m.ok());
   EXPECT_NE(m.status().message().find("not found"), std::string::npos);
-  ModelLoadOptions o;
-  o.int8 = true;
-  auto q = Model::Load(testing::TinyModelDir(), o);
-  ASSERT_FALSE(q.ok());
-  EXPECT_NE(q.status().message().find("INT8"), std::string::npos);
+  for (auto [p, word] : {std::pair{DecoderPrecision::kInt8, "INT8"}, std::pair{DecoderPrecision::kInt4, "INT4"}}) {
+    ModelLoadOptions o;
+    o.decoder = p;
+    auto q = Model::Load(testing::TinyModelDir(), o);
+    ASSERT_FALSE(q.ok());
+    EXPECT_NE(q.status().message().find(word), std::string::npos) << q.status().message();
+  }
+  auto fp = testing::LoadTinyModel(1);
+  ASSERT_TRUE(fp);
+  EXPECT_EQ(fp->precision(), DecoderPrecision::kFp32);
 }
 
 TEST(ModelLoad, ThreadsResolve) {

@@ -30,7 +30,7 @@ inline GenerationInput SampleMeshInput() {
 }
 
 inline std::vector<float> SamplePoints(const Model& model, uint64_t seed = 1) {
-  auto p = PrepareModelPoints(SampleMeshInput(), model.config().dims.n_points, seed, model.config().normalize_bound);
+  auto p = PrepareModelPoints(SampleMeshInput(), ModelPreprocessing(model.config()), seed);
   return p.ok() ? p->rows : std::vector<float>{};
 }
 

@@ -129,6 +129,29 @@ typedef struct silk_decode_params {
 SILK_API silk_decode_params silk_decode_default_params(void);
 SILK_API silk_status silk_decode(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out);
 
+/* ---- pre-processing: mesh or point cloud -> the encoder's points ----------------------
+ * The one implementation of the pre-processing a model was trained with (model.json
+ * "preprocessing", docs/runtime.md); training code uses it too. */
+typedef enum silk_preprocess_kind { SILK_PREPROCESS_SILK = 0, SILK_PREPROCESS_OFFICIAL = 1 } silk_preprocess_kind;
+typedef struct silk_preprocess_params {
+  int32_t kind;                   /* silk_preprocess_kind */
+  double normalize_bound;         /* largest extent -> 2 * bound; 0.95 */
+  double merge_distance_fraction; /* merge vertices closer than this share of the box diagonal (official 0.01) */
+  int32_t surface_samples;        /* > n_points: sample this many, then draw n_points (official 50000); 0 = n_points */
+  int32_t round_float16;          /* 1: points and normals rounded to float16 before the draw (official) */
+  int32_t n_points;               /* rows produced; 4096 */
+} silk_preprocess_params;
+/* The defaults of a kind (official: ARCHITECTURE.md §4; silk: Silk's own sampling). */
+SILK_API silk_preprocess_params silk_preprocess_default_params(int32_t kind);
+/* Either a mesh (cloud NULL) or an oriented point cloud (mesh NULL; n_cloud rows of 6 doubles x y z
+ * nx ny nz) -> rows of 6 floats (normalised xyz, normal), all draws from `seed`. Size query: with
+ * out NULL, *out_rows is set to the row count and nothing is computed; with capacity (floats) <
+ * 6 * rows, SILK_ERR_BUFFER_TOO_SMALL. transform (may be NULL) receives cx, cy, cz, scale with
+ * model = (input - c) * scale. */
+SILK_API silk_status silk_prepare_points(const silk_mesh* mesh, const double* cloud, size_t n_cloud,
+                                         const silk_preprocess_params* params, uint64_t seed, float* out,
+                                         size_t capacity, size_t* out_rows, double* transform);
+
 /* ---- generation: point cloud or mesh -> generated mesh ---------------------------------
  * Needs a libsilk built with onnxruntime (silk_generation_available() == 1); otherwise every
  * call below returns SILK_ERR_UNSUPPORTED.
@@ -147,10 +170,18 @@ typedef struct silk_generator silk_generator;
 
 SILK_API int32_t silk_generation_available(void);
 
+/* Decoder precision; SILK_DECODER_INT8 keeps the value of the former "int8 = 1" option. */
+typedef enum silk_decoder_precision {
+  SILK_DECODER_DEFAULT = 0, /* model.json files.default_decoder */
+  SILK_DECODER_INT8 = 1,
+  SILK_DECODER_FP32 = 2,
+  SILK_DECODER_INT4 = 3
+} silk_decoder_precision;
+
 typedef struct silk_model_options {
   int32_t threads; /* threads of the process's shared pool (first load decides); 0 = physical
                       cores (default); at most max(64, hardware threads) */
-  int32_t int8;    /* 1: the model's INT8 decoder (error if it has none); default 0 */
+  int32_t decoder; /* silk_decoder_precision (error if the model lacks that file); default SILK_DECODER_DEFAULT */
 } silk_model_options;
 SILK_API silk_model_options silk_model_default_options(void);
 /* dir holds model.json, encoder.onnx, decoder.onnx (docs/model_contract.md). A model of another
@@ -162,7 +193,12 @@ typedef struct silk_model_info {
   char config[32]; /* model.json "config" (truncated) */
   int32_t d_model, n_layers, n_heads, head_dim, n_latents, n_points, max_seq_len;
   int32_t threads, int8;
+  int32_t decoder;      /* silk_decoder_precision in use (never DEFAULT) */
+  int32_t arch;         /* 0 = "silk", 1 = "official" */
+  int32_t encoder_points; /* the encoder graph's fixed point count; -1 = any */
 } silk_model_info;
+/* The model's pre-processing (model.json "preprocessing"). */
+SILK_API silk_status silk_model_get_preprocess_params(const silk_model* model, silk_preprocess_params* out);
 SILK_API silk_status silk_model_get_info(const silk_model* model, silk_model_info* out);
 
 SILK_API silk_status silk_generator_create(const silk_model* model, silk_generator** out);
@@ -190,11 +226,13 @@ enum {
   SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report_json */
 };
 
+/* temperature, top_k, top_p, top_p_temperature and preprocessing default to -1: the model's
+ * (model.json "sampling" / "preprocessing"; v2 models: 0.5, 50, 1.0, 0, Silk's kind). */
 typedef struct silk_generate_params {
   uint64_t seed;        /* default 0 */
-  double temperature;   /* default 0.5; 0 = greedy */
-  int32_t top_k;        /* default 50; 0 = off */
-  double top_p;         /* default 1.0 = off */
+  double temperature;   /* 0 = greedy */
+  int32_t top_k;        /* 0 = off */
+  double top_p;         /* 1.0 = off */
   int32_t max_tokens;   /* ids incl. EOS; 0 = the model's limit (default); else >= 14 (one triangle) */
   int32_t max_faces;    /* stop at the first layer end with >= this many faces; 0 = off */
   int32_t holes;        /* silk_hole_policy, default SILK_HOLES_OFF */
@@ -203,6 +241,9 @@ typedef struct silk_generate_params {
   silk_progress_fn progress; /* may be NULL */
   silk_cancel_fn cancel;     /* may be NULL */
   void* user_data;           /* passed to both callbacks */
+  double top_p_temperature;  /* > 0: top-p on the top-k logits at this temperature (official chain); 0: at temperature */
+  int32_t preprocessing;     /* silk_preprocess_kind with that kind's defaults */
+  int32_t raw_points;        /* 1 (point clouds only): the points are the encoder input as given, output in the model's frame */
   int32_t debug_flags;       /* SILK_DEBUG_* bits; default 0 */
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
@@ -228,15 +269,12 @@ typedef struct silk_generate_stats {
       seconds_build_mesh, seconds_total;
 } silk_generate_stats;
 
-/* What to generate from: exactly one of mesh / points. */
+/* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh). */
 typedef struct silk_generate_input {
   const silk_mesh* mesh; /* a mesh (area-weighted surface samples with normals) or a point cloud
                             (a silk_mesh without triangles, with normals: a seeded subset) */
   const double* points;  /* or n_points rows of 6 doubles (x y z nx ny nz) */
-  size_t n_points;
-  int32_t raw;           /* points only. 0: input frame, normalised and subsampled like a point
-                            cloud (default); 1: the encoder's input as is (model frame, unit
-                            normals, no sampling) and the output stays in the model frame */
+  size_t n_points;      /* (params.raw_points: the encoder's input as is, output in the model frame) */
 } silk_generate_input;
 
 /* ---- step-wise generation --------------------------------------------------------------

@@ -1,0 +1,92 @@
+// C API: the encoder's point pre-processing (engine/mesh/point_preprocessing), available in
+// every libsilk (no onnxruntime needed), so training code samples exactly like generation.
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "capi/capi_internal.h"
+
+using silk::capi::Guard;
+using silk::capi::Ok;
+using silk::capi::SetError;
+
+namespace silk::capi {
+
+silk_preprocess_params ToCPreprocess(const PreprocessingParams& p) {
+  silk_preprocess_params c;
+  std::memset(&c, 0, sizeof(c));
+  c.kind = p.kind == PreprocessingKind::kOfficial ? SILK_PREPROCESS_OFFICIAL : SILK_PREPROCESS_SILK;
+  c.normalize_bound = p.normalize_bound;
+  c.merge_distance_fraction = p.merge_distance_fraction;
+  c.surface_samples = p.surface_samples;
+  c.round_float16 = p.round_float16 ? 1 : 0;
+  c.n_points = p.n_points;
+  return c;
+}
+
+PreprocessingParams FromCPreprocess(const silk_preprocess_params& c) {
+  PreprocessingParams p;
+  p.kind = c.kind == SILK_PREPROCESS_OFFICIAL ? PreprocessingKind::kOfficial : PreprocessingKind::kSilk;
+  p.normalize_bound = c.normalize_bound;
+  p.merge_distance_fraction = c.merge_distance_fraction;
+  p.surface_samples = c.surface_samples;
+  p.round_float16 = c.round_float16 != 0;
+  p.n_points = c.n_points;
+  return p;
+}
+
+}  // namespace silk::capi
+
+extern "C" {
+
+silk_preprocess_params silk_preprocess_default_params(int32_t kind) {
+  return silk::capi::ToCPreprocess(kind == SILK_PREPROCESS_OFFICIAL ? silk::OfficialPreprocessing(4096)
+                                                                    : silk::SilkPreprocessing(0.95, 4096));
+}
+
+silk_status silk_prepare_points(const silk_mesh* mesh, const double* cloud, size_t n_cloud,
+                                const silk_preprocess_params* params, uint64_t seed, float* out, size_t capacity,
+                                size_t* out_rows, double* transform) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(out_rows && params, "silk_prepare_points: out_rows or params is NULL");
+    *out_rows = 0;
+    SILK_CAPI_REQUIRE((mesh != nullptr) != (cloud != nullptr), "silk_prepare_points: give either a mesh or a cloud");
+    SILK_CAPI_REQUIRE(!cloud || n_cloud > 0, "silk_prepare_points: the cloud has no points");
+    SILK_CAPI_REQUIRE(params->kind == SILK_PREPROCESS_SILK || params->kind == SILK_PREPROCESS_OFFICIAL,
+                      "silk_prepare_points: params->kind is not a silk_preprocess_kind");
+    const silk::PreprocessingParams p = silk::capi::FromCPreprocess(*params);
+    if (silk::Status s = silk::ValidatePreprocessing(p); !s.ok()) return SetError(s.WithContext("silk_prepare_points: "));
+    const size_t rows = cloud && n_cloud < static_cast<size_t>(p.n_points) ? n_cloud : static_cast<size_t>(p.n_points);
+    *out_rows = rows;
+    if (!out) return Ok();
+    if (capacity < rows * 6)
+      return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_prepare_points: need " + std::to_string(rows * 6) + " floats");
+    silk::RawMesh cloud_mesh;
+    std::vector<std::array<double, 3>> normals;
+    if (cloud) {
+      cloud_mesh.positions.resize(n_cloud);
+      normals.resize(n_cloud);
+      for (size_t i = 0; i < n_cloud; ++i)
+        for (int a = 0; a < 3; ++a) cloud_mesh.positions[i][a] = cloud[6 * i + a], normals[i][a] = cloud[6 * i + 3 + a];
+      for (size_t i = 0; i < n_cloud; ++i) {
+        const auto& n = normals[i];
+        const double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        SILK_CAPI_REQUIRE(len2 > 0 && std::isfinite(len2),
+                          "silk_prepare_points: point " + std::to_string(i) + " has a zero or non-finite normal");
+      }
+    } else {
+      SILK_CAPI_REQUIRE(!mesh->mesh.triangles.empty(), "silk_prepare_points: the mesh has no faces");
+    }
+    auto r = silk::PreparePoints(cloud ? cloud_mesh : mesh->mesh, cloud ? &normals : nullptr, p, seed);
+    if (!r.ok()) return SetError(r.status().WithContext("silk_prepare_points: "));
+    if (r->rows.size() != rows * 6) return SetError(SILK_ERR_INTERNAL, "silk_prepare_points: unexpected row count");
+    std::memcpy(out, r->rows.data(), r->rows.size() * sizeof(float));
+    if (transform) {
+      for (int a = 0; a < 3; ++a) transform[a] = r->transform.center[a];
+      transform[3] = r->transform.scale;
+    }
+    return Ok();
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,122 @@
+"""`silk-export import-official`: a released Mesh Silksong checkpoint -> a Silk model folder
+(docs/model_contract.md v3, arch "official"). Everything is written into a temporary folder
+beside the destination and renamed at the end, so a failed import leaves nothing behind."""
+from __future__ import annotations
+
+import gc
+import hashlib
+import json
+import os
+import shutil
+import sys
+import time
+from dataclasses import asdict
+from pathlib import Path
+
+from . import fidelity
+from .official_card import write_official_card
+from .official_checkpoint import load_official
+from .onnx_export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
+                          transpose_linears)
+from .vocab import load_vocab
+
+PRECISIONS = ("fp32", "int8", "int4", "auto")
+SOURCE_LICENCE = ("The official Mesh Silksong code (gaochao-s/Mesh-Silksong) is MIT-licensed; the weights "
+                  "are published with that release: see its release page for their terms.")
+# Chosen by measurement on the release-size architecture (README "Run the released Mesh Silksong model").
+INT4_BLOCK_SIZE = 32
+INT4_ACCURACY_LEVEL = 4
+
+
+def sha256_of(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        while chunk := f.read(1 << 24):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def _say(msg: str) -> None:
+    print(f"import-official: {msg}", file=sys.stderr, flush=True)
+
+
+def _variants(folder: Path, precision: str, int4_block: int, int4_accuracy: int) -> dict:
+    """Writes the quantized decoders the precision asks for; returns model.json file entries."""
+    files = {}
+    if precision in ("int8", "auto"):
+        _say("INT8 decoder (dynamic MatMul quantization)")
+        quantize_decoder(folder / "decoder.onnx", folder / "decoder.int8.onnx")
+        files["decoder_int8"] = "decoder.int8.onnx"
+    if precision in ("int4", "auto"):
+        _say(f"INT4 decoder (MatMulNBits, block {int4_block}, accuracy level {int4_accuracy})")
+        quantize_decoder_int4(folder / "decoder.onnx", folder / "decoder.int4.onnx", int4_block, int4_accuracy)
+        files["decoder_int4"] = "decoder.int4.onnx"
+    return files
+
+
+def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: int = INT4_BLOCK_SIZE,
+                   int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32) -> dict:
+    """After export_graphs (drop the PyTorch model first: quantization loads the fp32 graph): the
+    quantized decoders `precision` asks for, their fidelity/speed figures and the default decoder.
+    Updates `files` (model.json "files"); returns the figures."""
+    files.update(_variants(folder, precision, int4_block, int4_accuracy))
+    for name in ("decoder.int8.onnx", "decoder.int4.onnx"):
+        if has_external_data(folder / name):
+            files.setdefault("external_data", []).append(name + ".data")
+    variants = {k: v for k, v in files.items() if k.startswith("decoder")}
+    _say(f"fidelity and speed of {', '.join(variants)} ({fidelity_tokens} greedy tokens x 2 probes)")
+    vocab = load_vocab()
+    figures = fidelity.measure(folder, variants, vocab.bos_id, vocab.eos_id, cfg.n_points, fidelity_tokens)
+    files["default_decoder"] = fidelity.choose(figures) if precision == "auto" else \
+        {"fp32": "decoder", "int8": "decoder_int8", "int4": "decoder_int4"}[precision]
+    return figures
+
+
+def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", config_path: Path | None = None,
+                    force: bool = False, progress: bool = True, int4_block: int = INT4_BLOCK_SIZE,
+                    int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32,
+                    licence: str = SOURCE_LICENCE) -> dict:
+    """Returns the model.json written. Raises StateDictError / ValueError with a message naming
+    the problem; the destination is then untouched."""
+    if precision not in PRECISIONS:
+        raise ValueError(f"precision '{precision}': expected one of {', '.join(PRECISIONS)}")
+    checkpoint, out_dir = Path(checkpoint), Path(out_dir)
+    if out_dir.exists() and not force:
+        raise ValueError(f"{out_dir} already exists (use --force to replace it)")
+    t0 = time.time()
+    model, report = load_official(checkpoint, config_path, progress)
+    cfg = model.cfg
+    _say(f"{report.used} tensors used, {report.skipped_unused} training-only point-encoder tensors skipped"
+         + (f", prefixes stripped: {report.stripped_prefixes}" if report.stripped_prefixes else ""))
+    tmp = out_dir.parent / f".{out_dir.name}.importing-{os.getpid()}"
+    shutil.rmtree(tmp, ignore_errors=True)
+    try:
+        _say("exporting encoder.onnx and decoder.onnx (fp32)")
+        files = export_graphs(transpose_linears(model), tmp)
+        del model
+        gc.collect()
+        figures = write_variants(tmp, files, cfg, precision, int4_block, int4_accuracy, fidelity_tokens)
+        source = {"file": checkpoint.name, "sha256": sha256_of(checkpoint), "bytes": checkpoint.stat().st_size,
+                  "licence": licence}
+        chosen = files["default_decoder"]
+        extra = {"source": source,
+                 "import": {"load": asdict(report), "precision": precision,
+                            "int4": {"block_size": int4_block, "accuracy_level": int4_accuracy},
+                            "fidelity": figures, "thresholds": {"min_top1": fidelity.MIN_TOP1,
+                                                                "max_kl_mean": fidelity.MAX_MEAN_KL},
+                            "seconds": None}}
+        training = {"steps": None, "data": "released checkpoint (official training)", "seed": None}
+        meta = sidecar(cfg, training, files, extra)
+        meta["import"]["seconds"] = round(time.time() - t0, 1)
+        (tmp / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
+        write_official_card(tmp, meta)
+        for f in tmp.iterdir():
+            f.chmod(0o644)  # onnxruntime writes external data files 0600
+        if out_dir.exists():
+            shutil.rmtree(out_dir)
+        tmp.replace(out_dir)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    _say(f"wrote {out_dir} (default decoder: {chosen}) in {meta['import']['seconds']} s")
+    return meta

@@ -1,0 +1,63 @@
+"""Runs an exported model folder's graphs with onnxruntime from Python (no libsilk): encoder,
+decoder chunks over a growing KV cache, greedy decoding. Used by the importer's fidelity check
+and by the tests; the C++ runtime is the production path."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def session(path, threads: int = 1):
+    import onnxruntime as ort
+    so = ort.SessionOptions()
+    so.intra_op_num_threads = threads
+    so.log_severity_level = 3
+    return ort.InferenceSession(str(path), so, providers=["CPUExecutionProvider"])
+
+
+class DecoderState:
+    """Per-layer caches (past of exactly P rows; onnxruntime returns P+T rows) and cross K/V."""
+
+    def __init__(self, decoder, cross_kv: np.ndarray):
+        self.decoder = decoder
+        self.n_layers, _, h, _, d = cross_kv.shape
+        self.cross = {}
+        for l in range(self.n_layers):
+            self.cross[f"cross_key_{l}"] = np.ascontiguousarray(cross_kv[l, 0][None])
+            self.cross[f"cross_value_{l}"] = np.ascontiguousarray(cross_kv[l, 1][None])
+        self.past = [np.zeros((1, h, 0, d), np.float32) for _ in range(2 * self.n_layers)]
+        self.length = 0
+
+    def run(self, ids, positions=None) -> np.ndarray:
+        """Feeds ids (contract positions length.. by default); returns logits [T, 10269]."""
+        ids = np.asarray(ids, np.int64).reshape(1, -1)
+        t = ids.shape[1]
+        if positions is None:
+            positions = np.arange(self.length, self.length + t)
+        feeds = {"input_ids": ids, "positions": np.asarray(positions, np.int64).reshape(1, -1),
+                 "seqlens_k": np.array([self.length + t - 1], np.int32),
+                 "total_sequence_length": np.array(self.length + t, np.int32), **self.cross}
+        for l in range(self.n_layers):
+            feeds[f"past_key_{l}"], feeds[f"past_value_{l}"] = self.past[2 * l], self.past[2 * l + 1]
+        out = self.decoder.run(None, feeds)
+        self.past = out[1:]
+        self.length += t
+        return out[0][0]
+
+
+def greedy(decoder, cross_kv: np.ndarray, bos_id: int, eos_id: int, max_tokens: int) -> list[int]:
+    """Argmax decoding from BOS, one token per step with the cache; stops after EOS (kept)."""
+    state = DecoderState(decoder, cross_kv)
+    logits = state.run([bos_id])
+    out = []
+    while len(out) < max_tokens:
+        tok = int(np.argmax(logits[-1]))
+        out.append(tok)
+        if tok == eos_id:
+            break
+        logits = state.run([tok])
+    return out
+
+
+def teacher_forced(decoder, cross_kv: np.ndarray, ids) -> np.ndarray:
+    """Logits of the whole sequence (BOS first) in one chunk, [len(ids), 10269]."""
+    return DecoderState(decoder, cross_kv).run(ids)
