@@ -73,7 +73,8 @@ def main():
     check(lib, lib.silk_mesh_copy_triangle_components(out, parts, n_tri), "copy components")
     print(f"{stats.tokens} ids ({stats.forced_tokens} forced) -> {stats.faces} faces in "
           f"{len(set(parts[:n_tri]))} part(s), {stats.tokens_per_second:.0f} tok/s, stop reason {stats.stop_reason}, "
-          f"manifold {bool(stats.edge_manifold)}, oriented {bool(stats.consistently_oriented)}")
+          f"edge-manifold {bool(stats.edge_manifold)}, vertex-manifold {bool(stats.vertex_manifold)}, "
+          f"oriented {bool(stats.consistently_oriented)}, watertight {bool(stats.watertight)}")
     if a.out:
         check(lib, lib.silk_mesh_save(out, a.out.encode()), "silk_mesh_save")
 

@@ -199,11 +199,11 @@ int Run(const Args& a, uint64_t seed) {
   if (!a.quiet)
     std::fprintf(stderr,
                  "silkgen: %lld tokens (%s, %.0f%% forced) -> %d faces, %d part(s); %.1f tok/s, %.2f s total; "
-                 "manifold %s, watertight %s, oriented %s\n",
+                 "edge-manifold %s, vertex-manifold %s, oriented %s, watertight %s\n",
                  static_cast<long long>(st.tokens), StopName(st.stop_reason),
                  st.tokens ? 100.0 * st.forced_tokens / st.tokens : 0.0, st.faces, st.components, st.tokens_per_second,
-                 st.seconds_total, st.edge_manifold ? "yes" : "no", st.watertight ? "yes" : "no",
-                 st.consistently_oriented ? "yes" : "no");
+                 st.seconds_total, st.edge_manifold ? "yes" : "no", st.vertex_manifold ? "yes" : "no",
+                 st.consistently_oriented ? "yes" : "no", st.watertight ? "yes" : "no");
   return kExitOk;
 }
 

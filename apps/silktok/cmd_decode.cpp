@@ -1,9 +1,11 @@
 // `silktok decode`: token file -> OBJ mesh, every face the tokens carry, oriented.
 #include <cstdio>
+#include <vector>
 
 #include "commands.h"
 #include "io/obj_writer.h"
 #include "io/token_text.h"
+#include "mesh/vertex_fans.h"
 #include "mesh_input.h"
 #include "tokenizer/quantize.h"
 
@@ -14,6 +16,7 @@ struct DecodeArgs {
   std::string input;
   std::string output;
   bool grid = false;
+  bool split_nonmanifold = false;
 };
 
 int Run(const DecodeArgs& a) {
@@ -27,6 +30,13 @@ int Run(const DecodeArgs& a) {
     ReportError(dec.status().WithContext(a.input + ": "));
     return kExitFailure;
   }
+  int32_t split = 0;
+  if (a.split_nonmanifold) {
+    // Faithful by default: the official streams contain a few vertices with two fans.
+    std::vector<int32_t> copy_of;
+    split = silk::SplitNonManifoldFans(&dec->faces, static_cast<int32_t>(dec->positions.size()), &copy_of);
+    for (int32_t v : copy_of) dec->positions.push_back(dec->positions[v]);
+  }
   silk::OutputMesh out;
   out.positions.reserve(dec->positions.size());
   for (const silk::QVec& q : dec->positions) {
@@ -38,7 +48,8 @@ int Run(const DecodeArgs& a) {
   opt.integer_coordinates = a.grid;
   opt.header_comment = "decoded by silktok from " + a.input + ": " + std::to_string(dec->positions.size()) +
                        " vertices, " + std::to_string(dec->faces.size()) + " faces, " +
-                       std::to_string(dec->components) + " components" + (a.grid ? " (grid coordinates 0..127)" : "");
+                       std::to_string(dec->components) + " components" + (a.grid ? " (grid coordinates 0..127)" : "") +
+                       (a.split_nonmanifold ? ", " + std::to_string(split) + " non-manifold vertices split" : "");
   silk::Status st = silk::WriteObjFile(a.output, out, opt);
   if (!st.ok()) {
     ReportError(st);
@@ -59,6 +70,9 @@ void RegisterDecodeCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Output OBJ file (written atomically)")->required();
   cmd->add_flag("--grid", args->grid,
                 "Write integer grid coordinates 0..127 instead of dequantised [-1, 1] bin centres (default: off)");
+  cmd->add_flag("--split-nonmanifold-vertices", args->split_nonmanifold,
+                "Split every vertex whose faces form two or more fans (one copy per extra fan, same position),\n"
+                "so the OBJ is vertex-manifold (default: off, the mesh the tokens encode)");
   cmd->callback([args] { ExitCode() = Run(*args); });
 }
 

@@ -63,8 +63,10 @@ Json StatsJson(const silk_generator& g) {
                   {"sampling", st.seconds.sampling},     {"build_mesh", st.seconds.build_mesh},
                   {"total", st.seconds.total}};
   j["repairs"] = {{"holes_found", st.holes_found}, {"holes_repaired", st.holes_repaired},
-                  {"faces_added", st.faces_added}, {"window_findings", st.window_findings}};
-  j["verdicts"] = {{"edge_manifold", st.edge_manifold}, {"watertight", st.watertight},
+                  {"faces_added", st.faces_added}, {"window_findings", st.window_findings},
+                  {"fan_gaps_closed", st.fan_gaps_closed}, {"vertices_split", st.vertices_split}};
+  j["verdicts"] = {{"edge_manifold", st.edge_manifold}, {"vertex_manifold", st.vertex_manifold},
+                   {"nonmanifold_vertices", st.nonmanifold_vertices}, {"watertight", st.watertight},
                    {"consistently_oriented", st.consistently_oriented}, {"open_edges", st.open_edges}};
   if (g.settings.params.unconstrained)
     j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};
@@ -134,6 +136,10 @@ void FillStats(const GenerationStats& s, silk_generate_stats* out) {
   out->seconds_sampling = s.seconds.sampling;
   out->seconds_build_mesh = s.seconds.build_mesh;
   out->seconds_total = s.seconds.total;
+  out->vertex_manifold = s.vertex_manifold;
+  out->nonmanifold_vertices = s.nonmanifold_vertices;
+  out->fan_gaps_closed = s.fan_gaps_closed;
+  out->vertices_split = s.vertices_split;
 }
 
 }  // namespace silk::capi

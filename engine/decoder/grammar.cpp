@@ -1,6 +1,7 @@
 // The grammar state machine (spec §11): acceptance, legal masks, rewind. Rule comments name
 // the spec section they implement; see grammar.h for the list and the guarantees.
 #include "decoder/grammar.h"
+#include "decoder/grammar_limits.h"
 
 #include <algorithm>
 #include <climits>
@@ -14,9 +15,7 @@
 namespace silk {
 namespace {
 
-constexpr int32_t kMaxLayerSize = vocab::k_layer_vertex_limit;    // 200 (spec §1.3)
-constexpr int32_t kMaxLayerIndex = vocab::k_layer_count_limit - 1;  // 199 (spec §5.3)
-constexpr int32_t kMinComponentTokens = 13;  // C K O U (K O S B) x2 E: layer 1 needs N >= 2
+using namespace grammar_limits;  // NOLINT: the grammar's own constants
 
 enum class Kind { kC, kU, kE, kX, kS, kB, kK, kO, kEos, kPad, kBad };
 
@@ -69,7 +68,7 @@ int32_t Grammar::remaining() const {
   return options_.max_length - static_cast<int32_t>(history_.size());
 }
 
-Rejection Grammar::Reject(RejectReason r, int32_t id, const std::string& why) const {
+Rejection Grammar::MakeRejection(RejectReason r, int32_t id, const std::string& why) const {
   return Rejection{r, "token " + std::to_string(history_.size()) + " (id " + std::to_string(id) + "): " + why};
 }
 
@@ -104,23 +103,25 @@ bool Grammar::WindowOk(int32_t n_size, int32_t w) const {
   if (n_size <= b) return false;
   const bool canonical = options_.window_rule == WindowRule::kCanonical;
   if (canonical && layer_ == 1 && !(w & 1) && n_size != b + 1) return false;
-  for (int32_t d = std::max(1, n_size - b); d <= 8; ++d) {
+  for (int32_t d = std::max(1, n_size - b); d <= kSelfWindow; ++d) {
     const int32_t bit = (w >> (d - 1)) & 1;
     if (d >= n_size) {
       if (bit) return false;
       continue;
     }
     const int32_t a = b + d - n_size, g = n_size - d;
-    if (g <= 8 && canonical && bit != ((vs[a].window >> (g - 1)) & 1)) return false;
+    if (g <= kSelfWindow && canonical && bit != ((vs[a].window >> (g - 1)) & 1)) return false;
     if (bit && options_.geometric_rules && vs[a].pos == vs[b].pos) return false;
   }
   return true;
 }
 
-// Close to the length limit? Otherwise every completion of the current layer fits: it costs at
-// most this row's echoes + B + 199 rows of K O S B + all echoes + a forward X + E + EOS.
-bool Grammar::BudgetTight() const {
-  return remaining() < 4 * kMaxLayerSize + 2 * static_cast<int64_t>(incoming_total_) + 16;
+// Far from the length limit every completion of the current layer fits, so the exact budget
+// checks can be skipped: the costliest completion (this row's echoes and B, K O S B for each
+// later row up to kMaxLayerSize, every stated echo, a new forward X's echo, E, EOS, plus `extra`
+// reserved tokens) stays below this one bound. The single threshold of all budget fast paths.
+bool Grammar::FarFromCap(int64_t extra) const {
+  return remaining() >= 4 * int64_t{kMaxLayerSize} + 2 * static_cast<int64_t>(incoming_total_) + 16 + extra;
 }
 
 // Phase kAfterS: fewest tokens that end the sequence if the layer closes with n_size vertices:
@@ -137,7 +138,7 @@ int64_t Grammar::RowFinishCost(int32_t n_size, int64_t future) const {
 // needed by the current row (after the token being accepted) and `extra` reserved tokens.
 int32_t Grammar::BudgetMaxSize(int64_t extra) const {
   const int64_t rem = remaining();
-  if (rem >= 4 * kMaxLayerSize + incoming_total_ + 260 + extra) return kMaxLayerSize;
+  if (FarFromCap(extra)) return kMaxLayerSize;
   const int32_t b = static_cast<int32_t>(cur_layer().vertices.size()) - 1;
   int64_t cost = extra + 2;  // E + EOS
   int32_t best = b;          // closing right after the current row
@@ -153,10 +154,11 @@ int32_t Grammar::BudgetMaxSize(int64_t extra) const {
 Rejection Grammar::CheckBSegment(int32_t id, int32_t s, int32_t c) const {
   if (s + BetweenCaseLastOne(c) > n_prev_ - 1)
     return Reject(RejectReason::kBOutsidePrevLayer, id,
-                  "segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
-                      " but the previous layer has " + std::to_string(n_prev_) + " vertices (spec §11.3)");
+        [&] { return std::string("segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
+                      " but the previous layer has " + std::to_string(n_prev_) + " vertices (spec §11.3)"); });
   if (options_.geometric_rules && !ColumnsClear(s, c))
-    return Reject(RejectReason::kZeroLengthEdge, id, "B segment links two vertices at one position");
+    return Reject(RejectReason::kZeroLengthEdge, id,
+        [&] { return std::string("B segment links two vertices at one position"); });
   return Rejection{};
 }
 
@@ -164,24 +166,42 @@ bool Grammar::ColumnsClear(int32_t s, int32_t c) const {
   if (!eq_cols_any_) return true;
   if (eq_cols_.Test(s)) return false;
   const int32_t pat = BetweenCasePattern(c);
-  for (int32_t p = 1; p <= 5; ++p)
+  for (int32_t p = 1; p <= kBetweenWindow; ++p)
     if (((pat >> (p - 1)) & 1) && eq_cols_.Test(s + p)) return false;
   return true;
 }
 
-Rejection Grammar::Accept(int32_t id) {
+Rejection Grammar::Check(int32_t id, bool with_message) const {
+  // Step with commit = false reads the state only (every branch returns before its first write);
+  // `messages_` only decides whether a refusal's text is built.
+  Grammar* self = const_cast<Grammar*>(this);
+  self->messages_ = with_message;
+  Rejection r = self->Step(id, false);
+  self->messages_ = true;
+  return r;
+}
+
+// One place for every acceptance rule: with commit = false it only answers, with commit = true
+// it also applies the token. Each branch checks first and writes only after
+// `if (!commit) return Rejection{};`.
+Rejection Grammar::Step(int32_t id, bool commit) {
   const Kind k = KindOf(id);
-  if (k == Kind::kBad) return Reject(RejectReason::kOutOfVocabulary, id, "id outside 0..10268");
-  if (phase_ == GrammarPhase::kEnded) return Reject(RejectReason::kAfterEos, id, "nothing may follow EOS");
-  if (k == Kind::kPad) return Reject(RejectReason::kPadToken, id, "PAD is padding, never a sequence token (spec §9)");
+  if (k == Kind::kBad) return Reject(RejectReason::kOutOfVocabulary, id,
+      [&] { return std::string("id outside 0..10268"); });
+  if (phase_ == GrammarPhase::kEnded) return Reject(RejectReason::kAfterEos, id,
+      [&] { return std::string("nothing may follow EOS"); });
+  if (k == Kind::kPad) return Reject(RejectReason::kPadToken, id,
+      [&] { return std::string("PAD is padding, never a sequence token (spec §9)"); });
   // Spec §9: at most max_length tokens including EOS.
   if (options_.max_length > 0 && static_cast<int64_t>(history_.size()) + 1 > options_.max_length)
-    return Reject(RejectReason::kTooLong, id, "sequence longer than the length limit");
+    return Reject(RejectReason::kTooLong, id, [&] { return std::string("sequence longer than the length limit"); });
   if (k == Kind::kEos && phase_ != GrammarPhase::kAfterE)
-    return Reject(RejectReason::kEosNotAfterE, id, "EOS only directly after the E of a component (spec §11.4)");
+    return Reject(RejectReason::kEosNotAfterE, id,
+        [&] { return std::string("EOS only directly after the E of a component (spec §11.4)"); });
 
   auto wrong = [&]() {
-    return Reject(RejectReason::kWrongClass, id, std::string("expected ") + PhaseExpects(phase_) + " (spec §11.1)");
+    return Reject(RejectReason::kWrongClass, id,
+        [&] { return std::string(std::string("expected ") + PhaseExpects(phase_) + " (spec §11.1)"); });
   };
   const int32_t rem_after = remaining() - 1;
 
@@ -189,13 +209,15 @@ Rejection Grammar::Accept(int32_t id) {
     case GrammarPhase::kStart:
     case GrammarPhase::kAfterE: {
       if (k == Kind::kEos) {
+        if (!commit) return Rejection{};
         history_.push_back(id);
         phase_ = GrammarPhase::kEnded;
         break;
       }
       if (k != Kind::kC) return wrong();
       if (rem_after < kMinComponentTokens)  // C + the smallest component + EOS must fit
-        return Reject(RejectReason::kTooLong, id, "no room left for a whole component");
+        return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left for a whole component"); });
+      if (!commit) return Rejection{};
       history_.push_back(id);
       stream_.components.emplace_back();
       stream_.components.back().layers.emplace_back();
@@ -213,13 +235,13 @@ Rejection Grammar::Accept(int32_t id) {
         const int32_t r = id - vocab::kBBegin, s = r / kBetweenCases, c = r % kBetweenCases;
         if (s < BetweenNextMinStart(last_s_, last_c_))
           return Reject(RejectReason::kBContinuation, id,
-                        "B start " + std::to_string(s) + " below the continuation minimum " +
-                            std::to_string(BetweenNextMinStart(last_s_, last_c_)) + " (spec §7.3)");
+              [&] { return std::string("B start " + std::to_string(s) + " below the continuation minimum " +
+                            std::to_string(BetweenNextMinStart(last_s_, last_c_)) + " (spec §7.3)"); });
         if (Rejection bad = CheckBSegment(id, s, c); !bad.ok()) return bad;
         const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
-        if (rem_after < FutureRowsCost(n, std::max(n, sizes_.Next(n))) + 2 &&
-            remaining() < 4 * kMaxLayerSize + incoming_total_ + 260)
-          return Reject(RejectReason::kTooLong, id, "no room left to close the layer");
+        if (!FarFromCap() && rem_after < FutureRowsCost(n, std::max(n, sizes_.Next(n))) + 2)
+          return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to close the layer"); });
+        if (!commit) return Rejection{};
         history_.push_back(id);
         cur_layer().vertices.back().between.push_back(BetweenToken{s, c});
         last_s_ = s;
@@ -229,14 +251,16 @@ Rejection Grammar::Accept(int32_t id) {
       if (phase_ == GrammarPhase::kAfterB && (k == Kind::kU || k == Kind::kE)) {
         const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
         if (!sizes_.Test(n))
-          return Reject(RejectReason::kLayerNotClosable, id, "layer of " + std::to_string(n) +
-                        " vertices cannot close: " + ExplainClose(n));
+          return Reject(RejectReason::kLayerNotClosable, id, [&] { return std::string("layer of " + std::to_string(n) +
+                        " vertices cannot close: " + ExplainClose(n)); });
         if (k == Kind::kU) {
           if (layer_ >= kMaxLayerIndex)
-            return Reject(RejectReason::kTooManyLayers, id, "layer index 200 would follow (spec §5.3)");
+            return Reject(RejectReason::kTooManyLayers, id,
+                [&] { return std::string("layer index 200 would follow (spec §5.3)"); });
           if (rem_after < 4 + 1 + 1)
-            return Reject(RejectReason::kTooLong, id, "no room for another layer");
+            return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room for another layer"); });
         }
+        if (!commit) return Rejection{};
         history_.push_back(id);
         CloseLayer();
         if (k == Kind::kU) {
@@ -254,16 +278,20 @@ Rejection Grammar::Accept(int32_t id) {
       const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
       if (phase_ == GrammarPhase::kAfterB) {
         if (n >= kMaxLayerSize)
-          return Reject(RejectReason::kLayerTooLarge, id, "a layer holds at most 200 vertices (spec §1.3)");
+          return Reject(RejectReason::kLayerTooLarge, id,
+              [&] { return std::string("a layer holds at most 200 vertices (spec §1.3)"); });
         const int32_t next = sizes_.Next(n + 1);
-        if (next < 0 && remaining() < 4 * kMaxLayerSize + incoming_total_ + 260)
-          return Reject(RejectReason::kTooLong, id, "no room left for another vertex and the layer's end");
+        if (next < 0 && !FarFromCap())
+          return Reject(RejectReason::kTooLong, id,
+              [&] { return std::string("no room left for another vertex and the layer's end"); });
         if (next < 0)
           return Reject(RejectReason::kNotCanonical, id,
-                        "the earlier rows of this layer only fit a layer of " + std::to_string(n) + " vertices");
+              [&] { return "the earlier rows of this layer only fit a layer of " + std::to_string(n) + " vertices"; });
         if (rem_after + 1 < FutureRowsCost(n, next) + 2)
-          return Reject(RejectReason::kTooLong, id, "no room left for another vertex and the layer's end");
+          return Reject(RejectReason::kTooLong, id,
+              [&] { return std::string("no room left for another vertex and the layer's end"); });
       }
+      if (!commit) return Rejection{};
       history_.push_back(id);
       cur_layer().vertices.emplace_back();
       pending_block_ = id;
@@ -274,7 +302,9 @@ Rejection Grammar::Accept(int32_t id) {
       if (k != Kind::kO) return wrong();
       const QVec p = VertexOfTokens(pending_block_, id);
       if (layer_ > 0 && options_.geometric_rules && PositionForbidden(p))
-        return Reject(RejectReason::kZeroLengthEdge, id, "vertex at the position of a vertex it is linked to");
+        return Reject(RejectReason::kZeroLengthEdge, id,
+            [&] { return std::string("vertex at the position of a vertex it is linked to"); });
+      if (!commit) return Rejection{};
       history_.push_back(id);
       auto& v = cur_layer().vertices.back();
       v.pos = p;
@@ -297,8 +327,10 @@ Rejection Grammar::Accept(int32_t id) {
       break;
     }
     case GrammarPhase::kWantU0: {
-      if (k == Kind::kE) return Reject(RejectReason::kLayerZeroSize, id, "E directly after the root: a component needs layer 1 (spec §8.3)");
+      if (k == Kind::kE) return Reject(RejectReason::kLayerZeroSize, id,
+          [&] { return std::string("E directly after the root: a component needs layer 1 (spec §8.3)"); });
       if (k != Kind::kU) return wrong();
+      if (!commit) return Rejection{};
       history_.push_back(id);
       CloseLayer();
       n_prev_ = 1;
@@ -312,7 +344,6 @@ Rejection Grammar::Accept(int32_t id) {
       if (k != Kind::kS) return wrong();
       const int32_t w = id - vocab::kSBegin;
       const int32_t b = static_cast<int32_t>(cur_layer().vertices.size()) - 1;
-      cur_layer().vertices.back().window = w;
       const int32_t g = incoming_count_[b];
       LayerSizeSet cand = sizes_;
       cand.KeepAtLeast(b + 1);
@@ -323,21 +354,24 @@ Rejection Grammar::Accept(int32_t id) {
       // Sizes >= b+9: no wrap-around bits, only the layer-1 chain rule applies (bulk).
       if (!(options_.window_rule == WindowRule::kCanonical && layer_ == 1 && !(w & 1))) {
         ok = cand;
-        ok.KeepAtLeast(b + 9);
+        ok.KeepAtLeast(b + kSelfWindow + 1);
       }
-      for (int32_t n = cand.Next(b + 1); n >= 0 && n < b + 9; n = cand.Next(n + 1)) {
+      for (int32_t n = cand.Next(b + 1); n >= 0 && n < b + kSelfWindow + 1; n = cand.Next(n + 1)) {
         if (WindowOk(n, w)) ok.Set(n);
-        else if (w < (1 << std::min(8, n - 1))) beyond_only = false;
+        else if (w < (1 << std::min(kSelfWindow, n - 1))) beyond_only = false;
       }
       if (ok.Empty()) {
-        cur_layer().vertices.back().window = 0;
-        if (budget_max < kMaxLayerSize) return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
-        return Reject(beyond_only ? RejectReason::kWindowBeyondLayer : RejectReason::kNotCanonical, id,
-                      "window " + std::to_string(w) +
-                          " fits no layer size still possible (bits past the layer end, disagreement with an "
-                          "earlier row, the layer-1 chain or a zero-length edge; spec §11.2)");
+        if (budget_max < kMaxLayerSize) return Reject(RejectReason::kTooLong, id,
+            [&] { return std::string("no room left to finish the layer"); });
+        return Reject(beyond_only ? RejectReason::kWindowBeyondLayer : RejectReason::kNotCanonical, id, [&] {
+          return "window " + std::to_string(w) +
+                 " fits no layer size still possible (bits past the layer end, disagreement with an "
+                 "earlier row, the layer-1 chain or a zero-length edge; spec §11.2)";
+        });
       }
+      if (!commit) return Rejection{};
       history_.push_back(id);
+      cur_layer().vertices.back().window = w;
       row_sizes_ = ok;
       g_count_ = 0;
       for (int32_t gg = incoming_[b].Max(); gg >= 0; gg = incoming_[b].Prev(gg - 1))
@@ -353,20 +387,22 @@ Rejection Grammar::Accept(int32_t id) {
       if (k == Kind::kX) {
         const int32_t e = id - vocab::kXBegin;
         if (e <= last_x_)
-          return Reject(RejectReason::kXNotIncreasing, id, "X values must increase within a vertex (spec §11.2)");
-        if (e < 8 || e > kMaxLayerSize - 10)
-          return Reject(RejectReason::kXOutOfRange, id, "X value " + std::to_string(e) + " outside [8, 190] (spec §6)");
+          return Reject(RejectReason::kXNotIncreasing, id,
+              [&] { return std::string("X values must increase within a vertex (spec §11.2)"); });
+        if (e < kMinX || e > kMaxX)
+          return Reject(RejectReason::kXOutOfRange, id,
+              [&] { return std::string("X value " + std::to_string(e) + " outside [8, 190] (spec §6)"); });
         const int32_t target = b + e + 1;  // forward partner if the layer is longer than target
         // Length budget, exact (see RowFinishCost): a forward X adds one echo to a later row,
         // an echo removes one from this row, a free wrap-around X (kUnion) changes nothing.
-        const bool tight = BudgetTight();
+        const bool tight = !FarFromCap();
         const int64_t rem = remaining();
         LayerSizeSet ok;
         bool range_only = true, budget_hit = false;
         int64_t future = 0;
         int32_t row = b + 1;
         for (int32_t n = row_sizes_.Next(0); n >= 0; n = row_sizes_.Next(n + 1)) {
-          if (e > n - 10) continue;  // §6: X values <= N-10
+          if (e > n - kXMargin) continue;  // §6: X values <= N-10
           range_only = false;
           if (tight)
             for (; row < n; ++row) future += 4 + incoming_count_[row];
@@ -387,11 +423,13 @@ Rejection Grammar::Accept(int32_t id) {
           ok.Set(n);
         }
         if (ok.Empty() && budget_hit)
-          return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
+          return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to finish the layer"); });
         if (ok.Empty())
-          return Reject(range_only ? RejectReason::kXOutOfRange : RejectReason::kNotCanonical, id,
-                        "X value " + std::to_string(e) +
-                            " fits no layer size still possible (needs N >= e+10 and agreement with earlier rows; spec §11.2)");
+          return Reject(range_only ? RejectReason::kXOutOfRange : RejectReason::kNotCanonical, id, [&] {
+            return "X value " + std::to_string(e) +
+                   " fits no layer size still possible (needs N >= e+10 and agreement with earlier rows; spec §11.2)";
+          });
+        if (!commit) return Rejection{};
         history_.push_back(id);
         cur_layer().vertices.back().extras.push_back(e);
         for (int32_t n = ok.Next(0); n >= 0; n = ok.Next(n + 1))
@@ -420,10 +458,14 @@ Rejection Grammar::Accept(int32_t id) {
           if (matched_[n] == g_count_) fin.Set(n);
       }
       if (fin.Empty() && budget_max < kMaxLayerSize)
-        return Reject(RejectReason::kTooLong, id, "no room left to finish the layer");
+        return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to finish the layer"); });
       if (fin.Empty())
         return Reject(RejectReason::kNotCanonical, id,
-                      "the vertex's X values miss a pair an earlier row states (spec §11.2 canonical consistency)");
+            [&] {
+              return std::string(
+                  "the vertex's X values miss a pair an earlier row states (spec §11.2 canonical consistency)");
+            });
+      if (!commit) return Rejection{};
       history_.push_back(id);
       sizes_ = fin;
       cur_layer().vertices.back().between.push_back(BetweenToken{s, c});
@@ -438,5 +480,7 @@ Rejection Grammar::Accept(int32_t id) {
   mask_valid_ = false;
   return Rejection{};
 }
+
+Rejection Grammar::Accept(int32_t id) { return Step(id, true); }
 
 }  // namespace silk

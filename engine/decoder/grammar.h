@@ -66,6 +66,9 @@ class Grammar {
   void Reset();
   // Accepts one id (0..10268). On rejection the state is unchanged.
   Rejection Accept(int32_t id);
+  // What Accept(id) would answer now, without changing anything (same code path: Step).
+  // with_message = false skips building the refusal's text (the verdict is the same).
+  Rejection Check(int32_t id, bool with_message = true) const;
   // The ids Accept would take now. Cached until the next Accept/Reset/Rewind.
   const TokenMask& LegalMask();
   // The only legal id, or -1.
@@ -106,13 +109,19 @@ class Grammar {
     size_t components, findings;
   };
 
-  Rejection Reject(RejectReason r, int32_t id, const std::string& why) const;
+  // A refusal; its message (`why()`, spec reference included) is built only when wanted.
+  template <class Why>
+  Rejection Reject(RejectReason r, int32_t id, Why&& why) const {
+    return messages_ ? MakeRejection(r, id, why()) : Rejection{r, std::string()};
+  }
+  Rejection MakeRejection(RejectReason r, int32_t id, const std::string& why) const;
   void StartLayer();
   void ResetLayerState();
   void AddBetweenMask(int32_t min_start);
   bool WindowOk(int32_t n_size, int32_t w) const;
   int32_t BudgetMaxSize(int64_t extra) const;
-  bool BudgetTight() const;
+  bool FarFromCap(int64_t extra = 0) const;
+  Rejection Step(int32_t id, bool commit);
   int64_t RowFinishCost(int32_t n_size, int64_t future) const;
   int64_t FutureRowsCost(int32_t from_row, int32_t n_size) const;
   bool ColumnsClear(int32_t s, int32_t c) const;
@@ -157,6 +166,7 @@ class Grammar {
 
   TokenMask mask_;
   bool mask_valid_ = false;
+  bool messages_ = true;  // Check(id, false) turns refusal texts off for one call
   std::function<void(const LayerProgress&)> progress_;
 };
 

@@ -5,8 +5,11 @@
 #include <vector>
 
 #include "decoder/grammar.h"
+#include "decoder/grammar_limits.h"
 
 namespace silk {
+
+using namespace grammar_limits;  // NOLINT: the grammar's own constants
 
 // Geometric rule (not in the spec's grammar, satisfied by all 154 official streams): no edge
 // joins two vertices at one grid position. Checked when a vertex's position is read, against
@@ -15,7 +18,7 @@ namespace silk {
 bool Grammar::PositionForbidden(const QVec& p) const {
   const auto& vs = cur_layer().vertices;
   const int32_t b = static_cast<int32_t>(vs.size()) - 1;
-  for (int32_t a = std::max(0, b - 8); a < b; ++a)
+  for (int32_t a = std::max(0, b - kSelfWindow); a < b; ++a)
     if (((vs[a].window >> (b - a - 1)) & 1) && vs[a].pos == p) return true;
   for (int32_t g = incoming_[b].Next(0); g >= 0; g = incoming_[b].Next(g + 1))
     if (vs[b - g].pos == p) return true;
@@ -54,10 +57,10 @@ void PairStatements(const std::vector<StreamVertex>& vs, int32_t n, int32_t a, i
                     int32_t* sb) {
   const int32_t g = b - a;
   *sa = *sb = -1;
-  if (g <= 8 && n - g <= 8) {
+  if (g <= kSelfWindow && n - g <= kSelfWindow) {
     *sa = (vs[a].window >> (g - 1)) & 1;
     *sb = (vs[b].window >> (n - g - 1)) & 1;
-  } else if (n >= 18 && g >= 9 && g <= n - 9) {
+  } else if (n >= 2 * (kSelfWindow + 1) && g > kSelfWindow && g < n - kSelfWindow) {
     *sa = HasExtra(vs[a], g - 1);
     *sb = HasExtra(vs[b], n - g - 1);
   }
@@ -84,13 +87,13 @@ std::string Grammar::ExplainClose(int32_t n) const {
   const bool canonical = options_.window_rule == WindowRule::kCanonical;
   for (int32_t b = 0; b < n; ++b) {
     const auto& v = vs[b];
-    if (n <= 8 && v.window >= (1 << (n - 1)))
+    if (n <= kSelfWindow && v.window >= (1 << (n - 1)))
       return "row " + std::to_string(b) + " has a window bit at a distance >= N (spec §11.2)";
     if (canonical && layer_ == 1 && b < n - 1 && !(v.window & 1))
       return "layer 1 rows " + std::to_string(b) + " and " + std::to_string(b + 1) +
              " are not adjacent (chain rule, spec §11.2)";
     for (int32_t e : v.extras)
-      if (e > n - 10) return "row " + std::to_string(b) + " has X value " + std::to_string(e) + " > N-10 (spec §6)";
+      if (e > n - kXMargin) return "row " + std::to_string(b) + " has X value " + std::to_string(e) + " > N-10 (spec §6)";
   }
   if (canonical) {
     for (int32_t a = 0; a < n; ++a)

@@ -3,23 +3,20 @@
 #include <algorithm>
 
 #include "decoder/grammar.h"
+#include "decoder/grammar_limits.h"
 #include "tokenizer/between_layer_cases.h"
 #include "tokenizer/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {
-namespace {
-constexpr int32_t kMaxLayerSize = vocab::k_layer_vertex_limit;
-constexpr int32_t kMaxLayerIndex = vocab::k_layer_count_limit - 1;
-constexpr int32_t kMinComponentTokens = 13;
-}  // namespace
+using namespace grammar_limits;  // NOLINT: the grammar's own constants
 
 void Grammar::AddBetweenMask(int32_t min_s) {
   // Spec §11.3: s + ℓ(c) <= N_prev - 1; starts with room >= 5 take all 26 cases.
   const int32_t last = n_prev_ - 1;
   if (min_s > last) return;
   if (!eq_cols_any_) {
-    const int32_t full_hi = n_prev_ - 6;
+    const int32_t full_hi = n_prev_ - 1 - kBetweenWindow;
     if (min_s <= full_hi)
       mask_.SetRange(vocab::kBBegin + kBetweenCases * min_s, vocab::kBBegin + kBetweenCases * (full_hi + 1));
     for (int32_t s = std::max(min_s, full_hi + 1); s <= last; ++s) {
@@ -55,7 +52,7 @@ void Grammar::ComputeMask() {
       auto drop = [&](const QVec& q) {
         if (BlockTokenOf(q) == pending_block_) mask_.Reset(OffsetTokenOf(q));
       };
-      for (int32_t a = std::max(0, b - 8); a < b; ++a)
+      for (int32_t a = std::max(0, b - kSelfWindow); a < b; ++a)
         if ((vs[a].window >> (b - a - 1)) & 1) drop(vs[a].pos);
       for (int32_t g = incoming_[b].Next(0); g >= 0; g = incoming_[b].Next(g + 1)) drop(vs[b - g].pos);
       const auto& pv = prev_layer().vertices;
@@ -72,10 +69,10 @@ void Grammar::ComputeMask() {
       const int32_t g = incoming_count_[b];
       const int32_t bm = BudgetMaxSize(2 + g);
       bool big = false;
-      int32_t small[8];
+      int32_t small[kSelfWindow];
       int32_t n_small = 0;
       for (int32_t n = sizes_.Next(b + 1); n >= 0 && n <= bm; n = sizes_.Next(n + 1)) {
-        if (n >= b + 9) {
+        if (n >= b + kSelfWindow + 1) {
           big = true;
           break;
         }
@@ -86,7 +83,7 @@ void Grammar::ComputeMask() {
         mask_.SetRange(vocab::kSBegin, vocab::kSEnd);
         break;
       }
-      for (int32_t w = 0; w < 256; ++w) {
+      for (int32_t w = 0; w < kWindowValues; ++w) {
         bool legal = big && (w & 1);
         for (int32_t i = 0; i < n_small && !legal; ++i) legal = WindowOk(small[i], w);
         if (legal) mask_.Set(vocab::kSBegin + w);
@@ -95,10 +92,10 @@ void Grammar::ComputeMask() {
     }
     case GrammarPhase::kAfterS: {
       const int32_t b = static_cast<int32_t>(cur_layer().vertices.size()) - 1;
-      const int32_t lo = std::max(last_x_ + 1, 8);
+      const int32_t lo = std::max(last_x_ + 1, kMinX);
       // Mirrors the X case of Accept: per size, forward X need cost+2 tokens, a free
       // wrap-around X (kUnion) cost+1, the next echo cost (RowFinishCost).
-      const bool tight = BudgetTight();
+      const bool tight = !FarFromCap();
       int32_t fwd_hi = -1;
       int64_t future = 0;
       int32_t row = b + 1;
@@ -108,7 +105,7 @@ void Grammar::ComputeMask() {
         if (tight)
           for (; row < n; ++row) future += 4 + incoming_count_[row];
         const int64_t cost = tight ? RowFinishCost(n, future) : 0;
-        const int32_t xhi = std::min(n - 10, kMaxLayerSize - 10);
+        const int32_t xhi = std::min(n - kXMargin, kMaxX);
         if (!tight || cost + 2 <= rem) fwd_hi = std::max(fwd_hi, std::min(xhi, n - 2 - b));
         if (!canonical) {
           const int32_t wlo = std::max(lo, n - 1 - b);
@@ -130,7 +127,7 @@ void Grammar::ComputeMask() {
     }
     case GrammarPhase::kAfterB: {
       const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
-      const bool tight = rem < 4 * kMaxLayerSize + incoming_total_ + 260;
+      const bool tight = !FarFromCap();
       if (!tight || rem - 1 >= FutureRowsCost(n, std::max(n, sizes_.Next(n))) + 2)
         AddBetweenMask(BetweenNextMinStart(last_s_, last_c_));
       if (n < kMaxLayerSize) {

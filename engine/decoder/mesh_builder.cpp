@@ -9,9 +9,9 @@
 #include <unordered_map>
 
 #include "tokenizer/collinear.h"
-#include "tokenizer/component_graph.h"
-#include "tokenizer/face_recovery.h"
-#include "tokenizer/layer_adjacency.h"
+#include "decoder/vertex_fan_rules.h"
+#include "mesh/mesh_checks.h"
+#include "mesh/vertex_fans.h"
 
 namespace silk {
 namespace {
@@ -58,43 +58,20 @@ std::vector<std::vector<int32_t>> OpenLoops(const std::vector<std::array<int32_t
   return loops;
 }
 
-struct ComponentBuild {
-  ComponentLayers layers;
-  std::vector<int32_t> layer_of, index_in_layer;
-  std::vector<QVec> positions;
-};
-
-StatusOr<ComponentBuild> Layers(const StreamComponent& comp, int32_t closed_layers) {
-  ComponentBuild cb;
-  int32_t prev = 0;
-  const int32_t count = closed_layers < 0 ? static_cast<int32_t>(comp.layers.size()) : closed_layers;
-  for (int32_t l = 0; l < count; ++l) {
-    std::vector<QVec> pos;
-    for (size_t i = 0; i < comp.layers[l].vertices.size(); ++i) {
-      pos.push_back(comp.layers[l].vertices[i].pos);
-      cb.positions.push_back(comp.layers[l].vertices[i].pos);
-      cb.layer_of.push_back(l);
-      cb.index_in_layer.push_back(static_cast<int32_t>(i));
-    }
-    if (l > 0) {
-      auto adj = DecodeLayerAdjacency(comp.layers[l], prev);
-      if (!adj.ok()) return adj.status().WithContext("layer " + std::to_string(l) + ": ");
-      cb.layers.adjacency.push_back(std::move(adj).value());
-    }
-    prev = static_cast<int32_t>(pos.size());
-    cb.layers.layer_positions.push_back(std::move(pos));
-  }
-  return cb;
-}
-
 // Fan-triangulates `loop` (hole winding) from the first apex whose chords are new edges,
 // join vertices of equal or adjacent layers, never two corners at one position and never
 // a zero-area face.
-bool FillLoop(const std::vector<int32_t>& loop, const ComponentBuild& cb, std::set<uint64_t>* edges,
+bool FillLoop(const std::vector<int32_t>& loop, const ComponentMesh& cb, std::set<uint64_t>* edges,
               std::vector<std::array<int32_t, 3>>* faces, HoleReport* rep) {
   const int32_t k = static_cast<int32_t>(loop.size());
   std::set<int32_t> distinct(loop.begin(), loop.end());
   if (static_cast<int32_t>(distinct.size()) != k) return false;
+  // A 3-loop that is the border of one existing face (an isolated triangle, or a face whose
+  // three neighbours are missing) would be closed by that face reversed: a duplicate face, a
+  // two-sided "pillow". Larger loops always fill with a new chord in every face.
+  if (k == 3)
+    for (const auto& f : *faces)
+      if (std::set<int32_t>(f.begin(), f.end()) == distinct) return false;
   auto has = [&](int32_t a, int32_t b) { return edges->count(Key(std::min(a, b), std::max(a, b))) > 0; };
   for (int32_t apex = 0; apex < k; ++apex) {
     const int32_t v0 = loop[apex];
@@ -126,67 +103,67 @@ bool FillLoop(const std::vector<int32_t>& loop, const ComponentBuild& cb, std::s
   return false;
 }
 
-Status AppendComponent(const StreamComponent& comp, int32_t closed_layers, int32_t ci, const MeshBuildOptions& options,
-                       DecodedMesh* mesh, MeshBuildReport* report) {
-  SILK_ASSIGN_OR_RETURN(ComponentBuild cb, Layers(comp, closed_layers));
-  if (cb.positions.empty()) return Status::Ok();
-  std::vector<std::array<int32_t, 3>> faces;
-  if (cb.layers.layer_positions.size() >= 2) {
-    SILK_ASSIGN_OR_RETURN(faces, RecoverComponentFaces(cb.layers));
-  }
-  // "No degenerate face": recovered faces are 3-cycles of edges, and the grammar refuses
-  // zero-length edges; zero-area (collinear) triangles are dropped here.
-  std::vector<std::array<int32_t, 3>> kept;
-  for (const auto& f : faces) {
-    if (Collinear(cb.positions[f[0]], cb.positions[f[1]], cb.positions[f[2]])) {
-      if (report) ++report->dropped_degenerate;
-      continue;
+// Spec §12.2 hole policy on one component's faces (local indices).
+void HandleHoles(ComponentMesh* cm, int32_t ci, int32_t base, const MeshBuildOptions& options, MeshBuildReport* report) {
+  auto& faces = cm->faces;
+  int32_t open_before = 0;
+  auto loops = OpenLoops(faces, &open_before);
+  std::set<uint64_t> edges;
+  for (const auto& f : faces)
+    for (int k = 0; k < 3; ++k) edges.insert(Key(std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])));
+  for (const auto& loop : loops) {
+    HoleReport hr;
+    hr.component = ci;
+    for (int32_t v : loop) {
+      hr.loop.push_back(v + base);
+      hr.layers.push_back(cm->layer_of[v]);
     }
-    kept.push_back(f);
-  }
-  faces.swap(kept);
-  if (options.holes != HolePolicy::kOff) {
-    int32_t open_before = 0;
-    auto loops = OpenLoops(faces, &open_before);
-    std::set<uint64_t> edges;
-    for (const auto& f : faces)
-      for (int k = 0; k < 3; ++k) edges.insert(Key(std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])));
-    const int32_t base = static_cast<int32_t>(mesh->positions.size());
-    for (const auto& loop : loops) {
-      HoleReport hr;
-      hr.component = ci;
-      for (int32_t v : loop) {
-        hr.loop.push_back(v + base);
-        hr.layers.push_back(cb.layer_of[v]);
-      }
-      if (options.holes == HolePolicy::kRepair && static_cast<int32_t>(loop.size()) <= options.max_fill_loop) {
-        const size_t before = faces.size();
-        hr.repaired = FillLoop(loop, cb, &edges, &faces, &hr);
-        if (report) report->faces_added += static_cast<int32_t>(faces.size() - before);
-      }
-      if (report) report->holes.push_back(std::move(hr));
+    if (options.holes == HolePolicy::kRepair && static_cast<int32_t>(loop.size()) <= options.max_fill_loop) {
+      const size_t before = faces.size();
+      hr.repaired = FillLoop(loop, *cm, &edges, &faces, &hr);
+      if (report) report->faces_added += static_cast<int32_t>(faces.size() - before);
     }
-    if (report) {
-      report->open_edges_before += open_before;
-      int32_t open_after = 0;
-      OpenLoops(faces, &open_after);
-      report->open_edges_after += open_after;
-    }
+    if (report) report->holes.push_back(std::move(hr));
   }
-  const int32_t base = static_cast<int32_t>(mesh->positions.size());
-  for (const QVec& q : cb.positions) {
-    mesh->positions.push_back(q);
-    mesh->vertex_component.push_back(ci);
+  if (report) {
+    report->open_edges_before += open_before;
+    int32_t open_after = 0;
+    OpenLoops(faces, &open_after);
+    report->open_edges_after += open_after;
   }
-  for (const auto& f : faces) {
-    mesh->faces.push_back({f[0] + base, f[1] + base, f[2] + base});
-    mesh->face_component.push_back(ci);
+}
+
+// The vertex-fan rule (vertex_fan_rules.h): gaps closed under kRepair, then splits; copies
+// take the position, layer and in-layer index of the vertex they copy.
+void HandleVertexFans(ComponentMesh* cm, const MeshBuildOptions& options, MeshBuildReport* report) {
+  std::vector<int32_t> copy_of;
+  VertexFanCounts counts;
+  ResolveVertexFans(&cm->faces, cm->positions, cm->layer_of, options.holes == HolePolicy::kRepair, &copy_of,
+                    &counts);
+  for (int32_t v : copy_of) {
+    cm->positions.push_back(cm->positions[v]);
+    cm->layer_of.push_back(cm->layer_of[v]);
+    cm->index_in_layer.push_back(cm->index_in_layer[v]);
   }
-  mesh->components = ci + 1;
-  return Status::Ok();
+  if (report) {
+    report->nonmanifold_vertices += counts.nonmanifold_vertices;
+    report->fan_gaps_closed += counts.gaps_closed;
+    report->vertices_split += counts.vertices_split;
+    report->vertex_copies += counts.vertex_copies;
+  }
 }
 
 }  // namespace
+
+StatusOr<ComponentMesh> BuildComponentMesh(const StreamComponent& comp, int32_t closed_layers, int32_t ci,
+                                           int32_t base, const MeshBuildOptions& options, MeshBuildReport* report) {
+  SILK_ASSIGN_OR_RETURN(ComponentMesh cm, AssembleComponentMesh(comp, closed_layers));
+  if (report) report->dropped_degenerate += cm.dropped_degenerate;
+  if (cm.positions.empty()) return cm;
+  if (options.holes != HolePolicy::kOff) HandleHoles(&cm, ci, base, options, report);
+  if (options.vertex_fans == VertexFanPolicy::kResolve) HandleVertexFans(&cm, options, report);
+  return cm;
+}
 
 StatusOr<DecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOptions& options, MeshBuildReport* report,
                                 int32_t closed_layers_of_last) {
@@ -194,23 +171,73 @@ StatusOr<DecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOpti
   const int32_t nc = static_cast<int32_t>(stream.components.size());
   for (int32_t ci = 0; ci < nc; ++ci) {
     const int32_t closed = ci == nc - 1 ? closed_layers_of_last : -1;
-    Status st = AppendComponent(stream.components[ci], closed, ci, options, &mesh, report);
-    if (!st.ok()) return st.WithContext("component " + std::to_string(ci) + ": ");
+    auto cm = BuildComponentMesh(stream.components[ci], closed, ci, static_cast<int32_t>(mesh.positions.size()),
+                                 options, report);
+    if (!cm.ok()) return cm.status().WithContext("component " + std::to_string(ci) + ": ");
+    AppendComponentMesh(*cm, ci, &mesh);
   }
   mesh.components = nc;
   return mesh;
 }
 
-StatusOr<DecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options, MeshBuildReport* report) {
+void MeshBuildReport::Add(const MeshBuildReport& o) {
+  holes.insert(holes.end(), o.holes.begin(), o.holes.end());
+  faces_added += o.faces_added;
+  open_edges_before += o.open_edges_before;
+  open_edges_after += o.open_edges_after;
+  dropped_degenerate += o.dropped_degenerate;
+  nonmanifold_vertices += o.nonmanifold_vertices;
+  fan_gaps_closed += o.fan_gaps_closed;
+  vertices_split += o.vertices_split;
+  vertex_copies += o.vertex_copies;
+}
+
+namespace {
+// The cache is usable when the options match and the grammar still holds the tokens it saw.
+bool CacheValid(const MeshBuildCache& cache, const Grammar& grammar, const MeshBuildOptions& options) {
+  const auto& t = grammar.tokens();
+  return cache.options == options && cache.tokens.size() <= t.size() &&
+         std::equal(cache.tokens.begin(), cache.tokens.end(), t.begin());
+}
+}  // namespace
+
+StatusOr<DecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options, MeshBuildReport* report,
+                                     MeshBuildCache* cache) {
   const bool open = grammar.phase() != GrammarPhase::kAfterE && grammar.phase() != GrammarPhase::kEnded &&
                     grammar.phase() != GrammarPhase::kStart;
   if (report) report->window_findings = grammar.window_findings();
-  return BuildMesh(grammar.stream(), options, report, open ? grammar.closed_layers() : -1);
+  if (!cache) return BuildMesh(grammar.stream(), options, report, open ? grammar.closed_layers() : -1);
+  if (!CacheValid(*cache, grammar, options)) *cache = MeshBuildCache{options, {}, {}, {}};
+  const auto& comps = grammar.stream().components;
+  const int32_t nc = static_cast<int32_t>(comps.size());
+  const int32_t closed = open ? nc - 1 : nc;
+  DecodedMesh mesh;
+  for (int32_t ci = 0; ci < nc; ++ci) {
+    if (ci < static_cast<int32_t>(cache->components.size())) {
+      if (report) report->Add(cache->reports[ci]);
+      AppendComponentMesh(cache->components[ci], ci, &mesh);
+      continue;
+    }
+    MeshBuildReport part;
+    auto built = BuildComponentMesh(comps[ci], ci == closed ? grammar.closed_layers() : -1, ci,
+                                    static_cast<int32_t>(mesh.positions.size()), options, &part);
+    if (!built.ok()) return built.status().WithContext("component " + std::to_string(ci) + ": ");
+    if (report) report->Add(part);
+    AppendComponentMesh(*built, ci, &mesh);
+    if (ci < closed) {
+      cache->components.push_back(std::move(built).value());
+      cache->reports.push_back(std::move(part));
+    }
+  }
+  cache->tokens = grammar.tokens();
+  mesh.components = nc;
+  return mesh;
 }
 
 std::string CheckMeshGuarantees(const DecodedMesh& mesh) {
   std::unordered_map<uint64_t, int32_t> undirected;
   std::set<uint64_t> directed;
+  std::set<std::array<int32_t, 3>> corner_sets;
   std::vector<int32_t> faces_per_component(static_cast<size_t>(std::max(mesh.components, 0)), 0);
   for (size_t i = 0; i < mesh.faces.size(); ++i) {
     const auto& f = mesh.faces[i];
@@ -222,6 +249,9 @@ std::string CheckMeshGuarantees(const DecodedMesh& mesh) {
         mesh.positions[f[0]] == mesh.positions[f[2]])
       return at + "two corners at one position";
     if (Collinear(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]])) return at + "zero area";
+    std::array<int32_t, 3> sorted = f;
+    std::sort(sorted.begin(), sorted.end());
+    if (!corner_sets.insert(sorted).second) return at + "duplicate of an earlier face (same corners)";
     const int32_t c = mesh.face_component[i];
     for (int k = 0; k < 3; ++k)
       if (mesh.vertex_component[f[k]] != c) return at + "corners of different components";
@@ -234,20 +264,15 @@ std::string CheckMeshGuarantees(const DecodedMesh& mesh) {
   }
   for (int32_t c = 0; c < mesh.components; ++c)
     if (faces_per_component[c] == 0) return "component " + std::to_string(c) + " has no face";
+  const VertexFans fans = ComputeVertexFans(mesh.faces, static_cast<int32_t>(mesh.positions.size()));
+  for (size_t v = 0; v < fans.fans_per_vertex.size(); ++v)
+    if (fans.fans_per_vertex[v] > 1)
+      return "vertex " + std::to_string(v) + ": its faces form " + std::to_string(fans.fans_per_vertex[v]) + " fans";
   return "";
 }
 
 bool IsWatertight(const DecodedMesh& mesh) {
-  std::unordered_map<uint64_t, int32_t> undirected;
-  for (const auto& f : mesh.faces)
-    for (int k = 0; k < 3; ++k) {
-      const int32_t a = f[k], b = f[(k + 1) % 3];
-      ++undirected[Key(std::min(a, b), std::max(a, b))];
-    }
-  if (mesh.faces.empty()) return false;
-  for (const auto& [k, n] : undirected)
-    if (n != 2) return false;
-  return true;
+  return CheckFaces(mesh.faces, static_cast<int32_t>(mesh.positions.size())).watertight;
 }
 
 }  // namespace silk

@@ -5,13 +5,19 @@
 #include <array>
 #include <vector>
 
+#include "mesh/vertex_fans.h"
+
 namespace silk {
 
 MeshVerdicts CheckMesh(const RawMesh& mesh) {
+  return CheckFaces(mesh.triangles, static_cast<int32_t>(mesh.positions.size()));
+}
+
+MeshVerdicts CheckFaces(const std::vector<std::array<int32_t, 3>>& faces, int32_t num_vertices) {
   MeshVerdicts v;
   std::vector<std::array<int32_t, 2>> directed;
-  directed.reserve(mesh.triangles.size() * 3);
-  for (const auto& t : mesh.triangles)
+  directed.reserve(faces.size() * 3);
+  for (const auto& t : faces)
     for (int k = 0; k < 3; ++k) directed.push_back({t[k], t[(k + 1) % 3]});
   std::vector<std::array<int32_t, 2>> sorted_directed = directed;
   std::sort(sorted_directed.begin(), sorted_directed.end());
@@ -30,7 +36,9 @@ MeshVerdicts CheckMesh(const RawMesh& mesh) {
     i = j;
   }
   v.edge_manifold = v.nonmanifold_edges == 0;
-  v.watertight = !mesh.triangles.empty() && v.boundary_edges == 0 && v.nonmanifold_edges == 0;
+  v.nonmanifold_vertices = ComputeVertexFans(faces, num_vertices).nonmanifold_vertices;
+  v.vertex_manifold = v.nonmanifold_vertices == 0;
+  v.watertight = !faces.empty() && v.boundary_edges == 0 && v.nonmanifold_edges == 0;
   return v;
 }
 

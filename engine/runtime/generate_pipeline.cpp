@@ -120,6 +120,8 @@ void FillVerdicts(const GeneratedMesh& mesh, GenerationStats* st) {
   st->edge_manifold = v.edge_manifold;
   st->watertight = v.watertight;
   st->consistently_oriented = v.consistently_oriented;
+  st->vertex_manifold = v.vertex_manifold;
+  st->nonmanifold_vertices = static_cast<int32_t>(v.nonmanifold_vertices);
   st->open_edges = static_cast<int32_t>(v.boundary_edges);
 }
 

@@ -30,6 +30,10 @@ struct GenerationStats {
   int32_t holes_found = 0, holes_repaired = 0, faces_added = 0, window_findings = 0;
   int32_t open_edges = 0;
   bool edge_manifold = false, watertight = false, consistently_oriented = false;
+  // Vertex fans (docs/grammar.md): verdict and count on the written mesh; the rule's actions.
+  bool vertex_manifold = false;
+  int32_t nonmanifold_vertices = 0;
+  int32_t fan_gaps_closed = 0, vertices_split = 0;
   int64_t illegal_at = -1;     // unconstrained mode: index of the first id the grammar rejects
   std::string illegal_reason;
   int64_t kv_cache_bytes = 0;

@@ -90,6 +90,7 @@ struct Generator::Session {
   std::vector<int32_t> pending;
   int32_t faces_at_close = -1;
   int64_t layers_closed = 0;
+  mutable MeshBuildCache so_far_cache;  // max_faces / MeshSoFar: closed components are built once
   bool illegal_seen = false;
   bool failed = false;
   Clock::time_point t_start, t_loop;
@@ -244,7 +245,7 @@ Status Generator::StepOnce() {
     if (ClosesLayer(id) && !s.illegal_seen) ++s.layers_closed;
     if (options.max_faces > 0 && !s.illegal_seen && ClosesLayer(id)) {
       t0 = Clock::now();
-      auto so_far = BuildMeshSoFar(s.grammar, MeshBuildOptions{}, nullptr);
+      auto so_far = BuildMeshSoFar(s.grammar, MeshBuildOptions{}, nullptr, &s.so_far_cache);
       st.seconds.build_mesh += Since(t0);
       if (so_far.ok()) s.faces_at_close = static_cast<int32_t>(so_far->faces.size());
       if (s.faces_at_close >= options.max_faces) st.stop_reason = "max_faces";
@@ -270,7 +271,7 @@ void Generator::ReportProgress() {
 StatusOr<DecodedMesh> Generator::MeshSoFar() const {
   if (!session_) return InvalidArgument("generate: no generation in progress");
   if (session_->options.unconstrained && session_->illegal_seen) return DecodedMesh{};
-  return BuildMeshSoFar(session_->grammar, MeshBuildOptions{}, nullptr);
+  return BuildMeshSoFar(session_->grammar, MeshBuildOptions{}, nullptr, &session_->so_far_cache);
 }
 
 StatusOr<GenerateResult> Generator::Finish() {
@@ -304,6 +305,8 @@ StatusOr<GenerateResult> Generator::Finish() {
   st.holes_found = static_cast<int32_t>(res.report.holes.size());
   for (const HoleReport& h : res.report.holes) st.holes_repaired += h.repaired ? 1 : 0;
   st.faces_added = res.report.faces_added;
+  st.fan_gaps_closed = res.report.fan_gaps_closed;
+  st.vertices_split = res.report.vertices_split;
   st.window_findings = static_cast<int32_t>(res.report.window_findings.size());
   GenerateResult out = std::move(res);
   session_.reset();

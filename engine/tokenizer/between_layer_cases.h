@@ -3,10 +3,12 @@
 #pragma once
 #include <cstdint>
 
+#include "tokenizer/vocabulary_layout.h"
+
 namespace silk {
 
-inline constexpr int kBetweenWindow = 5;   // W' (window positions after the leading 1)
-inline constexpr int kBetweenCases = 26;
+inline constexpr int kBetweenWindow = vocab::k_between_window;  // W' = 5 (positions after the leading 1)
+inline constexpr int kBetweenCases = vocab::k_between_cases;    // 26
 
 // Window bits of case c: bit (p-1) = window position p (p = 1..5), i.e. column s+p.
 int32_t BetweenCasePattern(int32_t c);

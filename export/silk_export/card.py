@@ -36,7 +36,8 @@ def write_card(model_dir: Path, run_dir: Path, bench_json: Path | None = None) -
     recs = read_log(run_dir / "log.jsonl") if (run_dir / "log.jsonl").exists() else []
     train = [r for r in recs if r["kind"] == "train"]
     val = [r for r in recs if r["kind"] == "val"]
-    index_summary = _load(Path(args["index"]).parent / "summary.json") if args.get("index") else None
+    data_dir = Path(args["index"]).parent if args.get("index") else Path(args["data"]) if args.get("data") else None
+    index_summary = _load(data_dir / "summary.json") if data_dir else None
     bench = _load(bench_json)
     dims = meta.get("dims", {})
     last = train[-10:]

@@ -91,7 +91,8 @@ class GenerateStats(ctypes.Structure):
                                       "consistently_oriented", "open_edges")] + [
         ("illegal_at", ctypes.c_int64), ("tokens_per_second", ctypes.c_double)] + [
         (n, ctypes.c_double) for n in ("seconds_prepare", "seconds_encoder", "seconds_decoder", "seconds_grammar",
-                                       "seconds_sampling", "seconds_build_mesh", "seconds_total")]
+                                       "seconds_sampling", "seconds_build_mesh", "seconds_total")] + [
+        (n, ctypes.c_int32) for n in ("vertex_manifold", "nonmanifold_vertices", "fan_gaps_closed", "vertices_split")]
 
     def as_dict(self) -> dict:
         d = {name: getattr(self, name) for name, _ in self._fields_}

@@ -80,6 +80,12 @@ class TrainArgs:
         return lr, lr_min, warm
 
 
+def resolved_args(a: TrainArgs) -> dict:
+    """The run's arguments as recorded (run.json, checkpoint), LR defaults filled in."""
+    lr, lr_min, warmup = a.schedule()
+    return {**dataclasses.asdict(a), "lr": lr, "lr_min": lr_min, "warmup": warmup}
+
+
 def select_rows(rows: list[dict], split: str, cfg: ModelConfig, keys=None) -> list[dict]:
     out = [r for r in rows if r["split"] == split and r.get("refused") is None and r.get("tokens")
            and r["tokens"] <= cfg.max_tokens and r.get("processed_faces", 0) <= MAX_FACES]
@@ -291,7 +297,7 @@ class Trainer:
         self.meta = {"train_meshes": len(self.data.train), "val_meshes": len(self.val),
                      "parameters": self.plain.num_parameters(), "device": str(env.device),
                      "world_size": env.world, "fsdp": a.fsdp, "threads": torch.get_num_threads(),
-                     "config": self.cfg.to_dict(), "args": dataclasses.asdict(a)}
+                     "config": self.cfg.to_dict(), "args": resolved_args(a)}
         if env.is_main:
             (self.out / "run.json").write_text(json.dumps(self.meta, indent=2) + "\n")
 
@@ -306,7 +312,7 @@ class Trainer:
         model_state, optim_state = full_state(self.model, self.opt)  # a collective under FSDP
         if self.env.is_main:
             save_state(self.ckpt_path, self.cfg.to_dict(), model_state, optim_state, step, {
-                "elapsed_s": elapsed, "total_steps": self.a.steps, "args": dataclasses.asdict(self.a),
+                "elapsed_s": elapsed, "total_steps": self.a.steps, "args": resolved_args(self.a),
                 "world_size": self.env.world,
                 "data": {"index": self.data.description, "train_meshes": len(self.data.train)}})
             if (self.out / "log.jsonl").exists():

@@ -78,11 +78,18 @@ def test_layout_is_the_release(layout):
     assert len(layout) == 804 and sum(used for *_, used in layout) == 603
 
 
-def test_imports_and_graphs_agree_with_pytorch(checkpoint, tmp_path):
-    out = tmp_path / "model"
-    rc = main(["import-official", str(checkpoint), "-o", str(out), "--precision", "auto", "--no-progress",
-               "--fidelity-tokens", "4"])
+@pytest.fixture(scope="module")
+def imported(checkpoint, tmp_path_factory):
+    parent = tmp_path_factory.mktemp("imported")
+    rc = main(["import-official", str(checkpoint), "-o", str(parent / "model"), "--precision", "auto",
+               "--no-progress", "--fidelity-tokens", "4"])
     assert rc == 0
+    assert [p.name for p in parent.iterdir()] == ["model"]  # the temporary folder is gone
+    return parent / "model"
+
+
+def test_imports_and_graphs_agree_with_pytorch(checkpoint, imported):
+    out = imported
     meta = json.loads((out / "model.json").read_text())
     load = meta["import"]["load"]
     assert (load["tensors"], load["used"], load["skipped_unused"]) == (804, 603, 201)
@@ -93,7 +100,6 @@ def test_imports_and_graphs_agree_with_pytorch(checkpoint, tmp_path):
     assert {files["decoder_int8"], files["decoder_int4"]} == {"decoder.int8.onnx", "decoder.int4.onnx"}
     assert files["default_decoder"] in ("decoder", "decoder_int8", "decoder_int4")
     assert set(meta["import"]["fidelity"]) == {"decoder", "decoder_int8", "decoder_int4"}
-    assert not list(tmp_path.glob(".*importing*"))
     # The graphs compute what the PyTorch network computes from the same file.
     model, _ = load_official(checkpoint, progress=False)
     points = np.random.default_rng(1).uniform(-1, 1, (1, 4096, 6)).astype(np.float32)
@@ -158,3 +164,29 @@ def test_damaged_safetensors_is_a_clear_error(tmp_path, damage, message):
     with pytest.raises(StateDictError, match=message):
         open_state_dict(bad)
     assert torch.equal(open_state_dict(good).read("b"), torch.ones(2, 2, dtype=torch.float16))
+
+
+def write_cloud_ply(path, points: np.ndarray) -> None:
+    head = f"ply\nformat binary_little_endian 1.0\nelement vertex {len(points)}\n"
+    head += "".join(f"property float {a}\n" for a in ("x", "y", "z", "nx", "ny", "nz")) + "end_header\n"
+    path.write_bytes(head.encode() + np.ascontiguousarray(points, dtype="<f4").tobytes())
+
+
+def test_silkgen_generates_64_tokens_like_the_python_loop(imported, lib_path, tmp_path):
+    """The C++ runtime on the imported release-layout model: 64 greedy ids from raw points, equal
+    to the Python onnxruntime loop over the same fp32 graphs."""
+    import subprocess
+    silkgen = lib_path.resolve().parents[1] / "apps" / "silkgen"
+    if not silkgen.is_file():
+        pytest.skip(f"silkgen not built beside {lib_path}")
+    points = np.random.default_rng(2).uniform(-0.9, 0.9, (4096, 6)).astype(np.float32)
+    write_cloud_ply(tmp_path / "points.ply", points)
+    out = tmp_path / "ids.txt"
+    r = subprocess.run([str(silkgen), str(tmp_path / "points.ply"), "--model", str(imported), "--raw-points",
+                        "--unconstrained", "--temperature", "0", "--max-tokens", "64", "--decoder", "fp32",
+                        "--threads", "1", "--tokens", str(out), "-q"], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    got = [int(x) for x in out.read_text().split()]
+    cross = onnx_decode.session(imported / "encoder.onnx").run(None, {"points": points[None]})[0]
+    want = onnx_decode.greedy(onnx_decode.session(imported / "decoder.onnx"), cross, 10269, 10267, 64)
+    assert got == want and len(got) == 64

@@ -1,8 +1,10 @@
 // Every official token stream (spec/golden, spec/golden-dev) is accepted token by token, each
 // token is in the legal mask before it is accepted, EOS is legal exactly at the end, and the
-// machine's mesh equals the tokenizer's DecodeTokens on the same ids.
+// machine's faithful mesh (VertexFanPolicy::kKeep) equals the tokenizer's DecodeTokens on the
+// same ids, and the default mesh splits exactly the vertices with two or more fans, nothing else.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,6 +12,7 @@
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
 #include "io/token_text.h"
+#include "mesh/vertex_fans.h"
 #include "support/test_paths.h"
 #include "tokenizer/tokenizer.h"
 #include "tokenizer/vocabulary_layout.h"
@@ -34,7 +37,8 @@ std::vector<std::string> OfficialStreams() {
 TEST(GrammarGolden, AllOfficialStreamsAccepted) {
   const auto files = OfficialStreams();
   ASSERT_EQ(files.size(), 154u);
-  size_t tokens = 0, mesh_compared = 0;
+  size_t tokens = 0, mesh_compared = 0, meshes_with_bowties = 0;
+  int64_t bowties = 0;
   for (const auto& f : files) {
     SCOPED_TRACE(f);
     auto ids = ReadTokenText(f);
@@ -65,7 +69,9 @@ TEST(GrammarGolden, AllOfficialStreamsAccepted) {
     auto dec = DecodeTokens(*ids);
     ASSERT_TRUE(dec.ok()) << dec.status().ToString();
     MeshBuildReport rep;
-    auto mine = BuildMeshSoFar(g, MeshBuildOptions{}, &rep);
+    MeshBuildOptions keep;
+    keep.vertex_fans = VertexFanPolicy::kKeep;
+    auto mine = BuildMeshSoFar(g, keep, &rep);
     ASSERT_TRUE(mine.ok()) << mine.status().ToString();
     ASSERT_EQ(mine->positions, dec->positions);
     ASSERT_EQ(mine->faces.size() + rep.dropped_degenerate, dec->faces.size());
@@ -74,9 +80,26 @@ TEST(GrammarGolden, AllOfficialStreamsAccepted) {
       EXPECT_EQ(mine->face_component, dec->face_component);
     }
     EXPECT_EQ(mine->components, dec->components);
-    EXPECT_EQ(CheckMeshGuarantees(*mine), "");
+    // Default: the vertex-fan rule splits each bowtie vertex of the official mesh once per extra
+    // fan; faces keep their order and count, positions only gain the copies.
+    const VertexFans fans = ComputeVertexFans(dec->faces, static_cast<int32_t>(dec->positions.size()));
+    int64_t extra_fans = 0;
+    for (int32_t n : fans.fans_per_vertex) extra_fans += n > 1 ? n - 1 : 0;
+    MeshBuildReport split_rep;
+    auto split = BuildMeshSoFar(g, MeshBuildOptions{}, &split_rep);
+    ASSERT_TRUE(split.ok()) << split.status().ToString();
+    EXPECT_EQ(split_rep.nonmanifold_vertices, fans.nonmanifold_vertices);
+    EXPECT_EQ(split_rep.vertices_split, fans.nonmanifold_vertices);
+    EXPECT_EQ(split_rep.vertex_copies, extra_fans);
+    EXPECT_EQ(split->faces.size(), mine->faces.size());
+    EXPECT_EQ(split->positions.size(), mine->positions.size() + static_cast<size_t>(extra_fans));
+    EXPECT_EQ(CheckMeshGuarantees(*split), "");
+    meshes_with_bowties += fans.nonmanifold_vertices > 0;
+    bowties += fans.nonmanifold_vertices;
     ++mesh_compared;
   }
+  std::printf("official streams: %zu meshes with vertices of two or more fans, %lld such vertices\n",
+              meshes_with_bowties, static_cast<long long>(bowties));
   EXPECT_GT(tokens, 100000u);
   EXPECT_EQ(mesh_compared, 154u);
 }

@@ -66,7 +66,8 @@ def check_golden(silkgen, repo, update, what=(".tokens.txt",)):
             if update:
                 rc, msg = reference(repo, trace, tok)
                 ok = (rc == 0 and stats["stop_reason"] == "eos" and stats["verdicts"]["edge_manifold"]
-                      and stats["verdicts"]["consistently_oriented"] and stats["faces"] > 0)
+                      and stats["verdicts"]["consistently_oriented"] and stats["verdicts"].get("vertex_manifold")
+                      and stats["faces"] > 0)
                 if not ok:
                     failures.append(f"{name}: not updating, independent checks failed: rc={rc} {msg} {stats}")
                     continue

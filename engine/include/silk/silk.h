@@ -267,6 +267,9 @@ typedef struct silk_generate_stats {
   double tokens_per_second;
   double seconds_prepare, seconds_encoder, seconds_decoder, seconds_grammar, seconds_sampling,
       seconds_build_mesh, seconds_total;
+  /* vertex_manifold: the faces around every vertex of the output form one fan; the decoder's
+   * vertex-fan rule closed fan_gaps_closed gaps (repair policy) and split vertices_split vertices */
+  int32_t vertex_manifold, nonmanifold_vertices, fan_gaps_closed, vertices_split;
 } silk_generate_stats;
 
 /* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh). */
