@@ -4,7 +4,7 @@
     python3 examples/generate_ctypes.py --library build/engine/libsilk.so \\
         --model models/default --input samples/torus_knot.obj --out out.obj [--seed 1]
 
-Shows the whole API surface of generation: silk_model_load, silk_generator_create,
+Shows the whole API surface of one-call generation: silk_model_load, silk_generator_create,
 silk_generate with progress and cancel callbacks, stats, the output mesh and its parts.
 --check additionally asserts the results (used by ctest capi_generate_ctypes).
 """
@@ -12,74 +12,18 @@ import argparse
 import ctypes as C
 import sys
 
-SILK_OK, SILK_ERR_CANCELLED = 0, 7
+from pathlib import Path
 
-
-class ModelOptions(C.Structure):
-    _fields_ = [("threads", C.c_int32), ("decoder", C.c_int32)]  # silk_decoder_precision
-
-
-class ModelInfo(C.Structure):
-    _fields_ = [("config", C.c_char * 32)] + [(n, C.c_int32) for n in (
-        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8",
-        "decoder", "arch", "encoder_points")]
-
-
-class Progress(C.Structure):
-    _fields_ = [("tokens", C.c_int64), ("max_tokens", C.c_int64), ("components", C.c_int32),
-                ("faces", C.c_int32), ("seconds", C.c_double)]
-
-
-PROGRESS_FN = C.CFUNCTYPE(None, C.POINTER(Progress), C.c_void_p)
-CANCEL_FN = C.CFUNCTYPE(C.c_int32, C.c_void_p)
-
-
-class Params(C.Structure):
-    _fields_ = [("seed", C.c_uint64), ("temperature", C.c_double), ("top_k", C.c_int32), ("top_p", C.c_double),
-                ("max_tokens", C.c_int32), ("max_faces", C.c_int32), ("holes", C.c_int32),
-                ("unconstrained", C.c_int32), ("n_points", C.c_int32), ("progress", PROGRESS_FN),
-                ("cancel", CANCEL_FN), ("user_data", C.c_void_p), ("top_p_temperature", C.c_double),
-                ("preprocessing", C.c_int32), ("raw_points", C.c_int32)]
-
-
-class Stats(C.Structure):
-    _fields_ = ([(n, C.c_int64) for n in ("tokens", "forced_tokens", "sampled_tokens", "model_calls")] +
-                [(n, C.c_int32) for n in ("stop_reason", "faces", "vertices", "components", "holes_found",
-                                          "holes_repaired", "faces_added", "edge_manifold", "watertight",
-                                          "consistently_oriented", "open_edges")] +
-                [("illegal_at", C.c_int64), ("tokens_per_second", C.c_double)] +
-                [(n, C.c_double) for n in ("seconds_prepare", "seconds_encoder", "seconds_decoder",
-                                           "seconds_grammar", "seconds_sampling", "seconds_build_mesh",
-                                           "seconds_total")] +
-                [(n, C.c_int32) for n in ("vertex_manifold", "nonmanifold_vertices", "fan_gaps_closed",
-                                          "vertices_split")])
+# The C declarations (structs, callback types, signatures of silk.h) are the package's single
+# copy, pure ctypes: export/silk_export/silk_c.py.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))
+from silk_export.silk_c import (CANCEL_FN, PROGRESS_FN, SILK_ERR_CANCELLED, SILK_OK, GenerateStats as Stats,  # noqa: E402
+                                ModelInfo, declare)
 
 
 def load(path):
     lib = C.CDLL(path)
-    P = C.c_void_p
-    sig = {
-        "silk_last_error": (C.c_char_p, []),
-        "silk_generation_available": (C.c_int32, []),
-        "silk_model_default_options": (ModelOptions, []),
-        "silk_model_load": (C.c_int, [C.c_char_p, C.POINTER(ModelOptions), C.POINTER(P)]),
-        "silk_model_get_info": (C.c_int, [P, C.POINTER(ModelInfo)]),
-        "silk_model_destroy": (None, [P]),
-        "silk_generator_create": (C.c_int, [P, C.POINTER(P)]),
-        "silk_generator_destroy": (None, [P]),
-        "silk_generate_default_params": (Params, []),
-        "silk_generate": (C.c_int, [P, P, C.POINTER(Params), C.POINTER(P), C.POINTER(P), C.POINTER(Stats)]),
-        "silk_mesh_load": (C.c_int, [C.c_char_p, C.POINTER(P)]),
-        "silk_mesh_save": (C.c_int, [P, C.c_char_p]),
-        "silk_mesh_destroy": (None, [P]),
-        "silk_mesh_triangle_count": (C.c_size_t, [P]),
-        "silk_mesh_copy_triangle_components": (C.c_int, [P, C.POINTER(C.c_int32), C.c_size_t]),
-        "silk_tokens_count": (C.c_size_t, [P]),
-        "silk_tokens_destroy": (None, [P]),
-    }
-    for name, (res, args) in sig.items():
-        f = getattr(lib, name)
-        f.restype, f.argtypes = res, args
+    declare(lib)
     return lib
 
 

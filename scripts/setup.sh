@@ -11,6 +11,8 @@ APT_PACKAGES=(
   libopenmesh-dev libglm-dev libtinygltf-dev libstb-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev zlib1g-dev
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
+  blender python3-numpy      # the add-on's headless test (tests/blender; bookworm: Blender 3.4.1);
+                             # numpy for Blender's own glTF importer
 )
 
 missing=()

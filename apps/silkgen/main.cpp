@@ -1,21 +1,17 @@
 // silkgen: point cloud or mesh in, generated Mesh Silksong mesh out (GLB/OBJ/PLY), with the
-// grammar-constrained runtime (engine/runtime). Exit codes: 0 ok, 1 failure, 2 usage.
+// grammar-constrained runtime. A client of the public API alone (silk.hpp over silk.h): the
+// same generation, output and JSON report every binding gets. Exit codes: 0 ok, 1 failure, 2 usage.
 #include <CLI/CLI.hpp>
 
-#include <chrono>
+#include <cctype>
 #include <cstdio>
+#include <fstream>
 #include <random>
 #include <string>
 
-#include "io/atomic_file.h"
-#include "io/token_text.h"
 #include "model_locate.h"
-#include "output_writer.h"
 #include "progress_bar.h"
-#include "report_json.h"
-#include "runtime/cpu_info.h"
-#include "runtime/generate_pipeline.h"
-#include "runtime/model.h"
+#include "silk/silk.hpp"
 
 namespace {
 
@@ -26,201 +22,227 @@ int Fail(const std::string& message) {
   return kExitFail;
 }
 
-int Fail(const silk::Status& s) { return Fail(s.message()); }
+// Output extension check before any work ("" if fine).
+std::string CheckOutputPath(const std::string& path) {
+  std::string p = path;
+  for (char& c : p) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* ext : {".glb", ".obj", ".ply"})
+    if (p.size() >= 4 && p.compare(p.size() - 4, 4, ext) == 0) return "";
+  return path + ": unknown output format (use .glb, .obj or .ply)";
+}
 
-}  // namespace
+// Writes text through a temporary file and a rename, so a failed run leaves no partial file.
+void WriteTextFile(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f << text;
+    if (!f.flush()) {
+      std::remove(tmp.c_str());
+      throw silk_cpp::Error(SILK_ERR_IO, path + ": cannot write");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw silk_cpp::Error(SILK_ERR_IO, path + ": cannot write");
+  }
+}
 
-int main(int argc, char** argv) {
-  CLI::App app{"silkgen — generate a mesh from a point cloud or a mesh (Mesh Silksong, grammar-constrained)"};
-  app.set_version_flag("--version", SILK_VERSION_STRING);
-  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // later options win
+struct Args {
   std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path;
   int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
   // Sampling, pre-processing and decoder precision default to model.json's; these sentinels
-  // (negative / empty) mean "not given".
+  // (negative / empty) mean "not given" (silk_generate_params' -1).
   double temperature = -1, top_p = -1, top_p_temperature = -1;
   int top_k = -1;
   std::string decoder, preprocessing;
   bool unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
+};
 
-  app.add_option("input", input, "Point-cloud PLY with normals (nx ny nz), or a mesh: PLY OBJ STL OFF glTF GLB")
+void AddOptions(CLI::App& app, Args& a) {
+  app.add_option("input", a.input, "Point-cloud PLY with normals (nx ny nz), or a mesh: PLY OBJ STL OFF glTF GLB")
       ->required()->check(CLI::ExistingFile);
-  app.add_option("-o,--output", output, "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
-  app.add_option("--model", model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx); default: the bundled model");
-  app.add_option("--seed", seed_text, "Random seed (integer) or 'random'")->capture_default_str();
-  app.add_option("--threads", threads, "onnxruntime threads (0 = physical cores)")->check(CLI::Range(0, 1024))
+  app.add_option("-o,--output", a.output, "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
+  app.add_option("--model", a.model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx); default: the bundled model");
+  app.add_option("--seed", a.seed_text, "Random seed (integer) or 'random'")->capture_default_str();
+  app.add_option("--threads", a.threads, "onnxruntime threads (0 = physical cores)")->check(CLI::Range(0, 1024))
       ->capture_default_str();
-  app.add_option("--temperature", temperature, "Sampling temperature (0 = greedy); default: model.json's")
+  app.add_option("--temperature", a.temperature, "Sampling temperature (0 = greedy); default: model.json's")
       ->check(CLI::Range(0.0, 100.0));
-  app.add_option("--top-k", top_k, "Keep the k most likely legal ids (0 = off); default: model.json's")
+  app.add_option("--top-k", a.top_k, "Keep the k most likely legal ids (0 = off); default: model.json's")
       ->check(CLI::Range(0, 10269));
-  app.add_option("--top-p", top_p, "Nucleus: keep the smallest set with this much probability (1 = off); default: "
+  app.add_option("--top-p", a.top_p, "Nucleus: keep the smallest set with this much probability (1 = off); default: "
                  "model.json's")->check(CLI::Range(0.0, 1.0));
-  app.add_option("--top-p-temperature", top_p_temperature,
+  app.add_option("--top-p-temperature", a.top_p_temperature,
                  "Compute top-p at this temperature on the top-k logits (official chain; 0 = at --temperature); "
                  "default: model.json's")->check(CLI::Range(0.0, 100.0));
-  app.add_option("--max-tokens", max_tokens, "Cap on generated ids incl. EOS (0 = the model's limit)")
+  app.add_option("--max-tokens", a.max_tokens, "Cap on generated ids incl. EOS (0 = the model's limit)")
       ->check(CLI::Range(0, 10240))->capture_default_str();
-  app.add_option("--max-faces", max_faces, "Stop at the first layer end with at least this many faces (0 = off)")
+  app.add_option("--max-faces", a.max_faces, "Stop at the first layer end with at least this many faces (0 = off)")
       ->check(CLI::Range(0, 1000000))->capture_default_str();
-  app.add_option("--repair", repair, "Holes in the result: off, report, or repair (close small ones)")
+  app.add_option("--repair", a.repair, "Holes in the result: off, report, or repair (close small ones)")
       ->check(CLI::IsMember({"off", "report", "repair"}))->capture_default_str();
-  app.add_flag("--unconstrained", unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
-  app.add_option("--stats", stats_path, "Write run figures as JSON");
-  app.add_option("--tokens", tokens_path, "Write the generated ids, one per line (EOS 10267 last when one was generated)");
-  app.add_option("--points", n_points, "Encoder points to sample (0 = the model's n_points)")->check(CLI::Range(0, 1 << 20));
-  app.add_option("--decoder", decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
+  app.add_flag("--unconstrained", a.unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
+  app.add_option("--stats", a.stats_path, "Write run figures as JSON");
+  app.add_option("--tokens", a.tokens_path, "Write the generated ids, one per line (EOS 10267 last when one was generated)");
+  app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")->check(CLI::Range(0, 1 << 20));
+  app.add_option("--decoder", a.decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
       ->check(CLI::IsMember({"fp32", "int8", "int4"}));
-  app.add_flag("--int8", int8, "Same as --decoder int8");
-  app.add_option("--preprocessing", preprocessing, "Point pre-processing: silk or official; default: model.json's")
+  app.add_flag("--int8", a.int8, "Same as --decoder int8");
+  app.add_option("--preprocessing", a.preprocessing, "Point pre-processing: silk or official; default: model.json's")
       ->check(CLI::IsMember({"silk", "official"}));
-  app.add_flag("--raw-points", raw_points,
+  app.add_flag("--raw-points", a.raw_points,
                "The input is the encoder's point cloud, used exactly as given (x y z nx ny nz PLY with the model's "
                "point count; no normalisation, resampling or rounding); the output stays in the model's frame");
-  app.add_flag("--part-colors", part_colors, "GLB: a distinct COLOR_0 per part");
-  app.add_flag("-q,--quiet", quiet, "No settings, progress or summary on stderr");
+  app.add_flag("--part-colors", a.part_colors, "GLB: a distinct COLOR_0 per part");
+  app.add_flag("-q,--quiet", a.quiet, "No settings, progress or summary on stderr");
   // Measurement switches (docs/runtime.md), not needed for normal use.
-  app.add_option("--trace", trace_path, "Write points + every id with its legal set (reference check)")->group("");
-  app.add_flag("--no-skip-forced", no_skip_forced, "Run the model for forced ids too")->group("");
-  app.add_flag("--kv-copy", kv_copy, "Naive KV cache handling (copy per step)")->group("");
-  app.add_flag("--sample-then-check", sample_then_check, "Sample unmasked, fall back to the mask")->group("");
+  app.add_option("--trace", a.trace_path, "Write points + every id with its legal set (reference check)")->group("");
+  app.add_flag("--no-skip-forced", a.no_skip_forced, "Run the model for forced ids too")->group("");
+  app.add_flag("--kv-copy", a.kv_copy, "Naive KV cache handling (copy per step)")->group("");
+  app.add_flag("--sample-then-check", a.sample_then_check, "Sample unmasked, fall back to the mask")->group("");
+}
+
+// --seed: an unsigned integer or "random"; false if neither.
+bool ParseSeed(const std::string& text, uint64_t* seed) {
+  if (text == "random") {
+    std::random_device rd;
+    *seed = (static_cast<uint64_t>(rd()) << 32) ^ rd();
+    return true;
+  }
+  try {
+    size_t used = 0;
+    *seed = std::stoull(text, &used, 10);
+    return used == text.size() && text[0] != '-';
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+silk_generate_params ToParams(const Args& a, uint64_t seed) {
+  silk_generate_params p = silk_generate_default_params();
+  p.seed = seed;
+  p.temperature = a.temperature;
+  p.top_k = a.top_k;
+  p.top_p = a.top_p;
+  p.top_p_temperature = a.top_p_temperature;
+  p.preprocessing = a.preprocessing.empty() ? -1 : a.preprocessing == "official" ? SILK_PREPROCESS_OFFICIAL
+                                                                                  : SILK_PREPROCESS_SILK;
+  p.raw_points = a.raw_points ? 1 : 0;
+  p.max_tokens = a.max_tokens;
+  p.max_faces = a.max_faces;
+  p.holes = a.repair == "repair" ? SILK_HOLES_REPAIR : a.repair == "report" ? SILK_HOLES_REPORT : SILK_HOLES_OFF;
+  p.unconstrained = a.unconstrained ? 1 : 0;
+  p.n_points = a.n_points;
+  p.debug_flags = (a.no_skip_forced ? SILK_DEBUG_NO_SKIP_FORCED : 0) | (a.kv_copy ? SILK_DEBUG_KV_COPY : 0) |
+                  (a.sample_then_check ? SILK_DEBUG_SAMPLE_THEN_CHECK : 0) |
+                  (a.trace_path.empty() ? 0 : SILK_DEBUG_RECORD_TRACE);
+  return p;
+}
+
+const char* StopName(int32_t r) {
+  switch (r) {
+    case SILK_STOP_EOS: return "eos";
+    case SILK_STOP_MAX_TOKENS: return "max_tokens";
+    case SILK_STOP_MAX_FACES: return "max_faces";
+    case SILK_STOP_GRAMMAR_DEAD_END: return "grammar_dead_end";
+    case SILK_STOP_CANCELLED: return "cancelled";
+  }
+  return "?";
+}
+
+int Run(const Args& a, uint64_t seed) {
+  silk_model_options mo = silk_model_default_options();
+  mo.threads = a.threads;
+  const std::string decoder = a.int8 ? "int8" : a.decoder;
+  mo.decoder = decoder == "int8" ? SILK_DECODER_INT8 : decoder == "int4" ? SILK_DECODER_INT4
+               : decoder == "fp32" ? SILK_DECODER_FP32 : SILK_DECODER_DEFAULT;
+  silk_cpp::Model model = silk_cpp::Model::Load(a.model_dir, mo);
+  silk_cpp::Mesh input = silk_cpp::Mesh::Load(a.input);
+  const silk_model_info info = model.info();
+  silk_generate_params p = ToParams(a, seed);
+  if (!a.quiet) {
+    // Sampling values not given on the command line are the model's (model.json "sampling").
+    auto given = [](double v) { return v >= 0 ? std::to_string(v).substr(0, 6) : std::string("model"); };
+    std::fprintf(stderr,
+                 "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
+                 "%s decoder)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
+                 "  points  %s\n",
+                 silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
+                 input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
+                 info.config, info.threads,
+                 info.decoder == SILK_DECODER_INT8 ? "INT8" : info.decoder == SILK_DECODER_INT4 ? "INT4" : "fp32",
+                 static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
+                 a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens,
+                 a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
+                 a.raw_points ? "raw (used as given, model frame)"
+                              : a.preprocessing.empty() ? "the model's pre-processing" : a.preprocessing.c_str());
+  }
+  silkgen::ProgressBar bar(!a.quiet);
+  p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };
+  p.user_data = &bar;
+  silk_cpp::Generator generator(model);
+  silk_generate_input in{};
+  in.mesh = input.get();
+  silk_generate_stats st;
+  std::vector<int32_t> ids;
+  silk_cpp::Mesh result = generator.Generate(in, p, &st, &ids);
+  bar.Finish();
+
+  silk_save_params sp = silk_save_default_params();
+  sp.part_colors = a.part_colors ? 1 : 0;
+  if (!a.output.empty()) result.Save(a.output, sp);
+  if (!a.tokens_path.empty()) silk_cpp::Tokens::FromIds(ids).Save(a.tokens_path);
+  if (!a.trace_path.empty()) WriteTextFile(a.trace_path, generator.ReportJson(true));
+  if (!a.stats_path.empty()) WriteTextFile(a.stats_path, generator.ReportJson(false));
+  if (!a.quiet)
+    std::fprintf(stderr,
+                 "silkgen: %lld tokens (%s, %.0f%% forced) -> %d faces, %d part(s); %.1f tok/s, %.2f s total; "
+                 "edge-manifold %s, vertex-manifold %s, oriented %s, watertight %s\n",
+                 static_cast<long long>(st.tokens), StopName(st.stop_reason),
+                 st.tokens ? 100.0 * st.forced_tokens / st.tokens : 0.0, st.faces, st.components, st.tokens_per_second,
+                 st.seconds_total, st.edge_manifold ? "yes" : "no", st.vertex_manifold ? "yes" : "no",
+                 st.consistently_oriented ? "yes" : "no", st.watertight ? "yes" : "no");
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"silkgen — generate a mesh from a point cloud or a mesh (Mesh Silksong, grammar-constrained)"};
+  app.set_version_flag("--version", silk_version());
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // later options win
+  Args a;
+  AddOptions(app, a);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
-  const auto t_start = std::chrono::steady_clock::now();
-
   // Settings that can be checked before any work.
-  if (output.empty() && tokens_path.empty()) {
+  if (a.output.empty() && a.tokens_path.empty()) {
     std::fprintf(stderr, "silkgen: give -o/--output (a mesh) or --tokens (the ids), or both\n");
     return kExitUsage;
   }
-  if (!output.empty())
-    if (std::string e = silkgen::CheckOutputPath(output); !e.empty()) return Fail(e);
+  if (!a.output.empty())
+    if (std::string e = CheckOutputPath(a.output); !e.empty()) return Fail(e);
   uint64_t seed = 0;
-  if (seed_text == "random") {
-    std::random_device rd;
-    seed = (static_cast<uint64_t>(rd()) << 32) ^ rd();
-  } else {
-    try {
-      size_t used = 0;
-      seed = std::stoull(seed_text, &used, 10);
-      if (used != seed_text.size() || seed_text[0] == '-') throw std::invalid_argument("seed");
-    } catch (const std::exception&) {
-      std::fprintf(stderr, "silkgen: --seed: '%s' is neither an unsigned integer nor 'random'\n", seed_text.c_str());
-      return kExitUsage;
-    }
+  if (!ParseSeed(a.seed_text, &seed)) {
+    std::fprintf(stderr, "silkgen: --seed: '%s' is neither an unsigned integer nor 'random'\n", a.seed_text.c_str());
+    return kExitUsage;
   }
-  if (model_dir.empty()) {
-    model_dir = silkgen::DefaultModelDir();
-    if (model_dir.empty()) {
+  if (a.model_dir.empty()) {
+    a.model_dir = silkgen::DefaultModelDir();
+    if (a.model_dir.empty()) {
       std::string tried;
       for (const std::string& c : silkgen::DefaultModelCandidates()) tried += "\n  " + c;
       return Fail("no bundled model found; pass --model DIR (looked in:" + tried + ")");
     }
   }
-
-  silk::ModelLoadOptions lo;
-  lo.threads = threads;
-  if (int8) decoder = "int8";
-  if (!decoder.empty())
-    lo.decoder = decoder == "int4" ? silk::DecoderPrecision::kInt4
-                 : decoder == "int8" ? silk::DecoderPrecision::kInt8 : silk::DecoderPrecision::kFp32;
-  auto model = silk::Model::Load(model_dir, lo);
-  if (!model.ok()) return Fail(model.status());
-  auto in = silk::LoadGenerationInput(input);
-  if (!in.ok()) return Fail(in.status());
-
-  silkgen::RunSettings rs;
-  rs.input = input;
-  rs.output = output;
-  rs.model_dir = model_dir;
-  rs.model_config = (*model)->config().config_name;
-  rs.point_cloud = in->point_cloud;
-  rs.input_vertices = static_cast<int32_t>(in->mesh.positions.size());
-  rs.input_faces = static_cast<int32_t>(in->mesh.triangles.size());
-  rs.points = n_points > 0 ? n_points : (*model)->config().dims.n_points;
-  silk::GenerateOptions& go = rs.options;
-  const silk::ModelConfig& mc = (*model)->config();
-  go.sampling = mc.sampling;
-  go.sampling.seed = seed;
-  if (temperature >= 0) go.sampling.temperature = temperature;
-  if (top_k >= 0) go.sampling.top_k = top_k;
-  if (top_p >= 0) go.sampling.top_p = top_p;
-  if (top_p_temperature >= 0) go.sampling.top_p_temperature = top_p_temperature;
-  silk::PreprocessingParams prep = silk::ModelPreprocessing(mc, n_points);
-  if (!preprocessing.empty() && preprocessing != silk::PreprocessingKindName(prep.kind))
-    prep = preprocessing == "official" ? silk::OfficialPreprocessing(prep.n_points)
-                                       : silk::SilkPreprocessing(prep.normalize_bound, prep.n_points);
-  rs.preprocessing = raw_points ? "raw" : silk::PreprocessingKindName(prep.kind);
-  go.max_tokens = max_tokens;
-  go.max_faces = max_faces;
-  go.holes = repair == "repair" ? silk::HolePolicy::kRepair
-             : repair == "report" ? silk::HolePolicy::kReport : silk::HolePolicy::kOff;
-  go.unconstrained = unconstrained;
-  go.skip_forced = !no_skip_forced;
-  go.kv_in_place = !kv_copy;
-  go.order = sample_then_check ? silk::SampleOrder::kSampleThenCheck : silk::SampleOrder::kMaskFirst;
-  go.record_trace = !trace_path.empty();
-
-  if (!quiet) {
-    std::fprintf(stderr,
-                 "silkgen %s\n  input   %s (%s, %d vertices, %d faces)\n  output  %s\n  model   %s (%s, %d threads%s)\n"
-                 "  seed %llu  temperature %g  top-k %d  top-p %g (at temperature %g)  max-tokens %d  max-faces %d  "
-                 "repair %s%s\n  points  %d, %s\n",
-                 SILK_VERSION_STRING, input.c_str(), in->point_cloud ? "point cloud" : "mesh", rs.input_vertices,
-                 rs.input_faces, output.empty() ? "(none)" : output.c_str(), model_dir.c_str(), rs.model_config.c_str(),
-                 (*model)->threads(), (*model)->precision() == silk::DecoderPrecision::kFp32 ? "" :
-                 (*model)->precision() == silk::DecoderPrecision::kInt8 ? ", INT8" : ", INT4",
-                 static_cast<unsigned long long>(seed), go.sampling.temperature, go.sampling.top_k, go.sampling.top_p,
-                 go.sampling.top_p_temperature > 0 ? go.sampling.top_p_temperature : go.sampling.temperature,
-                 max_tokens, max_faces, repair.c_str(), unconstrained ? "  UNCONSTRAINED" : "", rs.points,
-                 raw_points ? "raw (used as given, model frame)" : silk::PreprocessingKindName(prep.kind));
+  try {
+    return Run(a, seed);
+  } catch (const silk_cpp::Error& e) {
+    return Fail(e.what());
   }
-
-  silkgen::ProgressBar bar(!quiet);
-  silk::GenerateCallbacks cb;
-  cb.progress = [&bar](const silk::GenerateProgress& p) { bar.Update(p); };
-  silk::Generator generator(**model);
-  // The trace needs the exact encoder input, so the points are prepared here once.
-  auto t_prep = std::chrono::steady_clock::now();
-  auto pts = raw_points ? silk::RawModelPoints(*in, rs.points) : silk::PrepareModelPoints(*in, prep, seed);
-  if (!pts.ok()) return Fail(pts.status().WithContext(input + ": "));
-  const double prep_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_prep).count();
-  auto gen = generator.Run(pts->rows, go, cb);
-  bar.Finish();
-  if (!gen.ok()) return Fail(gen.status());
-  silk::PipelineResult result;
-  result.generation = std::move(*gen);
-  result.output = silk::ToInputFrame(result.generation.mesh, pts->transform);
-  silk::GenerationStats& st = result.generation.stats;
-  st.seconds.load_input = prep_seconds;
-  silk::FillVerdicts(result.output, &st);
-
-  auto t_write = std::chrono::steady_clock::now();
-  if (!output.empty())
-    if (silk::Status s = silkgen::WriteGeneratedMesh(output, result.output, part_colors); !s.ok()) return Fail(s);
-  if (!tokens_path.empty())
-    if (silk::Status s = silk::WriteFileAtomically(tokens_path, silk::FormatTokenText(result.generation.tokens)); !s.ok())
-      return Fail(s);
-  if (!trace_path.empty())
-    if (silk::Status s = silk::WriteFileAtomically(trace_path, silkgen::TraceJson(rs, pts->rows, result.generation));
-        !s.ok())
-      return Fail(s);
-  st.seconds.write_output = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_write).count();
-  st.seconds.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  if (!stats_path.empty())
-    if (silk::Status s = silk::WriteFileAtomically(stats_path, silkgen::StatsJson(rs, result)); !s.ok()) return Fail(s);
-
-  if (!quiet)
-    std::fprintf(stderr,
-                 "silkgen: %lld tokens (%s, %.0f%% forced) -> %d faces, %d part(s); %.1f tok/s, %.2f s total; "
-                 "edge-manifold %s, vertex-manifold %s, oriented %s, watertight %s\n",
-                 static_cast<long long>(st.tokens), st.stop_reason.c_str(), 100.0 * st.forced_share(), st.faces,
-                 st.components, st.tokens_per_second, st.seconds.total, st.edge_manifold ? "yes" : "no",
-                 st.vertex_manifold ? "yes" : "no", st.consistently_oriented ? "yes" : "no",
-                 st.watertight ? "yes" : "no");
-  return kExitOk;
 }

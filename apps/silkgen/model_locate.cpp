@@ -1,11 +1,10 @@
 // The binary's own folder comes from /proc/self/exe, so the lookup works from any cwd.
 #include "model_locate.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <climits>
-
-#include "io/file_system.h"
 
 namespace silkgen {
 
@@ -34,9 +33,14 @@ std::vector<std::string> DefaultModelCandidates() {
   return c;
 }
 
+bool IsRegularFile(const std::string& path) {
+  struct stat st;
+  return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
 std::string DefaultModelDir() {
   for (const std::string& d : DefaultModelCandidates())
-    if (silk::IsRegularFile(d + "/model.json")) return d;
+    if (IsRegularFile(d + "/model.json")) return d;
   return "";
 }
 

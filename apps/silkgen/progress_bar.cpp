@@ -10,7 +10,7 @@ namespace silkgen {
 
 ProgressBar::ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
 
-void ProgressBar::Update(const silk::GenerateProgress& p) {
+void ProgressBar::Update(const silk_generate_progress& p) {
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   if (drawn_ && now - last_ < std::chrono::milliseconds(100)) return;

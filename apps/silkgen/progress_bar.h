@@ -4,14 +4,14 @@
 #include <chrono>
 #include <cstdint>
 
-#include "runtime/generator.h"
+#include "silk/silk.h"
 
 namespace silkgen {
 
 class ProgressBar {
  public:
   explicit ProgressBar(bool enabled);
-  void Update(const silk::GenerateProgress& p);
+  void Update(const silk_generate_progress& p);
   void Finish();  // clears the line
 
  private:

@@ -53,9 +53,9 @@ size_t silk_tokens_count(const silk_tokens* tokens) { return tokens ? tokens->id
 
 silk_status silk_tokens_copy(const silk_tokens* tokens, int32_t* out, size_t capacity) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(tokens && (out || tokens->ids.empty()), "silk_tokens_copy: NULL argument");
-    if (capacity < tokens->ids.size())
-      return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_tokens_copy: need " + std::to_string(tokens->ids.size()));
+    SILK_CAPI_REQUIRE(tokens, "silk_tokens_copy: tokens is NULL");
+    if (silk_status c = silk::capi::CheckCopy("silk_tokens_copy", out, capacity, tokens->ids.size()); c != SILK_OK)
+      return c;
     std::copy(tokens->ids.begin(), tokens->ids.end(), out);
     return Ok();
   });
@@ -75,6 +75,8 @@ silk_status silk_encode(const silk_mesh* mesh, const silk_encode_params* params,
     SILK_CAPI_REQUIRE(mesh && out, "silk_encode: mesh or out is NULL");
     *out = nullptr;
     const silk_encode_params p = params ? *params : silk_encode_default_params();
+    SILK_CAPI_REQUIRE((p.normalize == 0 || p.normalize == 1) && (p.nonmanifold_processing == 0 || p.nonmanifold_processing == 1),
+                      "silk_encode: normalize and nonmanifold_processing take 0 or 1");
     SILK_CAPI_REQUIRE(!p.normalize || (p.normalize_bound > 0 && p.normalize_bound <= 1),
                       "silk_encode: normalize_bound must lie in (0, 1]");
     const auto t0 = std::chrono::steady_clock::now();
@@ -124,6 +126,7 @@ silk_status silk_decode(const silk_tokens* tokens, const silk_decode_params* par
     SILK_CAPI_REQUIRE(tokens && out, "silk_decode: tokens or out is NULL");
     *out = nullptr;
     const silk_decode_params p = params ? *params : silk_decode_default_params();
+    SILK_CAPI_REQUIRE(p.grid_coordinates == 0 || p.grid_coordinates == 1, "silk_decode: grid_coordinates takes 0 or 1");
     auto r = silk::DecodeTokens(tokens->ids);
     if (!r.ok()) return SetError(r.status());
     auto m = std::make_unique<silk_mesh>();

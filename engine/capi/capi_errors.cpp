@@ -52,6 +52,14 @@ silk_status Ok() {
   g_last_error.clear();
   return SILK_OK;
 }
+silk_status CheckCopy(const char* function, const void* out, size_t capacity, size_t needed) {
+  if (capacity < needed)
+    return SetError(SILK_ERR_BUFFER_TOO_SMALL, std::string(function) + ": need " + std::to_string(needed) +
+                                                   " elements, capacity is " + std::to_string(capacity));
+  if (!out && capacity > 0) return SetError(SILK_ERR_INVALID_ARGUMENT, std::string(function) + ": out is NULL");
+  return Ok();
+}
+
 void Log(silk_log_level level, const std::string& message) {
   std::lock_guard<std::mutex> lock(g_log_mu);
   if (g_log_fn) g_log_fn(level, message.c_str(), g_log_user);
@@ -75,6 +83,7 @@ const char* silk_status_name(silk_status s) {
     case SILK_ERR_CANCELLED: return "cancelled";
     case SILK_ERR_INTERNAL: return "internal error";
     case SILK_ERR_BUFFER_TOO_SMALL: return "buffer too small";
+    case SILK_ERR_BUSY: return "generator busy";
   }
   return "unknown";
 }

@@ -1,6 +1,7 @@
 // Shared plumbing of the C API: handle structs, the per-thread error slot, and Guard(),
 // which turns Status and any C++ exception into a silk_status so nothing crosses the ABI.
 #pragma once
+#include <array>
 #include <exception>
 #include <new>
 #include <string>
@@ -14,6 +15,8 @@
 struct silk_mesh {
   silk::RawMesh mesh;
   std::vector<int32_t> triangle_component;
+  std::vector<std::array<double, 3>> normals;  // point clouds: one per vertex, else empty
+  std::string source;                          // the file it was loaded from (for messages), or ""
 };
 
 struct silk_tokens {
@@ -42,6 +45,10 @@ silk_status Guard(F&& f) noexcept {
     return SetError(SILK_ERR_INTERNAL, "internal error: unknown exception");
   }
 }
+
+// (out, capacity) of a query-then-copy call needing `needed` elements: OK to copy, a size
+// query answered, or too small. Returns SILK_OK only when the copy should go ahead.
+silk_status CheckCopy(const char* function, const void* out, size_t capacity, size_t needed);
 
 #define SILK_CAPI_REQUIRE(cond, what) \
   if (!(cond)) return ::silk::capi::SetError(SILK_ERR_INVALID_ARGUMENT, what)

@@ -5,7 +5,10 @@
 #include <memory>
 
 #include "capi/capi_internal.h"
+#include "io/file_bytes.h"
 #include "io/mesh_reader.h"
+#include "io/ply_reader.h"
+#include "mesh/glb_parts.h"
 #include "io/obj_writer.h"
 #include "io/ply_writer.h"
 
@@ -57,26 +60,59 @@ silk_status silk_mesh_load(const char* path, silk_mesh** out) {
     SILK_CAPI_REQUIRE(out, "silk_mesh_load: out is NULL");
     *out = nullptr;
     SILK_CAPI_REQUIRE(path, "silk_mesh_load: path is NULL");
+    auto m = std::make_unique<silk_mesh>();
+    if (EndsWith(path, ".ply")) {
+      // A PLY without faces is a point cloud and keeps its normals.
+      auto bytes = silk::ReadFileBytes(path, silk::ReadOptions{}.max_file_bytes);
+      if (!bytes.ok()) return SetError(bytes.status());
+      auto pc = silk::ReadPlyPointCloud(*bytes, path);
+      if (!pc.ok()) return SetError(pc.status());
+      if (pc->mesh.triangles.empty()) {
+        if (pc->normals.empty())
+          return SetError(SILK_ERR_INVALID_ARGUMENT,
+                          std::string(path) + ": a point-cloud PLY (no faces) needs per-vertex normals nx ny nz");
+        m->mesh = std::move(pc->mesh);
+        m->normals = std::move(pc->normals);
+        m->source = path;
+        *out = m.release();
+        return Ok();
+      }
+    }
     auto r = silk::ReadMeshFile(path);
     if (!r.ok()) return SetError(r.status());
-    auto m = std::make_unique<silk_mesh>();
     m->mesh = std::move(*r);
     m->triangle_component.assign(m->mesh.triangles.size(), 0);
+    m->source = path;
     *out = m.release();
     return Ok();
   });
 }
 
-silk_status silk_mesh_save(const silk_mesh* mesh, const char* path) {
+silk_save_params silk_save_default_params(void) {
+  silk_save_params p;
+  p.part_colors = 0;
+  return p;
+}
+
+silk_status silk_mesh_save_with_params(const silk_mesh* mesh, const char* path, const silk_save_params* params) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(mesh && path, "silk_mesh_save: mesh or path is NULL");
+    const silk_save_params sp = params ? *params : silk_save_default_params();
+    SILK_CAPI_REQUIRE(sp.part_colors == 0 || sp.part_colors == 1, "silk_mesh_save: part_colors takes 0 or 1");
     const std::string p = path;
     silk::Status st;
     if (EndsWith(p, ".obj")) st = silk::WriteObjFile(p, mesh->mesh);
     else if (EndsWith(p, ".ply")) st = silk::WritePlyFile(p, mesh->mesh);
-    else return SetError(SILK_ERR_UNSUPPORTED, p + ": unsupported output extension (use .obj or .ply)");
+    else if (EndsWith(p, ".glb"))
+      st = silk::WriteGlbFile(p, silk::SplitGlbParts(mesh->mesh, mesh->triangle_component, sp.part_colors != 0),
+                              "silk " SILK_VERSION_STRING);
+    else return SetError(SILK_ERR_UNSUPPORTED, p + ": unsupported output extension (use .glb, .obj or .ply)");
     return SetError(st);
   });
+}
+
+silk_status silk_mesh_save(const silk_mesh* mesh, const char* path) {
+  return silk_mesh_save_with_params(mesh, path, nullptr);
 }
 
 void silk_mesh_destroy(silk_mesh* mesh) { delete mesh; }
@@ -85,9 +121,9 @@ size_t silk_mesh_triangle_count(const silk_mesh* mesh) { return mesh ? mesh->mes
 
 silk_status silk_mesh_copy_positions(const silk_mesh* mesh, double* out, size_t capacity) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(mesh && out, "silk_mesh_copy_positions: NULL argument");
+    SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_positions: mesh is NULL");
     const size_t n = mesh->mesh.positions.size() * 3;
-    if (capacity < n) return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_mesh_copy_positions: need " + std::to_string(n));
+    if (silk_status c = silk::capi::CheckCopy("silk_mesh_copy_positions", out, capacity, n); c != SILK_OK) return c;
     for (size_t i = 0; i < mesh->mesh.positions.size(); ++i)
       for (int a = 0; a < 3; ++a) out[3 * i + a] = mesh->mesh.positions[i][a];
     return Ok();
@@ -96,9 +132,9 @@ silk_status silk_mesh_copy_positions(const silk_mesh* mesh, double* out, size_t 
 
 silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t capacity) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(mesh && out, "silk_mesh_copy_triangles: NULL argument");
+    SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_triangles: mesh is NULL");
     const size_t n = mesh->mesh.triangles.size() * 3;
-    if (capacity < n) return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_mesh_copy_triangles: need " + std::to_string(n));
+    if (silk_status c = silk::capi::CheckCopy("silk_mesh_copy_triangles", out, capacity, n); c != SILK_OK) return c;
     for (size_t f = 0; f < mesh->mesh.triangles.size(); ++f)
       for (int k = 0; k < 3; ++k) out[3 * f + k] = mesh->mesh.triangles[f][k];
     return Ok();
@@ -107,11 +143,24 @@ silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t
 
 silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(mesh && out, "silk_mesh_copy_triangle_components: NULL argument");
+    SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_triangle_components: mesh is NULL");
     const size_t n = mesh->triangle_component.size();
-    if (capacity < n)
-      return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_mesh_copy_triangle_components: need " + std::to_string(n));
+    if (silk_status c = silk::capi::CheckCopy("silk_mesh_copy_triangle_components", out, capacity, n); c != SILK_OK)
+      return c;
     std::copy(mesh->triangle_component.begin(), mesh->triangle_component.end(), out);
+    return Ok();
+  });
+}
+
+int32_t silk_mesh_has_normals(const silk_mesh* mesh) { return mesh && !mesh->normals.empty() ? 1 : 0; }
+
+silk_status silk_mesh_copy_normals(const silk_mesh* mesh, double* out, size_t capacity) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_normals: mesh is NULL");
+    const size_t n = mesh->normals.size() * 3;
+    if (silk_status c = silk::capi::CheckCopy("silk_mesh_copy_normals", out, capacity, n); c != SILK_OK) return c;
+    for (size_t i = 0; i < mesh->normals.size(); ++i)
+      for (int a = 0; a < 3; ++a) out[3 * i + a] = mesh->normals[i][a];
     return Ok();
   });
 }

@@ -95,6 +95,8 @@ StatusOr<PipelineResult> GenerateFromInput(Generator* generator, const ModelConf
                                            const GenerationInput& input, const GenerateOptions& options,
                                            const GenerateCallbacks& callbacks,
                                            const PreprocessingParams* preprocessing) {
+  SILK_RETURN_IF_ERROR(CheckGenerateOptions(options));
+  if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
   const auto t0 = std::chrono::steady_clock::now();
   SILK_ASSIGN_OR_RETURN(PreparedPoints pts, preprocessing
                                                 ? PrepareModelPoints(input, *preprocessing, options.sampling.seed)
@@ -102,10 +104,15 @@ StatusOr<PipelineResult> GenerateFromInput(Generator* generator, const ModelConf
   const double prep = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   PipelineResult r;
   SILK_ASSIGN_OR_RETURN(r.generation, generator->Run(pts.rows, options, callbacks));
-  r.output = ToInputFrame(r.generation.mesh, pts.transform);
   r.generation.stats.seconds.load_input += prep;
-  FillVerdicts(r.output, &r.generation.stats);
+  r.output = FinishOutput(&r.generation, pts.transform);
   return r;
+}
+
+GeneratedMesh FinishOutput(GenerateResult* generation, const NormalizeTransform& transform) {
+  GeneratedMesh out = ToInputFrame(generation->mesh, transform);
+  FillVerdicts(out, &generation->stats);
+  return out;
 }
 
 void FillVerdicts(const GeneratedMesh& mesh, GenerationStats* st) {

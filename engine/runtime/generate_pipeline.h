@@ -51,6 +51,9 @@ GeneratedMesh ToInputFrame(const DecodedMesh& decoded, const NormalizeTransform&
 // Edge-manifold / watertight / orientation verdicts and open edges of the output, into stats.
 void FillVerdicts(const GeneratedMesh& mesh, GenerationStats* stats);
 
+// ToInputFrame + FillVerdicts into generation->stats.
+GeneratedMesh FinishOutput(GenerateResult* generation, const NormalizeTransform& transform);
+
 struct PipelineResult {
   GenerateResult generation;  // tokens, grid mesh, report, stats (verdicts filled in)
   GeneratedMesh output;

@@ -1,7 +1,7 @@
-// The generation loop: encoder once, then per id: grammar (forced? legal mask) -> decoder for
-// the pending known ids -> sampling chain -> Accept. Stops at EOS, at the token cap (the
-// grammar's length budget makes constrained sequences end with EOS inside it), at the face
-// cap, or on cancel.
+// The generation loop: encoder once (Start), then per id (Step): grammar (forced? legal mask) ->
+// decoder for the pending known ids -> finite check of the logits -> sampling chain -> Accept.
+// Stops at EOS, at the token cap (the grammar's length budget makes constrained sequences end
+// with EOS inside it), at the face cap, or on cancel.
 #include "runtime/generator.h"
 
 #include <algorithm>
@@ -41,163 +41,262 @@ std::string TailText(const std::vector<int32_t>& ids) {
 
 bool ClosesLayer(int32_t id) { return id == vocab::kUBegin || id == vocab::kEBegin; }
 
+// Index of the first non-finite logit, or -1.
+int64_t FirstNonFinite(const float* logits, int64_t n) {
+  for (int64_t i = 0; i < n; ++i)
+    if (!std::isfinite(logits[i])) return i;
+  return -1;
+}
+
 }  // namespace
 
-StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const GenerateOptions& options,
-                                        const GenerateCallbacks& callbacks) {
-  const Model::Impl& m = model_.impl();
-  const ModelConfig& cfg = m.config;
-  if (points.empty() || points.size() % 6 != 0)
-    return InvalidArgument("generate: points must be a non-empty array of rows of 6 floats");
-  const int32_t model_cap = cfg.dims.max_seq_len - 1;  // ids incl. EOS after BOS
+Status CheckGenerateOptions(const GenerateOptions& options) {
   if (options.max_tokens < 0 || options.max_faces < 0) return InvalidArgument("generate: negative cap");
-  const int32_t cap = options.max_tokens > 0 ? std::min(options.max_tokens, model_cap) : model_cap;
-  if (cap < 2) return InvalidArgument("generate: max_tokens must be at least 2");
+  if (options.max_tokens > 0 && options.max_tokens < kMinMeshTokens)
+    return InvalidArgument("generate: max_tokens " + std::to_string(options.max_tokens) + " is below " +
+                           std::to_string(kMinMeshTokens) + ", the ids of the smallest mesh (one triangle)");
   const SamplingParams& sp = options.sampling;
   if (!std::isfinite(sp.temperature) || sp.temperature < 0 || sp.top_k < 0 || !(sp.top_p >= 0 && sp.top_p <= 1) ||
       !(sp.top_p_temperature >= 0 && std::isfinite(sp.top_p_temperature)))
     return InvalidArgument("generate: need temperature >= 0, top_k >= 0, top_p in [0, 1] and top_p_temperature >= 0");
+  return Status::Ok();
+}
 
+// One generation in progress: the encoder output, the decoder runner over the KV cache, the
+// grammar and the sampler, the ids so far.
+struct Generator::Session {
+  Session(const Model::Impl& m, KvCache* cache, Ort::Value cross_kv, const GenerateOptions& o, const GenerateCallbacks& cb,
+          int32_t cap)
+      : options(o),
+        callbacks(cb),
+        cap(cap),
+        cross(std::move(cross_kv)),
+        runner(m, cache, cross.GetTensorMutableData<float>(), o.kv_in_place ? KvMode::kInPlace : KvMode::kCopy),
+        grammar(MakeGrammarOptions(cap)),
+        sampler(o.sampling) {}
+  static GrammarOptions MakeGrammarOptions(int32_t cap) {
+    GrammarOptions g;
+    g.max_length = cap;
+    return g;
+  }
+  GenerateOptions options;
+  GenerateCallbacks callbacks;
+  int32_t cap;
+  Ort::Value cross;
+  DecoderRunner runner;
+  Grammar grammar;
+  Sampler sampler;
   GenerateResult res;
-  GenerationStats& st = res.stats;
-  st.threads = m.threads;
-  st.int8 = m.precision == DecoderPrecision::kInt8;
-  st.decoder = DecoderPrecisionName(m.precision);
-  const auto t_start = Clock::now();
+  std::vector<int32_t> pending;
+  int32_t faces_at_close = -1;
+  int64_t layers_closed = 0;
+  mutable MeshBuildCache so_far_cache;  // max_faces / MeshSoFar: closed components are built once
+  bool illegal_seen = false;
+  bool failed = false;
+  Clock::time_point t_start, t_loop;
+};
 
+Generator::Generator(const Model& model) : model_(model) {}
+Generator::~Generator() = default;
+
+bool Generator::finished() const { return session_ && !session_->res.stats.stop_reason.empty(); }
+const std::vector<int32_t>& Generator::tokens() const {
+  static const std::vector<int32_t> kNone;
+  return session_ ? session_->res.tokens : kNone;
+}
+const GenerationStats& Generator::stats() const {
+  static const GenerationStats kNone;
+  return session_ ? session_->res.stats : kNone;
+}
+int64_t Generator::layers_closed() const { return session_ ? session_->layers_closed : 0; }
+
+void Generator::Cancel() {
+  if (session_ && !finished()) session_->res.stats.stop_reason = "cancelled";
+}
+
+Status Generator::Start(const std::vector<float>& points, const GenerateOptions& options,
+                        const GenerateCallbacks& callbacks) {
+  session_.reset();
+  const Model::Impl& m = model_.impl();
+  const ModelConfig& cfg = m.config;
+  if (points.empty() || points.size() % 6 != 0)
+    return InvalidArgument("generate: points must be a non-empty array of rows of 6 floats");
+  SILK_RETURN_IF_ERROR(CheckGenerateOptions(options));
+  const int32_t model_cap = cfg.dims.max_seq_len - 1;  // ids incl. EOS after BOS
+  const int32_t cap = options.max_tokens > 0 ? std::min(options.max_tokens, model_cap) : model_cap;
+  if (cap < kMinMeshTokens)
+    return InvalidArgument(cfg.dir + "/model.json: max_seq_len " + std::to_string(cfg.dims.max_seq_len) +
+                           " leaves room for fewer ids than the smallest mesh (" + std::to_string(kMinMeshTokens) + ")");
+  if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
+  const auto t_start = Clock::now();
   // Encoder: cross-attention K/V once per input.
   auto t0 = Clock::now();
   SILK_ASSIGN_OR_RETURN(Ort::Value cross, RunEncoder(m, points.data(), static_cast<int64_t>(points.size() / 6)));
-  st.seconds.encoder = Since(t0);
-  float* cross_data = cross.GetTensorMutableData<float>();
-
+  const double encoder_seconds = Since(t0);
   // Cache: BOS + every id but the last (EOS is never fed).
   SILK_RETURN_IF_ERROR(cache_.Reserve(cap, ModelKvShape(cfg.dims)));
+  session_ = std::make_unique<Session>(m, &cache_, std::move(cross), options, callbacks, cap);
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
+  st.threads = m.threads;
+  st.int8 = m.precision == DecoderPrecision::kInt8;
+  st.decoder = DecoderPrecisionName(m.precision);
+  st.seconds.encoder = encoder_seconds;
   st.kv_cache_bytes = cap * cfg.dims.kv_row_floats() * static_cast<int64_t>(sizeof(float));
-  DecoderRunner runner(m, &cache_, cross_data, options.kv_in_place ? KvMode::kInPlace : KvMode::kCopy);
+  s.pending = {cfg.bos_id};
+  s.t_start = t_start;
+  s.t_loop = Clock::now();
+  return Status::Ok();
+}
 
-  GrammarOptions gopt;
-  gopt.max_length = cap;
-  Grammar grammar(gopt);
-  Sampler sampler(options.sampling);
-  std::vector<int32_t> pending = {cfg.bos_id};
-  int32_t faces_at_close = -1;
-  MeshBuildCache so_far_cache;  // --max-faces: closed components are built once
-  bool illegal_seen = false;
-  const auto t_loop = Clock::now();
+Status Generator::Step() {
+  if (!session_ || session_->failed) return InvalidArgument("generate: no generation in progress (Start first)");
+  if (finished()) return Status::Ok();
+  Session& s = *session_;
+  Status status = StepOnce();
+  if (!status.ok() && status.code() != StatusCode::kCancelled) s.failed = true;
+  return status;
+}
 
-  while (true) {
-    if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
-    int32_t id = -1;
-    bool forced = false;
-    const TokenMask* mask = nullptr;
-    if (!options.unconstrained) {
-      t0 = Clock::now();
-      id = grammar.Forced();
-      mask = &grammar.LegalMask();
-      st.seconds.grammar += Since(t0);
-      if (mask->Empty()) {
-        // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
-        // rather than fail the whole run, and say so in the stats.
-        st.stop_reason = "grammar_dead_end";
-        st.dead_end = "no legal id after " + TailText(res.tokens);
-        break;
-      }
-      forced = id >= 0;
-    }
-    if (!forced || !options.skip_forced) {
-      t0 = Clock::now();
-      SILK_RETURN_IF_ERROR(runner.Feed(pending.data(), static_cast<int64_t>(pending.size())));
-      st.seconds.decoder += Since(t0);
-      pending.clear();
-    }
-    if (!forced) {
-      t0 = Clock::now();
-      if (options.order == SampleOrder::kSampleThenCheck && mask) {
-        id = sampler.Sample(runner.last_logits(), nullptr);
-        if (!mask->Test(id)) {
-          ++st.resampled;
-          id = sampler.Sample(runner.last_logits(), mask);
-        }
-      } else {
-        id = sampler.Sample(runner.last_logits(), mask);
-      }
-      st.seconds.sampling += Since(t0);
-      ++st.sampled_tokens;
-    } else {
-      ++st.forced_tokens;
-    }
-    if (options.record_trace) {
-      TraceStep step;
-      step.id = id;
-      step.forced = forced;
-      if (!forced && mask) step.legal = MaskRanges(*mask);
-      res.trace.push_back(std::move(step));
-    }
-
-    t0 = Clock::now();
-    if (!options.unconstrained) {
-      Rejection r = grammar.Accept(id);
-      if (!r.ok())
-        return InternalError("generate: id " + std::to_string(id) + " was rejected after " + TailText(res.tokens) + ": " +
-                             r.message);
-    } else if (!illegal_seen) {
-      Rejection r = grammar.Accept(id);
-      if (!r.ok()) {
-        illegal_seen = true;
-        st.illegal_at = static_cast<int64_t>(res.tokens.size());
-        st.illegal_reason = r.message;
-      }
-    }
+Status Generator::StepOnce() {
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
+  const GenerateOptions& options = s.options;
+  if (s.callbacks.cancel && s.callbacks.cancel()) {
+    st.stop_reason = "cancelled";
+    return Status(StatusCode::kCancelled, "generation cancelled");
+  }
+  int32_t id = -1;
+  bool forced = false;
+  const TokenMask* mask = nullptr;
+  auto t0 = Clock::now();
+  if (!options.unconstrained) {
+    id = s.grammar.Forced();
+    mask = &s.grammar.LegalMask();
     st.seconds.grammar += Since(t0);
-    res.tokens.push_back(id);
-
-    if (id == vocab::k_eos_id) {
-      st.stop_reason = "eos";
-      break;
+    if (mask->Empty()) {
+      // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
+      // rather than fail the whole run, and say so in the stats.
+      st.stop_reason = "grammar_dead_end";
+      st.dead_end = "no legal id after " + TailText(s.res.tokens);
+      return Status::Ok();
     }
-    if (static_cast<int32_t>(res.tokens.size()) >= cap) {
-      st.stop_reason = "max_tokens";
-      break;
-    }
-    pending.push_back(id);
-    if (options.max_faces > 0 && !illegal_seen && ClosesLayer(id)) {
-      t0 = Clock::now();
-      auto so_far = BuildMeshSoFar(grammar, MeshBuildOptions{}, nullptr, &so_far_cache);
-      st.seconds.build_mesh += Since(t0);
-      if (so_far.ok()) faces_at_close = static_cast<int32_t>(so_far->faces.size());
-      if (faces_at_close >= options.max_faces) {
-        st.stop_reason = "max_faces";
-        break;
+    forced = id >= 0;
+  }
+  if (!forced || !options.skip_forced) {
+    t0 = Clock::now();
+    SILK_RETURN_IF_ERROR(s.runner.Feed(s.pending.data(), static_cast<int64_t>(s.pending.size())));
+    st.seconds.decoder += Since(t0);
+    s.pending.clear();
+    const int64_t bad = FirstNonFinite(s.runner.last_logits(), model_.config().model_vocab_size);
+    if (bad >= 0)
+      return InternalError(model_.config().dir + ": the decoder produced a non-finite logit (id " + std::to_string(bad) +
+                           ") after " + std::to_string(s.res.tokens.size()) +
+                           " ids; the model's weights are corrupt (NaN or infinite)");
+  }
+  if (!forced) {
+    t0 = Clock::now();
+    if (options.order == SampleOrder::kSampleThenCheck && mask) {
+      id = s.sampler.Sample(s.runner.last_logits(), nullptr);
+      if (!mask->Test(id)) {
+        ++st.resampled;
+        id = s.sampler.Sample(s.runner.last_logits(), mask);
       }
+    } else {
+      id = s.sampler.Sample(s.runner.last_logits(), mask);
     }
-    if (callbacks.progress) {
-      GenerateProgress p;
-      p.tokens = static_cast<int64_t>(res.tokens.size());
-      p.max_tokens = cap;
-      p.components = static_cast<int32_t>(grammar.stream().components.size());
-      p.faces = faces_at_close;
-      p.seconds = Since(t_start);
-      callbacks.progress(p);
+    st.seconds.sampling += Since(t0);
+    ++st.sampled_tokens;
+  } else {
+    ++st.forced_tokens;
+  }
+  if (options.record_trace) {
+    TraceStep step;
+    step.id = id;
+    step.forced = forced;
+    if (!forced && mask) step.legal = MaskRanges(*mask);
+    s.res.trace.push_back(std::move(step));
+  }
+
+  t0 = Clock::now();
+  if (!options.unconstrained) {
+    Rejection r = s.grammar.Accept(id);
+    if (!r.ok())
+      return InternalError("generate: id " + std::to_string(id) + " was rejected after " + TailText(s.res.tokens) +
+                           ": " + r.message);
+  } else if (!s.illegal_seen) {
+    Rejection r = s.grammar.Accept(id);
+    if (!r.ok()) {
+      s.illegal_seen = true;
+      st.illegal_at = static_cast<int64_t>(s.res.tokens.size());
+      st.illegal_reason = r.message;
     }
   }
-  const double loop_seconds = Since(t_loop);
+  st.seconds.grammar += Since(t0);
+  s.res.tokens.push_back(id);
+  st.tokens = static_cast<int64_t>(s.res.tokens.size());
+
+  if (id == vocab::k_eos_id) {
+    st.stop_reason = "eos";
+  } else if (static_cast<int32_t>(s.res.tokens.size()) >= s.cap) {
+    st.stop_reason = "max_tokens";
+  } else {
+    s.pending.push_back(id);
+    if (ClosesLayer(id) && !s.illegal_seen) ++s.layers_closed;
+    if (options.max_faces > 0 && !s.illegal_seen && ClosesLayer(id)) {
+      t0 = Clock::now();
+      auto so_far = BuildMeshSoFar(s.grammar, MeshBuildOptions{}, nullptr, &s.so_far_cache);
+      st.seconds.build_mesh += Since(t0);
+      if (so_far.ok()) s.faces_at_close = static_cast<int32_t>(so_far->faces.size());
+      if (s.faces_at_close >= options.max_faces) st.stop_reason = "max_faces";
+    }
+  }
+  ReportProgress();
+  return Status::Ok();
+}
+
+void Generator::ReportProgress() {
+  Session& s = *session_;
+  if (!s.callbacks.progress) return;
+  GenerateProgress p;
+  p.tokens = static_cast<int64_t>(s.res.tokens.size());
+  // The bar reaches 100 % on the last id, whatever stopped the generation.
+  p.max_tokens = s.res.stats.stop_reason.empty() ? s.cap : p.tokens;
+  p.components = static_cast<int32_t>(s.grammar.stream().components.size());
+  p.faces = s.faces_at_close;
+  p.seconds = Since(s.t_start);
+  s.callbacks.progress(p);
+}
+
+StatusOr<DecodedMesh> Generator::MeshSoFar() const {
+  if (!session_) return InvalidArgument("generate: no generation in progress");
+  if (session_->options.unconstrained && session_->illegal_seen) return DecodedMesh{};
+  return BuildMeshSoFar(session_->grammar, MeshBuildOptions{}, nullptr, &session_->so_far_cache);
+}
+
+StatusOr<GenerateResult> Generator::Finish() {
+  if (!session_ || session_->failed) return InvalidArgument("generate: no generation to finish");
+  if (!finished()) Cancel();
+  Session& s = *session_;
+  GenerateResult& res = s.res;
+  GenerationStats& st = res.stats;
+  const double loop_seconds = Since(s.t_loop);
   st.tokens = static_cast<int64_t>(res.tokens.size());
-  st.model_calls = runner.calls();
+  st.model_calls = s.runner.calls();
   st.fed_positions = cache_.length();
   st.tokens_per_second = loop_seconds > 0 ? st.tokens / loop_seconds : 0;
-  st.generation_seconds = Since(t_start);
+  st.generation_seconds = Since(s.t_start);
 
   // Mesh: the whole sequence when it ended legally, else what the grammar closed so far.
-  t0 = Clock::now();
+  auto t0 = Clock::now();
   MeshBuildOptions bopt;
-  bopt.holes = options.holes;
-  const bool complete = !options.unconstrained ? st.stop_reason == "eos" || st.stop_reason == "max_tokens"
-                                               : (!illegal_seen && grammar.Ended());
+  bopt.holes = s.options.holes;
+  const bool complete = !s.options.unconstrained ? st.stop_reason == "eos" || st.stop_reason == "max_tokens"
+                                                 : (!s.illegal_seen && s.grammar.Ended());
   if (complete) {
-    SILK_ASSIGN_OR_RETURN(res.mesh, BuildMesh(grammar.stream(), bopt, &res.report));
+    SILK_ASSIGN_OR_RETURN(res.mesh, BuildMesh(s.grammar.stream(), bopt, &res.report));
   } else {
-    SILK_ASSIGN_OR_RETURN(res.mesh, BuildMeshSoFar(grammar, bopt, &res.report));
+    SILK_ASSIGN_OR_RETURN(res.mesh, BuildMeshSoFar(s.grammar, bopt, &res.report));
   }
   st.seconds.build_mesh += Since(t0);
   st.faces = static_cast<int32_t>(res.mesh.faces.size());
@@ -209,7 +308,16 @@ StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const 
   st.fan_gaps_closed = res.report.fan_gaps_closed;
   st.vertices_split = res.report.vertices_split;
   st.window_findings = static_cast<int32_t>(res.report.window_findings.size());
-  return res;
+  GenerateResult out = std::move(res);
+  session_.reset();
+  return out;
+}
+
+StatusOr<GenerateResult> Generator::Run(const std::vector<float>& points, const GenerateOptions& options,
+                                        const GenerateCallbacks& callbacks) {
+  SILK_RETURN_IF_ERROR(Start(points, options, callbacks));
+  while (!finished()) SILK_RETURN_IF_ERROR(Step());
+  return Finish();
 }
 
 }  // namespace silk

@@ -1,10 +1,12 @@
-// Generator: one constrained generation, point cloud -> token ids -> mesh. Holds the KV cache
-// between runs (reuse one Generator per thread). The grammar mask is applied before the
-// sampling chain; ids the grammar forces are appended without sampling and fed to the model
-// later as one chunk together with the next sampled id (chunked prefill of known tokens).
+// Generator: one constrained generation, point cloud -> token ids -> mesh, run in one call
+// (Run) or step-wise (Start, Step until finished, MeshSoFar at any point, Finish). Holds the
+// KV cache between runs (reuse one Generator per thread). The grammar mask is applied before
+// the sampling chain; ids the grammar forces are appended without sampling and fed to the
+// model later as one chunk together with the next sampled id (chunked prefill of known tokens).
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -42,9 +44,10 @@ struct GenerateProgress {
 };
 
 struct GenerateCallbacks {
-  std::function<void(const GenerateProgress&)> progress;  // after every id
-  std::function<bool()> cancel;                           // true: stop (Status kCancelled)
+  std::function<void(const GenerateProgress&)> progress;  // after every id, the last one included
+  std::function<bool()> cancel;  // polled before the encoder and every id; true: stop (kCancelled)
 };
+
 
 // One generated id, for the reference check: forced or sampled, and the legal set it was
 // sampled from (ascending [begin, end) ranges; empty when forced or unconstrained).
@@ -62,16 +65,42 @@ struct GenerateResult {
   std::vector<TraceStep> trace;
 };
 
+// Checks options against the model's limits before any work (negative caps, max_tokens below
+// kMinMeshTokens, sampling values).
+Status CheckGenerateOptions(const GenerateOptions& options);
+
 class Generator {
  public:
-  explicit Generator(const Model& model) : model_(model) {}
+  explicit Generator(const Model& model);
+  ~Generator();
   // `points`: n rows of 6 floats in the model's normalised frame (xyz, unit normal).
   StatusOr<GenerateResult> Run(const std::vector<float>& points, const GenerateOptions& options,
                                const GenerateCallbacks& callbacks = {});
 
+  // Step-wise: Start runs the encoder; each Step adds one id (finished() once a stop reason is
+  // set); Finish builds the mesh and returns the result (also after a cancel: what was closed).
+  // A failed Start or Step ends the generation (Finish then fails too).
+  Status Start(const std::vector<float>& points, const GenerateOptions& options, const GenerateCallbacks& callbacks = {});
+  Status Step();
+  bool active() const { return session_ != nullptr; }
+  bool finished() const;
+  // Marks the generation cancelled (stop reason "cancelled"); Finish still returns its stats.
+  void Cancel();
+  const std::vector<int32_t>& tokens() const;
+  const GenerationStats& stats() const;
+  // Faces of the layers completed so far (grid coordinates).
+  StatusOr<DecodedMesh> MeshSoFar() const;
+  // Completed layers so far (layer ends seen).
+  int64_t layers_closed() const;
+  StatusOr<GenerateResult> Finish();
+
  private:
+  struct Session;
+  Status StepOnce();
+  void ReportProgress();
   const Model& model_;
   KvCache cache_;
+  std::unique_ptr<Session> session_;
 };
 
 }  // namespace silk

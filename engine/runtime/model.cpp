@@ -89,8 +89,10 @@ int64_t Model::encoder_points() const { return impl_->encoder_points; }
 StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const ModelLoadOptions& options) {
   if (!IsDirectory(dir)) return IoError(dir + ": model folder not found");
   SILK_ASSIGN_OR_RETURN(ModelConfig config, LoadModelConfig(dir));
+  if (options.threads < 0 || options.threads > MaxThreads())
+    return InvalidArgument("threads " + std::to_string(options.threads) + " is outside 0.." +
+                           std::to_string(MaxThreads()) + " (0 = physical cores)");
   auto impl = std::make_unique<Impl>();
-  impl->threads = options.threads > 0 ? options.threads : PhysicalCoreCount();
   impl->precision = options.decoder.value_or(config.default_decoder);
   const std::string decoder_file = config.DecoderFile(impl->precision);
   if (decoder_file.empty()) {
@@ -121,9 +123,11 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   for (const std::string& name : DecoderOutputNames(d.n_layers))
     if (name != "logits") dec_out.push_back({name, kF, {1, d.n_heads, -1, d.head_dim}});
   Status s = OrtGuard("loading " + dir, [&]() -> Status {
-    Ort::SessionOptions so = MakeOrtSessionOptions(impl->threads, options.allow_spinning);
-    impl->encoder = std::make_unique<Ort::Session>(OrtEnvironment(), enc_path.c_str(), so);
-    impl->decoder = std::make_unique<Ort::Session>(OrtEnvironment(), dec_path.c_str(), so);
+    Ort::Env& env = OrtEnvironment(options.threads, options.allow_spinning);
+    impl->threads = SharedPoolThreads();
+    Ort::SessionOptions so = MakeOrtSessionOptions();
+    impl->encoder = std::make_unique<Ort::Session>(env, enc_path.c_str(), so);
+    impl->decoder = std::make_unique<Ort::Session>(env, dec_path.c_str(), so);
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, true, {{"points", kF, {1, -1, 6}}}, enc_path));
     SILK_ASSIGN_OR_RETURN(impl->encoder_points, EncoderPoints(*impl->encoder, config.dims.n_points, enc_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, false, {{"cross_kv", kF, cross}}, enc_path));

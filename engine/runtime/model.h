@@ -12,7 +12,8 @@
 namespace silk {
 
 struct ModelLoadOptions {
-  int threads = 0;             // onnxruntime intra-op threads; 0 = physical cores
+  int threads = 0;             // intra-op threads of the process's shared pool (sized by the first
+                               // model loaded); 0 = physical cores; at most MaxThreads()
   // Decoder precision; unset = model.json's files.default_decoder. Error if the file is absent.
   std::optional<DecoderPrecision> decoder;
   bool allow_spinning = true;  // worker threads spin between ops (faster, burns CPU while idle)
@@ -27,7 +28,7 @@ class Model {
   Model& operator=(const Model&) = delete;
 
   const ModelConfig& config() const;
-  int threads() const;       // the resolved thread count
+  int threads() const;       // threads of the shared pool
   DecoderPrecision precision() const;  // the decoder in use
   // The encoder graph's fixed point count (input "points" dimension 1); -1 when dynamic.
   int64_t encoder_points() const;

@@ -144,8 +144,12 @@ Status ParseDims(const Json& j, const std::string& name, ModelDims* m) {
   SILK_RETURN_IF_ERROR(GetInt(*d, "n_points", dn, &m->n_points));
   SILK_RETURN_IF_ERROR(GetInt(*d, "max_seq_len", dn, &m->max_seq_len));
   if (m->d_model <= 0 || m->n_layers <= 0 || m->n_heads <= 0 || m->head_dim <= 0 || m->n_latents <= 0 ||
-      m->n_points <= 0 || m->max_seq_len < 2)
-    return Status(StatusCode::kParseError, dn + ": every dimension must be positive (max_seq_len >= 2)");
+      m->n_points <= 0)
+    return Status(StatusCode::kParseError, dn + ": every dimension must be positive");
+  if (m->max_seq_len < kMinMeshTokens + 1)
+    return Status(StatusCode::kParseError, dn + ": max_seq_len " + std::to_string(m->max_seq_len) +
+                                               " leaves room for fewer ids than the smallest mesh (" +
+                                               std::to_string(kMinMeshTokens) + " + BOS)");
   if (m->head_dim % 8 != 0)
     return Bad(name, "dims.head_dim " + std::to_string(m->head_dim) + " must be a multiple of 8 (docs/model_contract.md)");
   if (m->max_seq_len > vocab::k_max_seq_length + 1)

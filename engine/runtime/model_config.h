@@ -23,6 +23,10 @@ enum class ModelArch { kSilk, kOfficial };
 enum class DecoderPrecision { kFp32, kInt8, kInt4 };
 const char* DecoderPrecisionName(DecoderPrecision p);  // "fp32", "int8", "int4"
 
+// The fewest ids a complete mesh takes (one triangle with its layer ends and EOS); a smaller
+// max_tokens or max_seq_len - 1 can only end in an empty mesh and is refused up front.
+inline constexpr int32_t kMinMeshTokens = 14;
+
 struct ModelDims {
   int32_t d_model = 0, n_layers = 0, n_heads = 0, head_dim = 0, n_latents = 0;
   int32_t n_points = 4096;

@@ -1,14 +1,19 @@
-// One Env per process (onnxruntime's logging/telemetry root); sessions get their own
-// intra-op thread pools sized by the caller.
+// One Env per process (onnxruntime's logging/telemetry root) holding one intra-op thread pool
+// that all sessions of all models share, so loading several models does not multiply threads.
 #include "runtime/ort_support.h"
 
+#include <algorithm>
 #include <mutex>
 #include <string>
+#include <thread>
+
+#include "runtime/cpu_info.h"
 
 namespace silk {
 
 namespace {
 std::mutex g_sink_mu;
+int g_pool_threads = 0;
 OrtLogSink g_sink = nullptr;
 void* g_sink_user = nullptr;
 
@@ -24,18 +29,27 @@ void SetOrtLogSink(OrtLogSink sink, void* user_data) {
   g_sink_user = user_data;
 }
 
-Ort::Env& OrtEnvironment() {
-  static Ort::Env env(ORT_LOGGING_LEVEL_WARNING, "silk", ForwardOrtLog, nullptr);
+Ort::Env& OrtEnvironment(int threads, bool allow_spinning) {
+  static Ort::Env env = [&] {
+    g_pool_threads = std::clamp(threads > 0 ? threads : PhysicalCoreCount(), 1, MaxThreads());
+    Ort::ThreadingOptions to;
+    to.SetGlobalIntraOpNumThreads(g_pool_threads);
+    to.SetGlobalInterOpNumThreads(1);
+    to.SetGlobalSpinControl(allow_spinning ? 1 : 0);
+    return Ort::Env(to, ForwardOrtLog, nullptr, ORT_LOGGING_LEVEL_WARNING, "silk");
+  }();
   return env;
 }
 
-Ort::SessionOptions MakeOrtSessionOptions(int threads, bool allow_spinning) {
+int SharedPoolThreads() { return g_pool_threads; }
+
+int MaxThreads() { return std::max(64, static_cast<int>(std::thread::hardware_concurrency())); }
+
+Ort::SessionOptions MakeOrtSessionOptions() {
   Ort::SessionOptions so;
-  so.SetIntraOpNumThreads(threads);
-  so.SetInterOpNumThreads(1);
+  so.DisablePerSessionThreads();
   so.SetExecutionMode(ExecutionMode::ORT_SEQUENTIAL);
   so.SetGraphOptimizationLevel(GraphOptimizationLevel::ORT_ENABLE_ALL);
-  so.AddConfigEntry("session.intra_op.allow_spinning", allow_spinning ? "1" : "0");
   return so;
 }
 

@@ -12,14 +12,22 @@
 
 namespace silk {
 
-Ort::Env& OrtEnvironment();
+// The process's Env, created on first use with one global intra-op thread pool that every
+// session shares (sessions are made with DisablePerSessionThreads). The first caller's thread
+// count and spinning setting size the pool; later values are ignored (SharedPoolThreads says
+// what the pool has).
+Ort::Env& OrtEnvironment(int threads = 0, bool allow_spinning = true);
+int SharedPoolThreads();
+// Upper bound for a requested thread count: the larger of 64 and the hardware's threads.
+int MaxThreads();
 
 // onnxruntime's own log lines (warnings and errors; their text also reaches the caller inside
 // the returned Status) go to this sink instead of stderr. Default: none, nothing is printed.
 // `severity` is onnxruntime's OrtLoggingLevel. Process-wide, thread-safe.
 using OrtLogSink = void (*)(int severity, const char* message, void* user_data);
 void SetOrtLogSink(OrtLogSink sink, void* user_data);
-Ort::SessionOptions MakeOrtSessionOptions(int threads, bool allow_spinning);
+// Session options for the shared pool (no per-session threads).
+Ort::SessionOptions MakeOrtSessionOptions();
 
 template <typename F>
 Status OrtGuard(const std::string& what, F&& f) noexcept {

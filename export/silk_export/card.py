@@ -108,11 +108,11 @@ def write_card(model_dir: Path, run_dir: Path, bench_json: Path | None = None) -
         if not (ev or gen):
             continue
         L += [f"## Generation ({title})", ""]
-        if gen and gen.get("runtime") == "silkgen":
+        if gen and gen.get("runtime") in ("silkgen", "libsilk"):
             tps = [m["tokens_per_second"] for m in gen["meshes"] if m.get("tokens_per_second")]
             stops = Counter(m.get("stop_reason", "error") for m in gen["meshes"])
             ntok = [m["tokens"] for m in gen["meshes"] if m.get("tokens")]
-            L += ["`silkgen` (grammar-constrained sampling, top-k 50, temperature 0.5, fp32 decoder, 1 thread)",
+            L += ["libsilk's runtime (grammar-constrained sampling, top-k 50, temperature 0.5, fp32 decoder, 1 thread)",
                   f"with this model folder: {gen['inputs']} input meshes; stop reasons "
                   + ", ".join(f"{k} {v}" for k, v in stops.most_common())
                   + (f"; {sum(ntok) / len(ntok):.0f} tokens on average" if ntok else "")

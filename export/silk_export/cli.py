@@ -120,7 +120,8 @@ def _cmd_generate(a) -> int:
         raise SystemExit("generate: no input meshes (give files or --index)")
     if a.runtime:
         from .generate import generate_with_runtime
-        res = generate_with_runtime(Path(a.runtime), Path(a.model), inputs, Path(a.out), a.seed, a.threads)
+        res = generate_with_runtime(Path(a.model), inputs, Path(a.out), a.seed, a.threads, a.max_tokens,
+                                    a.temperature, a.top_k)
     else:
         res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens,
                              a.temperature, a.top_k, a.seed, a.threads)
@@ -237,7 +238,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     g = sub.add_parser("generate", help="sample meshes from point clouds of input meshes (PyTorch, KV cache)")
     g.add_argument("--model", required=True, help="checkpoint.pt, or with --runtime an exported model folder")
-    g.add_argument("--runtime", help="path of silkgen: generate with the C++ runtime (grammar-constrained)")
+    g.add_argument("--runtime", nargs="?", const="libsilk",
+                   help="generate with the C++ runtime through libsilk (grammar-constrained); a value (the "
+                        "former silkgen path) is accepted and ignored")
     g.add_argument("--out", required=True)
     g.add_argument("--max-tokens", type=int, default=0)
     g.add_argument("--temperature", type=float, default=0.5)

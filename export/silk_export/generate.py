@@ -1,11 +1,10 @@
 """`silk-export generate`: sample token sequences from a checkpoint (PyTorch, KV cache, top-k, no
 grammar mask) conditioned on the point cloud of each input mesh and decode them through libsilk,
-or run the C++ runtime (`silkgen`, grammar-constrained) on an exported model folder; either way
-write generated/<stem>.obj beside reference/<stem>.obj for `silk-export eval`."""
+or run the C++ runtime (grammar-constrained, through libsilk's C API) on an exported model folder;
+either way write generated/<stem>.obj beside reference/<stem>.obj for `silk-export eval`."""
 from __future__ import annotations
 
 import json
-import subprocess
 import time
 from pathlib import Path
 
@@ -94,32 +93,35 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
     return summary
 
 
-def generate_with_runtime(silkgen: Path, model_dir: Path, inputs: list[Path], out_dir: Path, seed: int = 0,
-                          threads: int = 1, extra: list[str] | None = None) -> dict:
-    """Runs `silkgen` (the C++ runtime, grammar-constrained) per input with the exported model."""
+def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, seed: int = 0, threads: int = 1,
+                          max_tokens: int = 0, temperature: float = 0.5, top_k: int = 50) -> dict:
+    """Runs the C++ runtime (grammar-constrained) per input with the exported model, in this
+    process through libsilk's C API (the same generation silkgen and the Blender add-on run)."""
     gen_dir, ref_dir = Path(out_dir) / "generated", Path(out_dir) / "reference"
     gen_dir.mkdir(parents=True, exist_ok=True)
     ref_dir.mkdir(parents=True, exist_ok=True)
     rows = []
-    for p in tqdm(inputs, desc="silkgen", unit="mesh"):
-        stem = p.name.split(".")[0]
-        v, f = libsilk.load_arrays(p)
-        with libsilk.Mesh.from_arrays(normalize_vertices(v, 0.95), f) as ref:
-            ref.save(ref_dir / f"{stem}.obj")
-        stats = Path(out_dir) / f"{stem}.stats.json"
-        cmd = [str(silkgen), str(p), "-o", str(gen_dir / f"{stem}.obj"), "--model", str(model_dir),
-               "--seed", str(seed), "--threads", str(threads), "--stats", str(stats), "-q"] + (extra or [])
-        r = subprocess.run(cmd, capture_output=True, text=True)
-        row = {"name": stem}
-        if r.returncode == 0 and stats.exists():
-            st = json.loads(stats.read_text())
-            row.update(tokens=st.get("tokens"), eos=st.get("stop_reason") == "eos", faces=st.get("faces"),
-                       stop_reason=st.get("stop_reason"), seconds=st.get("seconds", {}).get("total"),
-                       tokens_per_second=st.get("tokens_per_second"))
-        else:
-            row.update(eos=False, decode_error=(r.stderr or r.stdout).strip()[-300:])
-        rows.append(row)
-    summary = {"runtime": "silkgen", "inputs": len(rows),
+    with libsilk.Model(model_dir, threads=threads) as model, libsilk.Generator(model) as gen:
+        for p in tqdm(inputs, desc="silk runtime", unit="mesh"):
+            stem = p.name.split(".")[0]
+            v, f = libsilk.load_arrays(p)
+            with libsilk.Mesh.from_arrays(normalize_vertices(v, 0.95), f) as ref:
+                ref.save(ref_dir / f"{stem}.obj")
+            row = {"name": stem}
+            try:
+                with libsilk.Mesh.load(p) as src:
+                    mesh, _, st = gen.generate(src, seed=seed, max_tokens=max_tokens, temperature=temperature,
+                                               top_k=top_k)
+                with mesh:
+                    if mesh.triangle_count():
+                        mesh.save(gen_dir / f"{stem}.obj")
+                row.update(tokens=st["tokens"], eos=st["stop_reason"] == "eos", faces=st["faces"],
+                           stop_reason=st["stop_reason"], seconds=st["seconds_total"],
+                           tokens_per_second=st["tokens_per_second"])
+            except libsilk.SilkError as e:
+                row.update(eos=False, decode_error=str(e)[-300:])
+            rows.append(row)
+    summary = {"runtime": "libsilk", "inputs": len(rows),
                "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
                "decoded_with_faces": sum(1 for r in rows if r.get("faces")), "meshes": rows}
     (Path(out_dir) / "generate.json").write_text(json.dumps(summary, indent=2) + "\n")

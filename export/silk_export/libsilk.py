@@ -15,11 +15,8 @@ import numpy as np
 
 from .paths import REPO_ROOT
 
-_c_int32_p = ctypes.POINTER(ctypes.c_int32)
-_c_double_p = ctypes.POINTER(ctypes.c_double)
-
-SILK_OK = 0
-SILK_ERR_REFUSED = 5
+from .silk_c import *  # noqa: F401,F403  (status codes, structs, callback types)
+from .silk_c import _c_double_p, _c_int32_p, declare as _declare
 
 
 class SilkError(RuntimeError):
@@ -38,43 +35,6 @@ class SilkRefused(SilkError):
         return self.message.split(":", 1)[0].strip()
 
 
-class VocabInfo(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int32) for n in (
-        "token_format_version", "format_vocab_size", "eos_id", "pad_id", "model_vocab_size",
-        "c_id", "u_id", "e_id", "x_begin", "x_end", "s_begin", "s_end", "b_begin", "b_end",
-        "k_begin", "k_end", "o_begin", "o_end", "quant_bins", "layer_vertex_limit",
-        "layer_count_limit", "max_faces", "max_seq_length")]
-
-
-class EncodeParams(ctypes.Structure):
-    _fields_ = [("normalize", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
-                ("nonmanifold_processing", ctypes.c_int32)]
-
-
-class EncodeStats(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int32) for n in (
-        "input_vertices", "input_faces", "processed_vertices", "processed_faces",
-        "emitted_vertices", "encodable_faces", "components_found", "components_encoded",
-        "components_dropped_small", "layers", "max_layer_size", "max_layer_count")] + [
-        ("tokens", ctypes.c_int64), ("seconds", ctypes.c_double)]
-
-    def as_dict(self) -> dict:
-        return {name: getattr(self, name) for name, _ in self._fields_}
-
-
-class DecodeParams(ctypes.Structure):
-    _fields_ = [("grid_coordinates", ctypes.c_int32)]
-
-
-class PreprocessParams(ctypes.Structure):
-    _fields_ = [("kind", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
-                ("merge_distance_fraction", ctypes.c_double), ("surface_samples", ctypes.c_int32),
-                ("round_float16", ctypes.c_int32), ("n_points", ctypes.c_int32)]
-
-
-PREPROCESS_KINDS = {"silk": 0, "official": 1}
-
-
 def library_candidates() -> list[Path]:
     """Built libraries in the checkout, in the order they are tried."""
     first = REPO_ROOT / "build" / "engine" / "libsilk.so"
@@ -89,43 +49,6 @@ def library_path() -> str:
         return env
     found = library_candidates()
     return str(found[0]) if found else "libsilk.so"
-
-
-def _declare(lib: ctypes.CDLL) -> None:
-    sig = {
-        "silk_last_error": (ctypes.c_char_p, []),
-        "silk_status_name": (ctypes.c_char_p, [ctypes.c_int]),
-        "silk_version": (ctypes.c_char_p, []),
-        "silk_vocab": (VocabInfo, []),
-        "silk_mesh_create": (ctypes.c_int, [_c_double_p, ctypes.c_size_t, _c_int32_p, ctypes.c_size_t,
-                                            ctypes.POINTER(ctypes.c_void_p)]),
-        "silk_mesh_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]),
-        "silk_mesh_save": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p]),
-        "silk_mesh_destroy": (None, [ctypes.c_void_p]),
-        "silk_mesh_vertex_count": (ctypes.c_size_t, [ctypes.c_void_p]),
-        "silk_mesh_triangle_count": (ctypes.c_size_t, [ctypes.c_void_p]),
-        "silk_mesh_copy_positions": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t]),
-        "silk_mesh_copy_triangles": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
-        "silk_mesh_copy_triangle_components": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
-        "silk_tokens_create": (ctypes.c_int, [_c_int32_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_void_p)]),
-        "silk_tokens_destroy": (None, [ctypes.c_void_p]),
-        "silk_tokens_count": (ctypes.c_size_t, [ctypes.c_void_p]),
-        "silk_tokens_copy": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
-        "silk_encode_default_params": (EncodeParams, []),
-        "silk_encode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams),
-                                       ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(EncodeStats)]),
-        "silk_preprocess_default_params": (PreprocessParams, [ctypes.c_int32]),
-        "silk_prepare_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
-                                               ctypes.POINTER(PreprocessParams), ctypes.c_uint64,
-                                               ctypes.POINTER(ctypes.c_float), ctypes.c_size_t,
-                                               ctypes.POINTER(ctypes.c_size_t), _c_double_p]),
-        "silk_decode_default_params": (DecodeParams, []),
-        "silk_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
-                                       ctypes.POINTER(ctypes.c_void_p)]),
-    }
-    for name, (res, args) in sig.items():
-        fn = getattr(lib, name)
-        fn.restype, fn.argtypes = res, args
 
 
 @lru_cache(maxsize=1)
@@ -159,8 +82,34 @@ def vocab_info() -> dict:
     return {name: getattr(v, name) for name, _ in VocabInfo._fields_}
 
 
-class Mesh:
+class _Handle:
+    """An owned libsilk handle: close() (idempotent, also on garbage collection) and `with`."""
+
+    _h = None
+    _destroy = ""  # name of the silk_*_destroy function
+
+    def close(self) -> None:
+        if self._h:
+            getattr(lib(), self._destroy)(self._h)
+            self._h = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown
+            pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+class Mesh(_Handle):
     """Owned silk_mesh handle. Build with Mesh.load(path) or Mesh.from_arrays(v, f)."""
+
+    _destroy = "silk_mesh_destroy"
 
     def __init__(self, handle: ctypes.c_void_p):
         self._h = handle
@@ -179,23 +128,6 @@ class Mesh:
         _check(lib().silk_mesh_create(v.ctypes.data_as(_c_double_p), v.shape[0],
                                       f.ctypes.data_as(_c_int32_p), f.shape[0], ctypes.byref(h)))
         return cls(h)
-
-    def close(self) -> None:
-        if self._h:
-            lib().silk_mesh_destroy(self._h)
-            self._h = None
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:  # interpreter shutdown
-            pass
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
 
     @property
     def handle(self) -> ctypes.c_void_p:
@@ -278,6 +210,125 @@ def decode(tokens: np.ndarray, grid_coordinates: bool = False) -> Mesh:
         return Mesh(mh)
     finally:
         L.silk_tokens_destroy(th)
+
+
+class Model(_Handle):
+    """A loaded model folder (silk_model). Generators keep it alive; close() may come first."""
+
+    _destroy = "silk_model_destroy"
+
+    def __init__(self, model_dir: str | os.PathLike, threads: int = 0, decoder: str = "default"):
+        L = lib()
+        opts = L.silk_model_default_options()
+        if decoder not in DECODERS:
+            raise ValueError(f"decoder must be one of {sorted(DECODERS)}, not {decoder!r}")
+        opts.threads, opts.decoder = int(threads), DECODERS[decoder]
+        self._h = ctypes.c_void_p()
+        _check(L.silk_model_load(os.fsencode(model_dir), ctypes.byref(opts), ctypes.byref(self._h)))
+
+    def info(self) -> dict:
+        i = ModelInfo()
+        _check(lib().silk_model_get_info(self._h, ctypes.byref(i)))
+        d = {name: getattr(i, name) for name, _ in ModelInfo._fields_}
+        d["config"] = i.config.decode(errors="replace")
+        return d
+
+
+
+def generate_params(seed: int = 0, temperature: float = -1, top_k: int = -1, top_p: float = -1,
+                    max_tokens: int = 0, max_faces: int = 0, repair: str = "off", n_points: int = 0) -> GenerateParams:
+    """silk_generate_params; negative sampling values mean the model's (model.json "sampling")."""
+    p = lib().silk_generate_default_params()
+    p.seed, p.temperature, p.top_k, p.top_p = int(seed), float(temperature), int(top_k), float(top_p)
+    p.max_tokens, p.max_faces, p.n_points = int(max_tokens), int(max_faces), int(n_points)
+    if repair not in HOLES:
+        raise ValueError(f"repair must be one of {sorted(HOLES)}, not {repair!r}")
+    p.holes = HOLES[repair]
+    return p
+
+
+class Generator(_Handle):
+    """One generation at a time (silk_generator), step-wise or in one call. Use one per thread."""
+
+    _destroy = "silk_generator_destroy"
+
+    def __init__(self, model: Model):
+        self._model = model  # the C side keeps its own reference too
+        self._h = ctypes.c_void_p()
+        _check(lib().silk_generator_create(model._h, ctypes.byref(self._h)))
+        self._keep = None  # input arrays referenced by a started generation
+
+    def _input(self, mesh: Mesh | None, points: np.ndarray | None) -> GenerateInput:
+        gi = GenerateInput()
+        if mesh is not None:
+            gi.mesh = mesh.handle
+            self._keep = mesh
+        else:
+            pts = np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 6)
+            gi.points, gi.n_points = pts.ctypes.data_as(_c_double_p), pts.shape[0]
+            self._keep = pts
+        return gi
+
+    def start(self, mesh: Mesh | None = None, points: np.ndarray | None = None, **params) -> None:
+        p = generate_params(**params)
+        _check(lib().silk_generator_start(self._h, ctypes.byref(self._input(mesh, points)), ctypes.byref(p)))
+
+    def advance(self, max_ids: int = 1, until_layer: bool = False) -> bool:
+        """Adds up to max_ids ids (or up to the next completed layer); True once finished."""
+        done = ctypes.c_int32()
+        _check(lib().silk_generator_advance(self._h, int(max_ids), 1 if until_layer else 0, ctypes.byref(done)))
+        return bool(done.value)
+
+    def cancel(self) -> None:
+        lib().silk_generator_cancel(self._h)
+
+    def tokens(self) -> np.ndarray:
+        h = ctypes.c_void_p()
+        _check(lib().silk_generator_tokens(self._h, ctypes.byref(h)))
+        return _tokens_to_numpy(h)
+
+    def mesh_so_far(self) -> Mesh:
+        h = ctypes.c_void_p()
+        _check(lib().silk_generator_mesh(self._h, ctypes.byref(h)))
+        return Mesh(h)
+
+    def stats(self) -> dict:
+        st = GenerateStats()
+        _check(lib().silk_generator_stats(self._h, ctypes.byref(st)))
+        return st.as_dict()
+
+    def finish(self) -> tuple[Mesh, np.ndarray, dict]:
+        mh, th, st = ctypes.c_void_p(), ctypes.c_void_p(), GenerateStats()
+        _check(lib().silk_generator_finish(self._h, ctypes.byref(mh), ctypes.byref(th), ctypes.byref(st)))
+        self._keep = None
+        return Mesh(mh), _tokens_to_numpy(th), st.as_dict()
+
+    def report_json(self, trace: bool = False) -> str:
+        L, size = lib(), ctypes.c_size_t()
+        status = L.silk_generator_report_json(self._h, int(trace), None, 0, ctypes.byref(size))
+        if status != SILK_ERR_BUFFER_TOO_SMALL:
+            _check(status)
+        buf = ctypes.create_string_buffer(size.value)
+        _check(L.silk_generator_report_json(self._h, int(trace), buf, size.value, ctypes.byref(size)))
+        return buf.value.decode()
+
+    def generate(self, mesh: Mesh | None = None, points: np.ndarray | None = None,
+                 progress=None, cancel=None, **params) -> tuple[Mesh, np.ndarray, dict]:
+        """One call: (mesh in the input's frame, ids, stats). progress(dict) after every id;
+        cancel() -> truthy stops with SilkError(status=SILK_ERR_CANCELLED)."""
+        p = generate_params(**params)
+        if progress is not None:
+            p.progress = PROGRESS_FN(lambda pr, _u: progress({n: getattr(pr[0], n) for n, _ in GenerateProgress._fields_}))
+        if cancel is not None:
+            p.cancel = CANCEL_FN(lambda _u: 1 if cancel() else 0)
+        gi = self._input(mesh, points)
+        mh, th, st = ctypes.c_void_p(), ctypes.c_void_p(), GenerateStats()
+        try:
+            _check(lib().silk_generate_input_run(self._h, ctypes.byref(gi), ctypes.byref(p), ctypes.byref(mh),
+                                                 ctypes.byref(th), ctypes.byref(st)))
+        finally:
+            self._keep = None
+        return Mesh(mh), _tokens_to_numpy(th), st.as_dict()
 
 
 def prepare_points(positions: np.ndarray, triangles: np.ndarray | None, kind: str = "silk",

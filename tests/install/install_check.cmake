@@ -2,7 +2,9 @@
 #  * a tiny consumer project configures with find_package(silk), builds and runs;
 #  * libonnxruntime sits next to libsilk and the installed binaries find it through their
 #    $ORIGIN RPATH (LD_LIBRARY_PATH cleared);
-#  * the installed silkgen generates with the tiny model.
+#  * the installed silkgen generates with the tiny model;
+#  * silkgen's sources build against the installed headers and libsilk alone (apps_consumer)
+#    and give the same ids as the build tree's silkgen.
 # Usage: cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DWORK_DIR=.. -DGENERATOR=.. -DHAVE_ORT=ON|OFF -P install_check.cmake
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
@@ -48,3 +50,18 @@ run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/install/consumer" -B "${WORK_DIR}/c
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/consumer")
 run("${WORK_DIR}/consumer/consumer" "${SOURCE_DIR}/tests/models/tiny")
 message(STATUS "consumer: ${LAST_OUTPUT}")
+
+if(HAVE_ORT)
+  run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/install/apps_consumer" -B "${WORK_DIR}/apps" -G "${GENERATOR}"
+      "-DCMAKE_PREFIX_PATH=${prefix}" "-DSILK_APPS_DIR=${SOURCE_DIR}/apps")
+  run(${CMAKE_COMMAND} --build "${WORK_DIR}/apps")
+  set(args "${SOURCE_DIR}/samples/torus_knot.obj" --model "${SOURCE_DIR}/tests/models/tiny" --max-tokens 300
+      --seed 7 --threads 1 -q)
+  run("${WORK_DIR}/apps/silkgen" ${args} -o "${WORK_DIR}/apps.obj" --tokens "${WORK_DIR}/apps.tokens.txt")
+  file(READ "${WORK_DIR}/apps.tokens.txt" got)
+  file(READ "${SOURCE_DIR}/tests/models/golden/torus_knot_s7.tokens.txt" want)
+  if(NOT got STREQUAL want)
+    message(FATAL_ERROR "silkgen built against the installed headers gives other ids than the golden")
+  endif()
+  message(STATUS "apps consumer: silkgen built from the installed headers; ids equal the golden")
+endif()

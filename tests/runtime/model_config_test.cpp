@@ -211,9 +211,15 @@ TEST(ModelLoad, ThreadsResolve) {
   auto m = testing::LoadTinyModel(0);
   ASSERT_TRUE(m);
   EXPECT_GE(m->threads(), 1);
+  // One onnxruntime pool per process: the first load sized it, later requests do not resize it.
   auto one = testing::LoadTinyModel(1);
   ASSERT_TRUE(one);
-  EXPECT_EQ(one->threads(), 1);
+  EXPECT_EQ(one->threads(), m->threads());
+  ModelLoadOptions too_many;
+  too_many.threads = 100000;
+  auto refused = Model::Load(testing::TinyModelDir(), too_many);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("threads 100000"), std::string::npos) << refused.status().message();
 }
 
 }  // namespace

@@ -28,7 +28,8 @@ typedef enum silk_status {
   SILK_ERR_LIMIT = 6,
   SILK_ERR_CANCELLED = 7,
   SILK_ERR_INTERNAL = 8,
-  SILK_ERR_BUFFER_TOO_SMALL = 9
+  SILK_ERR_BUFFER_TOO_SMALL = 9,
+  SILK_ERR_BUSY = 10           /* a silk_generator used from two threads at once ("generator busy") */
 } silk_status;
 
 /* Message of the last failed call on this thread ("" if none). Valid until the next call. */
@@ -39,7 +40,9 @@ SILK_API const char* silk_version(void);
 /* ---- logging: the library prints nothing itself ------------------------------------ */
 typedef enum silk_log_level { SILK_LOG_DEBUG = 0, SILK_LOG_INFO = 1, SILK_LOG_WARN = 2, SILK_LOG_ERROR = 3 } silk_log_level;
 typedef void (*silk_log_fn)(silk_log_level level, const char* message, void* user_data);
-/* Process-wide; NULL disables logging (the default). */
+/* Process-wide; NULL disables logging (the default). Receives every failed call's message
+ * (SILK_LOG_ERROR), model loads (SILK_LOG_INFO), ignored settings (SILK_LOG_WARN) and
+ * onnxruntime's own warnings. Called on the thread that makes the call. */
 SILK_API void silk_set_log_callback(silk_log_fn fn, void* user_data);
 
 /* ---- vocabulary (single source: engine/tokenizer/vocabulary_layout.json) ------------ */
@@ -55,13 +58,28 @@ SILK_API silk_vocab_info silk_vocab(void);
 
 /* ---- meshes ------------------------------------------------------------------------- */
 typedef struct silk_mesh silk_mesh;
+/* Query-then-copy everywhere: a copy call takes the capacity of `out` in elements; (NULL, 0) is a
+ * size query that returns SILK_OK when there is nothing to copy and SILK_ERR_BUFFER_TOO_SMALL
+ * (the needed count in silk_last_error()) otherwise; the *_count functions give the sizes.
+ * Every *_default_params() and *_default_options() returns the documented defaults by value; a NULL
+ * params pointer means the defaults; int32_t flags take 0 or 1 and enum fields their listed
+ * values, anything else is SILK_ERR_INVALID_ARGUMENT. */
+
 /* Copies the arrays: positions = 3*n_vertices doubles, triangles = 3*n_triangles indices. */
 SILK_API silk_status silk_mesh_create(const double* positions, size_t n_vertices, const int32_t* triangles,
                                       size_t n_triangles, silk_mesh** out);
-/* OBJ, PLY, STL, OFF, glTF/GLB, PMD, optionally gzip-compressed. */
+/* OBJ, PLY, STL, OFF, glTF/GLB, PMD, optionally gzip-compressed. A PLY without faces is a
+ * point cloud and must carry per-vertex normals (nx ny nz): it loads as a mesh with no
+ * triangles and with normals, which silk_generate* samples as points. */
 SILK_API silk_status silk_mesh_load(const char* path, silk_mesh** out);
-/* By extension: .obj or .ply; written atomically. */
+/* By extension: .obj, .ply, or .glb (one node per part: triangles grouped by component, smooth
+ * normals per part); written atomically. */
 SILK_API silk_status silk_mesh_save(const silk_mesh* mesh, const char* path);
+typedef struct silk_save_params {
+  int32_t part_colors; /* .glb: a distinct COLOR_0 per part; default 0 */
+} silk_save_params;
+SILK_API silk_save_params silk_save_default_params(void);
+SILK_API silk_status silk_mesh_save_with_params(const silk_mesh* mesh, const char* path, const silk_save_params* params);
 SILK_API void silk_mesh_destroy(silk_mesh* mesh);
 SILK_API size_t silk_mesh_vertex_count(const silk_mesh* mesh);
 SILK_API size_t silk_mesh_triangle_count(const silk_mesh* mesh);
@@ -70,6 +88,9 @@ SILK_API silk_status silk_mesh_copy_positions(const silk_mesh* mesh, double* out
 SILK_API silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t capacity);
 /* Component index per triangle (decoded meshes; 0 for loaded ones). capacity = triangles. */
 SILK_API silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity);
+/* Point clouds: 1 when the mesh carries one normal per vertex (3 doubles each). */
+SILK_API int32_t silk_mesh_has_normals(const silk_mesh* mesh);
+SILK_API silk_status silk_mesh_copy_normals(const silk_mesh* mesh, double* out, size_t capacity);
 
 /* ---- token sequences ---------------------------------------------------------------- */
 typedef struct silk_tokens silk_tokens;
@@ -133,8 +154,17 @@ SILK_API silk_status silk_prepare_points(const silk_mesh* mesh, const double* cl
 
 /* ---- generation: point cloud or mesh -> generated mesh ---------------------------------
  * Needs a libsilk built with onnxruntime (silk_generation_available() == 1); otherwise every
- * call below returns SILK_ERR_UNSUPPORTED. A silk_model is immutable and may be shared by
- * threads; a silk_generator (KV cache, scratch) serves one generation at a time. */
+ * call below returns SILK_ERR_UNSUPPORTED.
+ *
+ * Ownership and threads (onnxruntime-genai's model/generator split):
+ *  - a silk_model is immutable; any number of generators on any threads may share it. Each
+ *    generator holds a reference to its model, so silk_model_destroy may come before the
+ *    generators' destroy calls (the model is freed with its last generator);
+ *  - a silk_generator (KV cache, scratch, one generation in progress) serves one thread at a
+ *    time: a call made while another thread is inside a call on the same generator fails with
+ *    SILK_ERR_BUSY ("generator busy"). Use one generator per thread. silk_generator_cancel is
+ *    the exception: any thread may call it at any time;
+ *  - all models in a process share one onnxruntime thread pool, sized by the first model loaded. */
 typedef struct silk_model silk_model;
 typedef struct silk_generator silk_generator;
 
@@ -149,7 +179,8 @@ typedef enum silk_decoder_precision {
 } silk_decoder_precision;
 
 typedef struct silk_model_options {
-  int32_t threads; /* onnxruntime intra-op threads; 0 = physical cores (default) */
+  int32_t threads; /* threads of the process's shared pool (first load decides); 0 = physical
+                      cores (default); at most max(64, hardware threads) */
   int32_t decoder; /* silk_decoder_precision (error if the model lacks that file); default SILK_DECODER_DEFAULT */
 } silk_model_options;
 SILK_API silk_model_options silk_model_default_options(void);
@@ -174,17 +205,26 @@ SILK_API silk_status silk_generator_create(const silk_model* model, silk_generat
 SILK_API void silk_generator_destroy(silk_generator* generator);
 
 typedef struct silk_generate_progress {
-  int64_t tokens, max_tokens;
-  int32_t components; /* started so far */
-  int32_t faces;      /* at the last layer end when max_faces is set, else -1 */
+  int64_t tokens, max_tokens; /* max_tokens == tokens on the last id (a bar reaches 100 %) */
+  int32_t components;         /* started so far */
+  int32_t faces;              /* at the last layer end when max_faces is set, else -1 */
   double seconds;
 } silk_generate_progress;
-/* Called after every generated id, on the calling thread. */
+/* Called after every generated id (the last one included), on the calling thread. */
 typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* user_data);
-/* Polled before every id; non-zero stops the generation with SILK_ERR_CANCELLED. */
+/* Polled before point sampling, before the encoder and before every id; non-zero stops the
+ * generation with SILK_ERR_CANCELLED. */
 typedef int32_t (*silk_cancel_fn)(void* user_data);
 
 typedef enum silk_hole_policy { SILK_HOLES_OFF = 0, SILK_HOLES_REPORT = 1, SILK_HOLES_REPAIR = 2 } silk_hole_policy;
+
+/* Measurement switches (docs/runtime.md); 0 for normal use. */
+enum {
+  SILK_DEBUG_NO_SKIP_FORCED = 1,     /* run the model for forced ids too */
+  SILK_DEBUG_KV_COPY = 2,            /* naive KV cache handling */
+  SILK_DEBUG_SAMPLE_THEN_CHECK = 4,  /* sample unmasked, fall back to the mask */
+  SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report_json */
+};
 
 /* temperature, top_k, top_p, top_p_temperature and preprocessing default to -1: the model's
  * (model.json "sampling" / "preprocessing"; v2 models: 0.5, 50, 1.0, 0, Silk's kind). */
@@ -193,7 +233,7 @@ typedef struct silk_generate_params {
   double temperature;   /* 0 = greedy */
   int32_t top_k;        /* 0 = off */
   double top_p;         /* 1.0 = off */
-  int32_t max_tokens;   /* ids incl. EOS; 0 = the model's limit (default) */
+  int32_t max_tokens;   /* ids incl. EOS; 0 = the model's limit (default); else >= 14 (one triangle) */
   int32_t max_faces;    /* stop at the first layer end with >= this many faces; 0 = off */
   int32_t holes;        /* silk_hole_policy, default SILK_HOLES_OFF */
   int32_t unconstrained;/* 1: no grammar mask (mesh = legal prefix); default 0 */
@@ -204,14 +244,17 @@ typedef struct silk_generate_params {
   double top_p_temperature;  /* > 0: top-p on the top-k logits at this temperature (official chain); 0: at temperature */
   int32_t preprocessing;     /* silk_preprocess_kind with that kind's defaults */
   int32_t raw_points;        /* 1 (point clouds only): the points are the encoder input as given, output in the model's frame */
+  int32_t debug_flags;       /* SILK_DEBUG_* bits; default 0 */
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
 
 typedef enum silk_stop_reason {
+  SILK_STOP_NONE = -1, /* still running */
   SILK_STOP_EOS = 0,
   SILK_STOP_MAX_TOKENS = 1,
   SILK_STOP_MAX_FACES = 2,
-  SILK_STOP_GRAMMAR_DEAD_END = 3 /* no legal id left (a grammar bug; the closed part is returned) */
+  SILK_STOP_GRAMMAR_DEAD_END = 3, /* no legal id left (a grammar bug; the closed part is returned) */
+  SILK_STOP_CANCELLED = 4
 } silk_stop_reason;
 
 typedef struct silk_generate_stats {
@@ -229,15 +272,61 @@ typedef struct silk_generate_stats {
   int32_t vertex_manifold, nonmanifold_vertices, fan_gaps_closed, vertices_split;
 } silk_generate_stats;
 
-/* Generates from a mesh (area-weighted surface samples with normals). The result is in the
- * input's frame; silk_mesh_copy_triangle_components gives each triangle's part. out_tokens
- * and stats may be NULL. */
+/* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh). */
+typedef struct silk_generate_input {
+  const silk_mesh* mesh; /* a mesh (area-weighted surface samples with normals) or a point cloud
+                            (a silk_mesh without triangles, with normals: a seeded subset) */
+  const double* points;  /* or n_points rows of 6 doubles (x y z nx ny nz) */
+  size_t n_points;      /* (params.raw_points: the encoder's input as is, output in the model frame) */
+} silk_generate_input;
+
+/* ---- step-wise generation --------------------------------------------------------------
+ * start -> advance ... (done) -> finish. start prepares the points and runs the encoder; each
+ * advance adds ids; silk_generator_tokens / silk_generator_mesh / silk_generator_stats show
+ * the state at any point (mesh: the faces of the layers completed so far, in the input frame);
+ * finish returns the final mesh (hole policy, verdicts) and ends the generation. A new start
+ * discards an unfinished one. */
+SILK_API silk_status silk_generator_start(silk_generator* generator, const silk_generate_input* input,
+                                          const silk_generate_params* params);
+typedef enum silk_advance_until {
+  SILK_ADVANCE_IDS = 0,  /* max_ids ids (fewer if the generation ends) */
+  SILK_ADVANCE_LAYER = 1 /* up to the next completed layer, at most max_ids ids */
+} silk_advance_until;
+/* max_ids >= 1. *out_done (may be NULL) becomes 1 once a stop reason is set. A cancel (the
+ * params' cancel callback or silk_generator_cancel) returns SILK_ERR_CANCELLED and leaves the
+ * generation finishable: finish then returns the completed layers and stop reason CANCELLED. */
+SILK_API silk_status silk_generator_advance(silk_generator* generator, int32_t max_ids, int32_t until,
+                                            int32_t* out_done);
+/* Thread-safe, any time: the generation stops before its next id. */
+SILK_API void silk_generator_cancel(silk_generator* generator);
+SILK_API silk_status silk_generator_tokens(silk_generator* generator, silk_tokens** out);
+SILK_API silk_status silk_generator_mesh(silk_generator* generator, silk_mesh** out);
+/* During a generation: tokens, counters, faces of the completed layers, stop reason (NONE while
+ * running). After finish: the final figures, as silk_generate fills them. */
+SILK_API silk_status silk_generator_stats(silk_generator* generator, silk_generate_stats* out);
+/* out_mesh required, out_tokens and stats may be NULL. Before the end, it cancels first. */
+SILK_API silk_status silk_generator_finish(silk_generator* generator, silk_mesh** out_mesh, silk_tokens** out_tokens,
+                                           silk_generate_stats* stats);
+/* The last finished generation as JSON (settings, input, figures; with SILK_DEBUG_RECORD_TRACE
+ * also the encoder points and every id's legal set). Query-then-copy: out NULL/capacity 0 gives
+ * SILK_ERR_BUFFER_TOO_SMALL and *out_size = bytes needed including the terminating NUL. */
+SILK_API silk_status silk_generator_report_json(silk_generator* generator, int32_t trace, char* out, size_t capacity,
+                                                size_t* out_size);
+
+/* ---- one-call generation: start + advance to the end + finish --------------------------
+ * The result is in the input's frame; silk_mesh_copy_triangle_components gives each
+ * triangle's part. out_tokens and stats may be NULL; after a cancel, stats are still filled
+ * (stop reason CANCELLED). */
 SILK_API silk_status silk_generate(silk_generator* generator, const silk_mesh* mesh, const silk_generate_params* params,
                                    silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats);
 /* Same from a point cloud: points = n_points rows of 6 doubles (x y z nx ny nz), input frame. */
 SILK_API silk_status silk_generate_from_points(silk_generator* generator, const double* points, size_t n_points,
                                                const silk_generate_params* params, silk_mesh** out_mesh,
                                                silk_tokens** out_tokens, silk_generate_stats* stats);
+/* Same from any input. */
+SILK_API silk_status silk_generate_input_run(silk_generator* generator, const silk_generate_input* input,
+                                             const silk_generate_params* params, silk_mesh** out_mesh,
+                                             silk_tokens** out_tokens, silk_generate_stats* stats);
 
 #ifdef __cplusplus
 } /* extern "C" */

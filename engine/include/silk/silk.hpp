@@ -68,7 +68,12 @@ class Mesh {
     Check(silk_mesh_load(path.c_str(), &m));
     return Mesh(m);
   }
-  void Save(const std::string& path) const { Check(silk_mesh_save(h_.get(), path.c_str())); }
+  void Save(const std::string& path, const silk_save_params& p = silk_save_default_params()) const {
+    Check(silk_mesh_save_with_params(h_.get(), path.c_str(), &p));
+  }
+  size_t vertex_count() const { return silk_mesh_vertex_count(h_.get()); }
+  size_t triangle_count() const { return silk_mesh_triangle_count(h_.get()); }
+  bool is_point_cloud() const { return silk_mesh_has_normals(h_.get()) && triangle_count() == 0; }
   std::vector<double> positions() const {
     std::vector<double> v(3 * silk_mesh_vertex_count(h_.get()));
     if (!v.empty()) Check(silk_mesh_copy_positions(h_.get(), v.data(), v.size()));
@@ -127,7 +132,7 @@ class Model {
   std::unique_ptr<silk_model, ModelDeleter> h_;
 };
 
-// One generation at a time; keep one per thread. The model must outlive it.
+// One generation at a time; keep one per thread (it keeps its model alive).
 class Generator {
  public:
   explicit Generator(const Model& model) {
@@ -141,6 +146,49 @@ class Generator {
     silk_tokens* t = nullptr;
     Check(silk_generate(h_.get(), input.get(), &p, &m, tokens ? &t : nullptr, stats));
     return Finish(m, t, tokens);
+  }
+  Mesh Generate(const silk_generate_input& input, const silk_generate_params& p = silk_generate_default_params(),
+                silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
+    silk_mesh* m = nullptr;
+    silk_tokens* t = nullptr;
+    Check(silk_generate_input_run(h_.get(), &input, &p, &m, tokens ? &t : nullptr, stats));
+    return Finish(m, t, tokens);
+  }
+  // Step-wise (silk.h): Start, Advance until it returns true (done), Finish.
+  void Start(const silk_generate_input& input, const silk_generate_params& p = silk_generate_default_params()) {
+    Check(silk_generator_start(h_.get(), &input, &p));
+  }
+  bool Advance(int32_t max_ids, silk_advance_until until = SILK_ADVANCE_IDS) {
+    int32_t done = 0;
+    Check(silk_generator_advance(h_.get(), max_ids, until, &done));
+    return done != 0;
+  }
+  void Cancel() { silk_generator_cancel(h_.get()); }
+  Mesh MeshSoFar() {
+    silk_mesh* m = nullptr;
+    Check(silk_generator_mesh(h_.get(), &m));
+    return Mesh(m);
+  }
+  silk_generate_stats Stats() {
+    silk_generate_stats s;
+    Check(silk_generator_stats(h_.get(), &s));
+    return s;
+  }
+  Mesh Finish(silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
+    silk_mesh* m = nullptr;
+    silk_tokens* t = nullptr;
+    Check(silk_generator_finish(h_.get(), &m, tokens ? &t : nullptr, stats));
+    return Finish(m, t, tokens);
+  }
+  // The last finished generation as JSON (trace: with points and legal sets).
+  std::string ReportJson(bool trace = false) {
+    size_t size = 0;
+    silk_status s = silk_generator_report_json(h_.get(), trace ? 1 : 0, nullptr, 0, &size);
+    if (s != SILK_ERR_BUFFER_TOO_SMALL) Check(s);
+    std::string out(size, '\0');
+    Check(silk_generator_report_json(h_.get(), trace ? 1 : 0, &out[0], out.size(), &size));
+    out.resize(size ? size - 1 : 0);
+    return out;
   }
   // points: rows of x y z nx ny nz.
   Mesh GenerateFromPoints(const std::vector<double>& points,

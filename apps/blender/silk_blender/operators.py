@@ -1,0 +1,206 @@
+"""The add-on's operators: silk.generate_mesh (modal with Esc cancel, status-bar progress and a
+preview that grows per completed layer; synchronous from scripts and in background mode, with the
+same result), silk.import_tokens and silk.export_tokens."""
+from __future__ import annotations
+
+import os
+import time
+
+import bpy
+from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
+from bpy_extras.io_utils import ExportHelper, ImportHelper
+
+from . import blender_mesh, silk_api
+
+PREVIEW_NAME = "Silk preview"
+
+
+def _model_dir(path: str) -> str:
+    return bpy.path.abspath(path) if path else silk_api.BUNDLED_MODEL
+
+
+class SILK_OT_generate_mesh(bpy.types.Operator):
+    """Generate an artist-style mesh (one object per part) from the active object's surface or points"""
+
+    bl_idname = "silk.generate_mesh"
+    bl_label = "Silk: Generate Artist Mesh"
+    bl_options = {"REGISTER", "UNDO"}
+
+    seed: IntProperty(name="Seed", default=0, min=0)
+    temperature: FloatProperty(name="Temperature", default=0.5, min=0.0, max=10.0)
+    top_k: IntProperty(name="Top-k", default=50, min=0, max=10269)
+    max_faces: IntProperty(name="Max faces", description="Stop at the first layer end with this many faces (0 = off)",
+                           default=0, min=0)
+    max_tokens: IntProperty(name="Max tokens", description="Cap on generated ids (0 = the model's limit; else >= 14)",
+                            default=0, min=0)
+    model_dir: StringProperty(name="Model folder", description="Empty: the model bundled with the add-on",
+                              default="", subtype="DIR_PATH")
+    repair: EnumProperty(name="Holes", items=[("OFF", "Off", "Keep holes"), ("REPORT", "Report", "Count holes"),
+                                              ("REPAIR", "Repair", "Close small holes")], default="OFF")
+    cancel_after_steps: IntProperty(name="Cancel after steps", description="Testing: cancel after this many steps",
+                                    default=0, min=0, options={"HIDDEN", "SKIP_SAVE"})
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return obj is not None and obj.type == "MESH"
+
+    # -- shared by the modal and the synchronous path ------------------------------------------
+    def _start(self, context):
+        src = context.active_object
+        dg = context.evaluated_depsgraph_get()
+        settings = dict(seed=self.seed, temperature=self.temperature, top_k=self.top_k, max_faces=self.max_faces,
+                        max_tokens=self.max_tokens, repair=self.repair)
+        if len(src.data.polygons) > 0:
+            pos, tri = blender_mesh.mesh_arrays(src, dg)
+            with silk_api.Mesh.from_arrays(pos, tri) as m:
+                return src, silk_api.Generation(_model_dir(self.model_dir), m, None, **settings)
+        pts = blender_mesh.point_cloud_arrays(src, dg)
+        return src, silk_api.Generation(_model_dir(self.model_dir), None, pts, **settings)
+
+    def _finish(self, context, job, src):
+        mesh, stats = job.finish()
+        with mesh:
+            pos, tri, comp = mesh.arrays()
+        empty = blender_mesh.build_result(context, src, pos, tri, comp, stats)
+        self.report({"INFO"}, f"Silk: {stats['faces']} faces in {stats['components']} part(s), "
+                              f"{stats['tokens']} tokens ({stats['stop_reason']})")
+        return empty
+
+    def execute(self, context):
+        """Synchronous: scripts and background mode."""
+        try:
+            src, job = self._start(context)
+        except (silk_api.SilkError, silk_api.SilkLibraryMissing) as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        try:
+            steps = 0
+            while not job.done:
+                if self.cancel_after_steps and steps >= self.cancel_after_steps:
+                    job.cancel()
+                try:
+                    job.advance(32, until_layer=False)
+                except silk_api.SilkError as e:
+                    if e.status == silk_api.SILK_ERR_CANCELLED:
+                        self.report({"WARNING"}, "Silk: generation cancelled")
+                        return {"CANCELLED"}
+                    raise
+                steps += 1
+            self._finish(context, job, src)
+            return {"FINISHED"}
+        except silk_api.SilkError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        finally:
+            job.close()
+
+    # -- interactive: modal, Esc cancels, the preview grows per completed layer --------------------
+    def invoke(self, context, event):
+        if bpy.app.background:
+            return self.execute(context)
+        try:
+            self._src, self._job = self._start(context)
+        except (silk_api.SilkError, silk_api.SilkLibraryMissing) as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        coll = self._src.users_collection[0] if self._src.users_collection else context.scene.collection
+        self._preview = blender_mesh.new_mesh_object(PREVIEW_NAME, [], [], coll)
+        self._preview.matrix_world = self._src.matrix_world.copy()
+        self._preview.display_type = "WIRE"
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(0.05, window=context.window)
+        wm.modal_handler_add(self)
+        return {"RUNNING_MODAL"}
+
+    def _cleanup(self, context):
+        context.window_manager.event_timer_remove(self._timer)
+        context.workspace.status_text_set(None)
+        if self._preview is not None:
+            mesh = self._preview.data
+            bpy.data.objects.remove(self._preview, do_unlink=True)
+            bpy.data.meshes.remove(mesh)
+            self._preview = None
+        self._job.close()
+
+    def modal(self, context, event):
+        if event.type == "ESC":
+            self._job.cancel()
+            self._cleanup(context)
+            self.report({"WARNING"}, "Silk: generation cancelled")
+            return {"CANCELLED"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        try:
+            t_end = time.monotonic() + 0.1  # keep the UI responsive
+            while not self._job.done and time.monotonic() < t_end:
+                self._job.advance(64, until_layer=True)
+            st = self._job.stats()
+            with self._job.mesh_so_far() as m:
+                pos, tri, _ = m.arrays()
+            if len(tri) // 3 != len(self._preview.data.polygons):
+                blender_mesh.set_mesh_data(self._preview, pos, tri)
+            cap = self.max_tokens or "model limit"
+            context.workspace.status_text_set(f"Silk: {st['tokens']} / {cap} tokens, {st['faces']} faces "
+                                              f"in {st['components']} part(s) - Esc to cancel")
+            if self._job.done:
+                self._finish(context, self._job, self._src)
+                self._cleanup(context)
+                return {"FINISHED"}
+        except silk_api.SilkError as e:
+            self._cleanup(context)
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        return {"RUNNING_MODAL"}
+
+
+class SILK_OT_import_tokens(bpy.types.Operator, ImportHelper):
+    """Decode a Mesh Silksong token file (one id per line) into a mesh object"""
+
+    bl_idname = "silk.import_tokens"
+    bl_label = "Silk: Import Tokens"
+    filename_ext = ".txt"
+    filter_glob: StringProperty(default="*.txt", options={"HIDDEN"})
+
+    def execute(self, context):
+        try:
+            with silk_api.decode_file(self.filepath) as m:
+                pos, tri, _ = m.arrays()
+        except (silk_api.SilkError, silk_api.SilkLibraryMissing) as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        name = os.path.splitext(os.path.basename(self.filepath))[0]
+        verts = [tuple(pos[i:i + 3]) for i in range(0, len(pos), 3)]
+        faces = [tuple(tri[i:i + 3]) for i in range(0, len(tri), 3)]
+        obj = blender_mesh.new_mesh_object(name, verts, faces, context.collection)
+        context.view_layer.objects.active = obj
+        self.report({"INFO"}, f"Silk: {len(faces)} faces from {len(verts)} vertices")
+        return {"FINISHED"}
+
+
+class SILK_OT_export_tokens(bpy.types.Operator, ExportHelper):
+    """Tokenize the active mesh (evaluated, object frame) into a token file"""
+
+    bl_idname = "silk.export_tokens"
+    bl_label = "Silk: Export Tokens"
+    filename_ext = ".txt"
+    filter_glob: StringProperty(default="*.txt", options={"HIDDEN"})
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return obj is not None and obj.type == "MESH"
+
+    def execute(self, context):
+        try:
+            pos, tri = blender_mesh.mesh_arrays(context.active_object, context.evaluated_depsgraph_get())
+            with silk_api.Mesh.from_arrays(pos, tri) as m:
+                silk_api.encode_to_file(m, self.filepath)
+        except (silk_api.SilkError, silk_api.SilkLibraryMissing) as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"Silk: tokens written to {self.filepath}")
+        return {"FINISHED"}
+
+
+CLASSES = (SILK_OT_generate_mesh, SILK_OT_import_tokens, SILK_OT_export_tokens)

@@ -1,0 +1,1 @@
+../../../export/silk_export/silk_c.py

@@ -1,0 +1,382 @@
+// C API: the step-wise generator (start / advance / query / cancel / finish) and the one-call
+// silk_generate* conveniences over it. Input -> model points (once) -> tokens -> mesh in the
+// input frame.
+#if defined(SILK_HAVE_RUNTIME)
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+#include "capi/capi_generator.h"
+
+using silk::capi::BusyLock;
+using silk::capi::Guard;
+using silk::capi::Ok;
+using silk::capi::SetError;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr int32_t kAllDebugFlags =
+    SILK_DEBUG_NO_SKIP_FORCED | SILK_DEBUG_KV_COPY | SILK_DEBUG_SAMPLE_THEN_CHECK | SILK_DEBUG_RECORD_TRACE;
+
+silk_status Busy(const char* function) {
+  return SetError(SILK_ERR_BUSY, std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
+}
+
+// Checks the C params (enum and flag ranges) and maps them onto the runtime's options; negative
+// sampling fields take the model's defaults (model.json "sampling").
+silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, const silk::ModelConfig& config) {
+  if (p.holes < SILK_HOLES_OFF || p.holes > SILK_HOLES_REPAIR)
+    return silk::InvalidArgument("holes " + std::to_string(p.holes) + " is not a silk_hole_policy (0..2)");
+  if (p.unconstrained != 0 && p.unconstrained != 1) return silk::InvalidArgument("unconstrained takes 0 or 1");
+  if (p.debug_flags & ~kAllDebugFlags)
+    return silk::InvalidArgument("debug_flags " + std::to_string(p.debug_flags) + " has unknown bits");
+  if (p.n_points < 0) return silk::InvalidArgument("n_points is negative");
+  if (p.preprocessing < -1 || p.preprocessing > SILK_PREPROCESS_OFFICIAL)
+    return silk::InvalidArgument("preprocessing " + std::to_string(p.preprocessing) +
+                                 " is not a silk_preprocess_kind (-1 = the model's, 0..1)");
+  if (p.raw_points != 0 && p.raw_points != 1) return silk::InvalidArgument("raw_points takes 0 or 1");
+  silk::GenerateOptions o;
+  o.sampling = config.sampling;
+  o.sampling.seed = p.seed;
+  if (p.temperature >= 0) o.sampling.temperature = p.temperature;
+  if (p.top_k >= 0) o.sampling.top_k = p.top_k;
+  if (p.top_p >= 0) o.sampling.top_p = p.top_p;
+  if (p.top_p_temperature >= 0) o.sampling.top_p_temperature = p.top_p_temperature;
+  o.max_tokens = p.max_tokens;
+  o.max_faces = p.max_faces;
+  o.holes = p.holes == SILK_HOLES_REPAIR ? silk::HolePolicy::kRepair
+            : p.holes == SILK_HOLES_REPORT ? silk::HolePolicy::kReport : silk::HolePolicy::kOff;
+  o.unconstrained = p.unconstrained != 0;
+  o.skip_forced = !(p.debug_flags & SILK_DEBUG_NO_SKIP_FORCED);
+  o.kv_in_place = !(p.debug_flags & SILK_DEBUG_KV_COPY);
+  o.order = (p.debug_flags & SILK_DEBUG_SAMPLE_THEN_CHECK) ? silk::SampleOrder::kSampleThenCheck
+                                                          : silk::SampleOrder::kMaskFirst;
+  o.record_trace = (p.debug_flags & SILK_DEBUG_RECORD_TRACE) != 0;
+  SILK_RETURN_IF_ERROR(silk::CheckGenerateOptions(o));
+  return o;
+}
+
+// The user's callbacks plus the generator's own cancel flag (silk_generator_cancel).
+silk::GenerateCallbacks ToCallbacks(silk_generator* g, const silk_generate_params& p) {
+  silk::GenerateCallbacks cb;
+  if (p.progress) {
+    cb.progress = [fn = p.progress, user = p.user_data](const silk::GenerateProgress& x) {
+      silk_generate_progress c{x.tokens, x.max_tokens, x.components, x.faces, x.seconds};
+      fn(&c, user);
+    };
+  }
+  cb.cancel = [g, fn = p.cancel, user = p.user_data]() {
+    return g->cancel_requested.load() || (fn && fn(user) != 0);
+  };
+  return cb;
+}
+
+// The caller's input as the runtime's GenerationInput (mesh, point cloud, or raw points).
+silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in) {
+  if ((in.mesh != nullptr) == (in.points != nullptr)) return silk::InvalidArgument("give exactly one of mesh, points");
+  silk::GenerationInput out;
+  if (in.mesh) {
+    out.mesh = in.mesh->mesh;
+    out.normals = in.mesh->normals;
+    out.point_cloud = out.mesh.triangles.empty() && !out.normals.empty();
+  } else {
+    if (in.n_points == 0) return silk::InvalidArgument("no points");
+    if (in.n_points > (size_t{1} << 26)) return silk::InvalidArgument("more than 2^26 points");
+    out.point_cloud = true;
+    out.mesh.positions.resize(in.n_points);
+    out.normals.resize(in.n_points);
+    for (size_t i = 0; i < in.n_points; ++i)
+      for (int a = 0; a < 3; ++a) {
+        out.mesh.positions[i][a] = in.points[6 * i + a];
+        out.normals[i][a] = in.points[6 * i + 3 + a];
+      }
+  }
+  SILK_RETURN_IF_ERROR(silk::ValidateGenerationInput(out));
+  return out;
+}
+
+// Prepares the encoder's points: raw ones as given (RawModelPoints), else the model's
+// pre-processing (model.json "preprocessing", or the kind the params name).
+silk::Status PreparePoints(silk_generator* g, const silk::GenerationInput& in, const silk_generate_params& p) {
+  const silk::ModelConfig& cfg = g->model->config();
+  silk::PreprocessingParams prep = silk::ModelPreprocessing(cfg, p.n_points);
+  if (p.preprocessing >= 0 && p.preprocessing != static_cast<int32_t>(prep.kind))
+    prep = p.preprocessing == SILK_PREPROCESS_OFFICIAL ? silk::OfficialPreprocessing(prep.n_points)
+                                                       : silk::SilkPreprocessing(prep.normalize_bound, prep.n_points);
+  SILK_ASSIGN_OR_RETURN(silk::PreparedPoints pts, p.raw_points ? silk::RawModelPoints(in, cfg.dims.n_points)
+                                                               : silk::PrepareModelPoints(in, prep, p.seed));
+  g->points = std::move(pts.rows);
+  g->transform = pts.transform;
+  g->settings.preprocessing = p.raw_points ? "raw" : silk::PreprocessingKindName(prep.kind);
+  return silk::Status::Ok();
+}
+
+silk_status Start(silk_generator* g, const silk_generate_input& input, const silk_generate_params& p) {
+  auto options = ToOptions(p, g->model->config());
+  if (!options.ok()) return SetError(options.status().WithContext("silk_generator_start: "));
+  // Input problems name the input's file when it came from one.
+  const std::string context = input.mesh && !input.mesh->source.empty() ? input.mesh->source + ": " : "input: ";
+  auto in = ToInput(input);
+  if (!in.ok()) return SetError(in.status().WithContext(context));
+  g->has_result = false;
+  g->cancel_requested.store(false);
+  GenerationSettings& s = g->settings;
+  s = GenerationSettings{};
+  s.input_name = input.mesh ? (input.mesh->source.empty() ? "mesh" : input.mesh->source) : "points";
+  s.point_cloud = in->point_cloud;
+  s.raw = p.raw_points != 0;
+  s.input_vertices = static_cast<int32_t>(in->mesh.positions.size());
+  s.input_faces = static_cast<int32_t>(in->mesh.triangles.size());
+  s.params = p;
+  s.options = *options;
+  const silk::GenerateCallbacks cb = ToCallbacks(g, p);
+  if (cb.cancel()) return SetError(SILK_ERR_CANCELLED, "generation cancelled");
+  const auto t0 = Clock::now();
+  if (silk::Status st = PreparePoints(g, *in, p); !st.ok())
+    return SetError(st.WithContext(context));
+  g->prepare_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  s.points = static_cast<int32_t>(g->points.size() / 6);
+  return SetError(g->generator.Start(g->points, *options, cb));
+}
+
+silk_status Advance(silk_generator* g, int32_t max_ids, int32_t until) {
+  const int64_t layers = g->generator.layers_closed();
+  for (int32_t i = 0; i < max_ids && !g->generator.finished(); ++i) {
+    if (silk::Status st = g->generator.Step(); !st.ok()) return SetError(st);
+    if (until == SILK_ADVANCE_LAYER && g->generator.layers_closed() > layers) break;
+  }
+  return Ok();
+}
+
+// Finishes the generation: final mesh in the input frame, verdicts, figures.
+silk_status Finish(silk_generator* g, silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+  auto r = g->generator.Finish();
+  if (!r.ok()) return SetError(r.status());
+  g->result = std::move(*r);
+  silk::GeneratedMesh output = silk::FinishOutput(&g->result, g->transform);
+  silk::GenerationStats& st = g->result.stats;
+  st.seconds.load_input += g->prepare_seconds;
+  st.seconds.total = st.seconds.load_input + st.generation_seconds + st.seconds.build_mesh;
+  g->has_result = true;
+  auto mesh = std::make_unique<silk_mesh>();
+  mesh->mesh = std::move(output.mesh);
+  mesh->triangle_component = std::move(output.triangle_component);
+  std::unique_ptr<silk_tokens> tokens;
+  if (out_tokens) {
+    tokens = std::make_unique<silk_tokens>();
+    tokens->ids = g->result.tokens;
+  }
+  if (stats) silk::capi::FillStats(st, stats);
+  silk::capi::Log(SILK_LOG_DEBUG, "generated " + std::to_string(st.tokens) + " ids (" + st.stop_reason + ") -> " +
+                                      std::to_string(st.faces) + " faces");
+  *out_mesh = mesh.release();
+  if (out_tokens) *out_tokens = tokens.release();
+  return Ok();
+}
+
+// start + advance to the end + finish; a cancel still fills the stats.
+silk_status RunAll(silk_generator* g, const silk_generate_input& input, const silk_generate_params* params,
+                   silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+  const silk_generate_params p = params ? *params : silk_generate_default_params();
+  if (stats) std::memset(stats, 0, sizeof(*stats));
+  silk_status s = Start(g, input, p);
+  if (s == SILK_OK) s = Advance(g, INT32_MAX, SILK_ADVANCE_IDS);
+  if (s == SILK_ERR_CANCELLED) {
+    const std::string message = silk_last_error();
+    if (stats) {
+      silk::capi::FillStats(g->generator.stats(), stats);
+      stats->stop_reason = SILK_STOP_CANCELLED;
+    }
+    if (g->generator.active()) {  // release the generation; its mesh is not returned
+      silk_mesh* discard = nullptr;
+      if (Finish(g, &discard, nullptr, nullptr) == SILK_OK) delete discard;
+    }
+    return SetError(SILK_ERR_CANCELLED, message);
+  }
+  if (s != SILK_OK) return s;
+  return Finish(g, out_mesh, out_tokens, stats);
+}
+
+}  // namespace
+
+extern "C" {
+
+silk_generate_params silk_generate_default_params(void) {
+  silk_generate_params p;
+  std::memset(&p, 0, sizeof(p));
+  p.seed = 0;
+  p.temperature = -1;  // the model's (model.json "sampling")
+  p.top_k = -1;
+  p.top_p = -1;
+  p.top_p_temperature = -1;
+  p.preprocessing = -1;  // the model's (model.json "preprocessing")
+  p.holes = SILK_HOLES_OFF;
+  return p;
+}
+
+silk_status silk_generator_create(const silk_model* model, silk_generator** out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(out, "silk_generator_create: out is NULL");
+    *out = nullptr;
+    SILK_CAPI_REQUIRE(model, "silk_generator_create: model is NULL");
+    *out = new silk_generator(model->model);
+    return Ok();
+  });
+}
+
+void silk_generator_destroy(silk_generator* generator) { delete generator; }
+
+silk_status silk_generator_start(silk_generator* g, const silk_generate_input* input, const silk_generate_params* params) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(g && input, "silk_generator_start: generator or input is NULL");
+    BusyLock lock(g);
+    if (!lock.ok()) return Busy("silk_generator_start");
+    return Start(g, *input, params ? *params : silk_generate_default_params());
+  });
+}
+
+silk_status silk_generator_advance(silk_generator* g, int32_t max_ids, int32_t until, int32_t* out_done) {
+  return Guard([&] {
+    if (out_done) *out_done = 0;
+    SILK_CAPI_REQUIRE(g, "silk_generator_advance: generator is NULL");
+    SILK_CAPI_REQUIRE(max_ids >= 1, "silk_generator_advance: max_ids must be at least 1");
+    SILK_CAPI_REQUIRE(until == SILK_ADVANCE_IDS || until == SILK_ADVANCE_LAYER,
+                      "silk_generator_advance: until is not a silk_advance_until (0..1)");
+    BusyLock lock(g);
+    if (!lock.ok()) return Busy("silk_generator_advance");
+    if (!g->generator.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_advance: no generation started");
+    const silk_status s = Advance(g, max_ids, until);
+    if (out_done) *out_done = g->generator.finished() ? 1 : 0;
+    return s;
+  });
+}
+
+void silk_generator_cancel(silk_generator* g) {
+  if (g) g->cancel_requested.store(true);
+}
+
+silk_status silk_generator_tokens(silk_generator* g, silk_tokens** out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(g && out, "silk_generator_tokens: NULL argument");
+    *out = nullptr;
+    BusyLock lock(g);
+    if (!lock.ok()) return Busy("silk_generator_tokens");
+    auto t = std::make_unique<silk_tokens>();
+    t->ids = g->generator.active() ? g->generator.tokens() : g->result.tokens;
+    *out = t.release();
+    return Ok();
+  });
+}
+
+silk_status silk_generator_mesh(silk_generator* g, silk_mesh** out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(g && out, "silk_generator_mesh: NULL argument");
+    *out = nullptr;
+    BusyLock lock(g);
+    if (!lock.ok()) return Busy("silk_generator_mesh");
+    if (!g->generator.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_mesh: no generation in progress");
+    auto so_far = g->generator.MeshSoFar();
+    if (!so_far.ok()) return SetError(so_far.status());
+    silk::GeneratedMesh m = silk::ToInputFrame(*so_far, g->transform);
+    auto h = std::make_unique<silk_mesh>();
+    h->mesh = std::move(m.mesh);
+    h->triangle_component = std::move(m.triangle_component);
+    *out = h.release();
+    return Ok();
+  });
+}
+
+silk_status silk_generator_stats(silk_generator* g, silk_generate_stats* out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(g && out, "silk_generator_stats: NULL argument");
+    BusyLock lock(g);
+    if (!lock.ok()) return Busy("silk_generator_stats");
+    if (!g->generator.active()) {
+      silk::capi::FillStats(g->result.stats, out);
+      return Ok();
+    }
+    silk::capi::FillStats(g->generator.stats(), out);
+    auto so_far = g->generator.MeshSoFar();
+    if (so_far.ok()) {
+      out->faces = static_cast<int32_t>(so_far->faces.size());
+      out->vertices = static_cast<int32_t>(so_far->positions.size());
+      out->components = so_far->components;
+    }
+    return Ok();
+  });
+}
+
+silk_status silk_generator_finish(silk_generator* g, silk_mesh** out_mesh, silk_tokens** out_tokens,
+                                  silk_generate_stats* stats) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(out_mesh, "silk_generator_finish: out_mesh is NULL");
+    *out_mesh = nullptr;
+    if (out_tokens) *out_tokens = nullptr;
+    SILK_CAPI_REQUIRE(g, "silk_generator_finish: generator is NULL");
+    BusyLock lock(g);
+    if (!lock.ok()) return Busy("silk_generator_finish");
+    if (!g->generator.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_finish: no generation started");
+    return Finish(g, out_mesh, out_tokens, stats);
+  });
+}
+
+silk_status silk_generator_report_json(silk_generator* g, int32_t trace, char* out, size_t capacity, size_t* out_size) {
+  return Guard([&] {
+    if (out_size) *out_size = 0;
+    SILK_CAPI_REQUIRE(g, "silk_generator_report_json: generator is NULL");
+    SILK_CAPI_REQUIRE(trace == 0 || trace == 1, "silk_generator_report_json: trace takes 0 or 1");
+    BusyLock lock(g);
+    if (!lock.ok()) return Busy("silk_generator_report_json");
+    if (!g->has_result) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_report_json: no finished generation");
+    if (trace && !(g->settings.params.debug_flags & SILK_DEBUG_RECORD_TRACE))
+      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_report_json: the generation ran without SILK_DEBUG_RECORD_TRACE");
+    const std::string json = silk::capi::ReportJson(*g, trace != 0);
+    if (out_size) *out_size = json.size() + 1;
+    if (silk_status c = silk::capi::CheckCopy("silk_generator_report_json", out, capacity, json.size() + 1); c != SILK_OK)
+      return c;
+    std::memcpy(out, json.c_str(), json.size() + 1);
+    return Ok();
+  });
+}
+
+silk_status silk_generate_input_run(silk_generator* g, const silk_generate_input* input, const silk_generate_params* params,
+                                    silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(out_mesh, "silk_generate: out_mesh is NULL");
+    *out_mesh = nullptr;
+    if (out_tokens) *out_tokens = nullptr;
+    SILK_CAPI_REQUIRE(g && input, "silk_generate: generator or input is NULL");
+    BusyLock lock(g);
+    if (!lock.ok()) return Busy("silk_generate");
+    return RunAll(g, *input, params, out_mesh, out_tokens, stats);
+  });
+}
+
+silk_status silk_generate(silk_generator* g, const silk_mesh* mesh, const silk_generate_params* params,
+                          silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+  if (!mesh) {
+    if (out_mesh) *out_mesh = nullptr;
+    return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generate: generator or mesh is NULL");
+  }
+  silk_generate_input in{};
+  in.mesh = mesh;
+  return silk_generate_input_run(g, &in, params, out_mesh, out_tokens, stats);
+}
+
+silk_status silk_generate_from_points(silk_generator* g, const double* points, size_t n_points,
+                                      const silk_generate_params* params, silk_mesh** out_mesh,
+                                      silk_tokens** out_tokens, silk_generate_stats* stats) {
+  if (!points || n_points == 0) {
+    if (out_mesh) *out_mesh = nullptr;
+    return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generate_from_points: no generator or no points");
+  }
+  silk_generate_input in{};
+  in.points = points;
+  in.n_points = n_points;
+  return silk_generate_input_run(g, &in, params, out_mesh, out_tokens, stats);
+}
+
+}  // extern "C"
+#endif

@@ -1,0 +1,72 @@
+// C API generation entry points of a libsilk built without onnxruntime: they exist (the ABI is
+// the same) and answer SILK_ERR_UNSUPPORTED.
+#if !defined(SILK_HAVE_RUNTIME)
+#include <cstring>
+
+#include "capi/capi_internal.h"
+
+namespace {
+constexpr const char* kNoRuntime = "this libsilk was built without onnxruntime (no generation)";
+silk_status NoRuntime() { return silk::capi::SetError(SILK_ERR_UNSUPPORTED, kNoRuntime); }
+}  // namespace
+
+extern "C" {
+
+int32_t silk_generation_available(void) { return 0; }
+silk_model_options silk_model_default_options(void) { return silk_model_options{0, SILK_DECODER_DEFAULT}; }
+silk_generate_params silk_generate_default_params(void) {
+  silk_generate_params p;
+  std::memset(&p, 0, sizeof(p));
+  p.temperature = -1;
+  p.top_k = -1;
+  p.top_p = -1;
+  p.top_p_temperature = -1;
+  p.preprocessing = -1;
+  return p;
+}
+silk_status silk_model_load(const char*, const silk_model_options*, silk_model** out) {
+  if (out) *out = nullptr;
+  return NoRuntime();
+}
+void silk_model_destroy(silk_model*) {}
+silk_status silk_model_get_info(const silk_model*, silk_model_info*) { return NoRuntime(); }
+silk_status silk_model_get_preprocess_params(const silk_model*, silk_preprocess_params*) { return NoRuntime(); }
+silk_status silk_generator_create(const silk_model*, silk_generator** out) {
+  if (out) *out = nullptr;
+  return NoRuntime();
+}
+void silk_generator_destroy(silk_generator*) {}
+silk_status silk_generator_start(silk_generator*, const silk_generate_input*, const silk_generate_params*) {
+  return NoRuntime();
+}
+silk_status silk_generator_advance(silk_generator*, int32_t, int32_t, int32_t* done) {
+  if (done) *done = 0;
+  return NoRuntime();
+}
+void silk_generator_cancel(silk_generator*) {}
+silk_status silk_generator_tokens(silk_generator*, silk_tokens**) { return NoRuntime(); }
+silk_status silk_generator_mesh(silk_generator*, silk_mesh**) { return NoRuntime(); }
+silk_status silk_generator_stats(silk_generator*, silk_generate_stats*) { return NoRuntime(); }
+silk_status silk_generator_finish(silk_generator*, silk_mesh** m, silk_tokens**, silk_generate_stats*) {
+  if (m) *m = nullptr;
+  return NoRuntime();
+}
+silk_status silk_generator_report_json(silk_generator*, int32_t, char*, size_t, size_t*) { return NoRuntime(); }
+silk_status silk_generate_input_run(silk_generator*, const silk_generate_input*, const silk_generate_params*,
+                                    silk_mesh** m, silk_tokens**, silk_generate_stats*) {
+  if (m) *m = nullptr;
+  return NoRuntime();
+}
+silk_status silk_generate(silk_generator*, const silk_mesh*, const silk_generate_params*, silk_mesh** m, silk_tokens**,
+                          silk_generate_stats*) {
+  if (m) *m = nullptr;
+  return NoRuntime();
+}
+silk_status silk_generate_from_points(silk_generator*, const double*, size_t, const silk_generate_params*, silk_mesh** m,
+                                      silk_tokens**, silk_generate_stats*) {
+  if (m) *m = nullptr;
+  return NoRuntime();
+}
+
+}  // extern "C"
+#endif

@@ -1,0 +1,146 @@
+// The one JSON report of a generation (silkgen --stats/--trace, silk_generator_report_json) and
+// the one mapping of GenerationStats onto silk_generate_stats. nlohmann::ordered_json keeps the
+// keys in a readable order; trace floats have 9 significant digits so float32 reads back exactly.
+#if defined(SILK_HAVE_RUNTIME)
+#include <cstdio>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "capi/capi_generator.h"
+
+namespace silk::capi {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+const char* HolesName(int32_t h) {
+  return h == SILK_HOLES_REPAIR ? "repair" : h == SILK_HOLES_REPORT ? "report" : "off";
+}
+
+Json SettingsJson(const silk_generator& g) {
+  const silk_generate_params& p = g.settings.params;
+  const SamplingParams& sp = g.settings.options.sampling;  // resolved: model.json defaults applied
+  return Json{{"input", g.settings.input_name},
+              {"model", g.model->config().dir},
+              {"model_config", g.model->config().config_name},
+              {"point_cloud_input", g.settings.point_cloud},
+              {"seed", sp.seed},
+              {"temperature", sp.temperature},
+              {"top_k", sp.top_k},
+              {"top_p", sp.top_p},
+              {"top_p_temperature", sp.top_p_temperature},
+              {"preprocessing", g.settings.preprocessing},
+              {"max_tokens", p.max_tokens},
+              {"max_faces", p.max_faces},
+              {"repair", HolesName(p.holes)},
+              {"unconstrained", p.unconstrained != 0}};
+}
+
+Json StatsJson(const silk_generator& g) {
+  const GenerationStats& st = g.result.stats;
+  Json j;
+  j["settings"] = SettingsJson(g);
+  j["input"] = {{"vertices", g.settings.input_vertices}, {"faces", g.settings.input_faces}, {"points", g.settings.points}};
+  j["tokens"] = st.tokens;
+  j["stop_reason"] = st.stop_reason;
+  if (!st.dead_end.empty()) j["grammar_dead_end"] = st.dead_end;
+  j["faces"] = st.faces;
+  j["vertices"] = st.vertices;
+  j["components"] = st.components;
+  j["forced_tokens"] = st.forced_tokens;
+  j["forced_share"] = st.forced_share();
+  j["sampled_tokens"] = st.sampled_tokens;
+  j["model_calls"] = st.model_calls;
+  j["tokens_per_second"] = st.tokens_per_second;
+  j["threads"] = st.threads;
+  j["int8"] = st.int8;
+  j["decoder"] = st.decoder;
+  j["kv_cache_bytes"] = st.kv_cache_bytes;
+  j["seconds"] = {{"load_input", st.seconds.load_input}, {"encoder", st.seconds.encoder},
+                  {"decoder", st.seconds.decoder},       {"grammar", st.seconds.grammar},
+                  {"sampling", st.seconds.sampling},     {"build_mesh", st.seconds.build_mesh},
+                  {"total", st.seconds.total}};
+  j["repairs"] = {{"holes_found", st.holes_found}, {"holes_repaired", st.holes_repaired},
+                  {"faces_added", st.faces_added}, {"window_findings", st.window_findings},
+                  {"fan_gaps_closed", st.fan_gaps_closed}, {"vertices_split", st.vertices_split}};
+  j["verdicts"] = {{"edge_manifold", st.edge_manifold}, {"vertex_manifold", st.vertex_manifold},
+                   {"nonmanifold_vertices", st.nonmanifold_vertices}, {"watertight", st.watertight},
+                   {"consistently_oriented", st.consistently_oriented}, {"open_edges", st.open_edges}};
+  if (g.settings.params.unconstrained)
+    j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};
+  return j;
+}
+
+Json TraceJson(const silk_generator& g) {
+  Json j;
+  j["settings"] = SettingsJson(g);
+  std::string pts = "[";
+  char buf[32];
+  for (size_t i = 0; i < g.points.size(); ++i) {
+    std::snprintf(buf, sizeof(buf), "%s%.9g", i ? "," : "", static_cast<double>(g.points[i]));
+    pts += buf;
+  }
+  pts += "]";
+  j["points"] = Json::parse(pts);
+  j["tokens"] = g.result.tokens;
+  Json steps = Json::array();
+  for (const TraceStep& s : g.result.trace) {
+    Json legal = Json::array();
+    for (const auto& [b, e] : s.legal) legal.push_back({b, e});
+    steps.push_back({{"id", s.id}, {"forced", s.forced}, {"legal", legal}});
+  }
+  j["steps"] = steps;
+  return j;
+}
+
+}  // namespace
+
+std::string ReportJson(const silk_generator& g, bool trace) {
+  return trace ? TraceJson(g).dump() + "\n" : StatsJson(g).dump(2) + "\n";
+}
+
+int32_t StopCode(const std::string& reason) {
+  if (reason.empty()) return SILK_STOP_NONE;
+  if (reason == "max_tokens") return SILK_STOP_MAX_TOKENS;
+  if (reason == "max_faces") return SILK_STOP_MAX_FACES;
+  if (reason == "grammar_dead_end") return SILK_STOP_GRAMMAR_DEAD_END;
+  if (reason == "cancelled") return SILK_STOP_CANCELLED;
+  return SILK_STOP_EOS;
+}
+
+void FillStats(const GenerationStats& s, silk_generate_stats* out) {
+  std::memset(out, 0, sizeof(*out));
+  out->tokens = s.tokens;
+  out->forced_tokens = s.forced_tokens;
+  out->sampled_tokens = s.sampled_tokens;
+  out->model_calls = s.model_calls;
+  out->stop_reason = StopCode(s.stop_reason);
+  out->faces = s.faces;
+  out->vertices = s.vertices;
+  out->components = s.components;
+  out->holes_found = s.holes_found;
+  out->holes_repaired = s.holes_repaired;
+  out->faces_added = s.faces_added;
+  out->edge_manifold = s.edge_manifold;
+  out->watertight = s.watertight;
+  out->consistently_oriented = s.consistently_oriented;
+  out->open_edges = s.open_edges;
+  out->illegal_at = s.illegal_at;
+  out->tokens_per_second = s.tokens_per_second;
+  out->seconds_prepare = s.seconds.load_input;
+  out->seconds_encoder = s.seconds.encoder;
+  out->seconds_decoder = s.seconds.decoder;
+  out->seconds_grammar = s.seconds.grammar;
+  out->seconds_sampling = s.seconds.sampling;
+  out->seconds_build_mesh = s.seconds.build_mesh;
+  out->seconds_total = s.seconds.total;
+  out->vertex_manifold = s.vertex_manifold;
+  out->nonmanifold_vertices = s.nonmanifold_vertices;
+  out->fan_gaps_closed = s.fan_gaps_closed;
+  out->vertices_split = s.vertices_split;
+}
+
+}  // namespace silk::capi
+#endif

@@ -1,0 +1,177 @@
+"""The C declarations of libsilk's API (engine/include/silk/silk.h) for ctypes: status codes,
+structs and function signatures, in one place for every Python client (export/silk_export's
+libsilk.py and the Blender add-on, whose zip carries a copy). Pure ctypes, no numpy."""
+from __future__ import annotations
+
+import ctypes
+
+_c_int32_p = ctypes.POINTER(ctypes.c_int32)
+_c_double_p = ctypes.POINTER(ctypes.c_double)
+
+SILK_OK = 0
+SILK_ERR_INVALID_ARGUMENT = 1
+SILK_ERR_REFUSED = 5
+SILK_ERR_CANCELLED = 7
+SILK_ERR_BUFFER_TOO_SMALL = 9
+SILK_ERR_BUSY = 10
+STOP_REASONS = {-1: "running", 0: "eos", 1: "max_tokens", 2: "max_faces", 3: "grammar_dead_end", 4: "cancelled"}
+HOLES = {"off": 0, "report": 1, "repair": 2}
+
+
+class VocabInfo(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_int32) for n in (
+        "token_format_version", "format_vocab_size", "eos_id", "pad_id", "model_vocab_size",
+        "c_id", "u_id", "e_id", "x_begin", "x_end", "s_begin", "s_end", "b_begin", "b_end",
+        "k_begin", "k_end", "o_begin", "o_end", "quant_bins", "layer_vertex_limit",
+        "layer_count_limit", "max_faces", "max_seq_length")]
+
+
+class EncodeParams(ctypes.Structure):
+    _fields_ = [("normalize", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
+                ("nonmanifold_processing", ctypes.c_int32)]
+
+
+class EncodeStats(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_int32) for n in (
+        "input_vertices", "input_faces", "processed_vertices", "processed_faces",
+        "emitted_vertices", "encodable_faces", "components_found", "components_encoded",
+        "components_dropped_small", "layers", "max_layer_size", "max_layer_count")] + [
+        ("tokens", ctypes.c_int64), ("seconds", ctypes.c_double)]
+
+    def as_dict(self) -> dict:
+        return {name: getattr(self, name) for name, _ in self._fields_}
+
+
+class DecodeParams(ctypes.Structure):
+    _fields_ = [("grid_coordinates", ctypes.c_int32)]
+
+
+class PreprocessParams(ctypes.Structure):
+    _fields_ = [("kind", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
+                ("merge_distance_fraction", ctypes.c_double), ("surface_samples", ctypes.c_int32),
+                ("round_float16", ctypes.c_int32), ("n_points", ctypes.c_int32)]
+
+
+PREPROCESS_KINDS = {"silk": 0, "official": 1}
+DECODERS = {"default": 0, "int8": 1, "fp32": 2, "int4": 3}  # silk_decoder_precision
+
+
+class ModelOptions(ctypes.Structure):
+    _fields_ = [("threads", ctypes.c_int32), ("decoder", ctypes.c_int32)]  # silk_decoder_precision
+
+
+class ModelInfo(ctypes.Structure):
+    _fields_ = [("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in (
+        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8",
+        "decoder", "arch", "encoder_points")]
+
+
+class GenerateProgress(ctypes.Structure):
+    _fields_ = [("tokens", ctypes.c_int64), ("max_tokens", ctypes.c_int64), ("components", ctypes.c_int32),
+                ("faces", ctypes.c_int32), ("seconds", ctypes.c_double)]
+
+
+PROGRESS_FN = ctypes.CFUNCTYPE(None, ctypes.POINTER(GenerateProgress), ctypes.c_void_p)
+CANCEL_FN = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_void_p)
+
+
+class GenerateParams(ctypes.Structure):
+    _fields_ = [("seed", ctypes.c_uint64), ("temperature", ctypes.c_double), ("top_k", ctypes.c_int32),
+                ("top_p", ctypes.c_double), ("max_tokens", ctypes.c_int32), ("max_faces", ctypes.c_int32),
+                ("holes", ctypes.c_int32), ("unconstrained", ctypes.c_int32), ("n_points", ctypes.c_int32),
+                ("progress", PROGRESS_FN), ("cancel", CANCEL_FN), ("user_data", ctypes.c_void_p),
+                ("top_p_temperature", ctypes.c_double), ("preprocessing", ctypes.c_int32),
+                ("raw_points", ctypes.c_int32), ("debug_flags", ctypes.c_int32)]
+
+
+class GenerateStats(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_int64) for n in ("tokens", "forced_tokens", "sampled_tokens", "model_calls")] + [
+        (n, ctypes.c_int32) for n in ("stop_reason", "faces", "vertices", "components", "holes_found",
+                                      "holes_repaired", "faces_added", "edge_manifold", "watertight",
+                                      "consistently_oriented", "open_edges")] + [
+        ("illegal_at", ctypes.c_int64), ("tokens_per_second", ctypes.c_double)] + [
+        (n, ctypes.c_double) for n in ("seconds_prepare", "seconds_encoder", "seconds_decoder", "seconds_grammar",
+                                       "seconds_sampling", "seconds_build_mesh", "seconds_total")] + [
+        (n, ctypes.c_int32) for n in ("vertex_manifold", "nonmanifold_vertices", "fan_gaps_closed", "vertices_split")]
+
+    def as_dict(self) -> dict:
+        d = {name: getattr(self, name) for name, _ in self._fields_}
+        d["stop_reason"] = STOP_REASONS.get(self.stop_reason, str(self.stop_reason))
+        return d
+
+
+class GenerateInput(ctypes.Structure):
+    _fields_ = [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("n_points", ctypes.c_size_t)]
+
+
+SIGNATURES = {
+    "silk_last_error": (ctypes.c_char_p, []),
+    "silk_status_name": (ctypes.c_char_p, [ctypes.c_int]),
+    "silk_version": (ctypes.c_char_p, []),
+    "silk_vocab": (VocabInfo, []),
+    "silk_mesh_create": (ctypes.c_int, [_c_double_p, ctypes.c_size_t, _c_int32_p, ctypes.c_size_t,
+                                        ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_mesh_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_mesh_save": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p]),
+    "silk_mesh_destroy": (None, [ctypes.c_void_p]),
+    "silk_mesh_vertex_count": (ctypes.c_size_t, [ctypes.c_void_p]),
+    "silk_mesh_triangle_count": (ctypes.c_size_t, [ctypes.c_void_p]),
+    "silk_mesh_copy_positions": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t]),
+    "silk_mesh_copy_triangles": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
+    "silk_mesh_copy_triangle_components": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
+    "silk_tokens_create": (ctypes.c_int, [_c_int32_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_tokens_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_tokens_save": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p]),
+    "silk_tokens_destroy": (None, [ctypes.c_void_p]),
+    "silk_tokens_count": (ctypes.c_size_t, [ctypes.c_void_p]),
+    "silk_tokens_copy": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
+    "silk_encode_default_params": (EncodeParams, []),
+    "silk_encode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams),
+                                   ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(EncodeStats)]),
+    "silk_preprocess_default_params": (PreprocessParams, [ctypes.c_int32]),
+    "silk_prepare_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
+                                           ctypes.POINTER(PreprocessParams), ctypes.c_uint64,
+                                           ctypes.POINTER(ctypes.c_float), ctypes.c_size_t,
+                                           ctypes.POINTER(ctypes.c_size_t), _c_double_p]),
+    "silk_model_get_preprocess_params": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(PreprocessParams)]),
+    "silk_decode_default_params": (DecodeParams, []),
+    "silk_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
+                                   ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_generation_available": (ctypes.c_int32, []),
+    "silk_model_default_options": (ModelOptions, []),
+    "silk_model_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ModelOptions),
+                                       ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_model_destroy": (None, [ctypes.c_void_p]),
+    "silk_model_get_info": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ModelInfo)]),
+    "silk_generator_create": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_generator_destroy": (None, [ctypes.c_void_p]),
+    "silk_generate_default_params": (GenerateParams, []),
+    "silk_generator_start": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
+                                            ctypes.POINTER(GenerateParams)]),
+    "silk_generator_advance": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.c_int32,
+                                              ctypes.POINTER(ctypes.c_int32)]),
+    "silk_generator_cancel": (None, [ctypes.c_void_p]),
+    "silk_generator_tokens": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_generator_mesh": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_generator_stats": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateStats)]),
+    "silk_generator_finish": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p),
+                                             ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
+    "silk_generator_report_json": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.c_char_p,
+                                                  ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)]),
+    "silk_generate": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(GenerateParams),
+                                     ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_void_p),
+                                     ctypes.POINTER(GenerateStats)]),
+    "silk_generate_from_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
+                                                 ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
+                                                 ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
+    "silk_generate_input_run": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
+                                               ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
+                                               ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
+}
+
+
+def declare(lib: ctypes.CDLL) -> None:
+    """Sets restype/argtypes of every function in SIGNATURES on a loaded libsilk."""
+    for name, (res, args) in SIGNATURES.items():
+        fn = getattr(lib, name)
+        fn.restype, fn.argtypes = res, args

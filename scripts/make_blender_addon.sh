@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Makes the installable Blender add-on zip: apps/blender/silk_blender + libsilk (installed copy,
+# $ORIGIN RPATH) + onnxruntime and the other non-system libraries it needs + the bundled model.
+# Usage: scripts/make_blender_addon.sh [build dir] [output zip] [model dir]
+#   defaults: build, <build>/silk_blender.zip, models/default
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+BUILD="$(cd "${1:-$ROOT/build}" && pwd)"
+OUT="${2:-$BUILD/silk_blender.zip}"
+MODEL="${3:-$ROOT/models/default}"
+STAGE="$BUILD/blender_addon_stage"
+rm -rf "$STAGE"
+cmake --install "$BUILD" --prefix "$STAGE/prefix" >/dev/null
+ADDON="$STAGE/silk_blender"
+mkdir -p "$ADDON/lib"
+cp "$ROOT"/apps/blender/silk_blender/*.py "$ROOT/apps/blender/silk_blender/blender_manifest.toml" "$ADDON/"
+LIBDIR=$(dirname "$(ls "$STAGE"/prefix/lib*/libsilk.so.* | head -1)")
+# One file per library, under its soname (zip has no symlinks); libsilk without debug info.
+SILK_SONAME=$(objdump -p "$LIBDIR/libsilk.so" | awk '/SONAME/ {print $2}')
+cp -L "$LIBDIR/libsilk.so" "$ADDON/lib/$SILK_SONAME"
+strip --strip-debug "$ADDON/lib/$SILK_SONAME"
+ORT_SONAME=$(objdump -p "$LIBDIR/libsilk.so" | awk '/NEEDED/ && /onnxruntime/ {print $2}')
+cp -L "$LIBDIR/$ORT_SONAME" "$ADDON/lib/$ORT_SONAME"
+# Shared libraries libsilk needs that a stock Blender machine may lack (not libc/libstdc++).
+for dep in $(ldd "$LIBDIR/libsilk.so" | awk '/=> \// {print $3}'); do
+  case "$(basename "$dep")" in
+    libc.so*|libm.so*|libstdc++.so*|libgcc_s.so*|libpthread.so*|libdl.so*|librt.so*|libz.so*|libonnxruntime*) ;;
+    *) cp -L "$dep" "$ADDON/lib/" ;;
+  esac
+done
+if [ -f "$MODEL/model.json" ]; then
+  mkdir -p "$ADDON/model"
+  python3 - "$MODEL" "$ADDON/model" <<'PY'
+import json, shutil, sys
+src, dst = sys.argv[1], sys.argv[2]
+meta = json.load(open(f"{src}/model.json"))
+files = {"model.json", meta.get("files", {}).get("encoder", "encoder.onnx"), meta.get("files", {}).get("decoder", "decoder.onnx")}
+int8 = meta.get("files", {}).get("decoder_int8")
+if int8:
+    files.add(int8)
+for f in sorted(files) + ["MODEL_CARD.md"]:
+    try:
+        shutil.copy(f"{src}/{f}", f"{dst}/{f}")
+    except FileNotFoundError:
+        pass
+PY
+else
+  echo "make_blender_addon: no model at $MODEL (the add-on then needs model_dir)" >&2
+fi
+rm -f "$OUT"
+(cd "$STAGE" && python3 -m zipfile -c "$OUT" silk_blender)
+echo "$OUT"

@@ -1,0 +1,471 @@
+// The C API as a plug-in author uses it (silk.h only): destroy order, impossible limits,
+// concurrent misuse, thread bounds, cancel/progress contract, size queries, enum checks,
+// the log callback, parallel == sequential, and a soak that keeps the RSS flat.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include "silk/silk.h"
+#include "support/test_paths.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string TinyModel() { return silk::testing::SourcePath("tests/models/tiny"); }
+
+class CapiGeneration : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
+    silk_model_options o = silk_model_default_options();
+    o.threads = 1;
+    ASSERT_EQ(silk_model_load(TinyModel().c_str(), &o, &model_), SILK_OK) << silk_last_error();
+    ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &mesh_), SILK_OK)
+        << silk_last_error();
+  }
+  void TearDown() override {
+    silk_mesh_destroy(mesh_);
+    silk_model_destroy(model_);
+  }
+  static silk_generate_params Params(uint64_t seed, int32_t max_tokens = 120) {
+    silk_generate_params p = silk_generate_default_params();
+    p.seed = seed;
+    p.max_tokens = max_tokens;
+    return p;
+  }
+  // Ids of one generation on `g` (empty on failure).
+  std::vector<int32_t> Ids(silk_generator* g, uint64_t seed, silk_status* status = nullptr) {
+    silk_generate_params p = Params(seed);
+    silk_mesh* out = nullptr;
+    silk_tokens* t = nullptr;
+    const silk_status s = silk_generate(g, mesh_, &p, &out, &t, nullptr);
+    if (status) *status = s;
+    std::vector<int32_t> ids(t ? silk_tokens_count(t) : 0);
+    if (!ids.empty()) silk_tokens_copy(t, ids.data(), ids.size());
+    silk_tokens_destroy(t);
+    silk_mesh_destroy(out);
+    return ids;
+  }
+  silk_model* model_ = nullptr;
+  silk_mesh* mesh_ = nullptr;
+};
+
+TEST_F(CapiGeneration, GeneratorKeepsItsModelAlive) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  const std::vector<int32_t> before = Ids(g, 5);
+  silk_model_destroy(model_);  // garbage collectors and unloading destroy in any order
+  model_ = nullptr;
+  silk_status s = SILK_ERR_INTERNAL;
+  const std::vector<int32_t> after = Ids(g, 5, &s);
+  EXPECT_EQ(s, SILK_OK) << silk_last_error();
+  EXPECT_EQ(after, before);
+  silk_generator_destroy(g);
+}
+
+TEST_F(CapiGeneration, MaxTokensBelowTheSmallestMeshIsRefused) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  for (int32_t cap : {1, 2, 13}) {
+    silk_generate_params p = Params(1, cap);
+    silk_mesh* out = nullptr;
+    EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << cap;
+    EXPECT_NE(std::string(silk_last_error()).find("max_tokens"), std::string::npos) << silk_last_error();
+    EXPECT_EQ(out, nullptr);
+  }
+  silk_generate_params p = Params(1, 14);
+  silk_mesh* out = nullptr;
+  silk_generate_stats st;
+  EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  EXPECT_LE(st.tokens, 14);
+  silk_mesh_destroy(out);
+  silk_generator_destroy(g);
+}
+
+TEST(CapiModel, MaxSeqLenTooSmallIsRefused) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  const fs::path dir = fs::temp_directory_path() / ("silk_small_seq_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const char* f : {"encoder.onnx", "decoder.onnx"}) fs::copy_file(fs::path(TinyModel()) / f, dir / f);
+  std::ifstream in(fs::path(TinyModel()) / "model.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  const size_t at = json.find("\"max_seq_len\"");
+  ASSERT_NE(at, std::string::npos);
+  const size_t colon = json.find(':', at), end = json.find_first_of(",}", colon);
+  json.replace(colon + 1, end - colon - 1, " 10");
+  std::ofstream(dir / "model.json") << json;
+  silk_model* m = nullptr;
+  EXPECT_EQ(silk_model_load(dir.string().c_str(), nullptr, &m), SILK_ERR_PARSE);
+  EXPECT_NE(std::string(silk_last_error()).find("max_seq_len 10"), std::string::npos) << silk_last_error();
+  EXPECT_EQ(m, nullptr);
+  fs::remove_all(dir);
+}
+
+TEST_F(CapiGeneration, ConcurrentUseOfOneGeneratorSaysBusy) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  struct Probe {
+    silk_generator* g;
+    silk_mesh* mesh;
+    std::atomic<int> busy{0};
+    std::string message;
+  } probe{g, mesh_};
+  silk_generate_params p = Params(3);
+  p.user_data = &probe;
+  p.progress = [](const silk_generate_progress* pr, void* user) {
+    auto* b = static_cast<Probe*>(user);
+    if (pr->tokens != 5) return;
+    std::thread other([b] {  // a second thread uses the generator while this call runs
+      silk_generate_params q = silk_generate_default_params();
+      silk_mesh* out = nullptr;
+      if (silk_generate(b->g, b->mesh, &q, &out, nullptr, nullptr) == SILK_ERR_BUSY) {
+        b->busy = 1;
+        b->message = silk_last_error();
+      }
+      int32_t done = 0;
+      if (silk_generator_advance(b->g, 1, SILK_ADVANCE_IDS, &done) == SILK_ERR_BUSY) b->busy += 1;
+    });
+    other.join();
+  };
+  silk_mesh* out = nullptr;
+  EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, nullptr), SILK_OK) << silk_last_error();
+  EXPECT_EQ(probe.busy.load(), 2);
+  EXPECT_NE(probe.message.find("generator busy"), std::string::npos) << probe.message;
+  silk_mesh_destroy(out);
+  silk_generator_destroy(g);
+}
+
+TEST(CapiModel, ThreadsAreBoundedAndOnePoolIsShared) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  silk_model_options o = silk_model_default_options();
+  o.threads = 1000;
+  silk_model* m = nullptr;
+  EXPECT_EQ(silk_model_load(TinyModel().c_str(), &o, &m), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(silk_last_error()).find("threads 1000"), std::string::npos) << silk_last_error();
+  o.threads = 2;
+  silk_model *a = nullptr, *b = nullptr;
+  ASSERT_EQ(silk_model_load(TinyModel().c_str(), &o, &a), SILK_OK) << silk_last_error();
+  o.threads = 1;  // the pool exists already: its size stays
+  ASSERT_EQ(silk_model_load(TinyModel().c_str(), &o, &b), SILK_OK) << silk_last_error();
+  silk_model_info ia, ib;
+  ASSERT_EQ(silk_model_get_info(a, &ia), SILK_OK);
+  ASSERT_EQ(silk_model_get_info(b, &ib), SILK_OK);
+  // The pool was sized by this process's first load (2 here when this test runs alone, as
+  // ctest runs it); the second request does not resize it.
+  EXPECT_GE(ia.threads, 1);
+  EXPECT_EQ(ib.threads, ia.threads);
+  silk_model_destroy(a);
+  silk_model_destroy(b);
+}
+
+struct CancelProbe {
+  int polls = 0, cancel_at = 0, progress_calls = 0;
+  silk_generate_progress last{};
+};
+
+TEST_F(CapiGeneration, CancelIsPolledBeforeSamplingAndTheEncoder) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  // Poll 1: before point sampling; 2: before the encoder; 3: before the first id.
+  for (int at : {1, 2, 3}) {
+    CancelProbe c;
+    c.cancel_at = at;
+    silk_generate_params p = Params(2);
+    p.user_data = &c;
+    p.cancel = [](void* u) -> int32_t {
+      auto* c = static_cast<CancelProbe*>(u);
+      return ++c->polls >= c->cancel_at ? 1 : 0;
+    };
+    p.progress = [](const silk_generate_progress*, void* u) { ++static_cast<CancelProbe*>(u)->progress_calls; };
+    silk_mesh* out = nullptr;
+    silk_generate_stats st;
+    st.tokens = 99;
+    EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, &st), SILK_ERR_CANCELLED) << at;
+    EXPECT_EQ(c.polls, at);
+    EXPECT_EQ(c.progress_calls, 0);
+    EXPECT_EQ(st.tokens, 0);
+    EXPECT_EQ(st.stop_reason, SILK_STOP_CANCELLED);
+    EXPECT_EQ(out, nullptr);
+  }
+  silk_generator_destroy(g);
+}
+
+TEST_F(CapiGeneration, StatsAfterCancelAndProgressReachesTheEnd) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  CancelProbe c;
+  c.cancel_at = 3 + 20;  // 20 ids in
+  silk_generate_params p = Params(2);
+  p.user_data = &c;
+  p.cancel = [](void* u) -> int32_t {
+    auto* c = static_cast<CancelProbe*>(u);
+    return ++c->polls >= c->cancel_at ? 1 : 0;
+  };
+  p.progress = [](const silk_generate_progress* pr, void* u) {
+    auto* c = static_cast<CancelProbe*>(u);
+    ++c->progress_calls;
+    c->last = *pr;
+  };
+  silk_mesh* out = nullptr;
+  silk_generate_stats st;
+  EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, &st), SILK_ERR_CANCELLED);
+  EXPECT_EQ(st.tokens, 20);
+  EXPECT_EQ(st.forced_tokens + st.sampled_tokens, 20);
+  EXPECT_EQ(st.stop_reason, SILK_STOP_CANCELLED);
+
+  // Uncancelled: the last id gets its progress call, at 100 %.
+  CancelProbe d;
+  silk_generate_params q = Params(2);
+  q.user_data = &d;
+  q.progress = p.progress;
+  ASSERT_EQ(silk_generate(g, mesh_, &q, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  EXPECT_EQ(d.progress_calls, st.tokens);
+  EXPECT_EQ(d.last.tokens, st.tokens);
+  EXPECT_EQ(d.last.max_tokens, d.last.tokens);
+  silk_mesh_destroy(out);
+  silk_generator_destroy(g);
+}
+
+TEST(CapiMisuse, NullZeroCopyIsASizeQuery) {
+  silk_mesh* empty = nullptr;
+  ASSERT_EQ(silk_mesh_create(nullptr, 0, nullptr, 0, &empty), SILK_OK);
+  EXPECT_EQ(silk_mesh_copy_positions(empty, nullptr, 0), SILK_OK);
+  EXPECT_EQ(silk_mesh_copy_triangles(empty, nullptr, 0), SILK_OK);
+  silk_mesh_destroy(empty);
+  const double xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const int32_t tri[] = {0, 1, 2};
+  silk_mesh* m = nullptr;
+  ASSERT_EQ(silk_mesh_create(xyz, 3, tri, 1, &m), SILK_OK);
+  EXPECT_EQ(silk_mesh_copy_positions(m, nullptr, 0), SILK_ERR_BUFFER_TOO_SMALL);
+  EXPECT_NE(std::string(silk_last_error()).find("need 9"), std::string::npos) << silk_last_error();
+  EXPECT_EQ(silk_mesh_copy_triangle_components(m, nullptr, 0), SILK_ERR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(silk_mesh_copy_positions(m, nullptr, 9), SILK_ERR_INVALID_ARGUMENT);  // a buffer promised, none given
+  const int32_t ids[] = {1, 2, 3};
+  silk_tokens* t = nullptr;
+  ASSERT_EQ(silk_tokens_create(ids, 3, &t), SILK_OK) << silk_last_error();
+  EXPECT_EQ(silk_tokens_copy(t, nullptr, 0), SILK_ERR_BUFFER_TOO_SMALL);
+  silk_tokens_destroy(t);
+  silk_mesh_destroy(m);
+}
+
+TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
+  silk_mesh* m = nullptr;
+  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &m), SILK_OK);
+  silk_encode_params ep = silk_encode_default_params();
+  ep.normalize = 2;
+  silk_tokens* t = nullptr;
+  EXPECT_EQ(silk_encode(m, &ep, &t, nullptr), SILK_ERR_INVALID_ARGUMENT);
+  ASSERT_EQ(silk_encode(m, nullptr, &t, nullptr), SILK_OK);
+  silk_decode_params dp = silk_decode_default_params();
+  dp.grid_coordinates = 3;
+  silk_mesh* d = nullptr;
+  EXPECT_EQ(silk_decode(t, &dp, &d), SILK_ERR_INVALID_ARGUMENT);
+  silk_save_params sp = silk_save_default_params();
+  sp.part_colors = 5;
+  EXPECT_EQ(silk_mesh_save_with_params(m, "unused.glb", &sp), SILK_ERR_INVALID_ARGUMENT);
+  silk_tokens_destroy(t);
+  if (silk_generation_available()) {
+    silk_model_options o = silk_model_default_options();
+    o.decoder = 7;
+    silk_model* model = nullptr;
+    EXPECT_EQ(silk_model_load(TinyModel().c_str(), &o, &model), SILK_ERR_INVALID_ARGUMENT);
+    ASSERT_EQ(silk_model_load(TinyModel().c_str(), nullptr, &model), SILK_OK) << silk_last_error();
+    silk_generator* g = nullptr;
+    ASSERT_EQ(silk_generator_create(model, &g), SILK_OK);
+    struct Case {
+      const char* what;
+      void (*set)(silk_generate_params*);
+    };
+    const Case cases[] = {{"holes", [](silk_generate_params* p) { p->holes = 7; }},
+                          {"unconstrained", [](silk_generate_params* p) { p->unconstrained = 2; }},
+                          {"debug_flags", [](silk_generate_params* p) { p->debug_flags = 64; }}};
+    for (const Case& c : cases) {
+      silk_generate_params p = silk_generate_default_params();
+      c.set(&p);
+      silk_mesh* out = nullptr;
+      EXPECT_EQ(silk_generate(g, m, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << c.what;
+      EXPECT_NE(std::string(silk_last_error()).find(c.what), std::string::npos) << silk_last_error();
+    }
+    int32_t done = 0;
+    EXPECT_EQ(silk_generator_advance(g, 1, 5, &done), SILK_ERR_INVALID_ARGUMENT);
+    silk_generator_destroy(g);
+    silk_model_destroy(model);
+  }
+  silk_mesh_destroy(m);
+}
+
+TEST(CapiLog, TheCallbackFires) {
+  struct Sink {
+    std::vector<std::pair<silk_log_level, std::string>> lines;
+  } sink;
+  silk_set_log_callback(
+      [](silk_log_level level, const char* message, void* user) {
+        static_cast<Sink*>(user)->lines.push_back({level, message});
+      },
+      &sink);
+  silk_mesh* m = nullptr;
+  EXPECT_NE(silk_mesh_load("/nonexistent/silk_missing.obj", &m), SILK_OK);
+  if (silk_generation_available()) {
+    silk_model* model = nullptr;
+    ASSERT_EQ(silk_model_load(TinyModel().c_str(), nullptr, &model), SILK_OK);
+    silk_model_destroy(model);
+  }
+  silk_set_log_callback(nullptr, nullptr);
+  ASSERT_FALSE(sink.lines.empty());
+  EXPECT_EQ(sink.lines[0].first, SILK_LOG_ERROR);
+  EXPECT_NE(sink.lines[0].second.find("silk_missing.obj"), std::string::npos) << sink.lines[0].second;
+  if (silk_generation_available()) {
+    bool info = false;
+    for (const auto& [level, text] : sink.lines) info |= level == SILK_LOG_INFO && text.find("loaded model") != std::string::npos;
+    EXPECT_TRUE(info);
+  }
+}
+
+TEST_F(CapiGeneration, TwoGeneratorsOnParallelThreadsMatchSequentialRuns) {
+  silk_generator *a = nullptr, *b = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &a), SILK_OK);
+  ASSERT_EQ(silk_generator_create(model_, &b), SILK_OK);
+  const std::vector<int32_t> s1 = Ids(a, 11), s2 = Ids(a, 12);
+  ASSERT_FALSE(s1.empty());
+  ASSERT_NE(s1, s2);
+  std::vector<int32_t> p1, p2;
+  for (int round = 0; round < 3; ++round) {
+    std::thread t1([&] { p1 = Ids(a, 11); });
+    std::thread t2([&] { p2 = Ids(b, 12); });
+    t1.join();
+    t2.join();
+    EXPECT_EQ(p1, s1) << round;
+    EXPECT_EQ(p2, s2) << round;
+  }
+  silk_generator_destroy(a);
+  silk_generator_destroy(b);
+}
+
+long RssKb() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+TEST_F(CapiGeneration, FiftyGenerationsKeepTheRssFlat) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  for (int i = 0; i < 5; ++i) Ids(g, i);  // warm-up: arenas and caches reach their size
+  const long start = RssKb();
+  for (int i = 0; i < 50; ++i) {
+    silk_generator* fresh = nullptr;  // every other run with a fresh generator
+    if (i % 2) ASSERT_EQ(silk_generator_create(model_, &fresh), SILK_OK);
+    EXPECT_FALSE(Ids(fresh ? fresh : g, 100 + i).empty());
+    silk_generator_destroy(fresh);
+  }
+  const long end = RssKb();
+  std::printf("soak: 50 generations, RSS start %ld kB, end %ld kB (%+ld kB)\n", start, end, end - start);
+  if (start > 0) EXPECT_LT(end - start, 16 * 1024);
+  silk_generator_destroy(g);
+}
+
+TEST_F(CapiGeneration, StepWiseMatchesOneCallAndGrowsByLayers) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  const std::vector<int32_t> whole = Ids(g, 9);
+  silk_generate_input in{};
+  in.mesh = mesh_;
+  silk_generate_params p = Params(9);
+  ASSERT_EQ(silk_generator_start(g, &in, &p), SILK_OK) << silk_last_error();
+  int32_t done = 0;
+  size_t last_faces = 0;
+  int steps = 0, growths = 0;
+  while (!done) {
+    ASSERT_EQ(silk_generator_advance(g, 1000, SILK_ADVANCE_LAYER, &done), SILK_OK) << silk_last_error();
+    silk_mesh* so_far = nullptr;
+    ASSERT_EQ(silk_generator_mesh(g, &so_far), SILK_OK) << silk_last_error();
+    const size_t faces = silk_mesh_triangle_count(so_far);
+    EXPECT_GE(faces, last_faces);
+    growths += faces > last_faces;
+    last_faces = faces;
+    silk_mesh_destroy(so_far);
+    silk_generate_stats st;
+    ASSERT_EQ(silk_generator_stats(g, &st), SILK_OK);
+    EXPECT_EQ(st.stop_reason == SILK_STOP_NONE, done == 0);
+    ++steps;
+  }
+  EXPECT_GT(growths, 1);
+  silk_mesh* out = nullptr;
+  silk_tokens* t = nullptr;
+  silk_generate_stats st;
+  ASSERT_EQ(silk_generator_finish(g, &out, &t, &st), SILK_OK) << silk_last_error();
+  std::vector<int32_t> ids(silk_tokens_count(t));
+  silk_tokens_copy(t, ids.data(), ids.size());
+  EXPECT_EQ(ids, whole);
+  EXPECT_EQ(static_cast<size_t>(st.faces), silk_mesh_triangle_count(out));
+  silk_tokens_destroy(t);
+  silk_mesh_destroy(out);
+
+  // Cancel from "another thread" mid-way: finish returns the completed layers.
+  ASSERT_EQ(silk_generator_start(g, &in, &p), SILK_OK);
+  ASSERT_EQ(silk_generator_advance(g, 30, SILK_ADVANCE_IDS, &done), SILK_OK);
+  silk_generator_cancel(g);
+  EXPECT_EQ(silk_generator_advance(g, 30, SILK_ADVANCE_IDS, &done), SILK_ERR_CANCELLED);
+  ASSERT_EQ(silk_generator_finish(g, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  EXPECT_EQ(st.stop_reason, SILK_STOP_CANCELLED);
+  EXPECT_EQ(st.tokens, 30);
+  silk_mesh_destroy(out);
+  silk_generator_destroy(g);
+}
+
+TEST_F(CapiGeneration, RawPointsReproduceTheTracedEncoderInput) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  silk_generate_params p = Params(4);
+  p.debug_flags = SILK_DEBUG_RECORD_TRACE;
+  silk_mesh* out = nullptr;
+  silk_tokens* t = nullptr;
+  ASSERT_EQ(silk_generate(g, mesh_, &p, &out, &t, nullptr), SILK_OK) << silk_last_error();
+  std::vector<int32_t> want(silk_tokens_count(t));
+  silk_tokens_copy(t, want.data(), want.size());
+  silk_tokens_destroy(t);
+  silk_mesh_destroy(out);
+  size_t size = 0;
+  ASSERT_EQ(silk_generator_report_json(g, 1, nullptr, 0, &size), SILK_ERR_BUFFER_TOO_SMALL);
+  std::string json(size, '\0');
+  ASSERT_EQ(silk_generator_report_json(g, 1, &json[0], json.size(), &size), SILK_OK) << silk_last_error();
+  // The trace's "points": the encoder input (model frame), 9 significant digits = float32 exact.
+  const size_t at = json.find("\"points\":[");
+  ASSERT_NE(at, std::string::npos);
+  std::vector<double> points;
+  const char* c = json.c_str() + at + 9;  // at the [; each number follows [ or ,
+  while (*c != ']') {
+    char* end = nullptr;
+    points.push_back(std::strtod(c + 1, &end));
+    c = end;
+  }
+  ASSERT_EQ(points.size() % 6, 0u);
+  silk_generate_input in{};
+  in.points = points.data();
+  in.n_points = points.size() / 6;
+  silk_generate_params q = Params(4);
+  q.raw_points = 1;
+  ASSERT_EQ(silk_generate_input_run(g, &in, &q, &out, &t, nullptr), SILK_OK) << silk_last_error();
+  std::vector<int32_t> got(silk_tokens_count(t));
+  silk_tokens_copy(t, got.data(), got.size());
+  EXPECT_EQ(got, want);
+  silk_tokens_destroy(t);
+  silk_mesh_destroy(out);
+  silk_generator_destroy(g);
+}
+
+}  // namespace
