@@ -121,7 +121,7 @@ TEST_F(CapiGeneration, ConcurrentUseOfOneGeneratorSaysBusy) {
     silk_mesh* mesh;
     std::atomic<int> busy{0};
     std::string message;
-  } probe{g, mesh_};
+  } probe{g, mesh_, {0}, {}};
   silk_generate_params p = Params(3);
   p.user_data = &probe;
   p.progress = [](const silk_generate_progress* pr, void* user) {
@@ -361,20 +361,36 @@ long RssKb() {
   return -1;
 }
 
+// RSS flatness is a property of the normal build: ASan's quarantine keeps freed blocks resident
+// (up to 256 MiB by default), so there RSS grows without a leak; LeakSanitizer checks that build.
+#if defined(__SANITIZE_ADDRESS__)
+#define SILK_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SILK_TEST_UNDER_ASAN 1
+#endif
+#endif
+
 TEST_F(CapiGeneration, FiftyGenerationsKeepTheRssFlat) {
+#ifdef SILK_TEST_UNDER_ASAN
+  GTEST_SKIP() << "RSS is not a leak measure under ASan (quarantine); LeakSanitizer covers this build";
+#endif
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
   for (int i = 0; i < 5; ++i) Ids(g, i);  // warm-up: arenas and caches reach their size
   const long start = RssKb();
   for (int i = 0; i < 50; ++i) {
     silk_generator* fresh = nullptr;  // every other run with a fresh generator
-    if (i % 2) ASSERT_EQ(silk_generator_create(model_, &fresh), SILK_OK);
+    if (i % 2) {
+      ASSERT_EQ(silk_generator_create(model_, &fresh), SILK_OK);
+    }
     EXPECT_FALSE(Ids(fresh ? fresh : g, 100 + i).empty());
     silk_generator_destroy(fresh);
   }
   const long end = RssKb();
   std::printf("soak: 50 generations, RSS start %ld kB, end %ld kB (%+ld kB)\n", start, end, end - start);
-  if (start > 0) EXPECT_LT(end - start, 16 * 1024);
+  ASSERT_GT(start, 0) << "VmRSS not readable from /proc/self/status";
+  EXPECT_LT(end - start, 16 * 1024);
   silk_generator_destroy(g);
 }
 
