@@ -129,6 +129,16 @@ def _cmd_generate(a) -> int:
     return 0
 
 
+def _cmd_pack_checkpoint(a) -> int:
+    from .checkpoint import pack_checkpoint
+    try:
+        print(json.dumps(pack_checkpoint(Path(a.checkpoint), Path(a.out), a.max_bytes)))
+    except (OSError, ValueError, RuntimeError, KeyError) as e:  # unreadable or not a checkpoint, too big
+        print(f"silk-export pack-checkpoint: {a.checkpoint}: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="silk-export", description=__doc__)
     sub = p.add_subparsers(dest="cmd", required=True)
@@ -172,12 +182,19 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--val-every", type=int, default=200)
     t.add_argument("--val-meshes", type=int, default=32)
     t.add_argument("--ckpt-minutes", type=float, default=5.0)
-    t.add_argument("--max-minutes", type=float, default=0.0, help="stop (and checkpoint) after this wall time")
+    t.add_argument("--max-minutes", type=float, default=0.0, help="stop (and checkpoint) after this many minutes of this invocation (training that spans sessions)")
     t.add_argument("--max-seq-len", type=int, default=0, help="override the config's max_seq_len")
     t.add_argument("--no-resume", action="store_true")
     t.add_argument("--no-augment", action="store_true")
     t.add_argument("--no-progress", action="store_true")
     t.set_defaults(fn=_cmd_train)
+
+    k = sub.add_parser("pack-checkpoint", help="a smaller copy of a training checkpoint that still resumes "
+                       "(optimizer moments in bf16; the repository's resumable checkpoint)")
+    k.add_argument("checkpoint")
+    k.add_argument("-o", "--out", required=True)
+    k.add_argument("--max-bytes", type=int, default=40_000_000, help="refuse a result larger than this (0: no limit)")
+    k.set_defaults(fn=_cmd_pack_checkpoint)
 
     e = sub.add_parser("export", help="checkpoint -> ONNX model folder (docs/model_contract.md)")
     e.add_argument("--checkpoint", required=True)

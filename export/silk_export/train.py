@@ -63,7 +63,7 @@ class TrainArgs:
     val_every: int = 200
     val_meshes: int = 32
     ckpt_minutes: float = 5.0
-    max_minutes: float = 0.0  # 0: no wall-clock limit
+    max_minutes: float = 0.0  # wall-clock limit of this invocation (a resumed run gets it anew); 0: none
     resume: bool = True
     augment: bool = True
     max_seq_len: int = 0  # 0: the config's
@@ -338,7 +338,7 @@ class Trainer:
                                             a.grad_clip)
             step += 1
             now = time.time()
-            out_of_time = bool(a.max_minutes) and self.elapsed0 + now - t_start > a.max_minutes * 60
+            out_of_time = bool(a.max_minutes) and now - t_start > a.max_minutes * 60
             ckpt_due = now - last_ckpt > a.ckpt_minutes * 60
             loss_sum, out_of_time, ckpt_due = env.all_reduce_sum([loss_sum, out_of_time, ckpt_due])
             lv = loss_sum / n_tokens

@@ -79,6 +79,40 @@ def test_resume_reproduces_the_uninterrupted_run(data, tmp_path):
         assert torch.equal(p, q), n
 
 
+def test_packed_checkpoint_is_smaller_and_resumes_the_run(data, tmp_path):
+    """The repository's resumable checkpoint: bf16 optimizer moments, same weights and step; a run
+    resumed from it continues the same schedule and lands close to the uninterrupted run."""
+    from silk_export.checkpoint import pack_checkpoint
+
+    torch.set_num_threads(1)
+    train(args(data, tmp_path / "full", 6))
+    train(args(data, tmp_path / "split", 6, max_minutes=1e-9))  # step 1 (or a few) only
+    full_ck = tmp_path / "split" / "checkpoint.pt"
+    step = torch.load(full_ck, weights_only=False)["step"]
+    info = pack_checkpoint(full_ck, tmp_path / "packed.pt")
+    assert info["step"] == step and info["packed_tensors"] > 0
+    assert info["bytes"] < 0.75 * full_ck.stat().st_size  # moments are 2/3 of the fp32 bytes
+    packed = torch.load(tmp_path / "packed.pt", weights_only=False)
+    moments = [v for st in packed["optimizer"]["state"].values() for k, v in st.items() if k.startswith("exp_avg")]
+    assert moments and all(v.dtype == torch.bfloat16 for v in moments)
+    ref = torch.load(full_ck, weights_only=False)
+    for n, p in ref["model"].items():
+        assert torch.equal(p, packed["model"][n]), n
+    with pytest.raises(ValueError, match="over the 1,000-byte limit"):
+        pack_checkpoint(full_ck, tmp_path / "tiny.pt", max_bytes=1000)
+    assert not (tmp_path / "tiny.pt").exists()
+
+    resumed = tmp_path / "resumed"
+    resumed.mkdir()
+    (resumed / "checkpoint.pt").write_bytes((tmp_path / "packed.pt").read_bytes())
+    res = train(args(data, resumed, 6))
+    assert res["step"] == 6
+    a, _ = model_from_checkpoint(tmp_path / "full" / "checkpoint.pt")
+    b, _ = model_from_checkpoint(resumed / "checkpoint.pt")
+    worst = max((p - q).abs().max().item() for p, q in zip(a.state_dict().values(), b.state_dict().values()))
+    assert worst < 5e-3, worst  # only the moments' rounding differs
+
+
 def test_generate_samples_legal_ids_and_writes_the_layout(data, tmp_path, golden_dir):
     from silk_export.generate import generate_paths, pick_from_index
 
