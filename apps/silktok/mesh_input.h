@@ -1,17 +1,22 @@
-// Reading a mesh file and normalising it (spec §2.1) for the tokenizer, with errors that
-// name the file.
+// Reading and encoding one mesh file for silktok through the public API, and silktok's one
+// error format ("silktok: <kind>: <file>: <problem>").
 #pragma once
 #include <string>
 
-#include "core/status.h"
-#include "io/raw_mesh.h"
-#include "tokenizer/tokenizer.h"
+#include "silk/silk.hpp"
 
 namespace silktok {
 
-silk::StatusOr<silk::RawMesh> LoadNormalized(const std::string& path);
-silk::StatusOr<silk::EncodeResult> LoadAndEncode(const std::string& path, const silk::EncodeOptions& options);
-// "silktok: <message>" on stderr.
-void ReportError(const silk::Status& s);
+// The file read as a mesh, as the tokenizer sees it (a PLY without faces too); errors name it.
+silk_cpp::Mesh LoadMesh(const std::string& path);
+// LoadMesh + silk_encode; the encoder's errors are prefixed with the file ("path: mobius: ...").
+silk_cpp::Tokens LoadAndEncode(const std::string& path, const silk_encode_params& params,
+                               silk_encode_stats* stats = nullptr);
+// The same error with `prefix` in front of its message (what() keeps "<kind>: " first).
+silk_cpp::Error WithContext(const silk_cpp::Error& e, const std::string& prefix);
+// An error silktok itself detects (a folder it cannot create), in the library's format.
+silk_cpp::Error AppError(silk_status status, const std::string& message);
+// "silktok: <kind>: <message>" on stderr.
+void ReportError(const silk_cpp::Error& e);
 
 }  // namespace silktok
