@@ -180,8 +180,9 @@ struct CancelProbe {
 TEST_F(CapiGeneration, CancelIsPolledBeforeSamplingAndTheEncoder) {
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
-  // Poll 1: before point sampling; 2: before the encoder; 3: before the first id.
-  for (int at : {1, 2, 3}) {
+  // Poll 1: on the call; 2-4: pre-processing (before normalising, the first surface sample,
+  // after sampling); 5: before the encoder; 6: before the first id.
+  for (int at : {1, 2, 3, 4, 5, 6}) {
     CancelProbe c;
     c.cancel_at = at;
     silk_generate_params p = Params(2);
