@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "mesh_input.h"
+#include "cli_errors.h"
 
 namespace silktok {
 namespace {

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "commands.h"
-#include "mesh_input.h"
+#include "cli_errors.h"
 
 namespace silktok {
 namespace {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "mesh_input.h"
+#include "cli_errors.h"
 
 namespace silktok {
 namespace {

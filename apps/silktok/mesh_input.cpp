@@ -1,8 +1,5 @@
-// Reading + encoding one mesh file for silktok, and its error messages (the kind names are
-// the library's own, silk_status_name).
+// Reading + encoding one mesh file for silktok (silk_mesh_load_with_params, silk_encode).
 #include "mesh_input.h"
-
-#include <cstdio>
 
 namespace silktok {
 
@@ -20,15 +17,5 @@ silk_cpp::Tokens LoadAndEncode(const std::string& path, const silk_encode_params
     throw WithContext(e, path + ": ");
   }
 }
-
-silk_cpp::Error WithContext(const silk_cpp::Error& e, const std::string& prefix) {
-  return AppError(e.status(), prefix + e.message());
-}
-
-silk_cpp::Error AppError(silk_status status, const std::string& message) {
-  return silk_cpp::Error(status, std::string(silk_status_name(status)) + ": " + message, message);
-}
-
-void ReportError(const silk_cpp::Error& e) { std::fprintf(stderr, "silktok: %s\n", e.what()); }
 
 }  // namespace silktok
