@@ -3,9 +3,7 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "decoder/grammar.h"
-#include "io/token_text.h"
-#include "mesh_input.h"
+#include "cli_errors.h"
 
 namespace silktok {
 namespace {
@@ -18,22 +16,26 @@ struct CheckArgs {
 };
 
 int Run(const CheckArgs& a) {
-  auto ids = silk::ReadTokenText(a.input);
-  if (!ids.ok()) {
-    ReportError(ids.status());
+  silk_check_params p = silk_check_default_params();
+  p.max_length = a.max_length;
+  p.window_rule = a.union_windows ? SILK_WINDOW_UNION : SILK_WINDOW_CANONICAL;
+  p.allow_prefix = a.allow_prefix ? 1 : 0;
+  size_t count = 0;
+  silk_check_result r{};
+  try {
+    const silk_cpp::Tokens tokens = silk_cpp::Tokens::Load(a.input);
+    count = tokens.size();
+    r = tokens.GrammarCheck(p);
+  } catch (const silk_cpp::Error& e) {
+    ReportError(e);
     return kExitFailure;
   }
-  silk::GrammarOptions opt;
-  opt.max_length = a.max_length;
-  opt.window_rule = a.union_windows ? silk::WindowRule::kUnion : silk::WindowRule::kCanonical;
-  size_t pos = 0;
-  silk::Rejection r = silk::CheckTokens(*ids, opt, &pos, !a.allow_prefix);
-  if (!r.ok()) {
-    std::fprintf(stderr, "%s: illegal at position %zu (id %d): %s [%s]\n", a.input.c_str(), pos,
-                 pos < ids->size() ? (*ids)[pos] : -1, r.message.c_str(), silk::RejectReasonName(r.reason));
+  if (!r.accepted) {
+    std::fprintf(stderr, "%s: illegal at position %lld (id %d): %s [%s]\n", a.input.c_str(),
+                 static_cast<long long>(r.position), r.id, r.message, silk_reject_reason_name(r.reason));
     return kExitFailure;
   }
-  std::printf("%s: %zu tokens accepted\n", a.input.c_str(), ids->size());
+  std::printf("%s: %zu tokens accepted\n", a.input.c_str(), count);
   return kExitOk;
 }
 

@@ -1,13 +1,9 @@
 // `silktok decode`: token file -> OBJ mesh, every face the tokens carry, oriented.
 #include <cstdio>
-#include <vector>
+#include <string>
 
 #include "commands.h"
-#include "io/obj_writer.h"
-#include "io/token_text.h"
-#include "mesh/vertex_fans.h"
-#include "mesh_input.h"
-#include "tokenizer/quantize.h"
+#include "cli_errors.h"
 
 namespace silktok {
 namespace {
@@ -19,40 +15,35 @@ struct DecodeArgs {
   bool split_nonmanifold = false;
 };
 
+std::string HeaderComment(const DecodeArgs& a, const silk_decode_stats& s) {
+  return "decoded by silktok from " + a.input + ": " + std::to_string(s.vertices) + " vertices, " +
+         std::to_string(s.faces) + " faces, " + std::to_string(s.components) + " components" +
+         (a.grid ? " (grid coordinates 0..127)" : "") +
+         (a.split_nonmanifold ? ", " + std::to_string(s.vertices_split) + " non-manifold vertices split" : "");
+}
+
 int Run(const DecodeArgs& a) {
-  auto ids = silk::ReadTokenText(a.input);
-  if (!ids.ok()) {
-    ReportError(ids.status());
-    return kExitFailure;
-  }
-  auto dec = silk::DecodeTokens(*ids);
-  if (!dec.ok()) {
-    ReportError(dec.status().WithContext(a.input + ": "));
-    return kExitFailure;
-  }
-  int32_t split = 0;
-  if (a.split_nonmanifold) {
+  try {
+    const silk_cpp::Tokens tokens = silk_cpp::Tokens::Load(a.input);
+    silk_decode_params p = silk_decode_default_params();
+    p.grid_coordinates = a.grid ? 1 : 0;
     // Faithful by default: the official streams contain a few vertices with two fans.
-    std::vector<int32_t> copy_of;
-    split = silk::SplitNonManifoldFans(&dec->faces, static_cast<int32_t>(dec->positions.size()), &copy_of);
-    for (int32_t v : copy_of) dec->positions.push_back(dec->positions[v]);
-  }
-  silk::OutputMesh out;
-  out.positions.reserve(dec->positions.size());
-  for (const silk::QVec& q : dec->positions) {
-    if (a.grid) out.positions.push_back({double(q.x), double(q.y), double(q.z)});
-    else out.positions.push_back({silk::DequantizeCoord(q.x), silk::DequantizeCoord(q.y), silk::DequantizeCoord(q.z)});
-  }
-  out.triangles = dec->faces;
-  silk::ObjWriteOptions opt;
-  opt.integer_coordinates = a.grid;
-  opt.header_comment = "decoded by silktok from " + a.input + ": " + std::to_string(dec->positions.size()) +
-                       " vertices, " + std::to_string(dec->faces.size()) + " faces, " +
-                       std::to_string(dec->components) + " components" + (a.grid ? " (grid coordinates 0..127)" : "") +
-                       (a.split_nonmanifold ? ", " + std::to_string(split) + " non-manifold vertices split" : "");
-  silk::Status st = silk::WriteObjFile(a.output, out, opt);
-  if (!st.ok()) {
-    ReportError(st);
+    p.split_nonmanifold_vertices = a.split_nonmanifold ? 1 : 0;
+    silk_decode_stats stats{};
+    silk_cpp::Mesh mesh = [&] {
+      try {
+        return silk_cpp::Mesh::Decode(tokens, p, &stats);
+      } catch (const silk_cpp::Error& e) {
+        throw WithContext(e, a.input + ": ");
+      }
+    }();
+    const std::string comment = HeaderComment(a, stats);
+    silk_save_params save = silk_save_default_params();
+    save.format = SILK_FORMAT_OBJ;
+    save.obj_comment = comment.c_str();
+    mesh.Save(a.output, save);
+  } catch (const silk_cpp::Error& e) {
+    ReportError(e);
     return kExitFailure;
   }
   return kExitOk;

@@ -3,15 +3,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <filesystem>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "commands.h"
-#include "io/atomic_file.h"
-#include "io/file_system.h"
-#include "io/token_text.h"
 #include "mesh_input.h"
 
 namespace silktok {
@@ -35,27 +33,34 @@ std::string StemOf(const std::string& path) {
   return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
 }
 
-silk::Status EncodeOne(const std::string& in, const std::string& out, const silk::EncodeOptions& opt) {
-  auto enc = LoadAndEncode(in, opt);
-  if (!enc.ok()) return enc.status();
-  auto st = silk::WriteFileAtomically(out, silk::FormatTokenText(enc->tokens));
-  return st;
+// One input to one token file (written atomically); throws silk_cpp::Error.
+void EncodeOne(const std::string& in, const std::string& out, const silk_encode_params& params) {
+  LoadAndEncode(in, params).Save(out);
+}
+
+bool IsDirectory(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_directory(path, ec);
+}
+
+// mkdir -p; fine if it exists as a folder.
+void MakeDirectories(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::create_directories(path, ec);
+  if (ec || !IsDirectory(path)) throw AppError(SILK_ERR_IO, path + ": cannot create folder: " + ec.message());
 }
 
 int Run(const EncodeArgs& a) {
-  silk::EncodeOptions opt;
-  opt.nonmanifold_processing = !a.no_nonmanifold;
-  if (a.inputs.size() == 1 && !silk::IsDirectory(a.output)) {
-    silk::Status st = EncodeOne(a.inputs[0], a.output, opt);
-    if (!st.ok()) {
-      ReportError(st);
-      return kExitFailure;
+  silk_encode_params params = silk_encode_default_params();
+  params.nonmanifold_processing = a.no_nonmanifold ? 0 : 1;
+  try {
+    if (a.inputs.size() == 1 && !IsDirectory(a.output)) {
+      EncodeOne(a.inputs[0], a.output, params);
+      return kExitOk;
     }
-    return kExitOk;
-  }
-  // Batch form: -o is a folder (created if missing), one <stem>.tokens.txt per input.
-  if (auto st = silk::MakeDirectories(a.output); !st.ok()) {
-    ReportError(st);
+    MakeDirectories(a.output);  // batch form: -o is a folder, one <stem>.tokens.txt per input
+  } catch (const silk_cpp::Error& e) {
+    ReportError(e);
     return kExitFailure;
   }
   unsigned hw = std::max(1u, std::thread::hardware_concurrency());
@@ -66,11 +71,12 @@ int Run(const EncodeArgs& a) {
   auto worker = [&] {
     for (size_t i; (i = next.fetch_add(1)) < a.inputs.size();) {
       const std::string out = a.output + "/" + StemOf(a.inputs[i]) + ".tokens.txt";
-      silk::Status st = EncodeOne(a.inputs[i], out, opt);
-      if (!st.ok()) {
+      try {
+        EncodeOne(a.inputs[i], out, params);
+      } catch (const silk_cpp::Error& e) {
         ++failed;
         std::lock_guard<std::mutex> lock(io_mu);
-        ReportError(st);
+        ReportError(e);
       }
     }
   };

@@ -5,12 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
-#include "decoder/grammar.h"
-#include "decoder/mesh_builder.h"
-#include "io/obj_writer.h"
-#include "io/token_text.h"
-#include "mesh_input.h"
-#include "tokenizer/quantize.h"
+#include "cli_errors.h"
 
 namespace silktok {
 namespace {
@@ -22,76 +17,53 @@ struct RepairArgs {
   int32_t max_loop = 8;
 };
 
+void PrintText(const std::string& input, const silk_repair_stats& st, const nlohmann::json& report) {
+  std::printf("%s: %d vertices, %d faces; %d window disagreements OR-ed; %d holes, %d repaired (+%d faces); "
+              "open edges %d -> %d; %s\n",
+              input.c_str(), st.vertices, st.faces, st.window_findings, st.holes_found, st.holes_repaired,
+              st.faces_added, st.open_edges_before, st.open_edges_after, st.watertight ? "watertight" : "not watertight");
+  for (const auto& h : report["holes"]) {
+    const bool repaired = h["repaired"].get<bool>();
+    std::printf("  hole in component %d, %zu edges%s", h["component"].get<int>(), h["loop"].size(),
+                repaired ? ", repaired:" : "");
+    for (const auto& e : h["added_edges"]) std::printf(" [%s]", e.get<std::string>().c_str());
+    std::printf("\n");
+  }
+}
+
 int Run(const RepairArgs& a) {
-  auto ids = silk::ReadTokenText(a.input);
-  if (!ids.ok()) {
-    ReportError(ids.status());
+  silk_repair_params p = silk_repair_default_params();
+  p.holes = a.policy == "off" ? SILK_HOLES_OFF : a.policy == "report" ? SILK_HOLES_REPORT : SILK_HOLES_REPAIR;
+  p.max_fill_loop = a.max_loop;
+  silk_repair_stats st{};
+  nlohmann::json report;
+  try {
+    const silk_cpp::Tokens tokens = silk_cpp::Tokens::Load(a.input);
+    std::string json;
+    silk_cpp::Mesh mesh = [&] {
+      try {
+        return silk_cpp::Mesh::Repair(tokens, p, &st, &json);
+      } catch (const silk_cpp::Error& e) {
+        throw WithContext(e, a.input + ": ");
+      }
+    }();
+    report = nlohmann::json::parse(json);
+    if (!report["illegal"].is_null())
+      std::fprintf(stderr, "%s: illegal at position %lld: %s (decoding the accepted prefix)\n", a.input.c_str(),
+                   static_cast<long long>(st.illegal_at), report["illegal"]["message"].get<std::string>().c_str());
+    silk_save_params save = silk_save_default_params();
+    save.format = SILK_FORMAT_OBJ;
+    mesh.Save(a.output, save);
+  } catch (const silk_cpp::Error& e) {
+    ReportError(e);
     return kExitFailure;
   }
-  silk::GrammarOptions gopt;
-  gopt.max_length = 0;
-  gopt.window_rule = silk::WindowRule::kUnion;
-  silk::Grammar g(gopt);
-  size_t pos = 0;
-  for (; pos < ids->size(); ++pos) {
-    if ((*ids)[pos] == 10267 || (*ids)[pos] == -1) break;  // stop at EOS / data padding (spec §9)
-    silk::Rejection r = g.Accept((*ids)[pos]);
-    if (!r.ok()) {
-      std::fprintf(stderr, "%s: illegal at position %zu: %s (decoding the accepted prefix)\n", a.input.c_str(), pos,
-                   r.message.c_str());
-      break;
-    }
-  }
-  silk::MeshBuildOptions mopt;
-  mopt.holes = a.policy == "off" ? silk::HolePolicy::kOff
-               : a.policy == "report" ? silk::HolePolicy::kReport : silk::HolePolicy::kRepair;
-  mopt.max_fill_loop = a.max_loop;
-  silk::MeshBuildReport rep;
-  auto mesh = silk::BuildMeshSoFar(g, mopt, &rep);
-  if (!mesh.ok()) {
-    ReportError(mesh.status().WithContext(a.input + ": "));
-    return kExitFailure;
-  }
-  silk::OutputMesh out;
-  for (const silk::QVec& q : mesh->positions)
-    out.positions.push_back({silk::DequantizeCoord(q.x), silk::DequantizeCoord(q.y), silk::DequantizeCoord(q.z)});
-  out.triangles = mesh->faces;
-  silk::Status st = silk::WriteObjFile(a.output, out);
-  if (!st.ok()) {
-    ReportError(st);
-    return kExitFailure;
-  }
-  int32_t repaired = 0;
-  for (const auto& h : rep.holes) repaired += h.repaired;
   if (a.json) {
-    nlohmann::json j;
-    j["input"] = a.input;
-    j["tokens_accepted"] = pos;
-    j["vertices"] = mesh->positions.size();
-    j["faces"] = mesh->faces.size();
-    j["watertight"] = silk::IsWatertight(*mesh);
-    j["window_findings"] = nlohmann::json::array();
-    for (const auto& f : rep.window_findings)
-      j["window_findings"].push_back({{"component", f.component}, {"layer", f.layer}, {"row_a", f.row_a}, {"row_b", f.row_b}});
-    j["holes"] = nlohmann::json::array();
-    for (const auto& h : rep.holes)
-      j["holes"].push_back({{"component", h.component}, {"loop", h.loop}, {"layers", h.layers},
-                            {"repaired", h.repaired}, {"added_edges", h.added_edges}});
-    j["faces_added"] = rep.faces_added;
-    j["open_edges_before"] = rep.open_edges_before;
-    j["open_edges_after"] = rep.open_edges_after;
-    std::printf("%s\n", j.dump(2).c_str());
+    report.erase("illegal");  // reported on stderr
+    report["input"] = a.input;
+    std::printf("%s\n", report.dump(2).c_str());
   } else {
-    std::printf("%s: %zu vertices, %zu faces; %zu window disagreements OR-ed; %zu holes, %d repaired (+%d faces); "
-                "open edges %d -> %d; %s\n",
-                a.input.c_str(), mesh->positions.size(), mesh->faces.size(), rep.window_findings.size(),
-                rep.holes.size(), repaired, rep.faces_added, rep.open_edges_before, rep.open_edges_after,
-                silk::IsWatertight(*mesh) ? "watertight" : "not watertight");
-    for (const auto& h : rep.holes) {
-      std::printf("  hole in component %d, %zu edges%s", h.component, h.loop.size(), h.repaired ? ", repaired:" : "");
-      for (const auto& e : h.added_edges) std::printf(" [%s]", e.c_str());
-      std::printf("\n");
-    }
+    PrintText(a.input, st, report);
   }
   return kExitOk;
 }

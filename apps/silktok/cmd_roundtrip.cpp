@@ -5,7 +5,6 @@
 
 #include "commands.h"
 #include "mesh_input.h"
-#include "tokenizer/roundtrip_check.h"
 
 namespace silktok {
 namespace {
@@ -16,38 +15,40 @@ struct RoundtripArgs {
 };
 
 int Run(const RoundtripArgs& a) {
-  auto enc = LoadAndEncode(a.input, {});
-  if (!enc.ok()) {
-    ReportError(enc.status());
+  silk_roundtrip_report r{};
+  try {
+    const silk_cpp::Mesh mesh = LoadMesh(a.input);
+    try {
+      r = mesh.Roundtrip();
+    } catch (const silk_cpp::Error& e) {
+      throw WithContext(e, a.input + ": ");
+    }
+  } catch (const silk_cpp::Error& e) {
+    ReportError(e);
     return kExitFailure;
   }
-  auto dec = silk::DecodeTokens(enc->tokens);
-  if (!dec.ok()) {
-    ReportError(dec.status().WithContext(a.input + ": decoding our own tokens: "));
-    return kExitFailure;
-  }
-  const silk::RoundTripReport r = silk::CompareRoundTrip(*enc, *dec);
   if (a.json) {
     nlohmann::json j{{"file", a.input},
-                     {"tokens", enc->tokens.size()},
+                     {"tokens", r.tokens},
                      {"processed_faces", r.processed_faces},
                      {"representable_faces", r.representable_faces},
                      {"recovered", r.recovered},
                      {"reversed", r.reversed},
                      {"missing", r.missing},
                      {"extra_faces", r.extra},
-                     {"decoded_faces", dec->faces.size()},
-                     {"exact", r.exact()}};
+                     {"decoded_faces", r.decoded_faces},
+                     {"exact", r.exact != 0}};
     std::printf("%s\n", j.dump(2).c_str());
   } else {
-    std::printf("%s: %zu tokens; %lld processed faces, %lld representable: %lld recovered, %lld reversed, "
-                "%lld missing; %lld extra faces (%zu decoded) -> %s\n",
-                a.input.c_str(), enc->tokens.size(), static_cast<long long>(r.processed_faces),
+    std::printf("%s: %lld tokens; %lld processed faces, %lld representable: %lld recovered, %lld reversed, "
+                "%lld missing; %lld extra faces (%lld decoded) -> %s\n",
+                a.input.c_str(), static_cast<long long>(r.tokens), static_cast<long long>(r.processed_faces),
                 static_cast<long long>(r.representable_faces), static_cast<long long>(r.recovered),
                 static_cast<long long>(r.reversed), static_cast<long long>(r.missing),
-                static_cast<long long>(r.extra), dec->faces.size(), r.exact() ? "exact" : "NOT EXACT");
+                static_cast<long long>(r.extra), static_cast<long long>(r.decoded_faces),
+                r.exact ? "exact" : "NOT EXACT");
   }
-  return r.exact() ? kExitOk : kExitFailure;
+  return r.exact ? kExitOk : kExitFailure;
 }
 
 }  // namespace

@@ -2,17 +2,10 @@
 // toward closing layers), each written as DIR/NNNN.tokens.txt and its mesh DIR/NNNN.obj.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <random>
+#include <vector>
 
 #include "commands.h"
-#include "decoder/grammar.h"
-#include "decoder/mesh_builder.h"
-#include "decoder/random_walk.h"
-#include "io/obj_writer.h"
-#include "io/token_text.h"
-#include "mesh_input.h"
-#include "tokenizer/quantize.h"
+#include "cli_errors.h"
 
 namespace silktok {
 namespace {
@@ -24,40 +17,40 @@ struct SampleArgs {
   int32_t max_layers = 6, max_layer_size = 12;
 };
 
+// Sample k: DIR/kkkk.tokens.txt and DIR/kkkk.obj (both written atomically).
+void WriteSample(const SampleArgs& a, int32_t k) {
+  silk_random_walk_params p = silk_random_walk_default_params();
+  p.seed = a.seed + static_cast<uint64_t>(k);
+  p.max_layers = a.max_layers;
+  p.max_layer_size = a.max_layer_size;
+  char name[32];
+  std::snprintf(name, sizeof name, "%04d", k);
+  const std::string base = a.dir + "/" + name;
+  std::vector<int32_t> ids;
+  const silk_cpp::Mesh mesh = [&] {
+    try {
+      return silk_cpp::Mesh::RandomWalk(p, &ids);
+    } catch (const silk_cpp::Error& e) {
+      throw WithContext(e, base + ".tokens.txt: ");
+    }
+  }();
+  silk_cpp::Tokens::FromIds(ids).Save(base + ".tokens.txt");
+  silk_save_params save = silk_save_default_params();
+  save.format = SILK_FORMAT_OBJ;
+  mesh.Save(base + ".obj", save);
+  std::printf("%s: %zu tokens, %zu vertices, %zu faces\n", base.c_str(), ids.size(), mesh.vertex_count(),
+              mesh.triangle_count());
+}
+
 int Run(const SampleArgs& a) {
   std::error_code ec;
   std::filesystem::create_directories(a.dir, ec);
-  if (ec) {
-    ReportError(silk::IoError(a.dir + ": cannot create directory: " + ec.message()));
+  try {
+    if (ec) throw AppError(SILK_ERR_IO, a.dir + ": cannot create directory: " + ec.message());
+    for (int32_t k = 0; k < a.count; ++k) WriteSample(a, k);
+  } catch (const silk_cpp::Error& e) {
+    ReportError(e);
     return kExitFailure;
-  }
-  silk::RandomWalkOptions wo;
-  wo.max_layers = a.max_layers;
-  wo.max_layer_size = a.max_layer_size;
-  for (int32_t k = 0; k < a.count; ++k) {
-    std::mt19937_64 rng(a.seed + static_cast<uint64_t>(k));
-    silk::Grammar g;
-    std::vector<int32_t> ids = silk::RandomLegalWalk(&g, &rng, wo);
-    char name[32];
-    std::snprintf(name, sizeof name, "%04d", k);
-    const std::string base = a.dir + "/" + name;
-    std::ofstream(base + ".tokens.txt") << silk::FormatTokenText(ids);
-    auto mesh = silk::BuildMeshSoFar(g, silk::MeshBuildOptions{}, nullptr);
-    if (!mesh.ok()) {
-      ReportError(mesh.status().WithContext(base + ".tokens.txt: "));
-      return kExitFailure;
-    }
-    silk::OutputMesh out;
-    for (const silk::QVec& q : mesh->positions)
-      out.positions.push_back({silk::DequantizeCoord(q.x), silk::DequantizeCoord(q.y), silk::DequantizeCoord(q.z)});
-    out.triangles = mesh->faces;
-    silk::Status st = silk::WriteObjFile(base + ".obj", out);
-    if (!st.ok()) {
-      ReportError(st);
-      return kExitFailure;
-    }
-    std::printf("%s: %zu tokens, %zu vertices, %zu faces\n", base.c_str(), ids.size(), mesh->positions.size(),
-                mesh->faces.size());
   }
   return kExitOk;
 }

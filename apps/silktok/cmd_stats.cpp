@@ -7,7 +7,6 @@
 
 #include "commands.h"
 #include "mesh_input.h"
-#include "tokenizer/vocabulary_layout.h"
 
 namespace silktok {
 namespace {
@@ -18,10 +17,10 @@ struct StatsArgs {
   bool no_nonmanifold = false;
 };
 
-nlohmann::json StatsJson(const std::string& path, const silk::EncodeResult& r, double total_s) {
-  const silk::EncodeStats& s = r.stats;
+nlohmann::json StatsJson(const std::string& path, const silk_encode_stats& s, double total_s) {
+  const silk_vocab_info v = silk_vocab();
   const double faces = std::max(1, s.processed_faces);
-  const double bits_per_token = std::log2(static_cast<double>(silk::vocab::k_format_vocab_size));
+  const double bits_per_token = std::log2(static_cast<double>(v.format_vocab_size));
   nlohmann::json j;
   j["file"] = path;
   j["input"] = {{"vertices", s.input_vertices}, {"faces", s.input_faces}};
@@ -43,14 +42,14 @@ nlohmann::json StatsJson(const std::string& path, const silk::EncodeResult& r, d
                  {"bits_per_face", s.tokens * bits_per_token / faces},
                  {"compression_ratio", s.tokens / (9.0 * faces)}};
   j["limits"] = {
-      {"layer_size", {{"value", s.max_layer_size}, {"limit", silk::vocab::k_layer_vertex_limit}}},
-      {"layer_count", {{"value", s.max_layer_count}, {"limit", silk::vocab::k_layer_count_limit}}},
-      {"faces", {{"value", s.processed_faces}, {"limit", silk::vocab::k_max_faces}}},
-      {"model_sequence", {{"value", s.tokens + 1}, {"limit", silk::vocab::k_max_seq_length},
-                          {"fits", s.tokens + 1 <= silk::vocab::k_max_seq_length}}}};
-  j["time_s"] = {{"quantize_cleanup", s.times.quantize_cleanup}, {"nonmanifold", s.times.nonmanifold},
-                 {"orientation", s.times.orientation}, {"components", s.times.components},
-                 {"layering", s.times.layering}, {"codecs", s.times.codecs}, {"packing", s.times.packing},
+      {"layer_size", {{"value", s.max_layer_size}, {"limit", v.layer_vertex_limit}}},
+      {"layer_count", {{"value", s.max_layer_count}, {"limit", v.layer_count_limit}}},
+      {"faces", {{"value", s.processed_faces}, {"limit", v.max_faces}}},
+      {"model_sequence", {{"value", s.tokens + 1}, {"limit", v.max_seq_length},
+                          {"fits", s.tokens + 1 <= v.max_seq_length}}}};
+  j["time_s"] = {{"quantize_cleanup", s.seconds_quantize_cleanup}, {"nonmanifold", s.seconds_nonmanifold},
+                 {"orientation", s.seconds_orientation}, {"components", s.seconds_components},
+                 {"layering", s.seconds_layering}, {"codecs", s.seconds_codecs}, {"packing", s.seconds_packing},
                  {"total_with_io", total_s}};
   return j;
 }
@@ -96,19 +95,21 @@ void PrintText(const nlohmann::json& j) {
 
 int Run(const StatsArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
-  silk::EncodeOptions opt;
-  opt.nonmanifold_processing = !a.no_nonmanifold;
-  auto enc = LoadAndEncode(a.input, opt);
-  if (!enc.ok()) {
-    ReportError(enc.status());
+  silk_encode_params params = silk_encode_default_params();
+  params.nonmanifold_processing = a.no_nonmanifold ? 0 : 1;
+  silk_encode_stats stats{};
+  try {
+    LoadAndEncode(a.input, params, &stats);
+  } catch (const silk_cpp::Error& e) {
+    ReportError(e);
     if (a.json) {
-      nlohmann::json j{{"file", a.input}, {"error", enc.status().ToString()}};
+      nlohmann::json j{{"file", a.input}, {"error", e.what()}};
       std::printf("%s\n", j.dump(2).c_str());
     }
     return kExitFailure;
   }
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const nlohmann::json j = StatsJson(a.input, *enc, total);
+  const nlohmann::json j = StatsJson(a.input, stats, total);
   if (a.json) std::printf("%s\n", j.dump(2).c_str());
   else PrintText(j);
   return kExitOk;

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "silk/silk.h"
 
 namespace silktok {
 int& ExitCode() {
@@ -13,7 +14,7 @@ int& ExitCode() {
 int main(int argc, char** argv) {
   CLI::App app{"silktok — Mesh Silksong tokenizer tools (token format v1, 128 bins)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", SILK_VERSION_STRING);
+  app.set_version_flag("--version", silk_version());
   silktok::RegisterEncodeCommand(app);
   silktok::RegisterDecodeCommand(app);
   silktok::RegisterStatsCommand(app);

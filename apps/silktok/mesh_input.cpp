@@ -1,29 +1,21 @@
-// Reading + normalising + encoding one mesh file for silktok.
+// Reading + encoding one mesh file for silktok (silk_mesh_load_with_params, silk_encode).
 #include "mesh_input.h"
-
-#include <cstdio>
-
-#include "io/mesh_reader.h"
-#include "mesh/normalize.h"
 
 namespace silktok {
 
-silk::StatusOr<silk::RawMesh> LoadNormalized(const std::string& path) {
-  auto raw = silk::ReadMeshFile(path);
-  if (!raw.ok()) return raw.status();
-  auto norm = silk::NormalizeMesh(*raw);
-  if (!norm.ok()) return norm.status().WithContext(path + ": ");
-  return norm;
+silk_cpp::Mesh LoadMesh(const std::string& path) {
+  silk_load_params p = silk_load_default_params();
+  p.point_clouds = 0;  // the tokenizer reads every file as a mesh
+  return silk_cpp::Mesh::Load(path, p);
 }
 
-silk::StatusOr<silk::EncodeResult> LoadAndEncode(const std::string& path, const silk::EncodeOptions& options) {
-  auto norm = LoadNormalized(path);
-  if (!norm.ok()) return norm.status();
-  auto enc = silk::EncodeMesh(*norm, options);
-  if (!enc.ok()) return enc.status().WithContext(path + ": ");
-  return enc;
+silk_cpp::Tokens LoadAndEncode(const std::string& path, const silk_encode_params& params, silk_encode_stats* stats) {
+  const silk_cpp::Mesh mesh = LoadMesh(path);
+  try {
+    return mesh.Encode(params, stats);
+  } catch (const silk_cpp::Error& e) {
+    throw WithContext(e, path + ": ");
+  }
 }
-
-void ReportError(const silk::Status& s) { std::fprintf(stderr, "silktok: %s\n", s.ToString().c_str()); }
 
 }  // namespace silktok

@@ -1,17 +1,17 @@
-// Reading a mesh file and normalising it (spec §2.1) for the tokenizer, with errors that
-// name the file.
+// Reading and encoding one mesh file for silktok through the public API, with errors that name
+// the file.
 #pragma once
 #include <string>
 
-#include "core/status.h"
-#include "io/raw_mesh.h"
-#include "tokenizer/tokenizer.h"
+#include "cli_errors.h"
+#include "silk/silk.hpp"
 
 namespace silktok {
 
-silk::StatusOr<silk::RawMesh> LoadNormalized(const std::string& path);
-silk::StatusOr<silk::EncodeResult> LoadAndEncode(const std::string& path, const silk::EncodeOptions& options);
-// "silktok: <message>" on stderr.
-void ReportError(const silk::Status& s);
+// The file read as a mesh, as the tokenizer sees it (a PLY without faces too); errors name it.
+silk_cpp::Mesh LoadMesh(const std::string& path);
+// LoadMesh + silk_encode; the encoder's errors are prefixed with the file ("path: mobius: ...").
+silk_cpp::Tokens LoadAndEncode(const std::string& path, const silk_encode_params& params,
+                               silk_encode_stats* stats = nullptr);
 
 }  // namespace silktok

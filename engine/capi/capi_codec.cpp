@@ -6,6 +6,7 @@
 #include "capi/capi_internal.h"
 #include "io/atomic_file.h"
 #include "io/token_text.h"
+#include "mesh/vertex_fans.h"
 #include "mesh/normalize.h"
 #include "tokenizer/quantize.h"
 #include "tokenizer/tokenizer.h"
@@ -107,6 +108,18 @@ silk_status silk_encode(const silk_mesh* mesh, const silk_encode_params* params,
       stats->max_layer_count = s.max_layer_count;
       stats->tokens = s.tokens;
       stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      stats->merged_vertices = s.merged_vertices;
+      stats->dropped_degenerate_faces = s.dropped_degenerate_faces;
+      stats->dropped_duplicate_faces = s.dropped_duplicate_faces;
+      stats->nonmanifold_copies = s.nonmanifold_copies;
+      stats->flipped_faces = s.flipped_faces;
+      stats->seconds_quantize_cleanup = s.times.quantize_cleanup;
+      stats->seconds_nonmanifold = s.times.nonmanifold;
+      stats->seconds_orientation = s.times.orientation;
+      stats->seconds_components = s.times.components;
+      stats->seconds_layering = s.times.layering;
+      stats->seconds_codecs = s.times.codecs;
+      stats->seconds_packing = s.times.packing;
     }
     auto t = std::make_unique<silk_tokens>();
     t->ids = std::move(r->tokens);
@@ -118,17 +131,31 @@ silk_status silk_encode(const silk_mesh* mesh, const silk_encode_params* params,
 silk_decode_params silk_decode_default_params(void) {
   silk_decode_params p{};
   p.grid_coordinates = 0;
+  p.split_nonmanifold_vertices = 0;
   return p;
 }
 
 silk_status silk_decode(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out) {
+  return silk_decode_with_stats(tokens, params, out, nullptr);
+}
+
+silk_status silk_decode_with_stats(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out,
+                                   silk_decode_stats* stats) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(tokens && out, "silk_decode: tokens or out is NULL");
     *out = nullptr;
     const silk_decode_params p = params ? *params : silk_decode_default_params();
     SILK_CAPI_REQUIRE(p.grid_coordinates == 0 || p.grid_coordinates == 1, "silk_decode: grid_coordinates takes 0 or 1");
+    SILK_CAPI_REQUIRE(p.split_nonmanifold_vertices == 0 || p.split_nonmanifold_vertices == 1,
+                      "silk_decode: split_nonmanifold_vertices takes 0 or 1");
     auto r = silk::DecodeTokens(tokens->ids);
     if (!r.ok()) return SetError(r.status());
+    int32_t split = 0;
+    if (p.split_nonmanifold_vertices) {
+      std::vector<int32_t> copy_of;  // the copies keep their source's position
+      split = silk::SplitNonManifoldFans(&r->faces, static_cast<int32_t>(r->positions.size()), &copy_of);
+      for (int32_t v : copy_of) r->positions.push_back(r->positions[v]);
+    }
     auto m = std::make_unique<silk_mesh>();
     for (const silk::QVec& q : r->positions) {
       if (p.grid_coordinates) m->mesh.positions.push_back({double(q.x), double(q.y), double(q.z)});
@@ -139,6 +166,12 @@ silk_status silk_decode(const silk_tokens* tokens, const silk_decode_params* par
     m->mesh.triangles = r->faces;
     m->triangle_component = r->face_component;
     m->triangle_component.resize(m->mesh.triangles.size(), 0);
+    if (stats) {
+      stats->vertices = static_cast<int32_t>(r->positions.size());
+      stats->faces = static_cast<int32_t>(r->faces.size());
+      stats->components = r->components;
+      stats->vertices_split = split;
+    }
     *out = m.release();
     return Ok();
   });

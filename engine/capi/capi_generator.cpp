@@ -99,14 +99,15 @@ silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in) {
 
 // Prepares the encoder's points: raw ones as given (RawModelPoints), else the model's
 // pre-processing (model.json "preprocessing", or the kind the params name).
-silk::Status PreparePoints(silk_generator* g, const silk::GenerationInput& in, const silk_generate_params& p) {
+silk::Status PreparePoints(silk_generator* g, const silk::GenerationInput& in, const silk_generate_params& p,
+                           const silk::CancelCheck& cancel) {
   const silk::ModelConfig& cfg = g->model->config();
   silk::PreprocessingParams prep = silk::ModelPreprocessing(cfg, p.n_points);
   if (p.preprocessing >= 0 && p.preprocessing != static_cast<int32_t>(prep.kind))
     prep = p.preprocessing == SILK_PREPROCESS_OFFICIAL ? silk::OfficialPreprocessing(prep.n_points)
                                                        : silk::SilkPreprocessing(prep.normalize_bound, prep.n_points);
   SILK_ASSIGN_OR_RETURN(silk::PreparedPoints pts, p.raw_points ? silk::RawModelPoints(in, cfg.dims.n_points)
-                                                               : silk::PrepareModelPoints(in, prep, p.seed));
+                                                               : silk::PrepareModelPoints(in, prep, p.seed, cancel));
   g->points = std::move(pts.rows);
   g->transform = pts.transform;
   g->settings.preprocessing = p.raw_points ? "raw" : silk::PreprocessingKindName(prep.kind);
@@ -134,7 +135,7 @@ silk_status Start(silk_generator* g, const silk_generate_input& input, const sil
   const silk::GenerateCallbacks cb = ToCallbacks(g, p);
   if (cb.cancel()) return SetError(SILK_ERR_CANCELLED, "generation cancelled");
   const auto t0 = Clock::now();
-  if (silk::Status st = PreparePoints(g, *in, p); !st.ok())
+  if (silk::Status st = PreparePoints(g, *in, p, cb.cancel); !st.ok())
     return SetError(st.WithContext(context));
   g->prepare_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   s.points = static_cast<int32_t>(g->points.size() / 6);
@@ -254,7 +255,9 @@ silk_status silk_generator_advance(silk_generator* g, int32_t max_ids, int32_t u
 }
 
 void silk_generator_cancel(silk_generator* g) {
-  if (g) g->cancel_requested.store(true);
+  if (!g) return;
+  g->cancel_requested.store(true);  // first: Start polls the flag after clearing the terminate flag
+  g->generator.InterruptEncoder();
 }
 
 silk_status silk_generator_tokens(silk_generator* g, silk_tokens** out) {

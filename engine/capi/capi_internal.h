@@ -23,6 +23,10 @@ struct silk_tokens {
   std::vector<int32_t> ids;
 };
 
+struct silk_report {
+  std::string json;
+};
+
 namespace silk::capi {
 
 silk_status SetError(silk_status code, const std::string& message);

@@ -55,13 +55,23 @@ silk_status silk_mesh_create(const double* positions, size_t n_vertices, const i
   });
 }
 
-silk_status silk_mesh_load(const char* path, silk_mesh** out) {
+silk_load_params silk_load_default_params(void) {
+  silk_load_params p;
+  p.point_clouds = 1;
+  return p;
+}
+
+silk_status silk_mesh_load(const char* path, silk_mesh** out) { return silk_mesh_load_with_params(path, nullptr, out); }
+
+silk_status silk_mesh_load_with_params(const char* path, const silk_load_params* params, silk_mesh** out) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(out, "silk_mesh_load: out is NULL");
     *out = nullptr;
     SILK_CAPI_REQUIRE(path, "silk_mesh_load: path is NULL");
+    const silk_load_params lp = params ? *params : silk_load_default_params();
+    SILK_CAPI_REQUIRE(lp.point_clouds == 0 || lp.point_clouds == 1, "silk_mesh_load: point_clouds takes 0 or 1");
     auto m = std::make_unique<silk_mesh>();
-    if (EndsWith(path, ".ply")) {
+    if (lp.point_clouds && EndsWith(path, ".ply")) {
       // A PLY without faces is a point cloud and keeps its normals.
       auto bytes = silk::ReadFileBytes(path, silk::ReadOptions{}.max_file_bytes);
       if (!bytes.ok()) return SetError(bytes.status());
@@ -91,6 +101,8 @@ silk_status silk_mesh_load(const char* path, silk_mesh** out) {
 silk_save_params silk_save_default_params(void) {
   silk_save_params p;
   p.part_colors = 0;
+  p.obj_comment = nullptr;
+  p.format = SILK_FORMAT_BY_EXTENSION;
   return p;
 }
 
@@ -99,11 +111,19 @@ silk_status silk_mesh_save_with_params(const silk_mesh* mesh, const char* path, 
     SILK_CAPI_REQUIRE(mesh && path, "silk_mesh_save: mesh or path is NULL");
     const silk_save_params sp = params ? *params : silk_save_default_params();
     SILK_CAPI_REQUIRE(sp.part_colors == 0 || sp.part_colors == 1, "silk_mesh_save: part_colors takes 0 or 1");
+    SILK_CAPI_REQUIRE(sp.format >= SILK_FORMAT_BY_EXTENSION && sp.format <= SILK_FORMAT_GLB,
+                      "silk_mesh_save: format is not a silk_mesh_format (0..3)");
     const std::string p = path;
+    const auto is = [&](int32_t format, const char* ext) {
+      return sp.format == format || (sp.format == SILK_FORMAT_BY_EXTENSION && EndsWith(p, ext));
+    };
     silk::Status st;
-    if (EndsWith(p, ".obj")) st = silk::WriteObjFile(p, mesh->mesh);
-    else if (EndsWith(p, ".ply")) st = silk::WritePlyFile(p, mesh->mesh);
-    else if (EndsWith(p, ".glb"))
+    if (is(SILK_FORMAT_OBJ, ".obj")) {
+      silk::ObjWriteOptions opt;
+      if (sp.obj_comment) opt.header_comment = sp.obj_comment;
+      st = silk::WriteObjFile(p, mesh->mesh, opt);
+    } else if (is(SILK_FORMAT_PLY, ".ply")) st = silk::WritePlyFile(p, mesh->mesh);
+    else if (is(SILK_FORMAT_GLB, ".glb"))
       st = silk::WriteGlbFile(p, silk::SplitGlbParts(mesh->mesh, mesh->triangle_component, sp.part_colors != 0),
                               "silk " SILK_VERSION_STRING);
     else return SetError(SILK_ERR_UNSUPPORTED, p + ": unsupported output extension (use .glb, .obj or .ply)");

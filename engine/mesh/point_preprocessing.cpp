@@ -69,7 +69,7 @@ Status ValidatePreprocessing(const PreprocessingParams& p) {
 }
 
 StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<std::array<double, 3>>* normals,
-                                       const PreprocessingParams& p, uint64_t seed) {
+                                       const PreprocessingParams& p, uint64_t seed, const CancelCheck& cancel) {
   SILK_RETURN_IF_ERROR(ValidatePreprocessing(p));
   if (normals && normals->size() != mesh.positions.size())
     return InvalidArgument("point cloud: " + std::to_string(normals->size()) + " normals for " +
@@ -86,6 +86,7 @@ StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<st
     if (cleaned.triangles.empty()) return InvalidArgument("the mesh has no face with positive area");
     source = &cleaned;
   }
+  if (CancelRequested(cancel)) return CancelledStatus("pre-processing");
   PreparedPoints out;
   SILK_ASSIGN_OR_RETURN(out.transform, ComputeNormalization(*source, p.normalize_bound));
   const RawMesh normalized = ApplyNormalization(*source, out.transform);
@@ -93,8 +94,9 @@ StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<st
   if (normals) {
     pts = CloudPoints(normalized, *normals);
   } else {
-    SILK_ASSIGN_OR_RETURN(pts, SampleSurface(normalized, std::max(p.surface_samples, p.n_points), seed));
+    SILK_ASSIGN_OR_RETURN(pts, SampleSurface(normalized, std::max(p.surface_samples, p.n_points), seed, cancel));
   }
+  if (CancelRequested(cancel)) return CancelledStatus("pre-processing");
   if (p.round_float16)
     for (OrientedPoint& q : pts)
       for (int a = 0; a < 3; ++a) q.position[a] = RoundToFloat16(q.position[a]), q.normal[a] = RoundToFloat16(q.normal[a]);

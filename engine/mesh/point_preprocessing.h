@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cancel_check.h"
 #include "core/status.h"
 #include "io/raw_mesh.h"
 #include "mesh/normalize.h"
@@ -50,7 +51,9 @@ struct PreparedPoints {
 //  5. n_points drawn without replacement when there are more (a cloud with fewer keeps all).
 // Silk's kind draws its n_points samples with `seed` directly, so its output is unchanged from
 // before model.json described pre-processing; the official kind derives its draw's seed.
+// `cancel` is polled between the steps and every kCancelPollInterval surface samples.
 StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<std::array<double, 3>>* normals,
-                                       const PreprocessingParams& params, uint64_t seed);
+                                       const PreprocessingParams& params, uint64_t seed,
+                                       const CancelCheck& cancel = {});
 
 }  // namespace silk

@@ -19,7 +19,8 @@ double Norm(const V3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a
 
 }  // namespace
 
-StatusOr<std::vector<OrientedPoint>> SampleSurface(const RawMesh& mesh, int32_t count, uint64_t seed) {
+StatusOr<std::vector<OrientedPoint>> SampleSurface(const RawMesh& mesh, int32_t count, uint64_t seed,
+                                                   const CancelCheck& cancel) {
   if (count <= 0) return InvalidArgument("surface sampling: sample count must be positive");
   std::vector<double> cumulative;
   std::vector<int32_t> face_of;
@@ -42,6 +43,7 @@ StatusOr<std::vector<OrientedPoint>> SampleSurface(const RawMesh& mesh, int32_t 
   std::vector<OrientedPoint> out;
   out.reserve(static_cast<size_t>(count));
   for (int32_t i = 0; i < count; ++i) {
+    if (i % kCancelPollInterval == 0 && CancelRequested(cancel)) return CancelledStatus("surface sampling");
     const double u = rng.Uniform() * total;
     size_t k = static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin());
     k = std::min(k, cumulative.size() - 1);

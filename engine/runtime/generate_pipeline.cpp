@@ -53,9 +53,9 @@ Status ValidateGenerationInput(const GenerationInput& in) {
 }
 
 StatusOr<PreparedPoints> PrepareModelPoints(const GenerationInput& in, const PreprocessingParams& params,
-                                            uint64_t seed) {
+                                            uint64_t seed, const CancelCheck& cancel) {
   SILK_RETURN_IF_ERROR(ValidateGenerationInput(in));
-  return PreparePoints(in.mesh, in.point_cloud ? &in.normals : nullptr, params, seed);
+  return PreparePoints(in.mesh, in.point_cloud ? &in.normals : nullptr, params, seed, cancel);
 }
 
 PreprocessingParams ModelPreprocessing(const ModelConfig& config, int32_t n_points) {
@@ -99,7 +99,7 @@ StatusOr<PipelineResult> GenerateFromInput(Generator* generator, const ModelConf
   if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
   const auto t0 = std::chrono::steady_clock::now();
   SILK_ASSIGN_OR_RETURN(PreparedPoints pts, preprocessing
-                                                ? PrepareModelPoints(input, *preprocessing, options.sampling.seed)
+                                                ? PrepareModelPoints(input, *preprocessing, options.sampling.seed, callbacks.cancel)
                                                 : RawModelPoints(input, config.dims.n_points));
   const double prep = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   PipelineResult r;

@@ -30,7 +30,7 @@ Status ValidateGenerationInput(const GenerationInput& input);
 // The model's pre-processing (model.json "preprocessing", mesh/point_preprocessing.h) on a
 // validated input: normalised points and the transform back to the input frame.
 StatusOr<PreparedPoints> PrepareModelPoints(const GenerationInput& input, const PreprocessingParams& params,
-                                            uint64_t seed);
+                                            uint64_t seed, const CancelCheck& cancel = {});
 // The model's pre-processing with n_points (0: the model's own).
 PreprocessingParams ModelPreprocessing(const ModelConfig& config, int32_t n_points = 0);
 

@@ -96,7 +96,7 @@ struct Generator::Session {
   Clock::time_point t_start, t_loop;
 };
 
-Generator::Generator(const Model& model) : model_(model) {}
+Generator::Generator(const Model& model) : model_(model), encoder_run_(std::make_unique<Ort::RunOptions>()) {}
 Generator::~Generator() = default;
 
 bool Generator::finished() const { return session_ && !session_->res.stats.stop_reason.empty(); }
@@ -114,6 +114,8 @@ void Generator::Cancel() {
   if (session_ && !finished()) session_->res.stats.stop_reason = "cancelled";
 }
 
+void Generator::InterruptEncoder() { encoder_run_->SetTerminate(); }
+
 Status Generator::Start(const std::vector<float>& points, const GenerateOptions& options,
                         const GenerateCallbacks& callbacks) {
   session_.reset();
@@ -127,11 +129,17 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   if (cap < kMinMeshTokens)
     return InvalidArgument(cfg.dir + "/model.json: max_seq_len " + std::to_string(cfg.dims.max_seq_len) +
                            " leaves room for fewer ids than the smallest mesh (" + std::to_string(kMinMeshTokens) + ")");
+  // A terminate request left from an earlier run is dropped before the poll; one made after the
+  // poll stops the encoder run below (InterruptEncoder).
+  encoder_run_->UnsetTerminate();
   if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
   const auto t_start = Clock::now();
   // Encoder: cross-attention K/V once per input.
   auto t0 = Clock::now();
-  SILK_ASSIGN_OR_RETURN(Ort::Value cross, RunEncoder(m, points.data(), static_cast<int64_t>(points.size() / 6)));
+  auto encoded = RunEncoder(m, points.data(), static_cast<int64_t>(points.size() / 6), *encoder_run_);
+  if (!encoded.ok() && callbacks.cancel && callbacks.cancel())
+    return Status(StatusCode::kCancelled, "generation cancelled during the encoder run");
+  SILK_ASSIGN_OR_RETURN(Ort::Value cross, std::move(encoded));
   const double encoder_seconds = Since(t0);
   // Cache: BOS + every id but the last (EOS is never fed).
   SILK_RETURN_IF_ERROR(cache_.Reserve(cap, ModelKvShape(cfg.dims)));

@@ -17,6 +17,10 @@
 #include "runtime/model.h"
 #include "runtime/sampler.h"
 
+namespace Ort {
+struct RunOptions;
+}
+
 namespace silk {
 
 enum class SampleOrder {
@@ -45,7 +49,8 @@ struct GenerateProgress {
 
 struct GenerateCallbacks {
   std::function<void(const GenerateProgress&)> progress;  // after every id, the last one included
-  std::function<bool()> cancel;  // polled before the encoder and every id; true: stop (kCancelled)
+  // Polled during point sampling, before the encoder and every id; true: stop (kCancelled).
+  std::function<bool()> cancel;
 };
 
 
@@ -86,6 +91,9 @@ class Generator {
   bool finished() const;
   // Marks the generation cancelled (stop reason "cancelled"); Finish still returns its stats.
   void Cancel();
+  // Thread-safe, any time: stops an encoder run in progress (Start then fails; it answers
+  // kCancelled when callbacks.cancel says so, which is how a caller asks for both).
+  void InterruptEncoder();
   const std::vector<int32_t>& tokens() const;
   const GenerationStats& stats() const;
   // Faces of the layers completed so far (grid coordinates).
@@ -101,6 +109,7 @@ class Generator {
   const Model& model_;
   KvCache cache_;
   std::unique_ptr<Session> session_;
+  std::unique_ptr<Ort::RunOptions> encoder_run_;  // the encoder's run options (terminate flag)
 };
 
 }  // namespace silk

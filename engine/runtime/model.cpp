@@ -140,7 +140,8 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   return std::unique_ptr<Model>(new Model(std::move(impl)));
 }
 
-StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points) {
+StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points,
+                                const Ort::RunOptions& run_options) {
   if (n_points <= 0) return InvalidArgument("encoder: no input points");
   if (model.encoder_points >= 0 && n_points != model.encoder_points)
     return InvalidArgument("encoder: got " + std::to_string(n_points) + " points, the model's encoder takes exactly " +
@@ -152,7 +153,7 @@ StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, i
                                                     static_cast<size_t>(n_points * 6), shape.data(), shape.size());
     const char* in_names[] = {"points"};
     const char* out_names[] = {"cross_kv"};
-    auto outs = model.encoder->Run(Ort::RunOptions{nullptr}, in_names, &in, 1, out_names, 1);
+    auto outs = model.encoder->Run(run_options, in_names, &in, 1, out_names, 1);
     const ModelDims& d = model.config.dims;
     auto shape_out = outs[0].GetTensorTypeAndShapeInfo().GetShape();
     const std::vector<int64_t> want = {d.n_layers, 2, d.n_heads, d.n_latents, d.head_dim};

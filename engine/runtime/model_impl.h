@@ -27,6 +27,8 @@ std::vector<std::string> DecoderOutputNames(int64_t n_layers);
 
 // Runs encoder.onnx on `n_points` rows of 6 floats (normalised xyz, unit normal); the result
 // is the cross_kv tensor [L, 2, H, M, D] that every decoder call then reads unchanged.
-StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points);
+// run_options: SetTerminate on it from another thread stops the run (an error status).
+StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points,
+                                const Ort::RunOptions& run_options = Ort::RunOptions{nullptr});
 
 }  // namespace silk

@@ -36,14 +36,56 @@ class EncodeStats(ctypes.Structure):
         "input_vertices", "input_faces", "processed_vertices", "processed_faces",
         "emitted_vertices", "encodable_faces", "components_found", "components_encoded",
         "components_dropped_small", "layers", "max_layer_size", "max_layer_count")] + [
-        ("tokens", ctypes.c_int64), ("seconds", ctypes.c_double)]
+        ("tokens", ctypes.c_int64), ("seconds", ctypes.c_double)] + [(n, ctypes.c_int32) for n in (
+        "merged_vertices", "dropped_degenerate_faces", "dropped_duplicate_faces", "nonmanifold_copies",
+        "flipped_faces")] + [(n, ctypes.c_double) for n in (
+        "seconds_quantize_cleanup", "seconds_nonmanifold", "seconds_orientation", "seconds_components",
+        "seconds_layering", "seconds_codecs", "seconds_packing")]
 
     def as_dict(self) -> dict:
         return {name: getattr(self, name) for name, _ in self._fields_}
 
 
 class DecodeParams(ctypes.Structure):
-    _fields_ = [("grid_coordinates", ctypes.c_int32)]
+    _fields_ = [("grid_coordinates", ctypes.c_int32), ("split_nonmanifold_vertices", ctypes.c_int32)]
+
+
+class DecodeStats(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_int32) for n in ("vertices", "faces", "components", "vertices_split")]
+
+
+class LoadParams(ctypes.Structure):
+    _fields_ = [("point_clouds", ctypes.c_int32)]
+
+
+class RoundtripReport(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_int64) for n in (
+        "tokens", "processed_faces", "representable_faces", "recovered", "reversed", "missing", "extra",
+        "decoded_faces")] + [("exact", ctypes.c_int32)]
+
+
+class CheckParams(ctypes.Structure):
+    _fields_ = [("max_length", ctypes.c_int32), ("window_rule", ctypes.c_int32), ("allow_prefix", ctypes.c_int32)]
+
+
+class CheckResult(ctypes.Structure):
+    _fields_ = [("accepted", ctypes.c_int32), ("reason", ctypes.c_int32), ("position", ctypes.c_int64),
+                ("id", ctypes.c_int32), ("message", ctypes.c_char * 512)]
+
+
+class RepairParams(ctypes.Structure):
+    _fields_ = [("holes", ctypes.c_int32), ("max_fill_loop", ctypes.c_int32)]
+
+
+class RepairStats(ctypes.Structure):
+    _fields_ = [("tokens_accepted", ctypes.c_int64), ("illegal_at", ctypes.c_int64)] + [
+        (n, ctypes.c_int32) for n in ("vertices", "faces", "watertight", "window_findings", "holes_found",
+                                      "holes_repaired", "faces_added", "open_edges_before", "open_edges_after")]
+
+
+class RandomWalkParams(ctypes.Structure):
+    _fields_ = [("seed", ctypes.c_uint64), ("max_components", ctypes.c_int32), ("max_layers", ctypes.c_int32),
+                ("max_layer_size", ctypes.c_int32)]
 
 
 class PreprocessParams(ctypes.Structure):
@@ -137,6 +179,23 @@ SIGNATURES = {
     "silk_decode_default_params": (DecodeParams, []),
     "silk_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
                                    ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_decode_with_stats": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
+                                              ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(DecodeStats)]),
+    "silk_load_default_params": (LoadParams, []),
+    "silk_mesh_load_with_params": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(LoadParams),
+                                                  ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_roundtrip": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams), ctypes.POINTER(RoundtripReport)]),
+    "silk_report_json": (ctypes.c_char_p, [ctypes.c_void_p]),
+    "silk_report_destroy": (None, [ctypes.c_void_p]),
+    "silk_check_default_params": (CheckParams, []),
+    "silk_tokens_check": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(CheckParams), ctypes.POINTER(CheckResult)]),
+    "silk_reject_reason_name": (ctypes.c_char_p, [ctypes.c_int32]),
+    "silk_repair_default_params": (RepairParams, []),
+    "silk_tokens_repair": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(RepairParams), ctypes.POINTER(ctypes.c_void_p),
+                                          ctypes.POINTER(RepairStats), ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_random_walk_default_params": (RandomWalkParams, []),
+    "silk_tokens_random_walk": (ctypes.c_int, [ctypes.POINTER(RandomWalkParams), ctypes.POINTER(ctypes.c_void_p),
+                                               ctypes.POINTER(ctypes.c_void_p)]),
     "silk_generation_available": (ctypes.c_int32, []),
     "silk_model_default_options": (ModelOptions, []),
     "silk_model_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ModelOptions),

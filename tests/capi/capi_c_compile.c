@@ -53,6 +53,25 @@ int main(void) {
     pp.kind = 7;
     if (silk_prepare_points(mesh, NULL, 0, &pp, 1, buf, 6 * 64, &rows, NULL) != SILK_ERR_INVALID_ARGUMENT) return 17;
   }
+  /* the tokenizer tools silktok uses: round trip, grammar check, repair (+ its JSON report), walk */
+  {
+    silk_roundtrip_report rr;
+    silk_check_result cr;
+    silk_repair_stats rs;
+    silk_report* report = NULL;
+    silk_mesh* repaired = NULL;
+    silk_tokens* walk = NULL;
+    silk_random_walk_params wp = silk_random_walk_default_params();
+    if (silk_roundtrip(mesh, NULL, &rr) != SILK_OK || !rr.exact || rr.tokens != 17) return 18;
+    if (silk_tokens_check(tokens, NULL, &cr) != SILK_OK || !cr.accepted) return 19;
+    if (silk_tokens_repair(tokens, NULL, &repaired, &rs, &report) != SILK_OK || rs.faces != 4 || !rs.watertight) return 20;
+    if (strstr(silk_report_json(report), "\"holes\"") == NULL) return 21;
+    silk_report_destroy(report);
+    silk_mesh_destroy(repaired);
+    wp.seed = 5;
+    if (silk_tokens_random_walk(&wp, &walk, NULL) != SILK_OK || silk_tokens_count(walk) < 14) return 22;
+    silk_tokens_destroy(walk);
+  }
   silk_mesh_destroy(back);
   silk_tokens_destroy(tokens);
   silk_mesh_destroy(mesh);

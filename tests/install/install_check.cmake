@@ -3,9 +3,11 @@
 #  * libonnxruntime sits next to libsilk and the installed binaries find it through their
 #    $ORIGIN RPATH (LD_LIBRARY_PATH cleared);
 #  * the installed silkgen generates with the tiny model;
-#  * silkgen's sources build against the installed headers and libsilk alone (apps_consumer)
-#    and give the same ids as the build tree's silkgen.
-# Usage: cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DWORK_DIR=.. -DGENERATOR=.. -DHAVE_ORT=ON|OFF -P install_check.cmake
+#  * silkgen's and silktok's sources build against the installed headers and libsilk alone
+#    (apps_consumer); that silkgen gives the golden ids, that silktok encodes a golden mesh to
+#    the official ids and decodes, checks and round-trips it.
+# Usage: cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DSHARED_DIR=.. -DWORK_DIR=.. -DGENERATOR=.. -DHAVE_ORT=ON|OFF
+#        -P install_check.cmake
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
 set(ENV{LD_LIBRARY_PATH} "")
@@ -51,10 +53,26 @@ run(${CMAKE_COMMAND} --build "${WORK_DIR}/consumer")
 run("${WORK_DIR}/consumer/consumer" "${SOURCE_DIR}/tests/models/tiny")
 message(STATUS "consumer: ${LAST_OUTPUT}")
 
+# Both tools from their sources against the installed package alone (silkgen only when it can
+# generate), then a smoke run of each.
+run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/install/apps_consumer" -B "${WORK_DIR}/apps" -G "${GENERATOR}"
+    "-DCMAKE_PREFIX_PATH=${prefix}" "-DSILK_APPS_DIR=${SOURCE_DIR}/apps")
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/apps")
+# silktok: encode a golden mesh (ids equal the official ones), decode, check and round-trip it.
+if(NOT EXISTS "${SHARED_DIR}/spec/golden/cube.obj")
+  message(FATAL_ERROR "no golden mesh at ${SHARED_DIR}/spec/golden/cube.obj (set SILK_SHARED_DIR)")
+endif()
+run("${WORK_DIR}/apps/silktok" encode "${SHARED_DIR}/spec/golden/cube.obj" -o "${WORK_DIR}/cube.tokens.txt")
+file(READ "${WORK_DIR}/cube.tokens.txt" got)
+file(READ "${SHARED_DIR}/spec/golden/cube.tokens.txt" want)
+if(NOT got STREQUAL want)
+  message(FATAL_ERROR "silktok built against the installed headers encodes cube.obj to other ids than the golden")
+endif()
+run("${WORK_DIR}/apps/silktok" check "${WORK_DIR}/cube.tokens.txt")
+run("${WORK_DIR}/apps/silktok" decode "${WORK_DIR}/cube.tokens.txt" -o "${WORK_DIR}/cube.obj")
+run("${WORK_DIR}/apps/silktok" roundtrip "${SHARED_DIR}/spec/golden/cube.obj")
+message(STATUS "apps consumer: silktok built from the installed headers; cube ids equal the golden; ${LAST_OUTPUT}")
 if(HAVE_ORT)
-  run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/install/apps_consumer" -B "${WORK_DIR}/apps" -G "${GENERATOR}"
-      "-DCMAKE_PREFIX_PATH=${prefix}" "-DSILK_APPS_DIR=${SOURCE_DIR}/apps")
-  run(${CMAKE_COMMAND} --build "${WORK_DIR}/apps")
   set(args "${SOURCE_DIR}/samples/torus_knot.obj" --model "${SOURCE_DIR}/tests/models/tiny" --max-tokens 300
       --seed 7 --threads 1 -q)
   run("${WORK_DIR}/apps/silkgen" ${args} -o "${WORK_DIR}/apps.obj" --tokens "${WORK_DIR}/apps.tokens.txt")

@@ -67,5 +67,26 @@ TEST(SurfaceSampling, SubsampleWithoutRepeats) {
   EXPECT_EQ(SubsamplePoints(pts, 200, 5).size(), 100u);
 }
 
+// Long sampling runs can be stopped: the cancel check is polled once per kCancelPollInterval
+// samples, and a stop request ends the run with kCancelled (no samples).
+TEST(SurfaceSampling, PollsTheCancelCheckPeriodically) {
+  int polls = 0;
+  const CancelCheck third_poll_stops = [&] { return ++polls == 3; };
+  auto pts = SampleSurface(TwoTriangles(), 1 << 20, 42, third_poll_stops);
+  ASSERT_FALSE(pts.ok());
+  EXPECT_EQ(pts.status().code(), StatusCode::kCancelled);
+  EXPECT_NE(pts.status().message().find("surface sampling"), std::string::npos) << pts.status().ToString();
+  EXPECT_EQ(polls, 3);
+  // Never stopping: one poll per started block of samples, same samples as without a check.
+  polls = 0;
+  const CancelCheck never = [&] { return ++polls < 0; };
+  auto all = SampleSurface(TwoTriangles(), 3 * static_cast<int32_t>(kCancelPollInterval) + 1, 7, never);
+  ASSERT_TRUE(all.ok());
+  EXPECT_EQ(polls, 4);
+  auto plain = SampleSurface(TwoTriangles(), 3 * static_cast<int32_t>(kCancelPollInterval) + 1, 7);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_EQ((*all)[12345].position, (*plain)[12345].position);
+}
+
 }  // namespace
 }  // namespace silk

@@ -1,21 +1,83 @@
 #!/usr/bin/env python3
 """Enforces the engine's layering: a lower layer never includes a higher one.
-Order: core -> io -> mesh -> tokenizer -> decoder -> runtime -> capi (the C API sees all)."""
-import pathlib, re, sys
+Order: core -> io -> mesh -> tokenizer -> decoder -> runtime -> capi (the C API sees all).
+
+  check_layers.py ENGINE_DIR            the layer order inside engine/
+  check_layers.py --apps APPS_DIR       silkgen and silktok include nothing of libsilk but the
+                                        public headers (silk/silk.h, silk/silk.hpp): every
+                                        #include "..." is one of those or a file of the app itself
+  check_layers.py --apps-selftest       the apps check on a scratch app that includes
+                                        "tokenizer/tokenizer.h" must fail (the check can fail)
+"""
+import pathlib, re, sys, tempfile
 
 ORDER = ["core", "io", "mesh", "tokenizer", "decoder", "runtime", "capi"]
-root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "engine")
-inc = re.compile(r'^\s*#\s*include\s*"([a-z_]+)/')
-bad = []
-for layer in ORDER:
-    for f in sorted((root / layer).rglob("*")):
-        if f.suffix not in (".h", ".hpp", ".cpp", ".cc"):
+APPS = ["silkgen", "silktok"]
+PUBLIC = {"silk/silk.h", "silk/silk.hpp"}
+SOURCES = (".h", ".hpp", ".cpp", ".cc")
+quoted = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
+
+
+def check_engine(root):
+    inc = re.compile(r'^\s*#\s*include\s*"([a-z_]+)/')
+    bad = []
+    for layer in ORDER:
+        for f in sorted((root / layer).rglob("*")):
+            if f.suffix not in SOURCES:
+                continue
+            for n, line in enumerate(f.read_text(encoding="utf-8").splitlines(), 1):
+                m = inc.match(line)
+                if m and m.group(1) in ORDER and ORDER.index(m.group(1)) > ORDER.index(layer):
+                    bad.append(f"{f}:{n}: layer '{layer}' includes higher layer '{m.group(1)}'")
+    return bad, f"checked layers under {root}"
+
+
+def check_apps(root, apps=APPS):
+    bad, files = [], 0
+    for app in apps:
+        folder = root / app
+        if not folder.is_dir():
+            bad.append(f"{folder}: missing")
             continue
-        for n, line in enumerate(f.read_text(encoding="utf-8").splitlines(), 1):
-            m = inc.match(line)
-            if m and m.group(1) in ORDER and ORDER.index(m.group(1)) > ORDER.index(layer):
-                bad.append(f"{f}:{n}: layer '{layer}' includes higher layer '{m.group(1)}'")
-for b in bad:
-    print(b)
-print(f"checked layers under {root}: {len(bad)} violation(s)")
-sys.exit(1 if bad else 0)
+        for f in sorted(folder.rglob("*")):
+            if f.suffix not in SOURCES:
+                continue
+            files += 1
+            for n, line in enumerate(f.read_text(encoding="utf-8").splitlines(), 1):
+                m = quoted.match(line)
+                if m and m.group(1) not in PUBLIC and not (f.parent / m.group(1)).is_file():
+                    bad.append(f"{f}:{n}: includes \"{m.group(1)}\", which is neither silk/silk.h, "
+                               f"silk/silk.hpp nor a file of {app}")
+    return bad, f"checked {files} app sources under {root} (public API only)"
+
+
+def selftest():
+    with tempfile.TemporaryDirectory() as tmp:
+        app = pathlib.Path(tmp) / "silktok"
+        app.mkdir()
+        (app / "local.h").write_text("#pragma once\n")
+        (app / "main.cpp").write_text('#include "silk/silk.hpp"\n#include "local.h"\n')
+        clean, _ = check_apps(pathlib.Path(tmp), ["silktok"])
+        (app / "bad.cpp").write_text('#include <vector>\n#include "tokenizer/tokenizer.h"\n')
+        dirty, _ = check_apps(pathlib.Path(tmp), ["silktok"])
+    ok = not clean and len(dirty) == 1 and "tokenizer/tokenizer.h" in dirty[0]
+    print(f"selftest: clean app -> {len(clean)} finding(s); app including tokenizer/tokenizer.h -> {dirty}")
+    return [] if ok else ["the apps check does not catch an engine-internal include"], "apps check selftest"
+
+
+def main():
+    args = sys.argv[1:]
+    if args[:1] == ["--apps"]:
+        bad, what = check_apps(pathlib.Path(args[1] if len(args) > 1 else "apps"))
+    elif args[:1] == ["--apps-selftest"]:
+        bad, what = selftest()
+    else:
+        bad, what = check_engine(pathlib.Path(args[0] if args else "engine"))
+    for b in bad:
+        print(b)
+    print(f"{what}: {len(bad)} violation(s)")
+    sys.exit(1 if bad else 0)
+
+
+if __name__ == "__main__":
+    main()

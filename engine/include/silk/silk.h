@@ -72,11 +72,24 @@ SILK_API silk_status silk_mesh_create(const double* positions, size_t n_vertices
  * point cloud and must carry per-vertex normals (nx ny nz): it loads as a mesh with no
  * triangles and with normals, which silk_generate* samples as points. */
 SILK_API silk_status silk_mesh_load(const char* path, silk_mesh** out);
+typedef struct silk_load_params {
+  int32_t point_clouds; /* 1: a PLY without faces is a point cloud, as silk_mesh_load reads it (default);
+                           0: every file is read as a mesh, as the tokenizer sees it (normals ignored) */
+} silk_load_params;
+SILK_API silk_load_params silk_load_default_params(void);
+SILK_API silk_status silk_mesh_load_with_params(const char* path, const silk_load_params* params, silk_mesh** out);
 /* By extension: .obj, .ply, or .glb (one node per part: triangles grouped by component, smooth
- * normals per part); written atomically. */
+ * normals per part); written atomically (a failed save leaves no partial file). */
 SILK_API silk_status silk_mesh_save(const silk_mesh* mesh, const char* path);
+typedef enum silk_mesh_format {
+  SILK_FORMAT_BY_EXTENSION = 0, SILK_FORMAT_OBJ = 1, SILK_FORMAT_PLY = 2, SILK_FORMAT_GLB = 3
+} silk_mesh_format;
 typedef struct silk_save_params {
   int32_t part_colors; /* .glb: a distinct COLOR_0 per part; default 0 */
+  const char* obj_comment; /* .obj: written first as "# ..." lines (one per line of the text); NULL
+                              (default) or "": none. Borrowed: read during the call only */
+  int32_t format;          /* silk_mesh_format; default SILK_FORMAT_BY_EXTENSION; another value writes
+                              that format whatever the path's extension */
 } silk_save_params;
 SILK_API silk_save_params silk_save_default_params(void);
 SILK_API silk_status silk_mesh_save_with_params(const silk_mesh* mesh, const char* path, const silk_save_params* params);
@@ -116,6 +129,12 @@ typedef struct silk_encode_stats {
   int32_t layers, max_layer_size, max_layer_count;
   int64_t tokens;
   double seconds;
+  /* clean-up before layering: input vertices merged as duplicates, faces dropped, vertices added
+   * by non-manifold processing, faces flipped by the orientation pass */
+  int32_t merged_vertices, dropped_degenerate_faces, dropped_duplicate_faces, nonmanifold_copies, flipped_faces;
+  /* wall time per encoder phase, seconds (their sum is below `seconds`, which adds normalisation) */
+  double seconds_quantize_cleanup, seconds_nonmanifold, seconds_orientation, seconds_components, seconds_layering,
+      seconds_codecs, seconds_packing;
 } silk_encode_stats;
 /* stats may be NULL. A refused mesh returns SILK_ERR_REFUSED with the reason's name first in
  * the message (e.g. "mobius: ..."). */
@@ -125,9 +144,104 @@ SILK_API silk_status silk_encode(const silk_mesh* mesh, const silk_encode_params
 /* ---- decode: tokens -> mesh (every face the tokens carry, consistently oriented) ----- */
 typedef struct silk_decode_params {
   int32_t grid_coordinates; /* 1: positions are grid integers 0..127; 0: dequantised [-1,1] (default) */
+  int32_t split_nonmanifold_vertices; /* 1: every vertex whose faces form two or more fans is split (one
+                                         copy per extra fan, same position, appended); 0: the mesh the
+                                         tokens encode (default) */
 } silk_decode_params;
 SILK_API silk_decode_params silk_decode_default_params(void);
 SILK_API silk_status silk_decode(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out);
+typedef struct silk_decode_stats {
+  int32_t vertices, faces, components; /* components: C tokens read (a component may carry no face) */
+  int32_t vertices_split;              /* split_nonmanifold_vertices: vertices split */
+} silk_decode_stats;
+/* silk_decode plus its figures; stats may be NULL. */
+SILK_API silk_status silk_decode_with_stats(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out,
+                                            silk_decode_stats* stats);
+
+/* ---- round trip: encode, decode, compare ---------------------------------------------- */
+typedef struct silk_roundtrip_report {
+  int64_t tokens;
+  int64_t processed_faces;     /* faces of the emitted components, after clean-up */
+  int64_t representable_faces; /* processed faces whose three edges the stream carries */
+  int64_t recovered;           /* representable faces decoded with the encoder's winding */
+  int64_t reversed;            /* ... decoded with the opposite winding */
+  int64_t missing;             /* ... not decoded */
+  int64_t extra;               /* decoded faces that are not processed faces */
+  int64_t decoded_faces;
+  int32_t exact;               /* 1: nothing missing or reversed */
+} silk_roundtrip_report;
+/* Encodes `mesh` (params as silk_encode), decodes the ids and compares faces by grid corners and
+ * winding. A mesh the encoder refuses fails as in silk_encode; an inexact result is SILK_OK. */
+SILK_API silk_status silk_roundtrip(const silk_mesh* mesh, const silk_encode_params* params, silk_roundtrip_report* out);
+
+/* ---- reports: JSON documents some calls produce -------------------------------------- */
+typedef struct silk_report silk_report;
+/* The document, NUL-terminated, owned by the report (valid until silk_report_destroy). */
+SILK_API const char* silk_report_json(const silk_report* report);
+SILK_API void silk_report_destroy(silk_report* report);
+
+/* ---- grammar check of a token stream (spec §9, §11) ----------------------------------- */
+typedef enum silk_window_rule {
+  SILK_WINDOW_CANONICAL = 0, /* the encoder's rule: self-layer rows must agree about each pair */
+  SILK_WINDOW_UNION = 1      /* the official decoder's: a pair is an edge if either row says so */
+} silk_window_rule;
+typedef struct silk_check_params {
+  int32_t max_length;   /* tokens incl. EOS; 0 = unlimited; default 10240 (spec §9) */
+  int32_t window_rule;  /* silk_window_rule; default SILK_WINDOW_CANONICAL */
+  int32_t allow_prefix; /* 1: a stream that stops inside a component is accepted; default 0 */
+} silk_check_params;
+SILK_API silk_check_params silk_check_default_params(void);
+typedef struct silk_check_result {
+  int32_t accepted;  /* 1: every id is legal (and the stream ends after an E unless allow_prefix) */
+  int32_t reason;    /* 0 when accepted, else a stable code named by silk_reject_reason_name */
+  int64_t position;  /* index of the first rejected id (the count when the stream ends too early); -1 if accepted */
+  int32_t id;        /* the rejected id; -1 past the end or when accepted */
+  char message[512]; /* why, naming the rule and its spec section ("" when accepted; truncated, NUL-terminated) */
+} silk_check_result;
+/* Runs the ids (EOS optional at the end) through the grammar token by token. A rejected stream is
+ * SILK_OK with accepted = 0; only bad arguments fail. */
+SILK_API silk_status silk_tokens_check(const silk_tokens* tokens, const silk_check_params* params, silk_check_result* out);
+/* "wrong_class", "not_canonical", ... for a silk_check_result reason ("none" for 0; "unknown" out of range). */
+SILK_API const char* silk_reject_reason_name(int32_t reason);
+
+/* ---- hole repair of a token stream (spec §12.2) --------------------------------------- */
+/* What to do with holes (loops of open edges); also silk_generate_params.holes. */
+typedef enum silk_hole_policy { SILK_HOLES_OFF = 0, SILK_HOLES_REPORT = 1, SILK_HOLES_REPAIR = 2 } silk_hole_policy;
+typedef struct silk_repair_params {
+  int32_t holes;         /* silk_hole_policy; default SILK_HOLES_REPAIR */
+  int32_t max_fill_loop; /* longest hole loop (edges) that is triangulated; >= 0; default 8 */
+} silk_repair_params;
+SILK_API silk_repair_params silk_repair_default_params(void);
+typedef struct silk_repair_stats {
+  int64_t tokens_accepted; /* ids read before EOS, -1 padding or the first illegal id */
+  int64_t illegal_at;      /* index of the first illegal id, -1 if none */
+  int32_t vertices, faces, watertight;
+  int32_t window_findings; /* self-layer disagreements OR-ed (the official decoder's rule) */
+  int32_t holes_found, holes_repaired, faces_added, open_edges_before, open_edges_after;
+} silk_repair_stats;
+/* Reads the ids through the grammar (union window rule, no length limit) up to EOS, a -1 or the
+ * first illegal id, then builds the mesh of the accepted prefix (closed layers) with the hole
+ * policy; positions dequantised to [-1, 1]. stats and report may be NULL; *report (destroy it)
+ * holds {"tokens_accepted", "illegal": null or {"position", "id", "reason", "message"},
+ * "vertices", "faces", "watertight", "window_findings": [{"component", "layer", "row_a", "row_b"}],
+ * "holes": [{"component", "loop", "layers", "repaired", "added_edges"}], "faces_added",
+ * "open_edges_before", "open_edges_after"}. */
+SILK_API silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_params* params, silk_mesh** out_mesh,
+                                        silk_repair_stats* stats, silk_report** report);
+
+/* ---- random legal token streams (property tests, fuzzing, demos) ---------------------- */
+typedef struct silk_random_walk_params {
+  uint64_t seed;          /* default 1 */
+  int32_t max_components; /* 1..1000; default 2 */
+  int32_t max_layers;     /* most layers per component after the root, 0..199 (0 acts as 1); default 6 */
+  int32_t max_layer_size; /* largest target layer size, 0..200 (0 acts as 1); default 12 */
+} silk_random_walk_params;
+SILK_API silk_random_walk_params silk_random_walk_default_params(void);
+/* One seeded walk: ids drawn uniformly from the grammar's legal masks (biased toward closing
+ * layers) up to EOS (included), and the mesh they decode to (holes off, vertex fans resolved;
+ * positions dequantised). out_mesh may be NULL. */
+SILK_API silk_status silk_tokens_random_walk(const silk_random_walk_params* params, silk_tokens** out_tokens,
+                                             silk_mesh** out_mesh);
 
 /* ---- pre-processing: mesh or point cloud -> the encoder's points ----------------------
  * The one implementation of the pre-processing a model was trained with (model.json
@@ -212,11 +326,11 @@ typedef struct silk_generate_progress {
 } silk_generate_progress;
 /* Called after every generated id (the last one included), on the calling thread. */
 typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* user_data);
-/* Polled before point sampling, before the encoder and before every id; non-zero stops the
- * generation with SILK_ERR_CANCELLED. */
+/* Polled before point sampling, every 65,536 surface samples, before the encoder and before every
+ * id; non-zero stops the generation with SILK_ERR_CANCELLED. (silk_generator_cancel also stops an
+ * encoder run in progress.) */
 typedef int32_t (*silk_cancel_fn)(void* user_data);
 
-typedef enum silk_hole_policy { SILK_HOLES_OFF = 0, SILK_HOLES_REPORT = 1, SILK_HOLES_REPAIR = 2 } silk_hole_policy;
 
 /* Measurement switches (docs/runtime.md); 0 for normal use. */
 enum {
@@ -297,7 +411,8 @@ typedef enum silk_advance_until {
  * generation finishable: finish then returns the completed layers and stop reason CANCELLED. */
 SILK_API silk_status silk_generator_advance(silk_generator* generator, int32_t max_ids, int32_t until,
                                             int32_t* out_done);
-/* Thread-safe, any time: the generation stops before its next id. */
+/* Thread-safe, any time: the generation stops before its next id; a point sampling or encoder
+ * run in progress is interrupted (silk_generator_start then returns SILK_ERR_CANCELLED). */
 SILK_API void silk_generator_cancel(silk_generator* generator);
 SILK_API silk_status silk_generator_tokens(silk_generator* generator, silk_tokens** out);
 SILK_API silk_status silk_generator_mesh(silk_generator* generator, silk_mesh** out);

@@ -12,15 +12,32 @@ namespace silk_cpp {
 
 class Error : public std::runtime_error {
  public:
-  Error(silk_status s, const std::string& msg) : std::runtime_error(msg), status_(s) {}
+  Error(silk_status s, const std::string& msg) : std::runtime_error(msg), status_(s), message_(msg) {}
+  // From Check: what() is "<status name>: <message>", message() the library's text alone.
+  Error(silk_status s, const std::string& what, const std::string& message)
+      : std::runtime_error(what), status_(s), message_(message) {}
   silk_status status() const { return status_; }
+  const std::string& message() const { return message_; }
 
  private:
   silk_status status_;
+  std::string message_;
 };
 
 inline void Check(silk_status s) {
-  if (s != SILK_OK) throw Error(s, std::string(silk_status_name(s)) + ": " + silk_last_error());
+  if (s != SILK_OK) {
+    const std::string message = silk_last_error();
+    throw Error(s, std::string(silk_status_name(s)) + ": " + message, message);
+  }
+}
+
+struct ReportDeleter {
+  void operator()(silk_report* r) const { silk_report_destroy(r); }
+};
+// Takes ownership of a silk_report and returns its JSON text.
+inline std::string TakeReport(silk_report* r) {
+  std::unique_ptr<silk_report, ReportDeleter> owned(r);
+  return r ? std::string(silk_report_json(r)) : std::string();
 }
 
 struct MeshDeleter {
@@ -49,6 +66,13 @@ class Tokens {
     return v;
   }
   void Save(const std::string& path) const { Check(silk_tokens_save(h_.get(), path.c_str())); }
+  size_t size() const { return silk_tokens_count(h_.get()); }
+  // The grammar's verdict (a rejection is a result, not an exception).
+  silk_check_result GrammarCheck(const silk_check_params& p = silk_check_default_params()) const {
+    silk_check_result r;
+    silk_cpp::Check(silk_tokens_check(h_.get(), &p, &r));
+    return r;
+  }
   const silk_tokens* get() const { return h_.get(); }
 
  private:
@@ -63,9 +87,9 @@ class Mesh {
     Check(silk_mesh_create(xyz.data(), xyz.size() / 3, tris.data(), tris.size() / 3, &m));
     return Mesh(m);
   }
-  static Mesh Load(const std::string& path) {
+  static Mesh Load(const std::string& path, const silk_load_params& p = silk_load_default_params()) {
     silk_mesh* m = nullptr;
-    Check(silk_mesh_load(path.c_str(), &m));
+    Check(silk_mesh_load_with_params(path.c_str(), &p, &m));
     return Mesh(m);
   }
   void Save(const std::string& path, const silk_save_params& p = silk_save_default_params()) const {
@@ -94,10 +118,36 @@ class Mesh {
     Check(silk_encode(h_.get(), &p, &t, stats));
     return Tokens(t);
   }
-  static Mesh Decode(const Tokens& t, const silk_decode_params& p = silk_decode_default_params()) {
+  static Mesh Decode(const Tokens& t, const silk_decode_params& p = silk_decode_default_params(),
+                     silk_decode_stats* stats = nullptr) {
     silk_mesh* m = nullptr;
-    Check(silk_decode(t.get(), &p, &m));
+    Check(silk_decode_with_stats(t.get(), &p, &m, stats));
     return Mesh(m);
+  }
+  silk_roundtrip_report Roundtrip(const silk_encode_params& p = silk_encode_default_params()) const {
+    silk_roundtrip_report r;
+    Check(silk_roundtrip(h_.get(), &p, &r));
+    return r;
+  }
+  // Hole repair of a token stream (silk_tokens_repair); report_json (may be null) gets the report.
+  static Mesh Repair(const Tokens& t, const silk_repair_params& p = silk_repair_default_params(),
+                     silk_repair_stats* stats = nullptr, std::string* report_json = nullptr) {
+    silk_mesh* m = nullptr;
+    silk_report* r = nullptr;
+    Check(silk_tokens_repair(t.get(), &p, &m, stats, report_json ? &r : nullptr));
+    Mesh mesh(m);
+    if (report_json) *report_json = TakeReport(r);
+    return mesh;
+  }
+  // One random legal stream (silk_tokens_random_walk) and its mesh.
+  static Mesh RandomWalk(const silk_random_walk_params& p, std::vector<int32_t>* ids) {
+    silk_tokens* t = nullptr;
+    silk_mesh* m = nullptr;
+    Check(silk_tokens_random_walk(&p, &t, &m));
+    Tokens tokens(t);
+    Mesh mesh(m);
+    if (ids) *ids = tokens.ids();
+    return mesh;
   }
   const silk_mesh* get() const { return h_.get(); }
 

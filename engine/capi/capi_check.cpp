@@ -1,0 +1,52 @@
+// C API: a token stream checked against the grammar (spec §9, §11): the first rejected id, its
+// stable reason code and the rule it breaks.
+#include <algorithm>
+#include <cstring>
+
+#include "capi/capi_internal.h"
+#include "decoder/grammar.h"
+
+using silk::capi::Guard;
+using silk::capi::Ok;
+
+extern "C" {
+
+silk_check_params silk_check_default_params(void) {
+  silk_check_params p;
+  p.max_length = silk::GrammarOptions{}.max_length;
+  p.window_rule = SILK_WINDOW_CANONICAL;
+  p.allow_prefix = 0;
+  return p;
+}
+
+const char* silk_reject_reason_name(int32_t reason) {
+  if (reason < 0 || reason > static_cast<int32_t>(silk::RejectReason::kIncomplete)) return "unknown";
+  return silk::RejectReasonName(static_cast<silk::RejectReason>(reason));
+}
+
+silk_status silk_tokens_check(const silk_tokens* tokens, const silk_check_params* params, silk_check_result* out) {
+  return Guard([&] {
+    SILK_CAPI_REQUIRE(tokens && out, "silk_tokens_check: tokens or out is NULL");
+    std::memset(out, 0, sizeof(*out));
+    const silk_check_params p = params ? *params : silk_check_default_params();
+    SILK_CAPI_REQUIRE(p.max_length >= 0, "silk_tokens_check: max_length must be >= 0 (0 = unlimited)");
+    SILK_CAPI_REQUIRE(p.window_rule == SILK_WINDOW_CANONICAL || p.window_rule == SILK_WINDOW_UNION,
+                      "silk_tokens_check: window_rule is not a silk_window_rule (0..1)");
+    SILK_CAPI_REQUIRE(p.allow_prefix == 0 || p.allow_prefix == 1, "silk_tokens_check: allow_prefix takes 0 or 1");
+    silk::GrammarOptions opt;
+    opt.max_length = p.max_length;
+    opt.window_rule = p.window_rule == SILK_WINDOW_UNION ? silk::WindowRule::kUnion : silk::WindowRule::kCanonical;
+    size_t pos = 0;
+    const silk::Rejection r = silk::CheckTokens(tokens->ids, opt, &pos, p.allow_prefix == 0);
+    out->accepted = r.ok() ? 1 : 0;
+    out->reason = static_cast<int32_t>(r.reason);
+    out->position = r.ok() ? -1 : static_cast<int64_t>(pos);
+    out->id = !r.ok() && pos < tokens->ids.size() ? tokens->ids[pos] : -1;
+    const size_t n = std::min(r.message.size(), sizeof(out->message) - 1);
+    std::memcpy(out->message, r.message.data(), n);
+    out->message[n] = '\0';
+    return Ok();
+  });
+}
+
+}  // extern "C"
