@@ -162,8 +162,8 @@ class Grammar {
   void ForEachLinkedPosition(F&& f) const;
   WindowSizeRule WindowRuleNow() const;
   bool ChainLets(int32_t w) const;
-  LayerSizeSet WindowSizes(const WindowSizeRule& rule, int32_t w) const;
-  XRowRule XRuleAt(int32_t n_size, bool tight, int64_t future, int64_t rem) const;
+  LayerSizeSet WindowSizes(const WindowSizeRule& rule, int32_t w, bool any = false) const;
+  XRowRule XRuleAt(int32_t b, int32_t n_size, bool tight, int64_t future, int64_t rem) const;
   template <class F>
   void ForEachXRule(F&& f) const;
   int32_t BMinStart() const;

@@ -27,9 +27,9 @@ void Grammar::ForEachLinkedPosition(F&& f) const {
     if ((vs[a].window >> (b - a - 1)) & 1) f(vs[a].pos);
   for (int32_t g = incoming_[b].Next(0); g >= 0; g = incoming_[b].Next(g + 1)) f(vs[b - g].pos);
   const auto& pv = prev_layer().vertices;
-  bool all_same = true;
-  for (const auto& v : pv) all_same = all_same && v.pos == pv[0].pos;
-  if (all_same && !pv.empty()) f(pv[0].pos);
+  for (const auto& v : pv)
+    if (v.pos != pv[0].pos) return;
+  if (!pv.empty()) f(pv[0].pos);
 }
 
 Rejection Grammar::TestPosition(int32_t id) const {
@@ -97,11 +97,12 @@ WindowSizeRule Grammar::WindowRuleNow() const {
   return r;
 }
 
-// {n in the candidates : WindowOk(n, w)}, the far part in bulk.
-LayerSizeSet Grammar::WindowSizes(const WindowSizeRule& rule, int32_t w) const {
+// {n in the candidates : WindowOk(n, w)}, the far part in bulk. With `any`, stops at the first
+// size found: the set may be partial but is empty exactly when the full one is.
+LayerSizeSet Grammar::WindowSizes(const WindowSizeRule& rule, int32_t w, bool any) const {
   LayerSizeSet ok;
   if (ChainLets(w)) ok = rule.far;
-  for (int32_t i = 0; i < rule.near_count; ++i)
+  for (int32_t i = 0; i < rule.near_count && !(any && !ok.Empty()); ++i)
     if (WindowOk(rule.near[i], w)) ok.Set(rule.near[i]);
   return ok;
 }
@@ -132,7 +133,7 @@ void Grammar::AddWindows(TokenMask* mask) const {
     return;
   }
   for (int32_t w = 0; w < kWindowValues; ++w)
-    if (!WindowSizes(rule, w).Empty()) mask->Set(vocab::kSBegin + w);
+    if (!WindowSizes(rule, w, /*any=*/true).Empty()) mask->Set(vocab::kSBegin + w);
 }
 
 // ---- X: the values a row may carry at each layer size still open (spec §6, §11.2).
@@ -140,8 +141,7 @@ void Grammar::AddWindows(TokenMask* mask) const {
 // it: the cheapest completion grows by 2), under kUnion free wrap-around statements
 // N-1-b <= e (+1), under kCanonical only the next due echo N-1-g (+0); all e <= N-10 (<= 190).
 // `future` = FutureRowsCost(b+1, N) when `tight` (see RowFinishCost); not read otherwise.
-XRowRule Grammar::XRuleAt(int32_t n, bool tight, int64_t future, int64_t rem) const {
-  const int32_t b = static_cast<int32_t>(cur_layer().vertices.size()) - 1;
+XRowRule Grammar::XRuleAt(int32_t b, int32_t n, bool tight, int64_t future, int64_t rem) const {
   const int64_t cost = tight ? RowFinishCost(n, future) : 0;
   auto fits = [&](int64_t need) { return !tight || need <= rem; };
   XRowRule r;
@@ -161,7 +161,7 @@ XRowRule Grammar::XRuleAt(int32_t n, bool tight, int64_t future, int64_t rem) co
   return r;
 }
 
-// Calls f(N, XRuleAt(N, ...)) for every size N the row still allows, in increasing order.
+// Calls f(N, XRuleAt(b, N, ...)) for every size N the row still allows, in increasing order.
 template <class F>
 void Grammar::ForEachXRule(F&& f) const {
   const int32_t b = static_cast<int32_t>(cur_layer().vertices.size()) - 1;
@@ -172,7 +172,7 @@ void Grammar::ForEachXRule(F&& f) const {
   for (int32_t n = row_sizes_.Next(0); n >= 0; n = row_sizes_.Next(n + 1)) {
     if (tight)
       for (; row < n; ++row) future += 4 + incoming_count_[row];
-    f(n, XRuleAt(n, tight, future, rem));
+    f(n, XRuleAt(b, n, tight, future, rem));
   }
 }
 
@@ -218,7 +218,7 @@ void Grammar::AddX(TokenMask* mask) const {
   const bool canonical = options_.window_rule == WindowRule::kCanonical;
   if (FarFromCap() && (g_count_ == 0 || !canonical)) {
     const int32_t n = row_sizes_.Max();
-    if (n >= 0) add(n, XRuleAt(n, false, 0, 0));
+    if (n >= 0) add(n, XRuleAt(static_cast<int32_t>(cur_layer().vertices.size()) - 1, n, false, 0, 0));
     return;
   }
   ForEachXRule(add);
