@@ -124,16 +124,18 @@ Rejection Grammar::TestWindow(int32_t id) const {
   });
 }
 
-// WindowSizes(rule, w) is non-empty for every w when the far part is and ChainLets passes
-// both values of bit 0; otherwise each w is judged by WindowSizes itself.
+// WindowSizes(rule, w) starts from the far part when ChainLets(w): then it is non-empty as soon
+// as the far part is. ChainLets reads w's bit 0 only, so when it passes both values every w is
+// admitted; otherwise each w is judged by WindowSizes itself.
 void Grammar::AddWindows(TokenMask* mask) const {
   const WindowSizeRule rule = WindowRuleNow();
-  if (!rule.far.Empty() && ChainLets(0) && ChainLets(1)) {
+  const bool far_open = !rule.far.Empty();
+  if (far_open && ChainLets(0) && ChainLets(1)) {
     mask->SetRange(vocab::kSBegin, vocab::kSEnd);
     return;
   }
   for (int32_t w = 0; w < kWindowValues; ++w)
-    if (!WindowSizes(rule, w, /*any=*/true).Empty()) mask->Set(vocab::kSBegin + w);
+    if ((far_open && ChainLets(w)) || !WindowSizes(rule, w, /*any=*/true).Empty()) mask->Set(vocab::kSBegin + w);
 }
 
 // ---- X: the values a row may carry at each layer size still open (spec §6, §11.2).
