@@ -1,7 +1,9 @@
 // Grammar: the state machine of legal Mesh Silksong sequences over the full model vocabulary
 // (spec §9, §11), for constrained sampling and for checking streams token by token.
 //
-// Rules enforced (each documented at its code in grammar.cpp):
+// Rules enforced (the rule table, grammar_rules.h/.cpp: each phase written once, as the id
+// classes it takes and their predicates, documented at their code in grammar_gates.cpp and
+// grammar_predicates.cpp; Accept, Check and the legal mask all read that table):
 //  * token kinds in packing order (C, root K O, U, then K O S X* B+ per vertex, U/E), EOS only
 //    after an E, PAD never;
 //  * S bits only at distances < N, X values strictly increasing in [8, N-10] (so only N>=18),
@@ -27,6 +29,7 @@
 
 #include "core/status.h"
 #include "decoder/grammar_rejection.h"
+#include "decoder/grammar_rules.h"
 #include "decoder/layer_size_set.h"
 #include "decoder/token_mask.h"
 #include "tokenizer/layered_stream.h"
@@ -66,7 +69,8 @@ class Grammar {
   void Reset();
   // Accepts one id (0..10268). On rejection the state is unchanged.
   Rejection Accept(int32_t id);
-  // What Accept(id) would answer now, without changing anything (same code path: Step).
+  // What Accept(id) would answer now, without changing anything (same code path: Step over the
+  // rule table of grammar_rules.h, which the legal mask reads too).
   // with_message = false skips building the refusal's text (the verdict is the same).
   Rejection Check(int32_t id, bool with_message = true) const;
   // The ids Accept would take now. Cached until the next Accept/Reset/Rewind.
@@ -117,22 +121,65 @@ class Grammar {
   Rejection MakeRejection(RejectReason r, int32_t id, const std::string& why) const;
   void StartLayer();
   void ResetLayerState();
-  void AddBetweenMask(int32_t min_start);
   bool WindowOk(int32_t n_size, int32_t w) const;
   int32_t BudgetMaxSize(int64_t extra) const;
   bool FarFromCap(int64_t extra = 0) const;
   Rejection Step(int32_t id, bool commit);
+  void ComputeMask();
   int64_t RowFinishCost(int32_t n_size, int64_t future) const;
   int64_t FutureRowsCost(int32_t from_row, int32_t n_size) const;
   bool ColumnsClear(int32_t s, int32_t c) const;
-  // A B segment (start s, case c) must end inside the previous layer and, with geometric rules,
-  // not link two vertices at one position (spec §11.3); shared by the first and later B tokens.
-  Rejection CheckBSegment(int32_t id, int32_t s, int32_t c) const;
-  bool PositionForbidden(const QVec& p) const;
   std::string ExplainClose(int32_t n_size) const;
   void CloseLayer();
   void RecordFindings();
-  void ComputeMask();
+
+  // The rule table (grammar_rules.h): one row per phase, read by Step and ComputeMask alike.
+  static const GrammarPhaseRule& RuleRow(GrammarPhase p);
+  // Gates: predicates that hold for all ids of a class or for none (grammar_predicates.cpp).
+  Rejection NotEnded(int32_t id) const;
+  Rejection RoomForToken(int32_t id) const;
+  Rejection RoomForComponent(int32_t id) const;
+  Rejection RefuseEndAfterRoot(int32_t id) const;
+  Rejection LayerClosable(int32_t id) const;
+  Rejection BelowLayerIndexLimit(int32_t id) const;
+  Rejection RoomForLayer(int32_t id) const;
+  Rejection RoomForEos(int32_t id) const;
+  Rejection BelowLayerSizeLimit(int32_t id) const;
+  Rejection RoomForVertex(int32_t id) const;
+  Rejection RoomToCloseAfterB(int32_t id) const;
+  Rejection RowCanFinish(int32_t id) const;
+  // Id-dependent predicates and their bulk forms (one shared description per pair).
+  Rejection TestPosition(int32_t id) const;
+  void AddPositions(TokenMask* mask) const;
+  Rejection TestWindow(int32_t id) const;
+  void AddWindows(TokenMask* mask) const;
+  Rejection TestX(int32_t id) const;
+  void AddX(TokenMask* mask) const;
+  Rejection TestB(int32_t id) const;
+  void AddB(TokenMask* mask) const;
+  // Their shared descriptions.
+  template <class F>
+  void ForEachLinkedPosition(F&& f) const;
+  WindowSizeRule WindowRuleNow() const;
+  bool ChainLets(int32_t w) const;
+  LayerSizeSet WindowSizes(const WindowSizeRule& rule, int32_t w, bool any = false) const;
+  XRowRule XRuleAt(int32_t b, int32_t n_size, bool tight, int64_t future, int64_t rem) const;
+  template <class F>
+  void ForEachXRule(F&& f) const;
+  int32_t BMinStart() const;
+  uint32_t BCasesAt(int32_t s) const;
+  // What an admitted id does (grammar.cpp).
+  void ApplyEos(int32_t id);
+  void ApplyComponentStart(int32_t id);
+  void ApplyBlock(int32_t id);
+  void ApplyOffset(int32_t id);
+  void ApplyRootLayerEnd(int32_t id);
+  void ApplyWindow(int32_t id);
+  void ApplyX(int32_t id);
+  void ApplyFirstB(int32_t id);
+  void ApplyNextB(int32_t id);
+  void ApplyLayerEnd(int32_t id);
+
   StreamLayer& cur_layer() { return stream_.components.back().layers.back(); }
   const StreamLayer& cur_layer() const { return stream_.components.back().layers.back(); }
   const StreamLayer& prev_layer() const {
@@ -163,6 +210,9 @@ class Grammar {
   LayerSizeSet eq_cols_;  // previous-layer columns at the current vertex's position
   bool eq_cols_any_ = false;
   int32_t pending_block_ = -1;
+  // The layer sizes the id under test leaves open: written by the S and X tests and the B gate
+  // of phase kAfterS, read by the matching Apply (Step runs them back to back).
+  mutable LayerSizeSet next_sizes_;
 
   TokenMask mask_;
   bool mask_valid_ = false;

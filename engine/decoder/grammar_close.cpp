@@ -1,5 +1,5 @@
-// Closing a layer: the geometric position rule, the explanation of a refused U/E (which
-// deferred rule of spec §11.2 fails at this size) and the findings of WindowRule::kUnion.
+// Closing a layer: the progress report, the explanation of a refused U/E (which deferred rule
+// of spec §11.2 fails at this size) and the findings of WindowRule::kUnion.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -10,23 +10,6 @@
 namespace silk {
 
 using namespace grammar_limits;  // NOLINT: the grammar's own constants
-
-// Geometric rule (not in the spec's grammar, satisfied by all 154 official streams): no edge
-// joins two vertices at one grid position. Checked when a vertex's position is read, against
-// the earlier rows of its layer that already state an edge to it (window bit or X value), and
-// against the previous layer when every vertex there sits at this position (no B could follow).
-bool Grammar::PositionForbidden(const QVec& p) const {
-  const auto& vs = cur_layer().vertices;
-  const int32_t b = static_cast<int32_t>(vs.size()) - 1;
-  for (int32_t a = std::max(0, b - kSelfWindow); a < b; ++a)
-    if (((vs[a].window >> (b - a - 1)) & 1) && vs[a].pos == p) return true;
-  for (int32_t g = incoming_[b].Next(0); g >= 0; g = incoming_[b].Next(g + 1))
-    if (vs[b - g].pos == p) return true;
-  const auto& pv = prev_layer().vertices;
-  for (const auto& v : pv)
-    if (v.pos != p) return false;
-  return true;
-}
 
 void Grammar::CloseLayer() {
   const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
