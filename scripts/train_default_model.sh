@@ -26,6 +26,11 @@ WORKERS=${WORKERS:-1}    # DataLoader processes tokenising through libsilk besid
 STEPS=${STEPS:-17000}
 MINUTES=${MINUTES:-0}
 STAGES=${STAGES:-"build fetch install dataset restore train pack export eval bench card"}
+# Stage `sweep` (not in the default list): the candidate configurations trained for the same CPU
+# time from scratch, then scored on the whole val split; the lowest held-out loss is the one to
+# train (CONFIG). Slow: SWEEP_CPU_MINUTES of CPU per configuration.
+SWEEP_CONFIGS=${SWEEP_CONFIGS:-"nano micro mini"}
+SWEEP_CPU_MINUTES=${SWEEP_CPU_MINUTES:-12}
 mkdir -p "$RUN/eval"
 export SILK_DATA_DIR=$DATA_DIR
 export SILK_LIBRARY=${SILK_LIBRARY:-$PWD/build/engine/libsilk.so}
@@ -40,6 +45,34 @@ fi
 has fetch && bash scripts/fetch_0ad.sh
 has install && python3 -m pip install -q -e export
 has dataset && silk-export dataset --root "$DATA_DIR/0ad" --out "$INDEX_DIR"
+
+if has sweep; then
+  for c in $SWEEP_CONFIGS; do
+    run="$DATA_DIR/runs/sweep-$c"
+    silk-export train --index "$INDEX_DIR/index.jsonl" --root "$DATA_DIR/0ad" --out "$run" \
+      --config "$c" --steps "$STEPS" --batch-size 4 --lr 1e-3 --lr-min 1e-4 --warmup 200 --seed 0 \
+      --threads "$THREADS" --workers 0 --log-every 20 --val-every 0 --no-progress \
+      --max-cpu-minutes "$SWEEP_CPU_MINUTES" >"$run.log" 2>&1
+    silk-export loss --checkpoint "$run/checkpoint.pt" --index "$INDEX_DIR/index.jsonl" --root "$DATA_DIR/0ad" \
+      --split val --out "$run/loss_val.json" --threads "$THREADS" >/dev/null
+  done
+  python3 - "$DATA_DIR/runs" $SWEEP_CONFIGS <<'PY' | tee "$RUN/sweep.md"
+import json, sys, torch
+from pathlib import Path
+runs = Path(sys.argv[1])
+print("| config | parameters | CPU minutes | steps | tokens | val loss (nats/token) |")
+print("|---|---|---|---|---|---|")
+for c in sys.argv[2:]:
+    d = runs / f"sweep-{c}"
+    ck = torch.load(d / "checkpoint.pt", map_location="cpu", weights_only=False)
+    log = [json.loads(l) for l in open(d / "log.jsonl")]
+    tokens = sum(r.get("tokens", 0) for r in log if r.get("kind") == "train")
+    loss = json.load(open(d / "loss_val.json"))
+    params = sum(v.numel() for v in ck["model"].values())
+    print(f"| {c} | {params:,} | {ck['args'].get('max_cpu_minutes')} | {ck['step']} | {tokens:,} | "
+          f"{loss.get('nats_per_token', loss.get('loss'))} |")
+PY
+fi
 
 if has restore && [ ! -f "$RUN/checkpoint.pt" ] && [ -f "$REPO_TRAIN/checkpoint.pt" ]; then
   echo "train_default_model: resuming from $REPO_TRAIN/checkpoint.pt"

@@ -7,6 +7,8 @@ import json
 import sys
 from pathlib import Path
 
+from .configs import CONFIGS
+
 
 def _cmd_dataset(a) -> int:
     from .dataset_index import build_index, build_shard, merge_shards
@@ -38,7 +40,7 @@ def _cmd_train(a) -> int:
                      workers=a.workers, init_from=a.init_from or "", init_config=a.init_config or "",
                      log_every=a.log_every,
                      val_every=a.val_every, val_meshes=a.val_meshes, ckpt_minutes=a.ckpt_minutes,
-                     max_minutes=a.max_minutes, resume=not a.no_resume, augment=not a.no_augment,
+                     max_minutes=a.max_minutes, max_cpu_minutes=a.max_cpu_minutes, resume=not a.no_resume, augment=not a.no_augment,
                      max_seq_len=a.max_seq_len, progress=not a.no_progress)
     res = train(args)
     if os.environ.get("RANK", "0") == "0":
@@ -158,7 +160,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--index", help="index.jsonl of mesh files under --root (instead of --data)")
     t.add_argument("--root", help="folder the index's `file` paths are relative to (default: 0 A.D. cache)")
     t.add_argument("--out", required=True)
-    t.add_argument("--config", default="micro", choices=["micro", "tiny", "small", "paper"])
+    t.add_argument("--config", default="micro", choices=sorted(CONFIGS))
     t.add_argument("--steps", type=int, default=1000)
     t.add_argument("--batch-size", type=int, default=4, help="global batch: sequences per step over all ranks")
     t.add_argument("--micro-batch", type=int, default=0,
@@ -182,7 +184,11 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--val-every", type=int, default=200)
     t.add_argument("--val-meshes", type=int, default=32)
     t.add_argument("--ckpt-minutes", type=float, default=5.0)
-    t.add_argument("--max-minutes", type=float, default=0.0, help="stop (and checkpoint) after this many minutes of this invocation (training that spans sessions)")
+    t.add_argument("--max-minutes", type=float, default=0.0,
+                   help="stop (and checkpoint) after this many minutes of this invocation (training that spans sessions)")
+    t.add_argument("--max-cpu-minutes", type=float, default=0.0,
+                   help="stop (and checkpoint) after this much CPU time of this process (comparing configurations "
+                        "at equal compute on a shared machine; use with --workers 0)")
     t.add_argument("--max-seq-len", type=int, default=0, help="override the config's max_seq_len")
     t.add_argument("--no-resume", action="store_true")
     t.add_argument("--no-augment", action="store_true")

@@ -49,8 +49,14 @@ class ModelConfig:
 
 
 CONFIGS = {
+    # CPU-trainable sizes around the bundled model, compared at equal CPU time
+    # (scripts/train_default_model.sh, docs: models/training/README.md).
+    "nano": ModelConfig("nano", d_model=96, n_layers=2, n_heads=2, n_latents=32, max_seq_len=2048,
+                        encoder_layers=1),
     "micro": ModelConfig("micro", d_model=128, n_layers=3, n_heads=4, n_latents=64, max_seq_len=2048,
                          encoder_layers=1),
+    "mini": ModelConfig("mini", d_model=192, n_layers=4, n_heads=4, n_latents=64, max_seq_len=2048,
+                        encoder_layers=1),
     "tiny": ModelConfig("tiny", d_model=256, n_layers=6, n_heads=4, n_latents=256, max_seq_len=10241),
     "small": ModelConfig("small", d_model=512, n_layers=12, n_heads=8, n_latents=256, max_seq_len=10241,
                          encoder_layers=4),

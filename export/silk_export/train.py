@@ -64,6 +64,7 @@ class TrainArgs:
     val_meshes: int = 32
     ckpt_minutes: float = 5.0
     max_minutes: float = 0.0  # wall-clock limit of this invocation (a resumed run gets it anew); 0: none
+    max_cpu_minutes: float = 0.0  # CPU-time limit of this invocation (this process, all its threads); 0: none
     resume: bool = True
     augment: bool = True
     max_seq_len: int = 0  # 0: the config's
@@ -324,7 +325,7 @@ class Trainer:
         sampler = ProgressiveBalancedSampler([r["processed_faces"] for r in self.data.train.rows], a.steps)
         batches = iter(step_loader(StepSamples(self.data.train, sampler, a.seed, self.cfg, a.augment,
                                                self.slots, a.steps), self.step, a.workers))
-        step, t_start = self.step, time.time()
+        step, t_start, cpu_start = self.step, time.time(), time.process_time()
         last_ckpt, window_tokens, window_t = t_start, 0, t_start
         bar = tqdm(total=a.steps, initial=step, desc=f"train {self.cfg.name}", unit="step",
                    disable=not (a.progress and env.is_main))
@@ -338,7 +339,8 @@ class Trainer:
                                             a.grad_clip)
             step += 1
             now = time.time()
-            out_of_time = bool(a.max_minutes) and now - t_start > a.max_minutes * 60
+            out_of_time = (bool(a.max_minutes) and now - t_start > a.max_minutes * 60) or \
+                (bool(a.max_cpu_minutes) and time.process_time() - cpu_start > a.max_cpu_minutes * 60)
             ckpt_due = now - last_ckpt > a.ckpt_minutes * 60
             loss_sum, out_of_time, ckpt_due = env.all_reduce_sum([loss_sum, out_of_time, ckpt_due])
             lv = loss_sum / n_tokens
