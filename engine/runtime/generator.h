@@ -34,7 +34,17 @@ struct GenerateOptions {
   bool kv_in_place = true;     // false: naive copying cache (measurement)
   SampleOrder order = SampleOrder::kMaskFirst;
   bool record_trace = false;   // fill GenerateResult::trace (golden test reference check)
+  // Surface guidance (runtime/surface_guide.h): vertex ids only on grid cells within this many
+  // cells of an input point's cell; 0 = off. Constrained mode only: with `unconstrained` there
+  // is no mask to restrict, so the setting is ignored (stats.guided_tokens stays 0).
+  int32_t surface_tolerance = 0;
+  // Best of N (runtime/candidates.h, RunCandidates): N generations with derived seeds, the one
+  // closest to the input kept. Generator::Run/Start run one generation and ignore it.
+  int32_t candidates = 1;
 };
+
+constexpr int32_t kMaxSurfaceTolerance = 127;
+constexpr int32_t kMaxCandidates = 64;
 
 struct GenerateProgress {
   int64_t tokens = 0, max_tokens = 0;
@@ -97,6 +107,7 @@ class Generator {
  private:
   struct Session;
   Status StepOnce();
+  const TokenMask* Guide(int32_t forced_id, const TokenMask* legal);
   void ReportProgress();
   const Model& model_;
   KvCache cache_;

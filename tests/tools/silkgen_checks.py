@@ -146,6 +146,10 @@ def check_bad(silkgen, repo):
             ([sample, "-o", tmp / "o.obj", "--model", model, "--repair", "maybe"], 2, ["repair"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--top-p", "1.5"], 2, ["top-p"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--int8"], 1, ["INT8"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--surface-tolerance", "-1"], 2, ["surface-tolerance"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--surface-tolerance", "128"], 2, ["surface-tolerance"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "0"], 2, ["candidates"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "65"], 2, ["candidates"]),
             ([sample, "-o", tmp / "nodir" / "o.obj", "--model", model, "--max-tokens", "40"], 1, ["nodir"]),
         ]
         for args, want_rc, words in cases:
