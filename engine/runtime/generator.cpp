@@ -98,7 +98,7 @@ struct Generator::Session {
   std::vector<int32_t> pending;
   int32_t faces_at_close = -1;
   int64_t layers_closed = 0;
-  std::unique_ptr<SurfaceGuide> guide;  // surface_tolerance > 0, constrained mode
+  std::shared_ptr<const SurfaceGuide> guide;  // surface_tolerance > 0, constrained mode
   TokenMask guided;                     // the legal mask after guidance (what is sampled from)
   mutable MeshBuildCache so_far_cache;  // max_faces / MeshSoFar: closed components are built once
   bool illegal_seen = false;
@@ -155,7 +155,11 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   st.kv_cache_bytes = cap * cfg.dims.kv_row_floats() * static_cast<int64_t>(sizeof(float));
   if (options.surface_tolerance > 0 && !options.unconstrained) {
     t0 = Clock::now();
-    s.guide = std::make_unique<SurfaceGuide>(points, options.surface_tolerance);
+    if (!guide_ || guide_->tolerance() != options.surface_tolerance || guide_points_ != points) {
+      guide_ = std::make_shared<const SurfaceGuide>(points, options.surface_tolerance);
+      guide_points_ = points;
+    }
+    s.guide = guide_;
     st.seconds.guidance += Since(t0);
   }
   s.pending = {cfg.bos_id};

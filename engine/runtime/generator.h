@@ -19,6 +19,8 @@
 
 namespace silk {
 
+class SurfaceGuide;
+
 enum class SampleOrder {
   kMaskFirst,        // sample among legal ids (default)
   kSampleThenCheck,  // sample over all ids, fall back to the masked chain if illegal
@@ -111,6 +113,9 @@ class Generator {
   void ReportProgress();
   const Model& model_;
   KvCache cache_;
+  // The last surface guide and its points: runs on the same input (best of N) build it once.
+  std::shared_ptr<const SurfaceGuide> guide_;
+  std::vector<float> guide_points_;
   std::unique_ptr<Session> session_;
 };
 

@@ -39,10 +39,13 @@ class SurfaceGuide {
   int32_t tolerance_;
   std::vector<int32_t> dist2_;        // kBins^3
   std::vector<int32_t> block_dist2_;  // 512
+  // Within the tolerance, as bits in token order (the per-token test is one bit): blocks, and
+  // each block's 4,096 offsets (block * 4096 + offset).
+  std::vector<uint64_t> block_within_, offset_within_;
 };
 
 // Squared Euclidean distance transform along one line of n values in place (f: 0 on sites, a
-// large value elsewhere). Exposed for the tests.
+// large value elsewhere); n <= 128. Exposed for the tests.
 void DistanceTransform1D(int32_t* f, int32_t n, int32_t stride);
 
 }  // namespace silk
