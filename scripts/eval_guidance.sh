@@ -2,25 +2,28 @@
 # Measures surface guidance and best-of-N with the bundled model (the defaults of
 # silk_generate_params.surface_tolerance / .candidates were chosen from its table,
 # docs/runtime.md): 40 meshes of the 0 A.D. validation split when its index exists, else the
-# first 40 dev-corpus meshes; seed 0, 1 thread, 512-token cap; `silk-export eval` on each run.
+# first 40 dev-corpus meshes (LIMIT=N: fewer); seed 0, 1 thread, 512-token cap; `silk-export
+# eval` with 2,000 surface points per mesh (POINTS=...) on each run. A run whose generate.json
+# exists is only re-evaluated.
 # Usage: SILK_LIBRARY=build/engine/libsilk.so scripts/eval_guidance.sh [OUT_DIR=out/guidance] [TOLERANCES="0 1 2 3 4"] [CANDIDATES="1 2 4 8"] [BEST_TOLERANCE=2]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out="${1:-out/guidance}"; tolerances="${2:-0 1 2 3 4}"; candidates="${3:-1 2 4 8}"; best="${4:-2}"
+out="${1:-out/guidance}"; tolerances="${2-0 1 2 3 4}"; candidates="${3-1 2 4 8}"; best="${4-2}"
 shared="${SILK_SHARED_DIR:-../shared}"
 index="${SILK_DATA_DIR:-/tmp/silk-data}/index/0ad/index.jsonl"
 if [ -f "$index" ]; then
-  inputs=(--index "$index" --split val --limit 40)
+  inputs=(--index "$index" --split val --limit "${LIMIT:-40}")
 else
-  mapfile -t files < <(ls "$shared"/corpus/dev/*.obj | head -40)
+  mapfile -t files < <(ls "$shared"/corpus/dev/*.obj | head -"${LIMIT:-40}")
   inputs=("${files[@]}")
 fi
 silk_export() { PYTHONPATH="$PWD/export${PYTHONPATH:+:$PYTHONPATH}" python3 -m silk_export "$@"; }  # this checkout's
 run() {  # name tolerance candidates
   local dir="$out/$1"
-  silk_export generate --runtime --model models/default --out "$dir" --seed 0 --threads 1 --max-tokens 512 \
-    --surface-tolerance "$2" --candidates "$3" "${inputs[@]}" >/dev/null 2>"$dir.log" || { cat "$dir.log"; exit 1; }
-  silk_export eval "$dir/generated" "$dir/reference" --out "$dir/eval.json" >/dev/null
+  [ -f "$dir/generate.json" ] ||
+    silk_export generate --runtime --model models/default --out "$dir" --seed 0 --threads 1 --max-tokens 512 \
+      --surface-tolerance "$2" --candidates "$3" "${inputs[@]}" >/dev/null 2>"$dir.log" || { cat "$dir.log"; exit 1; }
+  silk_export eval "$dir/generated" "$dir/reference" --points "${POINTS:-2000}" --out "$dir/eval.json" >/dev/null
   python3 - "$dir" "$2" "$3" <<'PY'
 import json, sys
 d, t, n = sys.argv[1:]

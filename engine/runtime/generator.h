@@ -1,7 +1,8 @@
 // Generator: one constrained generation, point cloud -> token ids -> mesh, run in one call
 // (Run) or step-wise (Start, Step until finished, MeshSoFar at any point, Finish). Holds the
-// KV cache between runs (reuse one Generator per thread). The grammar mask is applied before
-// the sampling chain; ids the grammar forces are appended without sampling and fed to the
+// KV cache between runs (reuse one Generator per thread). The grammar mask, then surface
+// guidance (runtime/surface_guide.h, when on), is applied before the sampling chain; ids the
+// grammar forces are appended without sampling and fed to the
 // model later as one chunk together with the next sampled id (chunked prefill of known tokens).
 #pragma once
 #include <cstdint>

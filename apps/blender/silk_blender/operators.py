@@ -35,8 +35,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                             default=0, min=0)
     surface_tolerance: IntProperty(name="Surface tolerance",
                                    description="New vertices only within this many grid cells (of 128) of the "
-                                               "input surface (0 = off). Best-of-N candidates need silkgen or "
-                                               "silk_generate: this operator runs step-wise, one candidate",
+                                               "input surface (0 = off, -1 = libsilk's measured default). "
+                                               "Best-of-N candidates need silkgen or silk_generate: this "
+                                               "operator runs step-wise, one candidate",
                                    default=-1, min=-1, max=127)
     model_dir: StringProperty(name="Model folder", description="Empty: the model bundled with the add-on",
                               default="", subtype="DIR_PATH")
