@@ -23,7 +23,8 @@ CASES = [  # name, input (repo-relative), seed
     ("torus_knot_s7", "samples/torus_knot.obj", 7),
     ("points_s3", "tests/models/golden/torus_knot_points.ply", 3),
 ]
-COMMON = ["--max-tokens", "300", "--threads", "1", "-q"]
+# Goldens are plain runs: surface guidance off, one candidate (the defaults may differ).
+COMMON = ["--max-tokens", "300", "--threads", "1", "-q", "--surface-tolerance", "0", "--candidates", "1"]
 
 
 def run(cmd, check=True):

@@ -227,7 +227,7 @@ enum {
 };
 
 /* The measured defaults of silk_generate_params.surface_tolerance and .candidates. */
-#define SILK_DEFAULT_SURFACE_TOLERANCE 0
+#define SILK_DEFAULT_SURFACE_TOLERANCE 2
 #define SILK_DEFAULT_CANDIDATES 1
 
 /* temperature, top_k, top_p, top_p_temperature and preprocessing default to -1: the model's
