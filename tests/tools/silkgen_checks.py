@@ -94,7 +94,9 @@ def check_reference(silkgen, repo):
         variants = [("a", "samples/torus_knot.obj", 7, []),
                     ("b", "tests/models/golden/torus_knot_points.ply", 3, ["--temperature", "1", "--top-k", "0",
                                                                            "--top-p", "0.9"]),
-                    ("c", "samples/torus_knot.obj", 5, ["--temperature", "0"])]
+                    ("c", "samples/torus_knot.obj", 5, ["--temperature", "0"]),
+                    # guided + best of 3: the trace holds the guided legal sets and the chosen seed
+                    ("d", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--candidates", "3"])]
         for name, rel, seed, extra in variants:
             _, tok, _, trace = generate(silkgen, repo, tmp, name, rel, seed, extra)
             rc, msg = reference(repo, trace, tok)
