@@ -55,6 +55,7 @@ struct Args {
   // (negative / empty) mean "not given" (silk_generate_params' -1).
   double temperature = -1, top_p = -1, top_p_temperature = -1;
   int top_k = -1;
+  int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
   std::string decoder, preprocessing;
   bool unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
@@ -84,6 +85,14 @@ void AddOptions(CLI::App& app, Args& a) {
   app.add_option("--repair", a.repair, "Holes in the result: off, report, or repair (close small ones)")
       ->check(CLI::IsMember({"off", "report", "repair"}))->capture_default_str();
   app.add_flag("--unconstrained", a.unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
+  app.add_option("--surface-tolerance", a.surface_tolerance,
+                 "Surface guidance: new vertices only on grid cells within CELLS (of 128) of an input point's cell, "
+                 "nearest legal cells when none is (0 = off; ignored with --unconstrained)")
+      ->check(CLI::Range(0, 127))->capture_default_str()->type_name("CELLS");
+  app.add_option("--candidates", a.candidates,
+                 "Best of N: N generations with seeds derived from --seed, the one closest to the input (Chamfer "
+                 "distance to the encoder's points) written; every score goes into --stats")
+      ->check(CLI::Range(1, 64))->capture_default_str()->type_name("N");
   app.add_option("--stats", a.stats_path, "Write run figures as JSON");
   app.add_option("--tokens", a.tokens_path, "Write the generated ids, one per line (EOS 10267 last when one was generated)");
   app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")->check(CLI::Range(0, 1 << 20));
@@ -135,6 +144,8 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.holes = a.repair == "repair" ? SILK_HOLES_REPAIR : a.repair == "report" ? SILK_HOLES_REPORT : SILK_HOLES_OFF;
   p.unconstrained = a.unconstrained ? 1 : 0;
   p.n_points = a.n_points;
+  p.surface_tolerance = a.surface_tolerance;
+  p.candidates = a.candidates;
   p.debug_flags = (a.no_skip_forced ? SILK_DEBUG_NO_SKIP_FORCED : 0) | (a.kv_copy ? SILK_DEBUG_KV_COPY : 0) |
                   (a.sample_then_check ? SILK_DEBUG_SAMPLE_THEN_CHECK : 0) |
                   (a.trace_path.empty() ? 0 : SILK_DEBUG_RECORD_TRACE);
@@ -168,7 +179,7 @@ int Run(const Args& a, uint64_t seed) {
     std::fprintf(stderr,
                  "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
                  "%s decoder)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
-                 "  points  %s\n",
+                 "  points  %s\n  surface tolerance %d  candidates %d\n",
                  silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
                  input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
                  info.config, info.threads,
@@ -177,7 +188,8 @@ int Run(const Args& a, uint64_t seed) {
                  a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens,
                  a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
                  a.raw_points ? "raw (used as given, model frame)"
-                              : a.preprocessing.empty() ? "the model's pre-processing" : a.preprocessing.c_str());
+                              : a.preprocessing.empty() ? "the model's pre-processing" : a.preprocessing.c_str(),
+                 a.surface_tolerance, a.candidates);
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };
@@ -204,6 +216,10 @@ int Run(const Args& a, uint64_t seed) {
                  st.tokens ? 100.0 * st.forced_tokens / st.tokens : 0.0, st.faces, st.components, st.tokens_per_second,
                  st.seconds_total, st.edge_manifold ? "yes" : "no", st.vertex_manifold ? "yes" : "no",
                  st.consistently_oriented ? "yes" : "no", st.watertight ? "yes" : "no");
+  if (!a.quiet && (st.candidates > 1 || st.guided_tokens > 0))
+    std::fprintf(stderr, "silkgen: candidate %d of %d written (Chamfer %.4f); guidance: %lld vertex ids, %lld fallbacks\n",
+                 st.chosen_candidate, st.candidates, st.score, static_cast<long long>(st.guided_tokens),
+                 static_cast<long long>(st.guidance_fallbacks));
   return kExitOk;
 }
 

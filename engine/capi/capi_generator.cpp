@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "capi/capi_generator.h"
+#include "runtime/candidates.h"
 
 using silk::capi::BusyLock;
 using silk::capi::Guard;
@@ -54,6 +55,8 @@ silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, c
   o.order = (p.debug_flags & SILK_DEBUG_SAMPLE_THEN_CHECK) ? silk::SampleOrder::kSampleThenCheck
                                                           : silk::SampleOrder::kMaskFirst;
   o.record_trace = (p.debug_flags & SILK_DEBUG_RECORD_TRACE) != 0;
+  o.surface_tolerance = p.surface_tolerance;
+  o.candidates = p.candidates;
   SILK_RETURN_IF_ERROR(silk::CheckGenerateOptions(o));
   return o;
 }
@@ -114,7 +117,10 @@ silk::Status PreparePoints(silk_generator* g, const silk::GenerationInput& in, c
   return silk::Status::Ok();
 }
 
-silk_status Start(silk_generator* g, const silk_generate_input& input, const silk_generate_params& p) {
+// Checks the params and input, records the settings and prepares the encoder's points; what
+// starts a generation (step-wise or best of N) comes after.
+silk_status Prepare(silk_generator* g, const silk_generate_input& input, const silk_generate_params& p,
+                    silk::GenerateOptions* options_out) {
   auto options = ToOptions(p, g->model->config());
   if (!options.ok()) return SetError(options.status().WithContext("silk_generator_start: "));
   // Input problems name the input's file when it came from one.
@@ -139,7 +145,15 @@ silk_status Start(silk_generator* g, const silk_generate_input& input, const sil
     return SetError(st.WithContext(context));
   g->prepare_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   s.points = static_cast<int32_t>(g->points.size() / 6);
-  return SetError(g->generator.Start(g->points, *options, cb));
+  *options_out = *options;
+  return Ok();
+}
+
+// Step-wise start: one generation (candidate 0; `candidates` is for silk_generate*).
+silk_status Start(silk_generator* g, const silk_generate_input& input, const silk_generate_params& p) {
+  silk::GenerateOptions options;
+  if (silk_status s = Prepare(g, input, p, &options); s != SILK_OK) return s;
+  return SetError(g->generator.Start(g->points, options, ToCallbacks(g, p)));
 }
 
 silk_status Advance(silk_generator* g, int32_t max_ids, int32_t until) {
@@ -151,15 +165,15 @@ silk_status Advance(silk_generator* g, int32_t max_ids, int32_t until) {
   return Ok();
 }
 
-// Finishes the generation: final mesh in the input frame, verdicts, figures.
-silk_status Finish(silk_generator* g, silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
-  auto r = g->generator.Finish();
-  if (!r.ok()) return SetError(r.status());
-  g->result = std::move(*r);
+// A finished generation (one, or the best of N) as the caller's mesh in the input frame,
+// verdicts and figures.
+silk_status Deliver(silk_generator* g, silk::GenerateResult result, silk_mesh** out_mesh, silk_tokens** out_tokens,
+                    silk_generate_stats* stats) {
+  g->result = std::move(result);
   silk::GeneratedMesh output = silk::FinishOutput(&g->result, g->transform);
   silk::GenerationStats& st = g->result.stats;
   st.seconds.load_input += g->prepare_seconds;
-  st.seconds.total = st.seconds.load_input + st.generation_seconds + st.seconds.build_mesh;
+  st.seconds.total = st.seconds.load_input + st.generation_seconds + st.seconds.build_mesh + st.seconds.scoring;
   g->has_result = true;
   auto mesh = std::make_unique<silk_mesh>();
   mesh->mesh = std::move(output.mesh);
@@ -177,25 +191,50 @@ silk_status Finish(silk_generator* g, silk_mesh** out_mesh, silk_tokens** out_to
   return Ok();
 }
 
+// Finishes the step-wise generation and scores it (its single candidate entry).
+silk_status Finish(silk_generator* g, silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+  auto r = g->generator.Finish();
+  if (!r.ok()) return SetError(r.status());
+  silk::ScoreSingle(&*r, g->settings.options.sampling.seed, g->points);
+  return Deliver(g, std::move(*r), out_mesh, out_tokens, stats);
+}
+
+// A cancelled one-call run: stats of the generation in progress, which is then released.
+silk_status Cancelled(silk_generator* g, silk_generate_stats* stats) {
+  const std::string message = silk_last_error();
+  if (stats) {
+    silk::capi::FillStats(g->generator.stats(), stats);
+    stats->stop_reason = SILK_STOP_CANCELLED;
+  }
+  if (g->generator.active()) {  // release the generation; its mesh is not returned
+    silk_mesh* discard = nullptr;
+    if (Finish(g, &discard, nullptr, nullptr) == SILK_OK) delete discard;
+  }
+  return SetError(SILK_ERR_CANCELLED, message);
+}
+
+// Best of N (candidates > 1): every candidate on the one generator, the closest returned.
+silk_status RunBest(silk_generator* g, const silk_generate_input& input, const silk_generate_params& p,
+                    silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+  silk::GenerateOptions options;
+  if (silk_status s = Prepare(g, input, p, &options); s != SILK_OK) return s;
+  auto r = silk::RunCandidates(&g->generator, g->points, options, ToCallbacks(g, p));
+  if (!r.ok()) {
+    const silk_status s = SetError(r.status());
+    return s == SILK_ERR_CANCELLED ? Cancelled(g, stats) : s;
+  }
+  return Deliver(g, std::move(*r), out_mesh, out_tokens, stats);
+}
+
 // start + advance to the end + finish; a cancel still fills the stats.
 silk_status RunAll(silk_generator* g, const silk_generate_input& input, const silk_generate_params* params,
                    silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
   const silk_generate_params p = params ? *params : silk_generate_default_params();
   if (stats) std::memset(stats, 0, sizeof(*stats));
+  if (p.candidates > 1) return RunBest(g, input, p, out_mesh, out_tokens, stats);
   silk_status s = Start(g, input, p);
   if (s == SILK_OK) s = Advance(g, INT32_MAX, SILK_ADVANCE_IDS);
-  if (s == SILK_ERR_CANCELLED) {
-    const std::string message = silk_last_error();
-    if (stats) {
-      silk::capi::FillStats(g->generator.stats(), stats);
-      stats->stop_reason = SILK_STOP_CANCELLED;
-    }
-    if (g->generator.active()) {  // release the generation; its mesh is not returned
-      silk_mesh* discard = nullptr;
-      if (Finish(g, &discard, nullptr, nullptr) == SILK_OK) delete discard;
-    }
-    return SetError(SILK_ERR_CANCELLED, message);
-  }
+  if (s == SILK_ERR_CANCELLED) return Cancelled(g, stats);
   if (s != SILK_OK) return s;
   return Finish(g, out_mesh, out_tokens, stats);
 }
@@ -214,6 +253,8 @@ silk_generate_params silk_generate_default_params(void) {
   p.top_p_temperature = -1;
   p.preprocessing = -1;  // the model's (model.json "preprocessing")
   p.holes = SILK_HOLES_OFF;
+  p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
+  p.candidates = SILK_DEFAULT_CANDIDATES;
   return p;
 }
 

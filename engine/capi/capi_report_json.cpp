@@ -2,6 +2,7 @@
 // the one mapping of GenerationStats onto silk_generate_stats. nlohmann::ordered_json keeps the
 // keys in a readable order; trace floats have 9 significant digits so float32 reads back exactly.
 #if defined(SILK_HAVE_RUNTIME)
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -35,7 +36,9 @@ Json SettingsJson(const silk_generator& g) {
               {"max_tokens", p.max_tokens},
               {"max_faces", p.max_faces},
               {"repair", HolesName(p.holes)},
-              {"unconstrained", p.unconstrained != 0}};
+              {"unconstrained", p.unconstrained != 0},
+              {"surface_tolerance", p.surface_tolerance},
+              {"candidates", p.candidates}};
 }
 
 Json StatsJson(const silk_generator& g) {
@@ -61,6 +64,7 @@ Json StatsJson(const silk_generator& g) {
   j["seconds"] = {{"load_input", st.seconds.load_input}, {"encoder", st.seconds.encoder},
                   {"decoder", st.seconds.decoder},       {"grammar", st.seconds.grammar},
                   {"sampling", st.seconds.sampling},     {"build_mesh", st.seconds.build_mesh},
+                  {"guidance", st.seconds.guidance},     {"scoring", st.seconds.scoring},
                   {"total", st.seconds.total}};
   j["repairs"] = {{"holes_found", st.holes_found}, {"holes_repaired", st.holes_repaired},
                   {"faces_added", st.faces_added}, {"window_findings", st.window_findings},
@@ -68,6 +72,16 @@ Json StatsJson(const silk_generator& g) {
   j["verdicts"] = {{"edge_manifold", st.edge_manifold}, {"vertex_manifold", st.vertex_manifold},
                    {"nonmanifold_vertices", st.nonmanifold_vertices}, {"watertight", st.watertight},
                    {"consistently_oriented", st.consistently_oriented}, {"open_edges", st.open_edges}};
+  j["guidance"] = {{"guided_tokens", st.guided_tokens}, {"fallbacks", st.guidance_fallbacks},
+                   {"seconds", st.seconds.guidance}};
+  Json cands = Json::array();
+  for (size_t i = 0; i < st.candidates.size(); ++i) {
+    const CandidateScore& c = st.candidates[i];
+    cands.push_back({{"index", i}, {"seed", c.seed}, {"score", std::isfinite(c.score) ? Json(c.score) : Json(nullptr)},
+                     {"faces", c.faces}, {"tokens", c.tokens}, {"seconds", c.seconds}});
+  }
+  j["candidates"] = cands;
+  j["chosen_candidate"] = st.chosen_candidate;
   if (g.settings.params.unconstrained)
     j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};
   return j;
@@ -76,6 +90,9 @@ Json StatsJson(const silk_generator& g) {
 Json TraceJson(const silk_generator& g) {
   Json j;
   j["settings"] = SettingsJson(g);
+  // The seed the traced ids were sampled with: the chosen candidate's (candidate 0: the seed).
+  const GenerationStats& st = g.result.stats;
+  if (!st.candidates.empty()) j["settings"]["seed"] = st.candidates[static_cast<size_t>(st.chosen_candidate)].seed;
   std::string pts = "[";
   char buf[32];
   for (size_t i = 0; i < g.points.size(); ++i) {
@@ -140,6 +157,13 @@ void FillStats(const GenerationStats& s, silk_generate_stats* out) {
   out->nonmanifold_vertices = s.nonmanifold_vertices;
   out->fan_gaps_closed = s.fan_gaps_closed;
   out->vertices_split = s.vertices_split;
+  out->guided_tokens = s.guided_tokens;
+  out->guidance_fallbacks = s.guidance_fallbacks;
+  out->candidates = static_cast<int32_t>(s.candidates.size());
+  out->chosen_candidate = s.chosen_candidate;
+  out->score = s.candidates.empty() ? 0 : s.candidates[static_cast<size_t>(s.chosen_candidate)].score;
+  out->seconds_guidance = s.seconds.guidance;
+  out->seconds_scoring = s.seconds.scoring;
 }
 
 }  // namespace silk::capi

@@ -64,6 +64,8 @@ class TokenMask {
     }
   }
   const std::array<uint64_t, kWords>& words() const { return words_; }
+  // Clears the bits of word w that are clear in `keep` (word-parallel filters).
+  void AndWord(int32_t w, uint64_t keep) { words_[w] &= keep; }
 
  private:
   std::array<uint64_t, kWords> words_{};

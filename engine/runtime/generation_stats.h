@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace silk {
 
@@ -13,8 +14,20 @@ struct PhaseSeconds {
   double grammar = 0;       // legal masks + Accept
   double sampling = 0;      // the sampling chain
   double build_mesh = 0;    // tokens -> faces (+ hole handling)
+  double guidance = 0;      // surface guidance: distance field + K/O mask restriction
+  double scoring = 0;       // candidates' Chamfer scores
   double write_output = 0;  // pipeline
   double total = 0;
+};
+
+// One best-of-N candidate: its sampling seed and its score (symmetric Chamfer distance to the
+// encoder's points in the model frame; +infinity without a face of positive area).
+struct CandidateScore {
+  uint64_t seed = 0;
+  double score = 0;
+  int32_t faces = 0;
+  int64_t tokens = 0;
+  double seconds = 0;  // its generation (encoder + token loop)
 };
 
 struct GenerationStats {
@@ -40,6 +53,12 @@ struct GenerationStats {
   int32_t threads = 0;
   bool int8 = false;
   std::string decoder = "fp32";  // decoder precision in use: fp32, int8, int4
+  // Surface guidance: vertex ids sampled under it, and vertex ids (sampled or forced) taken
+  // outside the tolerance because no legal id was within it.
+  int64_t guided_tokens = 0, guidance_fallbacks = 0;
+  // Best of N: every candidate in order (one entry for a single generation), the chosen one.
+  std::vector<CandidateScore> candidates;
+  int32_t chosen_candidate = 0;
   PhaseSeconds seconds;
   double generation_seconds = 0;  // encoder + token loop
   double tokens_per_second = 0;   // tokens / token-loop seconds

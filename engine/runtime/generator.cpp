@@ -14,6 +14,8 @@
 #include "decoder/grammar.h"
 #include "runtime/decoder_runner.h"
 #include "runtime/model_impl.h"
+#include "runtime/surface_guide.h"
+#include "tokenizer/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {
@@ -59,6 +61,12 @@ Status CheckGenerateOptions(const GenerateOptions& options) {
   if (!std::isfinite(sp.temperature) || sp.temperature < 0 || sp.top_k < 0 || !(sp.top_p >= 0 && sp.top_p <= 1) ||
       !(sp.top_p_temperature >= 0 && std::isfinite(sp.top_p_temperature)))
     return InvalidArgument("generate: need temperature >= 0, top_k >= 0, top_p in [0, 1] and top_p_temperature >= 0");
+  if (options.surface_tolerance < 0 || options.surface_tolerance > kMaxSurfaceTolerance)
+    return InvalidArgument("generate: surface_tolerance " + std::to_string(options.surface_tolerance) +
+                           " is outside 0.." + std::to_string(kMaxSurfaceTolerance) + " (cells; 0 = off)");
+  if (options.candidates < 1 || options.candidates > kMaxCandidates)
+    return InvalidArgument("generate: candidates " + std::to_string(options.candidates) + " is outside 1.." +
+                           std::to_string(kMaxCandidates));
   return Status::Ok();
 }
 
@@ -90,6 +98,8 @@ struct Generator::Session {
   std::vector<int32_t> pending;
   int32_t faces_at_close = -1;
   int64_t layers_closed = 0;
+  std::shared_ptr<const SurfaceGuide> guide;  // surface_tolerance > 0, constrained mode
+  TokenMask guided;                     // the legal mask after guidance (what is sampled from)
   mutable MeshBuildCache so_far_cache;  // max_faces / MeshSoFar: closed components are built once
   bool illegal_seen = false;
   bool failed = false;
@@ -151,6 +161,15 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   st.decoder = DecoderPrecisionName(m.precision);
   st.seconds.encoder = encoder_seconds;
   st.kv_cache_bytes = cap * cfg.dims.kv_row_floats() * static_cast<int64_t>(sizeof(float));
+  if (options.surface_tolerance > 0 && !options.unconstrained) {
+    t0 = Clock::now();
+    if (!guide_ || guide_->tolerance() != options.surface_tolerance || guide_points_ != points) {
+      guide_ = std::make_shared<const SurfaceGuide>(points, options.surface_tolerance);
+      guide_points_ = points;
+    }
+    s.guide = guide_;
+    st.seconds.guidance += Since(t0);
+  }
   s.pending = {cfg.bos_id};
   s.t_start = t_start;
   s.t_loop = Clock::now();
@@ -190,6 +209,7 @@ Status Generator::StepOnce() {
       return Status::Ok();
     }
     forced = id >= 0;
+    if (s.guide) mask = Guide(id, mask);
   }
   if (!forced || !options.skip_forced) {
     t0 = Clock::now();
@@ -261,6 +281,32 @@ Status Generator::StepOnce() {
   }
   ReportProgress();
   return Status::Ok();
+}
+
+// Surface guidance on the legal mask (sampled ids) or a check of a forced vertex id; returns the
+// mask to sample from. Fallbacks (no legal id within the tolerance) are counted.
+const TokenMask* Generator::Guide(int32_t forced_id, const TokenMask* legal) {
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
+  const auto t0 = Clock::now();
+  const bool offsets = s.grammar.phase() == GrammarPhase::kWantO;
+  const int32_t block = offsets ? s.res.tokens.back() : -1;
+  if (forced_id >= 0) {
+    if (forced_id >= vocab::kKBegin && forced_id < vocab::kKEnd)
+      st.guidance_fallbacks += s.guide->Within(s.guide->BlockDistance2(forced_id - vocab::kKBegin)) ? 0 : 1;
+    else if (offsets && forced_id >= vocab::kOBegin && forced_id < vocab::kOEnd)
+      st.guidance_fallbacks += s.guide->Within(s.guide->CellDistance2(VertexOfTokens(block, forced_id))) ? 0 : 1;
+    st.seconds.guidance += Since(t0);
+    return legal;
+  }
+  const int32_t first_k = legal->Next(vocab::kKBegin);
+  if (!offsets && (first_k < 0 || first_k >= vocab::kKEnd)) return legal;  // no vertex id legal now
+  s.guided = *legal;
+  const bool fallback = offsets ? s.guide->RestrictOffsets(block, &s.guided) : s.guide->RestrictBlocks(&s.guided);
+  ++st.guided_tokens;
+  st.guidance_fallbacks += fallback ? 1 : 0;
+  st.seconds.guidance += Since(t0);
+  return &s.guided;
 }
 
 void Generator::ReportProgress() {

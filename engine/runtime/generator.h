@@ -1,7 +1,8 @@
 // Generator: one constrained generation, point cloud -> token ids -> mesh, run in one call
 // (Run) or step-wise (Start, Step until finished, MeshSoFar at any point, Finish). Holds the
-// KV cache between runs (reuse one Generator per thread). The grammar mask is applied before
-// the sampling chain; ids the grammar forces are appended without sampling and fed to the
+// KV cache between runs (reuse one Generator per thread). The grammar mask, then surface
+// guidance (runtime/surface_guide.h, when on), is applied before the sampling chain; ids the
+// grammar forces are appended without sampling and fed to the
 // model later as one chunk together with the next sampled id (chunked prefill of known tokens).
 #pragma once
 #include <cstdint>
@@ -23,6 +24,8 @@ struct RunOptions;
 
 namespace silk {
 
+class SurfaceGuide;
+
 enum class SampleOrder {
   kMaskFirst,        // sample among legal ids (default)
   kSampleThenCheck,  // sample over all ids, fall back to the masked chain if illegal
@@ -38,7 +41,17 @@ struct GenerateOptions {
   bool kv_in_place = true;     // false: naive copying cache (measurement)
   SampleOrder order = SampleOrder::kMaskFirst;
   bool record_trace = false;   // fill GenerateResult::trace (golden test reference check)
+  // Surface guidance (runtime/surface_guide.h): vertex ids only on grid cells within this many
+  // cells of an input point's cell; 0 = off. Constrained mode only: with `unconstrained` there
+  // is no mask to restrict, so the setting is ignored (stats.guided_tokens stays 0).
+  int32_t surface_tolerance = 0;
+  // Best of N (runtime/candidates.h, RunCandidates): N generations with derived seeds, the one
+  // closest to the input kept. Generator::Run/Start run one generation and ignore it.
+  int32_t candidates = 1;
 };
+
+constexpr int32_t kMaxSurfaceTolerance = 127;
+constexpr int32_t kMaxCandidates = 64;
 
 struct GenerateProgress {
   int64_t tokens = 0, max_tokens = 0;
@@ -105,9 +118,13 @@ class Generator {
  private:
   struct Session;
   Status StepOnce();
+  const TokenMask* Guide(int32_t forced_id, const TokenMask* legal);
   void ReportProgress();
   const Model& model_;
   KvCache cache_;
+  // The last surface guide and its points: runs on the same input (best of N) build it once.
+  std::shared_ptr<const SurfaceGuide> guide_;
+  std::vector<float> guide_points_;
   std::unique_ptr<Session> session_;
   std::unique_ptr<Ort::RunOptions> encoder_run_;  // the encoder's run options (terminate flag)
 };

@@ -123,7 +123,7 @@ def _cmd_generate(a) -> int:
     if a.runtime:
         from .generate import generate_with_runtime
         res = generate_with_runtime(Path(a.model), inputs, Path(a.out), a.seed, a.threads, a.max_tokens,
-                                    a.temperature, a.top_k)
+                                    a.temperature, a.top_k, a.surface_tolerance, a.candidates)
     else:
         res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens,
                              a.temperature, a.top_k, a.seed, a.threads)
@@ -270,6 +270,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--top-k", type=int, default=50)
     g.add_argument("--seed", type=int, default=0)
     g.add_argument("--threads", type=int, default=1)
+    g.add_argument("--surface-tolerance", type=int, help="--runtime: surface guidance in cells (default: libsilk's)")
+    g.add_argument("--candidates", type=int, help="--runtime: best of N (default: libsilk's)")
     g.add_argument("--index", help="take inputs from an index (evenly spaced over one split)")
     g.add_argument("--root", help="folder the index's paths are relative to (default: 0 A.D. cache)")
     g.add_argument("--split", default="test")

@@ -94,7 +94,8 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
 
 
 def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, seed: int = 0, threads: int = 1,
-                          max_tokens: int = 0, temperature: float = 0.5, top_k: int = 50) -> dict:
+                          max_tokens: int = 0, temperature: float = 0.5, top_k: int = 50,
+                          surface_tolerance: int | None = None, candidates: int | None = None) -> dict:
     """Runs the C++ runtime (grammar-constrained) per input with the exported model, in this
     process through libsilk's C API (the same generation silkgen and the Blender add-on run)."""
     gen_dir, ref_dir = Path(out_dir) / "generated", Path(out_dir) / "reference"
@@ -111,13 +112,16 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
             try:
                 with libsilk.Mesh.load(p) as src:
                     mesh, _, st = gen.generate(src, seed=seed, max_tokens=max_tokens, temperature=temperature,
-                                               top_k=top_k)
+                                               top_k=top_k, surface_tolerance=surface_tolerance,
+                                               candidates=candidates)
                 with mesh:
                     if mesh.triangle_count():
                         mesh.save(gen_dir / f"{stem}.obj")
                 row.update(tokens=st["tokens"], eos=st["stop_reason"] == "eos", faces=st["faces"],
                            stop_reason=st["stop_reason"], seconds=st["seconds_total"],
-                           tokens_per_second=st["tokens_per_second"])
+                           tokens_per_second=st["tokens_per_second"], guided_tokens=st["guided_tokens"],
+                           guidance_fallbacks=st["guidance_fallbacks"], candidates=st["candidates"],
+                           chosen_candidate=st["chosen_candidate"], score=st["score"])
             except libsilk.SilkError as e:
                 row.update(eos=False, decode_error=str(e)[-300:])
             rows.append(row)

@@ -236,9 +236,15 @@ class Model(_Handle):
 
 
 def generate_params(seed: int = 0, temperature: float = -1, top_k: int = -1, top_p: float = -1,
-                    max_tokens: int = 0, max_faces: int = 0, repair: str = "off", n_points: int = 0) -> GenerateParams:
-    """silk_generate_params; negative sampling values mean the model's (model.json "sampling")."""
+                    max_tokens: int = 0, max_faces: int = 0, repair: str = "off", n_points: int = 0,
+                    surface_tolerance: int | None = None, candidates: int | None = None) -> GenerateParams:
+    """silk_generate_params; negative sampling values mean the model's (model.json "sampling");
+    surface_tolerance / candidates None: libsilk's measured defaults."""
     p = lib().silk_generate_default_params()
+    if surface_tolerance is not None:
+        p.surface_tolerance = int(surface_tolerance)
+    if candidates is not None:
+        p.candidates = int(candidates)
     p.seed, p.temperature, p.top_k, p.top_p = int(seed), float(temperature), int(top_k), float(top_p)
     p.max_tokens, p.max_faces, p.n_points = int(max_tokens), int(max_faces), int(n_points)
     if repair not in HOLES:

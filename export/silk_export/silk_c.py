@@ -123,7 +123,8 @@ class GenerateParams(ctypes.Structure):
                 ("holes", ctypes.c_int32), ("unconstrained", ctypes.c_int32), ("n_points", ctypes.c_int32),
                 ("progress", PROGRESS_FN), ("cancel", CANCEL_FN), ("user_data", ctypes.c_void_p),
                 ("top_p_temperature", ctypes.c_double), ("preprocessing", ctypes.c_int32),
-                ("raw_points", ctypes.c_int32), ("debug_flags", ctypes.c_int32)]
+                ("raw_points", ctypes.c_int32), ("debug_flags", ctypes.c_int32),
+                ("surface_tolerance", ctypes.c_int32), ("candidates", ctypes.c_int32)]
 
 
 class GenerateStats(ctypes.Structure):
@@ -134,7 +135,10 @@ class GenerateStats(ctypes.Structure):
         ("illegal_at", ctypes.c_int64), ("tokens_per_second", ctypes.c_double)] + [
         (n, ctypes.c_double) for n in ("seconds_prepare", "seconds_encoder", "seconds_decoder", "seconds_grammar",
                                        "seconds_sampling", "seconds_build_mesh", "seconds_total")] + [
-        (n, ctypes.c_int32) for n in ("vertex_manifold", "nonmanifold_vertices", "fan_gaps_closed", "vertices_split")]
+        (n, ctypes.c_int32) for n in ("vertex_manifold", "nonmanifold_vertices", "fan_gaps_closed", "vertices_split")] + [
+        (n, ctypes.c_int64) for n in ("guided_tokens", "guidance_fallbacks")] + [
+        (n, ctypes.c_int32) for n in ("candidates", "chosen_candidate")] + [
+        (n, ctypes.c_double) for n in ("score", "seconds_guidance", "seconds_scoring")]
 
     def as_dict(self) -> dict:
         d = {name: getattr(self, name) for name, _ in self._fields_}

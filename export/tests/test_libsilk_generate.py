@@ -22,7 +22,7 @@ pytestmark = pytest.mark.skipif(not libsilk.lib().silk_generation_available(), r
 def test_python_generation_matches_the_silkgen_golden():
     want = np.array([int(x) for x in GOLDEN.read_text().split()], np.int32)
     with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        mesh, ids, stats = gen.generate(src, seed=7, max_tokens=300)
+        mesh, ids, stats = gen.generate(src, seed=7, max_tokens=300, surface_tolerance=0, candidates=1)
         with mesh:
             assert np.array_equal(ids, want)
             assert stats["faces"] == mesh.triangle_count() > 0
@@ -33,8 +33,9 @@ def test_python_generation_matches_the_silkgen_golden():
 
 def test_step_wise_grows_by_layers_and_ends_with_the_same_ids():
     with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        _, whole, _ = gen.generate(src, seed=3, max_tokens=200)
-        gen.start(src, seed=3, max_tokens=200)
+        # A plain run (no surface guidance): this seed's stream closes several layers.
+        _, whole, _ = gen.generate(src, seed=3, max_tokens=200, surface_tolerance=0)
+        gen.start(src, seed=3, max_tokens=200, surface_tolerance=0)
         faces, done = [], False
         while not done:
             done = gen.advance(10_000, until_layer=True)
@@ -82,3 +83,45 @@ def test_nan_weights_fail_naming_the_model(tmp_path):
         with pytest.raises(libsilk.SilkError) as e:
             gen.generate(src, seed=1, max_tokens=100)
     assert str(bad) in e.value.message and "non-finite" in e.value.message
+
+
+def _c_struct_fields(name: str) -> list[tuple[str, str]]:
+    """(field, C type) of `typedef struct NAME { ... } NAME;` in silk.h, in order."""
+    import re
+    text = (REPO_ROOT / "engine/include/silk/silk.h").read_text()
+    body = re.search(r"typedef struct %s \{(.*?)\} %s;" % (name, name), text, re.S).group(1)
+    body = re.sub(r"/\*.*?\*/", "", body, flags=re.S)
+    out = []
+    for decl in body.split(";"):
+        decl = " ".join(decl.split())
+        if not decl:
+            continue
+        ctype, names = decl.split(" ", 1)
+        out += [(n.strip(), ctype) for n in names.split(",")]
+    return out
+
+
+@pytest.mark.parametrize("c_name,py_struct", [("silk_generate_params", "GenerateParams"),
+                                              ("silk_generate_stats", "GenerateStats")])
+def test_ctypes_declarations_follow_silk_h(c_name, py_struct):
+    import ctypes
+    from silk_export import silk_c
+    scalar = {"int32_t": ctypes.c_int32, "int64_t": ctypes.c_int64, "uint64_t": ctypes.c_uint64,
+              "double": ctypes.c_double}
+    want = _c_struct_fields(c_name)
+    got = getattr(silk_c, py_struct)._fields_
+    assert [n for n, _ in got] == [n for n, _ in want]
+    for (n, t), (_, ct) in zip(got, want):
+        if ct in scalar:
+            assert t is scalar[ct], f"{py_struct}.{n}: {t} for C {ct}"
+
+
+def test_candidates_and_guidance_through_ctypes():
+    with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
+        mesh, ids, st = gen.generate(src, seed=3, max_tokens=200, surface_tolerance=2, candidates=3)
+        with mesh:
+            assert st["candidates"] == 3 and 0 <= st["chosen_candidate"] < 3
+            assert st["guided_tokens"] > 0 and st["guidance_fallbacks"] >= 0
+            assert st["faces"] == mesh.triangle_count()
+        with pytest.raises(libsilk.SilkError, match="candidates 0"):
+            gen.generate(src, seed=3, max_tokens=200, candidates=0)

@@ -349,7 +349,11 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
     };
     const Case cases[] = {{"holes", [](silk_generate_params* p) { p->holes = 7; }},
                           {"unconstrained", [](silk_generate_params* p) { p->unconstrained = 2; }},
-                          {"debug_flags", [](silk_generate_params* p) { p->debug_flags = 64; }}};
+                          {"debug_flags", [](silk_generate_params* p) { p->debug_flags = 64; }},
+                          {"surface_tolerance -1", [](silk_generate_params* p) { p->surface_tolerance = -1; }},
+                          {"surface_tolerance 128", [](silk_generate_params* p) { p->surface_tolerance = 128; }},
+                          {"candidates 0", [](silk_generate_params* p) { p->candidates = 0; }},
+                          {"candidates 65", [](silk_generate_params* p) { p->candidates = 65; }}};
     for (const Case& c : cases) {
       silk_generate_params p = silk_generate_default_params();
       c.set(&p);
@@ -540,6 +544,63 @@ TEST_F(CapiGeneration, RawPointsReproduceTheTracedEncoderInput) {
   EXPECT_EQ(got, want);
   silk_tokens_destroy(t);
   silk_mesh_destroy(out);
+  silk_generator_destroy(g);
+}
+
+// Best of N through the C API: the stats and the report agree, the returned mesh's score is
+// the lowest; N = 1 (and the step-wise API, which runs candidate 0) gives the plain run's ids.
+TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  silk_generate_params p = Params(5, 200);
+  p.candidates = 3;
+  p.surface_tolerance = 2;
+  silk_mesh* out = nullptr;
+  silk_generate_stats st;
+  ASSERT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  EXPECT_EQ(st.candidates, 3);
+  ASSERT_TRUE(st.chosen_candidate >= 0 && st.chosen_candidate < 3);
+  EXPECT_GT(st.guided_tokens, 0);
+  EXPECT_EQ(static_cast<size_t>(st.faces), silk_mesh_triangle_count(out));
+  silk_mesh_destroy(out);
+  size_t size = 0;
+  ASSERT_EQ(silk_generator_report_json(g, 0, nullptr, 0, &size), SILK_ERR_BUFFER_TOO_SMALL);
+  std::string json(size, '\0');
+  ASSERT_EQ(silk_generator_report_json(g, 0, &json[0], json.size(), &size), SILK_OK);
+  // Every "score" of the report's candidate list; the chosen one's is the stats' score and the minimum.
+  std::vector<double> scores;
+  for (size_t at = json.find("\"score\": "); at != std::string::npos; at = json.find("\"score\": ", at + 1))
+    scores.push_back(std::strtod(json.c_str() + at + 9, nullptr));
+  ASSERT_EQ(scores.size(), 3u) << json;
+  EXPECT_NEAR(scores[static_cast<size_t>(st.chosen_candidate)], st.score, 1e-9 * (1 + st.score));
+  for (double s : scores) EXPECT_LE(st.score, s + 1e-12);
+  EXPECT_NE(json.find("\"chosen_candidate\": " + std::to_string(st.chosen_candidate)), std::string::npos);
+
+  // N = 1 and the step-wise API: the plain run.
+  silk_generate_params one = Params(5, 200);
+  one.candidates = 1;
+  silk_tokens* t1 = nullptr;
+  ASSERT_EQ(silk_generate(g, mesh_, &one, &out, &t1, &st), SILK_OK);
+  silk_mesh_destroy(out);
+  EXPECT_EQ(st.candidates, 1);
+  EXPECT_EQ(st.chosen_candidate, 0);
+  silk_generate_input in{};
+  in.mesh = mesh_;
+  one.candidates = 4;  // ignored step-wise
+  ASSERT_EQ(silk_generator_start(g, &in, &one), SILK_OK);
+  int32_t done = 0;
+  ASSERT_EQ(silk_generator_advance(g, 100000, SILK_ADVANCE_IDS, &done), SILK_OK);
+  silk_tokens* t2 = nullptr;
+  ASSERT_EQ(silk_generator_finish(g, &out, &t2, &st), SILK_OK);
+  silk_mesh_destroy(out);
+  EXPECT_EQ(st.candidates, 1);
+  ASSERT_EQ(silk_tokens_count(t1), silk_tokens_count(t2));
+  std::vector<int32_t> a(silk_tokens_count(t1)), b(a.size());
+  silk_tokens_copy(t1, a.data(), a.size());
+  silk_tokens_copy(t2, b.data(), b.size());
+  EXPECT_EQ(a, b);
+  silk_tokens_destroy(t1);
+  silk_tokens_destroy(t2);
   silk_generator_destroy(g);
 }
 

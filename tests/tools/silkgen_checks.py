@@ -23,7 +23,8 @@ CASES = [  # name, input (repo-relative), seed
     ("torus_knot_s7", "samples/torus_knot.obj", 7),
     ("points_s3", "tests/models/golden/torus_knot_points.ply", 3),
 ]
-COMMON = ["--max-tokens", "300", "--threads", "1", "-q"]
+# Goldens are plain runs: surface guidance off, one candidate (the defaults may differ).
+COMMON = ["--max-tokens", "300", "--threads", "1", "-q", "--surface-tolerance", "0", "--candidates", "1"]
 
 
 def run(cmd, check=True):
@@ -93,7 +94,9 @@ def check_reference(silkgen, repo):
         variants = [("a", "samples/torus_knot.obj", 7, []),
                     ("b", "tests/models/golden/torus_knot_points.ply", 3, ["--temperature", "1", "--top-k", "0",
                                                                            "--top-p", "0.9"]),
-                    ("c", "samples/torus_knot.obj", 5, ["--temperature", "0"])]
+                    ("c", "samples/torus_knot.obj", 5, ["--temperature", "0"]),
+                    # guided + best of 3: the trace holds the guided legal sets and the chosen seed
+                    ("d", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--candidates", "3"])]
         for name, rel, seed, extra in variants:
             _, tok, _, trace = generate(silkgen, repo, tmp, name, rel, seed, extra)
             rc, msg = reference(repo, trace, tok)
@@ -146,6 +149,10 @@ def check_bad(silkgen, repo):
             ([sample, "-o", tmp / "o.obj", "--model", model, "--repair", "maybe"], 2, ["repair"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--top-p", "1.5"], 2, ["top-p"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--int8"], 1, ["INT8"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--surface-tolerance", "-1"], 2, ["surface-tolerance"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--surface-tolerance", "128"], 2, ["surface-tolerance"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "0"], 2, ["candidates"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "65"], 2, ["candidates"]),
             ([sample, "-o", tmp / "nodir" / "o.obj", "--model", model, "--max-tokens", "40"], 1, ["nodir"]),
         ]
         for args, want_rc, words in cases:

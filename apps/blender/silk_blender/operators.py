@@ -33,6 +33,12 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                            default=0, min=0)
     max_tokens: IntProperty(name="Max tokens", description="Cap on generated ids (0 = the model's limit; else >= 14)",
                             default=0, min=0)
+    surface_tolerance: IntProperty(name="Surface tolerance",
+                                   description="New vertices only within this many grid cells (of 128) of the "
+                                               "input surface (0 = off, -1 = libsilk's measured default). "
+                                               "Best-of-N candidates need silkgen or silk_generate: this "
+                                               "operator runs step-wise, one candidate",
+                                   default=-1, min=-1, max=127)
     model_dir: StringProperty(name="Model folder", description="Empty: the model bundled with the add-on",
                               default="", subtype="DIR_PATH")
     repair: EnumProperty(name="Holes", items=[("OFF", "Off", "Keep holes"), ("REPORT", "Report", "Count holes"),
@@ -50,7 +56,8 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         src = context.active_object
         dg = context.evaluated_depsgraph_get()
         settings = dict(seed=self.seed, temperature=self.temperature, top_k=self.top_k, max_faces=self.max_faces,
-                        max_tokens=self.max_tokens, repair=self.repair)
+                        max_tokens=self.max_tokens, repair=self.repair,
+                        surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
         if len(src.data.polygons) > 0:
             pos, tri = blender_mesh.mesh_arrays(src, dg)
             with silk_api.Mesh.from_arrays(pos, tri) as m:

@@ -126,7 +126,8 @@ class Generation:
     """One step-wise generation: model + generator + the input it was started with."""
 
     def __init__(self, model_dir: str, source: Mesh | None, points: list[float] | None, seed: int,
-                 temperature: float, top_k: int, max_faces: int, max_tokens: int, repair: str):
+                 temperature: float, top_k: int, max_faces: int, max_tokens: int, repair: str,
+                 surface_tolerance: int | None = None):
         L = lib()
         if not L.silk_generation_available():
             raise SilkError(4, "this libsilk was built without onnxruntime (no generation)")
@@ -141,6 +142,8 @@ class Generation:
         p = L.silk_generate_default_params()
         p.seed, p.temperature, p.top_k = seed, temperature, top_k
         p.max_faces, p.max_tokens, p.holes = max_faces, max_tokens, silk_c.HOLES[repair.lower()]
+        if surface_tolerance is not None:  # None: libsilk's measured default
+            p.surface_tolerance = surface_tolerance
         gi = GenerateInput()
         if source is not None:
             gi.mesh = source.handle

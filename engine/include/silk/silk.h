@@ -340,6 +340,10 @@ enum {
   SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report_json */
 };
 
+/* The measured defaults of silk_generate_params.surface_tolerance and .candidates. */
+#define SILK_DEFAULT_SURFACE_TOLERANCE 2
+#define SILK_DEFAULT_CANDIDATES 1
+
 /* temperature, top_k, top_p, top_p_temperature and preprocessing default to -1: the model's
  * (model.json "sampling" / "preprocessing"; v2 models: 0.5, 50, 1.0, 0, Silk's kind). */
 typedef struct silk_generate_params {
@@ -359,6 +363,19 @@ typedef struct silk_generate_params {
   int32_t preprocessing;     /* silk_preprocess_kind with that kind's defaults */
   int32_t raw_points;        /* 1 (point clouds only): the points are the encoder input as given, output in the model's frame */
   int32_t debug_flags;       /* SILK_DEBUG_* bits; default 0 */
+  /* Surface guidance: each new vertex's block and offset ids are restricted to grid cells (of the
+   * model's 128^3 grid) within this many cells (Euclidean) of a cell holding an encoder point;
+   * when no legal id is that close, the nearest legal ones are kept (a "fallback" in the stats),
+   * so the mask never empties. 0 = off; 0..127. Constrained mode only (ignored when unconstrained).
+   * Default: SILK_DEFAULT_SURFACE_TOLERANCE (chosen by measurement, docs/runtime.md). */
+  int32_t surface_tolerance;
+  /* Best of N, 1..64: silk_generate* runs N generations on the same encoder points with seeds
+   * derived from `seed` (candidate 0: seed itself, so N = 1 is a plain run; candidate i >= 1: the
+   * first SplitMix64 output seeded with seed + i) and returns the one whose surface is closest to
+   * the input (symmetric Chamfer distance to the encoder's points; one with faces always beats
+   * one without). The step-wise API (silk_generator_start) runs candidate 0 only and ignores N;
+   * its stats still carry the score. Default: SILK_DEFAULT_CANDIDATES (measured, docs/runtime.md). */
+  int32_t candidates;
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
 
@@ -384,6 +401,13 @@ typedef struct silk_generate_stats {
   /* vertex_manifold: the faces around every vertex of the output form one fan; the decoder's
    * vertex-fan rule closed fan_gaps_closed gaps (repair policy) and split vertices_split vertices */
   int32_t vertex_manifold, nonmanifold_vertices, fan_gaps_closed, vertices_split;
+  /* surface guidance: vertex ids sampled under it; vertex ids (sampled or forced) taken outside
+   * the tolerance because no legal id was within it */
+  int64_t guided_tokens, guidance_fallbacks;
+  int32_t candidates;       /* generations run (1 for the step-wise API) */
+  int32_t chosen_candidate; /* index of the returned one (the report JSON lists every seed and score) */
+  double score;             /* returned mesh: symmetric Chamfer distance to the encoder's points, model frame */
+  double seconds_guidance, seconds_scoring;
 } silk_generate_stats;
 
 /* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh). */

@@ -1,0 +1,46 @@
+// Chamfer distance between a mesh's surface and a point set: the score that picks the best of
+// several generated candidates (closest to the input), computed without Python.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "io/raw_mesh.h"
+
+namespace silk {
+
+using Point3 = std::array<double, 3>;
+
+// Nearest-neighbour queries over a fixed point set: a uniform grid of about two points per
+// cell, searched ring by ring around the query's cell until no closer point can remain.
+class NearestPointIndex {
+ public:
+  explicit NearestPointIndex(const std::vector<Point3>& points);
+  // Euclidean distance to the nearest point; +infinity when the set is empty.
+  double Distance(const Point3& q) const;
+
+ private:
+  std::array<int32_t, 3> CellOf(const Point3& q) const;
+  double ScanCell(int32_t x, int32_t y, int32_t z, const Point3& q, double best2) const;
+  std::vector<Point3> points_;        // sorted by cell
+  std::vector<int32_t> cell_start_;   // cells + 1 offsets into points_
+  std::array<int32_t, 3> dims_{1, 1, 1};
+  Point3 origin_{0, 0, 0};
+  double cell_ = 1;
+};
+
+struct ChamferDistance {
+  double a_to_b = 0;  // mean over a of the distance to the nearest point of b
+  double b_to_a = 0;
+  double value() const { return 0.5 * (a_to_b + b_to_a); }  // the symmetric Chamfer distance
+};
+
+// Mean nearest-neighbour distances both ways (+infinity towards an empty set).
+ChamferDistance PointSetChamfer(const std::vector<Point3>& a, const std::vector<Point3>& b);
+
+// `samples` area-weighted surface samples of `mesh` (seeded) against `points`. A mesh without
+// a face of positive area scores +infinity both ways, so it never beats one with faces.
+ChamferDistance MeshToPointsChamfer(const RawMesh& mesh, const std::vector<Point3>& points, int32_t samples,
+                                    uint64_t seed);
+
+}  // namespace silk

@@ -1,0 +1,33 @@
+// Best of N: several generations of one input with derived seeds, the one closest to the input
+// kept (symmetric Chamfer distance from its surface samples to the encoder's points).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/status.h"
+#include "runtime/generator.h"
+
+namespace silk {
+
+// Candidate i's sampling seed: i = 0 is the seed itself (so N = 1 is exactly a plain run);
+// i >= 1 is the first output of SplitMix64 seeded with seed + i.
+uint64_t CandidateSeed(uint64_t seed, int32_t index);
+
+// Surface samples of a generated mesh (grid coordinates, dequantised to the model frame) scored
+// against the encoder's points (rows of 6 floats, xyz first): the symmetric Chamfer distance
+// (mean of both directions, like silk-export eval's CD; one direction alone would reward a
+// small patch lying on the surface). +infinity for a mesh without a face of positive area.
+double ScoreAgainstPoints(const DecodedMesh& mesh, const std::vector<float>& points);
+
+// options.candidates generations with CandidateSeed(options.sampling.seed, i), each a full
+// Generator::Run on the same points (the decoder graph has batch 1, docs/runtime.md). Returns the
+// lowest-scoring one (the earliest on ties; a candidate with faces always beats one without),
+// with stats.candidates listing every candidate and stats.chosen_candidate its index; the
+// stats' times cover all candidates. A failure or cancel of any candidate fails the whole.
+StatusOr<GenerateResult> RunCandidates(Generator* generator, const std::vector<float>& points,
+                                       const GenerateOptions& options, const GenerateCallbacks& callbacks = {});
+
+// Puts a single generation's own entry (its seed, score) into stats.candidates (index 0).
+void ScoreSingle(GenerateResult* result, uint64_t seed, const std::vector<float>& points);
+
+}  // namespace silk

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Measures surface guidance and best-of-N with the bundled model (the defaults of
+# silk_generate_params.surface_tolerance / .candidates were chosen from its table,
+# docs/runtime.md): 40 meshes of the 0 A.D. validation split when its index exists, else the
+# first 40 dev-corpus meshes (LIMIT=N: fewer); seed 0, 1 thread, 512-token cap; `silk-export
+# eval` with 2,000 surface points per mesh (POINTS=...) on each run. A run whose generate.json
+# exists is only re-evaluated.
+# Usage: SILK_LIBRARY=build/engine/libsilk.so scripts/eval_guidance.sh [OUT_DIR=out/guidance] [TOLERANCES="0 1 2 3 4"] [CANDIDATES="1 2 4 8"] [BEST_TOLERANCE=2]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out="${1:-out/guidance}"; tolerances="${2-0 1 2 3 4}"; candidates="${3-1 2 4 8}"; best="${4-2}"
+shared="${SILK_SHARED_DIR:-../shared}"
+index="${SILK_DATA_DIR:-/tmp/silk-data}/index/0ad/index.jsonl"
+if [ -f "$index" ]; then
+  inputs=(--index "$index" --split val --limit "${LIMIT:-40}")
+else
+  mapfile -t files < <(ls "$shared"/corpus/dev/*.obj | head -"${LIMIT:-40}")
+  inputs=("${files[@]}")
+fi
+silk_export() { PYTHONPATH="$PWD/export${PYTHONPATH:+:$PYTHONPATH}" python3 -m silk_export "$@"; }  # this checkout's
+run() {  # name tolerance candidates
+  local dir="$out/$1"
+  [ -f "$dir/generate.json" ] ||
+    silk_export generate --runtime --model models/default --out "$dir" --seed 0 --threads 1 --max-tokens 512 \
+      --surface-tolerance "$2" --candidates "$3" "${inputs[@]}" >/dev/null 2>"$dir.log" || { cat "$dir.log"; exit 1; }
+  silk_export eval "$dir/generated" "$dir/reference" --points "${POINTS:-2000}" --out "$dir/eval.json" >/dev/null
+  python3 - "$dir" "$2" "$3" <<'PY'
+import json, sys
+d, t, n = sys.argv[1:]
+g = json.load(open(f"{d}/generate.json")); e = json.load(open(f"{d}/eval.json"))["summary"]
+rows = g["meshes"]; sec = sum(r.get("seconds", 0) for r in rows) / len(rows)
+fb = sum(r.get("guidance_fallbacks", 0) for r in rows); gt = sum(r.get("guided_tokens", 0) for r in rows)
+print(f"| {t} | {n} | {g['decoded_with_faces']}/{len(rows)} | {e.get('mean_cd', float('nan')):.4f} | "
+      f"{e.get('mean_hd', float('nan')):.4f} | {e.get('mean_nc', float('nan')):.4f} | {e.get('mean_abs_nc', float('nan')):.4f} | "
+      f"{e.get('mean_faces', 0):.0f} | {sec:.2f} | {fb}/{gt} |")
+PY
+}
+mkdir -p "$out"
+echo "| tolerance | candidates | with faces | CD | HD | NC | abs NC | faces | s/mesh | fallbacks/guided |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for t in $tolerances; do run "t${t}_n1" "$t" 1; done
+for n in $candidates; do [ "$n" = 1 ] || run "t${best}_n${n}" "$best" "$n"; done

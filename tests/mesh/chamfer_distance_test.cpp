@@ -1,0 +1,79 @@
+// Chamfer distance: the grid nearest-neighbour index against brute force on random sets (some
+// clustered, some queries far outside), the symmetric mean, and empty/degenerate meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "core/splitmix64.h"
+#include "mesh/chamfer_distance.h"
+
+namespace silk {
+namespace {
+
+double BruteNearest(const std::vector<Point3>& set, const Point3& q) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Point3& p : set)
+    best = std::min(best, std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                    (p[2] - q[2]) * (p[2] - q[2])));
+  return best;
+}
+
+std::vector<Point3> RandomPoints(SplitMix64* rng, int n, double scale, bool flat) {
+  std::vector<Point3> v;
+  for (int i = 0; i < n; ++i)
+    v.push_back({scale * (2 * rng->Uniform() - 1), scale * (2 * rng->Uniform() - 1),
+                 flat ? 0.25 : scale * (2 * rng->Uniform() - 1)});
+  return v;
+}
+
+TEST(ChamferDistance, NearestMatchesBruteForce) {
+  SplitMix64 rng(7);
+  for (int trial = 0; trial < 12; ++trial) {
+    const int n = 1 + static_cast<int>(rng.Uniform() * 800);
+    const auto set = RandomPoints(&rng, n, 1.0, trial % 3 == 0);  // some sets on a plane
+    NearestPointIndex index(set);
+    const auto queries = RandomPoints(&rng, 300, trial % 2 ? 3.0 : 1.0, false);  // many outside the box
+    for (const Point3& q : queries) ASSERT_DOUBLE_EQ(index.Distance(q), BruteNearest(set, q)) << "trial " << trial;
+  }
+}
+
+TEST(ChamferDistance, SymmetricMeanMatchesBruteForce) {
+  SplitMix64 rng(11);
+  const auto a = RandomPoints(&rng, 400, 1.0, false), b = RandomPoints(&rng, 250, 0.7, true);
+  double ab = 0, ba = 0;
+  for (const Point3& p : a) ab += BruteNearest(b, p);
+  for (const Point3& p : b) ba += BruteNearest(a, p);
+  const ChamferDistance d = PointSetChamfer(a, b);
+  EXPECT_NEAR(d.a_to_b, ab / a.size(), 1e-12);
+  EXPECT_NEAR(d.b_to_a, ba / b.size(), 1e-12);
+  EXPECT_NEAR(d.value(), 0.5 * (ab / a.size() + ba / b.size()), 1e-12);
+  EXPECT_EQ(PointSetChamfer(a, a).value(), 0.0);
+}
+
+TEST(ChamferDistance, MeshSamplesAgainstPoints) {
+  RawMesh square;  // unit square in z = 0
+  square.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  square.triangles = {{0, 1, 2}, {0, 2, 3}};
+  std::vector<Point3> above;  // the same square lifted by 0.5: every distance >= 0.5
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 20; ++j) above.push_back({i / 20.0, j / 20.0, 0.5});
+  const ChamferDistance d = MeshToPointsChamfer(square, above, 2000, 3);
+  EXPECT_GE(d.a_to_b, 0.5);
+  EXPECT_LT(d.a_to_b, 0.5 + 0.03);  // grid spacing 0.05: at most ~0.035 sideways
+  EXPECT_NEAR(d.b_to_a, 0.5, 0.01);
+  EXPECT_EQ(MeshToPointsChamfer(square, above, 2000, 3).value(), d.value());  // seeded
+}
+
+TEST(ChamferDistance, NoFaceOrNoPointIsInfinite) {
+  RawMesh flat;  // one zero-area face
+  flat.positions = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+  flat.triangles = {{0, 1, 2}};
+  const std::vector<Point3> pts = {{0, 0, 0}};
+  EXPECT_TRUE(std::isinf(MeshToPointsChamfer(flat, pts, 100, 0).value()));
+  EXPECT_TRUE(std::isinf(MeshToPointsChamfer(RawMesh{}, pts, 100, 0).value()));
+  EXPECT_TRUE(std::isinf(NearestPointIndex({}).Distance({0, 0, 0})));
+}
+
+}  // namespace
+}  // namespace silk
