@@ -9,6 +9,7 @@ mkdir -p out
 if [ -x ./build/apps/silkgen ]; then
   ./build/apps/silkgen samples/torus_knot.obj -o out/torus_knot.glb --stats out/torus_knot.stats.json
   echo "generated mesh: out/torus_knot.glb (statistics in out/torus_knot.stats.json)"
+  bash scripts/render_pictures.sh demo out/torus_knot.png  # the input beside the output (needs blender)
 else
   echo "silkgen was not built (onnxruntime missing: run scripts/setup.sh)" >&2
 fi

@@ -28,6 +28,9 @@ def parse_args() -> argparse.Namespace:
     p.add_argument("--pair", nargs=2, action="append", required=True, metavar=("INPUT", "OUTPUT"))
     p.add_argument("--cols", type=int, default=0, help="pairs per row; 0 = all in one row")
     p.add_argument("--size", default="", help="WIDTHxHEIGHT in pixels; default 480 px per mesh")
+    p.add_argument("--fit-each", action="store_true",
+                   help="scale the output by its own size, not the input's (for inputs that were normalised "
+                        "apart from the output, as `silk-export generate` writes its references)")
     return p.parse_args(argv)
 
 
@@ -78,15 +81,19 @@ def move(objs: list, offset: Vector, scale: float) -> None:
             top.location = top.location * scale + offset
 
 
-def place_pair(inp: str, out: str, cell: Vector) -> list:
-    """The input at the cell's left, the output at its right, both scaled by the input's size."""
+def place_pair(inp: str, out: str, cell: Vector, fit_each: bool) -> list:
+    """The input at the cell's left, the output at its right, both scaled by the input's size
+    (or each by its own with fit_each)."""
     src = import_file(inp)
     gen = import_file(out)
     lo, hi = bounds(src)
-    size = max((hi - lo).length, 1e-9)
-    scale = 2.0 / size
+    scale = 2.0 / max((hi - lo).length, 1e-9)
     centre = (lo + hi) / 2
     move(src, cell + Vector((-1.15, 0, 0)) - centre * scale, scale)
+    if fit_each:
+        lo, hi = bounds(gen)
+        scale = 2.0 / max((hi - lo).length, 1e-9)
+        centre = (lo + hi) / 2
     move(gen, cell + Vector((1.15, 0, 0)) - centre * scale, scale)
     for o in src:
         o.color = (0.78, 0.78, 0.78, 1.0)
@@ -142,7 +149,7 @@ def main() -> None:
     objs = []
     for k, (inp, out) in enumerate(args.pair):
         r, c = divmod(k, cols)
-        objs += place_pair(inp, out, Vector((c * 5.2, 0, -r * 2.9)))
+        objs += place_pair(inp, out, Vector((c * 5.2, 0, -r * 2.9)), args.fit_each)
     if args.size:
         width, height = (int(v) for v in args.size.lower().split("x"))
     else:

@@ -5,7 +5,8 @@
 #   bash scripts/render_pictures.sh demo [PNG]        # samples/torus_knot.obj beside out/torus_knot.glb
 #                                                     # (scripts/demo.sh makes it); default out/torus_knot.png
 #   bash scripts/render_pictures.sh grid DIR [PNG]    # DIR from `silk-export generate`: reference/<name>.obj
-#                                                     # beside generated/<name>.obj, 4 per row; default DIR/grid.png
+#                                                     # beside generated/<name>.obj, 4 per row, each side
+#                                                     # fitted to the cell (references are normalised); default DIR/grid.png
 # Needs Debian's blender (scripts/setup.sh installs it); prints a note and exits 0 without it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -44,7 +45,7 @@ case "$mode" in
     done
     [ ${#pairs[@]} -gt 0 ] || { echo "render_pictures: no generated/reference pairs under $dir" >&2; exit 1; }
     mkdir -p "$(dirname "$png")"
-    render --out "$png" --cols 4 --size 1920x$(( (${#pairs[@]} / 3 + 3) / 4 * 480 )) "${pairs[@]}"
+    render --out "$png" --cols 4 --fit-each --size 1920x$(( (${#pairs[@]} / 3 + 3) / 4 * 480 )) "${pairs[@]}"
     ;;
   *)
     echo "usage: render_pictures.sh demo [PNG] | grid DIR [PNG]" >&2
