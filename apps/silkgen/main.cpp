@@ -56,7 +56,7 @@ struct Args {
   double temperature = -1, top_p = -1, top_p_temperature = -1;
   int top_k = -1;
   int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
-  std::string decoder, preprocessing;
+  std::string decoder, preprocessing, orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
   bool unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
 };
@@ -93,6 +93,10 @@ void AddOptions(CLI::App& app, Args& a) {
                  "Best of N: N generations with seeds derived from --seed, the one closest to the input (Chamfer "
                  "distance to the encoder's points) written; every score goes into --stats")
       ->check(CLI::Range(1, 64))->capture_default_str()->type_name("N");
+  app.add_option("--orient", a.orient,
+                 "Which side of each part faces out: input (reverse every part whose winding disagrees with the "
+                 "input's normals) or tokens (the winding the ids carry, as silktok decode gives it)")
+      ->check(CLI::IsMember({"input", "tokens"}))->capture_default_str();
   app.add_option("--stats", a.stats_path, "Write run figures as JSON");
   app.add_option("--tokens", a.tokens_path, "Write the generated ids, one per line (EOS 10267 last when one was generated)");
   app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")->check(CLI::Range(0, 1 << 20));
@@ -146,6 +150,7 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.n_points = a.n_points;
   p.surface_tolerance = a.surface_tolerance;
   p.candidates = a.candidates;
+  p.orient = a.orient == "input" ? SILK_ORIENT_INPUT : SILK_ORIENT_TOKENS;
   p.debug_flags = (a.no_skip_forced ? SILK_DEBUG_NO_SKIP_FORCED : 0) | (a.kv_copy ? SILK_DEBUG_KV_COPY : 0) |
                   (a.sample_then_check ? SILK_DEBUG_SAMPLE_THEN_CHECK : 0) |
                   (a.trace_path.empty() ? 0 : SILK_DEBUG_RECORD_TRACE);
@@ -179,7 +184,7 @@ int Run(const Args& a, uint64_t seed) {
     std::fprintf(stderr,
                  "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
                  "%s decoder)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
-                 "  points  %s\n  surface tolerance %d  candidates %d\n",
+                 "  points  %s\n  surface tolerance %d  candidates %d  orient %s\n",
                  silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
                  input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
                  info.config, info.threads,
@@ -189,7 +194,7 @@ int Run(const Args& a, uint64_t seed) {
                  a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
                  a.raw_points ? "raw (used as given, model frame)"
                               : a.preprocessing.empty() ? "the model's pre-processing" : a.preprocessing.c_str(),
-                 a.surface_tolerance, a.candidates);
+                 a.surface_tolerance, a.candidates, a.orient.c_str());
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };
@@ -216,6 +221,9 @@ int Run(const Args& a, uint64_t seed) {
                  st.tokens ? 100.0 * st.forced_tokens / st.tokens : 0.0, st.faces, st.components, st.tokens_per_second,
                  st.seconds_total, st.edge_manifold ? "yes" : "no", st.vertex_manifold ? "yes" : "no",
                  st.consistently_oriented ? "yes" : "no", st.watertight ? "yes" : "no");
+  if (!a.quiet && st.parts_flipped > 0)
+    std::fprintf(stderr, "silkgen: %d of %d part(s) reversed to face the input's normals (--orient tokens keeps the ids' winding)\n",
+                 st.parts_flipped, st.components);
   if (!a.quiet && (st.candidates > 1 || st.guided_tokens > 0))
     std::fprintf(stderr, "silkgen: candidate %d of %d written (Chamfer %.4f); guidance: %lld vertex ids, %lld fallbacks\n",
                  st.chosen_candidate, st.candidates, st.score, static_cast<long long>(st.guided_tokens),

@@ -38,6 +38,8 @@ silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, c
     return silk::InvalidArgument("preprocessing " + std::to_string(p.preprocessing) +
                                  " is not a silk_preprocess_kind (-1 = the model's, 0..1)");
   if (p.raw_points != 0 && p.raw_points != 1) return silk::InvalidArgument("raw_points takes 0 or 1");
+  if (p.orient != SILK_ORIENT_TOKENS && p.orient != SILK_ORIENT_INPUT)
+    return silk::InvalidArgument("orient " + std::to_string(p.orient) + " is not a silk_orientation (0..1)");
   silk::GenerateOptions o;
   o.sampling = config.sampling;
   o.sampling.seed = p.seed;
@@ -57,6 +59,7 @@ silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, c
   o.record_trace = (p.debug_flags & SILK_DEBUG_RECORD_TRACE) != 0;
   o.surface_tolerance = p.surface_tolerance;
   o.candidates = p.candidates;
+  o.orient_to_input = p.orient == SILK_ORIENT_INPUT;
   SILK_RETURN_IF_ERROR(silk::CheckGenerateOptions(o));
   return o;
 }
@@ -255,6 +258,7 @@ silk_generate_params silk_generate_default_params(void) {
   p.holes = SILK_HOLES_OFF;
   p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
   p.candidates = SILK_DEFAULT_CANDIDATES;
+  p.orient = SILK_DEFAULT_ORIENT;
   return p;
 }
 

@@ -22,6 +22,9 @@ silk_generate_params silk_generate_default_params(void) {
   p.top_p = -1;
   p.top_p_temperature = -1;
   p.preprocessing = -1;
+  p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
+  p.candidates = SILK_DEFAULT_CANDIDATES;
+  p.orient = SILK_DEFAULT_ORIENT;
   return p;
 }
 silk_status silk_model_load(const char*, const silk_model_options*, silk_model** out) {

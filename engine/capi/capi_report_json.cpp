@@ -38,7 +38,8 @@ Json SettingsJson(const silk_generator& g) {
               {"repair", HolesName(p.holes)},
               {"unconstrained", p.unconstrained != 0},
               {"surface_tolerance", p.surface_tolerance},
-              {"candidates", p.candidates}};
+              {"candidates", p.candidates},
+              {"orient", p.orient == SILK_ORIENT_INPUT ? "input" : "tokens"}};
 }
 
 Json StatsJson(const silk_generator& g) {
@@ -74,6 +75,7 @@ Json StatsJson(const silk_generator& g) {
                    {"consistently_oriented", st.consistently_oriented}, {"open_edges", st.open_edges}};
   j["guidance"] = {{"guided_tokens", st.guided_tokens}, {"fallbacks", st.guidance_fallbacks},
                    {"seconds", st.seconds.guidance}};
+  j["parts_flipped"] = st.parts_flipped;
   Json cands = Json::array();
   for (size_t i = 0; i < st.candidates.size(); ++i) {
     const CandidateScore& c = st.candidates[i];
@@ -164,6 +166,7 @@ void FillStats(const GenerationStats& s, silk_generate_stats* out) {
   out->score = s.candidates.empty() ? 0 : s.candidates[static_cast<size_t>(s.chosen_candidate)].score;
   out->seconds_guidance = s.seconds.guidance;
   out->seconds_scoring = s.seconds.scoring;
+  out->parts_flipped = s.parts_flipped;
 }
 
 }  // namespace silk::capi

@@ -33,8 +33,13 @@ NearestPointIndex::NearestPointIndex(const std::vector<Point3>& points) {
   }
   for (size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   points_.resize(points.size());
+  ids_.resize(points.size());
   std::vector<int32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (size_t i = 0; i < points.size(); ++i) points_[fill[cell_of[i]]++] = points[i];
+  for (size_t i = 0; i < points.size(); ++i) {
+    const int32_t slot = fill[cell_of[i]]++;
+    points_[slot] = points[i];
+    ids_[slot] = static_cast<int32_t>(i);
+  }
 }
 
 std::array<int32_t, 3> NearestPointIndex::CellOf(const Point3& q) const {
@@ -46,21 +51,23 @@ std::array<int32_t, 3> NearestPointIndex::CellOf(const Point3& q) const {
   return c;
 }
 
-double NearestPointIndex::ScanCell(int32_t x, int32_t y, int32_t z, const Point3& q, double best2) const {
+void NearestPointIndex::ScanCell(int32_t x, int32_t y, int32_t z, const Point3& q, double* best2,
+                                 int32_t* best) const {
   const int32_t c = (x * dims_[1] + y) * dims_[2] + z;
   for (int32_t i = cell_start_[c]; i < cell_start_[c + 1]; ++i) {
     const Point3& p = points_[i];
     const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
-    best2 = std::min(best2, dx * dx + dy * dy + dz * dz);
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 < *best2 || (d2 == *best2 && ids_[i] < *best)) *best2 = d2, *best = ids_[i];
   }
-  return best2;
 }
 
-double NearestPointIndex::Distance(const Point3& q) const {
-  if (points_.empty()) return kInf;
+NearestPointIndex::Hit NearestPointIndex::Nearest(const Point3& q) const {
+  if (points_.empty()) return {kInf, -1};
   const auto c = CellOf(q);
   const int32_t max_ring = std::max({dims_[0], dims_[1], dims_[2]});
   double best2 = kInf;
+  int32_t best = -1;
   // Ring r holds the cells at Chebyshev distance r from the query's (clamped) cell; every
   // point in ring r + 1 or beyond is at least r * cell_ from the query.
   for (int32_t r = 0; r <= max_ring; ++r) {
@@ -69,16 +76,16 @@ double NearestPointIndex::Distance(const Point3& q) const {
         const bool x_or_y_edge = std::abs(x - c[0]) == r || std::abs(y - c[1]) == r;
         if (x_or_y_edge) {
           for (int32_t z = std::max(0, c[2] - r); z <= std::min(dims_[2] - 1, c[2] + r); ++z)
-            best2 = ScanCell(x, y, z, q, best2);
+            ScanCell(x, y, z, q, &best2, &best);
         } else {
-          if (c[2] - r >= 0) best2 = ScanCell(x, y, c[2] - r, q, best2);
-          if (r > 0 && c[2] + r < dims_[2]) best2 = ScanCell(x, y, c[2] + r, q, best2);
+          if (c[2] - r >= 0) ScanCell(x, y, c[2] - r, q, &best2, &best);
+          if (r > 0 && c[2] + r < dims_[2]) ScanCell(x, y, c[2] + r, q, &best2, &best);
         }
       }
     const double reach = r * cell_;
-    if (best2 <= reach * reach) break;
+    if (best2 < reach * reach) break;
   }
-  return std::sqrt(best2);
+  return {std::sqrt(best2), best};
 }
 
 namespace {

@@ -47,6 +47,8 @@ struct GenerationStats {
   bool vertex_manifold = false;
   int32_t nonmanifold_vertices = 0;
   int32_t fan_gaps_closed = 0, vertices_split = 0;
+  // Parts reversed to face the input's normals (orient_to_input; runtime/input_orientation.h).
+  int32_t parts_flipped = 0;
   int64_t illegal_at = -1;     // unconstrained mode: index of the first id the grammar rejects
   std::string illegal_reason;
   int64_t kv_cache_bytes = 0;

@@ -13,6 +13,7 @@
 
 #include "decoder/grammar.h"
 #include "runtime/decoder_runner.h"
+#include "runtime/input_orientation.h"
 #include "runtime/model_impl.h"
 #include "runtime/surface_guide.h"
 #include "tokenizer/vertex_codec.h"
@@ -99,6 +100,7 @@ struct Generator::Session {
   int32_t faces_at_close = -1;
   int64_t layers_closed = 0;
   std::shared_ptr<const SurfaceGuide> guide;  // surface_tolerance > 0, constrained mode
+  std::shared_ptr<const OrientedPointSet> orientation;  // orient_to_input
   TokenMask guided;                     // the legal mask after guidance (what is sampled from)
   mutable MeshBuildCache so_far_cache;  // max_faces / MeshSoFar: closed components are built once
   bool illegal_seen = false;
@@ -169,6 +171,13 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
     }
     s.guide = guide_;
     st.seconds.guidance += Since(t0);
+  }
+  if (options.orient_to_input) {
+    if (!orientation_ || orientation_points_ != points) {
+      orientation_ = MakeInputOrientation(points);
+      orientation_points_ = points;
+    }
+    s.orientation = orientation_;
   }
   s.pending = {cfg.bos_id};
   s.t_start = t_start;
@@ -325,7 +334,10 @@ void Generator::ReportProgress() {
 StatusOr<DecodedMesh> Generator::MeshSoFar() const {
   if (!session_) return InvalidArgument("generate: no generation in progress");
   if (session_->options.unconstrained && session_->illegal_seen) return DecodedMesh{};
-  return BuildMeshSoFar(session_->grammar, MeshBuildOptions{}, nullptr, &session_->so_far_cache);
+  SILK_ASSIGN_OR_RETURN(DecodedMesh mesh,
+                        BuildMeshSoFar(session_->grammar, MeshBuildOptions{}, nullptr, &session_->so_far_cache));
+  if (session_->orientation) OrientToInput(&mesh, *session_->orientation);
+  return mesh;
 }
 
 StatusOr<GenerateResult> Generator::Finish() {
@@ -352,6 +364,7 @@ StatusOr<GenerateResult> Generator::Finish() {
   } else {
     SILK_ASSIGN_OR_RETURN(res.mesh, BuildMeshSoFar(s.grammar, bopt, &res.report));
   }
+  if (s.orientation) st.parts_flipped = OrientToInput(&res.mesh, *s.orientation).parts_flipped;
   st.seconds.build_mesh += Since(t0);
   st.faces = static_cast<int32_t>(res.mesh.faces.size());
   st.vertices = static_cast<int32_t>(res.mesh.positions.size());

@@ -25,6 +25,7 @@ struct RunOptions;
 namespace silk {
 
 class SurfaceGuide;
+class OrientedPointSet;
 
 enum class SampleOrder {
   kMaskFirst,        // sample among legal ids (default)
@@ -48,6 +49,10 @@ struct GenerateOptions {
   // Best of N (runtime/candidates.h, RunCandidates): N generations with derived seeds, the one
   // closest to the input kept. Generator::Run/Start run one generation and ignore it.
   int32_t candidates = 1;
+  // Part orientation (runtime/input_orientation.h): every generated part whose winding
+  // disagrees with the encoder's points' normals (area-weighted vote) is reversed, in the final
+  // mesh and in MeshSoFar. Off = the winding the ids carry (what decoding the token file gives).
+  bool orient_to_input = false;
 };
 
 constexpr int32_t kMaxSurfaceTolerance = 127;
@@ -125,6 +130,9 @@ class Generator {
   // The last surface guide and its points: runs on the same input (best of N) build it once.
   std::shared_ptr<const SurfaceGuide> guide_;
   std::vector<float> guide_points_;
+  // The last orientation reference and its points, likewise.
+  std::shared_ptr<const OrientedPointSet> orientation_;
+  std::vector<float> orientation_points_;
   std::unique_ptr<Session> session_;
   std::unique_ptr<Ort::RunOptions> encoder_run_;  // the encoder's run options (terminate flag)
 };

@@ -237,10 +237,15 @@ class Model(_Handle):
 
 def generate_params(seed: int = 0, temperature: float = -1, top_k: int = -1, top_p: float = -1,
                     max_tokens: int = 0, max_faces: int = 0, repair: str = "off", n_points: int = 0,
-                    surface_tolerance: int | None = None, candidates: int | None = None) -> GenerateParams:
+                    surface_tolerance: int | None = None, candidates: int | None = None,
+                    orient: str | None = None) -> GenerateParams:
     """silk_generate_params; negative sampling values mean the model's (model.json "sampling");
-    surface_tolerance / candidates None: libsilk's measured defaults."""
+    surface_tolerance / candidates / orient ("input" or "tokens") None: libsilk's defaults."""
     p = lib().silk_generate_default_params()
+    if orient is not None:
+        if orient not in ORIENT:
+            raise ValueError(f"orient must be one of {sorted(ORIENT)}, not {orient!r}")
+        p.orient = ORIENT[orient]
     if surface_tolerance is not None:
         p.surface_tolerance = int(surface_tolerance)
     if candidates is not None:

@@ -16,6 +16,7 @@ SILK_ERR_BUFFER_TOO_SMALL = 9
 SILK_ERR_BUSY = 10
 STOP_REASONS = {-1: "running", 0: "eos", 1: "max_tokens", 2: "max_faces", 3: "grammar_dead_end", 4: "cancelled"}
 HOLES = {"off": 0, "report": 1, "repair": 2}
+ORIENT = {"tokens": 0, "input": 1}  # silk_orientation
 
 
 class VocabInfo(ctypes.Structure):
@@ -124,7 +125,7 @@ class GenerateParams(ctypes.Structure):
                 ("progress", PROGRESS_FN), ("cancel", CANCEL_FN), ("user_data", ctypes.c_void_p),
                 ("top_p_temperature", ctypes.c_double), ("preprocessing", ctypes.c_int32),
                 ("raw_points", ctypes.c_int32), ("debug_flags", ctypes.c_int32),
-                ("surface_tolerance", ctypes.c_int32), ("candidates", ctypes.c_int32)]
+                ("surface_tolerance", ctypes.c_int32), ("candidates", ctypes.c_int32), ("orient", ctypes.c_int32)]
 
 
 class GenerateStats(ctypes.Structure):
@@ -138,7 +139,8 @@ class GenerateStats(ctypes.Structure):
         (n, ctypes.c_int32) for n in ("vertex_manifold", "nonmanifold_vertices", "fan_gaps_closed", "vertices_split")] + [
         (n, ctypes.c_int64) for n in ("guided_tokens", "guidance_fallbacks")] + [
         (n, ctypes.c_int32) for n in ("candidates", "chosen_candidate")] + [
-        (n, ctypes.c_double) for n in ("score", "seconds_guidance", "seconds_scoring")]
+        (n, ctypes.c_double) for n in ("score", "seconds_guidance", "seconds_scoring")] + [
+        ("parts_flipped", ctypes.c_int32)]
 
     def as_dict(self) -> dict:
         d = {name: getattr(self, name) for name, _ in self._fields_}

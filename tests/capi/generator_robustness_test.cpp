@@ -353,7 +353,8 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
                           {"surface_tolerance -1", [](silk_generate_params* p) { p->surface_tolerance = -1; }},
                           {"surface_tolerance 128", [](silk_generate_params* p) { p->surface_tolerance = 128; }},
                           {"candidates 0", [](silk_generate_params* p) { p->candidates = 0; }},
-                          {"candidates 65", [](silk_generate_params* p) { p->candidates = 65; }}};
+                          {"candidates 65", [](silk_generate_params* p) { p->candidates = 65; }},
+                          {"orient", [](silk_generate_params* p) { p->orient = 2; }}};
     for (const Case& c : cases) {
       silk_generate_params p = silk_generate_default_params();
       c.set(&p);

@@ -3,7 +3,7 @@
 # Python onnxruntime reference loop (skipped without it), bad
 # inputs, output formats. Then the C API from Python (examples/generate_ctypes.py).
 if(Python3_FOUND AND TARGET silkgen)
-  foreach(mode golden golden_mesh reference bad formats)
+  foreach(mode golden golden_mesh reference bad formats orient)
     add_test(NAME silkgen_${mode}
              COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/silkgen_checks.py ${mode}
                      $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR})

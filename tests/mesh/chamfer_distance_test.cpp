@@ -38,6 +38,32 @@ TEST(ChamferDistance, NearestMatchesBruteForce) {
   }
 }
 
+TEST(ChamferDistance, NearestIndexIsTheBruteForceArgminWithTheLowestIndexOnTies) {
+  SplitMix64 rng(5);
+  for (int trial = 0; trial < 8; ++trial) {
+    auto set = RandomPoints(&rng, 1 + static_cast<int>(rng.Uniform() * 500), 1.0, trial % 2 == 0);
+    const size_t unique = set.size();
+    for (size_t i = 0; i < unique; i += 7) set.push_back(set[i]);  // exact duplicates: ties
+    NearestPointIndex index(set);
+    for (const Point3& q : RandomPoints(&rng, 200, 2.0, false)) {
+      const NearestPointIndex::Hit hit = index.Nearest(q);
+      int32_t want = -1;
+      double best = std::numeric_limits<double>::infinity();
+      for (size_t i = 0; i < set.size(); ++i) {
+        const Point3& p = set[i];
+        const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                   (p[2] - q[2]) * (p[2] - q[2]));
+        if (d < best) best = d, want = static_cast<int32_t>(i);
+      }
+      ASSERT_EQ(hit.index, want) << "trial " << trial;
+      ASSERT_DOUBLE_EQ(hit.distance, best);
+    }
+  }
+  const NearestPointIndex none(std::vector<Point3>{});
+  EXPECT_EQ(none.Nearest({0, 0, 0}).index, -1);
+  EXPECT_TRUE(std::isinf(none.Nearest({0, 0, 0}).distance));
+}
+
 TEST(ChamferDistance, SymmetricMeanMatchesBruteForce) {
   SplitMix64 rng(11);
   const auto a = RandomPoints(&rng, 400, 1.0, false), b = RandomPoints(&rng, 250, 0.7, true);

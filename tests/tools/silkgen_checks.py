@@ -16,6 +16,9 @@
   bad SILKGEN REPO                bad inputs/options/models: non-zero exit, a message naming the
                                   problem on stderr, no output file left behind
   formats SILKGEN REPO            .glb/.obj/.ply outputs and --stats JSON are complete and readable
+  orient SILKGEN REPO             --orient input against --orient tokens (bundled model): same ids,
+                                  whole parts reversed (as many as --stats says), and the output
+                                  agrees with the input mesh's own normals (numpy samples, not libsilk)
 """
 import json, os, pathlib, shutil, struct, subprocess, sys, tempfile
 
@@ -23,8 +26,9 @@ CASES = [  # name, input (repo-relative), seed
     ("torus_knot_s7", "samples/torus_knot.obj", 7),
     ("points_s3", "tests/models/golden/torus_knot_points.ply", 3),
 ]
-# Goldens are plain runs: surface guidance off, one candidate (the defaults may differ).
-COMMON = ["--max-tokens", "300", "--threads", "1", "-q", "--surface-tolerance", "0", "--candidates", "1"]
+# Goldens are plain runs: surface guidance off, one candidate, the ids' winding (the defaults differ).
+COMMON = ["--max-tokens", "300", "--threads", "1", "-q", "--surface-tolerance", "0", "--candidates", "1",
+          "--orient", "tokens"]
 
 
 def run(cmd, check=True):
@@ -221,6 +225,102 @@ def check_formats(silkgen, repo):
     return failures
 
 
+def glb_parts(path):
+    """Per node of a silkgen GLB (one per part): (positions [n, 3], triangles [m, 3]) as numpy."""
+    import numpy as np
+    b = path.read_bytes()
+    doc = read_glb(path)
+    jlen = struct.unpack_from("<I", b, 12)[0]
+    bin_start = 20 + jlen + 8
+    kinds = {5126: np.float32, 5125: np.uint32, 5123: np.uint16, 5121: np.uint8}
+    width = {"SCALAR": 1, "VEC3": 3}
+
+    def accessor(i):
+        a = doc["accessors"][i]
+        view = doc["bufferViews"][a["bufferView"]]
+        off = bin_start + view.get("byteOffset", 0) + a.get("byteOffset", 0)
+        n = a["count"] * width[a["type"]]
+        return np.frombuffer(b, kinds[a["componentType"]], n, off).reshape(a["count"], -1)
+    parts = []
+    for node in doc["nodes"]:
+        prim = doc["meshes"][node["mesh"]]["primitives"][0]
+        parts.append((accessor(prim["attributes"]["POSITION"]).astype(np.float64),
+                      accessor(prim["indices"]).reshape(-1, 3).astype(np.int64)))
+    return parts
+
+
+def check_orient(silkgen, repo):
+    """--orient input vs tokens with the bundled model (several parts per mesh), per GLB node."""
+    import numpy as np
+    failures, flipped_total = [], 0
+    src = repo / "samples/torus_knot.obj"
+    lines = src.read_text().splitlines()
+    sv = np.array([[float(x) for x in l.split()[1:4]] for l in lines if l.startswith("v ")])
+    sf = np.array([[int(x.split("/")[0]) - 1 for x in l.split()[1:4]] for l in lines if l.startswith("f ")])
+    s_cross = np.cross(sv[sf[:, 1]] - sv[sf[:, 0]], sv[sf[:, 2]] - sv[sf[:, 0]])
+    s_area = 0.5 * np.linalg.norm(s_cross, axis=1)
+    s_unit = s_cross / np.maximum(2 * s_area[:, None], 1e-300)
+    # 20,000 area-weighted samples of the input's surface (numpy's generator, not libsilk's).
+    rng = np.random.default_rng(0)
+    pick = rng.choice(len(sf), 20000, p=s_area / s_area.sum())
+    uv = rng.random((20000, 2))
+    uv[uv.sum(1) > 1] = 1 - uv[uv.sum(1) > 1]
+    a0 = sv[sf[pick, 0]]
+    s_points = a0 + uv[:, :1] * (sv[sf[pick, 1]] - a0) + uv[:, 1:] * (sv[sf[pick, 2]] - a0)
+    s_normal = s_unit[pick]
+    plain = [a for a in COMMON if a not in ("--orient", "tokens", "--max-tokens", "300")]
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        for seed in (0, 1, 2):
+            out = {}
+            for mode in ("tokens", "input"):
+                run([silkgen, src, "-o", tmp / f"{mode}.glb", "--model", repo / "models/default", "--seed", seed,
+                     "--max-tokens", "1500", "--tokens", tmp / f"{mode}.txt", "--stats", tmp / f"{mode}.json",
+                     *plain, "--orient", mode])
+                out[mode] = glb_parts(tmp / f"{mode}.glb"), json.loads((tmp / f"{mode}.json").read_text())
+            (tparts, ts), (iparts, ist) = out["tokens"], out["input"]
+            tag = f"seed {seed}"
+            if (tmp / "tokens.txt").read_text() != (tmp / "input.txt").read_text() or len(tparts) != len(iparts):
+                failures.append(f"{tag}: ids or part count differ between --orient tokens and input")
+                continue
+            if ts["parts_flipped"] != 0 or ist["settings"]["orient"] != "input":
+                failures.append(f"{tag}: --orient tokens reversed {ts['parts_flipped']} parts")
+            reversed_parts, votes = 0, []
+            for k, ((tv, tf), (iv, i_f)) in enumerate(zip(tparts, iparts)):
+                if tf.shape != i_f.shape:
+                    failures.append(f"{tag}: part {k}: face count differs")
+                    continue
+                # The GLB numbers each part's vertices by first use, so compare corner positions.
+                pt, pi = tv[tf], iv[i_f]  # [faces, 3 corners, xyz]
+
+                def cyclic_equal(x, y):  # every face of x is the same face of y up to a rotation of corners
+                    return bool(np.all(np.any([np.all(np.roll(y, r, axis=1) == x, axis=(1, 2)) for r in range(3)],
+                                              axis=0)))
+                same = cyclic_equal(pi, pt)
+                rev = cyclic_equal(pi, pt[:, [0, 2, 1]])
+                if not (same or rev):
+                    failures.append(f"{tag}: part {k} is neither kept nor wholly reversed")
+                reversed_parts += int(rev and not same)
+                # Independent vote: area-weighted agreement with the normal of the input surface
+                # sample nearest to each face's centroid.
+                cross = np.cross(iv[i_f[:, 1]] - iv[i_f[:, 0]], iv[i_f[:, 2]] - iv[i_f[:, 0]])
+                cen = iv[i_f].mean(axis=1)
+                near = np.argmin(((cen[:, None, :] - s_points[None, :, :]) ** 2).sum(-1), axis=1)
+                votes.append(0.5 * float(np.einsum("ij,ij->i", cross, s_normal[near]).sum()))
+            if reversed_parts != ist["parts_flipped"]:
+                failures.append(f"{tag}: {reversed_parts} parts reversed, stats say {ist['parts_flipped']}")
+            flipped_total += reversed_parts
+            total = sum(abs(x) for x in votes)
+            against = sum(-x for x in votes if x < 0)
+            print(f"{tag}: {reversed_parts} of {len(iparts)} parts reversed; parts facing against the input's "
+                  f"normals now hold {against / max(total, 1e-300):.1%} of the area-weighted vote")
+            if against > 0.05 * total:
+                failures.append(f"{tag}: parts holding {against / total:.1%} of the vote still face inward")
+    if flipped_total == 0:
+        failures.append("no part was reversed on any seed: the check exercised nothing")
+    return failures
+
+
 def main():
     mode, silkgen, repo = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
     update = "--update" in sys.argv[4:]
@@ -236,6 +336,8 @@ def main():
         failures = check_bad(silkgen, repo)
     elif mode == "formats":
         failures = check_formats(silkgen, repo)
+    elif mode == "orient":
+        failures = check_orient(silkgen, repo)
     else:
         print(__doc__)
         return 2

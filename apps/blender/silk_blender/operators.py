@@ -39,6 +39,11 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                                                "Best-of-N candidates need silkgen or silk_generate: this "
                                                "operator runs step-wise, one candidate",
                                    default=-1, min=-1, max=127)
+    orient: EnumProperty(name="Orientation",
+                         items=[("INPUT", "Face the input", "Reverse every part whose winding disagrees with the "
+                                 "source's normals"),
+                                ("TOKENS", "As generated", "The winding the generated ids carry")],
+                         default="INPUT")
     model_dir: StringProperty(name="Model folder", description="Empty: the model bundled with the add-on",
                               default="", subtype="DIR_PATH")
     repair: EnumProperty(name="Holes", items=[("OFF", "Off", "Keep holes"), ("REPORT", "Report", "Count holes"),
@@ -56,7 +61,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         src = context.active_object
         dg = context.evaluated_depsgraph_get()
         settings = dict(seed=self.seed, temperature=self.temperature, top_k=self.top_k, max_faces=self.max_faces,
-                        max_tokens=self.max_tokens, repair=self.repair,
+                        max_tokens=self.max_tokens, repair=self.repair, orient=self.orient,
                         surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
         if len(src.data.polygons) > 0:
             pos, tri = blender_mesh.mesh_arrays(src, dg)

@@ -127,7 +127,7 @@ class Generation:
 
     def __init__(self, model_dir: str, source: Mesh | None, points: list[float] | None, seed: int,
                  temperature: float, top_k: int, max_faces: int, max_tokens: int, repair: str,
-                 surface_tolerance: int | None = None):
+                 surface_tolerance: int | None = None, orient: str = "INPUT"):
         L = lib()
         if not L.silk_generation_available():
             raise SilkError(4, "this libsilk was built without onnxruntime (no generation)")
@@ -144,6 +144,7 @@ class Generation:
         p.max_faces, p.max_tokens, p.holes = max_faces, max_tokens, silk_c.HOLES[repair.lower()]
         if surface_tolerance is not None:  # None: libsilk's measured default
             p.surface_tolerance = surface_tolerance
+        p.orient = silk_c.ORIENT[orient.lower()]
         gi = GenerateInput()
         if source is not None:
             gi.mesh = source.handle

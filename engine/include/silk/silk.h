@@ -343,6 +343,12 @@ enum {
 /* The measured defaults of silk_generate_params.surface_tolerance and .candidates. */
 #define SILK_DEFAULT_SURFACE_TOLERANCE 2
 #define SILK_DEFAULT_CANDIDATES 1
+/* Part orientation (silk_generate_params.orient). */
+typedef enum silk_orientation {
+  SILK_ORIENT_TOKENS = 0, /* the winding the ids carry (what decoding the token file gives) */
+  SILK_ORIENT_INPUT = 1   /* each part turned to face the side the input's normals call outside */
+} silk_orientation;
+#define SILK_DEFAULT_ORIENT SILK_ORIENT_INPUT
 
 /* temperature, top_k, top_p, top_p_temperature and preprocessing default to -1: the model's
  * (model.json "sampling" / "preprocessing"; v2 models: 0.5, 50, 1.0, 0, Silk's kind). */
@@ -376,6 +382,11 @@ typedef struct silk_generate_params {
    * one without). The step-wise API (silk_generator_start) runs candidate 0 only and ignores N;
    * its stats still carry the score. Default: SILK_DEFAULT_CANDIDATES (measured, docs/runtime.md). */
   int32_t candidates;
+  /* silk_orientation. SILK_ORIENT_INPUT: every generated part whose winding disagrees with the
+   * encoder's points' normals (the sum over its faces of area * dot(face normal, normal of the
+   * nearest point) is negative) has all its faces reversed, in the final mesh and in
+   * silk_generator_mesh; the ids are unchanged. Default: SILK_DEFAULT_ORIENT (docs/runtime.md). */
+  int32_t orient;
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
 
@@ -408,6 +419,7 @@ typedef struct silk_generate_stats {
   int32_t chosen_candidate; /* index of the returned one (the report JSON lists every seed and score) */
   double score;             /* returned mesh: symmetric Chamfer distance to the encoder's points, model frame */
   double seconds_guidance, seconds_scoring;
+  int32_t parts_flipped; /* parts reversed to face the input's normals (params.orient) */
 } silk_generate_stats;
 
 /* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh). */
