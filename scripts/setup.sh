@@ -13,6 +13,7 @@ APT_PACKAGES=(
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
   blender python3-numpy      # the add-on's headless test (tests/blender; bookworm: Blender 3.4.1);
                              # numpy for Blender's own glTF importer
+  xvfb xauth                 # the add-on's modal test: a real Blender window on a private X server
 )
 
 missing=()

@@ -11,9 +11,11 @@ import os
 import subprocess
 import sys
 
-import addon_utils
 import bmesh
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import addon_setup  # noqa: E402
 
 env = os.environ
 SEED, MAX_TOKENS = int(env.get("SILK_SEED", "5")), int(env.get("SILK_MAX_TOKENS", "300"))
@@ -29,23 +31,14 @@ def check(cond, what):
 
 
 # -- install the zip and enable the add-on ------------------------------------------------------
-bpy.ops.preferences.addon_install(filepath=env["SILK_ADDON_ZIP"], overwrite=True)
-addon_utils.enable("silk_blender", default_set=True, handle_error=lambda e: failures.append(f"enable: {e}"))
-check(hasattr(bpy.ops.silk, "generate_mesh"), "add-on enabled (silk.generate_mesh registered)")
+check(addon_setup.install_and_enable(env["SILK_ADDON_ZIP"], failures), "add-on enabled (silk.generate_mesh registered)")
 from silk_blender import blender_mesh, silk_api  # noqa: E402  (the installed copy)
 
 check(os.path.dirname(silk_api.library_candidates()[0]).startswith(os.path.dirname(silk_api.__file__)),
       f"libsilk is the copy inside the add-on: {silk_api.library_candidates()[0]}")
 
 # -- a dev-corpus mesh, placed off the origin ---------------------------------------------------
-for obj in list(bpy.data.objects):
-    bpy.data.objects.remove(obj, do_unlink=True)
-bpy.ops.wm.obj_import(filepath=env["SILK_DEV_MESH"])
-src = [o for o in bpy.context.scene.objects if o.type == "MESH"][0]
-src.location = (0.0, 0.0, 0.0)
-bpy.context.view_layer.objects.active = src
-src.select_set(True)
-bpy.context.view_layer.update()
+src = addon_setup.import_active_mesh(env["SILK_DEV_MESH"])
 
 # silkgen on the same mesh as Blender holds it (evaluated, object frame).
 pos, tri = blender_mesh.mesh_arrays(src, bpy.context.evaluated_depsgraph_get())

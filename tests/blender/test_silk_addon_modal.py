@@ -1,0 +1,132 @@
+"""The add-on's interactive path in a real Blender window (Xvfb), run as
+  xvfb-run blender --factory-startup --enable-event-simulate --python tests/blender/test_silk_addon_modal.py
+by tests/blender/run_blender_test.sh modal (ctest blender_addon_modal). `silk.generate_mesh` is
+invoked as a user invokes it (INVOKE_DEFAULT in the 3D view), so it runs as a modal operator
+driven by timer events: the wire preview must grow while the UI keeps handling events (this
+test's own timer watches it from outside), and the result must equal the synchronous (script)
+run with the same settings. A second invocation gets a real Esc key event (window.event_simulate) while it
+runs: no object and no preview may be left. Blender ends with os._exit(status), since a
+windowed session's exit code does not follow --python-exit-code."""
+import os
+import sys
+import time
+
+import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import addon_setup  # noqa: E402
+
+env = os.environ
+SEED, MAX_TOKENS = int(env.get("SILK_SEED", "5")), int(env.get("SILK_MODAL_MAX_TOKENS", "2000"))
+# The bundled model (models/default: ~2 s for 2,000 ids) rather than the zip's tiny test model,
+# which finishes within a tick or two, too fast to watch a preview grow or to press Esc.
+MODEL = env["SILK_MODAL_MODEL"]
+failures = []
+
+
+def check(cond, what):
+    print(("ok   " if cond else "FAIL ") + what, flush=True)
+    if not cond:
+        failures.append(what)
+
+
+def finish():
+    print(f"blender add-on modal test: {len(failures)} failure(s)", flush=True)
+    os._exit(1 if failures else 0)
+
+
+check(not bpy.app.background, "a windowed session (not -b)")
+check(addon_setup.install_and_enable(env["SILK_ADDON_ZIP"], failures), "add-on enabled")
+from silk_blender import operators  # noqa: E402  (the installed copy)
+
+src = addon_setup.import_active_mesh(env["SILK_DEV_MESH"])
+
+
+def results(new_objects):
+    parts = [o for o in new_objects if o.type == "MESH" and o.name != operators.PREVIEW_NAME]
+    return len(parts), sum(len(p.data.polygons) for p in parts)
+
+
+def remove(objs):
+    for o in objs:
+        bpy.data.objects.remove(o, do_unlink=True)
+
+
+# The synchronous run (what a script gets) is the reference.
+before = set(bpy.data.objects)
+check(bpy.ops.silk.generate_mesh(seed=SEED, max_tokens=MAX_TOKENS, model_dir=MODEL) == {"FINISHED"},
+      "synchronous run finished")
+ref_new = set(bpy.data.objects) - before
+want_parts, want_faces = results(ref_new)
+print(f"synchronous: {want_faces} faces in {want_parts} part(s)", flush=True)
+remove(ref_new)
+
+
+def view3d():
+    win = bpy.context.window_manager.windows[0]
+    area = next(a for a in win.screen.areas if a.type == "VIEW_3D")
+    return win, dict(window=win, area=area, region=next(r for r in area.regions if r.type == "WINDOW"))
+
+
+def invoke():
+    win, override = view3d()
+    with bpy.context.temp_override(**override):
+        bpy.context.view_layer.objects.active = src
+        return win, bpy.ops.silk.generate_mesh("INVOKE_DEFAULT", seed=SEED, max_tokens=MAX_TOKENS, model_dir=MODEL)
+
+
+state = {"phase": "run", "before": set(), "preview_faces": [], "polls": 0, "t0": time.monotonic()}
+
+
+def poll():
+    """Timer: watches the modal operator from outside, as a user would."""
+    state["polls"] += 1
+    if time.monotonic() - state["t0"] > 240:
+        check(False, f"phase {state['phase']} still running after 240 s")
+        finish()
+    preview = bpy.data.objects.get(operators.PREVIEW_NAME)
+    if state["phase"] == "run":
+        if preview is not None:
+            state["preview_faces"].append(len(preview.data.polygons))
+            return 0.02
+        faces = state["preview_faces"]
+        parts, total = results(set(bpy.data.objects) - state["before"])
+        print(f"modal: {total} faces in {parts} part(s); preview face counts seen {sorted(set(faces))}", flush=True)
+        check(parts == want_parts and total == want_faces,
+              f"modal result ({total} faces, {parts} parts) == synchronous ({want_faces}, {want_parts})")
+        check(len(faces) >= 2 and faces == sorted(faces), "the preview only grows while the operator runs")
+        check(len(set(f for f in faces if f > 0)) >= 2, "the preview shows at least two stages of growth")
+        remove(set(bpy.data.objects) - state["before"])
+        # Phase 2: Esc while running.
+        state.update(phase="esc", before=set(bpy.data.objects), meshes=len(bpy.data.meshes), polls=0)
+        win, res = invoke()
+        state["win"] = win
+        check(res == {"RUNNING_MODAL"}, f"second invocation is modal ({res})")
+        return 0.02
+    if state["phase"] == "esc":
+        if preview is not None:
+            if len(preview.data.polygons) > 0 and not state.get("esc_sent"):  # mid-run: some layers shown
+                state["esc_faces"] = len(preview.data.polygons)
+                state["win"].event_simulate(type="ESC", value="PRESS")
+                state["esc_sent"] = True
+            return 0.02
+        check(state.get("esc_sent", False), f"Esc was sent while the operator ran (preview at "
+                                            f"{state.get('esc_faces')} faces)")
+        left = set(bpy.data.objects) - state["before"]
+        check(not left and len(bpy.data.meshes) == state["meshes"],
+              f"Esc leaves no object and no mesh behind ({sorted(o.name for o in left)})")
+        finish()
+    return None
+
+
+def start():
+    state["before"] = set(bpy.data.objects)
+    _, res = invoke()
+    check(res == {"RUNNING_MODAL"}, f"INVOKE_DEFAULT in the 3D view runs modally ({res})")
+    if res != {"RUNNING_MODAL"}:
+        finish()
+    bpy.app.timers.register(poll, first_interval=0.02)
+    return None
+
+
+bpy.app.timers.register(start, first_interval=0.5)
