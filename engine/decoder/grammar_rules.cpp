@@ -2,6 +2,9 @@
 // of ids it may take (ranges of the vocabulary layout), each class's id-dependent test with its
 // bulk form, its gates and what accepting it does. Read by Grammar::Step and Grammar::ComputeMask.
 #include "decoder/grammar.h"
+
+#include <cstdlib>
+
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {
@@ -28,15 +31,24 @@ constexpr GrammarPhaseRule Row(const char* expects, std::array<GrammarClassRule,
 }
 
 // Every class lies inside the model ids short of PAD (so Step's id and PAD checks hold for every
-// id the mask adds), the ranges of a row are disjoint, and a test comes with its bulk form.
+// id the mask adds) and the ranges of a row are disjoint: checked at compile time.
 constexpr bool WellFormed(const GrammarPhaseRule& row) {
   for (int32_t i = 0; i < row.count; ++i) {
     const GrammarClassRule& c = row.classes[i];
     if (c.begin < 0 || c.begin >= c.end || c.end > vocab::k_pad_id) return false;
-    if ((c.test == nullptr) != (c.bulk == nullptr)) return false;
     for (int32_t j = 0; j < i; ++j)
       if (c.begin < row.classes[j].end && row.classes[j].begin < c.end) return false;
   }
+  return true;
+}
+
+// A test comes with its bulk form. Comparing member-function pointers is not a constant
+// expression for GCC under -fsanitize=undefined, so this is checked once, at the table's first
+// use; every grammar test reaches it, and a malformed table aborts them all.
+bool TestsHaveBulkForms(const GrammarPhaseRule* rows, size_t n) {
+  for (size_t r = 0; r < n; ++r)
+    for (int32_t i = 0; i < rows[r].count; ++i)
+      if ((rows[r].classes[i].test == nullptr) != (rows[r].classes[i].bulk == nullptr)) return false;
   return true;
 }
 
@@ -81,6 +93,8 @@ const GrammarPhaseRule& Grammar::RuleRow(GrammarPhase p) {
                     WellFormed(kRows[4]) && WellFormed(kRows[5]) && WellFormed(kRows[6]) && WellFormed(kRows[7]) &&
                     WellFormed(kRows[8]),
                 "rule table rows must be well formed");
+  static const bool paired = TestsHaveBulkForms(kRows, sizeof(kRows) / sizeof(kRows[0]));
+  if (!paired) std::abort();
   return kRows[static_cast<size_t>(p)];
 }
 
