@@ -49,6 +49,9 @@ has dataset && silk-export dataset --root "$DATA_DIR/0ad" --out "$INDEX_DIR"
 if has sweep; then
   for c in $SWEEP_CONFIGS; do
     run="$DATA_DIR/runs/sweep-$c"
+    # A finished sweep run is kept (rerunning would train it SWEEP_CPU_MINUTES more): delete the
+    # folder to measure it again.
+    [ -f "$run/loss_val.json" ] && { echo "sweep: $c already measured ($run)"; continue; }
     silk-export train --index "$INDEX_DIR/index.jsonl" --root "$DATA_DIR/0ad" --out "$run" \
       --config "$c" --steps "$STEPS" --batch-size 4 --lr 1e-3 --lr-min 1e-4 --warmup 200 --seed 0 \
       --threads "$THREADS" --workers 0 --log-every 20 --val-every 0 --no-progress \
@@ -78,6 +81,14 @@ if has restore && [ ! -f "$RUN/checkpoint.pt" ] && [ -f "$REPO_TRAIN/checkpoint.
   echo "train_default_model: resuming from $REPO_TRAIN/checkpoint.pt"
   cp "$REPO_TRAIN/checkpoint.pt" "$RUN/checkpoint.pt"
   [ -f "$REPO_TRAIN/log.jsonl" ] && cp "$REPO_TRAIN/log.jsonl" "$RUN/log.jsonl"
+fi
+
+# Stage `seed` (not in the default list): a run with no checkpoint here or in the repository
+# starts from the sweep's run of CONFIG, which used the same seed, schedule and sample stream, so
+# the sweep's steps count toward the run.
+if has seed && [ ! -f "$RUN/checkpoint.pt" ] && [ -f "$DATA_DIR/runs/sweep-$CONFIG/checkpoint.pt" ]; then
+  echo "train_default_model: starting from the sweep's $CONFIG run"
+  cp "$DATA_DIR/runs/sweep-$CONFIG/checkpoint.pt" "$DATA_DIR/runs/sweep-$CONFIG/log.jsonl" "$RUN/"
 fi
 
 if has train; then
