@@ -160,8 +160,7 @@ silk_status silk_decode_with_stats(const silk_tokens* tokens, const silk_decode_
     for (const silk::QVec& q : r->positions) {
       if (p.grid_coordinates) m->mesh.positions.push_back({double(q.x), double(q.y), double(q.z)});
       else
-        m->mesh.positions.push_back(
-            {silk::DequantizeCoord(q.x), silk::DequantizeCoord(q.y), silk::DequantizeCoord(q.z)});
+        m->mesh.positions.push_back(silk::DequantizePosition(q));
     }
     m->mesh.triangles = r->faces;
     m->triangle_component = r->face_component;

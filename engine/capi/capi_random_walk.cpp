@@ -49,8 +49,7 @@ silk_status silk_tokens_random_walk(const silk_random_walk_params* params, silk_
       auto mesh = silk::BuildMeshSoFar(g, silk::MeshBuildOptions{}, nullptr);
       if (!mesh.ok()) return SetError(mesh.status());
       m = std::make_unique<silk_mesh>();
-      for (const silk::QVec& q : mesh->positions)
-        m->mesh.positions.push_back({silk::DequantizeCoord(q.x), silk::DequantizeCoord(q.y), silk::DequantizeCoord(q.z)});
+      m->mesh.positions = silk::DequantizePositions(mesh->positions);
       m->mesh.triangles = mesh->faces;
       m->triangle_component = mesh->face_component;
       m->triangle_component.resize(m->mesh.triangles.size(), 0);

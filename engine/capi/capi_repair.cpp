@@ -101,8 +101,7 @@ silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_para
     auto mesh = silk::BuildMeshSoFar(g, mopt, &rep);
     if (!mesh.ok()) return SetError(mesh.status());
     auto m = std::make_unique<silk_mesh>();
-    for (const silk::QVec& q : mesh->positions)
-      m->mesh.positions.push_back({silk::DequantizeCoord(q.x), silk::DequantizeCoord(q.y), silk::DequantizeCoord(q.z)});
+    m->mesh.positions = silk::DequantizePositions(mesh->positions);
     m->mesh.triangles = mesh->faces;
     m->triangle_component = mesh->face_component;
     m->triangle_component.resize(m->mesh.triangles.size(), 0);

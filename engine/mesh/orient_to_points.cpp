@@ -12,6 +12,38 @@ Point3 Cross(const Point3& a, const Point3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 double Dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Each face's part, or -1 where the face has a vertex or a part out of range (left alone).
+std::vector<int32_t> CheckedParts(size_t vertices, const std::vector<std::array<int32_t, 3>>& faces,
+                                  const std::vector<int32_t>& face_part, int32_t parts) {
+  std::vector<int32_t> out(faces.size(), -1);
+  const auto n = static_cast<int64_t>(vertices);
+  for (size_t f = 0; f < faces.size() && f < face_part.size(); ++f) {
+    bool ok = face_part[f] >= 0 && face_part[f] < parts;
+    for (int32_t v : faces[f]) ok = ok && v >= 0 && v < n;
+    if (ok) out[f] = face_part[f];
+  }
+  return out;
+}
+
+// Per part: the sum over its faces of area * cos(face normal, nearest reference normal).
+std::vector<double> PartVotes(const std::vector<Point3>& positions, const std::vector<std::array<int32_t, 3>>& faces,
+                              const std::vector<int32_t>& part_of, int32_t parts, const OrientedPointSet& reference) {
+  std::vector<double> vote(static_cast<size_t>(parts), 0.0);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (part_of[f] < 0) continue;
+    const auto& t = faces[f];
+    const Point3 &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
+    // |cross| = 2 * area, so dot(cross, m) / 2 = area * dot(unit normal, m).
+    const Point3 doubled_area_normal = Cross(Sub(b, a), Sub(c, a));
+    const Point3 centroid{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
+    const Point3 m = reference.NormalNear(centroid);
+    const double len = std::sqrt(Dot(m, m));
+    if (!(len > 0)) continue;
+    vote[static_cast<size_t>(part_of[f])] += 0.5 * Dot(doubled_area_normal, m) / len;
+  }
+  return vote;
+}
 }  // namespace
 
 OrientedPointSet::OrientedPointSet(std::vector<Point3> positions, std::vector<Point3> normals)
@@ -31,26 +63,8 @@ PartOrientationReport OrientPartsToPoints(const std::vector<Point3>& positions,
                                           const OrientedPointSet& reference) {
   PartOrientationReport report;
   if (parts <= 0 || reference.empty()) return report;
-  std::vector<double> vote(static_cast<size_t>(parts), 0.0);
-  const auto n = static_cast<int64_t>(positions.size());
-  auto valid = [&](size_t f) {
-    if (f >= face_part.size() || face_part[f] < 0 || face_part[f] >= parts) return false;
-    for (int32_t v : (*faces)[f])
-      if (v < 0 || v >= n) return false;
-    return true;
-  };
-  for (size_t f = 0; f < faces->size(); ++f) {
-    if (!valid(f)) continue;
-    const auto& t = (*faces)[f];
-    const Point3 &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
-    // |cross| = 2 * area, so dot(cross, m) / 2 = area * dot(unit normal, m).
-    const Point3 doubled_area_normal = Cross(Sub(b, a), Sub(c, a));
-    const Point3 centroid{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
-    Point3 m = reference.NormalNear(centroid);
-    const double len = std::sqrt(Dot(m, m));
-    if (!(len > 0)) continue;
-    vote[static_cast<size_t>(face_part[f])] += 0.5 * Dot(doubled_area_normal, m) / len;
-  }
+  const std::vector<int32_t> part_of = CheckedParts(positions.size(), *faces, face_part, parts);
+  const std::vector<double> vote = PartVotes(positions, *faces, part_of, parts, reference);
   std::vector<char> flip(static_cast<size_t>(parts), 0);
   for (int32_t p = 0; p < parts; ++p) {
     if (vote[p] < 0) {
@@ -61,7 +75,7 @@ PartOrientationReport OrientPartsToPoints(const std::vector<Point3>& positions,
     }
   }
   for (size_t f = 0; f < faces->size(); ++f)
-    if (valid(f) && flip[static_cast<size_t>(face_part[f])]) std::swap((*faces)[f][1], (*faces)[f][2]);
+    if (part_of[f] >= 0 && flip[static_cast<size_t>(part_of[f])]) std::swap((*faces)[f][1], (*faces)[f][2]);
   return report;
 }
 

@@ -31,7 +31,17 @@ std::vector<OrientedPoint> CloudPoints(const RawMesh& normalized, const std::vec
   return pts;
 }
 
+std::vector<std::array<double, 3>> RowColumns(const std::vector<float>& rows, size_t first) {
+  std::vector<std::array<double, 3>> out;
+  out.reserve(rows.size() / 6);
+  for (size_t i = 0; i + 6 <= rows.size(); i += 6) out.push_back({rows[i + first], rows[i + first + 1], rows[i + first + 2]});
+  return out;
+}
+
 }  // namespace
+
+std::vector<std::array<double, 3>> PointRowPositions(const std::vector<float>& rows) { return RowColumns(rows, 0); }
+std::vector<std::array<double, 3>> PointRowNormals(const std::vector<float>& rows) { return RowColumns(rows, 3); }
 
 PreprocessingParams SilkPreprocessing(double normalize_bound, int32_t n_points) {
   PreprocessingParams p;

@@ -52,6 +52,11 @@ struct PreparedPoints {
 // Silk's kind draws its n_points samples with `seed` directly, so its output is unchanged from
 // before model.json described pre-processing; the official kind derives its draw's seed.
 // `cancel` is polled between the steps and every kCancelPollInterval surface samples.
+// Columns of PreparedPoints::rows (n * 6 floats; a trailing partial row is ignored): positions
+// (xyz) or normals.
+std::vector<std::array<double, 3>> PointRowPositions(const std::vector<float>& rows);
+std::vector<std::array<double, 3>> PointRowNormals(const std::vector<float>& rows);
+
 StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<std::array<double, 3>>* normals,
                                        const PreprocessingParams& params, uint64_t seed,
                                        const CancelCheck& cancel = {});

@@ -8,6 +8,7 @@
 
 #include "core/splitmix64.h"
 #include "mesh/chamfer_distance.h"
+#include "mesh/point_preprocessing.h"
 #include "tokenizer/quantize.h"
 
 namespace silk {
@@ -44,13 +45,9 @@ uint64_t CandidateSeed(uint64_t seed, int32_t index) {
 
 double ScoreAgainstPoints(const DecodedMesh& mesh, const std::vector<float>& points) {
   RawMesh m;
-  m.positions.reserve(mesh.positions.size());
-  for (const QVec& q : mesh.positions) m.positions.push_back({DequantizeCoord(q.x), DequantizeCoord(q.y), DequantizeCoord(q.z)});
+  m.positions = DequantizePositions(mesh.positions);
   m.triangles = mesh.faces;
-  std::vector<Point3> p;
-  p.reserve(points.size() / 6);
-  for (size_t i = 0; i + 6 <= points.size(); i += 6) p.push_back({points[i], points[i + 1], points[i + 2]});
-  return MeshToPointsChamfer(m, p, kScoreSamples, kScoreSeed).value();
+  return MeshToPointsChamfer(m, PointRowPositions(points), kScoreSamples, kScoreSeed).value();
 }
 
 void ScoreSingle(GenerateResult* result, uint64_t seed, const std::vector<float>& points) {

@@ -84,7 +84,7 @@ GeneratedMesh ToInputFrame(const DecodedMesh& decoded, const NormalizeTransform&
   GeneratedMesh g;
   g.mesh.positions.reserve(decoded.positions.size());
   for (const QVec& q : decoded.positions)
-    g.mesh.positions.push_back(UndoNormalization({DequantizeCoord(q.x), DequantizeCoord(q.y), DequantizeCoord(q.z)}, t));
+    g.mesh.positions.push_back(UndoNormalization(DequantizePosition(q), t));
   g.mesh.triangles = decoded.faces;
   g.triangle_component = decoded.face_component;
   g.components = decoded.components;

@@ -128,6 +128,13 @@ void Generator::Cancel() {
 
 void Generator::InterruptEncoder() { encoder_run_->SetTerminate(); }
 
+void Generator::CacheInput(const std::vector<float>& points) {
+  if (points == input_points_) return;
+  input_points_ = points;
+  guide_.reset();
+  orientation_.reset();
+}
+
 Status Generator::Start(const std::vector<float>& points, const GenerateOptions& options,
                         const GenerateCallbacks& callbacks) {
   session_.reset();
@@ -163,20 +170,16 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   st.decoder = DecoderPrecisionName(m.precision);
   st.seconds.encoder = encoder_seconds;
   st.kv_cache_bytes = cap * cfg.dims.kv_row_floats() * static_cast<int64_t>(sizeof(float));
+  CacheInput(points);
   if (options.surface_tolerance > 0 && !options.unconstrained) {
     t0 = Clock::now();
-    if (!guide_ || guide_->tolerance() != options.surface_tolerance || guide_points_ != points) {
+    if (!guide_ || guide_->tolerance() != options.surface_tolerance)
       guide_ = std::make_shared<const SurfaceGuide>(points, options.surface_tolerance);
-      guide_points_ = points;
-    }
     s.guide = guide_;
     st.seconds.guidance += Since(t0);
   }
   if (options.orient_to_input) {
-    if (!orientation_ || orientation_points_ != points) {
-      orientation_ = MakeInputOrientation(points);
-      orientation_points_ = points;
-    }
+    if (!orientation_) orientation_ = MakeInputOrientation(points);
     s.orientation = orientation_;
   }
   s.pending = {cfg.bos_id};

@@ -127,12 +127,12 @@ class Generator {
   void ReportProgress();
   const Model& model_;
   KvCache cache_;
-  // The last surface guide and its points: runs on the same input (best of N) build it once.
+  // What the last input's points gave: runs on the same input (best of N) build each once.
+  // A different input clears both (CacheInput).
+  void CacheInput(const std::vector<float>& points);
+  std::vector<float> input_points_;
   std::shared_ptr<const SurfaceGuide> guide_;
-  std::vector<float> guide_points_;
-  // The last orientation reference and its points, likewise.
   std::shared_ptr<const OrientedPointSet> orientation_;
-  std::vector<float> orientation_points_;
   std::unique_ptr<Session> session_;
   std::unique_ptr<Ort::RunOptions> encoder_run_;  // the encoder's run options (terminate flag)
 };

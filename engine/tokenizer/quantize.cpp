@@ -16,4 +16,15 @@ int32_t QuantizeCoord(double c) {
 
 double DequantizeCoord(int32_t q) { return (q + 0.5) / vocab::k_quant_bins * 2.0 - 1.0; }
 
+std::array<double, 3> DequantizePosition(const QVec& q) {
+  return {DequantizeCoord(q.x), DequantizeCoord(q.y), DequantizeCoord(q.z)};
+}
+
+std::vector<std::array<double, 3>> DequantizePositions(const std::vector<QVec>& grid) {
+  std::vector<std::array<double, 3>> out;
+  out.reserve(grid.size());
+  for (const QVec& q : grid) out.push_back(DequantizePosition(q));
+  return out;
+}
+
 }  // namespace silk

@@ -1,7 +1,9 @@
 // Quantization to the 128-bin grid and back (spec §2.2). Bit-exact with the reference:
 // one double addition, exact scaling, truncation toward zero.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <vector>
 
 namespace silk {
 
@@ -21,5 +23,8 @@ inline bool LessYZX(const QVec& a, const QVec& b) {
 
 int32_t QuantizeCoord(double c);    // min(trunc((c + 1) * 64), 127); c must be finite and >= -1
 double DequantizeCoord(int32_t q);  // (q + 0.5) / 128 * 2 - 1
+// Grid positions -> cell centres in [-1, 1], each coordinate by DequantizeCoord.
+std::array<double, 3> DequantizePosition(const QVec& q);
+std::vector<std::array<double, 3>> DequantizePositions(const std::vector<QVec>& grid);
 
 }  // namespace silk
