@@ -95,11 +95,13 @@ def write_card(model_dir: Path, run_dir: Path, bench_json: Path | None = None) -
     if any(losses.values()):
         L += ["## Held-out loss", "", "Teacher-forced cross-entropy on every mesh of the split that fits",
               "(no augmentation, fixed point samples). Baseline: the same tokens scored by the train split's",
-              "unigram frequencies (no context, no point cloud).", "",
-              "| split | meshes | tokens | nats/token | bits/token | perplexity | unigram baseline |",
-              "|---|---|---|---|---|---|---|"]
+              "unigram frequencies (no context, no point cloud). Conditioning gap: how much worse the same",
+              "tokens score when each mesh is given the next mesh's points (0 = the input is ignored).", "",
+              "| split | meshes | tokens | nats/token | bits/token | perplexity | unigram baseline | conditioning gap |",
+              "|---|---|---|---|---|---|---|---|"]
         L += [f"| {sp} | {r['meshes']} | {r['tokens']:,} | {r['loss']:.4f} | {r['bits_per_token']:.3f} | "
-              f"{r['perplexity']:.1f} | {_fmt(r.get('unigram_baseline'))} |" for sp, r in losses.items() if r]
+              f"{r['perplexity']:.1f} | {_fmt(r.get('unigram_baseline'))} | {_fmt(r.get('conditioning_gap'))} |"
+              for sp, r in losses.items() if r]
         L.append("")
     for sp, title in (("test", "test split, C++ runtime"), ("dev", "dev corpus, C++ runtime"),
                       ("torch_test", "test split, PyTorch without grammar mask")):
@@ -135,6 +137,11 @@ def write_card(model_dir: Path, run_dir: Path, bench_json: Path | None = None) -
         obs.append(f"On the test split the model scores {lt['loss']:.2f} nats/token against "
                    f"{lt['unigram_baseline']:.2f} for context-free unigram frequencies: it has learned the "
                    "sequence structure (which token class follows which) to a useful degree.")
+    if lt and lt.get("conditioning_gap") is not None:
+        share = lt["conditioning_gap"] / lt["loss"] if lt["loss"] else 0
+        obs.append(f"Given another mesh's points the same test tokens score {lt['loss_other_points']:.2f} "
+                   f"nats/token ({lt['conditioning_gap']:+.3f}, {share:.1%} of the loss): "
+                   + ("the model uses its input only weakly." if share < 0.1 else "the model follows its input."))
     ev = _load(run_dir / "eval" / "test.json")
     if ev and ev["summary"].get("evaluated") and abs(ev["summary"].get("mean_nc", 1)) < 0.1:
         obs.append(f"Mean NC ≈ {ev['summary']['mean_nc']:.2f} and CD ≈ {ev['summary']['mean_cd']:.2f}: the "

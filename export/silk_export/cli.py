@@ -86,7 +86,7 @@ def _cmd_loss(a) -> int:
     from .split_loss import split_loss
     from .mesh_files import default_0ad_root
     res = split_loss(Path(a.checkpoint), Path(a.index), Path(a.root) if a.root else default_0ad_root(),
-                     a.split, a.limit, a.seed, a.threads)
+                     a.split, a.limit, a.seed, a.threads, conditioning=not a.no_conditioning)
     text = json.dumps(res, indent=2)
     if a.out:
         Path(a.out).write_text(text + "\n")
@@ -240,6 +240,8 @@ def build_parser() -> argparse.ArgumentParser:
     lo.add_argument("--limit", type=int, default=0, help="0: every mesh of the split that fits")
     lo.add_argument("--seed", type=int, default=0)
     lo.add_argument("--threads", type=int, default=1)
+    lo.add_argument("--no-conditioning", action="store_true",
+                    help="skip the second pass that scores each mesh's tokens with another mesh's points")
     lo.add_argument("--out")
     lo.set_defaults(fn=_cmd_loss)
 

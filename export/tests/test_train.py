@@ -142,3 +142,27 @@ def test_workers_checkpointing_and_micro_batches_keep_the_losses(data, tmp_path)
     bf16 = run_losses("bf16", precision="bf16")
     assert bf16 != base  # autocast is on
     np.testing.assert_allclose(bf16, base, atol=0.1)
+
+
+def test_conditioning_gap_is_zero_only_for_a_model_blind_to_its_points(data, tmp_path):
+    """`silk-export loss` scores the tokens again with each mesh given the next mesh's points."""
+    from silk_export.split_loss import other_points, split_loss
+    torch.set_num_threads(1)
+    root, index, _ = data
+    train(args(data, tmp_path, 10))
+    samples = fixed_samples(data)
+    swapped = other_points(samples)
+    assert all(np.array_equal(a.tokens, b.tokens) for a, b in zip(samples, swapped))
+    assert all(np.array_equal(swapped[i].points, samples[(i + 1) % len(samples)].points) for i in range(len(samples)))
+    seeing = split_loss(tmp_path / "checkpoint.pt", index, root, "train", baseline_split=None)
+    assert seeing["meshes"] == len(MESHES)
+    assert abs(seeing["conditioning_gap"]) > 1e-4, seeing
+    assert seeing["loss_other_points"] == pytest.approx(seeing["loss"] + seeing["conditioning_gap"])
+    # The same weights with the point embedding zeroed: every mesh's encoder output is the same.
+    ck = torch.load(tmp_path / "checkpoint.pt", map_location="cpu", weights_only=False)
+    ck["model"]["encoder.embed.proj.weight"].zero_()
+    torch.save(ck, tmp_path / "blind.pt")
+    blind = split_loss(tmp_path / "blind.pt", index, root, "train", baseline_split=None)
+    assert blind["conditioning_gap"] == 0.0, blind
+    assert "conditioning_gap" not in split_loss(tmp_path / "checkpoint.pt", index, root, "train", limit=1,
+                                                baseline_split=None)
