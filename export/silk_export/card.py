@@ -114,7 +114,10 @@ def write_card(model_dir: Path, run_dir: Path, bench_json: Path | None = None) -
             tps = [m["tokens_per_second"] for m in gen["meshes"] if m.get("tokens_per_second")]
             stops = Counter(m.get("stop_reason", "error") for m in gen["meshes"])
             ntok = [m["tokens"] for m in gen["meshes"] if m.get("tokens")]
-            L += ["libsilk's runtime (grammar-constrained sampling, top-k 50, temperature 0.5, fp32 decoder, 1 thread)",
+            st = gen.get("settings") or {}
+            how = ", ".join(f"{k.replace('_', ' ')} {st[k]}" for k in ("temperature", "top_k", "surface_tolerance",
+                                                                       "candidates", "orient") if k in st)
+            L += [f"libsilk's runtime (grammar-constrained sampling{', ' + how if how else ''}, fp32 decoder, 1 thread)",
                   f"with this model folder: {gen['inputs']} input meshes; stop reasons "
                   + ", ".join(f"{k} {v}" for k, v in stops.most_common())
                   + (f"; {sum(ntok) / len(ntok):.0f} tokens on average" if ntok else "")

@@ -54,7 +54,9 @@ def _cmd_export(a) -> int:
     model, ck = model_from_checkpoint(Path(a.checkpoint))
     training = {"steps": ck["step"], "data": a.data or ck.get("data", {}).get("index"),
                 "seed": ck.get("args", {}).get("seed")}
-    meta = export_model(model, Path(a.out), training, int8=not a.no_int8)
+    sampling = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k), ("top_p", a.top_p))
+                if v is not None}
+    meta = export_model(model, Path(a.out), training, int8=not a.no_int8, sampling=sampling or None)
     print(json.dumps(meta, indent=2))
     return 0
 
@@ -126,7 +128,8 @@ def _cmd_generate(a) -> int:
                                     a.temperature, a.top_k, a.surface_tolerance, a.candidates)
     else:
         res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens,
-                             a.temperature, a.top_k, a.seed, a.threads)
+                             0.5 if a.temperature is None else a.temperature, 50 if a.top_k is None else a.top_k,
+                             a.seed, a.threads)
     print(json.dumps(res, indent=2))
     return 0
 
@@ -207,6 +210,9 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--out", required=True)
     e.add_argument("--data", help="training data description for model.json")
     e.add_argument("--no-int8", action="store_true")
+    e.add_argument("--temperature", type=float, help="model.json sampling default (absent: libsilk's, 0.5)")
+    e.add_argument("--top-k", type=int, help="model.json sampling default (absent: libsilk's, 50; 0 = off)")
+    e.add_argument("--top-p", type=float, help="model.json sampling default (absent: libsilk's, 1.0 = off)")
     e.set_defaults(fn=_cmd_export)
 
     i = sub.add_parser("import-official", help="released Mesh Silksong checkpoint -> Silk model folder "
@@ -268,8 +274,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "former silkgen path) is accepted and ignored")
     g.add_argument("--out", required=True)
     g.add_argument("--max-tokens", type=int, default=0)
-    g.add_argument("--temperature", type=float, default=0.5)
-    g.add_argument("--top-k", type=int, default=50)
+    g.add_argument("--temperature", type=float,
+                   help="default: with --runtime the model folder's (model.json sampling), else 0.5")
+    g.add_argument("--top-k", type=int, help="default: with --runtime the model folder's, else 50")
     g.add_argument("--seed", type=int, default=0)
     g.add_argument("--threads", type=int, default=1)
     g.add_argument("--surface-tolerance", type=int, help="--runtime: surface guidance in cells (default: libsilk's)")

@@ -94,14 +94,15 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
 
 
 def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, seed: int = 0, threads: int = 1,
-                          max_tokens: int = 0, temperature: float = 0.5, top_k: int = 50,
+                          max_tokens: int = 0, temperature: float | None = None, top_k: int | None = None,
                           surface_tolerance: int | None = None, candidates: int | None = None) -> dict:
     """Runs the C++ runtime (grammar-constrained) per input with the exported model, in this
-    process through libsilk's C API (the same generation silkgen and the Blender add-on run)."""
+    process through libsilk's C API (the same generation silkgen and the Blender add-on run).
+    temperature / top_k None: the model folder's sampling defaults (model.json, else libsilk's)."""
     gen_dir, ref_dir = Path(out_dir) / "generated", Path(out_dir) / "reference"
     gen_dir.mkdir(parents=True, exist_ok=True)
     ref_dir.mkdir(parents=True, exist_ok=True)
-    rows = []
+    rows, sampling = [], None
     with libsilk.Model(model_dir, threads=threads) as model, libsilk.Generator(model) as gen:
         for p in tqdm(inputs, desc="silk runtime", unit="mesh"):
             stem = p.name.split(".")[0]
@@ -111,8 +112,9 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
             row = {"name": stem}
             try:
                 with libsilk.Mesh.load(p) as src:
-                    mesh, _, st = gen.generate(src, seed=seed, max_tokens=max_tokens, temperature=temperature,
-                                               top_k=top_k, surface_tolerance=surface_tolerance,
+                    mesh, _, st = gen.generate(src, seed=seed, max_tokens=max_tokens,
+                                               temperature=-1 if temperature is None else temperature,
+                                               top_k=-1 if top_k is None else top_k, surface_tolerance=surface_tolerance,
                                                candidates=candidates)
                 with mesh:
                     if mesh.triangle_count():
@@ -122,10 +124,14 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
                            tokens_per_second=st["tokens_per_second"], guided_tokens=st["guided_tokens"],
                            guidance_fallbacks=st["guidance_fallbacks"], candidates=st["candidates"],
                            chosen_candidate=st["chosen_candidate"], score=st["score"])
+                if sampling is None:  # what libsilk resolved (explicit values over the model's defaults)
+                    s = json.loads(gen.report_json())["settings"]
+                    sampling = {k: s[k] for k in ("temperature", "top_k", "top_p", "surface_tolerance",
+                                                  "candidates", "orient") if k in s}
             except libsilk.SilkError as e:
                 row.update(eos=False, decode_error=str(e)[-300:])
             rows.append(row)
-    summary = {"runtime": "libsilk", "inputs": len(rows),
+    summary = {"runtime": "libsilk", "inputs": len(rows), "settings": sampling or {},
                "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
                "decoded_with_faces": sum(1 for r in rows if r.get("faces")), "meshes": rows}
     (Path(out_dir) / "generate.json").write_text(json.dumps(summary, indent=2) + "\n")

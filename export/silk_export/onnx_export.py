@@ -283,13 +283,17 @@ def export_graphs(model, out_dir: Path, external_over: int = 1 << 30) -> dict:
     return files
 
 
-def export_model(model, out_dir: Path, training: dict | None = None, int8: bool = True) -> dict:
-    """Exports all files into out_dir; returns the sidecar dict that was written."""
+def export_model(model, out_dir: Path, training: dict | None = None, int8: bool = True,
+                 sampling: dict | None = None) -> dict:
+    """Exports all files into out_dir; returns the sidecar dict that was written. `sampling`: the
+    model.json "sampling" defaults silkgen and the C API start from (absent: libsilk's built-in
+    ones, temperature 0.5 and top-k 50)."""
     out_dir = Path(out_dir)
     files = export_graphs(model, out_dir)
     if int8:
         quantize_decoder(out_dir / "decoder.onnx", out_dir / "decoder.int8.onnx")
         files["decoder_int8"] = "decoder.int8.onnx"
-    meta = sidecar(model.cfg, training or {"steps": 0, "data": None, "seed": None}, files)
+    meta = sidecar(model.cfg, training or {"steps": 0, "data": None, "seed": None}, files,
+                   {"sampling": sampling} if sampling else None)
     (out_dir / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
     return meta

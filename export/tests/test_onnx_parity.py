@@ -62,6 +62,16 @@ def test_sidecar_follows_contract(exported):
     assert meta["files"] == {"encoder": "encoder.onnx", "decoder": "decoder.onnx",
                              "decoder_int8": "decoder.int8.onnx"}
     assert meta["normalize_bound"] == 0.95 and meta["config"] == "micro"
+    assert "sampling" not in meta  # libsilk's built-in sampling defaults unless export is told otherwise
+
+
+def test_sidecar_carries_chosen_sampling_defaults(exported):
+    from silk_export.onnx_export import sidecar
+    model, _, meta, *_ = exported
+    chosen = {"temperature": 1.3, "top_k": 50}
+    with_sampling = sidecar(model.cfg, meta["training"], meta["files"], {"sampling": chosen})
+    assert with_sampling["sampling"] == chosen
+    assert {k: v for k, v in with_sampling.items() if k != "sampling"} == meta
 
 
 def test_graph_interfaces_and_ops(exported):
