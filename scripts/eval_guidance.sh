@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# Measures surface guidance and best-of-N with the bundled model (the defaults of
-# silk_generate_params.surface_tolerance / .candidates were chosen from its table,
-# docs/runtime.md): 40 meshes of the 0 A.D. validation split when its index exists, else the
-# first 40 dev-corpus meshes (LIMIT=N: fewer); seed 0, 1 thread, 512-token cap; `silk-export
-# eval` with 2,000 surface points per mesh (POINTS=...) on each run. A run whose generate.json
-# exists is only re-evaluated.
+# Measures the sampling defaults of a model folder (MODEL, default models/default): surface
+# guidance, best of N and temperature (the defaults of silk_generate_params.surface_tolerance /
+# .candidates and the bundled model's model.json "sampling" were chosen from its tables,
+# docs/runtime.md, models/training/README.md): 40 meshes of the 0 A.D. validation split when
+# its index exists, else the first 40 dev-corpus meshes (LIMIT=N: fewer); seed 0, 1 thread,
+# MAX_TOKENS-token cap (default 512; 0 = the model's length); `silk-export eval` with 2,000
+# surface points per mesh (POINTS=...) on each run. A run whose generate.json exists is only
+# re-evaluated. Rows: each tolerance (candidates 1), then each N at BEST_TOLERANCE, then each
+# of TEMPERATURES (default none: the model's own) at BEST_TOLERANCE with candidates 1.
 # Usage: SILK_LIBRARY=build/engine/libsilk.so scripts/eval_guidance.sh [OUT_DIR=out/guidance] [TOLERANCES="0 1 2 3 4"] [CANDIDATES="1 2 4 8"] [BEST_TOLERANCE=2]
+#        MODEL=/tmp/m TEMPERATURES="0.5 1.0 1.3" MAX_TOKENS=0 scripts/eval_guidance.sh /tmp/g "" "" 2
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/guidance}"; tolerances="${2-0 1 2 3 4}"; candidates="${3-1 2 4 8}"; best="${4-2}"
@@ -18,11 +22,13 @@ else
   inputs=("${files[@]}")
 fi
 silk_export() { PYTHONPATH="$PWD/export${PYTHONPATH:+:$PYTHONPATH}" python3 -m silk_export "$@"; }  # this checkout's
-run() {  # name tolerance candidates
-  local dir="$out/$1"
+model="${MODEL:-models/default}"
+run() {  # name tolerance candidates [temperature]
+  local dir="$out/$1" temp=()
+  [ -n "${4:-}" ] && temp=(--temperature "$4")
   [ -f "$dir/generate.json" ] ||
-    silk_export generate --runtime --model models/default --out "$dir" --seed 0 --threads 1 --max-tokens 512 \
-      --surface-tolerance "$2" --candidates "$3" "${inputs[@]}" >/dev/null 2>"$dir.log" || { cat "$dir.log"; exit 1; }
+    silk_export generate --runtime --model "$model" --out "$dir" --seed 0 --threads 1 --max-tokens "${MAX_TOKENS:-512}" \
+      --surface-tolerance "$2" --candidates "$3" "${temp[@]}" "${inputs[@]}" >/dev/null 2>"$dir.log" || { cat "$dir.log"; exit 1; }
   silk_export eval "$dir/generated" "$dir/reference" --points "${POINTS:-2000}" --out "$dir/eval.json" >/dev/null
   python3 - "$dir" "$2" "$3" <<'PY'
 import json, sys
@@ -30,13 +36,14 @@ d, t, n = sys.argv[1:]
 g = json.load(open(f"{d}/generate.json")); e = json.load(open(f"{d}/eval.json"))["summary"]
 rows = g["meshes"]; sec = sum(r.get("seconds", 0) for r in rows) / len(rows)
 fb = sum(r.get("guidance_fallbacks", 0) for r in rows); gt = sum(r.get("guided_tokens", 0) for r in rows)
-print(f"| {t} | {n} | {g['decoded_with_faces']}/{len(rows)} | {e.get('mean_cd', float('nan')):.4f} | "
+print(f"| {g.get('settings', {}).get('temperature', '?')} | {t} | {n} | {g['decoded_with_faces']}/{len(rows)} | {e.get('mean_cd', float('nan')):.4f} | "
       f"{e.get('mean_hd', float('nan')):.4f} | {e.get('mean_nc', float('nan')):.4f} | {e.get('mean_abs_nc', float('nan')):.4f} | "
       f"{e.get('mean_faces', 0):.0f} | {sec:.2f} | {fb}/{gt} |")
 PY
 }
 mkdir -p "$out"
-echo "| tolerance | candidates | with faces | CD | HD | NC | abs NC | faces | s/mesh | fallbacks/guided |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| temperature | tolerance | candidates | with faces | CD | HD | NC | abs NC | faces | s/mesh | fallbacks/guided |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for t in $tolerances; do run "t${t}_n1" "$t" 1; done
 for n in $candidates; do [ "$n" = 1 ] || run "t${best}_n${n}" "$best" "$n"; done
+for T in ${TEMPERATURES:-}; do run "T${T}_t${best}_n1" "$best" 1 "$T"; done
