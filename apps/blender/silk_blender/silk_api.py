@@ -140,7 +140,11 @@ class Generation:
             L.silk_model_destroy(self.model)  # the generator keeps its own reference
             self.model = None
         p = L.silk_generate_default_params()
-        p.seed, p.temperature, p.top_k = seed, temperature, top_k
+        p.seed = seed
+        if temperature >= 0:  # < 0: the model's default (model.json "sampling")
+            p.temperature = temperature
+        if top_k >= 0:
+            p.top_k = top_k
         p.max_faces, p.max_tokens, p.holes = max_faces, max_tokens, silk_c.HOLES[repair.lower()]
         if surface_tolerance is not None:  # None: libsilk's measured default
             p.surface_tolerance = surface_tolerance
