@@ -127,9 +127,9 @@ def _cmd_generate(a) -> int:
         res = generate_with_runtime(Path(a.model), inputs, Path(a.out), a.seed, a.threads, a.max_tokens,
                                     a.temperature, a.top_k, a.surface_tolerance, a.candidates)
     else:
-        res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens,
-                             0.5 if a.temperature is None else a.temperature, 50 if a.top_k is None else a.top_k,
-                             a.seed, a.threads)
+        given = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k)) if v is not None}
+        res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens, seed=a.seed, threads=a.threads,
+                             **given)  # else generate_paths' defaults
     print(json.dumps(res, indent=2))
     return 0
 

@@ -112,9 +112,8 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
             row = {"name": stem}
             try:
                 with libsilk.Mesh.load(p) as src:
-                    mesh, _, st = gen.generate(src, seed=seed, max_tokens=max_tokens,
-                                               temperature=-1 if temperature is None else temperature,
-                                               top_k=-1 if top_k is None else top_k, surface_tolerance=surface_tolerance,
+                    mesh, _, st = gen.generate(src, seed=seed, max_tokens=max_tokens, temperature=temperature,
+                                               top_k=top_k, surface_tolerance=surface_tolerance,
                                                candidates=candidates)
                 with mesh:
                     if mesh.triangle_count():

@@ -235,11 +235,11 @@ class Model(_Handle):
 
 
 
-def generate_params(seed: int = 0, temperature: float = -1, top_k: int = -1, top_p: float = -1,
+def generate_params(seed: int = 0, temperature: float | None = -1, top_k: int | None = -1, top_p: float | None = -1,
                     max_tokens: int = 0, max_faces: int = 0, repair: str = "off", n_points: int = 0,
                     surface_tolerance: int | None = None, candidates: int | None = None,
                     orient: str | None = None) -> GenerateParams:
-    """silk_generate_params; negative sampling values mean the model's (model.json "sampling");
+    """silk_generate_params; negative or None sampling values mean the model's (model.json "sampling");
     surface_tolerance / candidates / orient ("input" or "tokens") None: libsilk's defaults."""
     p = lib().silk_generate_default_params()
     if orient is not None:
@@ -250,7 +250,9 @@ def generate_params(seed: int = 0, temperature: float = -1, top_k: int = -1, top
         p.surface_tolerance = int(surface_tolerance)
     if candidates is not None:
         p.candidates = int(candidates)
-    p.seed, p.temperature, p.top_k, p.top_p = int(seed), float(temperature), int(top_k), float(top_p)
+    or_model = lambda v: -1 if v is None else v  # noqa: E731  (None: the model's, like -1)
+    p.seed, p.temperature = int(seed), float(or_model(temperature))
+    p.top_k, p.top_p = int(or_model(top_k)), float(or_model(top_p))
     p.max_tokens, p.max_faces, p.n_points = int(max_tokens), int(max_faces), int(n_points)
     if repair not in HOLES:
         raise ValueError(f"repair must be one of {sorted(HOLES)}, not {repair!r}")
