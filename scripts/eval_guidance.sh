@@ -7,7 +7,8 @@
 # MAX_TOKENS-token cap (default 512; 0 = the model's length); `silk-export eval` with 2,000
 # surface points per mesh (POINTS=...) on each run. A run whose generate.json exists is only
 # re-evaluated. Rows: each tolerance (candidates 1), then each N at BEST_TOLERANCE, then each
-# of TEMPERATURES (default none: the model's own) at BEST_TOLERANCE with candidates 1.
+# of TEMPERATURES (default none: the model's own) at BEST_TOLERANCE with candidates 1
+# (BEST_TEMPERATURE=T runs the N rows at T, N = 1 included).
 # Usage: SILK_LIBRARY=build/engine/libsilk.so scripts/eval_guidance.sh [OUT_DIR=out/guidance] [TOLERANCES="0 1 2 3 4"] [CANDIDATES="1 2 4 8"] [BEST_TOLERANCE=2]
 #        MODEL=/tmp/m TEMPERATURES="0.5 1.0 1.3" MAX_TOKENS=0 scripts/eval_guidance.sh /tmp/g "" "" 2
 set -euo pipefail
@@ -45,5 +46,7 @@ mkdir -p "$out"
 echo "| temperature | tolerance | candidates | with faces | CD | HD | NC | abs NC | faces | s/mesh | fallbacks/guided |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for t in $tolerances; do run "t${t}_n1" "$t" 1; done
-for n in $candidates; do [ "$n" = 1 ] || run "t${best}_n${n}" "$best" "$n"; done
+# BEST_TEMPERATURE=T: the candidates rows at that temperature (default: the model's own).
+bt="${BEST_TEMPERATURE:-}"
+for n in $candidates; do [ "$n" = 1 ] && [ -z "$bt" ] || run "${bt:+T${bt}_}t${best}_n${n}" "$best" "$n" "$bt"; done
 for T in ${TEMPERATURES:-}; do run "T${T}_t${best}_n1" "$best" 1 "$T"; done
