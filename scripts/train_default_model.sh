@@ -110,10 +110,11 @@ if has pack; then
 fi
 
 if has export; then
-  # TEMPERATURE (and TOP_K): the model's default sampling, chosen on the val split with
-  # scripts/eval_guidance.sh; written into model.json, which silkgen and the C API read.
+  # TEMPERATURE, TOP_K and CANDIDATES: the model's default sampling and best of N, chosen on the
+  # val split with scripts/eval_guidance.sh; written into model.json, which silkgen and the C API read.
   silk-export export --checkpoint "$RUN/checkpoint.pt" --out "$OUT" \
     ${TEMPERATURE:+--temperature "$TEMPERATURE"} ${TOP_K:+--top-k "$TOP_K"} \
+    ${CANDIDATES:+--candidates "$CANDIDATES"} \
     --data "0 A.D. art meshes (0ad-data 0.0.26, CC BY-SA 3.0), train split, dev corpus excluded"
   cp "$RUN/loss.png" "$OUT/loss.png"
 fi

@@ -91,8 +91,9 @@ void AddOptions(CLI::App& app, Args& a) {
       ->check(CLI::Range(0, 127))->capture_default_str()->type_name("CELLS");
   app.add_option("--candidates", a.candidates,
                  "Best of N: N generations with seeds derived from --seed, the one closest to the input (Chamfer "
-                 "distance to the encoder's points) written; every score goes into --stats")
-      ->check(CLI::Range(1, 64))->capture_default_str()->type_name("N");
+                 "distance to the encoder's points) written; every score goes into --stats (default: the model's "
+                 "N, model.json sampling.candidates; 1 when it names none)")
+      ->check(CLI::Range(1, 64))->type_name("N");
   app.add_option("--orient", a.orient,
                  "Which side of each part faces out: input (reverse every part whose winding disagrees with the "
                  "input's normals) or tokens (the winding the ids carry, as silktok decode gives it)")
@@ -184,7 +185,7 @@ int Run(const Args& a, uint64_t seed) {
     std::fprintf(stderr,
                  "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
                  "%s decoder)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
-                 "  points  %s\n  surface tolerance %d  candidates %d  orient %s\n",
+                 "  points  %s\n  surface tolerance %d  candidates %s  orient %s\n",
                  silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
                  input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
                  info.config, info.threads,
@@ -194,7 +195,8 @@ int Run(const Args& a, uint64_t seed) {
                  a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
                  a.raw_points ? "raw (used as given, model frame)"
                               : a.preprocessing.empty() ? "the model's pre-processing" : a.preprocessing.c_str(),
-                 a.surface_tolerance, a.candidates, a.orient.c_str());
+                 a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model",
+                 a.orient.c_str());
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };

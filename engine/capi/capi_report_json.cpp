@@ -38,7 +38,7 @@ Json SettingsJson(const silk_generator& g) {
               {"repair", HolesName(p.holes)},
               {"unconstrained", p.unconstrained != 0},
               {"surface_tolerance", p.surface_tolerance},
-              {"candidates", p.candidates},
+              {"candidates", g.settings.options.candidates},  // resolved: the model's N applied
               {"orient", p.orient == SILK_ORIENT_INPUT ? "input" : "tokens"}};
 }
 

@@ -56,7 +56,6 @@ struct GenerateOptions {
 };
 
 constexpr int32_t kMaxSurfaceTolerance = 127;
-constexpr int32_t kMaxCandidates = 64;
 
 struct GenerateProgress {
   int64_t tokens = 0, max_tokens = 0;

@@ -190,8 +190,9 @@ Status ParsePreprocessing(const Json& j, const std::string& name, ModelConfig* c
   return Status::Ok();
 }
 
-Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp) {
+Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp, int32_t* candidates) {
   *sp = DefaultSamplingParams();
+  *candidates = 1;
   const Json* o = nullptr;
   SILK_RETURN_IF_ERROR(GetObject(j, "sampling", name, &o));
   if (!o) return Status::Ok();
@@ -200,6 +201,10 @@ Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp)
   SILK_RETURN_IF_ERROR(GetOptionalInt(*o, "top_k", where, &sp->top_k));
   SILK_RETURN_IF_ERROR(GetDouble(*o, "top_p", where, &sp->top_p));
   SILK_RETURN_IF_ERROR(GetDouble(*o, "top_p_temperature", where, &sp->top_p_temperature));
+  SILK_RETURN_IF_ERROR(GetOptionalInt(*o, "candidates", where, candidates));
+  if (*candidates < 1 || *candidates > kMaxCandidates)
+    return Status(StatusCode::kParseError, name + ": sampling.candidates must be in [1, " +
+                                               std::to_string(kMaxCandidates) + "]");
   if (!(sp->temperature >= 0 && sp->temperature <= 100))
     return Status(StatusCode::kParseError, name + ": sampling.temperature must be in [0, 100]");
   if (sp->top_k < 0 || sp->top_k > vocab::k_model_vocab_size)
@@ -291,7 +296,7 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   if (c.arch == ModelArch::kSilk && int64_t{c.dims.d_model} != int64_t{c.dims.n_heads} * c.dims.head_dim)
     return Bad(name, "dims.d_model must be n_heads * head_dim for arch \"silk\" (docs/model_contract.md)");
   SILK_RETURN_IF_ERROR(ParsePreprocessing(j, name, &c));
-  SILK_RETURN_IF_ERROR(ParseSampling(j, name, &c.sampling));
+  SILK_RETURN_IF_ERROR(ParseSampling(j, name, &c.sampling, &c.candidates));
   SILK_RETURN_IF_ERROR(ParseFiles(j, name, &c));
   SILK_RETURN_IF_ERROR(ParseSource(j, name, &c));
   return c;

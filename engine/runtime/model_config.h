@@ -36,6 +36,9 @@ struct ModelDims {
   int64_t cross_kv_floats() const { return int64_t{n_layers} * 2 * n_heads * n_latents * head_dim; }
 };
 
+// Best of N's bound (GenerateOptions::candidates, model.json sampling.candidates).
+constexpr int32_t kMaxCandidates = 64;
+
 struct ModelConfig {
   std::string dir;  // folder holding model.json
   std::string config_name;
@@ -45,6 +48,9 @@ struct ModelConfig {
   ModelDims dims;
   PreprocessingParams preprocessing;  // v2: Silk's kind with the top-level normalize_bound
   SamplingParams sampling;            // defaults for silkgen / the C API (seed unused)
+  // sampling.candidates: the best-of-N a caller gets when it leaves N to the model (1 when
+  // absent; a small model can afford several, the release-size one cannot).
+  int32_t candidates = 1;
   // Relative to dir; int8/int4 may be "". external_data: files the ONNX graphs reference.
   std::string encoder_file, decoder_file, decoder_int8_file, decoder_int4_file;
   DecoderPrecision default_decoder = DecoderPrecision::kFp32;

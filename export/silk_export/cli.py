@@ -54,8 +54,8 @@ def _cmd_export(a) -> int:
     model, ck = model_from_checkpoint(Path(a.checkpoint))
     training = {"steps": ck["step"], "data": a.data or ck.get("data", {}).get("index"),
                 "seed": ck.get("args", {}).get("seed")}
-    sampling = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k), ("top_p", a.top_p))
-                if v is not None}
+    sampling = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k), ("top_p", a.top_p),
+                                  ("candidates", a.candidates)) if v is not None}
     meta = export_model(model, Path(a.out), training, int8=not a.no_int8, sampling=sampling or None)
     print(json.dumps(meta, indent=2))
     return 0
@@ -213,6 +213,9 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--temperature", type=float, help="model.json sampling default (absent: libsilk's, 0.5)")
     e.add_argument("--top-k", type=int, help="model.json sampling default (absent: libsilk's, 50; 0 = off)")
     e.add_argument("--top-p", type=float, help="model.json sampling default (absent: libsilk's, 1.0 = off)")
+    e.add_argument("--candidates", type=int, choices=range(1, 65), metavar="N",
+                   help="model.json sampling.candidates: the best of N silkgen and the C API run unless "
+                        "told otherwise (absent: 1)")
     e.set_defaults(fn=_cmd_export)
 
     i = sub.add_parser("import-official", help="released Mesh Silksong checkpoint -> Silk model folder "
@@ -280,7 +283,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--seed", type=int, default=0)
     g.add_argument("--threads", type=int, default=1)
     g.add_argument("--surface-tolerance", type=int, help="--runtime: surface guidance in cells (default: libsilk's)")
-    g.add_argument("--candidates", type=int, help="--runtime: best of N (default: libsilk's)")
+    g.add_argument("--candidates", type=int, help="--runtime: best of N (default: the model's, model.json "
+                   "sampling.candidates)")
     g.add_argument("--index", help="take inputs from an index (evenly spaced over one split)")
     g.add_argument("--root", help="folder the index's paths are relative to (default: 0 A.D. cache)")
     g.add_argument("--split", default="test")

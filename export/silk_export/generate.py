@@ -98,7 +98,8 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
                           surface_tolerance: int | None = None, candidates: int | None = None) -> dict:
     """Runs the C++ runtime (grammar-constrained) per input with the exported model, in this
     process through libsilk's C API (the same generation silkgen and the Blender add-on run).
-    temperature / top_k None: the model folder's sampling defaults (model.json, else libsilk's)."""
+    temperature / top_k / candidates None: the model folder's defaults (model.json "sampling", else
+    libsilk's)."""
     gen_dir, ref_dir = Path(out_dir) / "generated", Path(out_dir) / "reference"
     gen_dir.mkdir(parents=True, exist_ok=True)
     ref_dir.mkdir(parents=True, exist_ok=True)

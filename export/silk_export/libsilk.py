@@ -240,7 +240,8 @@ def generate_params(seed: int = 0, temperature: float | None = -1, top_k: int | 
                     surface_tolerance: int | None = None, candidates: int | None = None,
                     orient: str | None = None) -> GenerateParams:
     """silk_generate_params; negative or None sampling values mean the model's (model.json "sampling");
-    surface_tolerance / candidates / orient ("input" or "tokens") None: libsilk's defaults."""
+    surface_tolerance / orient ("input" or "tokens") None: libsilk's defaults; candidates None: the
+    model's N (model.json "sampling.candidates", 1 when absent)."""
     p = lib().silk_generate_default_params()
     if orient is not None:
         if orient not in ORIENT:

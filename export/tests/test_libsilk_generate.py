@@ -186,3 +186,23 @@ def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
     assert res["settings"]["temperature"] == 0.0 and res["settings"]["top_k"] == 1
     res = generate_with_runtime(greedy, [KNOT], tmp_path / "gen2", seed=5, max_tokens=120, temperature=0.9)
     assert res["settings"]["temperature"] == 0.9
+
+
+def test_model_json_candidates_is_the_default_best_of_n(tmp_path):
+    """model.json sampling.candidates (`silk-export export --candidates`) is the N a caller gets
+    when it names none; an explicit N wins; generate.json lists every candidate that ran."""
+    from silk_export.generate import generate_with_runtime
+    three = tmp_path / "three"
+    shutil.copytree(TINY, three)
+    meta = json.loads((three / "model.json").read_text())
+    meta["sampling"] = {"candidates": 3}
+    (three / "model.json").write_text(json.dumps(meta))
+    with libsilk.Model(three, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
+        _, _, st = gen.generate(src, seed=5, max_tokens=120)
+        assert st["candidates"] == 3 and json.loads(gen.report_json())["settings"]["candidates"] == 3
+        _, _, st = gen.generate(src, seed=5, max_tokens=120, candidates=1)
+        assert st["candidates"] == 1
+    res = generate_with_runtime(three, [KNOT], tmp_path / "gen", seed=5, max_tokens=120)
+    assert res["settings"]["candidates"] == 3 and res["meshes"][0]["candidates"] == 3
+    res = generate_with_runtime(TINY, [KNOT], tmp_path / "gen1", seed=5, max_tokens=120)
+    assert res["settings"]["candidates"] == 1  # a model that names no N: one generation

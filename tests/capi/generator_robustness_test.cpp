@@ -605,4 +605,56 @@ TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
   silk_generator_destroy(g);
 }
 
+// A copy of the tiny model whose model.json names its own best of N (sampling.candidates).
+fs::path TinyModelWithCandidates(int32_t n) {
+  const fs::path dir = fs::temp_directory_path() / ("silk_model_n_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const char* f : {"encoder.onnx", "decoder.onnx"})
+    fs::copy_file(fs::path(TinyModel()) / f, dir / f, fs::copy_options::overwrite_existing);
+  std::ifstream in(fs::path(TinyModel()) / "model.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  EXPECT_EQ(json.find("\"sampling\""), std::string::npos) << "the tiny model names no sampling defaults";
+  json.insert(json.find('{') + 1, "\n  \"sampling\": {\"candidates\": " + std::to_string(n) + "},");
+  std::ofstream(dir / "model.json") << json;
+  return dir;
+}
+
+// candidates = SILK_MODEL_CANDIDATES (the default) runs the model's N; an explicit N overrides
+// it, and the report's settings give the N that ran.
+TEST(CapiModel, DefaultCandidatesAreTheModels) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  EXPECT_EQ(silk_generate_default_params().candidates, SILK_MODEL_CANDIDATES);
+  const fs::path dir = TinyModelWithCandidates(3);
+  silk_model_options o = silk_model_default_options();
+  o.threads = 1;
+  silk_model* m = nullptr;
+  ASSERT_EQ(silk_model_load(dir.string().c_str(), &o, &m), SILK_OK) << silk_last_error();
+  silk_mesh* mesh = nullptr;
+  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &mesh), SILK_OK);
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(m, &g), SILK_OK);
+  for (int32_t asked : {SILK_MODEL_CANDIDATES, 1, 2}) {
+    silk_generate_params p = silk_generate_default_params();
+    p.max_tokens = 120;
+    p.candidates = asked;
+    silk_mesh* out = nullptr;
+    silk_generate_stats st;
+    ASSERT_EQ(silk_generate(g, mesh, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+    silk_mesh_destroy(out);
+    const int32_t want = asked == SILK_MODEL_CANDIDATES ? 3 : asked;
+    EXPECT_EQ(st.candidates, want) << "asked " << asked;
+    size_t size = 0;
+    ASSERT_EQ(silk_generator_report_json(g, 0, nullptr, 0, &size), SILK_ERR_BUFFER_TOO_SMALL);
+    std::string json(size, '\0');
+    ASSERT_EQ(silk_generator_report_json(g, 0, &json[0], json.size(), &size), SILK_OK);
+    EXPECT_NE(json.find("\"candidates\": " + std::to_string(want) + ","), std::string::npos) << json.substr(0, 900);
+  }
+  silk_generator_destroy(g);
+  silk_mesh_destroy(mesh);
+  silk_model_destroy(m);
+  fs::remove_all(dir);
+}
+
 }  // namespace

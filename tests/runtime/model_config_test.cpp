@@ -86,6 +86,7 @@ TEST(ModelConfig, Version2Defaults) {
   EXPECT_EQ(c->sampling.top_k, 50);
   EXPECT_EQ(c->sampling.top_p, 1.0);
   EXPECT_EQ(c->sampling.top_p_temperature, 0.0);
+  EXPECT_EQ(c->candidates, 1);  // no sampling.candidates: one generation
   EXPECT_EQ(c->default_decoder, DecoderPrecision::kFp32);
   EXPECT_TRUE(c->external_data.empty());
   nlohmann::json j = TinyJson();
@@ -124,6 +125,7 @@ TEST(ModelConfig, Version3Official) {
   EXPECT_TRUE(p.round_float16);
   EXPECT_EQ(c->sampling.top_p, 0.95);
   EXPECT_EQ(c->sampling.top_p_temperature, 1.0);
+  EXPECT_EQ(c->candidates, 1);
   EXPECT_EQ(c->default_decoder, DecoderPrecision::kInt4);
   EXPECT_EQ(c->DecoderFile(DecoderPrecision::kInt4), "decoder.int4.onnx");
   EXPECT_EQ(c->external_data, std::vector<std::string>{"decoder.onnx.data"});
@@ -137,6 +139,15 @@ TEST(ModelConfig, Version3Official) {
   EXPECT_EQ(d->preprocessing.kind, PreprocessingKind::kOfficial);
   EXPECT_EQ(d->preprocessing.surface_samples, 50000);
   EXPECT_EQ(d->sampling.top_k, 50);
+  // The model's best of N, 1..kMaxCandidates, read for any version.
+  for (int version : {2, 3}) {
+    nlohmann::json k = version == 2 ? TinyJson() : OfficialV3();
+    k["sampling"]["candidates"] = 8;
+    auto r = ParseModelConfig(k.dump(), "model.json");
+    ASSERT_TRUE(r.ok()) << r.status().ToString();
+    EXPECT_EQ(r->candidates, 8);
+    EXPECT_EQ(r->sampling.temperature, DefaultSamplingParams().temperature);  // the other fields keep theirs
+  }
   // Fields a v3 file leaves out of "preprocessing" take the kind's defaults.
   j["preprocessing"] = {{"kind", "official"}, {"surface_samples", 8192}};
   auto e = ParseModelConfig(j.dump(), "model.json");
@@ -171,6 +182,9 @@ TEST(ModelConfig, Version3RefusesEveryBadField) {
       {"top_k", [](auto& j) { j["sampling"]["top_k"] = 20000; }, "sampling.top_k"},
       {"top_p", [](auto& j) { j["sampling"]["top_p"] = 0; }, "sampling.top_p"},
       {"top_p_temperature", [](auto& j) { j["sampling"]["top_p_temperature"] = -2; }, "sampling.top_p_temperature"},
+      {"candidates 0", [](auto& j) { j["sampling"]["candidates"] = 0; }, "sampling.candidates must be in [1, 64]"},
+      {"candidates 65", [](auto& j) { j["sampling"]["candidates"] = 65; }, "sampling.candidates must be in [1, 64]"},
+      {"candidates type", [](auto& j) { j["sampling"]["candidates"] = 2.5; }, "candidates"},
       {"int4 name", [](auto& j) { j["files"]["decoder_int4"] = "../d.onnx"; }, "plain names"},
       {"int4 type", [](auto& j) { j["files"]["decoder_int4"] = 4; }, "'decoder_int4' is not a string"},
       {"default decoder", [](auto& j) { j["files"]["default_decoder"] = "decoder_int2"; }, "files.default_decoder"},

@@ -340,9 +340,11 @@ enum {
   SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report_json */
 };
 
-/* The measured defaults of silk_generate_params.surface_tolerance and .candidates. */
+/* The measured default of silk_generate_params.surface_tolerance; .candidates defaults to
+ * SILK_MODEL_CANDIDATES, the model's own N (model.json "sampling.candidates", 1 when absent). */
 #define SILK_DEFAULT_SURFACE_TOLERANCE 2
-#define SILK_DEFAULT_CANDIDATES 1
+#define SILK_MODEL_CANDIDATES (-1)
+#define SILK_DEFAULT_CANDIDATES SILK_MODEL_CANDIDATES
 /* Part orientation (silk_generate_params.orient). */
 typedef enum silk_orientation {
   SILK_ORIENT_TOKENS = 0, /* the winding the ids carry (what decoding the token file gives) */
@@ -380,7 +382,9 @@ typedef struct silk_generate_params {
    * first SplitMix64 output seeded with seed + i) and returns the one whose surface is closest to
    * the input (symmetric Chamfer distance to the encoder's points; one with faces always beats
    * one without). The step-wise API (silk_generator_start) runs candidate 0 only and ignores N;
-   * its stats still carry the score. Default: SILK_DEFAULT_CANDIDATES (measured, docs/runtime.md). */
+   * its stats still carry the score. Default: SILK_MODEL_CANDIDATES (-1), the model's N
+   * (model.json "sampling.candidates", chosen by measurement for that model: docs/runtime.md;
+   * 1 when the model names none). */
   int32_t candidates;
   /* silk_orientation. SILK_ORIENT_INPUT: every generated part whose winding disagrees with the
    * encoder's points' normals (the sum over its faces of area * dot(face normal, normal of the
