@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Trains the bundled model (models/default) on CPU on the 0 A.D. train split and exports it to
-# ONNX with its model card: the configuration the sweep chose (CONFIG, nano since 2026-12-03; the
-# model in models/default today is the earlier `micro` run of 2.84 M tokens). Each stage can be
-# rerun alone: STAGES="train export".
+# ONNX with its model card: the configuration the sweep chose (CONFIG, nano: the model in
+# models/default, 60.2 M tokens, finished 2026-12-03). Each stage can be rerun alone:
+# STAGES="train export"; the bundled model's export: TEMPERATURE=1.6 CANDIDATES=8.
 #
 #   bash scripts/train_default_model.sh                        # all stages
 #   MINUTES=90 STAGES="restore train pack" bash scripts/train_default_model.sh   # one slice of training
@@ -142,7 +142,7 @@ if has eval; then
 fi
 
 # Training throughput of every config on this machine (synthetic 1,024-token sequences).
-has bench && silk-export bench --configs micro tiny small paper --steps 2 --seq-len 1024 --threads "$THREADS" \
+has bench && silk-export bench --configs nano micro tiny small paper --steps 2 --seq-len 1024 --threads "$THREADS" \
   --out "$RUN/bench.json"
 
 has card && silk-export card --model-dir "$OUT" --run-dir "$RUN" --bench-json "$RUN/bench.json"
