@@ -27,6 +27,11 @@ silk_status Busy(const char* function) {
 
 // Checks the C params (enum and flag ranges) and maps them onto the runtime's options; negative
 // sampling fields take the model's defaults (model.json "sampling").
+// The N a call runs: the caller's, or the model's (model.json sampling.candidates) for SILK_MODEL_CANDIDATES.
+int32_t ResolvedCandidates(const silk_generate_params& p, const silk::ModelConfig& config) {
+  return p.candidates == SILK_MODEL_CANDIDATES ? config.candidates : p.candidates;
+}
+
 silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, const silk::ModelConfig& config) {
   if (p.holes < SILK_HOLES_OFF || p.holes > SILK_HOLES_REPAIR)
     return silk::InvalidArgument("holes " + std::to_string(p.holes) + " is not a silk_hole_policy (0..2)");
@@ -58,7 +63,7 @@ silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, c
                                                           : silk::SampleOrder::kMaskFirst;
   o.record_trace = (p.debug_flags & SILK_DEBUG_RECORD_TRACE) != 0;
   o.surface_tolerance = p.surface_tolerance;
-  o.candidates = p.candidates == SILK_MODEL_CANDIDATES ? config.candidates : p.candidates;
+  o.candidates = ResolvedCandidates(p, config);
   o.orient_to_input = p.orient == SILK_ORIENT_INPUT;
   SILK_RETURN_IF_ERROR(silk::CheckGenerateOptions(o));
   return o;
@@ -234,8 +239,7 @@ silk_status RunAll(silk_generator* g, const silk_generate_input& input, const si
                    silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
   const silk_generate_params p = params ? *params : silk_generate_default_params();
   if (stats) std::memset(stats, 0, sizeof(*stats));
-  const int32_t n = p.candidates == SILK_MODEL_CANDIDATES ? g->model->config().candidates : p.candidates;
-  if (n > 1) return RunBest(g, input, p, out_mesh, out_tokens, stats);
+  if (ResolvedCandidates(p, g->model->config()) > 1) return RunBest(g, input, p, out_mesh, out_tokens, stats);
   silk_status s = Start(g, input, p);
   if (s == SILK_OK) s = Advance(g, INT32_MAX, SILK_ADVANCE_IDS);
   if (s == SILK_ERR_CANCELLED) return Cancelled(g, stats);

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -94,20 +95,29 @@ TEST_F(CapiGeneration, MaxTokensBelowTheSmallestMeshIsRefused) {
   silk_generator_destroy(g);
 }
 
-TEST(CapiModel, MaxSeqLenTooSmallIsRefused) {
-  if (!silk_generation_available()) GTEST_SKIP();
-  const fs::path dir = fs::temp_directory_path() / ("silk_small_seq_" + std::to_string(::getpid()));
+// A copy of the tiny model in a temporary folder named after `tag`, its model.json text edited.
+fs::path TinyModelCopy(const std::string& tag, const std::function<void(std::string&)>& edit) {
+  const fs::path dir = fs::temp_directory_path() / ("silk_" + tag + "_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  for (const char* f : {"encoder.onnx", "decoder.onnx"}) fs::copy_file(fs::path(TinyModel()) / f, dir / f);
+  for (const char* f : {"encoder.onnx", "decoder.onnx"})
+    fs::copy_file(fs::path(TinyModel()) / f, dir / f, fs::copy_options::overwrite_existing);
   std::ifstream in(fs::path(TinyModel()) / "model.json");
   std::stringstream text;
   text << in.rdbuf();
   std::string json = text.str();
-  const size_t at = json.find("\"max_seq_len\"");
-  ASSERT_NE(at, std::string::npos);
-  const size_t colon = json.find(':', at), end = json.find_first_of(",}", colon);
-  json.replace(colon + 1, end - colon - 1, " 10");
+  edit(json);
   std::ofstream(dir / "model.json") << json;
+  return dir;
+}
+
+TEST(CapiModel, MaxSeqLenTooSmallIsRefused) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  const fs::path dir = TinyModelCopy("small_seq", [](std::string& json) {
+    const size_t at = json.find("\"max_seq_len\"");
+    ASSERT_NE(at, std::string::npos);
+    const size_t colon = json.find(':', at), end = json.find_first_of(",}", colon);
+    json.replace(colon + 1, end - colon - 1, " 10");
+  });
   silk_model* m = nullptr;
   EXPECT_EQ(silk_model_load(dir.string().c_str(), nullptr, &m), SILK_ERR_PARSE);
   EXPECT_NE(std::string(silk_last_error()).find("max_seq_len 10"), std::string::npos) << silk_last_error();
@@ -605,28 +615,16 @@ TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
   silk_generator_destroy(g);
 }
 
-// A copy of the tiny model whose model.json names its own best of N (sampling.candidates).
-fs::path TinyModelWithCandidates(int32_t n) {
-  const fs::path dir = fs::temp_directory_path() / ("silk_model_n_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  for (const char* f : {"encoder.onnx", "decoder.onnx"})
-    fs::copy_file(fs::path(TinyModel()) / f, dir / f, fs::copy_options::overwrite_existing);
-  std::ifstream in(fs::path(TinyModel()) / "model.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string json = text.str();
-  EXPECT_EQ(json.find("\"sampling\""), std::string::npos) << "the tiny model names no sampling defaults";
-  json.insert(json.find('{') + 1, "\n  \"sampling\": {\"candidates\": " + std::to_string(n) + "},");
-  std::ofstream(dir / "model.json") << json;
-  return dir;
-}
-
 // candidates = SILK_MODEL_CANDIDATES (the default) runs the model's N; an explicit N overrides
 // it, and the report's settings give the N that ran.
 TEST(CapiModel, DefaultCandidatesAreTheModels) {
   if (!silk_generation_available()) GTEST_SKIP();
   EXPECT_EQ(silk_generate_default_params().candidates, SILK_MODEL_CANDIDATES);
-  const fs::path dir = TinyModelWithCandidates(3);
+  // The tiny model with its own best of N (sampling.candidates 3).
+  const fs::path dir = TinyModelCopy("model_n", [](std::string& json) {
+    EXPECT_EQ(json.find("\"sampling\""), std::string::npos) << "the tiny model names no sampling defaults";
+    json.insert(json.find('{') + 1, "\n  \"sampling\": {\"candidates\": 3},");
+  });
   silk_model_options o = silk_model_default_options();
   o.threads = 1;
   silk_model* m = nullptr;
