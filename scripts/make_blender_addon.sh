@@ -8,7 +8,11 @@ ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 BUILD="$(cd "${1:-$ROOT/build}" && pwd)"
 OUT="${2:-$BUILD/silk_blender.zip}"
 MODEL="${3:-$ROOT/models/default}"
-STAGE="$BUILD/blender_addon_stage"
+# Scratch folder beside the zip, so two makes with different outputs (ctest runs blender_addon
+# and blender_addon_modal in parallel) never share one.
+mkdir -p "$(dirname "$OUT")"
+OUT="$(cd "$(dirname "$OUT")" && pwd)/$(basename "$OUT")"
+STAGE="${OUT%.zip}_stage"
 rm -rf "$STAGE"
 cmake --install "$BUILD" --prefix "$STAGE/prefix" >/dev/null
 ADDON="$STAGE/silk_blender"
