@@ -33,7 +33,7 @@
 #include <nlohmann/json.hpp>
 
 #include "decoder/grammar.h"
-#include "io/file_system.h"
+#include "io/files/file_system.h"
 #include "runtime/decoder_runner.h"
 #include "runtime/generator.h"
 #include "runtime/model.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "decoder/grammar.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 
 using namespace silk;
 using Clock = std::chrono::steady_clock;

@@ -1,4 +1,4 @@
-// Repair measured (spec §12.2): single 1-bits cleared in the self-layer (S window bit, X value)
+// Repair measured (token_format.md §12.2): single 1-bits cleared in the self-layer (S window bit, X value)
 // or between-layer (B window bit, row re-encoded) tokens of closed meshes — the closed goldens
 // and generated UV spheres, tori and capped cylinders of several sizes; share of corrupted
 // streams whose decoded mesh is watertight with hole policy off vs repair, per corruption kind
@@ -11,13 +11,13 @@
 
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 #include "mesh/normalize.h"
 #include "tokenizer/tokenizer.h"
-#include "tokenizer/between_layer_cases.h"
-#include "tokenizer/between_layer_decoder.h"
-#include "tokenizer/between_layer_encoder.h"
-#include "tokenizer/token_writer.h"
+#include "tokenizer/adjacency/between_layer_cases.h"
+#include "tokenizer/adjacency/between_layer_decoder.h"
+#include "tokenizer/adjacency/between_layer_encoder.h"
+#include "tokenizer/packing/token_writer.h"
 
 using namespace silk;
 

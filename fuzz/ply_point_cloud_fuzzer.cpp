@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "io/ply_reader.h"
+#include "io/ply/ply_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   silk::ReadOptions opts;

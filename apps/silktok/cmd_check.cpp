@@ -46,11 +46,11 @@ void RegisterCheckCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "check",
       "Check a token file (one id per line, EOS 10267 optional at the end) against the grammar of\n"
-      "spec §11 token by token. Prints the first illegal token's position, id and reason and exits 1,\n"
+      "token_format.md §11 token by token. Prints the first illegal token's position, id and reason and exits 1,\n"
       "or exits 0.");
   cmd->add_option("input", args->input, "Token file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--max-length", args->max_length,
-                  "Length limit in tokens including EOS; 0 = unlimited (default: 10240, spec §9)");
+                  "Length limit in tokens including EOS; 0 = unlimited (default: 10240, token_format.md §9)");
   cmd->add_flag("--union-windows", args->union_windows,
                 "Accept self-layer rows that disagree about a pair, as the official decoder does (default: off)");
   cmd->add_flag("--prefix", args->allow_prefix, "Accept a sequence that stops inside a component (default: off)");

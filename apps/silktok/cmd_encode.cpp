@@ -104,7 +104,7 @@ void RegisterEncodeCommand(CLI::App& app) {
   cmd->add_option("-j,--jobs", args->jobs, "Parallel encodes in batch form (default: hardware threads)")
       ->check(CLI::Range(0, 1024));
   cmd->add_flag("--no-nonmanifold", args->no_nonmanifold,
-                "Skip non-manifold processing (spec §3); non-manifold meshes are then refused (default: off)");
+                "Skip non-manifold processing (token_format.md §3); non-manifold meshes are then refused (default: off)");
   cmd->add_flag("-q,--quiet", args->quiet, "No batch summary on stderr (default: off)");
   cmd->callback([args] { ExitCode() = Run(*args); });
 }

@@ -1,5 +1,5 @@
 // `silktok repair`: decode a token file through the grammar with hole detection and repair
-// (spec §12.2) and write the mesh; report every repair, as text or JSON.
+// (token_format.md §12.2) and write the mesh; report every repair, as text or JSON.
 #include <cstdio>
 
 #include <nlohmann/json.hpp>

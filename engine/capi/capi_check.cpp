@@ -1,4 +1,4 @@
-// C API: a token stream checked against the grammar (spec §9, §11): the first rejected id, its
+// C API: a token stream checked against the grammar (token_format.md §9, §11): the first rejected id, its
 // stable reason code and the rule it breaks.
 #include <algorithm>
 #include <cstring>

@@ -4,11 +4,11 @@
 #include <memory>
 
 #include "capi/capi_internal.h"
-#include "io/atomic_file.h"
-#include "io/token_text.h"
+#include "io/files/atomic_file.h"
+#include "io/tokens/token_text.h"
 #include "mesh/vertex_fans.h"
 #include "mesh/normalize.h"
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 #include "tokenizer/tokenizer.h"
 
 using silk::capi::Guard;

@@ -5,12 +5,12 @@
 #include <memory>
 
 #include "capi/capi_internal.h"
-#include "io/file_bytes.h"
+#include "io/files/file_bytes.h"
 #include "io/mesh_reader.h"
-#include "io/ply_reader.h"
+#include "io/ply/ply_reader.h"
 #include "mesh/glb_parts.h"
-#include "io/obj_writer.h"
-#include "io/ply_writer.h"
+#include "io/obj/obj_writer.h"
+#include "io/ply/ply_writer.h"
 
 using silk::capi::Guard;
 using silk::capi::Ok;

@@ -7,7 +7,7 @@
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
 #include "decoder/random_walk.h"
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 
 using silk::capi::Guard;
 using silk::capi::Ok;

@@ -1,4 +1,4 @@
-// C API: hole repair of a token stream (spec §12.2): the grammar reads the ids with the official
+// C API: hole repair of a token stream (token_format.md §12.2): the grammar reads the ids with the official
 // decoder's window rule, the accepted prefix becomes a mesh under the hole policy, and every
 // finding comes back as figures and as a JSON report.
 #include <cstring>
@@ -9,7 +9,7 @@
 #include "capi/capi_internal.h"
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 #include "tokenizer/vocabulary_layout.h"
 
 using silk::capi::Guard;
@@ -88,7 +88,7 @@ silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_para
     size_t pos = 0;
     silk::Rejection illegal;
     for (; pos < ids.size(); ++pos) {
-      if (ids[pos] == silk::vocab::k_eos_id || ids[pos] == -1) break;  // EOS / data padding end the stream (spec §9)
+      if (ids[pos] == silk::vocab::k_eos_id || ids[pos] == -1) break;  // EOS / data padding end the stream (token_format.md §9)
       illegal = g.Accept(ids[pos]);
       if (!illegal.ok()) break;
     }

@@ -1,4 +1,4 @@
-// The grammar state machine (spec §11): its state, Step (the one driver of Accept and Check
+// The grammar state machine (token_format.md §11): its state, Step (the one driver of Accept and Check
 // over the rule table of grammar_rules.cpp) and what each admitted token does to the state.
 // Rule comments name the spec section they implement; see grammar.h for the guarantees.
 #include "decoder/grammar.h"
@@ -7,8 +7,8 @@
 #include <climits>
 #include <string>
 
-#include "tokenizer/between_layer_cases.h"
-#include "tokenizer/vertex_codec.h"
+#include "tokenizer/adjacency/between_layer_cases.h"
+#include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {
@@ -38,7 +38,7 @@ Rejection Grammar::MakeRejection(RejectReason r, int32_t id, const std::string& 
 }
 
 void Grammar::ResetLayerState() {
-  // Spec §11.2: layer 1 needs N >= 2 (the root has >= 2 neighbours); every layer N <= 200.
+  // token_format.md §11.2: layer 1 needs N >= 2 (the root has >= 2 neighbours); every layer N <= 200.
   sizes_.Fill(layer_ == 1 ? 2 : 1, kMaxLayerSize);
   for (auto& s : incoming_) s.Clear();
   incoming_count_.fill(0);
@@ -71,16 +71,16 @@ Rejection Grammar::Step(int32_t id, bool commit) {
       [&] { return std::string("id outside 0..10268"); });
   if (Rejection r = NotEnded(id); !r.ok()) return r;
   if (id == vocab::k_pad_id) return Reject(RejectReason::kPadToken, id,
-      [&] { return std::string("PAD is padding, never a sequence token (spec §9)"); });
+      [&] { return std::string("PAD is padding, never a sequence token (token_format.md §9)"); });
   if (Rejection r = RoomForToken(id); !r.ok()) return r;
   const GrammarPhaseRule& row = RuleRow(phase_);
   const GrammarClassRule* cls = row.Find(id);
   if (!cls && id == vocab::k_eos_id)
     return Reject(RejectReason::kEosNotAfterE, id,
-        [&] { return std::string("EOS only directly after the E of a component (spec §11.4)"); });
+        [&] { return std::string("EOS only directly after the E of a component (token_format.md §11.4)"); });
   if (!cls)
     return Reject(RejectReason::kWrongClass, id,
-        [&] { return std::string("expected ") + row.expects + " (spec §11.1)"; });
+        [&] { return std::string("expected ") + row.expects + " (token_format.md §11.1)"; });
   if (cls->test)
     if (Rejection r = (this->*cls->test)(id); !r.ok()) return r;
   for (GrammarGate gate : cls->gates) {

@@ -1,5 +1,5 @@
 // Grammar: the state machine of legal Mesh Silksong sequences over the full model vocabulary
-// (spec §9, §11), for constrained sampling and for checking streams token by token.
+// (token_format.md §9, §11), for constrained sampling and for checking streams token by token.
 //
 // Rules enforced (the rule table, grammar_rules.h/.cpp: each phase written once, as the id
 // classes it takes and their predicates, documented at their code in grammar_gates.cpp and
@@ -13,7 +13,7 @@
 //    only if that set stays non-empty, U/E only when the current size is in it;
 //  * layer size <= 200, layer index <= 199, total length <= max_length (EOS included);
 //  * geometric rule: no edge joins two vertices at the same grid position (holds for all 154
-//    official streams; positions themselves DO repeat inside components, spec §3.6).
+//    official streams; positions themselves DO repeat inside components, token_format.md §3.6).
 // Liveness: every accepted prefix can be completed to a legal sequence within max_length (the
 // legal mask is never empty before EOS). Near the cap each token is admitted only if the exact
 // cheapest completion after it (finish the row, close at the cheapest size, E, EOS; see
@@ -32,11 +32,11 @@
 #include "decoder/grammar_rules.h"
 #include "decoder/layer_size_set.h"
 #include "decoder/token_mask.h"
-#include "tokenizer/layered_stream.h"
+#include "tokenizer/packing/layered_stream.h"
 
 namespace silk {
 
-// How self-layer rows that state a pair differently are treated (spec §11.2).
+// How self-layer rows that state a pair differently are treated (token_format.md §11.2).
 enum class WindowRule : int32_t {
   kCanonical = 0,  // the encoder's rule: refuse (mask) until consistent
   kUnion = 1,      // the official decoder's rule: accept, the pair is an edge if either row says
@@ -44,7 +44,7 @@ enum class WindowRule : int32_t {
 };
 
 struct GrammarOptions {
-  int32_t max_length = 10240;  // tokens incl. EOS (spec §9); 0 = unlimited (long corpus streams)
+  int32_t max_length = 10240;  // tokens incl. EOS (token_format.md §9); 0 = unlimited (long corpus streams)
   WindowRule window_rule = WindowRule::kCanonical;
   bool geometric_rules = true;  // zero-length edges refused
 };

@@ -1,5 +1,5 @@
 // Closing a layer: the progress report, the explanation of a refused U/E (which deferred rule
-// of spec §11.2 fails at this size) and the findings of WindowRule::kUnion.
+// of token_format.md §11.2 fails at this size) and the findings of WindowRule::kUnion.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -33,7 +33,7 @@ bool HasExtra(const StreamVertex& v, int32_t e) {
   return false;
 }
 
-// How rows a < b of a layer of size n state their pair (spec §11.2): *sa, *sb = 0/1 when the
+// How rows a < b of a layer of size n state their pair (token_format.md §11.2): *sa, *sb = 0/1 when the
 // pair is covered by both rows (windows for N <= 9-style distances, extras for N >= 18),
 // -1 when the rows do not both cover it.
 void PairStatements(const std::vector<StreamVertex>& vs, int32_t n, int32_t a, int32_t b, int32_t* sa,
@@ -50,7 +50,7 @@ void PairStatements(const std::vector<StreamVertex>& vs, int32_t n, int32_t a, i
 }
 }  // namespace
 
-// Pairs stated by one covering row and denied by the other (spec §11.2, §12.2 "token-level
+// Pairs stated by one covering row and denied by the other (token_format.md §11.2, §12.2 "token-level
 // consistency"): under the union rule they are edges, and each one is a repaired false 0.
 void Grammar::RecordFindings() {
   const auto& vs = cur_layer().vertices;
@@ -71,12 +71,12 @@ std::string Grammar::ExplainClose(int32_t n) const {
   for (int32_t b = 0; b < n; ++b) {
     const auto& v = vs[b];
     if (n <= kSelfWindow && v.window >= (1 << (n - 1)))
-      return "row " + std::to_string(b) + " has a window bit at a distance >= N (spec §11.2)";
+      return "row " + std::to_string(b) + " has a window bit at a distance >= N (token_format.md §11.2)";
     if (canonical && layer_ == 1 && b < n - 1 && !(v.window & 1))
       return "layer 1 rows " + std::to_string(b) + " and " + std::to_string(b + 1) +
-             " are not adjacent (chain rule, spec §11.2)";
+             " are not adjacent (chain rule, token_format.md §11.2)";
     for (int32_t e : v.extras)
-      if (e > n - kXMargin) return "row " + std::to_string(b) + " has X value " + std::to_string(e) + " > N-10 (spec §6)";
+      if (e > n - kXMargin) return "row " + std::to_string(b) + " has X value " + std::to_string(e) + " > N-10 (token_format.md §6)";
   }
   if (canonical) {
     for (int32_t a = 0; a < n; ++a)
@@ -85,7 +85,7 @@ std::string Grammar::ExplainClose(int32_t n) const {
         PairStatements(vs, n, a, b, &sa, &sb);
         if (sa >= 0 && sa != sb)
           return "rows " + std::to_string(a) + " and " + std::to_string(b) +
-                 " disagree about their pair (canonical consistency, spec §11.2)";
+                 " disagree about their pair (canonical consistency, token_format.md §11.2)";
       }
   }
   return "a zero-length edge or the length budget";

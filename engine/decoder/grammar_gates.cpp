@@ -16,7 +16,7 @@ Rejection Grammar::NotEnded(int32_t id) const {
   return Reject(RejectReason::kAfterEos, id, [&] { return std::string("nothing may follow EOS"); });
 }
 
-// Spec §9: at most max_length tokens including EOS.
+// token_format.md §9: at most max_length tokens including EOS.
 Rejection Grammar::RoomForToken(int32_t id) const {
   if (options_.max_length <= 0 || static_cast<int64_t>(history_.size()) + 1 <= options_.max_length) return Rejection{};
   return Reject(RejectReason::kTooLong, id, [&] { return std::string("sequence longer than the length limit"); });
@@ -28,13 +28,13 @@ Rejection Grammar::RoomForComponent(int32_t id) const {
   return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left for a whole component"); });
 }
 
-// E right after the root (phase kWantU0) is never legal: a component needs layer 1 (spec §8.3).
+// E right after the root (phase kWantU0) is never legal: a component needs layer 1 (token_format.md §8.3).
 Rejection Grammar::RefuseEndAfterRoot(int32_t id) const {
   return Reject(RejectReason::kLayerZeroSize, id,
-      [&] { return std::string("E directly after the root: a component needs layer 1 (spec §8.3)"); });
+      [&] { return std::string("E directly after the root: a component needs layer 1 (token_format.md §8.3)"); });
 }
 
-// U/E: the deferred rules of spec §11.2 hold at the layer's current size.
+// U/E: the deferred rules of token_format.md §11.2 hold at the layer's current size.
 Rejection Grammar::LayerClosable(int32_t id) const {
   const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
   if (sizes_.Test(n)) return Rejection{};
@@ -44,7 +44,7 @@ Rejection Grammar::LayerClosable(int32_t id) const {
 
 Rejection Grammar::BelowLayerIndexLimit(int32_t id) const {
   if (layer_ < kMaxLayerIndex) return Rejection{};
-  return Reject(RejectReason::kTooManyLayers, id, [&] { return std::string("layer index 200 would follow (spec §5.3)"); });
+  return Reject(RejectReason::kTooManyLayers, id, [&] { return std::string("layer index 200 would follow (token_format.md §5.3)"); });
 }
 
 // U: the next layer's cheapest content (K O S B) and E, EOS must fit.
@@ -59,14 +59,14 @@ Rejection Grammar::RoomForEos(int32_t id) const {
   return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room for EOS after E"); });
 }
 
-// K after a finished vertex (spec §1.3): at most 200 vertices per layer.
+// K after a finished vertex (token_format.md §1.3): at most 200 vertices per layer.
 Rejection Grammar::BelowLayerSizeLimit(int32_t id) const {
   if (static_cast<int32_t>(cur_layer().vertices.size()) < kMaxLayerSize) return Rejection{};
   return Reject(RejectReason::kLayerTooLarge, id,
-      [&] { return std::string("a layer holds at most 200 vertices (spec §1.3)"); });
+      [&] { return std::string("a layer holds at most 200 vertices (token_format.md §1.3)"); });
 }
 
-// K after a finished vertex: some larger size must still close the layer (spec §11.2), and the
+// K after a finished vertex: some larger size must still close the layer (token_format.md §11.2), and the
 // rows up to it (K O S B and their echoes) plus E, EOS must fit.
 Rejection Grammar::RoomForVertex(int32_t id) const {
   const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
@@ -109,7 +109,7 @@ Rejection Grammar::RowCanFinish(int32_t id) const {
   if (budget_max < kMaxLayerSize)
     return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to finish the layer"); });
   return Reject(RejectReason::kNotCanonical, id, [&] {
-    return std::string("the vertex's X values miss a pair an earlier row states (spec §11.2 canonical consistency)");
+    return std::string("the vertex's X values miss a pair an earlier row states (token_format.md §11.2 canonical consistency)");
   });
 }
 

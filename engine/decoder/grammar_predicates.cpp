@@ -7,8 +7,8 @@
 
 #include "decoder/grammar.h"
 #include "decoder/grammar_limits.h"
-#include "tokenizer/between_layer_cases.h"
-#include "tokenizer/vertex_codec.h"
+#include "tokenizer/adjacency/between_layer_cases.h"
+#include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {
@@ -53,7 +53,7 @@ void Grammar::AddPositions(TokenMask* mask) const {
 }
 
 // ---- S: the sizes a window keeps open.
-// Spec §11.2 (deferred, checked per size): may row b (the current row) carry window w if the
+// token_format.md §11.2 (deferred, checked per size): may row b (the current row) carry window w if the
 // layer ends with n_size vertices? Wrap-around bits must agree with the partner row's bit
 // (both rows cover the pair only when both distances are <= 8), bits at d >= N must be 0,
 // layer 1 needs the chain (bit 0 set unless b is last).
@@ -120,7 +120,7 @@ Rejection Grammar::TestWindow(int32_t id) const {
   return Reject(beyond_only ? RejectReason::kWindowBeyondLayer : RejectReason::kNotCanonical, id, [&] {
     return "window " + std::to_string(w) +
            " fits no layer size still possible (bits past the layer end, disagreement with an "
-           "earlier row, the layer-1 chain or a zero-length edge; spec §11.2)";
+           "earlier row, the layer-1 chain or a zero-length edge; token_format.md §11.2)";
   });
 }
 
@@ -138,7 +138,7 @@ void Grammar::AddWindows(TokenMask* mask) const {
     if ((far_open && ChainLets(w)) || !WindowSizes(rule, w, /*any=*/true).Empty()) mask->Set(vocab::kSBegin + w);
 }
 
-// ---- X: the values a row may carry at each layer size still open (spec §6, §11.2).
+// ---- X: the values a row may carry at each layer size still open (token_format.md §6, §11.2).
 // At size N, for row b: forward statements e <= N-2-b (a pair with a later row, which must echo
 // it: the cheapest completion grows by 2), under kUnion free wrap-around statements
 // N-1-b <= e (+1), under kCanonical only the next due echo N-1-g (+0); all e <= N-10 (<= 190).
@@ -183,10 +183,10 @@ Rejection Grammar::TestX(int32_t id) const {
   const int32_t e = id - vocab::kXBegin;
   if (e <= last_x_)
     return Reject(RejectReason::kXNotIncreasing, id,
-        [&] { return std::string("X values must increase within a vertex (spec §11.2)"); });
+        [&] { return std::string("X values must increase within a vertex (token_format.md §11.2)"); });
   if (e < kMinX || e > kMaxX)
     return Reject(RejectReason::kXOutOfRange, id,
-        [&] { return std::string("X value " + std::to_string(e) + " outside [8, 190] (spec §6)"); });
+        [&] { return std::string("X value " + std::to_string(e) + " outside [8, 190] (token_format.md §6)"); });
   LayerSizeSet& ok = next_sizes_;
   ok.Clear();
   bool range_only = true, budget_hit = false;
@@ -200,7 +200,7 @@ Rejection Grammar::TestX(int32_t id) const {
     return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to finish the layer"); });
   return Reject(range_only ? RejectReason::kXOutOfRange : RejectReason::kNotCanonical, id, [&] {
     return "X value " + std::to_string(e) +
-           " fits no layer size still possible (needs N >= e+10 and agreement with earlier rows; spec §11.2)";
+           " fits no layer size still possible (needs N >= e+10 and agreement with earlier rows; token_format.md §11.2)";
   });
 }
 
@@ -226,7 +226,7 @@ void Grammar::AddX(TokenMask* mask) const {
   ForEachXRule(add);
 }
 
-// ---- B: the cases a B token may take at each start column (spec §7.3, §11.3).
+// ---- B: the cases a B token may take at each start column (token_format.md §7.3, §11.3).
 namespace {
 // Bit c set iff case c's last 1 lies within `room` columns: ℓ(c) <= room.
 uint32_t CasesEndingWithin(int32_t room) {
@@ -274,13 +274,13 @@ Rejection Grammar::TestB(int32_t id) const {
   if (s < min_s)
     return Reject(RejectReason::kBContinuation, id, [&] {
       return std::string("B start " + std::to_string(s) + " below the continuation minimum " + std::to_string(min_s) +
-                         " (spec §7.3)");
+                         " (token_format.md §7.3)");
     });
   if ((BCasesAt(s) >> c) & 1) return Rejection{};
   if (s + BetweenCaseLastOne(c) > n_prev_ - 1)
     return Reject(RejectReason::kBOutsidePrevLayer, id, [&] {
       return std::string("segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
-                         " but the previous layer has " + std::to_string(n_prev_) + " vertices (spec §11.3)");
+                         " but the previous layer has " + std::to_string(n_prev_) + " vertices (token_format.md §11.3)");
     });
   return Reject(RejectReason::kZeroLengthEdge, id,
       [&] { return std::string("B segment links two vertices at one position"); });

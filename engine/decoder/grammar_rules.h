@@ -55,7 +55,7 @@ struct GrammarPhaseRule {
   }
 };
 
-// The X values one row may carry if its layer closes with a given size (spec §6, §11.2), as
+// The X values one row may carry if its layer closes with a given size (token_format.md §6, §11.2), as
 // three disjoint intervals, one per kind of statement, each with its length-budget verdict.
 // An X value e is admitted at that size iff some interval holding e fits; the test reads this
 // per value, the mask adds the fitting intervals.
@@ -76,7 +76,7 @@ struct XRowRule {
   }
 };
 
-// The layer sizes an S token can keep open, split by what the window w decides (spec §11.2):
+// The layer sizes an S token can keep open, split by what the window w decides (token_format.md §11.2):
 // `far` sizes (>= b+9) see no wrap-around bit, only the layer-1 chain rule (w's bit 0) applies;
 // each `near` size is judged by Grammar::WindowOk. Both within the length budget.
 struct WindowSizeRule {

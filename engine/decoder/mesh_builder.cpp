@@ -1,5 +1,5 @@
 // Mesh assembly from accepted layers, hole detection and repair by loop triangulation
-// (spec §12.2: a hole shows up as missing matrix 1s; a loop of open edges between two
+// (token_format.md §12.2: a hole shows up as missing matrix 1s; a loop of open edges between two
 // adjacent layers is closed by the chords a consistent matrix would have had).
 #include "decoder/mesh_builder.h"
 
@@ -8,7 +8,7 @@
 #include <set>
 #include <unordered_map>
 
-#include "tokenizer/collinear.h"
+#include "tokenizer/cleanup/collinear.h"
 #include "decoder/vertex_fan_rules.h"
 #include "mesh/mesh_checks.h"
 #include "mesh/vertex_fans.h"
@@ -103,7 +103,7 @@ bool FillLoop(const std::vector<int32_t>& loop, const ComponentMesh& cb, std::se
   return false;
 }
 
-// Spec §12.2 hole policy on one component's faces (local indices).
+// token_format.md §12.2 hole policy on one component's faces (local indices).
 void HandleHoles(ComponentMesh* cm, int32_t ci, int32_t base, const MeshBuildOptions& options, MeshBuildReport* report) {
   auto& faces = cm->faces;
   int32_t open_before = 0;

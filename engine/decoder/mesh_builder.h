@@ -1,5 +1,5 @@
 // Turns what the grammar accepted into a mesh: per component, the tokenizer's assembly
-// (component_mesh: adjacency -> oriented faces, spec §10.6), then hole detection / repair (spec
+// (component_mesh: adjacency -> oriented faces, token_format.md §10.6), then hole detection / repair (spec
 // §12.2) and the vertex-fan rule (vertex_fan_rules.h). Also the incremental view: faces of the
 // closed layers of the component being generated, reusing components already built.
 #pragma once
@@ -11,7 +11,7 @@
 #include "core/status.h"
 #include "decoder/grammar.h"
 #include "tokenizer/component_mesh.h"
-#include "tokenizer/layered_stream.h"
+#include "tokenizer/packing/layered_stream.h"
 #include "tokenizer/tokenizer.h"
 
 namespace silk {

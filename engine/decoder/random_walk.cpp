@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "tokenizer/between_layer_cases.h"
+#include "tokenizer/adjacency/between_layer_cases.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {

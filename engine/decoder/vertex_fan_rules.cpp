@@ -7,7 +7,7 @@
 #include <set>
 
 #include "mesh/vertex_fans.h"
-#include "tokenizer/collinear.h"
+#include "tokenizer/cleanup/collinear.h"
 
 namespace silk {
 namespace {

@@ -1,5 +1,5 @@
 // The vertex-manifold rule of decoded meshes (docs/grammar.md "Vertex fans"). Faces are only
-// known once a component's layers are closed (face recovery, spec §10.6), so whether a vertex
+// known once a component's layers are closed (face recovery, token_format.md §10.6), so whether a vertex
 // ends with one fan cannot be decided by the legal mask; it is resolved when the component's
 // mesh is assembled: close the gap between two fans with one face when the repair policy
 // allows, otherwise (or when no such face is legal) split the vertex once per extra fan.
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 
 namespace silk {
 

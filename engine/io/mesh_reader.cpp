@@ -4,15 +4,15 @@
 #include <new>
 #include <string_view>
 
-#include "io/file_bytes.h"
-#include "io/gltf_reader.h"
-#include "io/gzip_inflate.h"
-#include "io/obj_reader.h"
-#include "io/off_reader.h"
-#include "io/pmd_reader.h"
-#include "io/ply_reader.h"
+#include "io/files/file_bytes.h"
+#include "io/gltf/gltf_reader.h"
+#include "io/files/gzip_inflate.h"
+#include "io/obj/obj_reader.h"
+#include "io/off/off_reader.h"
+#include "io/pmd/pmd_reader.h"
+#include "io/ply/ply_reader.h"
 #include "io/read_error.h"
-#include "io/stl_reader.h"
+#include "io/stl/stl_reader.h"
 
 namespace silk {
 

@@ -1,5 +1,5 @@
 // RawMesh: what every reader produces. Plain arrays, nothing welded or cleaned, so that
-// non-manifold and duplicate faces survive to the tokenizer (spec §2.3-§2.4 need them as-is).
+// non-manifold and duplicate faces survive to the tokenizer (token_format.md §2.3-§2.4 need them as-is).
 #pragma once
 #include <array>
 #include <cstdint>

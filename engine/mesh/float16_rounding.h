@@ -1,5 +1,5 @@
 // Rounding doubles to the nearest IEEE half-precision value: the official pre-processing casts
-// its sampled points and normals to float16 (ARCHITECTURE.md §4), and the network was trained
+// its sampled points and normals to float16 (official_network.md §4), and the network was trained
 // on such values, so Silk reproduces the cast exactly (round to nearest, ties to even).
 #pragma once
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/glb_writer.h"
+#include "io/gltf/glb_writer.h"
 #include "io/raw_mesh.h"
 
 namespace silk {

@@ -1,4 +1,4 @@
-// Bounding-box normalisation (spec §2.1), written operation by operation as the spec gives it.
+// Bounding-box normalisation (token_format.md §2.1), written operation by operation as the spec gives it.
 #include "mesh/normalize.h"
 
 #include <cmath>

@@ -16,7 +16,7 @@ namespace silk {
 
 enum class PreprocessingKind {
   kSilk,      // normalise all vertices to +-bound, n_points area-weighted samples (or a subset)
-  kOfficial,  // Mesh Silksong's inference pre-processing (ARCHITECTURE.md §4)
+  kOfficial,  // Mesh Silksong's inference pre-processing (official_network.md §4)
 };
 
 struct PreprocessingParams {

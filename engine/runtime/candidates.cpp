@@ -9,7 +9,7 @@
 #include "core/splitmix64.h"
 #include "mesh/chamfer_distance.h"
 #include "mesh/point_preprocessing.h"
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 
 namespace silk {
 

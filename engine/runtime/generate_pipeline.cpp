@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cmath>
 
-#include "io/file_bytes.h"
+#include "io/files/file_bytes.h"
 #include "io/mesh_format.h"
 #include "io/mesh_reader.h"
-#include "io/ply_reader.h"
+#include "io/ply/ply_reader.h"
 #include "mesh/mesh_checks.h"
 #include "mesh/surface_sampling.h"
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 
 namespace silk {
 

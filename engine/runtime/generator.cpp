@@ -16,7 +16,7 @@
 #include "runtime/input_orientation.h"
 #include "runtime/model_impl.h"
 #include "runtime/surface_guide.h"
-#include "tokenizer/vertex_codec.h"
+#include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {

@@ -2,7 +2,7 @@
 #include "runtime/input_orientation.h"
 
 #include "mesh/point_preprocessing.h"
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 
 namespace silk {
 

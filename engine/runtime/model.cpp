@@ -4,7 +4,7 @@
 
 #include <array>
 
-#include "io/file_system.h"
+#include "io/files/file_system.h"
 #include "runtime/cpu_info.h"
 
 namespace silk {

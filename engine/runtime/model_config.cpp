@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/file_bytes.h"
-#include "io/file_system.h"
+#include "io/files/file_bytes.h"
+#include "io/files/file_system.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {

@@ -5,7 +5,7 @@
 // u = Uniform() * kept mass; first index whose running sum exceeds u. The official chain
 // (top_p_temperature > 0) replaces the top-p cut: probabilities exp((logit - top) / top_p_temperature)
 // in double over the top-k survivors, normalised; an id is kept while the mass before it is
-// <= top_p (ARCHITECTURE.md §4: the cumulative mass shifted right by one), then the draw is at
+// <= top_p (official_network.md §4: the cumulative mass shifted right by one), then the draw is at
 // `temperature`.
 #include "runtime/sampler.h"
 

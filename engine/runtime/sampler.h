@@ -1,7 +1,7 @@
 // Sampler: the token sampling chain, applied to the logits of the legal ids only (the
 // grammar mask comes first): temperature -> top-k -> top-p -> one uniform draw from a seeded
 // SplitMix64. Fully specified so tests/models/reference_loop.py reproduces it exactly.
-// With top_p_temperature > 0 the chain is the official one (ARCHITECTURE.md §4): top-k on the
+// With top_p_temperature > 0 the chain is the official one (official_network.md §4): top-k on the
 // logits, top-p on softmax(survivors / top_p_temperature) keeping the top id and the one that
 // crosses top_p, then softmax(kept / temperature) and the draw.
 #pragma once

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "tokenizer/vertex_codec.h"
+#include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "decoder/token_mask.h"
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 
 namespace silk {
 

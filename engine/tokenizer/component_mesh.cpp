@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <string>
 
-#include "tokenizer/collinear.h"
-#include "tokenizer/face_recovery.h"
-#include "tokenizer/layer_adjacency.h"
+#include "tokenizer/cleanup/collinear.h"
+#include "tokenizer/face_recovery/face_recovery.h"
+#include "tokenizer/adjacency/layer_adjacency.h"
 
 namespace silk {
 

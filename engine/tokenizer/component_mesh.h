@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "tokenizer/layered_stream.h"
+#include "tokenizer/packing/layered_stream.h"
 #include "tokenizer/tokenizer.h"
 
 namespace silk {

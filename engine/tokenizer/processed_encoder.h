@@ -1,8 +1,8 @@
-// Encoder stages after cleanup (spec §3-§7) on an already quantized face set: lets a decoder
+// Encoder stages after cleanup (token_format.md §3-§7) on an already quantized face set: lets a decoder
 // check prove that a candidate face set re-encodes to the very same tokens.
 #pragma once
 #include "core/status.h"
-#include "tokenizer/layered_stream.h"
+#include "tokenizer/packing/layered_stream.h"
 #include "tokenizer/processed_mesh.h"
 
 namespace silk {

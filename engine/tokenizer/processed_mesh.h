@@ -1,4 +1,4 @@
-// ProcessedMesh: the mesh between the encoder's stages (spec §2.3-§4): quantized positions
+// ProcessedMesh: the mesh between the encoder's stages (token_format.md §2.3-§4): quantized positions
 // indexed by processed vertex id (input vertices + non-manifold copies), faces indexed by
 // processed face id, each with its current winding.
 #pragma once
@@ -6,15 +6,15 @@
 #include <vector>
 
 #include "core/strong_id.h"
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 
 namespace silk {
 
 using Tri = std::array<VertexId, 3>;
 
 struct ProcessedMesh {
-  std::vector<QVec> positions;  // by VertexId; duplicates/unreferenced entries stay (spec §2.3)
-  std::vector<Tri> faces;       // by FaceId (spec §2.4); only corner ids change later
+  std::vector<QVec> positions;  // by VertexId; duplicates/unreferenced entries stay (token_format.md §2.3)
+  std::vector<Tri> faces;       // by FaceId (token_format.md §2.4); only corner ids change later
   int32_t input_vertex_count = 0;
 
   const QVec& pos(VertexId v) const { return positions[static_cast<size_t>(v.get())]; }

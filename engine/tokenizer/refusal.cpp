@@ -1,4 +1,4 @@
-// Names and reference messages of tokenizer refusals (spec §14.A).
+// Names and reference messages of tokenizer refusals (token_format.md §14.A).
 #include "tokenizer/refusal.h"
 
 #include <cstring>

@@ -11,7 +11,7 @@ namespace silk {
 
 struct RoundTripReport {
   int64_t processed_faces = 0;      // faces of the emitted components
-  int64_t representable_faces = 0;  // processed minus unencodable (spec §5.4)
+  int64_t representable_faces = 0;  // processed minus unencodable (token_format.md §5.4)
   int64_t recovered = 0;            // representable faces decoded with the encoder's winding
   int64_t reversed = 0;             // representable faces decoded with the opposite winding
   int64_t missing = 0;              // representable faces not decoded at all

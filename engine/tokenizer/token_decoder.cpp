@@ -4,14 +4,14 @@
 #include <string>
 
 #include "tokenizer/component_mesh.h"
-#include "tokenizer/token_reader.h"
+#include "tokenizer/packing/token_reader.h"
 #include "tokenizer/tokenizer.h"
 
 namespace silk {
 
 StatusOr<DecodedMesh> DecodeTokens(const std::vector<int32_t>& ids, const DecodeOptions& options) {
   if (options.official_faces) {
-    return Unsupported("the official decoder's face rule (spec §10.3) is not implemented");
+    return Unsupported("the official decoder's face rule (token_format.md §10.3) is not implemented");
   }
   SILK_ASSIGN_OR_RETURN(LayeredStream stream, ReadTokens(ids));
   DecodedMesh mesh;

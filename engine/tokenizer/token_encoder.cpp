@@ -1,20 +1,20 @@
-// EncodeMesh: the encoder pipeline of spec §2-§8, stage by stage, with per-phase timing.
+// EncodeMesh: the encoder pipeline of token_format.md §2-§8, stage by stage, with per-phase timing.
 // Mirror of token_decoder.
 #include <algorithm>
 #include <chrono>
 #include <string>
 
-#include "tokenizer/between_layer_encoder.h"
-#include "tokenizer/components.h"
-#include "tokenizer/face_cleanup.h"
-#include "tokenizer/layering.h"
-#include "tokenizer/nonmanifold_split.h"
-#include "tokenizer/orientation_repair.h"
+#include "tokenizer/adjacency/between_layer_encoder.h"
+#include "tokenizer/layering/components.h"
+#include "tokenizer/cleanup/face_cleanup.h"
+#include "tokenizer/layering/layering.h"
+#include "tokenizer/manifold/nonmanifold_split.h"
+#include "tokenizer/manifold/orientation_repair.h"
 #include "tokenizer/processed_encoder.h"
 #include "tokenizer/refusal.h"
-#include "tokenizer/rotation_lists.h"
-#include "tokenizer/self_layer_encoder.h"
-#include "tokenizer/token_writer.h"
+#include "tokenizer/layering/rotation_lists.h"
+#include "tokenizer/adjacency/self_layer_encoder.h"
+#include "tokenizer/packing/token_writer.h"
 #include "tokenizer/tokenizer.h"
 
 namespace silk {
@@ -129,7 +129,7 @@ StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions
   auto t7 = Clock::now();
   st.times.packing = Seconds(t6, t7);
 
-  // Statistics and the processed / unencodable face lists (spec §5.4).
+  // Statistics and the processed / unencodable face lists (token_format.md §5.4).
   st.components_encoded = static_cast<int32_t>(split.kept.size());
   std::vector<char> used(static_cast<size_t>(mesh.vertex_count()), 0);
   for (const Component& c : split.kept) {

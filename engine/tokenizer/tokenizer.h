@@ -1,5 +1,5 @@
 // The tokenizer's public C++ entry points: mesh -> Mesh Silksong token ids (bit-exact with
-// the reference, spec TOKEN_FORMAT.md) and ids -> mesh (every face the tokens can carry).
+// the reference, docs/token_format.md) and ids -> mesh (every face the tokens can carry).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -8,13 +8,13 @@
 
 #include "core/status.h"
 #include "io/raw_mesh.h"
-#include "tokenizer/layered_stream.h"
+#include "tokenizer/packing/layered_stream.h"
 #include "tokenizer/processed_mesh.h"
 
 namespace silk {
 
 struct EncodeOptions {
-  bool nonmanifold_processing = true;  // spec §3; off = refuse non-manifold input
+  bool nonmanifold_processing = true;  // token_format.md §3; off = refuse non-manifold input
 };
 
 // Wall time per encoder phase, seconds.
@@ -42,11 +42,11 @@ struct EncodeStats {
 };
 
 struct EncodeResult {
-  std::vector<int32_t> tokens;  // no BOS/EOS/PAD (spec §8.3)
+  std::vector<int32_t> tokens;  // no BOS/EOS/PAD (token_format.md §8.3)
   LayeredStream stream;
   // Faces of the emitted components in encoder winding, as grid coordinates.
   std::vector<std::array<QVec, 3>> processed_faces;
-  // Subset of processed_faces whose edges the stream does not carry (spec §5.4).
+  // Subset of processed_faces whose edges the stream does not carry (token_format.md §5.4).
   std::vector<std::array<QVec, 3>> unencodable_faces;
   EncodeStats stats;
 };
@@ -57,7 +57,7 @@ StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions
 
 struct DecodeOptions {
   // Reserved for decoder variants; the default recovers every face the tokens carry.
-  bool official_faces = false;  // true: the reference decoder's face rule (spec §10.3)
+  bool official_faces = false;  // true: the reference decoder's face rule (token_format.md §10.3)
 };
 
 struct DecodedMesh {

@@ -41,7 +41,7 @@ def _silk_preprocessing(cfg: ModelConfig) -> dict:
 
 
 def _official_preprocessing(cfg: ModelConfig) -> dict:
-    """ARCHITECTURE.md §4: the official inference pre-processing."""
+    """official_network.md §4: the official inference pre-processing."""
     return {"kind": "official", "normalize_bound": 0.95, "merge_distance_fraction": 0.01,
             "surface_samples": 50000, "round_float16": True, "n_points": cfg.n_points}
 

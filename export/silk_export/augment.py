@@ -1,5 +1,5 @@
 """Training augmentation on raw vertices (numpy): per-axis scale in [0.75, 0.95] and a rotation
-about the up axis (y) in 30° steps. Tokenization re-normalises afterwards (spec §2.1)."""
+about the up axis (y) in 30° steps. Tokenization re-normalises afterwards (token_format.md §2.1)."""
 from __future__ import annotations
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Numpy geometry shared by the data pipeline and evaluation: the spec §2.1 bounding-box
+"""Numpy geometry shared by the data pipeline and evaluation: the token_format.md §2.1 bounding-box
 normalisation (surface sampling is libsilk's, see pointcloud.py)."""
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import numpy as np
 
 
 def normalize_vertices(v: np.ndarray, bound: float = 0.95) -> np.ndarray:
-    """Spec §2.1 in float64: centre the bounding box of ALL vertices, longest side to 2*bound."""
+    """token_format.md §2.1 in float64: centre the bounding box of ALL vertices, longest side to 2*bound."""
     v = np.asarray(v, dtype=np.float64)
     if v.shape[0] == 0:
         return v.copy()

@@ -1,5 +1,5 @@
 """Geometric metrics between two meshes (Mesh Silksong paper, Sec. 4): both meshes normalised to
-±0.95 (spec §2.1), n area-weighted surface samples each, then
+±0.95 (token_format.md §2.1), n area-weighted surface samples each, then
   CD   = ½·(mean_a d(a,B) + mean_b d(b,A))      (Euclidean distance to the nearest sample)
   HD   = max(max_a d(a,B), max_b d(b,A))
   NC   = ½·(mean_a n_a·n_nn(a) + mean_b n_b·n_nn(b))   (face normals of the nearest samples)

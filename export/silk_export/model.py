@@ -1,6 +1,6 @@
 """The Mesh Silksong generator: point encoder + decoder-only transformer whose pre-norm layers
 do causal self-attention, cross-attention to the point latents, then an MLP. Embeddings are
-token + type (spec §9) + learned absolute position (BOS at 0, mesh token t at t + 1)."""
+token + type (token_format.md §9) + learned absolute position (BOS at 0, mesh token t at t + 1)."""
 from __future__ import annotations
 
 import torch

@@ -38,7 +38,7 @@ def write_official_card(folder: Path, meta: dict) -> Path:
     L += ["", f"Default decoder (`files.default_decoder`): **{files['default_decoder']}** "
           f"(precision `{imp['precision']}`; INT4 block size {imp['int4']['block_size']}, "
           f"accuracy level {imp['int4']['accuracy_level']}).", "",
-          "Pre-processing and sampling defaults (model.json): the official ones, ARCHITECTURE.md §4.", ""]
+          "Pre-processing and sampling defaults (model.json): the official ones, official_network.md §4.", ""]
     path = Path(folder) / "MODEL_CARD.md"
     path.write_text("\n".join(L))
     return path

@@ -16,9 +16,9 @@ from .official_keys import is_unused, local_name, release_name, sizes_from_shape
 from .state_dict_file import StateDictError, open_state_dict
 from .vocab import TYPE_CLASSES, load_vocab
 
-# Values no tensor shape reveals (ARCHITECTURE.md §6), at the release's settings.
+# Values no tensor shape reveals (official_network.md §6), at the release's settings.
 RELEASE_DEFAULTS = {"encoder_heads": 12, "qk_scale": 10.0, "n_points": 4096}
-# Sizes of the release checkpoint (ARCHITECTURE.md §2), for random-weight models of its shape.
+# Sizes of the release checkpoint (official_network.md §2), for random-weight models of its shape.
 RELEASE_SIZES = {"token_rows": 10269, "d_model": 1024, "n_layers": 24, "n_heads": 16, "attn_head_dim": 64,
                  "memory_slots": 4, "context_dim": 1024, "ff_mult": 4, "n_queries": 257, "encoder_width": 768,
                  "encoder_layers": 8, "fourier_freqs": 8, "max_seq_len": 10241}

@@ -1,4 +1,4 @@
-"""The release checkpoint's key layout (ARCHITECTURE.md §2, §5, §6): which keys are skipped, how a
+"""The release checkpoint's key layout (official_network.md §2, §5, §6): which keys are skipped, how a
 used key maps onto OfficialModel's parameter names, and the sizes its tensor shapes reveal."""
 from __future__ import annotations
 
@@ -79,7 +79,7 @@ def _count(infos: dict[str, TensorInfo], pattern: str) -> int:
 
 
 def sizes_from_shapes(infos: dict[str, TensorInfo]) -> dict:
-    """The sizes ARCHITECTURE.md §6 reads from tensor shapes (keys already unwrapped)."""
+    """The sizes official_network.md §6 reads from tensor shapes (keys already unwrapped)."""
     rows, d = _shape(infos, "token_embed.weight", 2)
     n_layer_entries = _count(infos, r"decoder\.layers\.(\d+)\.0\.0\.weight")
     if n_layer_entries == 0 or n_layer_entries % 3:

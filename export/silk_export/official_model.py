@@ -1,4 +1,4 @@
-"""The released Mesh Silksong network (ARCHITECTURE.md §3), written from that description: point
+"""The released Mesh Silksong network (official_network.md §3), written from that description: point
 encoder + conditioner projections, then a pre-norm decoder whose blocks run causal
 self-attention and cross-attention (both with L2 qk-norm and a fixed score scale of 10; the
 cross-attention prepends learned memory slots) and a GLU feed-forward.

@@ -1,6 +1,6 @@
 """Token ids for the model, read from engine/tokenizer/vocabulary_layout.json (the single source).
 
-Adds the model-only BOS id and the type-embedding classes of spec §9 / docs/model_contract.md."""
+Adds the model-only BOS id and the type-embedding classes of token_format.md §9 / docs/model_contract.md."""
 from __future__ import annotations
 
 import json
@@ -11,7 +11,7 @@ import numpy as np
 
 from .paths import vocabulary_layout_path
 
-# Type-embedding classes (spec §9): index 0 = no type vector (C, U, E, EOS, PAD, BOS).
+# Type-embedding classes (token_format.md §9): index 0 = no type vector (C, U, E, EOS, PAD, BOS).
 TYPE_CLASSES = ("X", "S", "B", "K", "O")
 
 

@@ -18,7 +18,7 @@ int main(void) {
     fprintf(stderr, "encode: %s\n", silk_last_error());
     return 2;
   }
-  if (silk_tokens_count(tokens) != 17 || stats.processed_faces != 4) return 3; /* spec §8.3: 17 tokens */
+  if (silk_tokens_count(tokens) != 17 || stats.processed_faces != 4) return 3; /* token_format.md §8.3: 17 tokens */
   if (silk_decode(tokens, NULL, &back) != SILK_OK) return 4;
   if (silk_mesh_triangle_count(back) != 4 || silk_mesh_vertex_count(back) != 4) return 5;
   /* errors: NULL arguments give a status and a message, never a crash */

@@ -19,11 +19,11 @@
 #include <nlohmann/json.hpp>
 
 #include "decoder/grammar.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 #include "silk/silk.h"
 #include "support/test_paths.h"
-#include "tokenizer/between_layer_encoder.h"
-#include "tokenizer/token_writer.h"
+#include "tokenizer/adjacency/between_layer_encoder.h"
+#include "tokenizer/packing/token_writer.h"
 
 namespace {
 
@@ -196,7 +196,7 @@ TEST(CapiTokens, CheckAcceptsGoldensAndNamesTheFirstIllegalId) {
   ASSERT_EQ(silk_tokens_check(t, &p, &r), SILK_OK);
   EXPECT_EQ(r.accepted, 1);
   silk_tokens_destroy(t);
-  // A PAD (never legal, spec §9) at index 5.
+  // A PAD (never legal, token_format.md §9) at index 5.
   std::vector<int32_t> pad = ids;
   pad[5] = silk_vocab().pad_id;
   t = MakeTokens(pad);

@@ -17,7 +17,7 @@
 
 #include "decoder/grammar.h"
 #include "decoder/random_walk.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 #include "support/test_paths.h"
 #include "tokenizer/vocabulary_layout.h"
 

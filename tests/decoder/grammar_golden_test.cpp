@@ -11,7 +11,7 @@
 
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 #include "mesh/vertex_fans.h"
 #include "support/test_paths.h"
 #include "tokenizer/tokenizer.h"
@@ -44,7 +44,7 @@ TEST(GrammarGolden, AllOfficialStreamsAccepted) {
     auto ids = ReadTokenText(f);
     ASSERT_TRUE(ids.ok()) << ids.status().ToString();
     GrammarOptions opt;
-    opt.max_length = 0;  // some dev streams exceed the model's 10240 (spec §9 rejects them for training)
+    opt.max_length = 0;  // some dev streams exceed the model's 10240 (token_format.md §9 rejects them for training)
     Grammar g(opt);
     for (size_t i = 0; i < ids->size(); ++i) {
       const int32_t id = (*ids)[i];

@@ -15,7 +15,7 @@
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
 #include "decoder/random_walk.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "decoder/grammar.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 #include "support/test_paths.h"
 
 namespace silk {
@@ -51,13 +51,13 @@ const Case kCases[] = {
     {"eos_at_end_ok", "cube", [](std::vector<int32_t>* v) { v->push_back(10267); }, RejectReason::kNone, -1},
     {"token_after_eos", "cube", [](std::vector<int32_t>* v) { v->push_back(10267); v->push_back(0); }, RejectReason::kAfterEos, 35},
     {"truncated", "cube", [](std::vector<int32_t>* v) { v->resize(30); }, RejectReason::kIncomplete, 30},
-    // Layer 1 allows only B id 460 (spec §11.3).
+    // Layer 1 allows only B id 460 (token_format.md §11.3).
     {"layer1_b459", "cube", [](std::vector<int32_t>* v) { (*v)[7] = 459; }, RejectReason::kBOutsidePrevLayer, 7},
     {"layer1_two_b", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 8, 460); }, RejectReason::kBContinuation, 8},
     // Cube layer 2 row over 6 columns: s=0 case 0 (459). s=1 case 0 reaches column 6 -> outside.
     {"b_outside", "cube", [](std::vector<int32_t>* v) { (*v)[32] = 459 + 26; }, RejectReason::kBOutsidePrevLayer, 32},
     {"b_continuation", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 33, 459 + 26 * 5 + 1); }, RejectReason::kBContinuation, 33},
-    // S window of a 1-vertex layer must be 0 (bits at distance >= N; spec §11.2).
+    // S window of a 1-vertex layer must be 0 (bits at distance >= N; token_format.md §11.2).
     {"window_beyond", "cube", [](std::vector<int32_t>* v) { (*v)[31] = 204; }, RejectReason::kLayerNotClosable, 33},
     // Cube layer 1 row 0 drops its d=5 bit (w=1): the partner row 5 still states the pair.
     {"window_inconsistent", "cube", [](std::vector<int32_t>* v) { (*v)[6] = 204; }, RejectReason::kLayerNotClosable, 28},

@@ -1,13 +1,13 @@
-// Hole detection and repair (spec §12.2): a between-layer 1 cleared in a closed golden leaves
+// Hole detection and repair (token_format.md §12.2): a between-layer 1 cleared in a closed golden leaves
 // a hole that policy "report" finds and policy "repair" closes (watertight again).
 #include <gtest/gtest.h>
 
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 #include "support/test_paths.h"
-#include "tokenizer/between_layer_encoder.h"
-#include "tokenizer/token_writer.h"
+#include "tokenizer/adjacency/between_layer_encoder.h"
+#include "tokenizer/packing/token_writer.h"
 
 namespace silk {
 namespace {

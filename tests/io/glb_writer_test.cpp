@@ -4,9 +4,9 @@
 
 #include <cstring>
 
-#include "io/glb_writer.h"
+#include "io/gltf/glb_writer.h"
 #include "io/mesh_reader.h"
-#include "io/ply_reader.h"
+#include "io/ply/ply_reader.h"
 
 namespace silk {
 namespace {

@@ -1,6 +1,6 @@
 // glTF reader: embedded-buffer .gltf and in-memory GLB built here, node transforms, strips,
 // non-indexed primitives, and the validation errors (cycles, bounds, missing buffers).
-#include "io/gltf_reader.h"
+#include "io/gltf/gltf_reader.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // OBJ reader: accepted statement forms, index rules, raw (unwelded) output, error messages.
-#include "io/obj_reader.h"
+#include "io/obj/obj_reader.h"
 
 #include <gtest/gtest.h>
 

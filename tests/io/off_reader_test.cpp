@@ -1,5 +1,5 @@
 // OFF reader: header forms, polygons, comments, plausibility of header counts.
-#include "io/off_reader.h"
+#include "io/off/off_reader.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // PLY reader: the three encodings, property types and aliases, skipped properties and
 // elements, plausibility checks before allocation, truncation errors.
-#include "io/ply_reader.h"
+#include "io/ply/ply_reader.h"
 
 #include <gtest/gtest.h>
 

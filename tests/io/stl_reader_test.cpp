@@ -1,5 +1,5 @@
 // STL reader: ascii, binary, binary whose header starts with "solid", raw vertices.
-#include "io/stl_reader.h"
+#include "io/stl/stl_reader.h"
 
 #include <gtest/gtest.h>
 

@@ -5,10 +5,10 @@
 
 #include <filesystem>
 
-#include "io/atomic_file.h"
+#include "io/files/atomic_file.h"
 #include "io/mesh_reader.h"
-#include "io/obj_writer.h"
-#include "io/ply_writer.h"
+#include "io/obj/obj_writer.h"
+#include "io/ply/ply_writer.h"
 #include "io_test_util.h"
 
 namespace silk {

@@ -6,7 +6,7 @@
 
 #include "decoder/grammar.h"
 #include "decoder/mesh_builder.h"
-#include "io/token_text.h"
+#include "io/tokens/token_text.h"
 #include "support/test_paths.h"
 #include "tokenizer/vocabulary_layout.h"
 

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/file_bytes.h"
+#include "io/files/file_bytes.h"
 #include "runtime/model.h"
 #include "runtime/model_config.h"
 #include "runtime_test_util.h"

@@ -103,7 +103,7 @@ TEST(Sampler, SameSeedSameDraws) {
   EXPECT_GT(differ_from_other_seed, 50);
 }
 
-// A small, independent statement of the official chain (ARCHITECTURE.md §4), written from the
+// A small, independent statement of the official chain (official_network.md §4), written from the
 // description rather than from sampler.cpp: sort candidates by logit; top-k; normalised
 // softmax at top_p_temperature; an id is removed when the cumulative probability up to the id
 // BEFORE it exceeds top_p; then normalised softmax(logit / temperature) over the rest and the

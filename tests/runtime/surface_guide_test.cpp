@@ -11,7 +11,7 @@
 #include "runtime/generator.h"
 #include "runtime/surface_guide.h"
 #include "runtime_test_util.h"
-#include "tokenizer/vertex_codec.h"
+#include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {

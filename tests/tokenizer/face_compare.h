@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "tokenizer/quantize.h"
+#include "tokenizer/cleanup/quantize.h"
 #include "tokenizer/tokenizer.h"
 
 namespace silk::testing {

@@ -75,7 +75,7 @@ INSTANTIATE_TEST_SUITE_P(
                       GoldenCase{"torus_24x6", 144, 288, false}, GoldenCase{"torus_12x8", 96, 192, false}),
     [](const ::testing::TestParamInfo<GoldenCase>& info) { return std::string(info.param.name); });
 
-// The root's fan has the encoder's winding (spec §10.6 step 2): cube face (root, l0, l1).
+// The root's fan has the encoder's winding (token_format.md §10.6 step 2): cube face (root, l0, l1).
 TEST(GoldenDecodeWinding, CubeRootFan) {
   const auto ids = testing::ReadIds(testing::SharedPath("spec/golden/cube.tokens.txt"));
   auto mesh = DecodeTokens(ids);

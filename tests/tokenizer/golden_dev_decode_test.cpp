@@ -18,7 +18,7 @@
 #include "mesh/normalize.h"
 #include "support/golden_files.h"
 #include "support/test_paths.h"
-#include "tokenizer/token_reader.h"
+#include "tokenizer/packing/token_reader.h"
 #include "tokenizer/tokenizer.h"
 
 namespace silk {

@@ -6,7 +6,7 @@
 #include <tuple>
 
 #include "tokenizer/processed_encoder.h"
-#include "tokenizer/token_writer.h"
+#include "tokenizer/packing/token_writer.h"
 
 namespace silk::testing {
 namespace {

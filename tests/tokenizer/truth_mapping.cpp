@@ -5,7 +5,7 @@
 #include <set>
 #include <tuple>
 
-#include "tokenizer/layer_adjacency.h"
+#include "tokenizer/adjacency/layer_adjacency.h"
 
 namespace silk::testing {
 namespace {

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "face_compare.h"
-#include "tokenizer/component_graph.h"
-#include "tokenizer/layered_stream.h"
+#include "tokenizer/face_recovery/component_graph.h"
+#include "tokenizer/packing/layered_stream.h"
 
 namespace silk::testing {
 

@@ -180,13 +180,13 @@ typedef struct silk_report silk_report;
 SILK_API const char* silk_report_json(const silk_report* report);
 SILK_API void silk_report_destroy(silk_report* report);
 
-/* ---- grammar check of a token stream (spec §9, §11) ----------------------------------- */
+/* ---- grammar check of a token stream (token_format.md §9, §11) ----------------------------------- */
 typedef enum silk_window_rule {
   SILK_WINDOW_CANONICAL = 0, /* the encoder's rule: self-layer rows must agree about each pair */
   SILK_WINDOW_UNION = 1      /* the official decoder's: a pair is an edge if either row says so */
 } silk_window_rule;
 typedef struct silk_check_params {
-  int32_t max_length;   /* tokens incl. EOS; 0 = unlimited; default 10240 (spec §9) */
+  int32_t max_length;   /* tokens incl. EOS; 0 = unlimited; default 10240 (token_format.md §9) */
   int32_t window_rule;  /* silk_window_rule; default SILK_WINDOW_CANONICAL */
   int32_t allow_prefix; /* 1: a stream that stops inside a component is accepted; default 0 */
 } silk_check_params;
@@ -204,7 +204,7 @@ SILK_API silk_status silk_tokens_check(const silk_tokens* tokens, const silk_che
 /* "wrong_class", "not_canonical", ... for a silk_check_result reason ("none" for 0; "unknown" out of range). */
 SILK_API const char* silk_reject_reason_name(int32_t reason);
 
-/* ---- hole repair of a token stream (spec §12.2) --------------------------------------- */
+/* ---- hole repair of a token stream (token_format.md §12.2) --------------------------------------- */
 /* What to do with holes (loops of open edges); also silk_generate_params.holes. */
 typedef enum silk_hole_policy { SILK_HOLES_OFF = 0, SILK_HOLES_REPORT = 1, SILK_HOLES_REPAIR = 2 } silk_hole_policy;
 typedef struct silk_repair_params {
@@ -255,7 +255,7 @@ typedef struct silk_preprocess_params {
   int32_t round_float16;          /* 1: points and normals rounded to float16 before the draw (official) */
   int32_t n_points;               /* rows produced; 4096 */
 } silk_preprocess_params;
-/* The defaults of a kind (official: ARCHITECTURE.md §4; silk: Silk's own sampling). */
+/* The defaults of a kind (official: official_network.md §4; silk: Silk's own sampling). */
 SILK_API silk_preprocess_params silk_preprocess_default_params(int32_t kind);
 /* Either a mesh (cloud NULL) or an oriented point cloud (mesh NULL; n_cloud rows of 6 doubles x y z
  * nx ny nz) -> rows of 6 floats (normalised xyz, normal), all draws from `seed`. Size query: with

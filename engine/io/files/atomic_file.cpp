@@ -1,0 +1,65 @@
+// mkstemp + write loop + fsync + rename, with cleanup on every failure path.
+#include "io/files/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+namespace silk {
+
+namespace {
+std::string DirOf(const std::string& path) {
+  size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+}  // namespace
+
+Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
+  if (path.empty()) return InvalidArgument("empty output path");
+  std::string tmpl = path + ".tmp.XXXXXX";
+  std::vector<char> buf(tmpl.begin(), tmpl.end());
+  buf.push_back('\0');
+  int fd = ::mkstemp(buf.data());
+  if (fd < 0) return IoError(path + ": cannot create temporary file: " + std::strerror(errno));
+  const std::string tmp(buf.data());
+  auto fail = [&](const std::string& what, int err) {
+    if (fd >= 0) ::close(fd);
+    ::unlink(tmp.c_str());
+    return IoError(path + ": " + what + ": " + std::strerror(err));
+  };
+  size_t done = 0;
+  while (done < bytes.size()) {
+    ssize_t w = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      return fail("write failed", errno);
+    }
+    done += static_cast<size_t>(w);
+  }
+  // mkstemp creates 0600; give the file the usual permissions (umask applies).
+  mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
+  if (::fsync(fd) != 0) return fail("fsync failed", errno);
+  if (::close(fd) != 0) {
+    fd = -1;
+    return fail("close failed", errno);
+  }
+  fd = -1;
+  if (::rename(tmp.c_str(), path.c_str()) != 0) return fail("rename failed", errno);
+  // Make the rename itself durable (best effort).
+  int dfd = ::open(DirOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+  return Status::Ok();
+}
+
+}  // namespace silk

@@ -1,0 +1,144 @@
+// OFF parsing: header keyword, counts line (may share the keyword's line), vertex lines,
+// face lines "n i0 i1 ... [color]".
+#include "io/off/off_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "io/files/number_parse.h"
+#include "io/polygon_fan.h"
+#include "io/read_error.h"
+#include "io/files/text_lines.h"
+
+namespace silk {
+
+namespace {
+
+// Next line that has something besides spaces and a comment; the comment is stripped.
+bool NextDataLine(TextLines* lines, std::string_view* line) {
+  while (lines->Next(line)) {
+    size_t hash = line->find('#');
+    if (hash != std::string_view::npos) *line = line->substr(0, hash);
+    if (!LineTokens(*line).AtEnd()) return true;
+  }
+  return false;
+}
+
+bool IsOffKeyword(std::string_view kw) {
+  return kw == "OFF" || kw == "COFF" || kw == "NOFF" || kw == "CNOFF" || kw == "STOFF" ||
+         kw == "STCOFF" || kw == "STNOFF" || kw == "STCNOFF";
+}
+
+}  // namespace
+
+StatusOr<RawMesh> ReadOff(std::string_view text, const std::string& name, const ReadOptions& opts) {
+  if (size_t bad = FindBinaryByte(text); bad != std::string_view::npos)
+    return ParseErrorIn(name, "binary byte at offset " + std::to_string(bad) + " (binary OFF is not supported)");
+  TextLines lines(text);
+  std::string_view line;
+  if (!NextDataLine(&lines, &line)) return ParseErrorIn(name, "empty file");
+  LineTokens head(line);
+  std::string_view kw;
+  head.Next(&kw);
+  if (!IsOffKeyword(kw))
+    return ParseErrorAt(name, lines.line_number(), "not an OFF file (no 'OFF' header)");
+  if (head.AtEnd()) {
+    if (!NextDataLine(&lines, &line)) return ParseErrorIn(name, "missing vertex/face counts");
+    head = LineTokens(line);
+  }
+  const int64_t counts_line = lines.line_number();
+  int64_t counts[3] = {0, 0, 0};
+  int ncounts = 0;
+  std::string_view tok;
+  while (head.Next(&tok)) {
+    if (ncounts == 3 || !ParseInt64Token(tok, &counts[ncounts]) || counts[ncounts] < 0)
+      return ParseErrorAt(name, counts_line, "bad counts line (expected '<vertices> <faces> [<edges>]')");
+    ++ncounts;
+  }
+  if (ncounts < 2) return ParseErrorAt(name, counts_line, "bad counts line (expected '<vertices> <faces> [<edges>]')");
+  const uint64_t nv = static_cast<uint64_t>(counts[0]);
+  const uint64_t nf = static_cast<uint64_t>(counts[1]);
+
+  // Plausibility before allocating: each record needs its own non-empty line. An
+  // implausible header is still read record by record (no reservation), so that a broken
+  // record is reported as such; running out of lines reports the header counts.
+  uint64_t data_lines = 0;
+  {
+    TextLines probe = lines;
+    std::string_view l;
+    while (data_lines < nv + nf && NextDataLine(&probe, &l)) ++data_lines;
+  }
+  const bool plausible = data_lines >= nv + nf;
+  const Status too_few = ParseErrorAt(name, counts_line, "header says " + std::to_string(nv) + " vertices and " +
+                                                             std::to_string(nf) + " faces but only " +
+                                                             std::to_string(data_lines) + " data lines follow");
+  const uint64_t max_vertices = std::min<uint64_t>(opts.max_vertices, INT32_MAX);
+  if (plausible && nv > max_vertices)
+    return LimitErrorIn(name, std::to_string(nv) + " vertices exceed the limit " + std::to_string(max_vertices));
+  if (plausible && nf > opts.max_triangles)
+    return LimitErrorIn(name, std::to_string(nf) + " faces exceed the limit " + std::to_string(opts.max_triangles));
+
+  RawMesh mesh;
+  if (plausible) {
+    mesh.positions.reserve(nv);
+    mesh.triangles.reserve(nf);
+  }
+  for (uint64_t i = 0; i < nv; ++i) {
+    if (!NextDataLine(&lines, &line)) return too_few;
+    const int64_t ln = lines.line_number();
+    LineTokens toks(line);
+    std::array<double, 3> p;
+    for (int k = 0; k < 3; ++k) {
+      if (!toks.Next(&tok)) return ParseErrorAt(name, ln, "vertex " + std::to_string(i) + " has fewer than 3 coordinates");
+      if (!ParseDoubleToken(tok, &p[k]))
+        return ParseErrorAt(name, ln, "vertex " + std::to_string(i) + ": bad coordinate '" +
+                                          std::string(tok.substr(0, 32)) + "'");
+      if (!std::isfinite(p[k]))
+        return ParseErrorAt(name, ln, "vertex " + std::to_string(i) + ": non-finite coordinate");
+    }
+    mesh.positions.push_back(p);
+  }
+  std::vector<int32_t> corners;
+  for (uint64_t f = 0; f < nf; ++f) {
+    if (!NextDataLine(&lines, &line)) return too_few;
+    const int64_t ln = lines.line_number();
+    LineTokens toks(line);
+    int64_t n = 0;
+    toks.Next(&tok);
+    if (!ParseInt64Token(tok, &n) || n < 0)
+      return ParseErrorAt(name, ln, "face " + std::to_string(f) + ": bad corner count '" +
+                                        std::string(tok.substr(0, 32)) + "'");
+    if (n < 3)
+      return ParseErrorAt(name, ln, "face " + std::to_string(f) + " has " + std::to_string(n) +
+                                        " corner(s), at least 3 needed");
+    corners.clear();
+    for (int64_t k = 0; k < n; ++k) {
+      int64_t idx;
+      if (!toks.Next(&tok))
+        return ParseErrorAt(name, ln, "face " + std::to_string(f) + " declares " + std::to_string(n) +
+                                          " corners but has " + std::to_string(k) + " indices");
+      if (!ParseInt64Token(tok, &idx))
+        return ParseErrorAt(name, ln, "face " + std::to_string(f) + ": bad vertex index '" +
+                                          std::string(tok.substr(0, 32)) + "'");
+      if (idx < 0 || static_cast<uint64_t>(idx) >= nv)
+        return ParseErrorAt(name, ln, "face " + std::to_string(f) + ": vertex index " + std::to_string(idx) +
+                                          " out of range (" + std::to_string(nv) + " vertices)");
+      corners.push_back(static_cast<int32_t>(idx));
+    }
+    // Anything after the indices is an optional color; it must be numeric.
+    while (toks.Next(&tok)) {
+      double ignored;
+      if (!ParseDoubleToken(tok, &ignored))
+        return ParseErrorAt(name, ln, "face " + std::to_string(f) + ": unexpected '" +
+                                          std::string(tok.substr(0, 32)) + "' after the indices");
+    }
+    if (mesh.triangles.size() + corners.size() - 2 > opts.max_triangles)
+      return LimitErrorIn(name, "more than " + std::to_string(opts.max_triangles) + " triangles");
+    AppendFan(corners.data(), corners.size(), &mesh);
+  }
+  if (mesh.triangles.empty()) return ParseErrorIn(name, "no faces");
+  return mesh;
+}
+
+}  // namespace silk
