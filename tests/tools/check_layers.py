@@ -8,6 +8,8 @@ Order: core -> io -> mesh -> tokenizer -> decoder -> runtime -> capi (the C API 
                                         #include "..." is one of those or a file of the app itself
   check_layers.py --apps-selftest       the apps check on a scratch app that includes
                                         "tokenizer/tokenizer.h" must fail (the check can fail)
+  check_layers.py --folders ENGINE_DIR  no engine folder holds more than 40 source files
+                                        directly (a larger one wants sub-folders by concern)
 """
 import pathlib, re, sys, tempfile
 
@@ -65,10 +67,25 @@ def selftest():
     return [] if ok else ["the apps check does not catch an engine-internal include"], "apps check selftest"
 
 
+MAX_FILES_PER_FOLDER = 40
+
+
+def check_folders(root):
+    bad, folders = [], 0
+    for d in sorted([root] + [p for p in root.rglob("*") if p.is_dir()]):
+        folders += 1
+        n = sum(1 for f in d.iterdir() if f.is_file() and f.suffix in SOURCES)
+        if n > MAX_FILES_PER_FOLDER:
+            bad.append(f"{d}: {n} source files directly inside (at most {MAX_FILES_PER_FOLDER})")
+    return bad, f"checked {folders} folders under {root}"
+
+
 def main():
     args = sys.argv[1:]
     if args[:1] == ["--apps"]:
         bad, what = check_apps(pathlib.Path(args[1] if len(args) > 1 else "apps"))
+    elif args[:1] == ["--folders"]:
+        bad, what = check_folders(pathlib.Path(args[1] if len(args) > 1 else "engine"))
     elif args[:1] == ["--apps-selftest"]:
         bad, what = selftest()
     else:
