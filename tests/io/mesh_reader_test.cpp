@@ -7,7 +7,7 @@
 #include <zlib.h>
 #endif
 
-#include "io_test_util.h"
+#include "io/io_test_util.h"
 
 namespace silk {
 namespace {

@@ -9,7 +9,7 @@
 #include "io/mesh_reader.h"
 #include "io/obj/obj_writer.h"
 #include "io/ply/ply_writer.h"
-#include "io_test_util.h"
+#include "io/io_test_util.h"
 
 namespace silk {
 namespace {

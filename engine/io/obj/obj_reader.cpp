@@ -1,7 +1,6 @@
 // OBJ parsing: one pass over lines, strict numbers, index validation with line numbers.
 #include "io/obj/obj_reader.h"
 
-#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cmath>
@@ -45,6 +44,83 @@ bool ValidCornerTail(std::string_view tail) {
   return true;
 }
 
+// Line prologue: drops the '#' comment and refuses a binary byte (a binary file is not OBJ).
+Status StripCommentAndCheckText(std::string_view* line, int64_t ln, const std::string& name) {
+  size_t hash = line->find('#');
+  if (hash != std::string_view::npos) *line = line->substr(0, hash);
+  size_t bad = FindBinaryByte(*line);
+  if (bad == std::string_view::npos) return Status::Ok();
+  char hex[8];
+  std::snprintf(hex, sizeof(hex), "0x%02x", static_cast<unsigned char>((*line)[bad]));
+  return ParseErrorAt(name, ln, std::string("binary byte ") + hex + " (not a text OBJ file)");
+}
+
+// "v x y z [w | r g b]": appends the position; the optional values must still be numbers.
+Status ReadObjVertex(LineTokens* toks, int64_t ln, const std::string& name, uint64_t max_vertices, RawMesh* mesh) {
+  std::array<double, 3> p;
+  std::string_view t;
+  for (int k = 0; k < 3; ++k) {
+    if (!toks->Next(&t)) return ParseErrorAt(name, ln, "vertex has fewer than 3 coordinates");
+    if (!ParseDoubleToken(t, &p[k])) return ParseErrorAt(name, ln, "bad vertex coordinate '" + std::string(t) + "'");
+    if (!std::isfinite(p[k]))
+      return ParseErrorAt(name, ln, "vertex " + std::to_string(mesh->positions.size() + 1) +
+                                        " has a non-finite coordinate '" + std::string(t) + "'");
+  }
+  while (toks->Next(&t)) {
+    double ignored;
+    if (!ParseDoubleToken(t, &ignored)) return ParseErrorAt(name, ln, "bad vertex value '" + std::string(t) + "'");
+  }
+  if (mesh->positions.size() >= max_vertices)
+    return LimitErrorIn(name, "more than " + std::to_string(max_vertices) + " vertices");
+  mesh->positions.push_back(p);
+  return Status::Ok();
+}
+
+// One face corner "v[/vt][/vn]" as a 0-based vertex index; negative indices count back from
+// the last vertex read so far (`nverts`).
+StatusOr<int32_t> ObjCornerIndex(std::string_view t, int64_t nverts, int64_t ln, const std::string& name) {
+  size_t slash = t.find('/');
+  std::string_view head = t.substr(0, slash);
+  int64_t idx;
+  if (!ParseInt64Token(head, &idx) || (slash != std::string_view::npos && !ValidCornerTail(t.substr(slash))))
+    return ParseErrorAt(name, ln, "bad face corner '" + std::string(t) + "'");
+  if (idx == 0) return ParseErrorAt(name, ln, "face index 0 is invalid (OBJ indices start at 1)");
+  const int64_t zero_based = idx < 0 ? nverts + idx : idx - 1;
+  if (zero_based < 0 || zero_based >= nverts)
+    return ParseErrorAt(name, ln, "face index " + std::to_string(idx) + " out of range (" + std::to_string(nverts) +
+                                      " vertices)");
+  return static_cast<int32_t>(zero_based);
+}
+
+// "f c0 c1 c2 ...": at least 3 corners, fan-triangulated into the mesh.
+Status ReadObjFace(LineTokens* toks, int64_t ln, const std::string& name, const ReadOptions& opts,
+                   std::vector<int32_t>* corners, RawMesh* mesh) {
+  corners->clear();
+  std::string_view t;
+  const int64_t nverts = static_cast<int64_t>(mesh->positions.size());
+  while (toks->Next(&t)) {
+    SILK_ASSIGN_OR_RETURN(const int32_t corner, ObjCornerIndex(t, nverts, ln, name));
+    corners->push_back(corner);
+  }
+  if (corners->size() < 3)
+    return ParseErrorAt(name, ln, "face has " + std::to_string(corners->size()) + " corner(s), at least 3 needed");
+  return AppendFanWithinLimit(*corners, name, opts, mesh);
+}
+
+// Other statements: vt, vn, vp, o, g, s, usemtl, mtllib are geometry we do not use; l, p and
+// free-form statements are ignored with a warning (the first kMaxWarnings of them).
+Status NoteOtherStatement(std::string_view kw, int64_t ln, const std::string& name, int64_t* ignored_statements,
+                          RawMesh* mesh) {
+  if (!IsIdentifier(kw))
+    return ParseErrorAt(name, ln, "not an OBJ statement: '" + std::string(kw.substr(0, 32)) + "'");
+  if (kw == "vt" || kw == "vn" || kw == "vp" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" ||
+      kw == "mtllib")
+    return Status::Ok();
+  if (++*ignored_statements <= static_cast<int64_t>(kMaxWarnings))
+    mesh->warnings.push_back(name + ":" + std::to_string(ln) + ": ignored statement '" + std::string(kw) + "'");
+  return Status::Ok();
+}
+
 }  // namespace
 
 StatusOr<RawMesh> ReadObj(std::string_view text, const std::string& name, const ReadOptions& opts) {
@@ -54,89 +130,22 @@ StatusOr<RawMesh> ReadObj(std::string_view text, const std::string& name, const 
   std::string_view line;
   std::vector<int32_t> corners;
   int64_t ignored_statements = 0;
-  const uint64_t max_vertices = std::min<uint64_t>(opts.max_vertices, INT32_MAX);
+  const uint64_t max_vertices = VertexLimit(opts);
 
   while (lines.Next(&line)) {
     const int64_t ln = lines.line_number();
-    size_t hash = line.find('#');
-    if (hash != std::string_view::npos) line = line.substr(0, hash);
-    size_t bad = FindBinaryByte(line);
-    if (bad != std::string_view::npos) {
-      char hex[8];
-      std::snprintf(hex, sizeof(hex), "0x%02x", static_cast<unsigned char>(line[bad]));
-      return ParseErrorAt(name, ln, std::string("binary byte ") + hex + " (not a text OBJ file)");
-    }
+    SILK_RETURN_IF_ERROR(StripCommentAndCheckText(&line, ln, name));
     LineTokens toks(line);
     std::string_view kw;
     if (!toks.Next(&kw)) continue;
-
     if (kw == "v") {
-      std::array<double, 3> p;
-      for (int k = 0; k < 3; ++k) {
-        std::string_view t;
-        if (!toks.Next(&t)) return ParseErrorAt(name, ln, "vertex has fewer than 3 coordinates");
-        if (!ParseDoubleToken(t, &p[k]))
-          return ParseErrorAt(name, ln, "bad vertex coordinate '" + std::string(t) + "'");
-        if (!std::isfinite(p[k]))
-          return ParseErrorAt(name, ln, "vertex " + std::to_string(mesh.positions.size() + 1) +
-                                            " has a non-finite coordinate '" + std::string(t) + "'");
-      }
-      // Optional w or r g b values: must still be numbers.
-      std::string_view t;
-      while (toks.Next(&t)) {
-        double ignored;
-        if (!ParseDoubleToken(t, &ignored))
-          return ParseErrorAt(name, ln, "bad vertex value '" + std::string(t) + "'");
-      }
-      if (mesh.positions.size() >= max_vertices)
-        return LimitErrorIn(name, "more than " + std::to_string(max_vertices) + " vertices");
-      mesh.positions.push_back(p);
+      SILK_RETURN_IF_ERROR(ReadObjVertex(&toks, ln, name, max_vertices, &mesh));
     } else if (kw == "f") {
-      corners.clear();
-      std::string_view t;
-      const int64_t nverts = static_cast<int64_t>(mesh.positions.size());
-      while (toks.Next(&t)) {
-        size_t slash = t.find('/');
-        std::string_view head = t.substr(0, slash);
-        int64_t idx;
-        if (!ParseInt64Token(head, &idx) ||
-            (slash != std::string_view::npos && !ValidCornerTail(t.substr(slash))))
-          return ParseErrorAt(name, ln, "bad face corner '" + std::string(t) + "'");
-        if (idx == 0)
-          return ParseErrorAt(name, ln, "face index 0 is invalid (OBJ indices start at 1)");
-        int64_t zero_based;
-        if (idx < 0) {
-          zero_based = nverts + idx;
-          if (zero_based < 0)
-            return ParseErrorAt(name, ln, "face index " + std::to_string(idx) + " out of range (" +
-                                              std::to_string(nverts) + " vertices)");
-        } else {
-          zero_based = idx - 1;
-          if (zero_based >= nverts)
-            return ParseErrorAt(name, ln, "face index " + std::to_string(idx) + " out of range (" +
-                                              std::to_string(nverts) + " vertices)");
-        }
-        corners.push_back(static_cast<int32_t>(zero_based));
-      }
-      if (corners.size() < 3)
-        return ParseErrorAt(name, ln, "face has " + std::to_string(corners.size()) +
-                                          " corner(s), at least 3 needed");
-      if (mesh.triangles.size() + corners.size() - 2 > opts.max_triangles)
-        return LimitErrorIn(name, "more than " + std::to_string(opts.max_triangles) + " triangles");
-      AppendFan(corners.data(), corners.size(), &mesh);
-    } else if (IsIdentifier(kw)) {
-      // vt, vn, vp, o, g, s, usemtl, mtllib, l, p and free-form statements: not geometry we use.
-      if (kw != "vt" && kw != "vn" && kw != "vp" && kw != "o" && kw != "g" && kw != "s" &&
-          kw != "usemtl" && kw != "mtllib") {
-        if (++ignored_statements <= static_cast<int64_t>(kMaxWarnings))
-          mesh.warnings.push_back(name + ":" + std::to_string(ln) + ": ignored statement '" +
-                                  std::string(kw) + "'");
-      }
+      SILK_RETURN_IF_ERROR(ReadObjFace(&toks, ln, name, opts, &corners, &mesh));
     } else {
-      return ParseErrorAt(name, ln, "not an OBJ statement: '" + std::string(kw.substr(0, 32)) + "'");
+      SILK_RETURN_IF_ERROR(NoteOtherStatement(kw, ln, name, &ignored_statements, &mesh));
     }
   }
-
   if (mesh.triangles.empty()) return ParseErrorIn(name, "no faces");
   return mesh;
 }

@@ -36,6 +36,70 @@ std::optional<PlyType> TypeFromName(std::string_view s) {
   return std::nullopt;
 }
 
+// "format <ascii|binary_little_endian|binary_big_endian> 1.0".
+Status ParseFormatLine(LineTokens* toks, const std::string& name, int64_t ln, PlyHeader* h) {
+  std::string_view f, ver;
+  if (!toks->Next(&f) || !toks->Next(&ver) || !toks->AtEnd()) return ParseErrorAt(name, ln, "bad format line");
+  if (f == "ascii") h->format = PlyFormat::kAscii;
+  else if (f == "binary_little_endian") h->format = PlyFormat::kBinaryLittleEndian;
+  else if (f == "binary_big_endian") h->format = PlyFormat::kBinaryBigEndian;
+  else return ParseErrorAt(name, ln, "unknown PLY format '" + std::string(f) + "'");
+  if (ver != "1.0") return ParseErrorAt(name, ln, "unsupported PLY version '" + std::string(ver) + "'");
+  return Status::Ok();
+}
+
+// "element <name> <count>": opens a new element for the property lines that follow.
+Status ParseElementLine(LineTokens* toks, const std::string& name, int64_t ln, PlyHeader* h) {
+  std::string_view en, cnt;
+  int64_t count = 0;
+  if (!toks->Next(&en) || !toks->Next(&cnt) || !toks->AtEnd() || !ParseInt64Token(cnt, &count) || count < 0)
+    return ParseErrorAt(name, ln, "bad element line (expected 'element <name> <count>')");
+  PlyElement e;
+  e.name = std::string(en);
+  e.count = static_cast<uint64_t>(count);
+  e.line = ln;
+  h->elements.push_back(std::move(e));
+  return Status::Ok();
+}
+
+// The rest of "property list <count type> <value type> <name>" after "list".
+Status ParseListProperty(LineTokens* toks, const std::string& name, int64_t ln, PlyProperty* p) {
+  std::string_view ct, vt, pn;
+  if (!toks->Next(&ct) || !toks->Next(&vt) || !toks->Next(&pn) || !toks->AtEnd())
+    return ParseErrorAt(name, ln, "bad list property line");
+  auto c = TypeFromName(ct);
+  auto v = TypeFromName(vt);
+  if (!c || !v) return ParseErrorAt(name, ln, "unknown property type in list");
+  if (!PlyTypeIsInteger(*c)) return ParseErrorAt(name, ln, "list count type must be an integer type");
+  p->is_list = true;
+  p->count_type = *c;
+  p->value_type = *v;
+  p->name = std::string(pn);
+  return Status::Ok();
+}
+
+// "property <type> <name>" or "property list ...": adds a property to the last element.
+Status ParsePropertyLine(LineTokens* toks, const std::string& name, int64_t ln, PlyHeader* h) {
+  if (h->elements.empty()) return ParseErrorAt(name, ln, "property before any element");
+  PlyProperty p;
+  std::string_view t1;
+  if (!toks->Next(&t1)) return ParseErrorAt(name, ln, "bad property line");
+  if (t1 == "list") {
+    SILK_RETURN_IF_ERROR(ParseListProperty(toks, name, ln, &p));
+  } else {
+    std::string_view pn;
+    auto v = TypeFromName(t1);
+    if (!v) return ParseErrorAt(name, ln, "unknown property type '" + std::string(t1) + "'");
+    if (!toks->Next(&pn) || !toks->AtEnd()) return ParseErrorAt(name, ln, "bad property line");
+    p.value_type = *v;
+    p.name = std::string(pn);
+  }
+  for (const PlyProperty& q : h->elements.back().properties)
+    if (q.name == p.name) return ParseErrorAt(name, ln, "duplicate property '" + p.name + "'");
+  h->elements.back().properties.push_back(std::move(p));
+  return Status::Ok();
+}
+
 }  // namespace
 
 StatusOr<PlyHeader> ParsePlyHeader(std::string_view data, const std::string& name) {
@@ -65,54 +129,12 @@ StatusOr<PlyHeader> ParsePlyHeader(std::string_view data, const std::string& nam
       return h;
     }
     if (kw == "format") {
-      std::string_view f, ver;
-      if (!toks.Next(&f) || !toks.Next(&ver) || !toks.AtEnd())
-        return ParseErrorAt(name, ln, "bad format line");
-      if (f == "ascii") h.format = PlyFormat::kAscii;
-      else if (f == "binary_little_endian") h.format = PlyFormat::kBinaryLittleEndian;
-      else if (f == "binary_big_endian") h.format = PlyFormat::kBinaryBigEndian;
-      else return ParseErrorAt(name, ln, "unknown PLY format '" + std::string(f) + "'");
-      if (ver != "1.0") return ParseErrorAt(name, ln, "unsupported PLY version '" + std::string(ver) + "'");
+      SILK_RETURN_IF_ERROR(ParseFormatLine(&toks, name, ln, &h));
       have_format = true;
     } else if (kw == "element") {
-      std::string_view en, cnt;
-      int64_t count = 0;
-      if (!toks.Next(&en) || !toks.Next(&cnt) || !toks.AtEnd() || !ParseInt64Token(cnt, &count) ||
-          count < 0)
-        return ParseErrorAt(name, ln, "bad element line (expected 'element <name> <count>')");
-      PlyElement e;
-      e.name = std::string(en);
-      e.count = static_cast<uint64_t>(count);
-      e.line = ln;
-      h.elements.push_back(std::move(e));
+      SILK_RETURN_IF_ERROR(ParseElementLine(&toks, name, ln, &h));
     } else if (kw == "property") {
-      if (h.elements.empty()) return ParseErrorAt(name, ln, "property before any element");
-      PlyProperty p;
-      std::string_view t1;
-      if (!toks.Next(&t1)) return ParseErrorAt(name, ln, "bad property line");
-      if (t1 == "list") {
-        std::string_view ct, vt, pn;
-        if (!toks.Next(&ct) || !toks.Next(&vt) || !toks.Next(&pn) || !toks.AtEnd())
-          return ParseErrorAt(name, ln, "bad list property line");
-        auto c = TypeFromName(ct);
-        auto v = TypeFromName(vt);
-        if (!c || !v) return ParseErrorAt(name, ln, "unknown property type in list");
-        if (!PlyTypeIsInteger(*c)) return ParseErrorAt(name, ln, "list count type must be an integer type");
-        p.is_list = true;
-        p.count_type = *c;
-        p.value_type = *v;
-        p.name = std::string(pn);
-      } else {
-        std::string_view pn;
-        auto v = TypeFromName(t1);
-        if (!v) return ParseErrorAt(name, ln, "unknown property type '" + std::string(t1) + "'");
-        if (!toks.Next(&pn) || !toks.AtEnd()) return ParseErrorAt(name, ln, "bad property line");
-        p.value_type = *v;
-        p.name = std::string(pn);
-      }
-      for (const PlyProperty& q : h.elements.back().properties)
-        if (q.name == p.name) return ParseErrorAt(name, ln, "duplicate property '" + p.name + "'");
-      h.elements.back().properties.push_back(std::move(p));
+      SILK_RETURN_IF_ERROR(ParsePropertyLine(&toks, name, ln, &h));
     } else {
       return ParseErrorAt(name, ln, "unknown PLY header keyword '" + std::string(kw.substr(0, 32)) + "'");
     }

@@ -1,7 +1,6 @@
 // PLY body reading for the three encodings, driven by the parsed header.
 #include "io/ply/ply_reader.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -114,7 +113,7 @@ class PlyBodyReader {
         if (!std::isfinite(c)) return ParseErrorIn(name_, Item(e, i) + ": non-finite normal");
       normals_->push_back(n);
     }
-    if (mesh_->positions.size() >= std::min<uint64_t>(opts_.max_vertices, INT32_MAX))
+    if (mesh_->positions.size() >= VertexLimit(opts_))
       return LimitErrorIn(name_, "more than " + std::to_string(opts_.max_vertices) + " vertices");
     mesh_->positions.push_back(p);
     return Status::Ok();
@@ -124,16 +123,12 @@ class PlyBodyReader {
     if (corners_.size() < 3)
       return ParseErrorIn(name_, Item(e, i) + ": " + std::to_string(corners_.size()) +
                                      " corner(s), at least 3 needed");
-    if (mesh_->triangles.size() + corners_.size() - 2 > opts_.max_triangles)
-      return LimitErrorIn(name_, "more than " + std::to_string(opts_.max_triangles) + " triangles");
-    AppendFan(corners_.data(), corners_.size(), mesh_);
-    return Status::Ok();
+    return AppendFanWithinLimit(corners_, name_, opts_, mesh_);
   }
 
   Status CheckIndex(const PlyElement& e, uint64_t i, int64_t v) {
     if (v < 0 || static_cast<uint64_t>(v) >= vertex_count_)
-      return ParseErrorIn(name_, Item(e, i) + ": vertex index " + std::to_string(v) +
-                                     " out of range (" + std::to_string(vertex_count_) + " vertices)");
+      return ParseErrorIn(name_, Item(e, i) + ": " + VertexIndexOutOfRange(v, vertex_count_));
     corners_.push_back(static_cast<int32_t>(v));
     return Status::Ok();
   }
@@ -254,117 +249,149 @@ class PlyBodyReader {
 
 namespace {
 
+// What the body reader does with the header's elements: one ElementPlan per element, and
+// which elements hold the vertices and the faces.
+struct ReadPlan {
+  std::vector<ElementPlan> elements;
+  const PlyElement* vertex = nullptr;
+  const PlyElement* face = nullptr;
+  bool normals = false;  // normals were asked for and the vertex element has nx, ny and nz
+};
+
+// Plan of the vertex element: x, y and z are required scalars; nx, ny and nz are read when
+// asked for and all three are scalars (otherwise the normals are left out).
+Status PlanVertexElement(const PlyElement& e, const std::string& name, bool want_normals, ElementPlan* plan,
+                         bool* normals) {
+  plan->is_vertex = true;
+  const char* axes[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a) {
+    bool found = false;
+    for (size_t k = 0; k < e.properties.size(); ++k) {
+      if (e.properties[k].name != axes[a]) continue;
+      if (e.properties[k].is_list)
+        return ParseErrorAt(name, e.line, std::string("vertex property '") + axes[a] + "' is a list");
+      plan->roles[k] = static_cast<Role>(static_cast<int>(Role::kX) + a);
+      found = true;
+    }
+    if (!found) return ParseErrorAt(name, e.line, std::string("vertex element has no property '") + axes[a] + "'");
+  }
+  if (!want_normals) return Status::Ok();
+  const char* naxes[3] = {"nx", "ny", "nz"};
+  int n_found = 0;
+  for (int a = 0; a < 3; ++a)
+    for (size_t k = 0; k < e.properties.size(); ++k)
+      if (e.properties[k].name == naxes[a] && !e.properties[k].is_list) ++n_found;
+  *normals = n_found == 3;
+  if (!*normals) return Status::Ok();  // no (complete) normals: positions only
+  for (int a = 0; a < 3; ++a)
+    for (size_t k = 0; k < e.properties.size(); ++k)
+      if (e.properties[k].name == naxes[a] && !e.properties[k].is_list)
+        plan->roles[k] = static_cast<Role>(static_cast<int>(Role::kNx) + a);
+  return Status::Ok();
+}
+
+// Plan of the face element: exactly one integer list named vertex_indices or vertex_index.
+Status PlanFaceElement(const PlyElement& e, const std::string& name, ElementPlan* plan) {
+  for (size_t k = 0; k < e.properties.size(); ++k) {
+    const PlyProperty& p = e.properties[k];
+    if (!p.is_list || (p.name != "vertex_indices" && p.name != "vertex_index")) continue;
+    if (plan->is_face) return ParseErrorAt(name, e.line, "face element has both vertex_indices and vertex_index");
+    if (!PlyTypeIsInteger(p.value_type))
+      return ParseErrorAt(name, e.line, "face list '" + p.name + "' has a non-integer index type");
+    plan->roles[k] = Role::kFaceList;
+    plan->is_face = true;
+  }
+  if (!plan->is_face) return ParseErrorAt(name, e.line, "face element has no vertex_indices list");
+  return Status::Ok();
+}
+
+// Plan phase: which element is the vertex / face element and what each property is used for.
+StatusOr<ReadPlan> PlanElements(const PlyHeader& h, const std::string& name, bool want_normals) {
+  ReadPlan r;
+  for (const PlyElement& e : h.elements) {
+    for (const ElementPlan& q : r.elements)
+      if (q.element->name == e.name) return ParseErrorAt(name, e.line, "duplicate element '" + e.name + "'");
+    ElementPlan plan;
+    plan.element = &e;
+    plan.roles.assign(e.properties.size(), Role::kSkip);
+    if (e.name == "vertex") {
+      SILK_RETURN_IF_ERROR(PlanVertexElement(e, name, want_normals, &plan, &r.normals));
+      r.vertex = &e;
+    } else if (e.name == "face") {
+      SILK_RETURN_IF_ERROR(PlanFaceElement(e, name, &plan));
+      r.face = &e;
+    }
+    r.elements.push_back(std::move(plan));
+  }
+  if (!r.vertex) return ParseErrorIn(name, "no 'vertex' element");
+  return r;
+}
+
+// Fewest bytes one item of the element can take (a face list counted with 3 indices).
+uint64_t MinItemBytes(const ElementPlan& plan, bool ascii) {
+  const PlyElement& e = *plan.element;
+  uint64_t min_item = 0;
+  for (size_t k = 0; k < e.properties.size(); ++k) {
+    const PlyProperty& p = e.properties[k];
+    const uint64_t values = plan.roles[k] == Role::kFaceList ? 3 : 0;
+    if (ascii) min_item += 2 * (1 + (p.is_list ? values : 0));
+    else min_item += p.is_list ? PlyTypeSize(p.count_type) + values * PlyTypeSize(p.value_type)
+                               : PlyTypeSize(p.value_type);
+  }
+  return min_item;
+}
+
+// Plausibility: every element's declared count must fit in the `remaining` bytes after the
+// header. Only a plausible header is trusted for allocation; an implausible one is still read
+// (growing with the data actually present) so the error names the first missing item.
+bool CountsFitBody(const PlyHeader& h, const std::vector<ElementPlan>& plans, uint64_t remaining) {
+  const bool ascii = h.format == PlyFormat::kAscii;
+  const uint64_t slack = ascii ? 1 : 0;  // the last ascii line may lack its newline
+  uint64_t needed = 0;
+  for (const ElementPlan& plan : plans) {
+    const PlyElement& e = *plan.element;
+    if (e.count == 0 || e.properties.empty()) continue;
+    const uint64_t min_item = MinItemBytes(plan, ascii);
+    if (e.count > (remaining + slack) / min_item || needed + e.count * min_item > remaining + slack) return false;
+    needed += e.count * min_item;
+  }
+  return true;
+}
+
+// Limits on the declared (and plausible) vertex and face counts, before anything is reserved.
+Status CheckDeclaredCounts(const ReadPlan& plan, const std::string& name, const ReadOptions& opts) {
+  const uint64_t max_vertices = VertexLimit(opts);
+  if (plan.vertex->count > max_vertices)
+    return LimitErrorIn(name, "header declares " + std::to_string(plan.vertex->count) + " vertices (limit " +
+                                  std::to_string(max_vertices) + ")");
+  if (plan.face && plan.face->count > opts.max_triangles)
+    return LimitErrorIn(name, "header declares " + std::to_string(plan.face->count) + " faces (limit " +
+                                  std::to_string(opts.max_triangles) + ")");
+  return Status::Ok();
+}
+
 // Shared body of ReadPly and ReadPlyPointCloud: `normals` non-null reads nx/ny/nz when the
 // vertex element has all three (left empty otherwise) and allows a file without faces.
 StatusOr<RawMesh> ReadPlyImpl(std::string_view data, const std::string& name, const ReadOptions& opts,
                               std::vector<std::array<double, 3>>* normals) {
   const bool normals_requested = normals != nullptr;
   SILK_ASSIGN_OR_RETURN(PlyHeader h, ParsePlyHeader(data, name));
-
-  // Plan: which element is the vertex / face element and what each property is used for.
-  std::vector<ElementPlan> plans;
-  const PlyElement* vertex = nullptr;
-  const PlyElement* face = nullptr;
-  for (const PlyElement& e : h.elements) {
-    for (const ElementPlan& q : plans)
-      if (q.element->name == e.name)
-        return ParseErrorAt(name, e.line, "duplicate element '" + e.name + "'");
-    ElementPlan plan;
-    plan.element = &e;
-    plan.roles.assign(e.properties.size(), Role::kSkip);
-    if (e.name == "vertex") {
-      plan.is_vertex = true;
-      vertex = &e;
-      const char* axes[3] = {"x", "y", "z"};
-      for (int a = 0; a < 3; ++a) {
-        bool found = false;
-        for (size_t k = 0; k < e.properties.size(); ++k) {
-          if (e.properties[k].name != axes[a]) continue;
-          if (e.properties[k].is_list)
-            return ParseErrorAt(name, e.line, std::string("vertex property '") + axes[a] + "' is a list");
-          plan.roles[k] = static_cast<Role>(static_cast<int>(Role::kX) + a);
-          found = true;
-        }
-        if (!found)
-          return ParseErrorAt(name, e.line, std::string("vertex element has no property '") + axes[a] + "'");
-      }
-      if (normals) {
-        const char* naxes[3] = {"nx", "ny", "nz"};
-        int n_found = 0;
-        for (int a = 0; a < 3; ++a)
-          for (size_t k = 0; k < e.properties.size(); ++k)
-            if (e.properties[k].name == naxes[a] && !e.properties[k].is_list) ++n_found;
-        if (n_found == 3) {
-          for (int a = 0; a < 3; ++a)
-            for (size_t k = 0; k < e.properties.size(); ++k)
-              if (e.properties[k].name == naxes[a] && !e.properties[k].is_list)
-                plan.roles[k] = static_cast<Role>(static_cast<int>(Role::kNx) + a);
-        } else {
-          normals = nullptr;  // no (complete) normals: positions only
-        }
-      }
-    } else if (e.name == "face") {
-      for (size_t k = 0; k < e.properties.size(); ++k) {
-        const PlyProperty& p = e.properties[k];
-        if (!p.is_list || (p.name != "vertex_indices" && p.name != "vertex_index")) continue;
-        if (plan.is_face)
-          return ParseErrorAt(name, e.line, "face element has both vertex_indices and vertex_index");
-        if (!PlyTypeIsInteger(p.value_type))
-          return ParseErrorAt(name, e.line, "face list '" + p.name + "' has a non-integer index type");
-        plan.roles[k] = Role::kFaceList;
-        plan.is_face = true;
-        face = &e;
-      }
-      if (!plan.is_face) return ParseErrorAt(name, e.line, "face element has no vertex_indices list");
-    }
-    plans.push_back(std::move(plan));
-  }
-  if (!vertex) return ParseErrorIn(name, "no 'vertex' element");
-
-  // Plausibility: every element's declared count must fit in the bytes after the header.
-  // Only a plausible header is trusted for allocation; an implausible one is still read
-  // (growing with the data actually present) so the error names the first missing item.
-  const bool ascii = h.format == PlyFormat::kAscii;
+  SILK_ASSIGN_OR_RETURN(ReadPlan plan, PlanElements(h, name, normals_requested));
   const uint64_t remaining = data.size() - h.body_offset;
-  const uint64_t slack = ascii ? 1 : 0;  // the last ascii line may lack its newline
-  uint64_t needed = 0;
-  bool plausible = true;
-  for (const ElementPlan& plan : plans) {
-    const PlyElement& e = *plan.element;
-    if (e.count == 0 || e.properties.empty()) continue;
-    uint64_t min_item = 0;
-    for (size_t k = 0; k < e.properties.size(); ++k) {
-      const PlyProperty& p = e.properties[k];
-      const uint64_t values = plan.roles[k] == Role::kFaceList ? 3 : 0;
-      if (ascii) min_item += 2 * (1 + (p.is_list ? values : 0));
-      else min_item += p.is_list ? PlyTypeSize(p.count_type) + values * PlyTypeSize(p.value_type)
-                                 : PlyTypeSize(p.value_type);
-    }
-    if (e.count > (remaining + slack) / min_item || needed + e.count * min_item > remaining + slack) {
-      plausible = false;
-      break;
-    }
-    needed += e.count * min_item;
-  }
-  const uint64_t max_vertices = std::min<uint64_t>(opts.max_vertices, INT32_MAX);
-  if (plausible && vertex->count > max_vertices)
-    return LimitErrorIn(name, "header declares " + std::to_string(vertex->count) + " vertices (limit " +
-                                  std::to_string(max_vertices) + ")");
-  if (plausible && face && face->count > opts.max_triangles)
-    return LimitErrorIn(name, "header declares " + std::to_string(face->count) + " faces (limit " +
-                                  std::to_string(opts.max_triangles) + ")");
+  const bool plausible = CountsFitBody(h, plan.elements, remaining);
+  if (plausible) SILK_RETURN_IF_ERROR(CheckDeclaredCounts(plan, name, opts));
 
   RawMesh mesh;
   if (plausible) {
-    mesh.positions.reserve(vertex->count);
-    if (face) mesh.triangles.reserve(face->count);
+    mesh.positions.reserve(plan.vertex->count);
+    if (plan.face) mesh.triangles.reserve(plan.face->count);
   }
-  PlyBodyReader reader(data, h, name, opts, &mesh, normals);
-  SILK_RETURN_IF_ERROR(reader.Read(plans, vertex->count));
+  PlyBodyReader reader(data, h, name, opts, &mesh, plan.normals ? normals : nullptr);
+  SILK_RETURN_IF_ERROR(reader.Read(plan.elements, plan.vertex->count));
   if (!plausible)  // cannot happen: the body reader runs out of data first
     return ParseErrorIn(name, "header counts do not fit in the " + std::to_string(remaining) + " bytes after the header");
   if (mesh.triangles.empty() && !normals_requested)
-    return ParseErrorIn(name, face ? "no faces" : "no faces (no 'face' element)");
+    return ParseErrorIn(name, plan.face ? "no faces" : "no faces (no 'face' element)");
   return mesh;
 }
 

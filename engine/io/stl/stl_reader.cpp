@@ -1,7 +1,6 @@
 // STL parsing: binary by exact size, otherwise strict ascii "solid/facet/outer loop/vertex".
 #include "io/stl/stl_reader.h"
 
-#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -31,7 +30,7 @@ StatusOr<RawMesh> ReadBinaryStl(std::string_view data, const std::string& name, 
                                   std::to_string(84 + 50 * n) + " bytes) but the file has " +
                                   std::to_string(data.size()) + " bytes");
   if (n == 0) return ParseErrorIn(name, "no faces (binary STL with 0 triangles)");
-  if (3 * n > std::min<uint64_t>(opts.max_vertices, INT32_MAX) || n > opts.max_triangles)
+  if (3 * n > VertexLimit(opts) || n > opts.max_triangles)
     return LimitErrorIn(name, std::to_string(n) + " triangles exceed the vertex/triangle limit");
   RawMesh mesh;
   mesh.positions.resize(3 * n);
@@ -92,7 +91,7 @@ StatusOr<RawMesh> ReadAsciiStl(std::string_view text, const std::string& name, c
       return ParseErrorAt(name, in.line(), "bad number '" + std::string(tok.substr(0, 32)) + "'");
     return Status::Ok();
   };
-  const uint64_t max_vertices = std::min<uint64_t>(opts.max_vertices, INT32_MAX);
+  const uint64_t max_vertices = VertexLimit(opts);
   std::vector<int32_t> corners;
   bool any_solid = false;
   while (in.Next(&tok)) {
@@ -134,9 +133,7 @@ StatusOr<RawMesh> ReadAsciiStl(std::string_view text, const std::string& name, c
       if (corners.size() < 3)
         return ParseErrorAt(name, in.line(), "facet has " + std::to_string(corners.size()) +
                                                  " vertices, at least 3 needed");
-      if (mesh.triangles.size() + corners.size() - 2 > opts.max_triangles)
-        return LimitErrorIn(name, "more than " + std::to_string(opts.max_triangles) + " triangles");
-      AppendFan(corners.data(), corners.size(), &mesh);
+      SILK_RETURN_IF_ERROR(AppendFanWithinLimit(corners, name, opts, &mesh));
       SILK_RETURN_IF_ERROR(expect("endfacet"));
     }
   }

@@ -1,11 +1,10 @@
 // PLY reader: the three encodings, property types and aliases, skipped properties and
-// elements, plausibility checks before allocation, truncation errors.
+// elements, plausibility checks before allocation, truncation errors; point clouds with normals.
 #include "io/ply/ply_reader.h"
 
 #include <gtest/gtest.h>
 
-
-#include "io_test_util.h"
+#include "io/io_test_util.h"
 
 namespace silk {
 namespace {
@@ -150,6 +149,27 @@ TEST(PlyReader, HeaderAndBodyErrors) {
     EXPECT_NE(m.status().message().find(c.expect), std::string::npos)
         << "message: " << m.status().message() << "\nexpected: " << c.expect;
   }
+}
+
+TEST(PlyPointCloud, NormalsAndNoFaces) {
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\nend_header\n0 0 0 0 0 1\n1 2 3 1 0 0\n";
+  auto pc = ReadPlyPointCloud(ply, "p.ply");
+  ASSERT_TRUE(pc.ok()) << pc.status().ToString();
+  ASSERT_EQ(pc->normals.size(), 2u);
+  EXPECT_EQ(pc->normals[1], (std::array<double, 3>{1, 0, 0}));
+  EXPECT_EQ(pc->mesh.positions[1], (std::array<double, 3>{1, 2, 3}));
+  EXPECT_FALSE(ReadPly(ply, "p.ply").ok());  // the mesh reader still wants faces
+  const std::string no_normals =
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 1 1\n";
+  auto pn = ReadPlyPointCloud(no_normals, "q.ply");
+  ASSERT_TRUE(pn.ok());
+  EXPECT_TRUE(pn->normals.empty());
+  const std::string nan_normal =
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\nend_header\n0 0 0 nan 0 1\n";
+  EXPECT_FALSE(ReadPlyPointCloud(nan_normal, "r.ply").ok());
 }
 
 }  // namespace

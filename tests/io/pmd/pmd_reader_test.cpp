@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "io/mesh_reader.h"
-#include "io_test_util.h"
+#include "io/io_test_util.h"
 #include "support/golden_files.h"
 #include "support/test_paths.h"
 

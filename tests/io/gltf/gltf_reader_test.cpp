@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "io/mesh_reader.h"
-#include "io_test_util.h"
+#include "io/io_test_util.h"
 
 namespace silk {
 namespace {

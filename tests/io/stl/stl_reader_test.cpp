@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io_test_util.h"
+#include "io/io_test_util.h"
 
 namespace silk {
 namespace {

@@ -1,12 +1,11 @@
 // GLB output read back by the project's own glTF reader, plus the container layout rules
-// (4-byte chunks, declared length); and point-cloud PLY reading with normals.
+// (4-byte chunks, declared length).
 #include <gtest/gtest.h>
 
 #include <cstring>
 
 #include "io/gltf/glb_writer.h"
 #include "io/mesh_reader.h"
-#include "io/ply/ply_reader.h"
 
 namespace silk {
 namespace {
@@ -55,27 +54,6 @@ TEST(GlbWriter, EmptyAndInvalid) {
   GlbPart few = Quad("y", 0);
   few.normals.pop_back();
   EXPECT_FALSE(FormatGlb({few}).ok());
-}
-
-TEST(PlyPointCloud, NormalsAndNoFaces) {
-  const std::string ply =
-      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
-      "property float nx\nproperty float ny\nproperty float nz\nend_header\n0 0 0 0 0 1\n1 2 3 1 0 0\n";
-  auto pc = ReadPlyPointCloud(ply, "p.ply");
-  ASSERT_TRUE(pc.ok()) << pc.status().ToString();
-  ASSERT_EQ(pc->normals.size(), 2u);
-  EXPECT_EQ(pc->normals[1], (std::array<double, 3>{1, 0, 0}));
-  EXPECT_EQ(pc->mesh.positions[1], (std::array<double, 3>{1, 2, 3}));
-  EXPECT_FALSE(ReadPly(ply, "p.ply").ok());  // the mesh reader still wants faces
-  const std::string no_normals =
-      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 1 1\n";
-  auto pn = ReadPlyPointCloud(no_normals, "q.ply");
-  ASSERT_TRUE(pn.ok());
-  EXPECT_TRUE(pn->normals.empty());
-  const std::string nan_normal =
-      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
-      "property float nx\nproperty float ny\nproperty float nz\nend_header\n0 0 0 nan 0 1\n";
-  EXPECT_FALSE(ReadPlyPointCloud(nan_normal, "r.ply").ok());
 }
 
 }  // namespace
