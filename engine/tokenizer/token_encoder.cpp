@@ -61,6 +61,43 @@ StreamComponent EncodeComponent(const ProcessedMesh& mesh, const ComponentVertex
   return sc;
 }
 
+// The processed faces of the kept components and those of them the layering cannot carry (a
+// corner left unlayered or an edge spanning more than one layer, §5.4), with the vertex and face counts.
+void RecordFaceLists(const ProcessedMesh& mesh, const ComponentSplit& split, const Layering& lay, EncodeResult* res) {
+  EncodeStats& st = res->stats;
+  std::vector<char> used(static_cast<size_t>(mesh.vertex_count()), 0);
+  for (const Component& c : split.kept) {
+    for (FaceId f : c.faces) {
+      const Tri& t = mesh.face(f);
+      std::array<QVec, 3> q{mesh.pos(t[0]), mesh.pos(t[1]), mesh.pos(t[2])};
+      res->processed_faces.push_back(q);
+      bool carried = true;
+      for (int k = 0; k < 3; ++k) {
+        used[static_cast<size_t>(t[k].get())] = 1;
+        const int32_t la = lay.layer_of[static_cast<size_t>(t[k].get())];
+        const int32_t lb = lay.layer_of[static_cast<size_t>(t[(k + 1) % 3].get())];
+        if (la < 0 || lb < 0 || la - lb > 1 || lb - la > 1) carried = false;
+      }
+      if (!carried) res->unencodable_faces.push_back(q);
+    }
+  }
+  for (char u : used) st.processed_vertices += u;
+  st.processed_faces = static_cast<int32_t>(res->processed_faces.size());
+  st.encodable_faces = st.processed_faces - static_cast<int32_t>(res->unencodable_faces.size());
+}
+
+// Layer counts and sizes over every component.
+void RecordLayerStats(const Layering& lay, EncodeStats* st) {
+  for (const ComponentVertexLayers& cl : lay.components) {
+    st->layers += static_cast<int32_t>(cl.layers.size());
+    if (static_cast<int32_t>(cl.layers.size()) > st->max_layer_count) st->max_layer_count = static_cast<int32_t>(cl.layers.size());
+    for (const auto& l : cl.layers) {
+      st->emitted_vertices += static_cast<int32_t>(l.size());
+      if (static_cast<int32_t>(l.size()) > st->max_layer_size) st->max_layer_size = static_cast<int32_t>(l.size());
+    }
+  }
+}
+
 }  // namespace
 
 StatusOr<LayeredStream> EncodeProcessedMesh(ProcessedMesh mesh) {
@@ -131,33 +168,8 @@ StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions
 
   // Statistics and the processed / unencodable face lists (token_format.md §5.4).
   st.components_encoded = static_cast<int32_t>(split.kept.size());
-  std::vector<char> used(static_cast<size_t>(mesh.vertex_count()), 0);
-  for (const Component& c : split.kept) {
-    for (FaceId f : c.faces) {
-      const Tri& t = mesh.face(f);
-      std::array<QVec, 3> q{mesh.pos(t[0]), mesh.pos(t[1]), mesh.pos(t[2])};
-      res.processed_faces.push_back(q);
-      bool carried = true;
-      for (int k = 0; k < 3; ++k) {
-        used[static_cast<size_t>(t[k].get())] = 1;
-        const int32_t la = lay.layer_of[static_cast<size_t>(t[k].get())];
-        const int32_t lb = lay.layer_of[static_cast<size_t>(t[(k + 1) % 3].get())];
-        if (la < 0 || lb < 0 || la - lb > 1 || lb - la > 1) carried = false;
-      }
-      if (!carried) res.unencodable_faces.push_back(q);
-    }
-  }
-  for (char u : used) st.processed_vertices += u;
-  st.processed_faces = static_cast<int32_t>(res.processed_faces.size());
-  st.encodable_faces = st.processed_faces - static_cast<int32_t>(res.unencodable_faces.size());
-  for (const ComponentVertexLayers& cl : lay.components) {
-    st.layers += static_cast<int32_t>(cl.layers.size());
-    if (static_cast<int32_t>(cl.layers.size()) > st.max_layer_count) st.max_layer_count = static_cast<int32_t>(cl.layers.size());
-    for (const auto& l : cl.layers) {
-      st.emitted_vertices += static_cast<int32_t>(l.size());
-      if (static_cast<int32_t>(l.size()) > st.max_layer_size) st.max_layer_size = static_cast<int32_t>(l.size());
-    }
-  }
+  RecordFaceLists(mesh, split, lay, &res);
+  RecordLayerStats(lay, &st);
   st.tokens = static_cast<int64_t>(res.tokens.size());
   return res;
 }

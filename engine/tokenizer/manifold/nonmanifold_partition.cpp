@@ -82,17 +82,15 @@ Status SelectCycle(const refemu::NxGraph& g, const std::vector<int32_t>& view,
   return Status::Ok();
 }
 
-}  // namespace
+// Cycles and chains (tree paths) as node lists, in the order they are peeled off the graph.
+struct PeeledFan {
+  std::vector<std::vector<int32_t>> cycles, chains;
+};
 
-Status PartitionNonManifoldFan(const std::vector<std::array<int32_t, 3>>& faces, int32_t v,
-                               const std::vector<int32_t>& incident,
-                               const std::vector<int32_t>& face_cc, UnionFind& uf,
-                               std::vector<std::vector<FaceId>>* groups) {
-  const VertexEdgeGraph eg = BuildVertexEdgeGraph(faces, v, incident.data(), incident.size());
-  refemu::NxGraph g = refemu::NxFromEdges(eg.keys);
-  const refemu::NxGraph orig = refemu::NxCopy(g);  // same locals: g has no removed nodes yet
-
-  std::vector<std::vector<int32_t>> cycles, chains;  // locals (valid in g and orig)
+// Peels components off `g` until none is left: a tree gives up its longest path (a chain), any
+// other component a cycle chosen by SELECT_CYCLE; single nodes are dropped.
+Status PeelCyclesAndChains(refemu::NxGraph& g, const VertexEdgeGraph& eg, const std::vector<int32_t>& face_cc,
+                           UnionFind& uf, PeeledFan* peeled) {
   while (g.alive_count > 0) {
     for (const refemu::NxNodeSet& comp : refemu::NxConnectedComponents(g)) {
       if (comp.size() == 1) {
@@ -103,25 +101,35 @@ Status PartitionNonManifoldFan(const std::vector<std::array<int32_t, 3>>& faces,
       std::vector<int32_t> picked;
       if (EdgeCount(g, comp) == static_cast<int32_t>(comp.size()) - 1) {
         picked = refemu::NxLongestTreePath(g, view);
-        chains.push_back(picked);
+        peeled->chains.push_back(picked);
       } else {
         SILK_RETURN_IF_ERROR(SelectCycle(g, view, eg, face_cc, uf, &picked));
-        cycles.push_back(picked);
+        peeled->cycles.push_back(picked);
       }
       for (int32_t l : picked) g.RemoveNode(l);
     }
   }
+  return Status::Ok();
+}
 
-  std::vector<std::vector<Key>> key_groups;
+// Edge groups of the peeled fan, in the reference's order, plus the edges no cycle or chain
+// claims (out_c from cycles, out_p from chains).
+struct KeyGroups {
+  std::vector<std::vector<Key>> groups;
   std::vector<Key> out_c, out_p;
+};
+
+// Per cycle: its edges (all of them when it has no extra edge), then each chord as its own
+// group; other edges at its nodes go to out_c.
+void AddCycleGroups(const refemu::NxGraph& orig, const std::vector<std::vector<int32_t>>& cycles, KeyGroups* kg) {
   for (const auto& k_nodes : cycles) {
     const std::vector<Key> incident_keys = EdgeKeys(orig, k_nodes);
     if (incident_keys.size() == k_nodes.size()) {
-      key_groups.push_back(incident_keys);
+      kg->groups.push_back(incident_keys);
       continue;
     }
     const std::vector<Key> cycle_keys = PathKeys(orig, k_nodes, true);
-    key_groups.push_back(cycle_keys);
+    kg->groups.push_back(cycle_keys);
     auto in_cycle = [&](int32_t name) {
       for (int32_t l : k_nodes)
         if (orig.label[static_cast<size_t>(l)] == name) return true;
@@ -129,14 +137,19 @@ Status PartitionNonManifoldFan(const std::vector<std::array<int32_t, 3>>& faces,
     };
     for (const Key& e : incident_keys) {
       if (Contains(cycle_keys, e)) continue;
-      if (in_cycle(e.first) && in_cycle(e.second)) key_groups.push_back({e});  // chord
-      else out_c.push_back(e);
+      if (in_cycle(e.first) && in_cycle(e.second)) kg->groups.push_back({e});  // chord
+      else kg->out_c.push_back(e);
     }
   }
+}
+
+// Per chain: its path edges plus, at each end, the first other edge there (claimed from the
+// leftovers). Edges at chain nodes off the paths first go to out_p.
+void AddChainGroups(const refemu::NxGraph& orig, const std::vector<std::vector<int32_t>>& chains, KeyGroups* kg) {
   for (const auto& p : chains) {
     const std::vector<Key> path_keys = PathKeys(orig, p, false);
     for (const Key& e : EdgeKeys(orig, p))
-      if (!Contains(path_keys, e)) out_p.push_back(e);
+      if (!Contains(path_keys, e)) kg->out_p.push_back(e);
   }
   for (const auto& p : chains) {
     std::vector<Key> grp = PathKeys(orig, p, false);
@@ -145,17 +158,25 @@ Status PartitionNonManifoldFan(const std::vector<std::array<int32_t, 3>>& faces,
       for (const Key& e : EdgeKeys(orig, {end})) {
         if (Contains(path_keys, e)) continue;
         grp.push_back(e);
-        out_p.erase(std::remove(out_p.begin(), out_p.end(), e), out_p.end());
-        out_c.erase(std::remove(out_c.begin(), out_c.end(), e), out_c.end());
+        kg->out_p.erase(std::remove(kg->out_p.begin(), kg->out_p.end(), e), kg->out_p.end());
+        kg->out_c.erase(std::remove(kg->out_c.begin(), kg->out_c.end(), e), kg->out_c.end());
         break;
       }
     }
-    key_groups.push_back(std::move(grp));
+    kg->groups.push_back(std::move(grp));
   }
-  std::vector<Key> leftovers = out_c;
-  leftovers.insert(leftovers.end(), out_p.begin(), out_p.end());
-  for (const Key& e : refemu::PySetOrderPairs(leftovers)) key_groups.push_back({e});
+}
 
+// Leftover edges (out_c, then out_p) become single-face groups in Python set order.
+void AddLeftoverGroups(KeyGroups* kg) {
+  std::vector<Key> leftovers = kg->out_c;
+  leftovers.insert(leftovers.end(), kg->out_p.begin(), kg->out_p.end());
+  for (const Key& e : refemu::PySetOrderPairs(leftovers)) kg->groups.push_back({e});
+}
+
+// The edge groups as face groups; refuses unless they hold every face of v exactly once.
+Status FaceGroupsCoveringOnce(const std::vector<std::vector<Key>>& key_groups, const VertexEdgeGraph& eg, int32_t v,
+                              std::vector<std::vector<FaceId>>* groups) {
   groups->clear();
   std::vector<int32_t> all;
   for (const auto& kg : key_groups) {
@@ -173,6 +194,24 @@ Status PartitionNonManifoldFan(const std::vector<std::array<int32_t, 3>>& faces,
     return Refuse(Refusal::kNonManifoldWrong,
                   "vertex " + std::to_string(v) + ": fan groups do not cover its faces once");
   return Status::Ok();
+}
+
+}  // namespace
+
+Status PartitionNonManifoldFan(const std::vector<std::array<int32_t, 3>>& faces, int32_t v,
+                               const std::vector<int32_t>& incident,
+                               const std::vector<int32_t>& face_cc, UnionFind& uf,
+                               std::vector<std::vector<FaceId>>* groups) {
+  const VertexEdgeGraph eg = BuildVertexEdgeGraph(faces, v, incident.data(), incident.size());
+  refemu::NxGraph g = refemu::NxFromEdges(eg.keys);
+  const refemu::NxGraph orig = refemu::NxCopy(g);  // same locals: g has no removed nodes yet
+  PeeledFan peeled;  // locals (valid in g and orig)
+  SILK_RETURN_IF_ERROR(PeelCyclesAndChains(g, eg, face_cc, uf, &peeled));
+  KeyGroups kg;
+  AddCycleGroups(orig, peeled.cycles, &kg);
+  AddChainGroups(orig, peeled.chains, &kg);
+  AddLeftoverGroups(&kg);
+  return FaceGroupsCoveringOnce(kg.groups, eg, v, groups);
 }
 
 }  // namespace silk

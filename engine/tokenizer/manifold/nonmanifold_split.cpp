@@ -104,15 +104,22 @@ void PassA(SplitState& s, std::vector<std::vector<int32_t>>* pass_a_list) {
   pass_a_list->resize(s.positions.size());
 }
 
-// Pass B (token_format.md §3.4).
-Status PassB(SplitState& s, const std::vector<std::vector<int32_t>>& pass_a_list, int32_t* nm_count) {
+// Pass B step 1 (token_format.md §3.4): each vertex's list_v (its pass-A list, then its faces)
+// and the shape of its fan.
+struct FanSurvey {
+  std::vector<std::vector<int32_t>> lists;  // list_v per vertex
+  std::vector<char> manifold;               // the fan is one path or cycle
+  std::vector<int32_t> nm_verts;            // non-manifold vertices, ascending
+  std::vector<int32_t> nm_cycle_verts;      // those whose fan has a cycle
+};
+
+Status SurveyFans(const SplitState& s, const std::vector<std::vector<int32_t>>& pass_a_list, FanSurvey* fs) {
   const int32_t n = static_cast<int32_t>(s.positions.size());
   const Incidence inc = BuildIncidence(s.faces, n);
-  std::vector<std::vector<int32_t>> lists(static_cast<size_t>(n));
-  std::vector<char> manifold(static_cast<size_t>(n), 0);
-  std::vector<int32_t> nm_verts, nm_cycle_verts;
+  fs->lists.resize(static_cast<size_t>(n));
+  fs->manifold.assign(static_cast<size_t>(n), 0);
   for (int32_t v = 0; v < n; ++v) {
-    auto& list = lists[static_cast<size_t>(v)];
+    auto& list = fs->lists[static_cast<size_t>(v)];
     list = pass_a_list[static_cast<size_t>(v)];
     list.insert(list.end(), inc.begin(v), inc.begin(v) + inc.count(v));
     if (list.empty()) continue;
@@ -123,18 +130,24 @@ Status PassB(SplitState& s, const std::vector<std::vector<int32_t>>& pass_a_list
     if (shape.components != 1)
       return Refuse(Refusal::kStillDisconnectedFan, "vertex " + std::to_string(v));
     if (shape.max_degree_le2) {
-      manifold[static_cast<size_t>(v)] = 1;
+      fs->manifold[static_cast<size_t>(v)] = 1;
       continue;
     }
-    nm_verts.push_back(v);
-    if (static_cast<int32_t>(eg.keys.size()) >= shape.nodes) nm_cycle_verts.push_back(v);
+    fs->nm_verts.push_back(v);
+    if (static_cast<int32_t>(eg.keys.size()) >= shape.nodes) fs->nm_cycle_verts.push_back(v);
   }
-  *nm_count = static_cast<int32_t>(nm_verts.size());
-  if (nm_verts.size() > static_cast<size_t>(kMaxNonManifoldVerts))
-    return Refuse(Refusal::kTooManyNonManifoldVerts, std::to_string(nm_verts.size()) + " > 300");
-  if (nm_verts.empty()) return Status::Ok();
+  return Status::Ok();
+}
 
-  // Pre-components: manifold vertices joined through shared faces; faceCC from any manifold corner.
+// Pass B face components (SELECT_CYCLE rule 1): manifold vertices joined through shared faces
+// (pre-components); a face's component comes from any manifold corner, -1 without one.
+struct FaceComponents {
+  UnionFind uf;
+  std::vector<int32_t> face_cc;  // per face
+};
+
+FaceComponents ManifoldFaceComponents(const SplitState& s, const std::vector<char>& manifold) {
+  const int32_t n = static_cast<int32_t>(s.positions.size());
   UnionFind pre(n);
   for (const auto& f : s.faces) {
     int32_t first = -1;
@@ -151,63 +164,110 @@ Status PassB(SplitState& s, const std::vector<std::vector<int32_t>>& pass_a_list
     const int32_t r = pre.Find(v);
     if (comp_id[static_cast<size_t>(r)] < 0) comp_id[static_cast<size_t>(r)] = ids++;
   }
-  UnionFind uf(ids);
-  std::vector<int32_t> face_cc(s.faces.size(), -1);
+  FaceComponents fc{UnionFind(ids), std::vector<int32_t>(s.faces.size(), -1)};
   for (size_t fi = 0; fi < s.faces.size(); ++fi)
     for (int32_t c : s.faces[fi])
       if (manifold[static_cast<size_t>(c)]) {
-        face_cc[fi] = comp_id[static_cast<size_t>(pre.Find(c))];
+        fc.face_cc[fi] = comp_id[static_cast<size_t>(pre.Find(c))];
         break;
       }
+  return fc;
+}
 
-  // Sequential processing with the LIFO `queue` of influenced neighbours.
-  std::vector<char> pending(static_cast<size_t>(n), 0), processed(static_cast<size_t>(n), 0);
-  for (int32_t v : nm_verts) pending[static_cast<size_t>(v)] = 1;
-  size_t remaining = nm_verts.size();
-  size_t pending_scan = 0;
-  std::vector<int32_t> queue;
-  int32_t cur = nm_cycle_verts.empty() ? nm_verts.front() : nm_cycle_verts.front();
+// Joins the face components each group touches; per group the joined root, -1 for none.
+std::vector<int32_t> JoinGroupComponents(const std::vector<std::vector<FaceId>>& groups, FaceComponents& fc) {
+  std::vector<int32_t> roots;
+  for (const auto& grp : groups) {
+    std::vector<int32_t> cc;
+    for (FaceId f : grp)
+      if (fc.face_cc[static_cast<size_t>(f.get())] != -1) cc.push_back(fc.face_cc[static_cast<size_t>(f.get())]);
+    if (cc.empty()) {
+      roots.push_back(-1);
+      continue;
+    }
+    for (size_t i = 0; i + 1 < cc.size(); ++i) fc.uf.Union(cc[i], cc[i + 1]);
+    roots.push_back(fc.uf.Find(cc[0]));
+  }
+  return roots;
+}
+
+// Gives each group's faces without a component the group's root, or a fresh component.
+void AssignGroupComponents(const std::vector<std::vector<FaceId>>& groups, const std::vector<int32_t>& roots,
+                           FaceComponents& fc) {
+  for (size_t k = 0; k < groups.size(); ++k) {
+    if (roots[k] == -1) {
+      const int32_t fresh = fc.uf.Extend();
+      for (FaceId f : groups[k]) fc.face_cc[static_cast<size_t>(f.get())] = fresh;
+    } else {
+      for (FaceId f : groups[k])
+        if (fc.face_cc[static_cast<size_t>(f.get())] == -1) fc.face_cc[static_cast<size_t>(f.get())] = roots[k];
+    }
+  }
+}
+
+// NM_process_one: splits one non-manifold vertex by PARTITION(v) and updates the face
+// components; pushes the influenced neighbours onto `queue` in the reference's set order.
+Status ProcessNonManifoldVertex(SplitState& s, int32_t v, const std::vector<int32_t>& list, FaceComponents& fc,
+                                std::vector<int32_t>* queue) {
+  std::vector<std::vector<FaceId>> groups;
+  SILK_RETURN_IF_ERROR(PartitionNonManifoldFan(s.faces, v, list, fc.face_cc, fc.uf, &groups));
+  const std::vector<int32_t> roots = JoinGroupComponents(groups, fc);
+  for (int32_t x : refemu::PySetOrderInts(SplitVertex(s, v, groups))) queue->push_back(x);
+  AssignGroupComponents(groups, roots, fc);
+  return Status::Ok();
+}
+
+// The order pass B processes non-manifold vertices in: the latest influenced neighbour still
+// pending (the reference's LIFO `queue`), else the first pending one.
+class NonManifoldOrder {
+ public:
+  NonManifoldOrder(int32_t n, const std::vector<int32_t>& nm_verts)
+      : nm_verts_(nm_verts), pending_(static_cast<size_t>(n), 0), processed_(static_cast<size_t>(n), 0) {
+    for (int32_t v : nm_verts) pending_[static_cast<size_t>(v)] = 1;
+  }
+  std::vector<int32_t>* queue() { return &queue_; }
+  void MarkProcessed(int32_t v) { processed_[static_cast<size_t>(v)] = 1; }
+  void MarkDone(int32_t v) { pending_[static_cast<size_t>(v)] = 0; }
+  // Only while some vertex is still pending.
+  int32_t Next() {
+    const int32_t n = static_cast<int32_t>(pending_.size());
+    while (!queue_.empty()) {
+      const int32_t x = queue_.back();
+      queue_.pop_back();
+      if (x < n && !processed_[static_cast<size_t>(x)] && pending_[static_cast<size_t>(x)]) return x;
+    }
+    while (!pending_[static_cast<size_t>(nm_verts_[pending_scan_])]) ++pending_scan_;
+    return nm_verts_[pending_scan_];
+  }
+
+ private:
+  const std::vector<int32_t>& nm_verts_;
+  std::vector<char> pending_, processed_;
+  size_t pending_scan_ = 0;
+  std::vector<int32_t> queue_;
+};
+
+// Pass B (token_format.md §3.4).
+Status PassB(SplitState& s, const std::vector<std::vector<int32_t>>& pass_a_list, int32_t* nm_count) {
+  const int32_t n = static_cast<int32_t>(s.positions.size());
+  FanSurvey fs;
+  SILK_RETURN_IF_ERROR(SurveyFans(s, pass_a_list, &fs));
+  *nm_count = static_cast<int32_t>(fs.nm_verts.size());
+  if (fs.nm_verts.size() > static_cast<size_t>(kMaxNonManifoldVerts))
+    return Refuse(Refusal::kTooManyNonManifoldVerts, std::to_string(fs.nm_verts.size()) + " > 300");
+  if (fs.nm_verts.empty()) return Status::Ok();
+
+  FaceComponents fc = ManifoldFaceComponents(s, fs.manifold);
+  // Sequential processing, starting from the first vertex whose fan has a cycle.
+  NonManifoldOrder order(n, fs.nm_verts);
+  size_t remaining = fs.nm_verts.size();
+  int32_t cur = fs.nm_cycle_verts.empty() ? fs.nm_verts.front() : fs.nm_cycle_verts.front();
   while (true) {
-    processed[static_cast<size_t>(cur)] = 1;
-    std::vector<std::vector<FaceId>> groups;
-    SILK_RETURN_IF_ERROR(PartitionNonManifoldFan(s.faces, cur, lists[static_cast<size_t>(cur)], face_cc, uf, &groups));
-    std::vector<int32_t> roots;
-    for (const auto& grp : groups) {
-      std::vector<int32_t> cc;
-      for (FaceId f : grp)
-        if (face_cc[static_cast<size_t>(f.get())] != -1) cc.push_back(face_cc[static_cast<size_t>(f.get())]);
-      if (cc.empty()) {
-        roots.push_back(-1);
-        continue;
-      }
-      for (size_t i = 0; i + 1 < cc.size(); ++i) uf.Union(cc[i], cc[i + 1]);
-      roots.push_back(uf.Find(cc[0]));
-    }
-    for (int32_t x : refemu::PySetOrderInts(SplitVertex(s, cur, groups))) queue.push_back(x);
-    for (size_t k = 0; k < groups.size(); ++k) {
-      if (roots[k] == -1) {
-        const int32_t fresh = uf.Extend();
-        for (FaceId f : groups[k]) face_cc[static_cast<size_t>(f.get())] = fresh;
-      } else {
-        for (FaceId f : groups[k])
-          if (face_cc[static_cast<size_t>(f.get())] == -1) face_cc[static_cast<size_t>(f.get())] = roots[k];
-      }
-    }
-    pending[static_cast<size_t>(cur)] = 0;
+    order.MarkProcessed(cur);
+    SILK_RETURN_IF_ERROR(ProcessNonManifoldVertex(s, cur, fs.lists[static_cast<size_t>(cur)], fc, order.queue()));
+    order.MarkDone(cur);
     if (--remaining == 0) break;
-    cur = -1;
-    while (!queue.empty()) {
-      const int32_t x = queue.back();
-      queue.pop_back();
-      if (x < n && !processed[static_cast<size_t>(x)] && pending[static_cast<size_t>(x)]) {
-        cur = x;
-        break;
-      }
-    }
-    if (cur < 0) {
-      while (!pending[static_cast<size_t>(nm_verts[pending_scan])]) ++pending_scan;
-      cur = nm_verts[pending_scan];
-    }
+    cur = order.Next();
   }
   return Status::Ok();
 }
