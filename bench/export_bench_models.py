@@ -21,19 +21,19 @@ sys.path.insert(0, str(REPO / "export"))
 
 import torch  # noqa: E402
 
-from silk_export.architectures import get_architecture  # noqa: E402
-from silk_export.configs import get_config  # noqa: E402
-from silk_export.model import SilkModel  # noqa: E402
-from silk_export.onnx_export import export_graphs, export_model, sidecar, transpose_linears  # noqa: E402
+from silk_export.models.registry import get_architecture  # noqa: E402
+from silk_export.models.configs import get_config  # noqa: E402
+from silk_export.models.silk_model import SilkModel  # noqa: E402
+from silk_export.onnx.export import export_graphs, export_model, sidecar, transpose_linears  # noqa: E402
 
 RANDOM = {"steps": 0, "data": "random weights (benchmark)"}
 
 
 def export_official(out: Path, seed: int, int4_block: int, int4_accuracy: int) -> int:
     """Release-size official network, random weights; all three decoders + fidelity figures."""
-    from silk_export.official_checkpoint import RELEASE_SIZES, official_config
-    from silk_export.official_import import write_variants
-    from silk_export.official_model import OfficialModel
+    from silk_export.official.checkpoint import RELEASE_SIZES, official_config
+    from silk_export.official.importer import write_variants
+    from silk_export.official.model import OfficialModel
     model = OfficialModel(official_config(RELEASE_SIZES, {})).init_random(seed=seed)
     cfg, params = model.cfg, model.num_parameters()
     files = export_graphs(transpose_linears(model), out)

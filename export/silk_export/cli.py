@@ -7,13 +7,13 @@ import json
 import sys
 from pathlib import Path
 
-from .configs import CONFIGS
+from .models.configs import CONFIGS
 
 
 def _cmd_dataset(a) -> int:
-    from .dataset_index import build_index, build_shard, merge_shards
-    from .mesh_files import default_0ad_root
-    from .shard_store import parse_shard
+    from .data.dataset_index import build_index, build_shard, merge_shards
+    from .data.mesh_files import default_0ad_root
+    from .data.shard_store import parse_shard
     root = Path(a.root) if a.root else default_0ad_root()
     dev = Path(a.dev_dir) if a.dev_dir else None
     if a.merge:
@@ -29,8 +29,8 @@ def _cmd_dataset(a) -> int:
 
 def _cmd_train(a) -> int:
     import os
-    from .train import TrainArgs, train
-    from .mesh_files import default_0ad_root
+    from .data.mesh_files import default_0ad_root
+    from .training.train import TrainArgs, train
     if not (a.index or a.data):
         raise SystemExit("train: give --data (dataset folder or folder of meshes) or --index")
     args = TrainArgs(index=a.index or "", root=a.root or str(default_0ad_root()), out=a.out, data=a.data or "",
@@ -49,8 +49,8 @@ def _cmd_train(a) -> int:
 
 
 def _cmd_export(a) -> int:
-    from .checkpoint import model_from_checkpoint
-    from .onnx_export import export_model
+    from .models.checkpoint import model_from_checkpoint
+    from .onnx.export import export_model
     model, ck = model_from_checkpoint(Path(a.checkpoint))
     training = {"steps": ck["step"], "data": a.data or ck.get("data", {}).get("index"),
                 "seed": ck.get("args", {}).get("seed")}
@@ -62,8 +62,8 @@ def _cmd_export(a) -> int:
 
 
 def _cmd_import_official(a) -> int:
-    from .official_import import import_official
-    from .state_dict_file import StateDictError
+    from .official.importer import import_official
+    from .official.state_dict_file import StateDictError
     try:
         import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,
                         a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens)
@@ -74,7 +74,7 @@ def _cmd_import_official(a) -> int:
 
 
 def _cmd_eval(a) -> int:
-    from .evaluate import evaluate_paths
+    from .evaluation.evaluate import evaluate_paths
     res = evaluate_paths(Path(a.generated), Path(a.reference) if a.reference else None,
                          n_points=a.points, seed=a.seed)
     text = json.dumps(res, indent=2)
@@ -85,8 +85,8 @@ def _cmd_eval(a) -> int:
 
 
 def _cmd_loss(a) -> int:
-    from .split_loss import split_loss
-    from .mesh_files import default_0ad_root
+    from .data.mesh_files import default_0ad_root
+    from .evaluation.split_loss import split_loss
     res = split_loss(Path(a.checkpoint), Path(a.index), Path(a.root) if a.root else default_0ad_root(),
                      a.split, a.limit, a.seed, a.threads, conditioning=not a.no_conditioning)
     text = json.dumps(res, indent=2)
@@ -97,14 +97,14 @@ def _cmd_loss(a) -> int:
 
 
 def _cmd_card(a) -> int:
-    from .card import write_card
+    from .training.card import write_card
     path = write_card(Path(a.model_dir), Path(a.run_dir), Path(a.bench_json) if a.bench_json else None)
     print(path)
     return 0
 
 
 def _cmd_bench(a) -> int:
-    from .bench import bench_configs
+    from .training.bench import bench_configs
     res = bench_configs(a.configs, a.steps, a.seq_len, a.batch_size, a.threads, a.seed)
     text = json.dumps(res, indent=2)
     if a.out:
@@ -114,8 +114,8 @@ def _cmd_bench(a) -> int:
 
 
 def _cmd_generate(a) -> int:
-    from .generate import generate_paths, pick_from_index
-    from .mesh_files import default_0ad_root
+    from .data.mesh_files import default_0ad_root
+    from .evaluation.generate import generate_paths, pick_from_index
     inputs = [Path(p) for p in a.inputs]
     if a.index:
         inputs += pick_from_index(Path(a.index), Path(a.root) if a.root else default_0ad_root(), a.split,
@@ -123,7 +123,7 @@ def _cmd_generate(a) -> int:
     if not inputs:
         raise SystemExit("generate: no input meshes (give files or --index)")
     if a.runtime:
-        from .generate import generate_with_runtime
+        from .evaluation.generate import generate_with_runtime
         res = generate_with_runtime(Path(a.model), inputs, Path(a.out), a.seed, a.threads, a.max_tokens,
                                     a.temperature, a.top_k, a.surface_tolerance, a.candidates)
     else:
@@ -135,7 +135,7 @@ def _cmd_generate(a) -> int:
 
 
 def _cmd_pack_checkpoint(a) -> int:
-    from .checkpoint import pack_checkpoint
+    from .models.checkpoint import pack_checkpoint
     try:
         print(json.dumps(pack_checkpoint(Path(a.checkpoint), Path(a.out), a.max_bytes)))
     except (OSError, ValueError, RuntimeError, KeyError) as e:  # unreadable or not a checkpoint, too big

@@ -12,11 +12,11 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
-from . import libsilk
-from .checkpoint import model_from_checkpoint
-from .geometry import normalize_vertices
-from .model import SilkModel
-from .pointcloud import point_cloud
+from ..binding import libsilk
+from ..data.geometry import normalize_vertices
+from ..data.pointcloud import point_cloud
+from ..models.checkpoint import model_from_checkpoint
+from ..models.silk_model import SilkModel
 
 
 @torch.no_grad()
@@ -50,7 +50,7 @@ def sample_tokens(model: SilkModel, points: np.ndarray, max_tokens: int, tempera
 
 def pick_from_index(index: Path, root: Path, split: str, limit: int, max_tokens: int) -> list[Path]:
     """`limit` encodable meshes of one split, evenly spaced over the split sorted by token count."""
-    from .dataset_index import read_index
+    from ..data.dataset_index import read_index
     rows = sorted((r for r in read_index(index) if r["split"] == split and r.get("refused") is None
                    and r.get("tokens") and r["tokens"] <= max_tokens), key=lambda r: (r["tokens"], r["key"]))
     if limit and len(rows) > limit:

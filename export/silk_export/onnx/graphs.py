@@ -7,7 +7,7 @@ from __future__ import annotations
 import torch
 from torch import nn
 
-from .layers import attend, merge_heads, split_heads
+from ..models.layers import attend, merge_heads, split_heads
 
 
 class EncoderGraph(nn.Module):

@@ -14,11 +14,11 @@ import torch.nn.functional as F
 from torch import nn
 from torch.utils.checkpoint import checkpoint
 
-from .configs import ModelConfig
-from .layers import attend, merge_heads, split_heads
-from .model import IGNORE_INDEX
-from .official_point_encoder import OfficialPointEncoder
-from .vocab import TYPE_CLASSES, load_vocab
+from ..models.configs import ModelConfig
+from ..models.layers import attend, merge_heads, split_heads
+from ..models.silk_model import IGNORE_INDEX
+from ..vocab import TYPE_CLASSES, load_vocab
+from .point_encoder import OfficialPointEncoder
 
 # The five type vectors in TYPE_CLASSES order (X, S, B, K, O), named as in the release file.
 TYPE_VECTOR_NAMES = ("matrix_in0_embed", "matrix_in1_embed", "matrix_out_embed", "block_embed", "offset_embed")

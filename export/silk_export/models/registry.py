@@ -26,12 +26,12 @@ class Architecture:
 
 
 def _silk_model(cfg: ModelConfig) -> nn.Module:
-    from .model import SilkModel
+    from .silk_model import SilkModel
     return SilkModel(cfg)
 
 
 def _official_model(cfg: ModelConfig) -> nn.Module:
-    from .official_model import OfficialModel
+    from ..official.model import OfficialModel
     return OfficialModel(cfg)
 
 

@@ -8,10 +8,10 @@ import torch.nn.functional as F
 from torch import nn
 from torch.utils.checkpoint import checkpoint
 
+from ..vocab import TYPE_CLASSES, load_vocab
 from .configs import ModelConfig
 from .layers import FeedForward, MultiHeadAttention, attend, merge_heads, split_heads
 from .point_encoder import PointEncoder
-from .vocab import TYPE_CLASSES, load_vocab
 
 IGNORE_INDEX = -100
 
