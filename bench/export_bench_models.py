@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Exports random-weight models of the tiny / small / paper shapes (export/silk_export/configs.py)
+"""Exports random-weight models of the tiny / small / paper shapes (export/silk_export/models/configs.py)
 and of the released official network ("official": arch official at the release size, 601 M
 parameters) for bench/generation_bench.cpp, at bench time (never committed: paper is ~2 GB in
 fp32, official ~2.4 GB). Each goes to OUT/<config>/ with model.json, encoder.onnx, decoder.onnx,

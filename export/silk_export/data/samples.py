@@ -10,7 +10,7 @@ import numpy as np
 import torch
 
 from ..binding import libsilk
-from ..models.silk_model import IGNORE_INDEX
+from ..models.architecture import IGNORE_INDEX
 from ..vocab import load_vocab
 from .augment import augment_vertices
 from .geometry import normalize_vertices

@@ -1,2 +1,3 @@
-"""The networks: the registry of architectures (registry.py), model sizes, Silk's own
+"""The networks: the Architecture interface every registered network family implements
+(architecture.py) and the registry of them (registry.py), model sizes, Silk's own
 architecture (silk_model.py, point_encoder.py, layers.py) and training checkpoints."""

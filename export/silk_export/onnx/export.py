@@ -18,7 +18,6 @@ from ..vocab import load_vocab
 from .graphs import DecoderGraph, EncoderGraph, decoder_input_names, decoder_output_names
 
 OPSET = 17
-MODEL_VERSION = 2  # what the "silk" architecture writes (architectures.py has each one's)
 DATA_ALIGN = 4096
 
 

@@ -195,7 +195,7 @@ def open_data(a: TrainArgs, env: DistEnv, cfg: ModelConfig, out: Path) -> Traini
     """--data DATASET (dataset.json), --data FOLDER (rank 0 caches it under OUT/data first, every
     mesh as training data), or --index with --root. Point clouds follow the architecture's
     pre-processing (official: merge, 50 K surface samples, float16 rounding, draw)."""
-    kind = get_architecture(cfg.arch).preprocessing(cfg)["kind"]
+    kind = get_architecture(cfg.arch).points_kind(cfg)
     if a.data:
         path = Path(a.data)
         if not is_dataset(path) and (path / "index.jsonl").is_file():
