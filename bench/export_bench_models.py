@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Exports random-weight models of the tiny / small / paper shapes (export/silk_export/configs.py)
+"""Exports random-weight models of the tiny / small / paper shapes (export/silk_export/models/configs.py)
 and of the released official network ("official": arch official at the release size, 601 M
 parameters) for bench/generation_bench.cpp, at bench time (never committed: paper is ~2 GB in
 fp32, official ~2.4 GB). Each goes to OUT/<config>/ with model.json, encoder.onnx, decoder.onnx,
@@ -21,19 +21,19 @@ sys.path.insert(0, str(REPO / "export"))
 
 import torch  # noqa: E402
 
-from silk_export.architectures import get_architecture  # noqa: E402
-from silk_export.configs import get_config  # noqa: E402
-from silk_export.model import SilkModel  # noqa: E402
-from silk_export.onnx_export import export_graphs, export_model, sidecar, transpose_linears  # noqa: E402
+from silk_export.models.registry import get_architecture  # noqa: E402
+from silk_export.models.configs import get_config  # noqa: E402
+from silk_export.models.silk_model import SilkModel  # noqa: E402
+from silk_export.onnx.export import export_graphs, export_model, sidecar, transpose_linears  # noqa: E402
 
 RANDOM = {"steps": 0, "data": "random weights (benchmark)"}
 
 
 def export_official(out: Path, seed: int, int4_block: int, int4_accuracy: int) -> int:
     """Release-size official network, random weights; all three decoders + fidelity figures."""
-    from silk_export.official_checkpoint import RELEASE_SIZES, official_config
-    from silk_export.official_import import write_variants
-    from silk_export.official_model import OfficialModel
+    from silk_export.official.checkpoint import RELEASE_SIZES, official_config
+    from silk_export.official.importer import write_variants
+    from silk_export.official.model import OfficialModel
     model = OfficialModel(official_config(RELEASE_SIZES, {})).init_random(seed=seed)
     cfg, params = model.cfg, model.num_parameters()
     files = export_graphs(transpose_linears(model), out)

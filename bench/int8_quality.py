@@ -28,11 +28,11 @@ sys.path.insert(0, str(REPO / "export"))
 import numpy as np  # noqa: E402
 import onnxruntime as ort  # noqa: E402
 
-from silk_export import libsilk  # noqa: E402
-from silk_export.geometry import normalize_vertices  # noqa: E402
-from silk_export.official_import import INT4_ACCURACY_LEVEL, INT4_BLOCK_SIZE  # noqa: E402
-from silk_export.onnx_export import quantize_decoder_int4  # noqa: E402
-from silk_export.pointcloud import point_cloud  # noqa: E402
+from silk_export.binding import libsilk  # noqa: E402
+from silk_export.data.geometry import normalize_vertices  # noqa: E402
+from silk_export.official.importer import INT4_ACCURACY_LEVEL, INT4_BLOCK_SIZE  # noqa: E402
+from silk_export.onnx.export import quantize_decoder_int4  # noqa: E402
+from silk_export.data.pointcloud import point_cloud  # noqa: E402
 
 
 def session(path: Path, threads: int) -> ort.InferenceSession:

@@ -32,7 +32,7 @@ inputs() {  # set -> one input path per line
       python3 - "$index" "$data/0ad" "${LIMIT_TEST:-40}" <<'PY'
 import sys
 from pathlib import Path
-from silk_export.generate import pick_from_index
+from silk_export.evaluation.generate import pick_from_index
 for p in pick_from_index(Path(sys.argv[1]), Path(sys.argv[2]), "test", int(sys.argv[3]), 2046):
     print(p)
 PY

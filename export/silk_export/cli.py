@@ -7,13 +7,27 @@ import json
 import sys
 from pathlib import Path
 
-from .configs import CONFIGS
+from .models.configs import CONFIGS
+
+# One pair per sub-command: _add_<command> declares its arguments, _cmd_<command> runs it.
+
+
+def _add_dataset(sub) -> None:
+    d = sub.add_parser("dataset", help="encode a mesh collection through libsilk into a sharded token cache")
+    d.add_argument("--root", help="0 A.D. cache ($SILK_DATA_DIR/0ad, default) or any folder tree of meshes")
+    d.add_argument("--out", required=True, help="dataset folder (shards, index.jsonl, dataset.json, refused.tsv)")
+    d.add_argument("--shard", help="I/N: build only shard I of N (files I, I+N, ...); then --merge")
+    d.add_argument("--merge", action="store_true", help="merge the finished shards in --out into the index")
+    d.add_argument("--dev-dir", help="dev corpus folder (default: <shared>/corpus/dev)")
+    d.add_argument("--all-train", action="store_true", help="every mesh is training data (no splits, no dev exclusion)")
+    d.add_argument("--limit", type=int, help="index only the first N files (sorted)")
+    d.set_defaults(fn=_cmd_dataset)
 
 
 def _cmd_dataset(a) -> int:
-    from .dataset_index import build_index, build_shard, merge_shards
-    from .mesh_files import default_0ad_root
-    from .shard_store import parse_shard
+    from .data.dataset_index import build_index, build_shard, merge_shards
+    from .data.mesh_files import default_0ad_root
+    from .data.shard_store import parse_shard
     root = Path(a.root) if a.root else default_0ad_root()
     dev = Path(a.dev_dir) if a.dev_dir else None
     if a.merge:
@@ -27,137 +41,7 @@ def _cmd_dataset(a) -> int:
     return 0
 
 
-def _cmd_train(a) -> int:
-    import os
-    from .train import TrainArgs, train
-    from .mesh_files import default_0ad_root
-    if not (a.index or a.data):
-        raise SystemExit("train: give --data (dataset folder or folder of meshes) or --index")
-    args = TrainArgs(index=a.index or "", root=a.root or str(default_0ad_root()), out=a.out, data=a.data or "",
-                     config=a.config, steps=a.steps, batch_size=a.batch_size, micro_batch=a.micro_batch,
-                     lr=a.lr, lr_min=a.lr_min, warmup=a.warmup, seed=a.seed, threads=a.threads,
-                     device=a.device, precision=a.precision, grad_checkpoint=a.grad_checkpoint, fsdp=a.fsdp,
-                     workers=a.workers, init_from=a.init_from or "", init_config=a.init_config or "",
-                     log_every=a.log_every,
-                     val_every=a.val_every, val_meshes=a.val_meshes, ckpt_minutes=a.ckpt_minutes,
-                     max_minutes=a.max_minutes, max_cpu_minutes=a.max_cpu_minutes, resume=not a.no_resume, augment=not a.no_augment,
-                     max_seq_len=a.max_seq_len, progress=not a.no_progress)
-    res = train(args)
-    if os.environ.get("RANK", "0") == "0":
-        print(json.dumps(res, indent=2))
-    return 0
-
-
-def _cmd_export(a) -> int:
-    from .checkpoint import model_from_checkpoint
-    from .onnx_export import export_model
-    model, ck = model_from_checkpoint(Path(a.checkpoint))
-    training = {"steps": ck["step"], "data": a.data or ck.get("data", {}).get("index"),
-                "seed": ck.get("args", {}).get("seed")}
-    sampling = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k), ("top_p", a.top_p),
-                                  ("candidates", a.candidates)) if v is not None}
-    meta = export_model(model, Path(a.out), training, int8=not a.no_int8, sampling=sampling or None)
-    print(json.dumps(meta, indent=2))
-    return 0
-
-
-def _cmd_import_official(a) -> int:
-    from .official_import import import_official
-    from .state_dict_file import StateDictError
-    try:
-        import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,
-                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens)
-    except (StateDictError, ValueError) as e:
-        print(f"silk-export import-official: error: {e}", file=sys.stderr)
-        return 2
-    return 0
-
-
-def _cmd_eval(a) -> int:
-    from .evaluate import evaluate_paths
-    res = evaluate_paths(Path(a.generated), Path(a.reference) if a.reference else None,
-                         n_points=a.points, seed=a.seed)
-    text = json.dumps(res, indent=2)
-    if a.out:
-        Path(a.out).write_text(text + "\n")
-    print(text)
-    return 0
-
-
-def _cmd_loss(a) -> int:
-    from .split_loss import split_loss
-    from .mesh_files import default_0ad_root
-    res = split_loss(Path(a.checkpoint), Path(a.index), Path(a.root) if a.root else default_0ad_root(),
-                     a.split, a.limit, a.seed, a.threads, conditioning=not a.no_conditioning)
-    text = json.dumps(res, indent=2)
-    if a.out:
-        Path(a.out).write_text(text + "\n")
-    print(text)
-    return 0
-
-
-def _cmd_card(a) -> int:
-    from .card import write_card
-    path = write_card(Path(a.model_dir), Path(a.run_dir), Path(a.bench_json) if a.bench_json else None)
-    print(path)
-    return 0
-
-
-def _cmd_bench(a) -> int:
-    from .bench import bench_configs
-    res = bench_configs(a.configs, a.steps, a.seq_len, a.batch_size, a.threads, a.seed)
-    text = json.dumps(res, indent=2)
-    if a.out:
-        Path(a.out).write_text(text + "\n")
-    print(text)
-    return 0
-
-
-def _cmd_generate(a) -> int:
-    from .generate import generate_paths, pick_from_index
-    from .mesh_files import default_0ad_root
-    inputs = [Path(p) for p in a.inputs]
-    if a.index:
-        inputs += pick_from_index(Path(a.index), Path(a.root) if a.root else default_0ad_root(), a.split,
-                                  a.limit, a.max_index_tokens)
-    if not inputs:
-        raise SystemExit("generate: no input meshes (give files or --index)")
-    if a.runtime:
-        from .generate import generate_with_runtime
-        res = generate_with_runtime(Path(a.model), inputs, Path(a.out), a.seed, a.threads, a.max_tokens,
-                                    a.temperature, a.top_k, a.surface_tolerance, a.candidates)
-    else:
-        given = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k)) if v is not None}
-        res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens, seed=a.seed, threads=a.threads,
-                             **given)  # else generate_paths' defaults
-    print(json.dumps(res, indent=2))
-    return 0
-
-
-def _cmd_pack_checkpoint(a) -> int:
-    from .checkpoint import pack_checkpoint
-    try:
-        print(json.dumps(pack_checkpoint(Path(a.checkpoint), Path(a.out), a.max_bytes)))
-    except (OSError, ValueError, RuntimeError, KeyError) as e:  # unreadable or not a checkpoint, too big
-        print(f"silk-export pack-checkpoint: {a.checkpoint}: {e}", file=sys.stderr)
-        return 2
-    return 0
-
-
-def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="silk-export", description=__doc__)
-    sub = p.add_subparsers(dest="cmd", required=True)
-
-    d = sub.add_parser("dataset", help="encode a mesh collection through libsilk into a sharded token cache")
-    d.add_argument("--root", help="0 A.D. cache ($SILK_DATA_DIR/0ad, default) or any folder tree of meshes")
-    d.add_argument("--out", required=True, help="dataset folder (shards, index.jsonl, dataset.json, refused.tsv)")
-    d.add_argument("--shard", help="I/N: build only shard I of N (files I, I+N, ...); then --merge")
-    d.add_argument("--merge", action="store_true", help="merge the finished shards in --out into the index")
-    d.add_argument("--dev-dir", help="dev corpus folder (default: <shared>/corpus/dev)")
-    d.add_argument("--all-train", action="store_true", help="every mesh is training data (no splits, no dev exclusion)")
-    d.add_argument("--limit", type=int, help="index only the first N files (sorted)")
-    d.set_defaults(fn=_cmd_dataset)
-
+def _add_train(sub) -> None:
     t = sub.add_parser("train", help="train a model (resumes from OUT/checkpoint.pt); runs under torchrun too")
     t.add_argument("--data", help="dataset folder from `silk-export dataset`, or any folder of meshes (quick runs)")
     t.add_argument("--index", help="index.jsonl of mesh files under --root (instead of --data)")
@@ -198,6 +82,29 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--no-progress", action="store_true")
     t.set_defaults(fn=_cmd_train)
 
+
+def _cmd_train(a) -> int:
+    import os
+    from .data.mesh_files import default_0ad_root
+    from .training.train import TrainArgs, train
+    if not (a.index or a.data):
+        raise SystemExit("train: give --data (dataset folder or folder of meshes) or --index")
+    args = TrainArgs(index=a.index or "", root=a.root or str(default_0ad_root()), out=a.out, data=a.data or "",
+                     config=a.config, steps=a.steps, batch_size=a.batch_size, micro_batch=a.micro_batch,
+                     lr=a.lr, lr_min=a.lr_min, warmup=a.warmup, seed=a.seed, threads=a.threads,
+                     device=a.device, precision=a.precision, grad_checkpoint=a.grad_checkpoint, fsdp=a.fsdp,
+                     workers=a.workers, init_from=a.init_from or "", init_config=a.init_config or "",
+                     log_every=a.log_every,
+                     val_every=a.val_every, val_meshes=a.val_meshes, ckpt_minutes=a.ckpt_minutes,
+                     max_minutes=a.max_minutes, max_cpu_minutes=a.max_cpu_minutes, resume=not a.no_resume, augment=not a.no_augment,
+                     max_seq_len=a.max_seq_len, progress=not a.no_progress)
+    res = train(args)
+    if os.environ.get("RANK", "0") == "0":
+        print(json.dumps(res, indent=2))
+    return 0
+
+
+def _add_pack_checkpoint(sub) -> None:
     k = sub.add_parser("pack-checkpoint", help="a smaller copy of a training checkpoint that still resumes "
                        "(optimizer moments in bf16; the repository's resumable checkpoint)")
     k.add_argument("checkpoint")
@@ -205,6 +112,18 @@ def build_parser() -> argparse.ArgumentParser:
     k.add_argument("--max-bytes", type=int, default=40_000_000, help="refuse a result larger than this (0: no limit)")
     k.set_defaults(fn=_cmd_pack_checkpoint)
 
+
+def _cmd_pack_checkpoint(a) -> int:
+    from .models.checkpoint import pack_checkpoint
+    try:
+        print(json.dumps(pack_checkpoint(Path(a.checkpoint), Path(a.out), a.max_bytes)))
+    except (OSError, ValueError, RuntimeError, KeyError) as e:  # unreadable or not a checkpoint, too big
+        print(f"silk-export pack-checkpoint: {a.checkpoint}: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def _add_export(sub) -> None:
     e = sub.add_parser("export", help="checkpoint -> ONNX model folder (docs/model_contract.md)")
     e.add_argument("--checkpoint", required=True)
     e.add_argument("--out", required=True)
@@ -218,6 +137,21 @@ def build_parser() -> argparse.ArgumentParser:
                         "told otherwise (absent: 1)")
     e.set_defaults(fn=_cmd_export)
 
+
+def _cmd_export(a) -> int:
+    from .models.checkpoint import model_from_checkpoint
+    from .onnx.export import export_model
+    model, ck = model_from_checkpoint(Path(a.checkpoint))
+    training = {"steps": ck["step"], "data": a.data or ck.get("data", {}).get("index"),
+                "seed": ck.get("args", {}).get("seed")}
+    sampling = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k), ("top_p", a.top_p),
+                                  ("candidates", a.candidates)) if v is not None}
+    meta = export_model(model, Path(a.out), training, int8=not a.no_int8, sampling=sampling or None)
+    print(json.dumps(meta, indent=2))
+    return 0
+
+
+def _add_import_official(sub) -> None:
     i = sub.add_parser("import-official", help="released Mesh Silksong checkpoint -> Silk model folder "
                        "(.safetensors / .pt / .bin; docs/model_contract.md v3)")
     i.add_argument("checkpoint", help="model.safetensors (F32/F16/BF16) or a PyTorch state dict (.pt/.bin)")
@@ -233,6 +167,20 @@ def build_parser() -> argparse.ArgumentParser:
     i.add_argument("--no-progress", action="store_true")
     i.set_defaults(fn=_cmd_import_official)
 
+
+def _cmd_import_official(a) -> int:
+    from .official.importer import import_official
+    from .official.state_dict_file import StateDictError
+    try:
+        import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,
+                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens)
+    except (StateDictError, ValueError) as e:
+        print(f"silk-export import-official: error: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def _add_eval(sub) -> None:
     v = sub.add_parser("eval", help="CD / HD / NC / |NC| and structure of generated vs reference meshes")
     v.add_argument("generated", help="mesh file or folder")
     v.add_argument("reference", nargs="?", help="mesh file or folder (same file stems)")
@@ -241,6 +189,19 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--out")
     v.set_defaults(fn=_cmd_eval)
 
+
+def _cmd_eval(a) -> int:
+    from .evaluation.evaluate import evaluate_paths
+    res = evaluate_paths(Path(a.generated), Path(a.reference) if a.reference else None,
+                         n_points=a.points, seed=a.seed)
+    text = json.dumps(res, indent=2)
+    if a.out:
+        Path(a.out).write_text(text + "\n")
+    print(text)
+    return 0
+
+
+def _add_loss(sub) -> None:
     lo = sub.add_parser("loss", help="teacher-forced cross-entropy of a checkpoint on one split (no augmentation)")
     lo.add_argument("--checkpoint", required=True)
     lo.add_argument("--index", required=True)
@@ -254,12 +215,35 @@ def build_parser() -> argparse.ArgumentParser:
     lo.add_argument("--out")
     lo.set_defaults(fn=_cmd_loss)
 
+
+def _cmd_loss(a) -> int:
+    from .data.mesh_files import default_0ad_root
+    from .evaluation.split_loss import split_loss
+    res = split_loss(Path(a.checkpoint), Path(a.index), Path(a.root) if a.root else default_0ad_root(),
+                     a.split, a.limit, a.seed, a.threads, conditioning=not a.no_conditioning)
+    text = json.dumps(res, indent=2)
+    if a.out:
+        Path(a.out).write_text(text + "\n")
+    print(text)
+    return 0
+
+
+def _add_card(sub) -> None:
     c = sub.add_parser("card", help="write MODEL_CARD.md into a model folder from a training run")
     c.add_argument("--model-dir", required=True)
     c.add_argument("--run-dir", required=True)
     c.add_argument("--bench-json")
     c.set_defaults(fn=_cmd_card)
 
+
+def _cmd_card(a) -> int:
+    from .training.card import write_card
+    path = write_card(Path(a.model_dir), Path(a.run_dir), Path(a.bench_json) if a.bench_json else None)
+    print(path)
+    return 0
+
+
+def _add_bench(sub) -> None:
     b = sub.add_parser("bench", help="training throughput (tokens/s) per config on synthetic batches")
     b.add_argument("--configs", nargs="+", default=["micro", "tiny", "small", "paper"])
     b.add_argument("--steps", type=int, default=3)
@@ -270,6 +254,18 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--out")
     b.set_defaults(fn=_cmd_bench)
 
+
+def _cmd_bench(a) -> int:
+    from .training.bench import bench_configs
+    res = bench_configs(a.configs, a.steps, a.seq_len, a.batch_size, a.threads, a.seed)
+    text = json.dumps(res, indent=2)
+    if a.out:
+        Path(a.out).write_text(text + "\n")
+    print(text)
+    return 0
+
+
+def _add_generate(sub) -> None:
     g = sub.add_parser("generate", help="sample meshes from point clouds of input meshes (PyTorch, KV cache)")
     g.add_argument("--model", required=True, help="checkpoint.pt, or with --runtime an exported model folder")
     g.add_argument("--runtime", nargs="?", const="libsilk",
@@ -292,6 +288,35 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--max-index-tokens", type=int, default=2046, help="only index meshes up to this many tokens")
     g.add_argument("inputs", nargs="*")
     g.set_defaults(fn=_cmd_generate)
+
+
+def _cmd_generate(a) -> int:
+    from .data.mesh_files import default_0ad_root
+    from .evaluation.generate import generate_paths, pick_from_index
+    inputs = [Path(p) for p in a.inputs]
+    if a.index:
+        inputs += pick_from_index(Path(a.index), Path(a.root) if a.root else default_0ad_root(), a.split,
+                                  a.limit, a.max_index_tokens)
+    if not inputs:
+        raise SystemExit("generate: no input meshes (give files or --index)")
+    if a.runtime:
+        from .evaluation.generate import generate_with_runtime
+        res = generate_with_runtime(Path(a.model), inputs, Path(a.out), a.seed, a.threads, a.max_tokens,
+                                    a.temperature, a.top_k, a.surface_tolerance, a.candidates)
+    else:
+        given = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k)) if v is not None}
+        res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens, seed=a.seed, threads=a.threads,
+                             **given)  # else generate_paths' defaults
+    print(json.dumps(res, indent=2))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="silk-export", description=__doc__)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    for add in (_add_dataset, _add_train, _add_pack_checkpoint, _add_export, _add_import_official, _add_eval,
+                _add_loss, _add_card, _add_bench, _add_generate):
+        add(sub)
     return p
 
 

@@ -13,7 +13,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # works without `p
 
 import torch  # noqa: E402
 
-from silk_export import libsilk  # noqa: E402
+from silk_export.binding import libsilk  # noqa: E402
 
 torch.set_num_threads(1)  # deterministic, and fast on a shared machine (no thread oversubscription)
 from silk_export.paths import shared_dir  # noqa: E402

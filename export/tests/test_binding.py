@@ -7,7 +7,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from silk_export import libsilk
+from silk_export.binding import libsilk
 from silk_export.vocab import load_vocab
 
 GOLDENS = ["cube", "torus_12x8", "nonmanifold_book", "two_components", "grid", "dirty_cube"]

@@ -10,12 +10,12 @@ import shutil
 import numpy as np
 import pytest
 
-from silk_export import libsilk
+from silk_export.binding import libsilk
 from silk_export.cli import main
-from silk_export.dataset_index import build_index, merge_shards
-from silk_export.samples import make_sample
-from silk_export.shard_store import Shard, parse_shard
-from silk_export.sharded_dataset import ShardedSource, dataset_rows
+from silk_export.data.dataset_index import build_index, merge_shards
+from silk_export.data.samples import make_sample
+from silk_export.data.shard_store import Shard, parse_shard
+from silk_export.data.sharded_dataset import ShardedSource, dataset_rows
 
 BAD = {"degenerate_only.obj": "no-faces", "garbage_bytes.obj": "error:parse error",
        "empty.obj": "error:parse error"}

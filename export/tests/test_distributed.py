@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 import torch
 
-from silk_export import libsilk
+from silk_export.binding import libsilk
 from silk_export.cli import main
 
 EXPORT_DIR = Path(__file__).resolve().parents[1]

@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 import torch
 
-from silk_export.checkpoint import model_from_checkpoint
+from silk_export.models.checkpoint import model_from_checkpoint
 from silk_export.cli import main
-from silk_export.official_checkpoint import load_official
-from silk_export.sharded_dataset import ShardedSource, dataset_rows
-from silk_export.train import TrainArgs, evaluate_loss, val_samples
+from silk_export.official.checkpoint import load_official
+from silk_export.data.sharded_dataset import ShardedSource, dataset_rows
+from silk_export.training.train import TrainArgs, evaluate_loss, val_samples
 
 SMALL_DEV = ["props__shield__hex_01", "props__wrld_hay_la", "props__weap_javelin_shaft_b", "props__shield__round_b_f"]
 STEPS = 10

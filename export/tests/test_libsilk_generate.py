@@ -10,7 +10,7 @@ import shutil
 import numpy as np
 import pytest
 
-from silk_export import libsilk
+from silk_export.binding import libsilk
 from silk_export.paths import REPO_ROOT
 
 TINY = REPO_ROOT / "tests/models/tiny"
@@ -106,7 +106,7 @@ def _c_struct_fields(name: str) -> list[tuple[str, str]]:
                                               ("silk_generate_stats", "GenerateStats")])
 def test_ctypes_declarations_follow_silk_h(c_name, py_struct):
     import ctypes
-    from silk_export import silk_c
+    from silk_export.binding import silk_c
     scalar = {"int32_t": ctypes.c_int32, "int64_t": ctypes.c_int64, "uint64_t": ctypes.c_uint64,
               "double": ctypes.c_double}
     want = _c_struct_fields(c_name)
@@ -175,7 +175,7 @@ def test_orientation_reverses_whole_parts_in_the_preview_and_the_result():
 def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
     """model.json "sampling" (written by `silk-export export --temperature`) is where a model's
     sampling defaults live; explicit parameters still win, and generate.json records the result."""
-    from silk_export.generate import generate_with_runtime
+    from silk_export.evaluation.generate import generate_with_runtime
     greedy = tmp_path / "greedy"
     shutil.copytree(TINY, greedy)
     meta = json.loads((greedy / "model.json").read_text())
@@ -202,7 +202,7 @@ def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
 def test_model_json_candidates_is_the_default_best_of_n(tmp_path):
     """model.json sampling.candidates (`silk-export export --candidates`) is the N a caller gets
     when it names none; an explicit N wins; generate.json lists every candidate that ran."""
-    from silk_export.generate import generate_with_runtime
+    from silk_export.evaluation.generate import generate_with_runtime
     three = tmp_path / "three"
     shutil.copytree(TINY, three)
     meta = json.loads((three / "model.json").read_text())

@@ -8,10 +8,10 @@ import json
 import numpy as np
 import pytest
 
-from silk_export import libsilk
+from silk_export.binding import libsilk
 from silk_export.cli import main
-from silk_export.metrics import compare_meshes
-from silk_export.structure import mesh_structure
+from silk_export.evaluation.metrics import compare_meshes
+from silk_export.evaluation.structure import mesh_structure
 
 CUBE_V = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=np.float64)
 CUBE_F = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],

@@ -12,9 +12,9 @@ import onnx
 import pytest
 import torch
 
-from silk_export import onnx_decode
+from silk_export.onnx import decode as onnx_decode
 from silk_export.cli import main
-from silk_export.official_checkpoint import load_official
+from silk_export.official.checkpoint import load_official
 
 TOL = 1e-4
 
@@ -118,7 +118,7 @@ def test_greedy_reproduces_official_loop(fixture_dir, cross_kv, decoder):
 def test_external_data_export_is_the_same_network(fixture_dir, tmp_path):
     """The large-model path (weights streamed into decoder.onnx.data, never one big protobuf)
     gives the same logits, and the INT8 quantizer reads it."""
-    from silk_export.onnx_export import export_graphs, quantize_decoder, transpose_linears
+    from silk_export.onnx.export import export_graphs, quantize_decoder, transpose_linears
     model, _ = load_official(fixture_dir / "model.safetensors", fixture_dir / "config.json", progress=False)
     files = export_graphs(transpose_linears(model), tmp_path, external_over=0)
     assert files["external_data"] == ["decoder.onnx.data"] and (tmp_path / "decoder.onnx.data").exists()

@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 import torch
 
-from silk_export import onnx_decode
+from silk_export.onnx import decode as onnx_decode
 from silk_export.cli import main
-from silk_export.official_checkpoint import load_official
+from silk_export.official.checkpoint import load_official
 
 # Release size -> test size. D = C = H·dh = 1024 -> 32 (H 16 -> 2, dh 64 -> 16), W = 768 -> 24
 # (12 heads of 2), every multiple of them alike; positions 10240 -> 256. 4 memory slots, 257
@@ -156,7 +156,7 @@ def test_bad_checkpoint_is_an_error_naming_the_key(state, tmp_path, capsys, how,
     (lambda b: b[:-2], "do not fit"),
 ])
 def test_damaged_safetensors_is_a_clear_error(tmp_path, damage, message):
-    from silk_export.state_dict_file import StateDictError, open_state_dict
+    from silk_export.official.state_dict_file import StateDictError, open_state_dict
     good = tmp_path / "good.safetensors"
     write_safetensors(good, {"a": torch.ones(3, dtype=torch.float16), "b": torch.ones(2, 2, dtype=torch.float16)})
     bad = tmp_path / "bad.safetensors"

@@ -13,10 +13,10 @@ import onnxruntime as ort
 import pytest
 import torch
 
-from silk_export.configs import get_config
-from silk_export.model import SilkModel
-from silk_export.onnx_export import export_model
-from silk_export.onnx_graphs import decoder_input_names, decoder_output_names
+from silk_export.models.configs import get_config
+from silk_export.models.silk_model import SilkModel
+from silk_export.onnx.export import export_model
+from silk_export.onnx.graphs import decoder_input_names, decoder_output_names
 from silk_export.vocab import load_vocab
 
 TOL = 1e-4
@@ -66,7 +66,7 @@ def test_sidecar_follows_contract(exported):
 
 
 def test_sidecar_carries_chosen_sampling_defaults(exported):
-    from silk_export.onnx_export import sidecar
+    from silk_export.onnx.export import sidecar
     model, _, meta, *_ = exported
     chosen = {"temperature": 1.3, "top_k": 50}
     with_sampling = sidecar(model.cfg, meta["training"], meta["files"], {"sampling": chosen})

@@ -6,7 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from silk_export import libsilk, pointcloud
+from silk_export.binding import libsilk
+from silk_export.data import pointcloud
 
 # A box [0,2]x[0,1]x[0,1] of 12 triangles.
 V = np.array([[0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0], [0, 0, 1], [2, 0, 1], [2, 1, 1], [0, 1, 1]], float)

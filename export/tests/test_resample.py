@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from silk_export.resample import ProgressiveBalancedSampler
+from silk_export.data.resample import ProgressiveBalancedSampler
 
 # classes: [0,100) x6, [100,200) x3, [500,600) x1  -> sizes 6, 3, 1 of N = 10
 FACES = [5, 20, 50, 99, 0, 60, 100, 150, 199, 512]

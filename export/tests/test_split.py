@@ -9,11 +9,11 @@ import json
 import numpy as np
 import pytest
 
-from silk_export import libsilk
-from silk_export.dataset_index import dev_exclusion, encode_one
-from silk_export.mesh_files import default_0ad_root
+from silk_export.binding import libsilk
+from silk_export.data.dataset_index import dev_exclusion, encode_one
+from silk_export.data.mesh_files import default_0ad_root
 from silk_export.paths import data_dir
-from silk_export.splits import DEV, hash_split, read_dev_manifest, shape_key
+from silk_export.data.splits import DEV, hash_split, read_dev_manifest, shape_key
 
 
 def test_hash_split_rule():

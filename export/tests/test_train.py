@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 import torch
 
-from silk_export.checkpoint import model_from_checkpoint
-from silk_export.configs import ModelConfig
-from silk_export.dataset_index import build_index
-from silk_export.model import SilkModel
-from silk_export.samples import MeshCache
-from silk_export.train import TrainArgs, evaluate_loss, seed_everything, train
+from silk_export.models.checkpoint import model_from_checkpoint
+from silk_export.models.configs import ModelConfig
+from silk_export.data.dataset_index import build_index
+from silk_export.models.silk_model import SilkModel
+from silk_export.data.samples import MeshCache
+from silk_export.training.train import TrainArgs, evaluate_loss, seed_everything, train
 
 TEST_CFG = ModelConfig("test", d_model=64, n_layers=2, n_heads=2, n_latents=16, max_seq_len=512,
                        encoder_layers=1, fourier_freqs=4, n_points=256)
@@ -82,7 +82,7 @@ def test_resume_reproduces_the_uninterrupted_run(data, tmp_path):
 def test_packed_checkpoint_is_smaller_and_resumes_the_run(data, tmp_path):
     """The repository's resumable checkpoint: bf16 optimizer moments, same weights and step; a run
     resumed from it continues the same schedule and lands close to the uninterrupted run."""
-    from silk_export.checkpoint import pack_checkpoint
+    from silk_export.models.checkpoint import pack_checkpoint
 
     torch.set_num_threads(1)
     train(args(data, tmp_path / "full", 6))
@@ -114,7 +114,7 @@ def test_packed_checkpoint_is_smaller_and_resumes_the_run(data, tmp_path):
 
 
 def test_generate_samples_legal_ids_and_writes_the_layout(data, tmp_path, golden_dir):
-    from silk_export.generate import generate_paths, pick_from_index
+    from silk_export.evaluation.generate import generate_paths, pick_from_index
 
     train(args(data, tmp_path / "run", 2))
     root, index, rows = data
@@ -146,7 +146,7 @@ def test_workers_checkpointing_and_micro_batches_keep_the_losses(data, tmp_path)
 
 def test_conditioning_gap_is_zero_only_for_a_model_blind_to_its_points(data, tmp_path):
     """`silk-export loss` scores the tokens again with each mesh given the next mesh's points."""
-    from silk_export.split_loss import other_points, split_loss
+    from silk_export.evaluation.split_loss import other_points, split_loss
     torch.set_num_threads(1)
     root, index, _ = data
     train(args(data, tmp_path, 10))

@@ -24,9 +24,9 @@ import onnx  # noqa: E402
 import torch  # noqa: E402
 from onnx import helper, numpy_helper  # noqa: E402
 
-from silk_export.configs import ModelConfig  # noqa: E402
-from silk_export.model import SilkModel  # noqa: E402
-from silk_export.onnx_export import export_model  # noqa: E402
+from silk_export.models.configs import ModelConfig  # noqa: E402
+from silk_export.models.silk_model import SilkModel  # noqa: E402
+from silk_export.onnx.export import export_model  # noqa: E402
 from silk_export.vocab import load_vocab  # noqa: E402
 
 SEED = 20240611

@@ -1,1 +1,1 @@
-../../../export/silk_export/silk_c.py
+../../../export/silk_export/binding/silk_c.py

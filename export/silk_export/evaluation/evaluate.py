@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import libsilk
-from .mesh_files import is_mesh_file
+from ..binding import libsilk
+from ..data.mesh_files import is_mesh_file
 from .metrics import compare_meshes
 from .structure import mesh_structure
 

@@ -12,9 +12,9 @@ from pathlib import Path
 
 from tqdm import tqdm
 
-from . import libsilk
+from ..binding import libsilk
+from ..paths import shared_dir
 from .mesh_files import list_meshes
-from .paths import shared_dir
 from .shard_store import Shard, ShardWriter, shard_name, write_refused
 from .splits import TRAIN, DevExclusion, assign_split, load_dev_exclusion, shape_key
 

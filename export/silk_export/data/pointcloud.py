@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import libsilk
+from ..binding import libsilk
 
 N_POINTS = 4096
 NOISE_PROBABILITY = 0.5

@@ -8,16 +8,15 @@ import torch.nn.functional as F
 from torch import nn
 from torch.utils.checkpoint import checkpoint
 
+from ..vocab import TYPE_CLASSES, load_vocab
+from .architecture import IGNORE_INDEX, Architecture
 from .configs import ModelConfig
 from .layers import FeedForward, MultiHeadAttention, attend, merge_heads, split_heads
 from .point_encoder import PointEncoder
-from .vocab import TYPE_CLASSES, load_vocab
-
-IGNORE_INDEX = -100
 
 
 class DecoderLayer(nn.Module):
-    fsdp_forward_methods = ("cross_kv",)  # SilkModel calls it before the layers run (distributed.py)
+    fsdp_forward_methods = ("cross_kv",)  # SilkModel calls it before the layers run (training/distributed.py)
 
     def __init__(self, cfg: ModelConfig):
         super().__init__()
@@ -38,20 +37,16 @@ class DecoderLayer(nn.Module):
         a = self.self_attn
         return a.q(y), a.k(y), a.v(y)
 
-    def forward(self, x, cross_k, cross_v, past_k=None, past_v=None, allowed=None, fused=True):
-        """x [B,T,d]; past_k/v [B,H,P,D] or None. Returns (x, k_new, v_new) with k/v [B,H,T,D]."""
+    def forward(self, x, cross_k, cross_v, fused=True):
+        """x [B,T,d] with causal self-attention over its own rows (teacher forcing) -> [B,T,d]."""
         h = self.self_attn.n_heads
 
         def self_attention(y):
-            q = self.self_attn.q(y)
-            k_new, v_new = self.self_attn.keys_values(y)
-            k = k_new if past_k is None else torch.cat([past_k, k_new], dim=2)
-            v = v_new if past_v is None else torch.cat([past_v, v_new], dim=2)
-            a = attend(split_heads(q, h), k, v, causal=allowed is None, allowed=allowed, fused=fused)
-            return merge_heads(a), (k_new, v_new)
+            q = split_heads(self.self_attn.q(y), h)
+            k, v = self.self_attn.keys_values(y)
+            return merge_heads(attend(q, k, v, causal=True, fused=fused)), None
 
-        x, (k_new, v_new) = self.block(x, cross_k, cross_v, self_attention, fused)
-        return x, k_new, v_new
+        return self.block(x, cross_k, cross_v, self_attention, fused)[0]
 
     def block(self, x, cross_k, cross_v, self_attention, fused=True):
         """The layer's residual structure with the self-attention step supplied by the caller:
@@ -66,7 +61,22 @@ class DecoderLayer(nn.Module):
         return x, extra
 
 
-class SilkModel(nn.Module):
+class SilkModel(Architecture):
+    """Architecture "silk" (model.json version 2)."""
+    name = "silk"
+    model_version = 2
+
+    @classmethod
+    def preprocessing(cls, cfg: ModelConfig) -> dict:
+        return {"kind": "silk", "normalize_bound": 0.95, "merge_distance_fraction": 0.0, "surface_samples": 0,
+                "round_float16": False, "n_points": cfg.n_points}
+
+    @classmethod
+    def card_summary(cls) -> list[str]:
+        return ["A point-cloud-conditioned autoregressive generator of Mesh Silksong token sequences",
+                "(decoder-only transformer with cross-attention to perceiver latents of 4,096 surface",
+                "points + normals), exported for the Silk C++ runtime per `docs/model_contract.md`."]
+
     def __init__(self, cfg: ModelConfig):
         super().__init__()
         vocab = load_vocab()
@@ -118,32 +128,12 @@ class SilkModel(nn.Module):
         x = self.embed(input_ids, pos)
         for layer, (ck, cv) in zip(self.layers, cross):
             if self.gradient_checkpointing and self.training:
-                x = checkpoint(lambda x, ck, cv, layer=layer: layer(x, ck, cv)[0], x, ck, cv, use_reentrant=False)
+                x = checkpoint(lambda x, ck, cv, layer=layer: layer(x, ck, cv), x, ck, cv, use_reentrant=False)
             else:
-                x, _, _ = layer(x, ck, cv)
+                x = layer(x, ck, cv)
         logits = self.logits(x)
         if labels is None:
             return logits
         loss = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1),
                                ignore_index=IGNORE_INDEX)
         return loss, logits
-
-    def step(self, input_ids, positions, past, cross, fused=False):
-        """Incremental decoding with a KV cache, batch 1 layout of the ONNX decoder.
-
-        past: list per layer of (K, V) [1,H,P,D] (P may be 0); cross: list of (K, V) [1,H,M,D].
-        Key j is visible to a new token iff j <= its position (cache index = position)."""
-        x = self.embed(input_ids, positions)
-        k0 = past[0][0]
-        key_index = torch.cumsum(torch.ones_like(k0[0, 0, :, 0]), 0) - 1  # 0..P-1
-        new_index = positions[0].to(x.dtype)
-        all_index = torch.cat([key_index, new_index])
-        allowed = all_index.unsqueeze(0) <= new_index.unsqueeze(1)  # [T, P+T]
-        new = []
-        for layer, (pk, pv), (ck, cv) in zip(self.layers, past, cross):
-            x, kn, vn = layer(x, ck, cv, pk, pv, allowed=allowed, fused=fused)
-            new.append((kn, vn))
-        return self.logits(x), new
-
-    def num_parameters(self) -> int:
-        return sum(p.numel() for p in self.parameters())

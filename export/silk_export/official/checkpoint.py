@@ -11,10 +11,10 @@ from pathlib import Path
 import torch
 from tqdm import tqdm
 
-from .configs import ModelConfig
-from .official_keys import is_unused, local_name, release_name, sizes_from_shapes, strip_wrapper
+from ..models.configs import ModelConfig
+from ..vocab import TYPE_CLASSES, load_vocab
+from .keys import is_unused, local_name, release_name, sizes_from_shapes, strip_wrapper
 from .state_dict_file import StateDictError, open_state_dict
-from .vocab import TYPE_CLASSES, load_vocab
 
 # Values no tensor shape reveals (official_network.md §6), at the release's settings.
 RELEASE_DEFAULTS = {"encoder_heads": 12, "qk_scale": 10.0, "n_points": 4096}
@@ -124,7 +124,7 @@ def check_layout(keys: dict[str, str], infos: dict, params: dict) -> None:
 
 def load_official(path: Path, config_path: Path | None = None, progress: bool = True):
     """-> (OfficialModel in float32, eval mode; LoadReport). Raises StateDictError naming the key."""
-    from .official_model import OfficialModel
+    from .model import OfficialModel
     src = open_state_dict(path)
     infos = src.infos()
     report = LoadReport(tensors=len(infos))

@@ -9,12 +9,12 @@ from pathlib import Path
 import numpy as np
 import torch
 
-from . import libsilk
+from ..binding import libsilk
+from ..models.architecture import IGNORE_INDEX
+from ..vocab import load_vocab
 from .augment import augment_vertices
 from .geometry import normalize_vertices
-from .model import IGNORE_INDEX
 from .pointcloud import point_cloud
-from .vocab import load_vocab
 
 BOUND = 0.95
 

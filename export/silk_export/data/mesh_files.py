@@ -29,5 +29,5 @@ def list_meshes(root: Path) -> list[tuple[str, Path]]:
 
 
 def default_0ad_root() -> Path:
-    from .paths import data_dir
+    from ..paths import data_dir
     return data_dir() / "0ad"

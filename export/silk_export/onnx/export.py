@@ -11,14 +11,13 @@ from pathlib import Path
 
 import torch
 
-from . import __version__
-from .architectures import get_architecture
-from .configs import ModelConfig
-from .onnx_graphs import DecoderGraph, EncoderGraph, decoder_input_names, decoder_output_names
-from .vocab import load_vocab
+from .. import __version__
+from ..models.configs import ModelConfig
+from ..models.registry import get_architecture
+from ..vocab import load_vocab
+from .graphs import DecoderGraph, EncoderGraph, decoder_input_names, decoder_output_names
 
 OPSET = 17
-MODEL_VERSION = 2  # what the "silk" architecture writes (architectures.py has each one's)
 DATA_ALIGN = 4096
 
 
@@ -230,7 +229,7 @@ def sidecar(cfg: ModelConfig, training: dict, files: dict, extra: dict | None = 
     import onnx
     import onnxruntime
 
-    from . import libsilk
+    from ..binding import libsilk
     arch = get_architecture(cfg.arch)
     vocab = load_vocab()
     try:

@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from . import libsilk
-from .samples import TooLong
+from ..binding import libsilk
+from ..data.samples import TooLong
 
 TRIES_PER_SLOT = 50
 

@@ -17,18 +17,18 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
-from . import libsilk
-from .checkpoint import load_checkpoint, save_state
-from .configs import ModelConfig, config_from_dict, get_config
-from .dataset_index import build_index, read_index
+from ..binding import libsilk
+from ..data.dataset_index import build_index, read_index
+from ..data.resample import ProgressiveBalancedSampler
+from ..data.samples import MeshCache, TooLong, collate
+from ..data.sharded_dataset import ShardedSource, dataset_rows, is_dataset
+from ..models.checkpoint import load_checkpoint, save_state
+from ..models.configs import ModelConfig, config_from_dict, get_config
+from ..models.registry import build_model as architecture_model
+from ..models.registry import get_architecture
 from .distributed import DistEnv, full_state, gradient_sync, init_distributed, load_full_state, wrap_model
 from .losslog import LossLog, plot_losses
-from .architectures import build_model as architecture_model
-from .architectures import get_architecture
-from .resample import ProgressiveBalancedSampler
-from .samples import MeshCache, TooLong, collate
 from .schedule import cosine_lr
-from .sharded_dataset import ShardedSource, dataset_rows, is_dataset
 from .train_data import StepSamples, rank_slots, step_loader
 
 MAX_FACES = 12000
@@ -195,7 +195,7 @@ def open_data(a: TrainArgs, env: DistEnv, cfg: ModelConfig, out: Path) -> Traini
     """--data DATASET (dataset.json), --data FOLDER (rank 0 caches it under OUT/data first, every
     mesh as training data), or --index with --root. Point clouds follow the architecture's
     pre-processing (official: merge, 50 K surface samples, float16 rounding, draw)."""
-    kind = get_architecture(cfg.arch).preprocessing(cfg)["kind"]
+    kind = get_architecture(cfg.arch).points_kind(cfg)
     if a.data:
         path = Path(a.data)
         if not is_dataset(path) and (path / "index.jsonl").is_file():
@@ -245,7 +245,7 @@ def initial_model(a: TrainArgs, env: DistEnv):
     if not a.init_from:
         torch.manual_seed(a.seed)  # the same initial weights on every rank
         return architecture_model(model_config(a))
-    from .official_checkpoint import load_official
+    from ..official.checkpoint import load_official
     model, _ = load_official(Path(a.init_from), Path(a.init_config) if a.init_config else None,
                              progress=a.progress and env.is_main)
     if a.max_seq_len and a.max_seq_len != model.cfg.max_seq_len:

@@ -14,11 +14,11 @@ import torch.nn.functional as F
 from torch import nn
 from torch.utils.checkpoint import checkpoint
 
-from .configs import ModelConfig
-from .layers import attend, merge_heads, split_heads
-from .model import IGNORE_INDEX
-from .official_point_encoder import OfficialPointEncoder
-from .vocab import TYPE_CLASSES, load_vocab
+from ..models.architecture import IGNORE_INDEX, Architecture
+from ..models.configs import ModelConfig
+from ..models.layers import attend, merge_heads, split_heads
+from ..vocab import TYPE_CLASSES, load_vocab
+from .point_encoder import OfficialPointEncoder
 
 # The five type vectors in TYPE_CLASSES order (X, S, B, K, O), named as in the release file.
 TYPE_VECTOR_NAMES = ("matrix_in0_embed", "matrix_in1_embed", "matrix_out_embed", "block_embed", "offset_embed")
@@ -74,7 +74,7 @@ class GluFeedForward(nn.Module):
 
 
 class OfficialBlock(nn.Module):
-    fsdp_forward_methods = ("cross_kv", "block")  # the entry points OfficialModel calls (distributed.py)
+    fsdp_forward_methods = ("cross_kv", "block")  # the entry points OfficialModel calls (training/distributed.py)
 
     def __init__(self, cfg: ModelConfig):
         super().__init__()
@@ -106,7 +106,27 @@ class OfficialBlock(nn.Module):
         return x + self.ff(self.ff_norm(x)), extra
 
 
-class OfficialModel(nn.Module):
+class OfficialModel(Architecture):
+    """Architecture "official" (model.json version 3, with the official pre-processing and
+    sampling defaults of official_network.md §4)."""
+    name = "official"
+    model_version = 3
+    sampling = {"temperature": 0.5, "top_k": 50, "top_p": 0.95, "top_p_temperature": 1.0}
+
+    @classmethod
+    def preprocessing(cls, cfg: ModelConfig) -> dict:
+        """official_network.md §4: the official inference pre-processing."""
+        return {"kind": "official", "normalize_bound": 0.95, "merge_distance_fraction": 0.01,
+                "surface_samples": 50000, "round_float16": True, "n_points": cfg.n_points}
+
+    @classmethod
+    def card_summary(cls) -> list[str]:
+        return ["The released Mesh Silksong network (`arch: official`, `docs/official_network.md` §3),",
+                "re-implemented from that description: learned queries cross-attending to 4,096 surface",
+                "points + normals, conditioner projections, then a pre-norm decoder with L2 qk-norm self-",
+                "and cross-attention (learned memory slots) and GLU feed-forward, exported for the Silk C++",
+                "runtime per `docs/model_contract.md` (version 3)."]
+
     def __init__(self, cfg: ModelConfig):
         super().__init__()
         vocab = load_vocab()
@@ -187,6 +207,3 @@ class OfficialModel(nn.Module):
             return logits
         loss = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1), ignore_index=IGNORE_INDEX)
         return loss, logits
-
-    def num_parameters(self) -> int:
-        return sum(p.numel() for p in self.parameters())

@@ -7,9 +7,9 @@ import time
 
 import torch
 
-from .configs import get_config
-from .model import SilkModel
-from .vocab import load_vocab
+from ..models.configs import get_config
+from ..models.silk_model import SilkModel
+from ..vocab import load_vocab
 
 
 def bench_config(name: str, steps: int, seq_len: int, batch_size: int, seed: int) -> dict:

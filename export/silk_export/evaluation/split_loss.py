@@ -14,10 +14,10 @@ from pathlib import Path
 import numpy as np
 import torch
 
-from . import libsilk
-from .checkpoint import model_from_checkpoint
-from .dataset_index import read_index
-from .train import fixed_val_samples, evaluate_loss, select_rows
+from ..binding import libsilk
+from ..data.dataset_index import read_index
+from ..models.checkpoint import model_from_checkpoint
+from ..training.train import fixed_val_samples, evaluate_loss, select_rows
 
 
 def unigram_baseline(root: Path, rows: list[dict], eval_tokens: np.ndarray, n_ids: int, eos_id: int) -> float:

@@ -1,5 +1,5 @@
 """The two graphs of docs/model_contract.md as thin nn.Modules over a model of any registered
-architecture (silk_export.architectures).
+architecture (silk_export.models.architecture).
 The decoder's self-attention is onnxruntime's GroupQueryAttention over one head-major cache per
 layer and K/V, so the runtime can share past_* and present_* and nothing is copied per step."""
 from __future__ import annotations
@@ -7,7 +7,7 @@ from __future__ import annotations
 import torch
 from torch import nn
 
-from .layers import attend, merge_heads, split_heads
+from ..models.layers import attend, merge_heads, split_heads
 
 
 class EncoderGraph(nn.Module):
@@ -68,7 +68,7 @@ class DecoderGraph(nn.Module):
     With C >= P+T and present bound to the past buffer, the new rows land at P..P+T-1 in place
     (C' = C); with past of exactly P rows and present left to onnxruntime, C' = P+T.
 
-    The model is reached through the architecture interface (silk_export.architectures):
+    The model is reached through the architecture interface (silk_export.models.architecture):
     model.embed(ids, positions), model.layers[l].self_qkv(y) and .block(...), model.logits(x),
     and cfg.qk_scale (0 = 1/sqrt(D))."""
 

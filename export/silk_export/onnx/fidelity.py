@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .onnx_decode import DecoderState, greedy, session, teacher_forced
+from .decode import DecoderState, greedy, session, teacher_forced
 
 MIN_TOP1 = 0.97
 MAX_MEAN_KL = 0.05

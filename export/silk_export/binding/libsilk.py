@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .paths import REPO_ROOT
+from ..paths import REPO_ROOT
 
 from .silk_c import *  # noqa: F401,F403  (status codes, structs, callback types)
 from .silk_c import _c_double_p, _c_int32_p, declare as _declare

@@ -12,26 +12,25 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
-from . import libsilk
-from .checkpoint import model_from_checkpoint
-from .geometry import normalize_vertices
-from .model import SilkModel
-from .pointcloud import point_cloud
+from ..binding import libsilk
+from ..data.geometry import normalize_vertices
+from ..data.pointcloud import point_cloud
+from ..models.architecture import Architecture
+from ..models.checkpoint import model_from_checkpoint
 
 
 @torch.no_grad()
-def sample_tokens(model: SilkModel, points: np.ndarray, max_tokens: int, temperature: float, top_k: int,
+def sample_tokens(model: Architecture, points: np.ndarray, max_tokens: int, temperature: float, top_k: int,
                   generator: torch.Generator) -> tuple[np.ndarray, bool]:
-    """Samples at most max_tokens ids (EOS included). Returns (format ids without BOS/EOS, whether
-    EOS was produced)."""
+    """Samples at most max_tokens ids (EOS included) with a model of any registered architecture,
+    one Architecture.step per id. points: float32 [N, 6] by the architecture's pre-processing.
+    Returns (format ids without BOS/EOS, whether EOS was produced)."""
     model.eval()
-    c = model.cfg
     cross = model.encode_points(torch.from_numpy(points).unsqueeze(0))
-    empty = torch.zeros(1, c.n_heads, 0, c.head_dim)
-    past = [(empty, empty) for _ in range(c.n_layers)]
+    past = model.empty_cache()
     ids = torch.tensor([[model.bos_id]])
     out = []
-    for pos in range(min(max_tokens, c.max_seq_len - 1)):  # ids sampled, EOS included
+    for pos in range(min(max_tokens, model.cfg.max_seq_len - 1)):  # ids sampled, EOS included
         logits, new = model.step(ids, torch.tensor([[pos]]), past, cross, fused=False)
         past = [(torch.cat([pk, kn], 2), torch.cat([pv, vn], 2)) for (pk, pv), (kn, vn) in zip(past, new)]
         lg = logits[0, -1].clone()
@@ -50,7 +49,7 @@ def sample_tokens(model: SilkModel, points: np.ndarray, max_tokens: int, tempera
 
 def pick_from_index(index: Path, root: Path, split: str, limit: int, max_tokens: int) -> list[Path]:
     """`limit` encodable meshes of one split, evenly spaced over the split sorted by token count."""
-    from .dataset_index import read_index
+    from ..data.dataset_index import read_index
     rows = sorted((r for r in read_index(index) if r["split"] == split and r.get("refused") is None
                    and r.get("tokens") and r["tokens"] <= max_tokens), key=lambda r: (r["tokens"], r["key"]))
     if limit and len(rows) > limit:
@@ -76,7 +75,7 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
         with libsilk.Mesh.from_arrays(vn, f) as ref:
             ref.save(ref_dir / f"{stem}.obj")
         t0 = time.time()
-        pts = point_cloud(vn, f, rng, n=model.cfg.n_points, noise=False)
+        pts = point_cloud(vn, f, rng, n=model.cfg.n_points, noise=False, kind=model.points_kind(model.cfg))
         toks, eos = sample_tokens(model, pts, max_tokens or model.cfg.max_seq_len - 1, temperature, top_k, g)
         row = {"name": stem, "tokens": int(toks.size), "eos": eos, "seconds": round(time.time() - t0, 2)}
         try:

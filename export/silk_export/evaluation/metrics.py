@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from .geometry import normalize_vertices
-from .pointcloud import sample_surface
+from ..data.geometry import normalize_vertices
+from ..data.pointcloud import sample_surface
 
 
 def nearest(a: np.ndarray, b: np.ndarray, chunk: int = 1024) -> tuple[np.ndarray, np.ndarray]:

@@ -13,12 +13,12 @@ import time
 from dataclasses import asdict
 from pathlib import Path
 
-from . import fidelity
-from .official_card import write_official_card
-from .official_checkpoint import load_official
-from .onnx_export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
-                          transpose_linears)
-from .vocab import load_vocab
+from ..onnx import fidelity
+from ..onnx.export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
+                           transpose_linears)
+from ..vocab import load_vocab
+from .card import write_official_card
+from .checkpoint import load_official
 
 PRECISIONS = ("fp32", "int8", "int4", "auto")
 SOURCE_LICENCE = ("The official Mesh Silksong code (gaochao-s/Mesh-Silksong) is MIT-licensed; the weights "

@@ -1,0 +1,22 @@
+"""The architecture registry: one entry per network family that can sit behind the model contract
+(docs/model_contract.md), each an implementation of the Architecture interface (architecture.py).
+A ModelConfig's `arch` names its entry; checkpoints, training and the exporter build models here."""
+from __future__ import annotations
+
+from ..official.model import OfficialModel
+from .architecture import Architecture
+from .configs import ModelConfig
+from .silk_model import SilkModel
+
+ARCHITECTURES: dict[str, type[Architecture]] = {cls.name: cls for cls in (SilkModel, OfficialModel)}
+
+
+def get_architecture(name: str) -> type[Architecture]:
+    try:
+        return ARCHITECTURES[name]
+    except KeyError:
+        raise ValueError(f"unknown architecture '{name}' (known: {', '.join(ARCHITECTURES)})") from None
+
+
+def build_model(cfg: ModelConfig) -> Architecture:
+    return get_architecture(cfg.arch).build(cfg)

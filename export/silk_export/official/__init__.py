@@ -1,0 +1,3 @@
+"""The released Mesh Silksong network (arch "official", docs/official_network.md): its
+re-implementation, the release checkpoint's key layout and loader, and `silk-export
+import-official`, which turns a released checkpoint into a Silk model folder with its card."""
