@@ -38,9 +38,26 @@ Status DecoderRunner::Feed(const int32_t* ids, int64_t n) {
 }
 
 Status DecoderRunner::RunChunk(const int32_t* ids, int64_t n) {
-  const int64_t P = cache_->length(), C = cache_->capacity();
-  const ModelDims& d = model_.config.dims;
-  const int64_t L = d.n_layers, H = d.n_heads, D = d.head_dim, M = d.n_latents;
+  StageInputs(ids, n);
+  return OrtGuard("decoder", [&]() -> Status {
+    // Values 0..3 change every call; the per-layer cache and cross views (and, in place, the
+    // present outputs over the same blocks) are made once and reused.
+    const bool in_place = mode_ == KvMode::kInPlace;
+    if (!in_place || in_values_.empty() || views_of_ != cache_->block(0, 0) || views_capacity_ != cache_->capacity())
+      MakeViews();
+    BindChunkInputs(n);
+    if (in_place) RunInPlace(n);
+    else SILK_RETURN_IF_ERROR(RunCopying(n));
+    cache_->Extend(n);
+    ++calls_;
+    return Status::Ok();
+  });
+}
+
+// The chunk's ids and positions (after the cached prefix), the attention lengths, and room for
+// max_chunk rows of logits.
+void DecoderRunner::StageInputs(const int32_t* ids, int64_t n) {
+  const int64_t P = cache_->length();
   ids_.resize(n);
   positions_.resize(n);
   for (int64_t i = 0; i < n; ++i) {
@@ -50,77 +67,97 @@ Status DecoderRunner::RunChunk(const int32_t* ids, int64_t n) {
   seqlens_k_ = static_cast<int32_t>(P + n - 1);
   total_ = static_cast<int32_t>(P + n);
   if (logits_.size() < static_cast<size_t>(max_chunk_ * vocab_)) logits_.resize(max_chunk_ * vocab_);
-  return OrtGuard("decoder", [&]() -> Status {
-    const Ort::MemoryInfo& mem = model_.cpu_memory;
-    const std::array<int64_t, 2> tok_shape = {1, n};
-    const std::array<int64_t, 1> one = {1};
-    const std::array<int64_t, 4> cache_shape = {1, H, mode_ == KvMode::kInPlace ? C : P, D};
-    const std::array<int64_t, 4> cross_shape = {1, H, M, D};
-    const std::array<int64_t, 3> logit_shape = {1, n, vocab_};
-    // Values 0..3 change every call; the per-layer cache and cross views (and, in place, the
-    // present outputs over the same blocks) are made once and reused.
-    const bool in_place = mode_ == KvMode::kInPlace;
-    if (!in_place || in_values_.empty() || views_of_ != cache_->block(0, 0) || views_capacity_ != C) {
-      views_of_ = cache_->block(0, 0);  // a re-reserved cache gets fresh views
-      views_capacity_ = C;
-      in_values_.clear();
-      out_values_.clear();
-      for (int i = 0; i < 4; ++i) in_values_.emplace_back(nullptr);
-      out_values_.emplace_back(nullptr);
-      compact_.clear();  // kCopy: fresh prefix copies, [H, P, D] each
-      for (int64_t l = 0; l < L; ++l)
-        for (int kv = 0; kv < 2; ++kv) {
-          float* past = cache_->block(l, kv);
-          size_t count = static_cast<size_t>(H * C * D);
-          if (!in_place) {
-            compact_.emplace_back(static_cast<size_t>(std::max<int64_t>(1, H * P * D)));
-            for (int64_t h = 0; h < H; ++h)
-              std::memcpy(compact_.back().data() + h * P * D, past + h * C * D,
-                          static_cast<size_t>(P * D) * sizeof(float));
-            past = compact_.back().data();
-            count = static_cast<size_t>(H * P * D);
-          } else {
-            out_values_.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
-          }
-          in_values_.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
-        }
-      for (int64_t l = 0; l < L; ++l)
-        for (int kv = 0; kv < 2; ++kv)
-          in_values_.push_back(Ort::Value::CreateTensor<float>(mem, cross_kv_ + (l * 2 + kv) * H * M * D,
-                                                               static_cast<size_t>(H * M * D), cross_shape.data(), 4));
+}
+
+// Inputs 4.. (per layer: past key and value, then the cross views) and, in place, the present
+// outputs over the same cache blocks; inputs 0..3 and output 0 are placeholders.
+void DecoderRunner::MakeViews() {
+  const Ort::MemoryInfo& mem = model_.cpu_memory;
+  const ModelDims& d = model_.config.dims;
+  const int64_t P = cache_->length(), C = cache_->capacity();
+  const int64_t L = d.n_layers, H = d.n_heads, D = d.head_dim, M = d.n_latents;
+  const bool in_place = mode_ == KvMode::kInPlace;
+  const std::array<int64_t, 4> cache_shape = {1, H, in_place ? C : P, D};
+  const std::array<int64_t, 4> cross_shape = {1, H, M, D};
+  views_of_ = cache_->block(0, 0);  // a re-reserved cache gets fresh views
+  views_capacity_ = C;
+  in_values_.clear();
+  out_values_.clear();
+  for (int i = 0; i < 4; ++i) in_values_.emplace_back(nullptr);
+  out_values_.emplace_back(nullptr);
+  compact_.clear();  // kCopy: fresh prefix copies, [H, P, D] each
+  for (int64_t l = 0; l < L; ++l)
+    for (int kv = 0; kv < 2; ++kv) {
+      float* past = cache_->block(l, kv);
+      size_t count = static_cast<size_t>(H * C * D);
+      if (!in_place) {
+        past = CompactPrefix(past);
+        count = static_cast<size_t>(H * P * D);
+      } else {
+        out_values_.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
+      }
+      in_values_.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
     }
-    in_values_[0] = Ort::Value::CreateTensor<int64_t>(mem, ids_.data(), n, tok_shape.data(), 2);
-    in_values_[1] = Ort::Value::CreateTensor<int64_t>(mem, positions_.data(), n, tok_shape.data(), 2);
-    in_values_[2] = Ort::Value::CreateTensor<int32_t>(mem, &seqlens_k_, 1, one.data(), 1);
-    in_values_[3] = Ort::Value::CreateTensor<int32_t>(mem, &total_, 1, nullptr, 0);
-    if (in_place) {
-      out_values_[0] = Ort::Value::CreateTensor<float>(mem, logits_.data(), static_cast<size_t>(n * vocab_),
-                                                       logit_shape.data(), 3);
-      model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
-                          out_ptrs_.data(), out_values_.data(), out_values_.size());
-      last_logits_ = logits_.data() + (n - 1) * vocab_;
-    } else {
-      auto outs = model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
-                                      out_ptrs_.data(), out_ptrs_.size());
-      for (int64_t l = 0; l < L; ++l)
-        for (int kv = 0; kv < 2; ++kv) {
-          const Ort::Value& present = outs[1 + l * 2 + kv];
-          const std::vector<int64_t> shape = present.GetTensorTypeAndShapeInfo().GetShape();
-          if (shape != std::vector<int64_t>{1, H, P + n, D})
-            return InternalError("decoder: " + out_names_[1 + l * 2 + kv] + " has an unexpected shape");
-          const float* src = present.GetTensorData<float>();
-          for (int64_t h = 0; h < H; ++h)
-            std::memcpy(cache_->block(l, kv) + (h * C + P) * D, src + (h * (P + n) + P) * D,
-                        static_cast<size_t>(n * D) * sizeof(float));
-        }
-      std::memcpy(logits_.data(), outs[0].GetTensorData<float>() + (n - 1) * vocab_,
-                  static_cast<size_t>(vocab_) * sizeof(float));
-      last_logits_ = logits_.data();
+  for (int64_t l = 0; l < L; ++l)
+    for (int kv = 0; kv < 2; ++kv)
+      in_values_.push_back(Ort::Value::CreateTensor<float>(mem, cross_kv_ + (l * 2 + kv) * H * M * D,
+                                                           static_cast<size_t>(H * M * D), cross_shape.data(), 4));
+}
+
+// kCopy: a fresh compact [H, P, D] copy of the cached prefix of one [H, C, D] block.
+float* DecoderRunner::CompactPrefix(const float* block) {
+  const ModelDims& d = model_.config.dims;
+  const int64_t P = cache_->length(), C = cache_->capacity(), H = d.n_heads, D = d.head_dim;
+  compact_.emplace_back(static_cast<size_t>(std::max<int64_t>(1, H * P * D)));
+  for (int64_t h = 0; h < H; ++h)
+    std::memcpy(compact_.back().data() + h * P * D, block + h * C * D, static_cast<size_t>(P * D) * sizeof(float));
+  return compact_.back().data();
+}
+
+// Inputs 0..3: ids, positions, seqlens_k, total length (remade every call).
+void DecoderRunner::BindChunkInputs(int64_t n) {
+  const Ort::MemoryInfo& mem = model_.cpu_memory;
+  const std::array<int64_t, 2> tok_shape = {1, n};
+  const std::array<int64_t, 1> one = {1};
+  in_values_[0] = Ort::Value::CreateTensor<int64_t>(mem, ids_.data(), n, tok_shape.data(), 2);
+  in_values_[1] = Ort::Value::CreateTensor<int64_t>(mem, positions_.data(), n, tok_shape.data(), 2);
+  in_values_[2] = Ort::Value::CreateTensor<int32_t>(mem, &seqlens_k_, 1, one.data(), 1);
+  in_values_[3] = Ort::Value::CreateTensor<int32_t>(mem, &total_, 1, nullptr, 0);
+}
+
+// kInPlace: logits into logits_, present_* written straight into the cache blocks.
+void DecoderRunner::RunInPlace(int64_t n) {
+  const std::array<int64_t, 3> logit_shape = {1, n, vocab_};
+  out_values_[0] = Ort::Value::CreateTensor<float>(model_.cpu_memory, logits_.data(), static_cast<size_t>(n * vocab_),
+                                                   logit_shape.data(), 3);
+  model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
+                      out_ptrs_.data(), out_values_.data(), out_values_.size());
+  last_logits_ = logits_.data() + (n - 1) * vocab_;
+}
+
+// kCopy: onnxruntime allocates the outputs; the chunk's new cache rows and the last logits row
+// are copied back.
+Status DecoderRunner::RunCopying(int64_t n) {
+  const ModelDims& d = model_.config.dims;
+  const int64_t P = cache_->length(), C = cache_->capacity();
+  const int64_t L = d.n_layers, H = d.n_heads, D = d.head_dim;
+  auto outs = model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
+                                  out_ptrs_.data(), out_ptrs_.size());
+  for (int64_t l = 0; l < L; ++l)
+    for (int kv = 0; kv < 2; ++kv) {
+      const Ort::Value& present = outs[1 + l * 2 + kv];
+      const std::vector<int64_t> shape = present.GetTensorTypeAndShapeInfo().GetShape();
+      if (shape != std::vector<int64_t>{1, H, P + n, D})
+        return InternalError("decoder: " + out_names_[1 + l * 2 + kv] + " has an unexpected shape");
+      const float* src = present.GetTensorData<float>();
+      for (int64_t h = 0; h < H; ++h)
+        std::memcpy(cache_->block(l, kv) + (h * C + P) * D, src + (h * (P + n) + P) * D,
+                    static_cast<size_t>(n * D) * sizeof(float));
     }
-    cache_->Extend(n);
-    ++calls_;
-    return Status::Ok();
-  });
+  std::memcpy(logits_.data(), outs[0].GetTensorData<float>() + (n - 1) * vocab_,
+              static_cast<size_t>(vocab_) * sizeof(float));
+  last_logits_ = logits_.data();
+  return Status::Ok();
 }
 
 }  // namespace silk

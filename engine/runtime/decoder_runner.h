@@ -32,6 +32,14 @@ class DecoderRunner {
 
  private:
   Status RunChunk(const int32_t* ids, int64_t n);
+  // RunChunk's phases: stage the chunk, (re)make the cache views, bind the per-call inputs,
+  // run (in place, or copying the outputs back).
+  void StageInputs(const int32_t* ids, int64_t n);
+  void MakeViews();
+  float* CompactPrefix(const float* block);
+  void BindChunkInputs(int64_t n);
+  void RunInPlace(int64_t n);
+  Status RunCopying(int64_t n);
 
   const Model::Impl& model_;
   KvCache* cache_;

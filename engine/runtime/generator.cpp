@@ -197,69 +197,107 @@ Status Generator::Step() {
   return status;
 }
 
-Status Generator::StepOnce() {
-  Session& s = *session_;
-  GenerationStats& st = s.res.stats;
-  const GenerateOptions& options = s.options;
-  if (s.callbacks.cancel && s.callbacks.cancel()) {
-    st.stop_reason = "cancelled";
-    return Status(StatusCode::kCancelled, "generation cancelled");
-  }
+// What one step decides: the id, whether the grammar forced it, and the legal set it is sampled
+// from (null when unconstrained).
+struct Generator::StepChoice {
   int32_t id = -1;
   bool forced = false;
   const TokenMask* mask = nullptr;
-  auto t0 = Clock::now();
-  if (!options.unconstrained) {
-    id = s.grammar.Forced();
-    mask = &s.grammar.LegalMask();
-    st.seconds.grammar += Since(t0);
-    if (mask->Empty()) {
-      // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
-      // rather than fail the whole run, and say so in the stats.
-      st.stop_reason = "grammar_dead_end";
-      st.dead_end = "no legal id after " + TailText(s.res.tokens);
-      return Status::Ok();
-    }
-    forced = id >= 0;
-    if (s.guide) mask = Guide(id, mask);
-  }
-  if (!forced || !options.skip_forced) {
-    t0 = Clock::now();
-    SILK_RETURN_IF_ERROR(s.runner.Feed(s.pending.data(), static_cast<int64_t>(s.pending.size())));
-    st.seconds.decoder += Since(t0);
-    s.pending.clear();
-    const int64_t bad = FirstNonFinite(s.runner.last_logits(), model_.config().model_vocab_size);
-    if (bad >= 0)
-      return InternalError(model_.config().dir + ": the decoder produced a non-finite logit (id " + std::to_string(bad) +
-                           ") after " + std::to_string(s.res.tokens.size()) +
-                           " ids; the model's weights are corrupt (NaN or infinite)");
-  }
-  if (!forced) {
-    t0 = Clock::now();
-    if (options.order == SampleOrder::kSampleThenCheck && mask) {
-      id = s.sampler.Sample(s.runner.last_logits(), nullptr);
-      if (!mask->Test(id)) {
-        ++st.resampled;
-        id = s.sampler.Sample(s.runner.last_logits(), mask);
-      }
-    } else {
-      id = s.sampler.Sample(s.runner.last_logits(), mask);
-    }
-    st.seconds.sampling += Since(t0);
-    ++st.sampled_tokens;
-  } else {
-    ++st.forced_tokens;
-  }
-  if (options.record_trace) {
-    TraceStep step;
-    step.id = id;
-    step.forced = forced;
-    if (!forced && mask) step.legal = MaskRanges(*mask);
-    s.res.trace.push_back(std::move(step));
-  }
+};
 
-  t0 = Clock::now();
-  if (!options.unconstrained) {
+Status Generator::StepOnce() {
+  Session& s = *session_;
+  if (s.callbacks.cancel && s.callbacks.cancel()) {
+    s.res.stats.stop_reason = "cancelled";
+    return Status(StatusCode::kCancelled, "generation cancelled");
+  }
+  StepChoice c;
+  if (!s.options.unconstrained && !ConsultGrammar(&c)) return Status::Ok();  // dead end: stop reason set
+  if (!c.forced || !s.options.skip_forced) SILK_RETURN_IF_ERROR(FeedPending());
+  ChooseId(&c);
+  RecordTrace(c);
+  SILK_RETURN_IF_ERROR(AcceptId(c.id));
+  AppendId(c.id);
+  ReportProgress();
+  return Status::Ok();
+}
+
+// The grammar's forced id (or -1) and legal mask, guided when surface guidance is on. False at
+// a dead end (no legal id), with the stop reason set.
+bool Generator::ConsultGrammar(StepChoice* c) {
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
+  const auto t0 = Clock::now();
+  c->id = s.grammar.Forced();
+  c->mask = &s.grammar.LegalMask();
+  st.seconds.grammar += Since(t0);
+  if (c->mask->Empty()) {
+    // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
+    // rather than fail the whole run, and say so in the stats.
+    st.stop_reason = "grammar_dead_end";
+    st.dead_end = "no legal id after " + TailText(s.res.tokens);
+    return false;
+  }
+  c->forced = c->id >= 0;
+  if (s.guide) c->mask = Guide(c->id, c->mask);
+  return true;
+}
+
+// Runs the decoder over the pending known ids, then checks its logits are finite.
+Status Generator::FeedPending() {
+  Session& s = *session_;
+  const auto t0 = Clock::now();
+  SILK_RETURN_IF_ERROR(s.runner.Feed(s.pending.data(), static_cast<int64_t>(s.pending.size())));
+  s.res.stats.seconds.decoder += Since(t0);
+  s.pending.clear();
+  const int64_t bad = FirstNonFinite(s.runner.last_logits(), model_.config().model_vocab_size);
+  if (bad >= 0)
+    return InternalError(model_.config().dir + ": the decoder produced a non-finite logit (id " + std::to_string(bad) +
+                         ") after " + std::to_string(s.res.tokens.size()) +
+                         " ids; the model's weights are corrupt (NaN or infinite)");
+  return Status::Ok();
+}
+
+// Samples the id unless the grammar forced it (kSampleThenCheck: over all ids first, resampled
+// from the mask when illegal).
+void Generator::ChooseId(StepChoice* c) {
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
+  if (c->forced) {
+    ++st.forced_tokens;
+    return;
+  }
+  const auto t0 = Clock::now();
+  if (s.options.order == SampleOrder::kSampleThenCheck && c->mask) {
+    c->id = s.sampler.Sample(s.runner.last_logits(), nullptr);
+    if (!c->mask->Test(c->id)) {
+      ++st.resampled;
+      c->id = s.sampler.Sample(s.runner.last_logits(), c->mask);
+    }
+  } else {
+    c->id = s.sampler.Sample(s.runner.last_logits(), c->mask);
+  }
+  st.seconds.sampling += Since(t0);
+  ++st.sampled_tokens;
+}
+
+void Generator::RecordTrace(const StepChoice& c) {
+  Session& s = *session_;
+  if (!s.options.record_trace) return;
+  TraceStep step;
+  step.id = c.id;
+  step.forced = c.forced;
+  if (!c.forced && c.mask) step.legal = MaskRanges(*c.mask);
+  s.res.trace.push_back(std::move(step));
+}
+
+// Feeds the id to the grammar: constrained, a rejection is an internal error; unconstrained,
+// the grammar only watches and the first illegal id is noted in the stats.
+Status Generator::AcceptId(int32_t id) {
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
+  const auto t0 = Clock::now();
+  if (!s.options.unconstrained) {
     Rejection r = s.grammar.Accept(id);
     if (!r.ok())
       return InternalError("generate: id " + std::to_string(id) + " was rejected after " + TailText(s.res.tokens) +
@@ -273,9 +311,16 @@ Status Generator::StepOnce() {
     }
   }
   st.seconds.grammar += Since(t0);
+  return Status::Ok();
+}
+
+// Appends the id and sets the stop reason it brings (EOS, the token cap, the face cap at a
+// layer close); otherwise queues it for the decoder.
+void Generator::AppendId(int32_t id) {
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
   s.res.tokens.push_back(id);
   st.tokens = static_cast<int64_t>(s.res.tokens.size());
-
   if (id == vocab::k_eos_id) {
     st.stop_reason = "eos";
   } else if (static_cast<int32_t>(s.res.tokens.size()) >= s.cap) {
@@ -283,16 +328,19 @@ Status Generator::StepOnce() {
   } else {
     s.pending.push_back(id);
     if (ClosesLayer(id) && !s.illegal_seen) ++s.layers_closed;
-    if (options.max_faces > 0 && !s.illegal_seen && ClosesLayer(id)) {
-      t0 = Clock::now();
-      auto so_far = BuildMeshSoFar(s.grammar, MeshBuildOptions{}, nullptr, &s.so_far_cache);
-      st.seconds.build_mesh += Since(t0);
-      if (so_far.ok()) s.faces_at_close = static_cast<int32_t>(so_far->faces.size());
-      if (s.faces_at_close >= options.max_faces) st.stop_reason = "max_faces";
-    }
+    if (s.options.max_faces > 0 && !s.illegal_seen && ClosesLayer(id)) CheckFaceCap();
   }
-  ReportProgress();
-  return Status::Ok();
+}
+
+// At a layer close: the faces built so far, and the stop reason once they reach max_faces.
+void Generator::CheckFaceCap() {
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
+  const auto t0 = Clock::now();
+  auto so_far = BuildMeshSoFar(s.grammar, MeshBuildOptions{}, nullptr, &s.so_far_cache);
+  st.seconds.build_mesh += Since(t0);
+  if (so_far.ok()) s.faces_at_close = static_cast<int32_t>(so_far->faces.size());
+  if (s.faces_at_close >= s.options.max_faces) st.stop_reason = "max_faces";
 }
 
 // Surface guidance on the legal mask (sampled ids) or a check of a forced vertex id; returns the

@@ -121,7 +121,17 @@ class Generator {
 
  private:
   struct Session;
+  struct StepChoice;
+  // StepOnce's phases, in order: grammar (forced id, legal mask), decoder over the pending ids,
+  // sampling, trace, grammar Accept, append and stop checks.
   Status StepOnce();
+  bool ConsultGrammar(StepChoice* choice);
+  Status FeedPending();
+  void ChooseId(StepChoice* choice);
+  void RecordTrace(const StepChoice& choice);
+  Status AcceptId(int32_t id);
+  void AppendId(int32_t id);
+  void CheckFaceCap();
   const TokenMask* Guide(int32_t forced_id, const TokenMask* legal);
   void ReportProgress();
   const Model& model_;
