@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
-inline void AppendFan(const int32_t* corners, size_t n, RawMesh* mesh) {
+inline void AppendFan(const int32_t* corners, size_t n, IoMesh* mesh) {
   for (size_t i = 1; i + 1 < n; ++i)
     mesh->triangles.push_back({corners[0], corners[i], corners[i + 1]});
   if (n > 3) ++mesh->polygons_triangulated;

@@ -68,7 +68,7 @@ uint32_t LoadIndex(const AccessorView& v, size_t i) {
 }  // namespace
 
 Status AppendGltfMeshInstance(const tinygltf::Model& model, const GltfMeshInstance& inst,
-                              const std::string& name, const ReadOptions& opts, RawMesh* mesh) {
+                              const std::string& name, const ReadOptions& opts, IoMesh* mesh) {
   const tinygltf::Mesh& m = model.meshes[inst.mesh];
   const auto& M = inst.matrix;
   const bool identity = M == std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};

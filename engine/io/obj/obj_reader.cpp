@@ -47,8 +47,8 @@ bool ValidCornerTail(std::string_view tail) {
 
 }  // namespace
 
-StatusOr<RawMesh> ReadObj(std::string_view text, const std::string& name, const ReadOptions& opts) {
-  RawMesh mesh;
+StatusOr<IoMesh> ReadObj(std::string_view text, const std::string& name, const ReadOptions& opts) {
+  IoMesh mesh;
   if (text.empty()) return ParseErrorIn(name, "empty file (no vertices, no faces)");
   TextLines lines(text);
   std::string_view line;

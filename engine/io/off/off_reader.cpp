@@ -32,7 +32,7 @@ bool IsOffKeyword(std::string_view kw) {
 
 }  // namespace
 
-StatusOr<RawMesh> ReadOff(std::string_view text, const std::string& name, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadOff(std::string_view text, const std::string& name, const ReadOptions& opts) {
   if (size_t bad = FindBinaryByte(text); bad != std::string_view::npos)
     return ParseErrorIn(name, "binary byte at offset " + std::to_string(bad) + " (binary OFF is not supported)");
   TextLines lines(text);
@@ -79,7 +79,7 @@ StatusOr<RawMesh> ReadOff(std::string_view text, const std::string& name, const 
   if (plausible && nf > opts.max_triangles)
     return LimitErrorIn(name, std::to_string(nf) + " faces exceed the limit " + std::to_string(opts.max_triangles));
 
-  RawMesh mesh;
+  IoMesh mesh;
   if (plausible) {
     mesh.positions.reserve(nv);
     mesh.triangles.reserve(nf);

@@ -79,7 +79,7 @@ class Cursor {
 
 }  // namespace
 
-StatusOr<RawMesh> ReadPmd(std::string_view data, const std::string& name, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadPmd(std::string_view data, const std::string& name, const ReadOptions& opts) {
   Cursor in(data, name);
   if (data.size() < 4 || std::memcmp(data.data(), "PSMD", 4) != 0)
     return ParseErrorIn(name, "not a PMD file (no 'PSMD' magic)");
@@ -109,7 +109,7 @@ StatusOr<RawMesh> ReadPmd(std::string_view data, const std::string& name, const 
   if (num_vertices == 0) return ParseErrorIn(name, "no vertices");
   if (num_vertices > std::min<uint64_t>(opts.max_vertices, INT32_MAX))
     return LimitErrorIn(name, std::to_string(num_vertices) + " vertices exceed the vertex limit");
-  RawMesh mesh;
+  IoMesh mesh;
   mesh.positions.resize(num_vertices);
   for (uint32_t v = 0; v < num_vertices; ++v) {
     std::array<double, 3>& p = mesh.positions[v];
