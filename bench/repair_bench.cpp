@@ -47,8 +47,8 @@ void Measure(const LayeredStream& s, Tally* t) {
 constexpr double kPi = 3.14159265358979323846;
 
 // Closed UV sphere: rings x segments quads plus two pole fans.
-RawMesh Sphere(int rings, int segs) {
-  RawMesh m;
+IoMesh Sphere(int rings, int segs) {
+  IoMesh m;
   m.positions.push_back({0, 1, 0});
   for (int r = 1; r < rings; ++r)
     for (int k = 0; k < segs; ++k) {
@@ -69,8 +69,8 @@ RawMesh Sphere(int rings, int segs) {
 }
 
 // Torus with major radius 1, minor radius `minor`.
-RawMesh Torus(int nu, int nv, double minor) {
-  RawMesh m;
+IoMesh Torus(int nu, int nv, double minor) {
+  IoMesh m;
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
       const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
@@ -86,8 +86,8 @@ RawMesh Torus(int nu, int nv, double minor) {
 }
 
 // Capped cylinder: `rows` rings of `segs` vertices, fan caps around two centre vertices.
-RawMesh Cylinder(int segs, int rows) {
-  RawMesh m;
+IoMesh Cylinder(int segs, int rows) {
+  IoMesh m;
   for (int r = 0; r < rows; ++r)
     for (int k = 0; k < segs; ++k) {
       const double a = 2 * kPi * k / segs;
@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
     for (int32_t id : *ids) (void)g.Accept(id);
     bases.emplace_back("golden", g.stream());
   }
-  std::vector<std::pair<std::string, RawMesh>> shapes;
+  std::vector<std::pair<std::string, IoMesh>> shapes;
   for (int n : {6, 10, 16}) shapes.emplace_back("sphere", Sphere(n, 2 * n));
   for (int n : {8, 12, 20}) shapes.emplace_back("torus", Torus(2 * n, n, 0.35));
   for (int n : {6, 12, 24}) shapes.emplace_back("cylinder", Cylinder(n, n / 2 + 2));

@@ -37,7 +37,7 @@ struct MeshRun {
   int64_t faces = 0, vertices = 0;
   double read_s = 0, normalize_s = 0, encode_s = 0, decode_s = 0;
   std::string failure;  // empty when encoded; else "read: ...", "refused: <name>", ...
-  silk::RawMesh normalized;
+  silk::IoMesh normalized;
   std::vector<int32_t> tokens;
   silk::EncodeStats stats;
   bool decoded = false;
@@ -201,7 +201,7 @@ int main(int argc, char** argv) {
       r.encode_s = Since(t0);
       r.failure = "encode threw (bug)";
     }
-    r.normalized = silk::RawMesh();  // keep memory flat for the decode pass
+    r.normalized = silk::IoMesh();  // keep memory flat for the decode pass
   });
 
   // Pass 3: decode the tokens of every encoded mesh.

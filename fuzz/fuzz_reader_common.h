@@ -14,7 +14,7 @@ inline int FuzzReadMesh(const uint8_t* data, size_t size, MeshFormat fmt, const 
   opts.max_vertices = 4'000'000;  // keep well inside libFuzzer's rss limit
   opts.max_triangles = 4'000'000;
   opts.max_file_bytes = 64u << 20;
-  StatusOr<RawMesh> m = ReadMeshFromMemory(data, size, fmt, name, opts);
+  StatusOr<IoMesh> m = ReadMeshFromMemory(data, size, fmt, name, opts);
   if (!m.ok()) {
     if (m.status().message().empty()) __builtin_trap();  // every error must say something
     return 0;

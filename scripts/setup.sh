@@ -8,8 +8,8 @@ cd "$REPO"
 APT_PACKAGES=(
   build-essential cmake ninja-build pkg-config python3
   python3-pip                # scripts/fetch_onnxruntime.sh: pip download of the onnxruntime wheel
-  libopenmesh-dev libglm-dev libtinygltf-dev libstb-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev zlib1g-dev
+  libtinygltf-dev libstb-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libgtest-dev libopenmesh-dev  # tests only (OpenMesh: tests/oracle, the independent mesh-verdict check)
   clang libclang-rt-14-dev   # libFuzzer targets and the sanitizer build
   blender python3-numpy      # the add-on's headless test (tests/blender; bookworm: Blender 3.4.1);
                              # numpy for Blender's own glTF importer

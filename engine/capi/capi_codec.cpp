@@ -81,7 +81,7 @@ silk_status silk_encode(const silk_mesh* mesh, const silk_encode_params* params,
     SILK_CAPI_REQUIRE(!p.normalize || (p.normalize_bound > 0 && p.normalize_bound <= 1),
                       "silk_encode: normalize_bound must lie in (0, 1]");
     const auto t0 = std::chrono::steady_clock::now();
-    silk::RawMesh normalized;
+    silk::IoMesh normalized;
     if (p.normalize) {
       auto n = silk::NormalizeMesh(mesh->mesh, p.normalize_bound);
       if (!n.ok()) return SetError(n.status());
@@ -156,15 +156,13 @@ silk_status silk_decode_with_stats(const silk_tokens* tokens, const silk_decode_
       split = silk::SplitNonManifoldFans(&r->faces, static_cast<int32_t>(r->positions.size()), &copy_of);
       for (int32_t v : copy_of) r->positions.push_back(r->positions[v]);
     }
-    auto m = std::make_unique<silk_mesh>();
+    std::vector<std::array<double, 3>> positions;
     for (const silk::QVec& q : r->positions) {
-      if (p.grid_coordinates) m->mesh.positions.push_back({double(q.x), double(q.y), double(q.z)});
+      if (p.grid_coordinates) positions.push_back({double(q.x), double(q.y), double(q.z)});
       else
-        m->mesh.positions.push_back(silk::DequantizePosition(q));
+        positions.push_back(silk::DequantizePosition(q));
     }
-    m->mesh.triangles = r->faces;
-    m->triangle_component = r->face_component;
-    m->triangle_component.resize(m->mesh.triangles.size(), 0);
+    auto m = silk::capi::MeshHandle(std::move(positions), *r);
     if (stats) {
       stats->vertices = static_cast<int32_t>(r->positions.size());
       stats->faces = static_cast<int32_t>(r->faces.size());

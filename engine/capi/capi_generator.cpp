@@ -178,14 +178,12 @@ silk_status Advance(silk_generator* g, int32_t max_ids, int32_t until) {
 silk_status Deliver(silk_generator* g, silk::GenerateResult result, silk_mesh** out_mesh, silk_tokens** out_tokens,
                     silk_generate_stats* stats) {
   g->result = std::move(result);
-  silk::GeneratedMesh output = silk::FinishOutput(&g->result, g->transform);
+  silk::IoMesh output = silk::FinishOutput(&g->result, g->transform);  // verdicts into the stats
   silk::GenerationStats& st = g->result.stats;
   st.seconds.load_input += g->prepare_seconds;
   st.seconds.total = st.seconds.load_input + st.generation_seconds + st.seconds.build_mesh + st.seconds.scoring;
   g->has_result = true;
-  auto mesh = std::make_unique<silk_mesh>();
-  mesh->mesh = std::move(output.mesh);
-  mesh->triangle_component = std::move(output.triangle_component);
+  auto mesh = silk::capi::MeshHandle(std::move(output.positions), g->result.mesh);
   std::unique_ptr<silk_tokens> tokens;
   if (out_tokens) {
     tokens = std::make_unique<silk_tokens>();
@@ -332,10 +330,7 @@ silk_status silk_generator_mesh(silk_generator* g, silk_mesh** out) {
     if (!g->generator.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_mesh: no generation in progress");
     auto so_far = g->generator.MeshSoFar();
     if (!so_far.ok()) return SetError(so_far.status());
-    silk::GeneratedMesh m = silk::ToInputFrame(*so_far, g->transform);
-    auto h = std::make_unique<silk_mesh>();
-    h->mesh = std::move(m.mesh);
-    h->triangle_component = std::move(m.triangle_component);
+    auto h = silk::capi::MeshHandle(silk::ToInputFrame(*so_far, g->transform).positions, *so_far);
     *out = h.release();
     return Ok();
   });

@@ -3,17 +3,20 @@
 #pragma once
 #include <array>
 #include <exception>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "mesh/point_preprocessing.h"
 #include "silk/silk.h"
+#include "tokenizer/tokenizer.h"
 
+// The C API's mesh handle (docs/mesh_types.md): an IoMesh plus what the caller can ask for besides.
 struct silk_mesh {
-  silk::RawMesh mesh;
+  silk::IoMesh mesh;
   std::vector<int32_t> triangle_component;
   std::vector<std::array<double, 3>> normals;  // point clouds: one per vertex, else empty
   std::string source;                          // the file it was loaded from (for messages), or ""
@@ -36,6 +39,11 @@ silk_status Ok();
 silk_preprocess_params ToCPreprocess(const PreprocessingParams& p);
 PreprocessingParams FromCPreprocess(const silk_preprocess_params& p);
 void Log(silk_log_level level, const std::string& message);
+// The one TokenizerDecodedMesh -> silk_mesh step (capi_mesh.cpp): `positions` (the decoded grid
+// positions dequantised, left on the grid, or in the input frame) with the decoded faces and
+// their parts (component per triangle).
+std::unique_ptr<silk_mesh> MeshHandle(std::vector<std::array<double, 3>> positions,
+                                      const TokenizerDecodedMesh& decoded);
 
 template <typename F>
 silk_status Guard(F&& f) noexcept {

@@ -16,6 +16,16 @@ using silk::capi::Guard;
 using silk::capi::Ok;
 using silk::capi::SetError;
 
+std::unique_ptr<silk_mesh> silk::capi::MeshHandle(std::vector<std::array<double, 3>> positions,
+                                                 const silk::TokenizerDecodedMesh& decoded) {
+  auto m = std::make_unique<silk_mesh>();
+  m->mesh.positions = std::move(positions);
+  m->mesh.triangles = decoded.faces;
+  m->triangle_component = decoded.face_component;
+  m->triangle_component.resize(m->mesh.triangles.size(), 0);
+  return m;
+}
+
 namespace {
 bool EndsWith(const std::string& s, const char* suf) {
   const size_t n = std::strlen(suf);

@@ -61,7 +61,7 @@ silk_status silk_prepare_points(const silk_mesh* mesh, const double* cloud, size
     if (!out) return Ok();
     if (capacity < rows * 6)
       return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_prepare_points: need " + std::to_string(rows * 6) + " floats");
-    silk::RawMesh cloud_mesh;
+    silk::IoMesh cloud_mesh;
     std::vector<std::array<double, 3>> normals;
     if (cloud) {
       cloud_mesh.positions.resize(n_cloud);

@@ -48,11 +48,7 @@ silk_status silk_tokens_random_walk(const silk_random_walk_params* params, silk_
     if (out_mesh) {
       auto mesh = silk::BuildMeshSoFar(g, silk::MeshBuildOptions{}, nullptr);
       if (!mesh.ok()) return SetError(mesh.status());
-      m = std::make_unique<silk_mesh>();
-      m->mesh.positions = silk::DequantizePositions(mesh->positions);
-      m->mesh.triangles = mesh->faces;
-      m->triangle_component = mesh->face_component;
-      m->triangle_component.resize(m->mesh.triangles.size(), 0);
+      m = silk::capi::MeshHandle(silk::DequantizePositions(mesh->positions), *mesh);
     }
     *out_tokens = t.release();
     if (out_mesh) *out_mesh = m.release();

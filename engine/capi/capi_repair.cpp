@@ -20,7 +20,7 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json ReportJson(size_t accepted, const silk::Rejection& illegal, int32_t illegal_id, const silk::DecodedMesh& mesh,
+Json ReportJson(size_t accepted, const silk::Rejection& illegal, int32_t illegal_id, const silk::TokenizerDecodedMesh& mesh,
                 const silk::MeshBuildReport& rep) {
   Json j;
   j["tokens_accepted"] = accepted;
@@ -43,7 +43,7 @@ Json ReportJson(size_t accepted, const silk::Rejection& illegal, int32_t illegal
   return j;
 }
 
-void FillStats(size_t accepted, bool illegal, const silk::DecodedMesh& mesh, const silk::MeshBuildReport& rep,
+void FillStats(size_t accepted, bool illegal, const silk::TokenizerDecodedMesh& mesh, const silk::MeshBuildReport& rep,
                silk_repair_stats* out) {
   std::memset(out, 0, sizeof(*out));
   out->tokens_accepted = static_cast<int64_t>(accepted);
@@ -100,11 +100,7 @@ silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_para
     silk::MeshBuildReport rep;
     auto mesh = silk::BuildMeshSoFar(g, mopt, &rep);
     if (!mesh.ok()) return SetError(mesh.status());
-    auto m = std::make_unique<silk_mesh>();
-    m->mesh.positions = silk::DequantizePositions(mesh->positions);
-    m->mesh.triangles = mesh->faces;
-    m->triangle_component = mesh->face_component;
-    m->triangle_component.resize(m->mesh.triangles.size(), 0);
+    auto m = silk::capi::MeshHandle(silk::DequantizePositions(mesh->positions), *mesh);
     if (stats) FillStats(pos, !illegal.ok(), *mesh, rep, stats);
     if (report) {
       auto r = std::make_unique<silk_report>();

@@ -22,7 +22,7 @@ silk_status silk_roundtrip(const silk_mesh* mesh, const silk_encode_params* para
                       "silk_roundtrip: normalize and nonmanifold_processing take 0 or 1");
     SILK_CAPI_REQUIRE(!p.normalize || (p.normalize_bound > 0 && p.normalize_bound <= 1),
                       "silk_roundtrip: normalize_bound must lie in (0, 1]");
-    silk::RawMesh normalized;
+    silk::IoMesh normalized;
     if (p.normalize) {
       auto n = silk::NormalizeMesh(mesh->mesh, p.normalize_bound);
       if (!n.ok()) return SetError(n.status());

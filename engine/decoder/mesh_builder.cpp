@@ -61,7 +61,7 @@ std::vector<std::vector<int32_t>> OpenLoops(const std::vector<std::array<int32_t
 // Fan-triangulates `loop` (hole winding) from the first apex whose chords are new edges,
 // join vertices of equal or adjacent layers, never two corners at one position and never
 // a zero-area face.
-bool FillLoop(const std::vector<int32_t>& loop, const ComponentMesh& cb, std::set<uint64_t>* edges,
+bool FillLoop(const std::vector<int32_t>& loop, const TokenizerComponentMesh& cb, std::set<uint64_t>* edges,
               std::vector<std::array<int32_t, 3>>* faces, HoleReport* rep) {
   const int32_t k = static_cast<int32_t>(loop.size());
   std::set<int32_t> distinct(loop.begin(), loop.end());
@@ -104,7 +104,7 @@ bool FillLoop(const std::vector<int32_t>& loop, const ComponentMesh& cb, std::se
 }
 
 // token_format.md §12.2 hole policy on one component's faces (local indices).
-void HandleHoles(ComponentMesh* cm, int32_t ci, int32_t base, const MeshBuildOptions& options, MeshBuildReport* report) {
+void HandleHoles(TokenizerComponentMesh* cm, int32_t ci, int32_t base, const MeshBuildOptions& options, MeshBuildReport* report) {
   auto& faces = cm->faces;
   int32_t open_before = 0;
   auto loops = OpenLoops(faces, &open_before);
@@ -135,7 +135,7 @@ void HandleHoles(ComponentMesh* cm, int32_t ci, int32_t base, const MeshBuildOpt
 
 // The vertex-fan rule (vertex_fan_rules.h): gaps closed under kRepair, then splits; copies
 // take the position, layer and in-layer index of the vertex they copy.
-void HandleVertexFans(ComponentMesh* cm, const MeshBuildOptions& options, MeshBuildReport* report) {
+void HandleVertexFans(TokenizerComponentMesh* cm, const MeshBuildOptions& options, MeshBuildReport* report) {
   std::vector<int32_t> copy_of;
   VertexFanCounts counts;
   ResolveVertexFans(&cm->faces, cm->positions, cm->layer_of, options.holes == HolePolicy::kRepair, &copy_of,
@@ -155,9 +155,9 @@ void HandleVertexFans(ComponentMesh* cm, const MeshBuildOptions& options, MeshBu
 
 }  // namespace
 
-StatusOr<ComponentMesh> BuildComponentMesh(const StreamComponent& comp, int32_t closed_layers, int32_t ci,
+StatusOr<TokenizerComponentMesh> BuildComponentMesh(const StreamComponent& comp, int32_t closed_layers, int32_t ci,
                                            int32_t base, const MeshBuildOptions& options, MeshBuildReport* report) {
-  SILK_ASSIGN_OR_RETURN(ComponentMesh cm, AssembleComponentMesh(comp, closed_layers));
+  SILK_ASSIGN_OR_RETURN(TokenizerComponentMesh cm, AssembleComponentMesh(comp, closed_layers));
   if (report) report->dropped_degenerate += cm.dropped_degenerate;
   if (cm.positions.empty()) return cm;
   if (options.holes != HolePolicy::kOff) HandleHoles(&cm, ci, base, options, report);
@@ -165,9 +165,9 @@ StatusOr<ComponentMesh> BuildComponentMesh(const StreamComponent& comp, int32_t 
   return cm;
 }
 
-StatusOr<DecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOptions& options, MeshBuildReport* report,
+StatusOr<TokenizerDecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOptions& options, MeshBuildReport* report,
                                 int32_t closed_layers_of_last) {
-  DecodedMesh mesh;
+  TokenizerDecodedMesh mesh;
   const int32_t nc = static_cast<int32_t>(stream.components.size());
   for (int32_t ci = 0; ci < nc; ++ci) {
     const int32_t closed = ci == nc - 1 ? closed_layers_of_last : -1;
@@ -201,7 +201,7 @@ bool CacheValid(const MeshBuildCache& cache, const Grammar& grammar, const MeshB
 }
 }  // namespace
 
-StatusOr<DecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options, MeshBuildReport* report,
+StatusOr<TokenizerDecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options, MeshBuildReport* report,
                                      MeshBuildCache* cache) {
   const bool open = grammar.phase() != GrammarPhase::kAfterE && grammar.phase() != GrammarPhase::kEnded &&
                     grammar.phase() != GrammarPhase::kStart;
@@ -211,7 +211,7 @@ StatusOr<DecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOpti
   const auto& comps = grammar.stream().components;
   const int32_t nc = static_cast<int32_t>(comps.size());
   const int32_t closed = open ? nc - 1 : nc;
-  DecodedMesh mesh;
+  TokenizerDecodedMesh mesh;
   for (int32_t ci = 0; ci < nc; ++ci) {
     if (ci < static_cast<int32_t>(cache->components.size())) {
       if (report) report->Add(cache->reports[ci]);
@@ -234,7 +234,7 @@ StatusOr<DecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOpti
   return mesh;
 }
 
-std::string CheckMeshGuarantees(const DecodedMesh& mesh) {
+std::string CheckMeshGuarantees(const TokenizerDecodedMesh& mesh) {
   std::unordered_map<uint64_t, int32_t> undirected;
   std::set<uint64_t> directed;
   std::set<std::array<int32_t, 3>> corner_sets;
@@ -271,7 +271,7 @@ std::string CheckMeshGuarantees(const DecodedMesh& mesh) {
   return "";
 }
 
-bool IsWatertight(const DecodedMesh& mesh) {
+bool IsWatertight(const TokenizerDecodedMesh& mesh) {
   return CheckFaces(mesh.faces, static_cast<int32_t>(mesh.positions.size())).watertight;
 }
 

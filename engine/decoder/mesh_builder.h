@@ -65,33 +65,33 @@ struct MeshBuildReport {
 struct MeshBuildCache {
   MeshBuildOptions options;
   std::vector<int32_t> tokens;          // the grammar's tokens when the cache was last extended
-  std::vector<ComponentMesh> components;  // final meshes of components 0..n-1 (rules applied)
+  std::vector<TokenizerComponentMesh> components;  // final meshes of components 0..n-1 (rules applied)
   std::vector<MeshBuildReport> reports;   // their report parts
 };
 
 // Mesh of the closed components of `stream` (an open last component is skipped unless
 // include_open is true, then only its closed layers count: `closed_layers_of_last`).
-StatusOr<DecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOptions& options,
+StatusOr<TokenizerDecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOptions& options,
                                 MeshBuildReport* report, int32_t closed_layers_of_last = -1);
 
 // One component through the shared assembly and the hole / vertex-fan rules (`base`: the
 // component's first vertex in the whole mesh, for hole reports).
-StatusOr<ComponentMesh> BuildComponentMesh(const StreamComponent& comp, int32_t closed_layers, int32_t ci,
+StatusOr<TokenizerComponentMesh> BuildComponentMesh(const StreamComponent& comp, int32_t closed_layers, int32_t ci,
                                            int32_t base, const MeshBuildOptions& options, MeshBuildReport* report);
 
 // Mesh of everything the grammar has closed so far: whole components plus the closed layers
 // of the current one. With a cache, closed components are built once and reused; only the
 // open component (and those closed since the last call) are rebuilt.
-StatusOr<DecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options,
+StatusOr<TokenizerDecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options,
                                      MeshBuildReport* report, MeshBuildCache* cache = nullptr);
 
 // Structural guarantees of grammar.h, checked on a mesh: "" when they hold, else the first
 // failure (edge with > 2 faces, directed edge twice, repeated corner/position, face spanning
 // two components, component without faces, two faces on the same three corners, vertex whose
 // faces form two or more fans).
-std::string CheckMeshGuarantees(const DecodedMesh& mesh);
+std::string CheckMeshGuarantees(const TokenizerDecodedMesh& mesh);
 
 // True when every edge of every face has exactly two faces (mesh_checks' verdict).
-bool IsWatertight(const DecodedMesh& mesh);
+bool IsWatertight(const TokenizerDecodedMesh& mesh);
 
 }  // namespace silk

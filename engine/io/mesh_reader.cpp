@@ -18,7 +18,7 @@ namespace silk {
 
 namespace {
 
-StatusOr<RawMesh> Dispatch(std::string_view bytes, MeshFormat fmt, const std::string& name,
+StatusOr<IoMesh> Dispatch(std::string_view bytes, MeshFormat fmt, const std::string& name,
                            const std::string& base_dir, bool from_memory, const ReadOptions& opts) {
   try {
     switch (fmt) {
@@ -47,7 +47,7 @@ std::string DirName(const std::string& path) {
 
 }  // namespace
 
-StatusOr<RawMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts) {
   std::string bytes;
   {
     SILK_ASSIGN_OR_RETURN(bytes, ReadFileBytes(path, opts.max_file_bytes));
@@ -69,7 +69,7 @@ StatusOr<RawMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts)
   return Dispatch(bytes, *fmt, path, DirName(path), /*from_memory=*/false, opts);
 }
 
-StatusOr<RawMesh> ReadMeshFromMemory(const uint8_t* data, size_t size, MeshFormat fmt, const std::string& name,
+StatusOr<IoMesh> ReadMeshFromMemory(const uint8_t* data, size_t size, MeshFormat fmt, const std::string& name,
                                      const ReadOptions& opts) {
   if (size > opts.max_file_bytes) return LimitErrorIn(name, "input larger than the size limit");
   // Copy so the text readers always see a terminated buffer of their own.

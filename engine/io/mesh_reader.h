@@ -1,5 +1,5 @@
 // Entry point of the io layer: read a mesh file of any supported format (by extension, with
-// a ".gz" wrapper allowed, and content sniffing) into a RawMesh, or explain why not.
+// a ".gz" wrapper allowed, and content sniffing) into an IoMesh, or explain why not.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -7,18 +7,18 @@
 
 #include "core/status.h"
 #include "io/mesh_format.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "io/read_options.h"
 
 namespace silk {
 
 // .obj .ply .stl .off .gltf .glb .pmd, optionally followed by .gz (e.g. "x.ply.gz"). Unknown
 // extensions are sniffed from the first bytes. Every error message names the file.
-StatusOr<RawMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts = {});
+StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts = {});
 
 // Same readers on bytes already in memory (fuzzers, API callers). `name` is used in error
 // messages. glTF external buffers are never loaded from memory input.
-StatusOr<RawMesh> ReadMeshFromMemory(const uint8_t* data, size_t size, MeshFormat fmt,
+StatusOr<IoMesh> ReadMeshFromMemory(const uint8_t* data, size_t size, MeshFormat fmt,
                                      const std::string& name, const ReadOptions& opts = {});
 
 }  // namespace silk

@@ -6,7 +6,7 @@
 
 namespace silk {
 
-Status ValidateOutputMesh(const OutputMesh& mesh) {
+Status ValidateOutputMesh(const IoMesh& mesh) {
   for (size_t i = 0; i < mesh.positions.size(); ++i)
     for (double c : mesh.positions[i])
       if (!std::isfinite(c)) return InvalidArgument("vertex " + std::to_string(i) + " has a non-finite coordinate");

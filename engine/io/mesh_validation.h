@@ -2,10 +2,10 @@
 // call it so that no file is produced from an inconsistent mesh.
 #pragma once
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
-Status ValidateOutputMesh(const OutputMesh& mesh);
+Status ValidateOutputMesh(const IoMesh& mesh);
 
 }  // namespace silk

@@ -104,7 +104,7 @@ ChamferDistance PointSetChamfer(const std::vector<Point3>& a, const std::vector<
   return d;
 }
 
-ChamferDistance MeshToPointsChamfer(const RawMesh& mesh, const std::vector<Point3>& points, int32_t samples,
+ChamferDistance MeshToPointsChamfer(const IoMesh& mesh, const std::vector<Point3>& points, int32_t samples,
                                     uint64_t seed) {
   auto s = SampleSurface(mesh, samples, seed);
   if (!s.ok() || s->empty()) return ChamferDistance{kInf, kInf};

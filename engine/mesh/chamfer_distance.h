@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
@@ -47,7 +47,7 @@ ChamferDistance PointSetChamfer(const std::vector<Point3>& a, const std::vector<
 
 // `samples` area-weighted surface samples of `mesh` (seeded) against `points`. A mesh without
 // a face of positive area scores +infinity both ways, so it never beats one with faces.
-ChamferDistance MeshToPointsChamfer(const RawMesh& mesh, const std::vector<Point3>& points, int32_t samples,
+ChamferDistance MeshToPointsChamfer(const IoMesh& mesh, const std::vector<Point3>& points, int32_t samples,
                                     uint64_t seed);
 
 }  // namespace silk

@@ -31,7 +31,7 @@ double Distance2(const V3& a, const V3& b) {
   return dx * dx + dy * dy + dz * dz;
 }
 
-std::vector<bool> ReferencedVertices(const RawMesh& mesh) {
+std::vector<bool> ReferencedVertices(const IoMesh& mesh) {
   std::vector<bool> used(mesh.positions.size(), false);
   for (const auto& t : mesh.triangles)
     for (int32_t v : t) used[static_cast<size_t>(v)] = true;
@@ -39,7 +39,7 @@ std::vector<bool> ReferencedVertices(const RawMesh& mesh) {
 }
 
 // Per-axis min/max of the referenced vertices (zeros when there are none).
-void ReferencedBounds(const RawMesh& mesh, const std::vector<bool>& used, V3* lo, V3* hi) {
+void ReferencedBounds(const IoMesh& mesh, const std::vector<bool>& used, V3* lo, V3* hi) {
   *lo = {0, 0, 0};
   *hi = {0, 0, 0};
   bool any = false;
@@ -55,7 +55,7 @@ void ReferencedBounds(const RawMesh& mesh, const std::vector<bool>& used, V3* lo
 }
 
 // Leader of every referenced vertex (itself when it leads; -1 for unreferenced ones).
-std::vector<int32_t> Leaders(const RawMesh& mesh, const std::vector<bool>& used, double distance) {
+std::vector<int32_t> Leaders(const IoMesh& mesh, const std::vector<bool>& used, double distance) {
   const size_t n = mesh.positions.size();
   std::vector<int32_t> leader(n, -1);
   V3 lo, hi;
@@ -94,13 +94,13 @@ bool ZeroArea(const V3& a, const V3& b, const V3& c) {
 
 }  // namespace
 
-double ReferencedBoundingBoxDiagonal(const RawMesh& mesh) {
+double ReferencedBoundingBoxDiagonal(const IoMesh& mesh) {
   V3 lo, hi;
   ReferencedBounds(mesh, ReferencedVertices(mesh), &lo, &hi);
   return std::sqrt(Distance2(lo, hi));
 }
 
-RawMesh MergeCloseVertices(const RawMesh& mesh, double distance, VertexMergeReport* report) {
+IoMesh MergeCloseVertices(const IoMesh& mesh, double distance, VertexMergeReport* report) {
   const std::vector<bool> used = ReferencedVertices(mesh);
   const std::vector<int32_t> leader = Leaders(mesh, used, distance);
   std::vector<std::array<int32_t, 3>> faces;
@@ -117,7 +117,7 @@ RawMesh MergeCloseVertices(const RawMesh& mesh, double distance, VertexMergeRepo
     if (!seen.insert(key).second) continue;
     faces.push_back(f);
   }
-  RawMesh out;
+  IoMesh out;
   std::vector<int32_t> new_index(mesh.positions.size(), -1);
   for (auto& f : faces)
     for (int32_t& v : f) {

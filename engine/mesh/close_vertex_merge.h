@@ -4,7 +4,7 @@
 #pragma once
 #include <cstdint>
 
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
@@ -14,7 +14,7 @@ struct VertexMergeReport {
 };
 
 // Diagonal of the bounding box of the vertices that faces reference (0 when there are none).
-double ReferencedBoundingBoxDiagonal(const RawMesh& mesh);
+double ReferencedBoundingBoxDiagonal(const IoMesh& mesh);
 
 // Merging is leader clustering in vertex order on a uniform grid of cell `distance`: a vertex
 // joins the nearest earlier leader strictly closer than `distance` (looked up in the 27
@@ -24,6 +24,6 @@ double ReferencedBoundingBoxDiagonal(const RawMesh& mesh);
 // with a repeated vertex or zero area, and repeats of a face (same three vertices in any
 // order; the first is kept), are dropped, and vertices no face references are removed.
 // Triangle indices must be in range (validated input).
-RawMesh MergeCloseVertices(const RawMesh& mesh, double distance, VertexMergeReport* report = nullptr);
+IoMesh MergeCloseVertices(const IoMesh& mesh, double distance, VertexMergeReport* report = nullptr);
 
 }  // namespace silk

@@ -30,14 +30,14 @@ std::array<float, 3> PartColor(int part) {
 
 }  // namespace
 
-std::vector<GlbPart> SplitGlbParts(const RawMesh& mesh, const std::vector<int32_t>& triangle_component, bool colors) {
+std::vector<GlbPart> SplitGlbParts(const IoMesh& mesh, const std::vector<int32_t>& triangle_component, bool colors) {
   std::map<int32_t, std::vector<size_t>> by_part;
   for (size_t f = 0; f < mesh.triangles.size(); ++f)
     by_part[f < triangle_component.size() ? triangle_component[f] : 0].push_back(f);
   std::vector<GlbPart> parts;
   int index = 0;
   for (const auto& [component, faces] : by_part) {
-    RawMesh part;
+    IoMesh part;
     std::vector<int32_t> remap(mesh.positions.size(), -1);
     for (size_t f : faces) {
       std::array<int32_t, 3> t{};

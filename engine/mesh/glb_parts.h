@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "io/gltf/glb_writer.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
 // `triangle_component`: part index per triangle (missing entries count as part 0).
-std::vector<GlbPart> SplitGlbParts(const RawMesh& mesh, const std::vector<int32_t>& triangle_component, bool colors);
+std::vector<GlbPart> SplitGlbParts(const IoMesh& mesh, const std::vector<int32_t>& triangle_component, bool colors);
 
 }  // namespace silk

@@ -9,7 +9,7 @@
 
 namespace silk {
 
-MeshVerdicts CheckMesh(const RawMesh& mesh) {
+MeshVerdicts CheckMesh(const IoMesh& mesh) {
   return CheckFaces(mesh.triangles, static_cast<int32_t>(mesh.positions.size()));
 }
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
@@ -19,7 +19,7 @@ struct MeshVerdicts {
   int64_t nonmanifold_edges = 0;      // edges with three or more faces
 };
 
-MeshVerdicts CheckMesh(const RawMesh& mesh);
+MeshVerdicts CheckMesh(const IoMesh& mesh);
 // Same on bare faces over vertices 0..num_vertices-1 (decoded meshes).
 MeshVerdicts CheckFaces(const std::vector<std::array<int32_t, 3>>& faces, int32_t num_vertices);
 

@@ -5,7 +5,7 @@
 
 namespace silk {
 
-StatusOr<NormalizeTransform> ComputeNormalization(const RawMesh& mesh, double bound) {
+StatusOr<NormalizeTransform> ComputeNormalization(const IoMesh& mesh, double bound) {
   if (mesh.positions.empty()) return InvalidArgument("mesh has no vertices");
   std::array<double, 3> lo = mesh.positions[0], hi = mesh.positions[0];
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -31,8 +31,8 @@ StatusOr<NormalizeTransform> ComputeNormalization(const RawMesh& mesh, double bo
   return t;
 }
 
-RawMesh ApplyNormalization(const RawMesh& mesh, const NormalizeTransform& t) {
-  RawMesh out = mesh;
+IoMesh ApplyNormalization(const IoMesh& mesh, const NormalizeTransform& t) {
+  IoMesh out = mesh;
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     for (int a = 0; a < 3; ++a) {
       const double d = mesh.positions[i][a] - t.center[a];
@@ -46,7 +46,7 @@ std::array<double, 3> UndoNormalization(const std::array<double, 3>& p, const No
   return {p[0] / t.scale + t.center[0], p[1] / t.scale + t.center[1], p[2] / t.scale + t.center[2]};
 }
 
-StatusOr<RawMesh> NormalizeMesh(const RawMesh& mesh, double bound) {
+StatusOr<IoMesh> NormalizeMesh(const IoMesh& mesh, double bound) {
   SILK_ASSIGN_OR_RETURN(NormalizeTransform t, ComputeNormalization(mesh, bound));
   return ApplyNormalization(mesh, t);
 }

@@ -4,7 +4,7 @@
 #include <array>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
@@ -17,11 +17,11 @@ inline constexpr double kDefaultNormalizeBound = 0.95;
 
 // Per-axis min/max over ALL vertices (unreferenced ones included). Fails on an empty or
 // non-finite vertex array, or when all vertices coincide (zero extent).
-StatusOr<NormalizeTransform> ComputeNormalization(const RawMesh& mesh, double bound = kDefaultNormalizeBound);
-RawMesh ApplyNormalization(const RawMesh& mesh, const NormalizeTransform& t);
+StatusOr<NormalizeTransform> ComputeNormalization(const IoMesh& mesh, double bound = kDefaultNormalizeBound);
+IoMesh ApplyNormalization(const IoMesh& mesh, const NormalizeTransform& t);
 // Inverse, to put generated geometry back into the input's frame.
 std::array<double, 3> UndoNormalization(const std::array<double, 3>& p, const NormalizeTransform& t);
 // Convenience: compute + apply.
-StatusOr<RawMesh> NormalizeMesh(const RawMesh& mesh, double bound = kDefaultNormalizeBound);
+StatusOr<IoMesh> NormalizeMesh(const IoMesh& mesh, double bound = kDefaultNormalizeBound);
 
 }  // namespace silk

@@ -20,7 +20,7 @@ Status BadField(const char* field, const std::string& what) {
   return InvalidArgument(std::string("preprocessing.") + field + " " + what);
 }
 
-std::vector<OrientedPoint> CloudPoints(const RawMesh& normalized, const std::vector<std::array<double, 3>>& normals) {
+std::vector<OrientedPoint> CloudPoints(const IoMesh& normalized, const std::vector<std::array<double, 3>>& normals) {
   std::vector<OrientedPoint> pts;
   pts.reserve(normalized.positions.size());
   for (size_t i = 0; i < normalized.positions.size(); ++i) {
@@ -78,7 +78,7 @@ Status ValidatePreprocessing(const PreprocessingParams& p) {
   return Status::Ok();
 }
 
-StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<std::array<double, 3>>* normals,
+StatusOr<PreparedPoints> PreparePoints(const IoMesh& mesh, const std::vector<std::array<double, 3>>* normals,
                                        const PreprocessingParams& p, uint64_t seed, const CancelCheck& cancel) {
   SILK_RETURN_IF_ERROR(ValidatePreprocessing(p));
   if (normals && normals->size() != mesh.positions.size())
@@ -89,8 +89,8 @@ StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<st
     for (int32_t v : mesh.triangles[f])
       if (v < 0 || v >= nv) return InvalidArgument("triangle " + std::to_string(f) + " has an index out of range");
   const bool official = p.kind == PreprocessingKind::kOfficial;
-  RawMesh cleaned;
-  const RawMesh* source = &mesh;
+  IoMesh cleaned;
+  const IoMesh* source = &mesh;
   if (!normals && (official || p.merge_distance_fraction > 0)) {
     cleaned = MergeCloseVertices(mesh, p.merge_distance_fraction * ReferencedBoundingBoxDiagonal(mesh));
     if (cleaned.triangles.empty()) return InvalidArgument("the mesh has no face with positive area");
@@ -99,7 +99,7 @@ StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<st
   if (CancelRequested(cancel)) return CancelledStatus("pre-processing");
   PreparedPoints out;
   SILK_ASSIGN_OR_RETURN(out.transform, ComputeNormalization(*source, p.normalize_bound));
-  const RawMesh normalized = ApplyNormalization(*source, out.transform);
+  const IoMesh normalized = ApplyNormalization(*source, out.transform);
   std::vector<OrientedPoint> pts;
   if (normals) {
     pts = CloudPoints(normalized, *normals);

@@ -9,7 +9,7 @@
 
 #include "core/cancel_check.h"
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "mesh/normalize.h"
 
 namespace silk {
@@ -57,7 +57,7 @@ struct PreparedPoints {
 std::vector<std::array<double, 3>> PointRowPositions(const std::vector<float>& rows);
 std::vector<std::array<double, 3>> PointRowNormals(const std::vector<float>& rows);
 
-StatusOr<PreparedPoints> PreparePoints(const RawMesh& mesh, const std::vector<std::array<double, 3>>* normals,
+StatusOr<PreparedPoints> PreparePoints(const IoMesh& mesh, const std::vector<std::array<double, 3>>* normals,
                                        const PreprocessingParams& params, uint64_t seed,
                                        const CancelCheck& cancel = {});
 

@@ -19,7 +19,7 @@ double Norm(const V3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a
 
 }  // namespace
 
-StatusOr<std::vector<OrientedPoint>> SampleSurface(const RawMesh& mesh, int32_t count, uint64_t seed,
+StatusOr<std::vector<OrientedPoint>> SampleSurface(const IoMesh& mesh, int32_t count, uint64_t seed,
                                                    const CancelCheck& cancel) {
   if (count <= 0) return InvalidArgument("surface sampling: sample count must be positive");
   std::vector<double> cumulative;

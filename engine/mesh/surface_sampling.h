@@ -7,7 +7,7 @@
 
 #include "core/cancel_check.h"
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
@@ -19,7 +19,7 @@ struct OrientedPoint {
 // Each sample: a face drawn with probability proportional to its area (zero-area faces never),
 // then a uniform point in it (sqrt barycentric trick). Fails when no face has area. `cancel` is
 // polled every kCancelPollInterval samples (kCancelled when it asks to stop).
-StatusOr<std::vector<OrientedPoint>> SampleSurface(const RawMesh& mesh, int32_t count, uint64_t seed,
+StatusOr<std::vector<OrientedPoint>> SampleSurface(const IoMesh& mesh, int32_t count, uint64_t seed,
                                                    const CancelCheck& cancel = {});
 
 // `count` of `points` chosen without replacement (seeded partial shuffle, order kept random);

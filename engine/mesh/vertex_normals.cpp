@@ -5,7 +5,7 @@
 
 namespace silk {
 
-std::vector<std::array<double, 3>> SmoothVertexNormals(const RawMesh& mesh) {
+std::vector<std::array<double, 3>> SmoothVertexNormals(const IoMesh& mesh) {
   std::vector<std::array<double, 3>> n(mesh.positions.size(), {0, 0, 0});
   for (const auto& t : mesh.triangles) {
     const auto& a = mesh.positions[t[0]];

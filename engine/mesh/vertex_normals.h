@@ -4,11 +4,11 @@
 #include <array>
 #include <vector>
 
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
 // One unit normal per position; (0, 0, 1) for a vertex without faces of positive area.
-std::vector<std::array<double, 3>> SmoothVertexNormals(const RawMesh& mesh);
+std::vector<std::array<double, 3>> SmoothVertexNormals(const IoMesh& mesh);
 
 }  // namespace silk

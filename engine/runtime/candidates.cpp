@@ -43,8 +43,8 @@ uint64_t CandidateSeed(uint64_t seed, int32_t index) {
   return rng.Next();
 }
 
-double ScoreAgainstPoints(const DecodedMesh& mesh, const std::vector<float>& points) {
-  RawMesh m;
+double ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<float>& points) {
+  IoMesh m;
   m.positions = DequantizePositions(mesh.positions);
   m.triangles = mesh.faces;
   return MeshToPointsChamfer(m, PointRowPositions(points), kScoreSamples, kScoreSeed).value();

@@ -17,7 +17,7 @@ uint64_t CandidateSeed(uint64_t seed, int32_t index);
 // against the encoder's points (rows of 6 floats, xyz first): the symmetric Chamfer distance
 // (mean of both directions, like silk-export eval's CD; one direction alone would reward a
 // small patch lying on the surface). +infinity for a mesh without a face of positive area.
-double ScoreAgainstPoints(const DecodedMesh& mesh, const std::vector<float>& points);
+double ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<float>& points);
 
 // options.candidates generations with CandidateSeed(options.sampling.seed, i), each a full
 // Generator::Run on the same points (the decoder graph has batch 1, docs/runtime.md). Returns the

@@ -80,14 +80,12 @@ StatusOr<PreparedPoints> RawModelPoints(const GenerationInput& in, int32_t n_poi
   return out;
 }
 
-GeneratedMesh ToInputFrame(const DecodedMesh& decoded, const NormalizeTransform& t) {
-  GeneratedMesh g;
-  g.mesh.positions.reserve(decoded.positions.size());
+IoMesh ToInputFrame(const TokenizerDecodedMesh& decoded, const NormalizeTransform& t) {
+  IoMesh g;
+  g.positions.reserve(decoded.positions.size());
   for (const QVec& q : decoded.positions)
-    g.mesh.positions.push_back(UndoNormalization(DequantizePosition(q), t));
-  g.mesh.triangles = decoded.faces;
-  g.triangle_component = decoded.face_component;
-  g.components = decoded.components;
+    g.positions.push_back(UndoNormalization(DequantizePosition(q), t));
+  g.triangles = decoded.faces;
   return g;
 }
 
@@ -109,14 +107,14 @@ StatusOr<PipelineResult> GenerateFromInput(Generator* generator, const ModelConf
   return r;
 }
 
-GeneratedMesh FinishOutput(GenerateResult* generation, const NormalizeTransform& transform) {
-  GeneratedMesh out = ToInputFrame(generation->mesh, transform);
+IoMesh FinishOutput(GenerateResult* generation, const NormalizeTransform& transform) {
+  IoMesh out = ToInputFrame(generation->mesh, transform);
   FillVerdicts(out, &generation->stats);
   return out;
 }
 
-void FillVerdicts(const GeneratedMesh& mesh, GenerationStats* st) {
-  const MeshVerdicts v = CheckMesh(mesh.mesh);
+void FillVerdicts(const IoMesh& mesh, GenerationStats* st) {
+  const MeshVerdicts v = CheckMesh(mesh);
   st->edge_manifold = v.edge_manifold;
   st->watertight = v.watertight;
   st->consistently_oriented = v.consistently_oriented;

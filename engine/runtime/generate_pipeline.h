@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "mesh/normalize.h"
 #include "mesh/point_preprocessing.h"
 #include "runtime/generator.h"
@@ -16,7 +16,7 @@
 namespace silk {
 
 struct GenerationInput {
-  RawMesh mesh;                                  // triangles empty for a point cloud
+  IoMesh mesh;                                  // triangles empty for a point cloud
   std::vector<std::array<double, 3>> normals;    // point cloud: one per position
   bool point_cloud = false;
 };
@@ -39,24 +39,20 @@ PreprocessingParams ModelPreprocessing(const ModelConfig& config, int32_t n_poin
 // be `n_points`; every value must be finite.
 StatusOr<PreparedPoints> RawModelPoints(const GenerationInput& input, int32_t n_points);
 
-struct GeneratedMesh {
-  RawMesh mesh;                             // input frame
-  std::vector<int32_t> triangle_component;  // part index per triangle
-  int32_t components = 0;
-};
-
-// Grid positions -> [-1, 1] (tokenizer dequantisation) -> input frame (UndoNormalization).
-GeneratedMesh ToInputFrame(const DecodedMesh& decoded, const NormalizeTransform& transform);
+// The one step from the generated mesh to the output (docs/mesh_types.md): grid positions ->
+// [-1, 1] (tokenizer dequantisation) -> input frame (UndoNormalization); faces as decoded. The
+// part index per triangle stays in decoded.face_component.
+IoMesh ToInputFrame(const TokenizerDecodedMesh& decoded, const NormalizeTransform& transform);
 
 // Edge-manifold / watertight / orientation verdicts and open edges of the output, into stats.
-void FillVerdicts(const GeneratedMesh& mesh, GenerationStats* stats);
+void FillVerdicts(const IoMesh& mesh, GenerationStats* stats);
 
 // ToInputFrame + FillVerdicts into generation->stats.
-GeneratedMesh FinishOutput(GenerateResult* generation, const NormalizeTransform& transform);
+IoMesh FinishOutput(GenerateResult* generation, const NormalizeTransform& transform);
 
 struct PipelineResult {
-  GenerateResult generation;  // tokens, grid mesh, report, stats (verdicts filled in)
-  GeneratedMesh output;
+  GenerateResult generation;  // tokens, grid mesh (parts: generation.mesh.face_component), report, stats
+  IoMesh output;              // input frame
 };
 
 // PrepareModelPoints with `preprocessing` (null: RawModelPoints with the model's n_points) +

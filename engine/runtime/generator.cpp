@@ -382,10 +382,10 @@ void Generator::ReportProgress() {
   s.callbacks.progress(p);
 }
 
-StatusOr<DecodedMesh> Generator::MeshSoFar() const {
+StatusOr<TokenizerDecodedMesh> Generator::MeshSoFar() const {
   if (!session_) return InvalidArgument("generate: no generation in progress");
-  if (session_->options.unconstrained && session_->illegal_seen) return DecodedMesh{};
-  SILK_ASSIGN_OR_RETURN(DecodedMesh mesh,
+  if (session_->options.unconstrained && session_->illegal_seen) return TokenizerDecodedMesh{};
+  SILK_ASSIGN_OR_RETURN(TokenizerDecodedMesh mesh,
                         BuildMeshSoFar(session_->grammar, MeshBuildOptions{}, nullptr, &session_->so_far_cache));
   if (session_->orientation) OrientToInput(&mesh, *session_->orientation);
   return mesh;

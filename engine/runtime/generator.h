@@ -81,7 +81,7 @@ struct TraceStep {
 
 struct GenerateResult {
   std::vector<int32_t> tokens;  // EOS included when reached; no BOS
-  DecodedMesh mesh;             // grid coordinates
+  TokenizerDecodedMesh mesh;    // grid coordinates
   MeshBuildReport report;
   GenerationStats stats;
   std::vector<TraceStep> trace;
@@ -114,7 +114,7 @@ class Generator {
   const std::vector<int32_t>& tokens() const;
   const GenerationStats& stats() const;
   // Faces of the layers completed so far (grid coordinates).
-  StatusOr<DecodedMesh> MeshSoFar() const;
+  StatusOr<TokenizerDecodedMesh> MeshSoFar() const;
   // Completed layers so far (layer ends seen).
   int64_t layers_closed() const;
   StatusOr<GenerateResult> Finish();

@@ -10,7 +10,7 @@ std::shared_ptr<const OrientedPointSet> MakeInputOrientation(const std::vector<f
   return std::make_shared<const OrientedPointSet>(PointRowPositions(points), PointRowNormals(points));
 }
 
-PartOrientationReport OrientToInput(DecodedMesh* mesh, const OrientedPointSet& reference) {
+PartOrientationReport OrientToInput(TokenizerDecodedMesh* mesh, const OrientedPointSet& reference) {
   return OrientPartsToPoints(DequantizePositions(mesh->positions), &mesh->faces, mesh->face_component,
                              mesh->components, reference);
 }

@@ -14,6 +14,6 @@ std::shared_ptr<const OrientedPointSet> MakeInputOrientation(const std::vector<f
 
 // Reverses every part of `mesh` (grid coordinates, face_component) whose area-weighted winding
 // disagrees with the reference normals.
-PartOrientationReport OrientToInput(DecodedMesh* mesh, const OrientedPointSet& reference);
+PartOrientationReport OrientToInput(TokenizerDecodedMesh* mesh, const OrientedPointSet& reference);
 
 }  // namespace silk

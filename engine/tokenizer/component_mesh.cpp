@@ -12,8 +12,8 @@
 
 namespace silk {
 
-StatusOr<ComponentMesh> AssembleComponentMesh(const StreamComponent& comp, int32_t closed_layers) {
-  ComponentMesh cm;
+StatusOr<TokenizerComponentMesh> AssembleComponentMesh(const StreamComponent& comp, int32_t closed_layers) {
+  TokenizerComponentMesh cm;
   ComponentLayers layers;
   int32_t prev = 0;
   const int32_t count = closed_layers < 0 ? static_cast<int32_t>(comp.layers.size()) : closed_layers;
@@ -48,7 +48,7 @@ StatusOr<ComponentMesh> AssembleComponentMesh(const StreamComponent& comp, int32
   return cm;
 }
 
-void AppendComponentMesh(const ComponentMesh& cm, int32_t ci, DecodedMesh* mesh) {
+void AppendComponentMesh(const TokenizerComponentMesh& cm, int32_t ci, TokenizerDecodedMesh* mesh) {
   const int32_t base = static_cast<int32_t>(mesh->positions.size());
   for (const QVec& q : cm.positions) {
     mesh->positions.push_back(q);

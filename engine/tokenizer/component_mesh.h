@@ -1,6 +1,7 @@
-// ComponentMesh: the one ids -> mesh assembly step of a component (layers -> adjacency -> faces),
-// shared by DecodeTokens (silktok decode, the C API) and the decoder's BuildMesh (generation),
-// so positions, vertex order and face recovery cannot drift apart between the two.
+// TokenizerComponentMesh: one component assembled from its ids (layers -> adjacency -> faces), the
+// one assembly step shared by DecodeTokens (silktok decode, the C API) and the decoder's BuildMesh
+// (generation), so positions, vertex order and face recovery cannot drift apart between the two.
+// AppendComponentMesh puts components together into a TokenizerDecodedMesh (docs/mesh_types.md).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -12,7 +13,7 @@
 
 namespace silk {
 
-struct ComponentMesh {
+struct TokenizerComponentMesh {
   std::vector<QVec> positions;                // reading order: root, layer 1, layer 2, ...
   std::vector<int32_t> layer_of, index_in_layer;
   std::vector<std::array<int32_t, 3>> faces;  // local indices, oriented (face_recovery.h)
@@ -20,9 +21,9 @@ struct ComponentMesh {
 };
 
 // Assembles the first `closed_layers` layers of `comp` (all when < 0). Errors name the layer.
-StatusOr<ComponentMesh> AssembleComponentMesh(const StreamComponent& comp, int32_t closed_layers = -1);
+StatusOr<TokenizerComponentMesh> AssembleComponentMesh(const StreamComponent& comp, int32_t closed_layers = -1);
 
 // Appends a component's vertices and faces to `mesh` as component `ci`.
-void AppendComponentMesh(const ComponentMesh& cm, int32_t ci, DecodedMesh* mesh);
+void AppendComponentMesh(const TokenizerComponentMesh& cm, int32_t ci, TokenizerDecodedMesh* mesh);
 
 }  // namespace silk

@@ -1,6 +1,7 @@
-// ProcessedMesh: the mesh between the encoder's stages (token_format.md §2.3-§4): quantized positions
-// indexed by processed vertex id (input vertices + non-manifold copies), faces indexed by
-// processed face id, each with its current winding.
+// TokenizerProcessedMesh: the mesh between the encoder's stages (token_format.md §2.3-§4): quantized
+// positions indexed by processed vertex id (input vertices + non-manifold copies), faces indexed by
+// processed face id, each with its current winding. Private to the tokenizer (docs/mesh_types.md;
+// tests/tools/check_layers.py keeps other layers from including this header).
 #pragma once
 #include <array>
 #include <vector>
@@ -12,7 +13,7 @@ namespace silk {
 
 using Tri = std::array<VertexId, 3>;
 
-struct ProcessedMesh {
+struct TokenizerProcessedMesh {
   std::vector<QVec> positions;  // by VertexId; duplicates/unreferenced entries stay (token_format.md §2.3)
   std::vector<Tri> faces;       // by FaceId (token_format.md §2.4); only corner ids change later
   int32_t input_vertex_count = 0;

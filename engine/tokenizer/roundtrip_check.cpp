@@ -31,7 +31,7 @@ bool Contains(const std::vector<Key>& sorted, const Key& k) { return std::binary
 
 }  // namespace
 
-RoundTripReport CompareRoundTrip(const EncodeResult& enc, const DecodedMesh& dec) {
+RoundTripReport CompareRoundTrip(const EncodeResult& enc, const TokenizerDecodedMesh& dec) {
   RoundTripReport r;
   std::vector<Key> decoded, processed, unencodable;
   for (const auto& f : dec.faces)

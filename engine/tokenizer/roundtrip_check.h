@@ -21,6 +21,6 @@ struct RoundTripReport {
 };
 
 // Faces are compared by grid coordinates and cyclic corner order.
-RoundTripReport CompareRoundTrip(const EncodeResult& encoded, const DecodedMesh& decoded);
+RoundTripReport CompareRoundTrip(const EncodeResult& encoded, const TokenizerDecodedMesh& decoded);
 
 }  // namespace silk

@@ -9,12 +9,12 @@
 
 namespace silk {
 
-StatusOr<DecodedMesh> DecodeTokens(const std::vector<int32_t>& ids, const DecodeOptions& options) {
+StatusOr<TokenizerDecodedMesh> DecodeTokens(const std::vector<int32_t>& ids, const DecodeOptions& options) {
   if (options.official_faces) {
     return Unsupported("the official decoder's face rule (token_format.md §10.3) is not implemented");
   }
   SILK_ASSIGN_OR_RETURN(LayeredStream stream, ReadTokens(ids));
-  DecodedMesh mesh;
+  TokenizerDecodedMesh mesh;
   for (size_t ci = 0; ci < stream.components.size(); ++ci) {
     auto cm = AssembleComponentMesh(stream.components[ci]);
     if (!cm.ok()) return cm.status().WithContext("component " + std::to_string(ci) + ", ");

@@ -24,7 +24,7 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
 // Fills the S/X/B parts of every vertex of one component's layers.
-StreamComponent EncodeComponent(const ProcessedMesh& mesh, const ComponentVertexLayers& cl, const Layering& lay,
+StreamComponent EncodeComponent(const TokenizerProcessedMesh& mesh, const ComponentVertexLayers& cl, const Layering& lay,
                                 const RotationLists& rot) {
   StreamComponent sc;
   sc.layers.resize(cl.layers.size());
@@ -63,7 +63,7 @@ StreamComponent EncodeComponent(const ProcessedMesh& mesh, const ComponentVertex
 
 // The processed faces of the kept components and those of them the layering cannot carry (a
 // corner left unlayered or an edge spanning more than one layer, §5.4), with the vertex and face counts.
-void RecordFaceLists(const ProcessedMesh& mesh, const ComponentSplit& split, const Layering& lay, EncodeResult* res) {
+void RecordFaceLists(const TokenizerProcessedMesh& mesh, const ComponentSplit& split, const Layering& lay, EncodeResult* res) {
   EncodeStats& st = res->stats;
   std::vector<char> used(static_cast<size_t>(mesh.vertex_count()), 0);
   for (const Component& c : split.kept) {
@@ -100,7 +100,7 @@ void RecordLayerStats(const Layering& lay, EncodeStats* st) {
 
 }  // namespace
 
-StatusOr<LayeredStream> EncodeProcessedMesh(ProcessedMesh mesh) {
+StatusOr<LayeredStream> EncodeProcessedMesh(TokenizerProcessedMesh mesh) {
   NonManifoldStats nms;
   SILK_RETURN_IF_ERROR(SplitNonManifoldVertices(mesh, &nms));
   SILK_ASSIGN_OR_RETURN(FaceAdjacency adj, BuildFaceAdjacency(mesh));
@@ -114,7 +114,7 @@ StatusOr<LayeredStream> EncodeProcessedMesh(ProcessedMesh mesh) {
   return stream;
 }
 
-StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions& options) {
+StatusOr<EncodeResult> EncodeMesh(const IoMesh& normalized, const EncodeOptions& options) {
   EncodeResult res;
   EncodeStats& st = res.stats;
   st.input_vertices = static_cast<int32_t>(normalized.positions.size());
@@ -122,7 +122,7 @@ StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions
 
   auto t0 = Clock::now();
   CleanupStats cs;
-  SILK_ASSIGN_OR_RETURN(ProcessedMesh mesh, QuantizeAndClean(normalized, &cs));
+  SILK_ASSIGN_OR_RETURN(TokenizerProcessedMesh mesh, QuantizeAndClean(normalized, &cs));
   st.merged_vertices = cs.merged_vertices;
   st.dropped_degenerate_faces = cs.degenerate_faces;
   st.dropped_duplicate_faces = cs.duplicate_faces;

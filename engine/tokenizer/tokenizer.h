@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
+#include "tokenizer/cleanup/quantize.h"
 #include "tokenizer/packing/layered_stream.h"
-#include "tokenizer/processed_mesh.h"
 
 namespace silk {
 
@@ -53,14 +53,16 @@ struct EncodeResult {
 
 // `normalized` must already be normalised to [-1, 1] (NormalizeMesh in mesh/), finite.
 // Refusals come back as Status kRefused with a named reason (tokenizer/refusal.h).
-StatusOr<EncodeResult> EncodeMesh(const RawMesh& normalized, const EncodeOptions& options = {});
+StatusOr<EncodeResult> EncodeMesh(const IoMesh& normalized, const EncodeOptions& options = {});
 
 struct DecodeOptions {
   // Reserved for decoder variants; the default recovers every face the tokens carry.
   bool official_faces = false;  // true: the reference decoder's face rule (token_format.md §10.3)
 };
 
-struct DecodedMesh {
+// The mesh the tokens carry, in grid coordinates (docs/mesh_types.md): what DecodeTokens gives and
+// the decoder's BuildMesh builds; the runtime and the C API turn it into an IoMesh.
+struct TokenizerDecodedMesh {
   std::vector<QVec> positions;                    // one per emitted vertex, reading order
   std::vector<std::array<int32_t, 3>> faces;      // indices into positions, oriented
   std::vector<int32_t> face_component;            // component index per face
@@ -72,6 +74,6 @@ struct DecodedMesh {
 // is an error naming its position.
 StatusOr<LayeredStream> ReadTokenStream(const std::vector<int32_t>& ids);
 // ids -> mesh: parse, rebuild adjacency, recover faces.
-StatusOr<DecodedMesh> DecodeTokens(const std::vector<int32_t>& ids, const DecodeOptions& options = {});
+StatusOr<TokenizerDecodedMesh> DecodeTokens(const std::vector<int32_t>& ids, const DecodeOptions& options = {});
 
 }  // namespace silk

@@ -23,7 +23,7 @@ namespace {
 
 // Independent of mesh/vertex_fans: for each vertex, flood-fill its faces through faces that
 // share a second corner; more than one region is a bowtie. Returns the number of such vertices.
-int32_t BowtieVertices(const DecodedMesh& mesh) {
+int32_t BowtieVertices(const TokenizerDecodedMesh& mesh) {
   std::vector<std::vector<int32_t>> at(mesh.positions.size());
   for (size_t f = 0; f < mesh.faces.size(); ++f)
     for (int32_t v : mesh.faces[f]) at[v].push_back(static_cast<int32_t>(f));

@@ -14,8 +14,8 @@
 namespace silk {
 namespace {
 
-OutputMesh Sample() {
-  OutputMesh m;
+IoMesh Sample() {
+  IoMesh m;
   m.positions = {{0.1, -2.5e-7, 1e300}, {1.0 / 3.0, 2, 3}, {-0.0, 5e-324, 123456789.123456789}};
   m.triangles = {{0, 1, 2}, {2, 1, 0}};
   return m;
@@ -32,7 +32,7 @@ TEST(ObjWriter, RoundTripsExactDoubles) {
 }
 
 TEST(ObjWriter, IntegerCoordinates) {
-  OutputMesh m;
+  IoMesh m;
   m.positions = {{3, 64, 18}, {0, 127, -1}, {1, 1, 1}};
   m.triangles = {{0, 1, 2}};
   ObjWriteOptions opts;
@@ -46,7 +46,7 @@ TEST(ObjWriter, IntegerCoordinates) {
 
 TEST(ObjWriter, RejectsInvalidMeshWithoutWriting) {
   testing::TempDir dir;
-  OutputMesh m = Sample();
+  IoMesh m = Sample();
   m.triangles.push_back({0, 1, 3});
   const std::string p = dir.path() + "/bad.obj";
   Status s = WriteObjFile(p, m);

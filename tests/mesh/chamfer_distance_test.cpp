@@ -78,7 +78,7 @@ TEST(ChamferDistance, SymmetricMeanMatchesBruteForce) {
 }
 
 TEST(ChamferDistance, MeshSamplesAgainstPoints) {
-  RawMesh square;  // unit square in z = 0
+  IoMesh square;  // unit square in z = 0
   square.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   square.triangles = {{0, 1, 2}, {0, 2, 3}};
   std::vector<Point3> above;  // the same square lifted by 0.5: every distance >= 0.5
@@ -92,12 +92,12 @@ TEST(ChamferDistance, MeshSamplesAgainstPoints) {
 }
 
 TEST(ChamferDistance, NoFaceOrNoPointIsInfinite) {
-  RawMesh flat;  // one zero-area face
+  IoMesh flat;  // one zero-area face
   flat.positions = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
   flat.triangles = {{0, 1, 2}};
   const std::vector<Point3> pts = {{0, 0, 0}};
   EXPECT_TRUE(std::isinf(MeshToPointsChamfer(flat, pts, 100, 0).value()));
-  EXPECT_TRUE(std::isinf(MeshToPointsChamfer(RawMesh{}, pts, 100, 0).value()));
+  EXPECT_TRUE(std::isinf(MeshToPointsChamfer(IoMesh{}, pts, 100, 0).value()));
   EXPECT_TRUE(std::isinf(NearestPointIndex({}).Distance({0, 0, 0})));
 }
 

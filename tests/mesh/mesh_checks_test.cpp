@@ -8,8 +8,8 @@
 namespace silk {
 namespace {
 
-RawMesh Tetra() {
-  RawMesh m;
+IoMesh Tetra() {
+  IoMesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   return m;
@@ -18,26 +18,26 @@ RawMesh Tetra() {
 TEST(MeshChecks, Verdicts) {
   MeshVerdicts v = CheckMesh(Tetra());
   EXPECT_TRUE(v.edge_manifold && v.watertight && v.consistently_oriented);
-  RawMesh open = Tetra();
+  IoMesh open = Tetra();
   open.triangles.pop_back();
   v = CheckMesh(open);
   EXPECT_TRUE(v.edge_manifold && v.consistently_oriented);
   EXPECT_FALSE(v.watertight);
   EXPECT_EQ(v.boundary_edges, 3);
-  RawMesh flipped = Tetra();
+  IoMesh flipped = Tetra();
   std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
   EXPECT_FALSE(CheckMesh(flipped).consistently_oriented);
-  RawMesh fin = Tetra();
+  IoMesh fin = Tetra();
   fin.positions.push_back({1, 1, 1});
   fin.triangles.push_back({1, 2, 4});
   v = CheckMesh(fin);
   EXPECT_FALSE(v.edge_manifold);
   EXPECT_EQ(v.nonmanifold_edges, 1);
-  EXPECT_FALSE(CheckMesh(RawMesh{}).watertight);
+  EXPECT_FALSE(CheckMesh(IoMesh{}).watertight);
 }
 
 TEST(VertexNormals, PointOutOfAClosedMesh) {
-  const RawMesh m = Tetra();
+  const IoMesh m = Tetra();
   const auto n = SmoothVertexNormals(m);
   ASSERT_EQ(n.size(), 4u);
   for (int i = 1; i < 4; ++i) {
@@ -46,7 +46,7 @@ TEST(VertexNormals, PointOutOfAClosedMesh) {
     EXPECT_GT(dot, 0) << i;
     EXPECT_NEAR(n[i][0] * n[i][0] + n[i][1] * n[i][1] + n[i][2] * n[i][2], 1.0, 1e-12);
   }
-  RawMesh lonely = m;
+  IoMesh lonely = m;
   lonely.positions.push_back({3, 3, 3});
   EXPECT_EQ(SmoothVertexNormals(lonely)[4], (std::array<double, 3>{0, 0, 1}));
 }

@@ -18,8 +18,8 @@ namespace silk {
 namespace {
 
 // An axis-aligned box [0,2]x[0,1]x[0,1] (12 outward triangles).
-RawMesh Box() {
-  RawMesh m;
+IoMesh Box() {
+  IoMesh m;
   m.positions = {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 1}, {2, 1, 1}, {0, 1, 1}};
   m.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                  {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
@@ -53,7 +53,7 @@ TEST(Float16Rounding, KnownValuesTiesAndRange) {
 }
 
 TEST(CloseVertexMerge, MergesNearDuplicatesAndDropsDegenerateAndRepeatedFaces) {
-  RawMesh m;
+  IoMesh m;
   // A unit square (two triangles) whose second triangle uses copies of two corners moved by
   // 1e-3, a sliver triangle inside the merge distance, a repeated face, an unreferenced vertex.
   m.positions = {{0, 0, 0},    {1, 0, 0},    {1, 1, 0},      {0, 1, 0},   {0.001, 0, 0},
@@ -62,7 +62,7 @@ TEST(CloseVertexMerge, MergesNearDuplicatesAndDropsDegenerateAndRepeatedFaces) {
   const double diag = ReferencedBoundingBoxDiagonal(m);
   EXPECT_NEAR(diag, std::sqrt(1.0 + 1.001 * 1.001), 1e-12);  // (9,9,9) is not referenced
   VertexMergeReport rep;
-  RawMesh out = MergeCloseVertices(m, 0.01 * diag, &rep);
+  IoMesh out = MergeCloseVertices(m, 0.01 * diag, &rep);
   EXPECT_EQ(rep.vertices_before, 10);
   EXPECT_EQ(rep.faces_before, 4);
   ASSERT_EQ(out.triangles.size(), 2u);  // the sliver collapsed, the repeat dropped
@@ -70,10 +70,10 @@ TEST(CloseVertexMerge, MergesNearDuplicatesAndDropsDegenerateAndRepeatedFaces) {
   std::set<std::array<double, 3>> corners(out.positions.begin(), out.positions.end());
   EXPECT_EQ(corners, (std::set<std::array<double, 3>>{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}));
   // Below the distance nothing merges; a copy 0.02 away (> 1 % of the diagonal) stays apart.
-  RawMesh far = MergeCloseVertices(m, 0.0, nullptr);
+  IoMesh far = MergeCloseVertices(m, 0.0, nullptr);
   EXPECT_EQ(far.triangles.size(), 3u);  // only the repeated face goes
   m.positions[4] = {0.02, 0, 0};
-  RawMesh apart = MergeCloseVertices(m, 0.01 * ReferencedBoundingBoxDiagonal(m), nullptr);
+  IoMesh apart = MergeCloseVertices(m, 0.01 * ReferencedBoundingBoxDiagonal(m), nullptr);
   EXPECT_EQ(apart.positions.size(), 5u);
 }
 
@@ -112,7 +112,7 @@ TEST(PointPreprocessing, OfficialMergesNearDuplicateVerticesBeforeSampling) {
   // The box with its top face split off onto copies of its corners moved by 1e-3 (< 1 % of
   // the diagonal): after merging, the surface is the same closed box. Without merging the
   // moved copies would widen the bounding box and shift the normalisation.
-  RawMesh m = Box();
+  IoMesh m = Box();
   for (int v = 4; v < 8; ++v) {
     auto p = m.positions[static_cast<size_t>(v)];
     p[0] += 1e-3;
@@ -121,7 +121,7 @@ TEST(PointPreprocessing, OfficialMergesNearDuplicateVerticesBeforeSampling) {
   m.triangles[2] = {8, 9, 10};
   m.triangles[3] = {8, 10, 11};
   VertexMergeReport rep;
-  RawMesh merged = MergeCloseVertices(m, 0.01 * ReferencedBoundingBoxDiagonal(m), &rep);
+  IoMesh merged = MergeCloseVertices(m, 0.01 * ReferencedBoundingBoxDiagonal(m), &rep);
   EXPECT_EQ(rep.vertices_after, 8);
   EXPECT_EQ(rep.faces_after, 12);
   auto r = PreparePoints(m, nullptr, OfficialPreprocessing(512), 3);
@@ -135,7 +135,7 @@ TEST(PointPreprocessing, OfficialMergesNearDuplicateVerticesBeforeSampling) {
 }
 
 TEST(PointPreprocessing, SilkKindIsPlainSurfaceSampling) {
-  const RawMesh box = Box();
+  const IoMesh box = Box();
   auto r = PreparePoints(box, nullptr, SilkPreprocessing(0.9, 300), 42);
   ASSERT_TRUE(r.ok());
   auto t = ComputeNormalization(box, 0.9);
@@ -151,7 +151,7 @@ TEST(PointPreprocessing, SilkKindIsPlainSurfaceSampling) {
 }
 
 TEST(PointPreprocessing, PointCloudsAndErrors) {
-  RawMesh cloud;
+  IoMesh cloud;
   std::vector<std::array<double, 3>> normals;
   for (int i = 0; i < 100; ++i) {
     cloud.positions.push_back({i * 0.1, std::sin(i * 1.0), 0});
@@ -171,7 +171,7 @@ TEST(PointPreprocessing, PointCloudsAndErrors) {
   EXPECT_NE(e.status().message().find("preprocessing.surface_samples"), std::string::npos);
   bad = OfficialPreprocessing(0);
   EXPECT_NE(ValidatePreprocessing(bad).message().find("preprocessing.n_points"), std::string::npos);
-  RawMesh sliver;
+  IoMesh sliver;
   sliver.positions = {{0, 0, 0}, {0.005, 0, 0}, {1, 1, 0}};
   sliver.triangles = {{0, 1, 2}};
   auto s = PreparePoints(sliver, nullptr, OfficialPreprocessing(16), 1);

@@ -11,8 +11,8 @@ namespace silk {
 namespace {
 
 // Two triangles: a big one in z=0 (area 2), a small one in x=5 (area 0.5), plus a degenerate.
-RawMesh TwoTriangles() {
-  RawMesh m;
+IoMesh TwoTriangles() {
+  IoMesh m;
   m.positions = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {5, 0, 0}, {5, 1, 0}, {5, 0, 1}, {7, 7, 7}};
   m.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 6, 6}};
   return m;
@@ -45,12 +45,12 @@ TEST(SurfaceSampling, SeededAndErrors) {
   ASSERT_TRUE(a.ok() && b.ok() && c.ok());
   EXPECT_EQ((*a)[17].position, (*b)[17].position);
   EXPECT_NE((*a)[17].position, (*c)[17].position);
-  RawMesh flat;
+  IoMesh flat;
   flat.positions = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
   flat.triangles = {{0, 1, 2}};
   EXPECT_FALSE(SampleSurface(flat, 10, 0).ok());
   EXPECT_FALSE(SampleSurface(TwoTriangles(), 0, 0).ok());
-  RawMesh bad = TwoTriangles();
+  IoMesh bad = TwoTriangles();
   bad.triangles.push_back({0, 1, 99});
   EXPECT_FALSE(SampleSurface(bad, 10, 0).ok());
 }

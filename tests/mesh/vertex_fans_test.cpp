@@ -27,7 +27,7 @@ TEST(VertexFans, BowtieIsFoundAndSplit) {
   EXPECT_EQ(f.corner_fan[0], 0);  // face 0 at vertex 0: fan 0
   EXPECT_EQ(f.corner_fan[3], 1);  // face 1: the other fan
   EXPECT_EQ(f.corner_fan[6], 0);  // face 2 shares edge 0-2 with face 0
-  RawMesh m;
+  IoMesh m;
   m.positions.resize(6);
   m.triangles = faces;
   MeshVerdicts v = CheckMesh(m);

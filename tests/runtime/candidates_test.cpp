@@ -88,10 +88,10 @@ TEST_F(CandidatesTest, TheReturnedCandidateHasTheLowestScore) {
 
 TEST_F(CandidatesTest, ScoreIsSmallerForTheInputItself) {
   // An independent check of the score's direction: the points themselves against a far mesh.
-  DecodedMesh far;
+  TokenizerDecodedMesh far;
   far.positions = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}};
   far.faces = {{0, 1, 2}};
-  DecodedMesh none;
+  TokenizerDecodedMesh none;
   EXPECT_TRUE(std::isinf(ScoreAgainstPoints(none, points_)));
   const double s = ScoreAgainstPoints(far, points_);
   EXPECT_TRUE(std::isfinite(s));

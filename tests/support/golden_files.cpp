@@ -95,7 +95,7 @@ std::vector<std::map<std::string, std::string>> ReadTsvRows(const std::string& p
   return rows;
 }
 
-bool ReadPlainObj(const std::string& path, silk::RawMesh* mesh) {
+bool ReadPlainObj(const std::string& path, silk::IoMesh* mesh) {
   std::ifstream in(path);
   if (!in) return false;
   mesh->positions.clear();

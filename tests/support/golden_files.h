@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk::testing {
 
@@ -30,7 +30,7 @@ std::vector<std::map<std::string, std::string>> ReadTsvRows(const std::string& p
 
 // The reference drivers' plain OBJ parse: every `v` line, every `f` line's first index of
 // each group minus one; nothing welded or cleaned (spec/golden/README.md step 1).
-bool ReadPlainObj(const std::string& path, silk::RawMesh* mesh);
+bool ReadPlainObj(const std::string& path, silk::IoMesh* mesh);
 
 // Names of the golden-dev meshes the official code encodes (INDEX.tsv status "ok").
 std::vector<std::string> GoldenDevOkNames();

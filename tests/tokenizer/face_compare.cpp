@@ -63,7 +63,7 @@ std::vector<CoordFace> ReadCoordFaces(const std::string& path) {
   return faces;
 }
 
-std::vector<CoordFace> FacesAsCoords(const DecodedMesh& mesh) {
+std::vector<CoordFace> FacesAsCoords(const TokenizerDecodedMesh& mesh) {
   std::vector<CoordFace> out;
   for (const auto& f : mesh.faces) out.push_back({mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]]});
   return out;
@@ -103,7 +103,7 @@ FaceComparison CompareFaces(const std::vector<CoordFace>& decoded, const std::ve
   return r;
 }
 
-std::string CheckManifoldOriented(const DecodedMesh& mesh) {
+std::string CheckManifoldOriented(const TokenizerDecodedMesh& mesh) {
   std::map<std::pair<int32_t, int32_t>, int> undirected, directed;
   for (size_t i = 0; i < mesh.faces.size(); ++i) {
     const auto& f = mesh.faces[i];

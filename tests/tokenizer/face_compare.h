@@ -25,10 +25,10 @@ struct FaceComparison {
 std::vector<int32_t> ReadIds(const std::string& path);
 // 9 integers per line.
 std::vector<CoordFace> ReadCoordFaces(const std::string& path);
-std::vector<CoordFace> FacesAsCoords(const DecodedMesh& mesh);
+std::vector<CoordFace> FacesAsCoords(const TokenizerDecodedMesh& mesh);
 FaceComparison CompareFaces(const std::vector<CoordFace>& decoded, const std::vector<CoordFace>& target);
 // Invariants: no edge (by vertex index) with > 2 faces, no directed edge used twice,
 // no degenerate face. Returns "" or a description of the first violation.
-std::string CheckManifoldOriented(const DecodedMesh& mesh);
+std::string CheckManifoldOriented(const TokenizerDecodedMesh& mesh);
 
 }  // namespace silk::testing

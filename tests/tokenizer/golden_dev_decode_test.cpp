@@ -81,7 +81,7 @@ TEST(GoldenDevDecodeSlow, RecoversEveryRepresentableFaceWithItsWinding) {
       // Each miss must be proven token-equivalent by re-encoding its component.
       auto stream = ReadTokens(ids);
       ASSERT_TRUE(stream.ok());
-      RawMesh raw;  // the official encoder's face order breaks §4.1 ties (token_equivalence.h)
+      IoMesh raw;  // the official encoder's face order breaks §4.1 ties (token_equivalence.h)
       ASSERT_TRUE(testing::ReadPlainObj(testing::SharedPath("corpus/dev/" + row.name + ".obj"), &raw));
       auto norm = NormalizeMesh(raw);
       ASSERT_TRUE(norm.ok());

@@ -43,7 +43,7 @@ TEST(GoldenDevEncodeSlow, AllMeshesMatchOfficial) {
   for (const auto& row : rows) {
     const std::string name = row.at("name");
     SCOPED_TRACE(name);
-    RawMesh raw;
+    IoMesh raw;
     ASSERT_TRUE(testing::ReadPlainObj(testing::SharedPath("corpus/dev/" + name + ".obj"), &raw));
     auto norm = NormalizeMesh(raw);
     ASSERT_TRUE(norm.ok()) << norm.status().ToString();

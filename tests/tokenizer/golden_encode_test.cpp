@@ -14,7 +14,7 @@ class GoldenEncode : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GoldenEncode, TokensMatchOfficial) {
   const std::string name = GetParam();
-  RawMesh raw;
+  IoMesh raw;
   ASSERT_TRUE(testing::ReadPlainObj(testing::SharedPath("spec/golden/" + name + ".obj"), &raw));
   std::vector<int32_t> expected;
   ASSERT_TRUE(testing::ReadTokenFile(testing::SharedPath("spec/golden/" + name + ".tokens.txt"), &expected));

@@ -46,7 +46,7 @@ std::vector<MissedFace> MissedFaces(const std::vector<CoordFace>& decoded, const
   return out;
 }
 
-std::vector<char> ComponentsReencoding(const DecodedMesh& mesh, const LayeredStream& stream,
+std::vector<char> ComponentsReencoding(const TokenizerDecodedMesh& mesh, const LayeredStream& stream,
                                        const std::vector<CoordFace>& order_reference) {
   const size_t n = static_cast<size_t>(mesh.components);
   std::vector<int32_t> base(n + 1, 0);
@@ -65,7 +65,7 @@ std::vector<char> ComponentsReencoding(const DecodedMesh& mesh, const LayeredStr
   return out;
 }
 
-std::set<int32_t> ComponentsAtCorners(const DecodedMesh& mesh, const CoordFace& f) {
+std::set<int32_t> ComponentsAtCorners(const TokenizerDecodedMesh& mesh, const CoordFace& f) {
   std::set<int32_t> at[3];
   for (size_t v = 0; v < mesh.positions.size(); ++v)
     for (int k = 0; k < 3; ++k)
@@ -76,14 +76,14 @@ std::set<int32_t> ComponentsAtCorners(const DecodedMesh& mesh, const CoordFace& 
   return out;
 }
 
-bool MissIsProvenAmbiguous(const DecodedMesh& mesh, const std::vector<char>& reencoding, const CoordFace& f) {
+bool MissIsProvenAmbiguous(const TokenizerDecodedMesh& mesh, const std::vector<char>& reencoding, const CoordFace& f) {
   const std::set<int32_t> cs = ComponentsAtCorners(mesh, f);
   bool proven = !cs.empty();
   for (int32_t c : cs) proven = proven && reencoding[static_cast<size_t>(c)];
   return proven;
 }
 
-AugmentedReencoding ComponentsReencodingWithUnencodable(const DecodedMesh& mesh, const LayeredStream& stream,
+AugmentedReencoding ComponentsReencodingWithUnencodable(const TokenizerDecodedMesh& mesh, const LayeredStream& stream,
                                                         const std::vector<CoordFace>& processed,
                                                         const std::vector<CoordFace>& unencodable,
                                                         const std::vector<CoordFace>& order_reference) {

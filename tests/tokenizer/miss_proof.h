@@ -26,15 +26,15 @@ std::vector<MissedFace> MissedFaces(const std::vector<CoordFace>& decoded, const
 
 // Per decoded component: its faces re-encode to stream.components[c] (faces ordered like
 // `order_reference`, the official encoder's processed faces).
-std::vector<char> ComponentsReencoding(const DecodedMesh& mesh, const LayeredStream& stream,
+std::vector<char> ComponentsReencoding(const TokenizerDecodedMesh& mesh, const LayeredStream& stream,
                                        const std::vector<CoordFace>& order_reference);
 
 // Decoded components holding all three corners of f (by grid coordinates).
-std::set<int32_t> ComponentsAtCorners(const DecodedMesh& mesh, const CoordFace& f);
+std::set<int32_t> ComponentsAtCorners(const TokenizerDecodedMesh& mesh, const CoordFace& f);
 
 // f is proven undetermined by the tokens: some component holds its corners and every such
 // component re-encodes to its stream.
-bool MissIsProvenAmbiguous(const DecodedMesh& mesh, const std::vector<char>& reencoding, const CoordFace& f);
+bool MissIsProvenAmbiguous(const TokenizerDecodedMesh& mesh, const std::vector<char>& reencoding, const CoordFace& f);
 
 // Components with unencodable faces (§5.4): the real mesh holds faces the tokens cannot carry
 // (they still sit in the rotation lists), so no decoded face set re-encodes to the stream
@@ -50,7 +50,7 @@ struct AugmentedReencoding {
   std::vector<char> truth_equal;  // official faces + unencodable re-encode to the stream (soundness)
   std::vector<char> ours_equal;   // decoded faces + unencodable re-encode to the stream
 };
-AugmentedReencoding ComponentsReencodingWithUnencodable(const DecodedMesh& mesh, const LayeredStream& stream,
+AugmentedReencoding ComponentsReencodingWithUnencodable(const TokenizerDecodedMesh& mesh, const LayeredStream& stream,
                                                         const std::vector<CoordFace>& processed,
                                                         const std::vector<CoordFace>& unencodable,
                                                         const std::vector<CoordFace>& order_reference);

@@ -37,7 +37,7 @@ bool ComponentReencodesTo(const std::vector<QVec>& positions, const std::vector<
                           const std::vector<CoordFace>& order_reference, const StreamComponent& want) {
   std::vector<CoordFace> coords;
   for (const auto& f : faces) coords.push_back({positions[f[0]], positions[f[1]], positions[f[2]]});
-  ProcessedMesh mesh;
+  TokenizerProcessedMesh mesh;
   mesh.positions = positions;
   mesh.input_vertex_count = static_cast<int32_t>(positions.size());
   for (size_t i : OrderLike(coords, order_reference)) {

@@ -10,6 +10,9 @@ Order: core -> io -> mesh -> tokenizer -> decoder -> runtime -> capi (the C API 
                                         "tokenizer/tokenizer.h" must fail (the check can fail)
   check_layers.py --folders ENGINE_DIR  no engine folder holds more than 40 source files
                                         directly (a larger one wants sub-folders by concern)
+  check_layers.py --private-selftest    the engine check on a scratch engine whose decoder
+                                        includes a tokenizer-private header must fail
+Headers in PRIVATE belong to their layer alone (docs/mesh_types.md): no other layer includes them.
 """
 import pathlib, re, sys, tempfile
 
@@ -17,11 +20,14 @@ ORDER = ["core", "io", "mesh", "tokenizer", "decoder", "runtime", "capi"]
 APPS = ["silkgen", "silktok"]
 PUBLIC = {"silk/silk.h", "silk/silk.hpp"}
 SOURCES = (".h", ".hpp", ".cpp", ".cc")
+# Layer-internal headers: the tokenizer's encoder mesh (TokenizerProcessedMesh) and the encoder
+# stages on it. Tests of the layer may include them; other layers may not.
+PRIVATE = {"tokenizer/processed_mesh.h", "tokenizer/processed_encoder.h"}
 quoted = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 
 
 def check_engine(root):
-    inc = re.compile(r'^\s*#\s*include\s*"([a-z_]+)/')
+    inc = re.compile(r'^\s*#\s*include\s*"(([a-z_]+)/[^"]*)"')
     bad = []
     for layer in ORDER:
         for f in sorted((root / layer).rglob("*")):
@@ -29,8 +35,10 @@ def check_engine(root):
                 continue
             for n, line in enumerate(f.read_text(encoding="utf-8").splitlines(), 1):
                 m = inc.match(line)
-                if m and m.group(1) in ORDER and ORDER.index(m.group(1)) > ORDER.index(layer):
-                    bad.append(f"{f}:{n}: layer '{layer}' includes higher layer '{m.group(1)}'")
+                if m and m.group(2) in ORDER and ORDER.index(m.group(2)) > ORDER.index(layer):
+                    bad.append(f"{f}:{n}: layer '{layer}' includes higher layer '{m.group(2)}'")
+                if m and m.group(1) in PRIVATE and m.group(2) != layer:
+                    bad.append(f"{f}:{n}: layer '{layer}' includes '{m.group(1)}', private to layer '{m.group(2)}'")
     return bad, f"checked layers under {root}"
 
 
@@ -78,6 +86,19 @@ def check_folders(root):
         if n > MAX_FILES_PER_FOLDER:
             bad.append(f"{d}: {n} source files directly inside (at most {MAX_FILES_PER_FOLDER})")
     return bad, f"checked {folders} folders under {root}"
+def private_selftest():
+    with tempfile.TemporaryDirectory() as tmp:
+        root = pathlib.Path(tmp)
+        for layer in ORDER:
+            (root / layer).mkdir()
+        (root / "tokenizer" / "processed_mesh.h").write_text("#pragma once\n")
+        (root / "tokenizer" / "stage.cpp").write_text('#include "tokenizer/processed_mesh.h"\n')
+        clean, _ = check_engine(root)
+        (root / "decoder" / "bad.cpp").write_text('#include "tokenizer/processed_mesh.h"\n')
+        dirty, _ = check_engine(root)
+    ok = not clean and len(dirty) == 1 and "private to layer 'tokenizer'" in dirty[0]
+    print(f"selftest: tokenizer including its own header -> {len(clean)} finding(s); decoder including it -> {dirty}")
+    return [] if ok else ["the engine check does not catch a layer-private include"], "private headers selftest"
 
 
 def main():
@@ -88,6 +109,8 @@ def main():
         bad, what = check_folders(pathlib.Path(args[1] if len(args) > 1 else "engine"))
     elif args[:1] == ["--apps-selftest"]:
         bad, what = selftest()
+    elif args[:1] == ["--private-selftest"]:
+        bad, what = private_selftest()
     else:
         bad, what = check_engine(pathlib.Path(args[0] if args else "engine"))
     for b in bad:

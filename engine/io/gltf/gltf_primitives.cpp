@@ -143,7 +143,7 @@ StatusOr<std::vector<std::array<uint32_t, 3>>> PrimitiveTriangles(int mode, cons
 // Appends every POSITION (unreferenced ones too), transformed; each must be finite before
 // and after the transform.
 Status AppendPositions(const AccessorView& pos, const InstanceTransform& xf, const GltfMeshInstance& inst,
-                       const std::string& what, const std::string& name, RawMesh* mesh) {
+                       const std::string& what, const std::string& name, IoMesh* mesh) {
   const auto& M = xf.m;
   mesh->positions.reserve(mesh->positions.size() + pos.count);
   for (size_t i = 0; i < pos.count; ++i) {
@@ -168,7 +168,7 @@ Status AppendPositions(const AccessorView& pos, const InstanceTransform& xf, con
 // One primitive: mode, accessor and limit checks, then its positions and its triangles
 // (renumbered past the vertices already in the mesh) appended.
 Status AppendPrimitive(const tinygltf::Model& model, const GltfMeshInstance& inst, size_t pi,
-                       const InstanceTransform& xf, const std::string& name, const ReadOptions& opts, RawMesh* mesh) {
+                       const InstanceTransform& xf, const std::string& name, const ReadOptions& opts, IoMesh* mesh) {
   const tinygltf::Primitive& prim = model.meshes[inst.mesh].primitives[pi];
   const std::string what = "mesh " + std::to_string(inst.mesh) + " primitive " + std::to_string(pi);
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -201,7 +201,7 @@ Status AppendPrimitive(const tinygltf::Model& model, const GltfMeshInstance& ins
 }  // namespace
 
 Status AppendGltfMeshInstance(const tinygltf::Model& model, const GltfMeshInstance& inst,
-                              const std::string& name, const ReadOptions& opts, RawMesh* mesh) {
+                              const std::string& name, const ReadOptions& opts, IoMesh* mesh) {
   const InstanceTransform xf = TransformOf(inst);
   for (size_t pi = 0; pi < model.meshes[inst.mesh].primitives.size(); ++pi)
     SILK_RETURN_IF_ERROR(AppendPrimitive(model, inst, pi, xf, name, opts, mesh));

@@ -1,4 +1,4 @@
-// Appends one glTF mesh instance (all its triangle primitives, transformed) to a RawMesh,
+// Appends one glTF mesh instance (all its triangle primitives, transformed) to an IoMesh,
 // validating accessors against their buffers before reading a single element.
 #pragma once
 #include <string>
@@ -7,7 +7,7 @@
 
 #include "core/status.h"
 #include "io/gltf/gltf_scene_walk.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "io/read_options.h"
 
 namespace silk {
@@ -17,6 +17,6 @@ namespace silk {
 // Every vertex of the POSITION accessor is appended (unreferenced ones too). A transform
 // with negative determinant flips the winding so the faces keep their outward side.
 Status AppendGltfMeshInstance(const tinygltf::Model& model, const GltfMeshInstance& inst,
-                              const std::string& name, const ReadOptions& opts, RawMesh* mesh);
+                              const std::string& name, const ReadOptions& opts, IoMesh* mesh);
 
 }  // namespace silk

@@ -76,7 +76,7 @@ std::string FirstLine(const std::string& s) {
 
 }  // namespace
 
-StatusOr<RawMesh> ReadGltf(std::string_view data, bool binary, const std::string& name,
+StatusOr<IoMesh> ReadGltf(std::string_view data, bool binary, const std::string& name,
                            const std::string& base_dir, bool from_memory, const ReadOptions& opts) {
   std::string_view json = data;
   if (binary) {
@@ -89,7 +89,7 @@ StatusOr<RawMesh> ReadGltf(std::string_view data, bool binary, const std::string
   SILK_RETURN_IF_ERROR(CheckGltfJsonText(json, name));
   SILK_RETURN_IF_ERROR(CheckGltfExternalBuffers(json, name, base_dir, from_memory));
 
-  RawMesh mesh;
+  IoMesh mesh;
   try {
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;

@@ -56,7 +56,7 @@ Status StripCommentAndCheckText(std::string_view* line, int64_t ln, const std::s
 }
 
 // "v x y z [w | r g b]": appends the position; the optional values must still be numbers.
-Status ReadObjVertex(LineTokens* toks, int64_t ln, const std::string& name, uint64_t max_vertices, RawMesh* mesh) {
+Status ReadObjVertex(LineTokens* toks, int64_t ln, const std::string& name, uint64_t max_vertices, IoMesh* mesh) {
   std::array<double, 3> p;
   std::string_view t;
   for (int k = 0; k < 3; ++k) {
@@ -94,7 +94,7 @@ StatusOr<int32_t> ObjCornerIndex(std::string_view t, int64_t nverts, int64_t ln,
 
 // "f c0 c1 c2 ...": at least 3 corners, fan-triangulated into the mesh.
 Status ReadObjFace(LineTokens* toks, int64_t ln, const std::string& name, const ReadOptions& opts,
-                   std::vector<int32_t>* corners, RawMesh* mesh) {
+                   std::vector<int32_t>* corners, IoMesh* mesh) {
   corners->clear();
   std::string_view t;
   const int64_t nverts = static_cast<int64_t>(mesh->positions.size());
@@ -110,7 +110,7 @@ Status ReadObjFace(LineTokens* toks, int64_t ln, const std::string& name, const 
 // Other statements: vt, vn, vp, o, g, s, usemtl, mtllib are geometry we do not use; l, p and
 // free-form statements are ignored with a warning (the first kMaxWarnings of them).
 Status NoteOtherStatement(std::string_view kw, int64_t ln, const std::string& name, int64_t* ignored_statements,
-                          RawMesh* mesh) {
+                          IoMesh* mesh) {
   if (!IsIdentifier(kw))
     return ParseErrorAt(name, ln, "not an OBJ statement: '" + std::string(kw.substr(0, 32)) + "'");
   if (kw == "vt" || kw == "vn" || kw == "vp" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" ||
@@ -123,8 +123,8 @@ Status NoteOtherStatement(std::string_view kw, int64_t ln, const std::string& na
 
 }  // namespace
 
-StatusOr<RawMesh> ReadObj(std::string_view text, const std::string& name, const ReadOptions& opts) {
-  RawMesh mesh;
+StatusOr<IoMesh> ReadObj(std::string_view text, const std::string& name, const ReadOptions& opts) {
+  IoMesh mesh;
   if (text.empty()) return ParseErrorIn(name, "empty file (no vertices, no faces)");
   TextLines lines(text);
   std::string_view line;

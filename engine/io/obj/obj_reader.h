@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "io/read_options.h"
 
 namespace silk {
@@ -13,7 +13,7 @@ namespace silk {
 // `name` is used in error messages ("bad.obj:3: face index 5 out of range (4 vertices)").
 // Polygons with more than 3 corners are fan-triangulated; vertex order is file order;
 // nothing is welded or removed. A face may only use vertices defined above it.
-StatusOr<RawMesh> ReadObj(std::string_view text, const std::string& name,
+StatusOr<IoMesh> ReadObj(std::string_view text, const std::string& name,
                           const ReadOptions& opts = {});
 
 }  // namespace silk

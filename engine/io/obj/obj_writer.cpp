@@ -9,7 +9,7 @@
 
 namespace silk {
 
-StatusOr<std::string> FormatObj(const OutputMesh& mesh, const ObjWriteOptions& opts) {
+StatusOr<std::string> FormatObj(const IoMesh& mesh, const ObjWriteOptions& opts) {
   SILK_RETURN_IF_ERROR(ValidateOutputMesh(mesh));
   std::string out;
   out.reserve(mesh.positions.size() * 32 + mesh.triangles.size() * 24);
@@ -51,7 +51,7 @@ StatusOr<std::string> FormatObj(const OutputMesh& mesh, const ObjWriteOptions& o
   return out;
 }
 
-Status WriteObjFile(const std::string& path, const OutputMesh& mesh, const ObjWriteOptions& opts) {
+Status WriteObjFile(const std::string& path, const IoMesh& mesh, const ObjWriteOptions& opts) {
   StatusOr<std::string> text = FormatObj(mesh, opts);
   if (!text.ok()) return text.status().WithContext(path + ": ");
   return WriteFileAtomically(path, *text);

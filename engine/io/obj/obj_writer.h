@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
@@ -15,7 +15,7 @@ struct ObjWriteOptions {
   std::string header_comment;  // optional, written as "# ..." lines
 };
 
-StatusOr<std::string> FormatObj(const OutputMesh& mesh, const ObjWriteOptions& opts = {});
-Status WriteObjFile(const std::string& path, const OutputMesh& mesh, const ObjWriteOptions& opts = {});
+StatusOr<std::string> FormatObj(const IoMesh& mesh, const ObjWriteOptions& opts = {});
+Status WriteObjFile(const std::string& path, const IoMesh& mesh, const ObjWriteOptions& opts = {});
 
 }  // namespace silk

@@ -75,7 +75,7 @@ uint64_t CountDataLines(TextLines lines, uint64_t enough) {
 
 // Vertex block: one "x y z [extra values]" line per vertex.
 Status ReadOffVertices(TextLines* lines, uint64_t nv, const Status& too_few, const std::string& name,
-                       RawMesh* mesh) {
+                       IoMesh* mesh) {
   std::string_view line, tok;
   for (uint64_t i = 0; i < nv; ++i) {
     if (!NextDataLine(lines, &line)) return too_few;
@@ -134,7 +134,7 @@ Status ParseOffFace(std::string_view line, uint64_t f, int64_t ln, uint64_t nv, 
 
 // Face block: one face line per face, fan-triangulated into the mesh.
 Status ReadOffFaces(TextLines* lines, const OffCounts& c, const Status& too_few, const std::string& name,
-                    const ReadOptions& opts, RawMesh* mesh) {
+                    const ReadOptions& opts, IoMesh* mesh) {
   std::string_view line;
   std::vector<int32_t> corners;
   for (uint64_t f = 0; f < c.faces; ++f) {
@@ -147,7 +147,7 @@ Status ReadOffFaces(TextLines* lines, const OffCounts& c, const Status& too_few,
 
 }  // namespace
 
-StatusOr<RawMesh> ReadOff(std::string_view text, const std::string& name, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadOff(std::string_view text, const std::string& name, const ReadOptions& opts) {
   if (size_t bad = FindBinaryByte(text); bad != std::string_view::npos)
     return ParseErrorIn(name, "binary byte at offset " + std::to_string(bad) + " (binary OFF is not supported)");
   TextLines lines(text);
@@ -168,7 +168,7 @@ StatusOr<RawMesh> ReadOff(std::string_view text, const std::string& name, const 
   if (plausible && nf > opts.max_triangles)
     return LimitErrorIn(name, std::to_string(nf) + " faces exceed the limit " + std::to_string(opts.max_triangles));
 
-  RawMesh mesh;
+  IoMesh mesh;
   if (plausible) {
     mesh.positions.reserve(nv);
     mesh.triangles.reserve(nf);

@@ -5,13 +5,13 @@
 #include <string_view>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "io/read_options.h"
 
 namespace silk {
 
 // The header counts are checked against the number of data lines that follow before
 // anything is allocated. Faces with more than 3 corners are fan-triangulated.
-StatusOr<RawMesh> ReadOff(std::string_view text, const std::string& name, const ReadOptions& opts = {});
+StatusOr<IoMesh> ReadOff(std::string_view text, const std::string& name, const ReadOptions& opts = {});
 
 }  // namespace silk

@@ -81,7 +81,7 @@ std::string Item(const PlyElement& e, uint64_t i) { return e.name + " " + std::t
 class PlyBodyReader {
  public:
   PlyBodyReader(std::string_view data, const PlyHeader& h, const std::string& name,
-                const ReadOptions& opts, RawMesh* mesh, std::vector<std::array<double, 3>>* normals)
+                const ReadOptions& opts, IoMesh* mesh, std::vector<std::array<double, 3>>* normals)
       : data_(data), h_(h), name_(name), opts_(opts), mesh_(mesh), normals_(normals) {}
 
   Status Read(const std::vector<ElementPlan>& plans, uint64_t vertex_count) {
@@ -239,7 +239,7 @@ class PlyBodyReader {
   const PlyHeader& h_;
   const std::string& name_;
   const ReadOptions& opts_;
-  RawMesh* mesh_;
+  IoMesh* mesh_;
   std::vector<std::array<double, 3>>* normals_;  // null: normals not read
   uint64_t vertex_count_ = 0;
   std::vector<int32_t> corners_;
@@ -372,7 +372,7 @@ Status CheckDeclaredCounts(const ReadPlan& plan, const std::string& name, const 
 
 // Shared body of ReadPly and ReadPlyPointCloud: `normals` non-null reads nx/ny/nz when the
 // vertex element has all three (left empty otherwise) and allows a file without faces.
-StatusOr<RawMesh> ReadPlyImpl(std::string_view data, const std::string& name, const ReadOptions& opts,
+StatusOr<IoMesh> ReadPlyImpl(std::string_view data, const std::string& name, const ReadOptions& opts,
                               std::vector<std::array<double, 3>>* normals) {
   const bool normals_requested = normals != nullptr;
   SILK_ASSIGN_OR_RETURN(PlyHeader h, ParsePlyHeader(data, name));
@@ -381,7 +381,7 @@ StatusOr<RawMesh> ReadPlyImpl(std::string_view data, const std::string& name, co
   const bool plausible = CountsFitBody(h, plan.elements, remaining);
   if (plausible) SILK_RETURN_IF_ERROR(CheckDeclaredCounts(plan, name, opts));
 
-  RawMesh mesh;
+  IoMesh mesh;
   if (plausible) {
     mesh.positions.reserve(plan.vertex->count);
     if (plan.face) mesh.triangles.reserve(plan.face->count);
@@ -397,7 +397,7 @@ StatusOr<RawMesh> ReadPlyImpl(std::string_view data, const std::string& name, co
 
 }  // namespace
 
-StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadPly(std::string_view data, const std::string& name, const ReadOptions& opts) {
   return ReadPlyImpl(data, name, opts, nullptr);
 }
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "io/read_options.h"
 
 namespace silk {
@@ -17,12 +17,12 @@ namespace silk {
 // allocated. A truncated body is an error naming the element and its index. Faces with more
 // than 3 corners are fan-triangulated. Float32 values (also in ascii files) are rounded to
 // float first, exactly as a binary file would store them.
-StatusOr<RawMesh> ReadPly(std::string_view data, const std::string& name, const ReadOptions& opts = {});
+StatusOr<IoMesh> ReadPly(std::string_view data, const std::string& name, const ReadOptions& opts = {});
 
 // A PLY that may be a point cloud: faces optional, per-vertex normals (nx, ny, nz) read when
 // the vertex element has all three (`normals` empty otherwise, else one per vertex).
 struct PlyPointCloud {
-  RawMesh mesh;
+  IoMesh mesh;
   std::vector<std::array<double, 3>> normals;
 };
 StatusOr<PlyPointCloud> ReadPlyPointCloud(std::string_view data, const std::string& name,

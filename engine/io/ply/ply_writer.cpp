@@ -20,7 +20,7 @@ void PutLE(std::string* out, T v) {
 }
 }  // namespace
 
-StatusOr<std::string> FormatPlyBinary(const OutputMesh& mesh, const PlyWriteOptions& opts) {
+StatusOr<std::string> FormatPlyBinary(const IoMesh& mesh, const PlyWriteOptions& opts) {
   SILK_RETURN_IF_ERROR(ValidateOutputMesh(mesh));
   const char* type = opts.float32_coordinates ? "float" : "double";
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by silk\n";
@@ -41,7 +41,7 @@ StatusOr<std::string> FormatPlyBinary(const OutputMesh& mesh, const PlyWriteOpti
   return out;
 }
 
-Status WritePlyFile(const std::string& path, const OutputMesh& mesh, const PlyWriteOptions& opts) {
+Status WritePlyFile(const std::string& path, const IoMesh& mesh, const PlyWriteOptions& opts) {
   StatusOr<std::string> bytes = FormatPlyBinary(mesh, opts);
   if (!bytes.ok()) return bytes.status().WithContext(path + ": ");
   return WriteFileAtomically(path, *bytes);

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 
 namespace silk {
 
@@ -11,7 +11,7 @@ struct PlyWriteOptions {
   bool float32_coordinates = false;  // write "float" instead of "double" coordinates
 };
 
-StatusOr<std::string> FormatPlyBinary(const OutputMesh& mesh, const PlyWriteOptions& opts = {});
-Status WritePlyFile(const std::string& path, const OutputMesh& mesh, const PlyWriteOptions& opts = {});
+StatusOr<std::string> FormatPlyBinary(const IoMesh& mesh, const PlyWriteOptions& opts = {});
+Status WritePlyFile(const std::string& path, const IoMesh& mesh, const PlyWriteOptions& opts = {});
 
 }  // namespace silk

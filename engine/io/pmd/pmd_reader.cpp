@@ -95,7 +95,7 @@ StatusOr<uint32_t> ReadPmdHeader(std::string_view data, const std::string& name,
 // Vertex block: position, normal, UV sets (one before version 4), bone blend; only the
 // positions are kept.
 Status ReadPmdVertices(uint32_t version, const std::string& name, const ReadOptions& opts, Cursor* in,
-                       RawMesh* mesh) {
+                       IoMesh* mesh) {
   uint32_t num_vertices = 0, num_uv_sets = 1;
   SILK_RETURN_IF_ERROR(in->U32("vertex count", &num_vertices));
   if (version >= 4) {
@@ -125,7 +125,7 @@ Status ReadPmdVertices(uint32_t version, const std::string& name, const ReadOpti
 }
 
 // Face block: three u16 vertex indices each.
-Status ReadPmdFaces(const std::string& name, const ReadOptions& opts, Cursor* in, RawMesh* mesh) {
+Status ReadPmdFaces(const std::string& name, const ReadOptions& opts, Cursor* in, IoMesh* mesh) {
   const uint64_t num_vertices = mesh->positions.size();
   uint32_t num_faces = 0;
   SILK_RETURN_IF_ERROR(in->Count("face count", kFaceBytes, &num_faces));
@@ -165,10 +165,10 @@ Status SkipPmdBonesAndProps(uint32_t version, Cursor* in) {
 
 }  // namespace
 
-StatusOr<RawMesh> ReadPmd(std::string_view data, const std::string& name, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadPmd(std::string_view data, const std::string& name, const ReadOptions& opts) {
   Cursor in(data, name);
   SILK_ASSIGN_OR_RETURN(const uint32_t version, ReadPmdHeader(data, name, &in));
-  RawMesh mesh;
+  IoMesh mesh;
   SILK_RETURN_IF_ERROR(ReadPmdVertices(version, name, opts, &in, &mesh));
   SILK_RETURN_IF_ERROR(ReadPmdFaces(name, opts, &in, &mesh));
   SILK_RETURN_IF_ERROR(SkipPmdBonesAndProps(version, &in));

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "io/read_options.h"
 
 namespace silk {
@@ -13,6 +13,6 @@ namespace silk {
 // Strict: the whole file must parse (vertices, faces, bones, prop points) and end exactly
 // where its header's data size says. Counts are checked against the remaining bytes before
 // anything is allocated. Normals, UVs, bone weights and prop points are read and dropped.
-StatusOr<RawMesh> ReadPmd(std::string_view data, const std::string& name, const ReadOptions& opts = {});
+StatusOr<IoMesh> ReadPmd(std::string_view data, const std::string& name, const ReadOptions& opts = {});
 
 }  // namespace silk

@@ -22,7 +22,7 @@ float LoadFloatLE(const uint8_t* p) {
   return f;
 }
 
-StatusOr<RawMesh> ReadBinaryStl(std::string_view data, const std::string& name, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadBinaryStl(std::string_view data, const std::string& name, const ReadOptions& opts) {
   const uint8_t* b = reinterpret_cast<const uint8_t*>(data.data());
   const uint64_t n = uint64_t{b[80]} | uint64_t{b[81]} << 8 | uint64_t{b[82]} << 16 | uint64_t{b[83]} << 24;
   if (84 + 50 * n != data.size())
@@ -32,7 +32,7 @@ StatusOr<RawMesh> ReadBinaryStl(std::string_view data, const std::string& name, 
   if (n == 0) return ParseErrorIn(name, "no faces (binary STL with 0 triangles)");
   if (3 * n > VertexLimit(opts) || n > opts.max_triangles)
     return LimitErrorIn(name, std::to_string(n) + " triangles exceed the vertex/triangle limit");
-  RawMesh mesh;
+  IoMesh mesh;
   mesh.positions.resize(3 * n);
   mesh.triangles.resize(n);
   for (uint64_t t = 0; t < n; ++t) {
@@ -71,11 +71,11 @@ class StlTokens {
   LineTokens toks_;
 };
 
-StatusOr<RawMesh> ReadAsciiStl(std::string_view text, const std::string& name, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadAsciiStl(std::string_view text, const std::string& name, const ReadOptions& opts) {
   if (size_t bad = FindBinaryByte(text); bad != std::string_view::npos)
     return ParseErrorIn(name, "binary byte at offset " + std::to_string(bad) +
                                   " in an ascii STL (and the size does not fit a binary STL)");
-  RawMesh mesh;
+  IoMesh mesh;
   StlTokens in(text);
   std::string_view tok;
   auto expect = [&](const char* word) -> Status {
@@ -144,7 +144,7 @@ StatusOr<RawMesh> ReadAsciiStl(std::string_view text, const std::string& name, c
 
 }  // namespace
 
-StatusOr<RawMesh> ReadStl(std::string_view data, const std::string& name, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadStl(std::string_view data, const std::string& name, const ReadOptions& opts) {
   if (data.size() >= 84) {
     const uint8_t* b = reinterpret_cast<const uint8_t*>(data.data());
     const uint64_t n = uint64_t{b[80]} | uint64_t{b[81]} << 8 | uint64_t{b[82]} << 16 | uint64_t{b[83]} << 24;

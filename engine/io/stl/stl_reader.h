@@ -5,11 +5,11 @@
 #include <string_view>
 
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "io/read_options.h"
 
 namespace silk {
 
-StatusOr<RawMesh> ReadStl(std::string_view data, const std::string& name, const ReadOptions& opts = {});
+StatusOr<IoMesh> ReadStl(std::string_view data, const std::string& name, const ReadOptions& opts = {});
 
 }  // namespace silk

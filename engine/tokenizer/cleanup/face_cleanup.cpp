@@ -17,9 +17,9 @@ int64_t PackGrid(const QVec& q) {
 
 }  // namespace
 
-StatusOr<ProcessedMesh> QuantizeAndClean(const RawMesh& in, CleanupStats* stats) {
+StatusOr<TokenizerProcessedMesh> QuantizeAndClean(const IoMesh& in, CleanupStats* stats) {
   CleanupStats local;
-  ProcessedMesh out;
+  TokenizerProcessedMesh out;
   const size_t nv = in.positions.size();
   out.positions.resize(nv);
   out.input_vertex_count = static_cast<int32_t>(nv);

@@ -1,8 +1,8 @@
 // Quantization, vertex merging and face cleanup (token_format.md §2.2-§2.4): the first encoder stage,
-// turning a normalised RawMesh into the ProcessedMesh every later stage works on.
+// turning a normalised IoMesh into the TokenizerProcessedMesh every later stage works on.
 #pragma once
 #include "core/status.h"
-#include "io/raw_mesh.h"
+#include "io/io_mesh.h"
 #include "tokenizer/processed_mesh.h"
 
 namespace silk {
@@ -14,6 +14,6 @@ struct CleanupStats {
 };
 
 // Positions must be finite; indices are validated (out of range -> InvalidArgument).
-StatusOr<ProcessedMesh> QuantizeAndClean(const RawMesh& normalized, CleanupStats* stats);
+StatusOr<TokenizerProcessedMesh> QuantizeAndClean(const IoMesh& normalized, CleanupStats* stats);
 
 }  // namespace silk

@@ -10,7 +10,7 @@
 
 namespace silk {
 
-std::array<int32_t, 3> FaceSortKey(const ProcessedMesh& mesh, FaceId f) {
+std::array<int32_t, 3> FaceSortKey(const TokenizerProcessedMesh& mesh, FaceId f) {
   std::array<int32_t, 3> k{0, 0, 0};
   for (VertexId v : mesh.face(f)) {
     const QVec& q = mesh.pos(v);
@@ -21,7 +21,7 @@ std::array<int32_t, 3> FaceSortKey(const ProcessedMesh& mesh, FaceId f) {
   return k;
 }
 
-StatusOr<ComponentSplit> FindComponents(const ProcessedMesh& mesh, const FaceAdjacency& adj) {
+StatusOr<ComponentSplit> FindComponents(const TokenizerProcessedMesh& mesh, const FaceAdjacency& adj) {
   const int32_t nf = mesh.face_count();
   if (nf == 0) return Refuse(Refusal::kNoFaces, "no face survived quantization and cleanup");
   std::vector<std::array<int32_t, 3>> keys(static_cast<size_t>(nf));

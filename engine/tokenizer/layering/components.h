@@ -21,9 +21,9 @@ struct ComponentSplit {
 
 // Refuses no-faces (nothing survived cleanup), face-limit (> 12000 kept faces) and
 // all-components-dropped.
-StatusOr<ComponentSplit> FindComponents(const ProcessedMesh& mesh, const FaceAdjacency& adjacency);
+StatusOr<ComponentSplit> FindComponents(const TokenizerProcessedMesh& mesh, const FaceAdjacency& adjacency);
 
 // Sort key of a face: (Σy, Σz, Σx) of its corners (§4.1).
-std::array<int32_t, 3> FaceSortKey(const ProcessedMesh& mesh, FaceId f);
+std::array<int32_t, 3> FaceSortKey(const TokenizerProcessedMesh& mesh, FaceId f);
 
 }  // namespace silk

@@ -8,7 +8,7 @@
 
 namespace silk {
 
-VertexId ComponentRoot(const ProcessedMesh& mesh, const Component& c) {
+VertexId ComponentRoot(const TokenizerProcessedMesh& mesh, const Component& c) {
   const Tri& t = mesh.face(c.faces.front());
   VertexId best = t[0];
   for (int k = 1; k < 3; ++k)
@@ -16,7 +16,7 @@ VertexId ComponentRoot(const ProcessedMesh& mesh, const Component& c) {
   return best;
 }
 
-StatusOr<Layering> BuildLayers(const ProcessedMesh& mesh, const std::vector<Component>& kept,
+StatusOr<Layering> BuildLayers(const TokenizerProcessedMesh& mesh, const std::vector<Component>& kept,
                                const RotationLists& rotation) {
   const size_t nv = static_cast<size_t>(mesh.vertex_count());
   Layering out;

@@ -20,11 +20,11 @@ struct Layering {
 };
 
 // Root of a component: the corner with the smallest (y, z, x) of its first sorted face.
-VertexId ComponentRoot(const ProcessedMesh& mesh, const Component& c);
+VertexId ComponentRoot(const TokenizerProcessedMesh& mesh, const Component& c);
 
 // Refuses layer-count-limit (a component needing layer index 200) and layer-size-limit
 // (any layer > 200 vertices, checked after all components are layered).
-StatusOr<Layering> BuildLayers(const ProcessedMesh& mesh, const std::vector<Component>& kept,
+StatusOr<Layering> BuildLayers(const TokenizerProcessedMesh& mesh, const std::vector<Component>& kept,
                                const RotationLists& rotation);
 
 }  // namespace silk

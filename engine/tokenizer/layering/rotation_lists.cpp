@@ -8,7 +8,7 @@
 
 namespace silk {
 
-StatusOr<RotationLists> BuildRotationLists(const ProcessedMesh& mesh, const std::vector<Component>& kept) {
+StatusOr<RotationLists> BuildRotationLists(const TokenizerProcessedMesh& mesh, const std::vector<Component>& kept) {
   const size_t nv = static_cast<size_t>(mesh.vertex_count());
   // Per vertex: its (a_f, b_f) pairs in sorted face order, CSR.
   std::vector<int32_t> pair_begin(nv + 1, 0);

@@ -21,6 +21,6 @@ struct RotationLists {
 
 // Builds R(v) for every vertex of the kept components (others get empty lists).
 // Refuses bad-boundary-vertex when a vertex has more than one outgoing boundary edge.
-StatusOr<RotationLists> BuildRotationLists(const ProcessedMesh& mesh, const std::vector<Component>& kept);
+StatusOr<RotationLists> BuildRotationLists(const TokenizerProcessedMesh& mesh, const std::vector<Component>& kept);
 
 }  // namespace silk

@@ -291,7 +291,7 @@ Status PassC(SplitState& s) {
 
 }  // namespace
 
-Status SplitNonManifoldVertices(ProcessedMesh& mesh, NonManifoldStats* stats) {
+Status SplitNonManifoldVertices(TokenizerProcessedMesh& mesh, NonManifoldStats* stats) {
   SplitState s;
   s.positions = mesh.positions;
   s.faces.reserve(mesh.faces.size());

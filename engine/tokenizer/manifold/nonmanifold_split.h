@@ -17,6 +17,6 @@ struct NonManifoldStats {
 // mesh.positions: quantized positions by VertexId (copies are appended with the same QVec);
 // mesh.faces: processed faces (after §2.4). Mutates corner ids in place (faces are never
 // removed or reordered) and appends copies. Refusals per token_format.md §14.A.
-Status SplitNonManifoldVertices(ProcessedMesh& mesh, NonManifoldStats* stats);
+Status SplitNonManifoldVertices(TokenizerProcessedMesh& mesh, NonManifoldStats* stats);
 
 }  // namespace silk

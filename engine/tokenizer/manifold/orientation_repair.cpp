@@ -23,7 +23,7 @@ void Flip(Tri& t) { std::swap(t[1], t[2]); }
 
 }  // namespace
 
-StatusOr<FaceAdjacency> BuildFaceAdjacency(const ProcessedMesh& mesh) {
+StatusOr<FaceAdjacency> BuildFaceAdjacency(const TokenizerProcessedMesh& mesh) {
   struct E {
     int32_t lo, hi, face, slot;
   };
@@ -60,7 +60,7 @@ StatusOr<FaceAdjacency> BuildFaceAdjacency(const ProcessedMesh& mesh) {
   return adj;
 }
 
-Status RepairOrientation(ProcessedMesh& mesh, FaceAdjacency& adj, int32_t* flipped_faces) {
+Status RepairOrientation(TokenizerProcessedMesh& mesh, FaceAdjacency& adj, int32_t* flipped_faces) {
   const int32_t nf = mesh.face_count();
   std::vector<int32_t> set_of(static_cast<size_t>(nf), -1);
   std::vector<char> flipped(static_cast<size_t>(nf), 0);

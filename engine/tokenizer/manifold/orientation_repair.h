@@ -17,11 +17,11 @@ struct FaceAdjacency {
 };
 
 // Refuses (non-manifold-edge) when an undirected edge has three or more faces.
-StatusOr<FaceAdjacency> BuildFaceAdjacency(const ProcessedMesh& mesh);
+StatusOr<FaceAdjacency> BuildFaceAdjacency(const TokenizerProcessedMesh& mesh);
 
 // Orients every edge-connected face set consistently with its lowest-index face (flipped
 // first if fewer than 2 of its edges agree with their neighbours). Refuses (mobius) when a
 // set is not orientable and (vertex-shared-by-components) when a vertex touches two sets.
-Status RepairOrientation(ProcessedMesh& mesh, FaceAdjacency& adjacency, int32_t* flipped_faces);
+Status RepairOrientation(TokenizerProcessedMesh& mesh, FaceAdjacency& adjacency, int32_t* flipped_faces);
 
 }  // namespace silk

@@ -88,7 +88,7 @@ std::string FixDataSize(std::string s) {
   return s;
 }
 
-void ExpectQuad(const StatusOr<RawMesh>& m) {
+void ExpectQuad(const StatusOr<IoMesh>& m) {
   ASSERT_TRUE(m.ok()) << m.status().ToString();
   ASSERT_EQ(m->positions.size(), 4u);
   EXPECT_EQ(m->positions[2], (std::array<double, 3>{1.5, 2.0, -0.125}));

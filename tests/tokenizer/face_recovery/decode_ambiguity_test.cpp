@@ -52,7 +52,7 @@ TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
     const auto bad = testing::MissedFaces(testing::FacesAsCoords(*mesh), target);
     // The official processed faces in the encoder's own order (from the OBJ): face order
     // breaks sort-key ties (§4.1) and is not in the tokens, so the proof uses this order.
-    RawMesh raw;
+    IoMesh raw;
     ASSERT_TRUE(testing::ReadPlainObj(testing::SharedPath("corpus/dev/" + name + ".obj"), &raw));
     auto norm = NormalizeMesh(raw);
     ASSERT_TRUE(norm.ok());

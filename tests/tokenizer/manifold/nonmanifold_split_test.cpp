@@ -14,15 +14,15 @@ namespace {
 
 using Faces = std::vector<std::array<int32_t, 3>>;
 
-ProcessedMesh MakeMesh(int32_t vertex_count, const Faces& faces) {
-  ProcessedMesh m;
+TokenizerProcessedMesh MakeMesh(int32_t vertex_count, const Faces& faces) {
+  TokenizerProcessedMesh m;
   for (int32_t i = 0; i < vertex_count; ++i) m.positions.push_back(QVec{i % 128, (i / 128) % 128, i / 16384});
   m.input_vertex_count = vertex_count;
   for (const auto& f : faces) m.faces.push_back({VertexId(f[0]), VertexId(f[1]), VertexId(f[2])});
   return m;
 }
 
-Faces RawFaces(const ProcessedMesh& m) {
+Faces RawFaces(const TokenizerProcessedMesh& m) {
   Faces out;
   for (const Tri& t : m.faces) out.push_back({t[0].get(), t[1].get(), t[2].get()});
   return out;
@@ -168,7 +168,7 @@ const OracleCase kOracle[] = {
 TEST(NonManifoldSplit, MatchesOfficialPassesOnRandomFaceLists) {
   int idx = 0;
   for (const auto& c : kOracle) {
-    ProcessedMesh m = MakeMesh(c.vertices, c.faces);
+    TokenizerProcessedMesh m = MakeMesh(c.vertices, c.faces);
     NonManifoldStats stats;
     const Status s = SplitNonManifoldVertices(m, &stats);
     EXPECT_EQ(RefusalOf(s), c.outcome) << "case " << idx;
@@ -197,7 +197,7 @@ TEST(NonManifoldSplit, NonmanifoldBookWorkedExample) {
   // takes faces 8, 9; vertex 1 then gives face 9 to copy 15.
   const Faces in = {{0, 2, 3}, {0, 3, 1}, {2, 4, 5}, {2, 5, 3}, {0, 6, 7}, {0, 7, 1},
                     {6, 8, 9}, {6, 9, 7}, {0, 10, 11}, {0, 11, 1}, {10, 12, 13}, {10, 13, 11}};
-  ProcessedMesh m = MakeMesh(14, in);
+  TokenizerProcessedMesh m = MakeMesh(14, in);
   NonManifoldStats stats;
   ASSERT_TRUE(SplitNonManifoldVertices(m, &stats).ok());
   Faces want = in;
@@ -214,7 +214,7 @@ TEST(NonManifoldSplit, NonmanifoldBookWorkedExample) {
 TEST(NonManifoldSplit, SingleFinSplitsBothSpineVertices) {
   // Derived by hand from token_format.md §3.4 (LONGEST_PATH from node 2 gives [2, 1, 3]; the leftover
   // edge (1, 4) becomes its own group) and confirmed by the official code.
-  ProcessedMesh m = MakeMesh(5, {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}});
+  TokenizerProcessedMesh m = MakeMesh(5, {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}});
   NonManifoldStats stats;
   ASSERT_TRUE(SplitNonManifoldVertices(m, &stats).ok());
   EXPECT_EQ(RawFaces(m), (Faces{{0, 1, 2}, {0, 1, 3}, {5, 6, 4}}));
@@ -224,7 +224,7 @@ TEST(NonManifoldSplit, SingleFinSplitsBothSpineVertices) {
 
 TEST(NonManifoldSplit, ManifoldMeshIsUntouched) {
   const Faces fan = Fan(50);
-  ProcessedMesh m = MakeMesh(52, fan);
+  TokenizerProcessedMesh m = MakeMesh(52, fan);
   NonManifoldStats stats;
   ASSERT_TRUE(SplitNonManifoldVertices(m, &stats).ok());
   EXPECT_EQ(RawFaces(m), fan);
@@ -235,7 +235,7 @@ TEST(NonManifoldSplit, ManifoldMeshIsUntouched) {
 
 TEST(NonManifoldSplit, IncidentListLimitAppliesToManifoldFans) {
   // 51 faces at a manifold vertex: official "[NM] edge graph edges exceed limit: 51 > 50".
-  ProcessedMesh m = MakeMesh(53, Fan(51));
+  TokenizerProcessedMesh m = MakeMesh(53, Fan(51));
   NonManifoldStats stats;
   EXPECT_EQ(RefusalOf(SplitNonManifoldVertices(m, &stats)), RefusalName(Refusal::kEdgeGraphLimit));
 }
@@ -245,21 +245,21 @@ TEST(NonManifoldSplit, PassAListIsCountedTwice) {
   // the 26-face group followed by its 26 faces again: 52 > 50 (official: "52 > 50").
   Faces f = Fan(26);
   f.push_back({0, 40, 41});
-  ProcessedMesh m = MakeMesh(42, f);
+  TokenizerProcessedMesh m = MakeMesh(42, f);
   NonManifoldStats stats;
   EXPECT_EQ(RefusalOf(SplitNonManifoldVertices(m, &stats)), RefusalName(Refusal::kEdgeGraphLimit));
   // The same 27 faces as one connected fan stay under the limit.
-  ProcessedMesh ok = MakeMesh(42, Fan(27));
+  TokenizerProcessedMesh ok = MakeMesh(42, Fan(27));
   EXPECT_TRUE(SplitNonManifoldVertices(ok, &stats).ok());
 }
 
 TEST(NonManifoldSplit, AtMost300NonManifoldVertices) {
   NonManifoldStats stats;
-  ProcessedMesh m300 = MakeMesh(750, Fins(150));
+  TokenizerProcessedMesh m300 = MakeMesh(750, Fins(150));
   ASSERT_TRUE(SplitNonManifoldVertices(m300, &stats).ok());
   EXPECT_EQ(stats.nm_vertices, 300);
   EXPECT_EQ(m300.vertex_count(), 1050);  // official: num_vertices_all 1050
-  ProcessedMesh m302 = MakeMesh(755, Fins(151));  // official: "NM_verts exceed limit: 302 > 300"
+  TokenizerProcessedMesh m302 = MakeMesh(755, Fins(151));  // official: "NM_verts exceed limit: 302 > 300"
   EXPECT_EQ(RefusalOf(SplitNonManifoldVertices(m302, &stats)), RefusalName(Refusal::kTooManyNonManifoldVerts));
 }
 
