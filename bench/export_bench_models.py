@@ -11,7 +11,6 @@ decoder.int8.onnx; "official" also gets decoder.int4.onnx and the importer's fid
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 from pathlib import Path
@@ -21,6 +20,7 @@ sys.path.insert(0, str(REPO / "export"))
 
 import torch  # noqa: E402
 
+from silk_export.json_io import dumps, write_json  # noqa: E402
 from silk_export.models.registry import get_architecture  # noqa: E402
 from silk_export.models.configs import get_config  # noqa: E402
 from silk_export.models.silk_model import SilkModel  # noqa: E402
@@ -42,7 +42,7 @@ def export_official(out: Path, seed: int, int4_block: int, int4_accuracy: int) -
     meta = sidecar(cfg, {**RANDOM, "seed": seed}, files,
                    {"import": {"fidelity": figures, "int4": {"block_size": int4_block,
                                                              "accuracy_level": int4_accuracy}}})
-    (out / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
+    write_json(out / "model.json", meta)
     return params
 
 
@@ -74,7 +74,7 @@ def main() -> int:
             export_model(model, out, {**RANDOM, "seed": a.seed}, int8=not a.no_int8)
             del model
         sizes = {f.name: round(f.stat().st_size / 2**20, 1) for f in sorted(out.iterdir())}
-        print(json.dumps({"config": name, "params": params, "MiB": sizes, "seconds": round(time.time() - t0, 1)}))
+        print(dumps({"config": name, "params": params, "MiB": sizes, "seconds": round(time.time() - t0, 1)}, "null"))
     return 0
 
 

@@ -96,7 +96,7 @@ def gltf_parts():
 
 
 def glb(doc, buf):
-    j = json.dumps(doc).encode()
+    j = json.dumps(doc, allow_nan=False).encode()
     j += b" " * (-len(j) % 4)
     buf += b"\0" * (-len(buf) % 4)
     total = 12 + 8 + len(j) + 8 + len(buf)
@@ -134,10 +134,10 @@ def main():
     meta = json.loads((repo / "tests/models/tiny/model.json").read_text())
     meta.pop("versions", None)
     meta.pop("training", None)
-    put("model_config_fuzzer", "minimal.json", json.dumps(meta, separators=(",", ":")))
+    put("model_config_fuzzer", "minimal.json", json.dumps(meta, separators=(",", ":"), allow_nan=False))
     meta["files"]["decoder_int8"] = "decoder.int8.onnx"
     meta["dims"]["head_dim"] = 12
-    put("model_config_fuzzer", "bad_head_dim.json", json.dumps(meta))
+    put("model_config_fuzzer", "bad_head_dim.json", json.dumps(meta, allow_nan=False))
     # STL
     put("stl_reader_fuzzer", "cube_ascii.stl", stl_ascii())
     put("stl_reader_fuzzer", "cube_binary.stl", stl_binary(b"binary seed"))
@@ -151,10 +151,10 @@ def main():
     doc, buf = gltf_parts()
     emb = json.loads(json.dumps(doc))
     emb["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(buf).decode()
-    put("gltf_reader_fuzzer", "cube_embedded.gltf", json.dumps(emb, indent=1))
+    put("gltf_reader_fuzzer", "cube_embedded.gltf", json.dumps(emb, indent=1, allow_nan=False))
     cyc = json.loads(json.dumps(emb))
     cyc["nodes"][1]["children"] = [0]
-    put("gltf_reader_fuzzer", "cube_cycle.gltf", json.dumps(cyc))
+    put("gltf_reader_fuzzer", "cube_cycle.gltf", json.dumps(cyc, allow_nan=False))
     put("glb_reader_fuzzer", "cube.glb", glb(doc, buf))
     copy("glb_reader_fuzzer", shared / "corpus/bad/cube_obj_text.glb")
     total = sum(f.stat().st_size for f in out.rglob("*") if f.is_file())

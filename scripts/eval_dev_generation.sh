@@ -32,4 +32,4 @@ PY
 mkdir -p "$out/ref"
 for f in "$out"/grammar/*.obj; do ln -sf "$(cd "$shared/corpus/dev" && pwd)/$(basename "$f")" "$out/ref/$(basename "$f")"; done
 silk-export eval "$out/grammar" "$out/ref" --out "$out/eval.json" >/dev/null
-python3 -c "import json,sys; print(json.dumps(json.load(open(sys.argv[1]))['summary']))" "$out/eval.json"
+python3 -c "import json,sys; print(json.dumps(json.load(open(sys.argv[1]))['summary'], allow_nan=False))" "$out/eval.json"

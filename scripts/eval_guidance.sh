@@ -37,8 +37,9 @@ d, t, n = sys.argv[1:]
 g = json.load(open(f"{d}/generate.json")); e = json.load(open(f"{d}/eval.json"))["summary"]
 rows = g["meshes"]; sec = sum(r.get("seconds", 0) for r in rows) / len(rows)
 fb = sum(r.get("guidance_fallbacks", 0) for r in rows); gt = sum(r.get("guided_tokens", 0) for r in rows)
-print(f"| {g.get('settings', {}).get('temperature', '?')} | {t} | {n} | {g['decoded_with_faces']}/{len(rows)} | {e.get('mean_cd', float('nan')):.4f} | "
-      f"{e.get('mean_hd', float('nan')):.4f} | {e.get('mean_nc', float('nan')):.4f} | {e.get('mean_abs_nc', float('nan')):.4f} | "
+m = lambda k: float("nan") if e.get(k) is None else e[k]  # absent, or null (a non-finite mean)
+print(f"| {g.get('settings', {}).get('temperature', '?')} | {t} | {n} | {g['decoded_with_faces']}/{len(rows)} | {m('mean_cd'):.4f} | "
+      f"{m('mean_hd'):.4f} | {m('mean_nc'):.4f} | {m('mean_abs_nc'):.4f} | "
       f"{e.get('mean_faces', 0):.0f} | {sec:.2f} | {fb}/{gt} |")
 PY
 }

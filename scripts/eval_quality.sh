@@ -66,7 +66,7 @@ row = {"set": name, "options": opts, "meshes": len(inputs), "outputs": len(stats
        "mean_cd": summ.get("mean_cd"), "mean_hd": summ.get("mean_hd"), "mean_nc": summ.get("mean_nc"),
        "mean_abs_nc": summ.get("mean_abs_nc"), "mesh_check_pass": passed, "faces_per_mesh": faces,
        "seconds_per_mesh": secs}
-json.dump(row, open(f"{d}/row.json", "w"), indent=1)
+json.dump(row, open(f"{d}/row.json", "w"), indent=1, allow_nan=False)  # valid JSON or an error
 f = lambda v: "n/a" if v is None else f"{v:.3f}"
 print(f"| {name} | {opts or 'defaults'} | {len(inputs)} | {f(row['mean_cd'])} | {f(row['mean_hd'])} | "
       f"{f(row['mean_nc'])} | {f(row['mean_abs_nc'])} | {passed}/{len(inputs)} | {faces:.0f} | {secs:.2f} |")

@@ -1,14 +1,15 @@
 // The one JSON report of a generation (silkgen --stats/--trace, silk_generator_report_json) and
 // the one mapping of GenerationStats onto silk_generate_stats. nlohmann::ordered_json keeps the
 // keys in a readable order; trace floats have 9 significant digits so float32 reads back exactly.
+// Non-finite figures are null: nlohmann dumps NaN / Inf as null, JsonNumber likewise.
 #if defined(SILK_HAVE_RUNTIME)
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 
 #include <nlohmann/json.hpp>
 
 #include "capi/capi_generator.h"
+#include "core/json_number.h"
 
 namespace silk::capi {
 
@@ -96,11 +97,8 @@ Json TraceJson(const silk_generator& g) {
   const GenerationStats& st = g.result.stats;
   if (!st.candidates.empty()) j["settings"]["seed"] = st.candidates[static_cast<size_t>(st.chosen_candidate)].seed;
   std::string pts = "[";
-  char buf[32];
-  for (size_t i = 0; i < g.points.size(); ++i) {
-    std::snprintf(buf, sizeof(buf), "%s%.9g", i ? "," : "", static_cast<double>(g.points[i]));
-    pts += buf;
-  }
+  for (size_t i = 0; i < g.points.size(); ++i)
+    pts += (i ? "," : "") + JsonNumber(static_cast<double>(g.points[i]), 9);  // null, never nan/inf
   pts += "]";
   j["points"] = Json::parse(pts);
   j["tokens"] = g.result.tokens;

@@ -7,6 +7,7 @@ import json
 import sys
 from pathlib import Path
 
+from .json_io import dumps
 from .models.configs import CONFIGS
 
 # One pair per sub-command: _add_<command> declares its arguments, _cmd_<command> runs it.
@@ -37,7 +38,7 @@ def _cmd_dataset(a) -> int:
         summary = json.loads((path / "shard.json").read_text())
     else:
         summary = build_index(root, Path(a.out), dev, a.limit, a.all_train)
-    print(json.dumps(summary, indent=2))
+    print(dumps(summary, "null", indent=2))
     return 0
 
 
@@ -100,7 +101,7 @@ def _cmd_train(a) -> int:
                      max_seq_len=a.max_seq_len, progress=not a.no_progress)
     res = train(args)
     if os.environ.get("RANK", "0") == "0":
-        print(json.dumps(res, indent=2))
+        print(dumps(res, "null", indent=2))
     return 0
 
 
@@ -116,7 +117,7 @@ def _add_pack_checkpoint(sub) -> None:
 def _cmd_pack_checkpoint(a) -> int:
     from .models.checkpoint import pack_checkpoint
     try:
-        print(json.dumps(pack_checkpoint(Path(a.checkpoint), Path(a.out), a.max_bytes)))
+        print(dumps(pack_checkpoint(Path(a.checkpoint), Path(a.out), a.max_bytes), "null"))
     except (OSError, ValueError, RuntimeError, KeyError) as e:  # unreadable or not a checkpoint, too big
         print(f"silk-export pack-checkpoint: {a.checkpoint}: {e}", file=sys.stderr)
         return 2
@@ -140,14 +141,20 @@ def _add_export(sub) -> None:
 
 def _cmd_export(a) -> int:
     from .models.checkpoint import model_from_checkpoint
+    from .models.finite import check_finite
     from .onnx.export import export_model
     model, ck = model_from_checkpoint(Path(a.checkpoint))
     training = {"steps": ck["step"], "data": a.data or ck.get("data", {}).get("index"),
                 "seed": ck.get("args", {}).get("seed")}
     sampling = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k), ("top_p", a.top_p),
                                   ("candidates", a.candidates)) if v is not None}
-    meta = export_model(model, Path(a.out), training, int8=not a.no_int8, sampling=sampling or None)
-    print(json.dumps(meta, indent=2))
+    try:  # NaN / Inf weights or sampling values: refused before anything is written
+        check_finite(ck["model"].items(), str(a.checkpoint))
+        meta = export_model(model, Path(a.out), training, int8=not a.no_int8, sampling=sampling or None)
+    except ValueError as e:
+        print(f"silk-export export: error: {e}", file=sys.stderr)
+        return 2
+    print(dumps(meta, "null", indent=2))
     return 0
 
 
@@ -194,7 +201,7 @@ def _cmd_eval(a) -> int:
     from .evaluation.evaluate import evaluate_paths
     res = evaluate_paths(Path(a.generated), Path(a.reference) if a.reference else None,
                          n_points=a.points, seed=a.seed)
-    text = json.dumps(res, indent=2)
+    text = dumps(res, "null", indent=2)
     if a.out:
         Path(a.out).write_text(text + "\n")
     print(text)
@@ -221,7 +228,7 @@ def _cmd_loss(a) -> int:
     from .evaluation.split_loss import split_loss
     res = split_loss(Path(a.checkpoint), Path(a.index), Path(a.root) if a.root else default_0ad_root(),
                      a.split, a.limit, a.seed, a.threads, conditioning=not a.no_conditioning)
-    text = json.dumps(res, indent=2)
+    text = dumps(res, "null", indent=2)
     if a.out:
         Path(a.out).write_text(text + "\n")
     print(text)
@@ -258,7 +265,7 @@ def _add_bench(sub) -> None:
 def _cmd_bench(a) -> int:
     from .training.bench import bench_configs
     res = bench_configs(a.configs, a.steps, a.seq_len, a.batch_size, a.threads, a.seed)
-    text = json.dumps(res, indent=2)
+    text = dumps(res, "null", indent=2)
     if a.out:
         Path(a.out).write_text(text + "\n")
     print(text)
@@ -307,7 +314,7 @@ def _cmd_generate(a) -> int:
         given = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k)) if v is not None}
         res = generate_paths(Path(a.model), inputs, Path(a.out), a.max_tokens, seed=a.seed, threads=a.threads,
                              **given)  # else generate_paths' defaults
-    print(json.dumps(res, indent=2))
+    print(dumps(res, "null", indent=2))
     return 0
 
 

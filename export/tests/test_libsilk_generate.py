@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from silk_export.binding import libsilk
+from silk_export.json_io import write_json
 from silk_export.paths import REPO_ROOT
 
 TINY = REPO_ROOT / "tests/models/tiny"
@@ -180,7 +181,7 @@ def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
     shutil.copytree(TINY, greedy)
     meta = json.loads((greedy / "model.json").read_text())
     meta["sampling"] = {"temperature": 0.0, "top_k": 1}
-    (greedy / "model.json").write_text(json.dumps(meta))
+    write_json(greedy / "model.json", meta)
     with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
         _, explicit, _ = gen.generate(src, seed=5, max_tokens=120, temperature=0.0, top_k=1)
         _, default, _ = gen.generate(src, seed=5, max_tokens=120)
@@ -207,7 +208,7 @@ def test_model_json_candidates_is_the_default_best_of_n(tmp_path):
     shutil.copytree(TINY, three)
     meta = json.loads((three / "model.json").read_text())
     meta["sampling"] = {"candidates": 3}
-    (three / "model.json").write_text(json.dumps(meta))
+    write_json(three / "model.json", meta)
     with libsilk.Model(three, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
         _, _, st = gen.generate(src, seed=5, max_tokens=120)
         assert st["candidates"] == 3 and json.loads(gen.report_json())["settings"]["candidates"] == 3

@@ -15,6 +15,7 @@ import torch
 
 from silk_export.onnx import decode as onnx_decode
 from silk_export.cli import main
+from silk_export.json_io import dumps
 from silk_export.official.checkpoint import load_official
 
 # Release size -> test size. D = C = H·dh = 1024 -> 32 (H 16 -> 2, dh 64 -> 16), W = 768 -> 24
@@ -49,7 +50,7 @@ def write_safetensors(path, tensors: dict[str, torch.Tensor]) -> None:
         header[name] = {"dtype": dtype, "shape": list(t.shape), "data_offsets": [offset, offset + len(data)]}
         blobs.append(data)
         offset += len(data)
-    head = json.dumps(header).encode()
+    head = dumps(header).encode()
     head += b" " * (-len(head) % 8)
     with open(path, "wb") as f:
         f.write(struct.pack("<Q", len(head)) + head)
@@ -190,3 +191,28 @@ def test_silkgen_generates_64_tokens_like_the_python_loop(imported, lib_path, tm
     cross = onnx_decode.session(imported / "encoder.onnx").run(None, {"points": points[None]})[0]
     want = onnx_decode.greedy(onnx_decode.session(imported / "decoder.onnx"), cross, 10269, 10267, 64)
     assert got == want and len(got) == 64
+
+
+@pytest.mark.parametrize("suffix", [".safetensors", ".pt"])
+def test_nonfinite_weights_are_refused_naming_the_key(state, tmp_path, capsys, suffix):
+    """One NaN in one tensor, three Inf in another: exit 2, both keys and counts named, and no
+    output folder (no model.json with a bare NaN, which is not JSON)."""
+    s = dict(state)
+    nan_key, inf_key = "decoder.layers.40.1.to_v.weight", "to_logits.bias"
+    s[nan_key] = s[nan_key].clone()
+    s[nan_key].view(-1)[5] = float("nan")
+    s[inf_key] = s[inf_key].clone()
+    s[inf_key][:3] = torch.tensor([float("inf"), float("-inf"), float("inf")], dtype=s[inf_key].dtype)
+    path = tmp_path / f"bad{suffix}"
+    if suffix == ".pt":
+        torch.save(s, path)
+    else:
+        write_safetensors(path, s)
+    out = tmp_path / "model"
+    assert main(["import-official", str(path), "-o", str(out), "--no-progress", "--precision", "fp32",
+                 "--fidelity-tokens", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "non-finite" in err
+    assert f"key '{nan_key}': 1 NaN" in err
+    assert f"key '{inf_key}': 3 Inf" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == [path.name]

@@ -13,6 +13,7 @@ from silk_export.models.configs import ModelConfig
 from silk_export.data.dataset_index import build_index
 from silk_export.models.silk_model import SilkModel
 from silk_export.data.samples import MeshCache
+from silk_export.json_io import jsonl_line
 from silk_export.training.train import TrainArgs, evaluate_loss, seed_everything, train
 
 TEST_CFG = ModelConfig("test", d_model=64, n_layers=2, n_heads=2, n_latents=16, max_seq_len=512,
@@ -29,7 +30,7 @@ def data(golden_dir, dev_dir, tmp_path_factory, mesh_folder):
     rows = [json.loads(x) for x in open(out / "index.jsonl")]
     for r in rows:
         r["split"] = "train"  # these few meshes are all training data here
-    (out / "index.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))
+    (out / "index.jsonl").write_text("".join(jsonl_line(r) for r in rows))
     return root, out / "index.jsonl", rows
 
 

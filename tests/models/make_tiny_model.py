@@ -12,7 +12,6 @@ Also writes tests/models/golden/torus_knot_points.ply, the golden test's point-c
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 
@@ -24,6 +23,7 @@ import onnx  # noqa: E402
 import torch  # noqa: E402
 from onnx import helper, numpy_helper  # noqa: E402
 
+from silk_export.json_io import dumps, write_json  # noqa: E402
 from silk_export.models.configs import ModelConfig  # noqa: E402
 from silk_export.models.silk_model import SilkModel  # noqa: E402
 from silk_export.onnx.export import export_model  # noqa: E402
@@ -93,7 +93,7 @@ def make(out: Path) -> dict:
         shrink(out / f)
     # Keep the committed sidecar independent of which libsilk build happened to be around.
     meta.get("versions", {}).pop("libsilk", None)
-    (out / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
+    write_json(out / "model.json", meta)
     return meta
 
 
@@ -131,7 +131,7 @@ def main() -> int:
         write_point_cloud(REPO / "samples" / "torus_knot.obj", Path(a.points_ply))
     meta = make(Path(a.out))
     sizes = {f.name: f.stat().st_size for f in sorted(Path(a.out).iterdir())}
-    print(json.dumps({"dims": meta["dims"], "bytes": sizes}, indent=2))
+    print(dumps({"dims": meta["dims"], "bytes": sizes}, indent=2))
     return 0
 
 

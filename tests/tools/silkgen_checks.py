@@ -129,12 +129,12 @@ def check_bad(silkgen, repo):
         shutil.copytree(model, newer)
         meta = json.loads((newer / "model.json").read_text())
         meta["model_version"] = 99
-        (newer / "model.json").write_text(json.dumps(meta))
+        (newer / "model.json").write_text(json.dumps(meta, allow_nan=False))
         other_tf = tmp / "other_tf_model"
         shutil.copytree(model, other_tf)
         meta = json.loads((other_tf / "model.json").read_text())
         meta["token_format_version"] = 2
-        (other_tf / "model.json").write_text(json.dumps(meta))
+        (other_tf / "model.json").write_text(json.dumps(meta, allow_nan=False))
         broken = tmp / "broken_model"
         shutil.copytree(model, broken)
         (broken / "decoder.onnx").write_bytes(b"not an onnx file")

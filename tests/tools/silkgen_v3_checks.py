@@ -34,7 +34,7 @@ def v3_model(repo, dest, **changes):
             meta[key].update(value)
         else:
             meta[key] = value
-    (dest / "model.json").write_text(json.dumps(meta, indent=1))
+    (dest / "model.json").write_text(json.dumps(meta, indent=1, allow_nan=False))
     return dest
 
 

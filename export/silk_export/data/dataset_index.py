@@ -13,6 +13,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from ..binding import libsilk
+from ..json_io import jsonl_line, write_json
 from ..paths import shared_dir
 from .mesh_files import list_meshes
 from .shard_store import Shard, ShardWriter, shard_name, write_refused
@@ -101,10 +102,9 @@ def merge_shards(out_dir: Path) -> dict:
         "encodable_by_split": dict(Counter(r["split"] for r in rows if r["refused"] is None)),
         "refusals": dict(Counter(r["refused"] for r in rows if r["refused"])),
     }
-    (out_dir / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
-    (out_dir / "dataset.json").write_text(json.dumps(
-        {"format": DATASET_FORMAT, "shards": names, "meshes": len(rows), "all_train": info["all_train"]},
-        indent=2) + "\n")
+    write_json(out_dir / "summary.json", summary, "null")
+    write_json(out_dir / "dataset.json",
+               {"format": DATASET_FORMAT, "shards": names, "meshes": len(rows), "all_train": info["all_train"]})
     return summary
 
 
@@ -123,7 +123,7 @@ def write_rows(path: Path, rows: list[dict]) -> None:
     tmp = Path(path).with_suffix(".jsonl.tmp")
     with open(tmp, "w") as fh:
         for r in rows:
-            fh.write(json.dumps(r) + "\n")
+            fh.write(jsonl_line(r, what=f"{path}: row {r.get('key')}"))
     tmp.replace(path)
 
 

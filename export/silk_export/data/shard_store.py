@@ -20,6 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..json_io import jsonl_line, write_json
+
 FORMAT = "silk-shard/1"
 TOKEN_DTYPE = np.int16
 
@@ -73,7 +75,7 @@ class ShardWriter:
             self.offsets.append((t + tokens.size, v + vertices.shape[0], f + faces.shape[0]))
         else:
             self.refused.append(row)
-        self._rows.write(json.dumps(row) + "\n")
+        self._rows.write(jsonl_line(row, what=f"meshes.jsonl: row {row.get('key')}"))
 
     def close(self, summary: dict) -> Path:
         for fh in (*self._files.values(), self._rows):
@@ -83,7 +85,7 @@ class ShardWriter:
             write_refused(fh, self.refused)
         info = {"format": FORMAT, "shard": self.i, "of": self.n, "encoded": len(self.offsets) - 1,
                 "refused": len(self.refused), **summary}
-        (self.dir / "shard.json").write_text(json.dumps(info, indent=2) + "\n")
+        write_json(self.dir / "shard.json", info)
         if self.final.exists():
             shutil.rmtree(self.final)
         self.dir.rename(self.final)

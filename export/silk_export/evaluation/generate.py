@@ -15,6 +15,7 @@ from tqdm import tqdm
 from ..binding import libsilk
 from ..data.geometry import normalize_vertices
 from ..data.pointcloud import point_cloud
+from ..json_io import write_json
 from ..models.architecture import Architecture
 from ..models.checkpoint import model_from_checkpoint
 
@@ -88,7 +89,7 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
         rows.append(row)
     summary = {"inputs": len(rows), "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
                "decoded_with_faces": sum(1 for r in rows if r.get("faces")), "meshes": rows}
-    (Path(out_dir) / "generate.json").write_text(json.dumps(summary, indent=2) + "\n")
+    write_json(Path(out_dir) / "generate.json", summary, "null")
     return summary
 
 
@@ -133,5 +134,5 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
     summary = {"runtime": "libsilk", "inputs": len(rows), "settings": sampling or {},
                "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
                "decoded_with_faces": sum(1 for r in rows if r.get("faces")), "meshes": rows}
-    (Path(out_dir) / "generate.json").write_text(json.dumps(summary, indent=2) + "\n")
+    write_json(Path(out_dir) / "generate.json", summary, "null")
     return summary

@@ -12,6 +12,7 @@ import torch
 from tqdm import tqdm
 
 from ..models.configs import ModelConfig
+from ..models.finite import nonfinite_message, nonfinite_summary
 from ..vocab import TYPE_CLASSES, load_vocab
 from .keys import is_unused, local_name, release_name, sizes_from_shapes, strip_wrapper
 from .state_dict_file import StateDictError, open_state_dict
@@ -123,7 +124,8 @@ def check_layout(keys: dict[str, str], infos: dict, params: dict) -> None:
 
 
 def load_official(path: Path, config_path: Path | None = None, progress: bool = True):
-    """-> (OfficialModel in float32, eval mode; LoadReport). Raises StateDictError naming the key."""
+    """-> (OfficialModel in float32, eval mode; LoadReport). Raises StateDictError naming the key (also
+    for a tensor holding NaN or Inf: every such key with its counts)."""
     from .model import OfficialModel
     src = open_state_dict(path)
     infos = src.infos()
@@ -140,15 +142,19 @@ def load_official(path: Path, config_path: Path | None = None, progress: bool = 
     model.init_buffers()
     params = dict(model.named_parameters())  # to_empty made new tensors
     total = sum(infos[raw].dtype.itemsize * params[local_name(k)].numel() for k, raw in keys.items())
-    dtypes = Counter()
+    dtypes, nonfinite = Counter(), []
     with torch.no_grad(), tqdm(total=total, unit="B", unit_scale=True, desc="read weights",
                                disable=not progress) as bar:
         for key, raw in keys.items():
             t = src.read(raw)
             dtypes[str(t.dtype).replace("torch.", "")] += 1
+            if (found := nonfinite_summary(t)) is not None:
+                nonfinite.append(f"key '{raw}': {found}")
             params[local_name(key)].copy_(t)
             bar.update(t.numel() * t.element_size())
             del t
+    if nonfinite:
+        raise StateDictError(nonfinite_message(str(path), nonfinite))
     report.used, report.source_dtypes = len(keys), dict(dtypes)
     report.parameters = sum(p.numel() for p in params.values())
     return model.eval(), report

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import gc
 import hashlib
-import json
 import os
 import shutil
 import sys
@@ -13,6 +12,7 @@ import time
 from dataclasses import asdict
 from pathlib import Path
 
+from ..json_io import write_json
 from ..onnx import fidelity
 from ..onnx.export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
                            transpose_linears)
@@ -77,7 +77,8 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
                     int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32,
                     licence: str = SOURCE_LICENCE) -> dict:
     """Returns the model.json written. Raises StateDictError / ValueError with a message naming
-    the problem; the destination is then untouched."""
+    the problem (a key missing, misshaped or holding NaN / Inf; a non-finite model.json figure);
+    the destination is then untouched."""
     if precision not in PRECISIONS:
         raise ValueError(f"precision '{precision}': expected one of {', '.join(PRECISIONS)}")
     checkpoint, out_dir = Path(checkpoint), Path(out_dir)
@@ -108,7 +109,7 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
         training = {"steps": None, "data": "released checkpoint (official training)", "seed": None}
         meta = sidecar(cfg, training, files, extra)
         meta["import"]["seconds"] = round(time.time() - t0, 1)
-        (tmp / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
+        write_json(tmp / "model.json", meta)  # a NaN figure: an error naming the field, not invalid JSON
         write_official_card(tmp, meta)
         for f in tmp.iterdir():
             f.chmod(0o644)  # onnxruntime writes external data files 0600

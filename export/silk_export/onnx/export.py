@@ -4,7 +4,6 @@ quantization) and INT4 (MatMulNBits) decoders, and the model.json sidecar. Graph
 protobuf limit keep their weights in one external data file `<graph>.onnx.data` beside them."""
 from __future__ import annotations
 
-import json
 import shutil
 import warnings
 from pathlib import Path
@@ -12,7 +11,9 @@ from pathlib import Path
 import torch
 
 from .. import __version__
+from ..json_io import dumps, write_json
 from ..models.configs import ModelConfig
+from ..models.finite import check_finite
 from ..models.registry import get_architecture
 from ..vocab import load_vocab
 from .graphs import DecoderGraph, EncoderGraph, decoder_input_names, decoder_output_names
@@ -286,13 +287,16 @@ def export_model(model, out_dir: Path, training: dict | None = None, int8: bool 
                  sampling: dict | None = None) -> dict:
     """Exports all files into out_dir; returns the sidecar dict that was written. `sampling`: the
     model.json "sampling" defaults silkgen and the C API start from (absent: libsilk's built-in
-    ones, temperature 0.5 and top-k 50)."""
+    ones, temperature 0.5 and top-k 50). Raises ValueError before writing anything when a weight
+    is NaN / Inf (naming its key) or a sampling value is not finite."""
     out_dir = Path(out_dir)
+    check_finite(model.state_dict().items(), "model")
+    dumps({"sampling": sampling}, what="model.json")  # a NaN default: refused before the graphs
     files = export_graphs(model, out_dir)
     if int8:
         quantize_decoder(out_dir / "decoder.onnx", out_dir / "decoder.int8.onnx")
         files["decoder_int8"] = "decoder.int8.onnx"
     meta = sidecar(model.cfg, training or {"steps": 0, "data": None, "seed": None}, files,
                    {"sampling": sampling} if sampling else None)
-    (out_dir / "model.json").write_text(json.dumps(meta, indent=2) + "\n")
+    write_json(out_dir / "model.json", meta)
     return meta

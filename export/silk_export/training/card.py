@@ -8,8 +8,14 @@ from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..json_io import dumps
 from ..models.registry import get_architecture
 from .losslog import read_log
+
+
+def _inline_json(obj) -> str:
+    """A dict shown in the card as JSON (null for a non-finite figure)."""
+    return dumps(obj, "null")
 
 
 def _load(p: Path | None):
@@ -91,7 +97,7 @@ def _architecture(c: RunFigures) -> list[str]:
     for k in ("d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len"):
         L.append(f"| {k} | {c.dims.get(k, '—')} |")
     return L + [f"| parameters | {c.run.get('parameters', 0):,} |",
-                f"| vocabulary | {json.dumps(c.meta.get('vocab', {}))} |", ""]
+                f"| vocabulary | {_inline_json(c.meta.get('vocab', {}))} |", ""]
 
 
 def _data(c: RunFigures) -> list[str]:
@@ -106,9 +112,9 @@ def _data(c: RunFigures) -> list[str]:
          f"Sequences longer than {c.dims.get('max_seq_len', 0) - 2} tokens are not used.", ""]
     s = c.index_summary
     if s:
-        L += [f"Index: {s['meshes']} meshes; splits {json.dumps(s['splits'])};",
-              f"encodable {json.dumps(s['encodable_by_split'])};",
-              f"refusals {json.dumps(s['refusals'])}.",
+        L += [f"Index: {s['meshes']} meshes; splits {_inline_json(s['splits'])};",
+              f"encodable {_inline_json(s['encodable_by_split'])};",
+              f"refusals {_inline_json(s['refusals'])}.",
               f"Training meshes that fit the model: {c.run.get('train_meshes')}; "
               f"fixed val samples: {c.run.get('val_meshes')}.", ""]
     return L
@@ -216,10 +222,11 @@ def _reading_the_figures(c: RunFigures) -> list[str]:
                    f"nats/token ({lt['conditioning_gap']:+.3f}, {share:.1%} of the loss): "
                    + ("the model uses its input only weakly." if share < 0.1 else "the model follows its input."))
     ev = c.eval_json("test.json")
-    if ev and ev["summary"].get("evaluated") and abs(ev["summary"].get("mean_nc", 1)) < 0.1:
+    nc = ev["summary"].get("mean_nc") if ev else None  # null: a non-finite mean (json_io)
+    if ev and ev["summary"].get("evaluated") and nc is not None and abs(nc) < 0.1:
         s = ev["summary"]
-        obs.append(f"Mean NC ≈ {s['mean_nc']:.2f} against |NC| ≈ {s.get('mean_abs_nc', float('nan')):.2f}, CD ≈ "
-                   f"{s['mean_cd']:.2f}: the sampled vertices lie near the input (surface guidance keeps them "
+        obs.append(f"Mean NC ≈ {nc:.2f} against |NC| ≈ {_fmt(s.get('mean_abs_nc'), 2)}, CD ≈ "
+                   f"{_fmt(s.get('mean_cd'), 2)}: the sampled vertices lie near the input (surface guidance keeps them "
                    "there and best of N picks the closest candidate), but the triangles between them are "
                    "barely aligned with the input's surface, so which side faces out is close to chance; "
                    "that needs a model that has learned the shapes, i.e. far more training than this CPU "
@@ -244,7 +251,7 @@ def _throughput(c: RunFigures) -> list[str]:
 
 
 def _versions(c: RunFigures) -> list[str]:
-    return ["## Versions", "", f"`{json.dumps(c.meta.get('versions', {}))}`", ""]
+    return ["## Versions", "", f"`{_inline_json(c.meta.get('versions', {}))}`", ""]
 
 
 SECTIONS = (_title, _what_it_is, _files, _architecture, _data, _training, _held_out_loss, _generation,

@@ -6,6 +6,8 @@ import csv
 import json
 from pathlib import Path
 
+from ..json_io import jsonl_line
+
 CSV_FIELDS = ["step", "kind", "loss", "lr", "tokens", "tokens_per_s", "elapsed_s"]
 
 
@@ -19,7 +21,7 @@ class LossLog:
 
     def write(self, record: dict) -> None:
         with open(self.jsonl, "a") as fh:
-            fh.write(json.dumps(record) + "\n")
+            fh.write(jsonl_line(record, "null"))
         with open(self.csv, "a", newline="") as fh:
             csv.writer(fh).writerow([record.get(k, "") for k in CSV_FIELDS])
 
@@ -27,7 +29,7 @@ class LossLog:
         """On resume: drop records past the checkpoint's step (they will be redone)."""
         if self.jsonl.exists():
             keep = [r for r in read_log(self.jsonl) if r["step"] <= step]
-            self.jsonl.write_text("".join(json.dumps(r) + "\n" for r in keep))
+            self.jsonl.write_text("".join(jsonl_line(r, "null") for r in keep))
             with open(self.csv, "w", newline="") as fh:
                 w = csv.writer(fh)
                 w.writerow(CSV_FIELDS)

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
-import json
 import math
 import random
 import time
@@ -22,6 +21,7 @@ from ..data.dataset_index import build_index, read_index
 from ..data.resample import ProgressiveBalancedSampler
 from ..data.samples import MeshCache, TooLong, collate
 from ..data.sharded_dataset import ShardedSource, dataset_rows, is_dataset
+from ..json_io import write_json
 from ..models.checkpoint import load_checkpoint, save_state
 from ..models.configs import ModelConfig, config_from_dict, get_config
 from ..models.registry import build_model as architecture_model
@@ -300,7 +300,7 @@ class Trainer:
                      "world_size": env.world, "fsdp": a.fsdp, "threads": torch.get_num_threads(),
                      "config": self.cfg.to_dict(), "args": resolved_args(a)}
         if env.is_main:
-            (self.out / "run.json").write_text(json.dumps(self.meta, indent=2) + "\n")
+            write_json(self.out / "run.json", self.meta, "null")
 
     def resume(self) -> tuple[int, float]:
         if not (self.a.resume and self.ckpt_path.exists()):
