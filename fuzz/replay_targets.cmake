@@ -4,8 +4,8 @@
 file(GLOB silk_fuzz_srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/fuzz/*_fuzzer.cpp)
 foreach(src ${silk_fuzz_srcs})
   get_filename_component(name ${src} NAME_WE)
-  if(name STREQUAL "model_config_fuzzer" AND NOT SILK_HAVE_ONNXRUNTIME)
-    continue()  # the runtime layer (model.json) is only built with onnxruntime
+  if(name MATCHES "^(model_config|onnx_external_data)_fuzzer$" AND NOT SILK_HAVE_ONNXRUNTIME)
+    continue()  # the runtime layer (model.json, ONNX files) is only built with onnxruntime
   endif()
   add_executable(${name}_replay ${src} ${PROJECT_SOURCE_DIR}/fuzz/replay_main.cpp)
   target_link_libraries(${name}_replay PRIVATE silk_static)

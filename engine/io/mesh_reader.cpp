@@ -53,7 +53,7 @@ StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts) 
     SILK_ASSIGN_OR_RETURN(bytes, ReadFileBytes(path, opts.max_file_bytes));
   }
   if (HasGzipSuffix(path)) {
-    SILK_ASSIGN_OR_RETURN(std::string inflated, GunzipBytes(bytes, path, opts.max_file_bytes));
+    SILK_ASSIGN_OR_RETURN(std::string inflated, GunzipBytes(bytes, path, InflatedLimit(opts, bytes.size())));
     bytes.swap(inflated);
   }
   const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());

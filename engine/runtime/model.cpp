@@ -6,6 +6,7 @@
 
 #include "io/files/file_system.h"
 #include "runtime/cpu_info.h"
+#include "runtime/model_files.h"
 
 namespace silk {
 
@@ -104,6 +105,7 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   const std::string enc_path = dir + "/" + config.encoder_file, dec_path = dir + "/" + decoder_file;
   for (const std::string& p : {enc_path, dec_path})
     if (!IsRegularFile(p)) return IoError(p + ": missing (named in model.json)");
+  SILK_RETURN_IF_ERROR(CheckModelFolderFiles(dir, config, {config.encoder_file, decoder_file}));
 
   const ModelDims& d = config.dims;
   const int64_t V = config.model_vocab_size;

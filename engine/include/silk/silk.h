@@ -70,7 +70,10 @@ SILK_API silk_status silk_mesh_create(const double* positions, size_t n_vertices
                                       size_t n_triangles, silk_mesh** out);
 /* OBJ, PLY, STL, OFF, glTF/GLB, PMD, optionally gzip-compressed. A PLY without faces is a
  * point cloud and must carry per-vertex normals (nx ny nz): it loads as a mesh with no
- * triangles and with normals, which silk_generate* samples as points. */
+ * triangles and with normals, which silk_generate* samples as points.
+ * Read limits: 50M vertices, 50M triangles, 4 GiB per file; a .gz inflates to at most
+ * max(64 MiB, 32 x its compressed size), checked while inflating (a decompression bomb is
+ * refused with SILK_ERR_LIMIT naming the file, without allocating its output; docs/io.md). */
 SILK_API silk_status silk_mesh_load(const char* path, silk_mesh** out);
 typedef struct silk_load_params {
   int32_t point_clouds; /* 1: a PLY without faces is a point cloud, as silk_mesh_load reads it (default);
@@ -299,7 +302,9 @@ typedef struct silk_model_options {
 } silk_model_options;
 SILK_API silk_model_options silk_model_default_options(void);
 /* dir holds model.json, encoder.onnx, decoder.onnx (docs/model_contract.md). A model of another
- * format/token-format version is refused with SILK_ERR_UNSUPPORTED. options may be NULL. */
+ * format/token-format version is refused with SILK_ERR_UNSUPPORTED. Every file the folder names,
+ * ONNX external data included, must resolve inside it (no absolute path, no "..", no symlink
+ * leading out): otherwise SILK_ERR_PARSE naming the model file and the location. options may be NULL. */
 SILK_API silk_status silk_model_load(const char* dir, const silk_model_options* options, silk_model** out);
 SILK_API void silk_model_destroy(silk_model* model);
 

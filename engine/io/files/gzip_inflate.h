@@ -9,6 +9,10 @@
 
 namespace silk {
 
+// Inflates every gzip member of `gz`. Streaming in two passes: the first counts the output
+// through a small scratch buffer and stops with kLimitExceeded ("<name>: gzip data inflates
+// past ...") as soon as the total passes max_output_bytes, so a bomb costs no memory; the
+// second inflates into a buffer of exactly the counted size.
 StatusOr<std::string> GunzipBytes(std::string_view gz, const std::string& name, uint64_t max_output_bytes);
 
 }  // namespace silk
