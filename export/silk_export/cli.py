@@ -187,6 +187,15 @@ def _cmd_import_official(a) -> int:
     return 0
 
 
+def _report(res, out) -> int:
+    """Prints a command's JSON result (non-finite numbers as null) and writes it to --out too."""
+    text = dumps(res, "null", indent=2)
+    if out:
+        Path(out).write_text(text + "\n")
+    print(text)
+    return 0
+
+
 def _add_eval(sub) -> None:
     v = sub.add_parser("eval", help="CD / HD / NC / |NC| and structure of generated vs reference meshes")
     v.add_argument("generated", help="mesh file or folder")
@@ -201,11 +210,7 @@ def _cmd_eval(a) -> int:
     from .evaluation.evaluate import evaluate_paths
     res = evaluate_paths(Path(a.generated), Path(a.reference) if a.reference else None,
                          n_points=a.points, seed=a.seed)
-    text = dumps(res, "null", indent=2)
-    if a.out:
-        Path(a.out).write_text(text + "\n")
-    print(text)
-    return 0
+    return _report(res, a.out)
 
 
 def _add_loss(sub) -> None:
@@ -228,11 +233,7 @@ def _cmd_loss(a) -> int:
     from .evaluation.split_loss import split_loss
     res = split_loss(Path(a.checkpoint), Path(a.index), Path(a.root) if a.root else default_0ad_root(),
                      a.split, a.limit, a.seed, a.threads, conditioning=not a.no_conditioning)
-    text = dumps(res, "null", indent=2)
-    if a.out:
-        Path(a.out).write_text(text + "\n")
-    print(text)
-    return 0
+    return _report(res, a.out)
 
 
 def _add_card(sub) -> None:
@@ -265,11 +266,7 @@ def _add_bench(sub) -> None:
 def _cmd_bench(a) -> int:
     from .training.bench import bench_configs
     res = bench_configs(a.configs, a.steps, a.seq_len, a.batch_size, a.threads, a.seed)
-    text = dumps(res, "null", indent=2)
-    if a.out:
-        Path(a.out).write_text(text + "\n")
-    print(text)
-    return 0
+    return _report(res, a.out)
 
 
 def _add_generate(sub) -> None:
