@@ -340,10 +340,15 @@ enum {
   SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report_json */
 };
 
+/* "Use the model's value" (model.json "sampling" / "preprocessing"): the one sentinel of
+ * silk_generate_params.temperature, top_k, top_p, top_p_temperature, preprocessing and
+ * candidates (their default). Exactly -1 (the value these fields always took); any other
+ * negative, NaN or infinite value is SILK_ERR_INVALID_ARGUMENT naming the field and value. */
+#define SILK_MODEL_VALUE (-1)
 /* The measured default of silk_generate_params.surface_tolerance; .candidates defaults to
  * SILK_MODEL_CANDIDATES, the model's own N (model.json "sampling.candidates", 1 when absent). */
 #define SILK_DEFAULT_SURFACE_TOLERANCE 2
-#define SILK_MODEL_CANDIDATES (-1)
+#define SILK_MODEL_CANDIDATES SILK_MODEL_VALUE
 #define SILK_DEFAULT_CANDIDATES SILK_MODEL_CANDIDATES
 /* Part orientation (silk_generate_params.orient). */
 typedef enum silk_orientation {
