@@ -80,7 +80,8 @@ void AddOptions(CLI::App& app, Args& a) {
                  "default: model.json's")->check(CLI::Range(0.0, 100.0));
   app.add_option("--max-tokens", a.max_tokens, "Cap on generated ids incl. EOS (0 = the model's limit)")
       ->check(CLI::Range(0, 10240))->capture_default_str();
-  app.add_option("--max-faces", a.max_faces, "Stop at the first layer end with at least this many faces (0 = off)")
+  app.add_option("--max-faces", a.max_faces, "Hard cap on the output's faces: stop at the first layer end with at least this many, keep at most this many "
+                 "(a valid subset of that layer; 0 = off)")
       ->check(CLI::Range(0, 1000000))->capture_default_str();
   app.add_option("--repair", a.repair, "Holes in the result: off, report, or repair (close small ones)")
       ->check(CLI::IsMember({"off", "report", "repair"}))->capture_default_str();

@@ -489,6 +489,55 @@ TEST(CapiMisuse, PreparePointsRefusesOutOfRangeFlags) {
   silk_mesh_destroy(m);
 }
 
+// Issue 20, finding 6: max_faces is a hard cap. The generation stops at the first layer end
+// with >= max_faces faces and returns at most max_faces of them, still edge- and
+// vertex-manifold and consistently oriented (before, max_faces 20 could return 447 faces).
+void ExpectCappedAndValid(const char* model_dir, std::initializer_list<int32_t> caps) {
+  silk_model* model = nullptr;
+  ASSERT_EQ(silk_model_load(model_dir, nullptr, &model), SILK_OK) << silk_last_error();
+  silk_mesh* input = nullptr;
+  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &input), SILK_OK);
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model, &g), SILK_OK);
+  for (int32_t cap : caps) {
+    int capped_runs = 0;
+    for (uint64_t seed = 0; seed < 3; ++seed) {
+      silk_generate_params p = silk_generate_default_params();
+      p.seed = seed;
+      p.candidates = 1;
+      p.max_faces = cap;
+      silk_mesh* out = nullptr;
+      silk_generate_stats st{};
+      ASSERT_EQ(silk_generate(g, input, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+      const std::string at = std::string(model_dir) + " cap " + std::to_string(cap) + " seed " + std::to_string(seed);
+      EXPECT_LE(silk_mesh_triangle_count(out), static_cast<size_t>(cap)) << at;
+      EXPECT_EQ(st.faces, static_cast<int32_t>(silk_mesh_triangle_count(out))) << at;
+      EXPECT_EQ(st.edge_manifold, 1) << at;
+      EXPECT_EQ(st.vertex_manifold, 1) << at;
+      EXPECT_EQ(st.consistently_oriented, 1) << at;
+      if (st.stop_reason == SILK_STOP_MAX_FACES) {
+        ++capped_runs;
+        EXPECT_GE(st.faces, 1) << at;
+      }
+      silk_mesh_destroy(out);
+    }
+    EXPECT_GE(capped_runs, 1) << model_dir << " cap " << cap << ": no run reached the cap";
+  }
+  silk_generator_destroy(g);
+  silk_mesh_destroy(input);
+  silk_model_destroy(model);
+}
+
+TEST(CapiMaxFaces, IsAHardCapWithAValidMeshTinyModel) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  ExpectCappedAndValid(TinyModel().c_str(), {1, 5, 20, 100});
+}
+
+TEST(CapiMaxFaces, IsAHardCapWithAValidMeshBundledModel) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  ExpectCappedAndValid(silk::testing::SourcePath("models/default").c_str(), {1, 20, 100});
+}
+
 TEST(CapiLog, TheCallbackFires) {
   struct Sink {
     std::vector<std::pair<silk_log_level, std::string>> lines;
