@@ -52,9 +52,9 @@ struct Args {
   std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path;
   int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
   // Sampling, pre-processing and decoder precision default to model.json's; these sentinels
-  // (negative / empty) mean "not given" (silk_generate_params' -1).
-  double temperature = -1, top_p = -1, top_p_temperature = -1;
-  int top_k = -1;
+  // (SILK_MODEL_VALUE / empty) mean "not given"; the options' ranges refuse any other negative.
+  double temperature = SILK_MODEL_VALUE, top_p = SILK_MODEL_VALUE, top_p_temperature = SILK_MODEL_VALUE;
+  int top_k = SILK_MODEL_VALUE;
   int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
   std::string decoder, preprocessing, orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
   bool unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
@@ -80,7 +80,8 @@ void AddOptions(CLI::App& app, Args& a) {
                  "default: model.json's")->check(CLI::Range(0.0, 100.0));
   app.add_option("--max-tokens", a.max_tokens, "Cap on generated ids incl. EOS (0 = the model's limit)")
       ->check(CLI::Range(0, 10240))->capture_default_str();
-  app.add_option("--max-faces", a.max_faces, "Stop at the first layer end with at least this many faces (0 = off)")
+  app.add_option("--max-faces", a.max_faces, "Hard cap on the output's faces: stop at the first layer end with at least this many, keep at most this many "
+                 "(a valid subset of that layer; 0 = off)")
       ->check(CLI::Range(0, 1000000))->capture_default_str();
   app.add_option("--repair", a.repair, "Holes in the result: off, report, or repair (close small ones)")
       ->check(CLI::IsMember({"off", "report", "repair"}))->capture_default_str();
@@ -141,7 +142,7 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.top_k = a.top_k;
   p.top_p = a.top_p;
   p.top_p_temperature = a.top_p_temperature;
-  p.preprocessing = a.preprocessing.empty() ? -1 : a.preprocessing == "official" ? SILK_PREPROCESS_OFFICIAL
+  p.preprocessing = a.preprocessing.empty() ? SILK_MODEL_VALUE : a.preprocessing == "official" ? SILK_PREPROCESS_OFFICIAL
                                                                                   : SILK_PREPROCESS_SILK;
   p.raw_points = a.raw_points ? 1 : 0;
   p.max_tokens = a.max_tokens;

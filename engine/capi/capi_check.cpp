@@ -30,9 +30,9 @@ silk_status silk_tokens_check(const silk_tokens* tokens, const silk_check_params
     std::memset(out, 0, sizeof(*out));
     const silk_check_params p = params ? *params : silk_check_default_params();
     SILK_CAPI_REQUIRE(p.max_length >= 0, "silk_tokens_check: max_length must be >= 0 (0 = unlimited)");
-    SILK_CAPI_REQUIRE(p.window_rule == SILK_WINDOW_CANONICAL || p.window_rule == SILK_WINDOW_UNION,
-                      "silk_tokens_check: window_rule is not a silk_window_rule (0..1)");
-    SILK_CAPI_REQUIRE(p.allow_prefix == 0 || p.allow_prefix == 1, "silk_tokens_check: allow_prefix takes 0 or 1");
+    SILK_CAPI_CHECK("silk_tokens_check", silk::capi::CheckEnum("window_rule", p.window_rule, SILK_WINDOW_CANONICAL,
+                                                               SILK_WINDOW_UNION, "silk_window_rule"));
+    SILK_CAPI_CHECK("silk_tokens_check", silk::capi::CheckFlag("allow_prefix", p.allow_prefix));
     silk::GrammarOptions opt;
     opt.max_length = p.max_length;
     opt.window_rule = p.window_rule == SILK_WINDOW_UNION ? silk::WindowRule::kUnion : silk::WindowRule::kCanonical;

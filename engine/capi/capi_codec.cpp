@@ -76,10 +76,10 @@ silk_status silk_encode(const silk_mesh* mesh, const silk_encode_params* params,
     SILK_CAPI_REQUIRE(mesh && out, "silk_encode: mesh or out is NULL");
     *out = nullptr;
     const silk_encode_params p = params ? *params : silk_encode_default_params();
-    SILK_CAPI_REQUIRE((p.normalize == 0 || p.normalize == 1) && (p.nonmanifold_processing == 0 || p.nonmanifold_processing == 1),
-                      "silk_encode: normalize and nonmanifold_processing take 0 or 1");
+    SILK_CAPI_CHECK("silk_encode", silk::capi::CheckFlag("normalize", p.normalize));
+    SILK_CAPI_CHECK("silk_encode", silk::capi::CheckFlag("nonmanifold_processing", p.nonmanifold_processing));
     SILK_CAPI_REQUIRE(!p.normalize || (p.normalize_bound > 0 && p.normalize_bound <= 1),
-                      "silk_encode: normalize_bound must lie in (0, 1]");
+                      "silk_encode: normalize_bound " + silk::capi::ValueText(p.normalize_bound) + " must lie in (0, 1]");
     const auto t0 = std::chrono::steady_clock::now();
     silk::IoMesh normalized;
     if (p.normalize) {
@@ -145,9 +145,8 @@ silk_status silk_decode_with_stats(const silk_tokens* tokens, const silk_decode_
     SILK_CAPI_REQUIRE(tokens && out, "silk_decode: tokens or out is NULL");
     *out = nullptr;
     const silk_decode_params p = params ? *params : silk_decode_default_params();
-    SILK_CAPI_REQUIRE(p.grid_coordinates == 0 || p.grid_coordinates == 1, "silk_decode: grid_coordinates takes 0 or 1");
-    SILK_CAPI_REQUIRE(p.split_nonmanifold_vertices == 0 || p.split_nonmanifold_vertices == 1,
-                      "silk_decode: split_nonmanifold_vertices takes 0 or 1");
+    SILK_CAPI_CHECK("silk_decode", silk::capi::CheckFlag("grid_coordinates", p.grid_coordinates));
+    SILK_CAPI_CHECK("silk_decode", silk::capi::CheckFlag("split_nonmanifold_vertices", p.split_nonmanifold_vertices));
     auto r = silk::DecodeTokens(tokens->ids);
     if (!r.ok()) return SetError(r.status());
     int32_t split = 0;

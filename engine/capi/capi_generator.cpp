@@ -25,33 +25,56 @@ silk_status Busy(const char* function) {
   return SetError(SILK_ERR_BUSY, std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
 }
 
-// Checks the C params (enum and flag ranges) and maps them onto the runtime's options; negative
-// sampling fields take the model's defaults (model.json "sampling").
-// The N a call runs: the caller's, or the model's (model.json sampling.candidates) for SILK_MODEL_CANDIDATES.
+// The N a call runs: the caller's, or the model's (model.json sampling.candidates) for SILK_MODEL_VALUE.
 int32_t ResolvedCandidates(const silk_generate_params& p, const silk::ModelConfig& config) {
-  return p.candidates == SILK_MODEL_CANDIDATES ? config.candidates : p.candidates;
+  return p.candidates == SILK_MODEL_VALUE ? config.candidates : p.candidates;
 }
 
-silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, const silk::ModelConfig& config) {
-  if (p.holes < SILK_HOLES_OFF || p.holes > SILK_HOLES_REPAIR)
-    return silk::InvalidArgument("holes " + std::to_string(p.holes) + " is not a silk_hole_policy (0..2)");
-  if (p.unconstrained != 0 && p.unconstrained != 1) return silk::InvalidArgument("unconstrained takes 0 or 1");
+// Sampling fields: SILK_MODEL_VALUE (-1) or a value in range; nothing else is read as "the model's".
+silk::Status CheckSamplingParams(const silk_generate_params& p) {
+  using silk::capi::CheckModelValueOr;
+  SILK_RETURN_IF_ERROR(CheckModelValueOr("temperature", p.temperature, HUGE_VAL));
+  SILK_RETURN_IF_ERROR(CheckModelValueOr("top_k", p.top_k, INT32_MAX));
+  SILK_RETURN_IF_ERROR(CheckModelValueOr("top_p", p.top_p, 1.0));
+  SILK_RETURN_IF_ERROR(CheckModelValueOr("top_p_temperature", p.top_p_temperature, HUGE_VAL));
+  if (p.candidates != SILK_MODEL_VALUE && (p.candidates < 1 || p.candidates > silk::kMaxCandidates))
+    return silk::InvalidArgument("candidates " + std::to_string(p.candidates) +
+                                 " is neither SILK_MODEL_VALUE (-1: the model's) nor in 1.." +
+                                 std::to_string(silk::kMaxCandidates));
+  return silk::Status::Ok();
+}
+
+// Every flag, enum, cap and sampling field of the C params; the message names the field and value.
+silk::Status CheckParams(const silk_generate_params& p) {
+  using silk::capi::CheckEnum;
+  using silk::capi::CheckFlag;
+  SILK_RETURN_IF_ERROR(CheckSamplingParams(p));
+  SILK_RETURN_IF_ERROR(CheckEnum("holes", p.holes, SILK_HOLES_OFF, SILK_HOLES_REPAIR, "silk_hole_policy"));
+  SILK_RETURN_IF_ERROR(CheckFlag("unconstrained", p.unconstrained));
+  SILK_RETURN_IF_ERROR(CheckFlag("raw_points", p.raw_points));
+  SILK_RETURN_IF_ERROR(CheckEnum("orient", p.orient, SILK_ORIENT_TOKENS, SILK_ORIENT_INPUT, "silk_orientation"));
+  if (p.preprocessing != SILK_MODEL_VALUE)
+    SILK_RETURN_IF_ERROR(CheckEnum("preprocessing", p.preprocessing, SILK_PREPROCESS_SILK, SILK_PREPROCESS_OFFICIAL,
+                                   "silk_preprocess_kind (or SILK_MODEL_VALUE, -1)"));
   if (p.debug_flags & ~kAllDebugFlags)
     return silk::InvalidArgument("debug_flags " + std::to_string(p.debug_flags) + " has unknown bits");
-  if (p.n_points < 0) return silk::InvalidArgument("n_points is negative");
-  if (p.preprocessing < -1 || p.preprocessing > SILK_PREPROCESS_OFFICIAL)
-    return silk::InvalidArgument("preprocessing " + std::to_string(p.preprocessing) +
-                                 " is not a silk_preprocess_kind (-1 = the model's, 0..1)");
-  if (p.raw_points != 0 && p.raw_points != 1) return silk::InvalidArgument("raw_points takes 0 or 1");
-  if (p.orient != SILK_ORIENT_TOKENS && p.orient != SILK_ORIENT_INPUT)
-    return silk::InvalidArgument("orient " + std::to_string(p.orient) + " is not a silk_orientation (0..1)");
+  for (const auto& [field, value] : {std::pair<const char*, int32_t>{"max_tokens", p.max_tokens},
+                                     {"max_faces", p.max_faces}, {"n_points", p.n_points}})
+    if (value < 0) return silk::InvalidArgument(std::string(field) + " " + std::to_string(value) + " is negative");
+  return silk::Status::Ok();
+}
+
+// Checks the C params and maps them onto the runtime's options; a SILK_MODEL_VALUE sampling
+// field takes the model's (model.json "sampling").
+silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, const silk::ModelConfig& config) {
+  SILK_RETURN_IF_ERROR(CheckParams(p));
   silk::GenerateOptions o;
   o.sampling = config.sampling;
   o.sampling.seed = p.seed;
-  if (p.temperature >= 0) o.sampling.temperature = p.temperature;
-  if (p.top_k >= 0) o.sampling.top_k = p.top_k;
-  if (p.top_p >= 0) o.sampling.top_p = p.top_p;
-  if (p.top_p_temperature >= 0) o.sampling.top_p_temperature = p.top_p_temperature;
+  if (p.temperature != SILK_MODEL_VALUE) o.sampling.temperature = p.temperature;
+  if (p.top_k != SILK_MODEL_VALUE) o.sampling.top_k = p.top_k;
+  if (p.top_p != SILK_MODEL_VALUE) o.sampling.top_p = p.top_p;
+  if (p.top_p_temperature != SILK_MODEL_VALUE) o.sampling.top_p_temperature = p.top_p_temperature;
   o.max_tokens = p.max_tokens;
   o.max_faces = p.max_faces;
   o.holes = p.holes == SILK_HOLES_REPAIR ? silk::HolePolicy::kRepair
@@ -253,11 +276,11 @@ silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));
   p.seed = 0;
-  p.temperature = -1;  // the model's (model.json "sampling")
-  p.top_k = -1;
-  p.top_p = -1;
-  p.top_p_temperature = -1;
-  p.preprocessing = -1;  // the model's (model.json "preprocessing")
+  p.temperature = SILK_MODEL_VALUE;  // the model's (model.json "sampling")
+  p.top_k = SILK_MODEL_VALUE;
+  p.top_p = SILK_MODEL_VALUE;
+  p.top_p_temperature = SILK_MODEL_VALUE;
+  p.preprocessing = SILK_MODEL_VALUE;  // the model's (model.json "preprocessing")
   p.holes = SILK_HOLES_OFF;
   p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
   p.candidates = SILK_DEFAULT_CANDIDATES;

@@ -45,6 +45,14 @@ void Log(silk_log_level level, const std::string& message);
 std::unique_ptr<silk_mesh> MeshHandle(std::vector<std::array<double, 3>> positions,
                                       const TokenizerDecodedMesh& decoded);
 
+// Field checks of the params structs (capi_params.cpp): Ok, or an InvalidArgument naming the
+// field and the value given ("round_float16 2 takes 0 or 1").
+std::string ValueText(double v);  // "-0.5", "nan", "inf"
+Status CheckFlag(const char* field, int32_t value);
+Status CheckEnum(const char* field, int32_t value, int32_t lo, int32_t hi, const char* type);
+// SILK_MODEL_VALUE (exactly -1), or a finite value in [0, hi] (hi infinite: any finite >= 0).
+Status CheckModelValueOr(const char* field, double value, double hi);
+
 template <typename F>
 silk_status Guard(F&& f) noexcept {
   try {
@@ -64,5 +72,10 @@ silk_status CheckCopy(const char* function, const void* out, size_t capacity, si
 
 #define SILK_CAPI_REQUIRE(cond, what) \
   if (!(cond)) return ::silk::capi::SetError(SILK_ERR_INVALID_ARGUMENT, what)
+// A field check (CheckFlag, CheckEnum, ...) of `function`'s params: on failure, its message
+// prefixed with the function's name.
+#define SILK_CAPI_CHECK(function, check)                                      \
+  if (::silk::Status silk_check_ = (check); !silk_check_.ok())                \
+  return ::silk::capi::SetError(silk_check_.WithContext(function ": "))
 
 }  // namespace silk::capi

@@ -79,7 +79,7 @@ silk_status silk_mesh_load_with_params(const char* path, const silk_load_params*
     *out = nullptr;
     SILK_CAPI_REQUIRE(path, "silk_mesh_load: path is NULL");
     const silk_load_params lp = params ? *params : silk_load_default_params();
-    SILK_CAPI_REQUIRE(lp.point_clouds == 0 || lp.point_clouds == 1, "silk_mesh_load: point_clouds takes 0 or 1");
+    SILK_CAPI_CHECK("silk_mesh_load", silk::capi::CheckFlag("point_clouds", lp.point_clouds));
     auto m = std::make_unique<silk_mesh>();
     if (lp.point_clouds && EndsWith(path, ".ply")) {
       // A PLY without faces is a point cloud and keeps its normals.
@@ -120,9 +120,9 @@ silk_status silk_mesh_save_with_params(const silk_mesh* mesh, const char* path, 
   return Guard([&] {
     SILK_CAPI_REQUIRE(mesh && path, "silk_mesh_save: mesh or path is NULL");
     const silk_save_params sp = params ? *params : silk_save_default_params();
-    SILK_CAPI_REQUIRE(sp.part_colors == 0 || sp.part_colors == 1, "silk_mesh_save: part_colors takes 0 or 1");
-    SILK_CAPI_REQUIRE(sp.format >= SILK_FORMAT_BY_EXTENSION && sp.format <= SILK_FORMAT_GLB,
-                      "silk_mesh_save: format is not a silk_mesh_format (0..3)");
+    SILK_CAPI_CHECK("silk_mesh_save", silk::capi::CheckFlag("part_colors", sp.part_colors));
+    SILK_CAPI_CHECK("silk_mesh_save", silk::capi::CheckEnum("format", sp.format, SILK_FORMAT_BY_EXTENSION, SILK_FORMAT_GLB,
+                                                            "silk_mesh_format"));
     const std::string p = path;
     const auto is = [&](int32_t format, const char* ext) {
       return sp.format == format || (sp.format == SILK_FORMAT_BY_EXTENSION && EndsWith(p, ext));

@@ -26,8 +26,8 @@ silk_status silk_model_load(const char* dir, const silk_model_options* options, 
     *out = nullptr;
     SILK_CAPI_REQUIRE(dir, "silk_model_load: dir is NULL");
     const silk_model_options o = options ? *options : silk_model_default_options();
-    SILK_CAPI_REQUIRE(o.decoder >= SILK_DECODER_DEFAULT && o.decoder <= SILK_DECODER_INT4,
-                      "silk_model_load: decoder is not a silk_decoder_precision (0..3)");
+    SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("decoder", o.decoder, SILK_DECODER_DEFAULT, SILK_DECODER_INT4,
+                                                             "silk_decoder_precision"));
     silk::ModelLoadOptions lo;
     lo.threads = o.threads;
     if (o.decoder == SILK_DECODER_INT8) lo.decoder = silk::DecoderPrecision::kInt8;

@@ -17,11 +17,11 @@ silk_model_options silk_model_default_options(void) { return silk_model_options{
 silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));
-  p.temperature = -1;
-  p.top_k = -1;
-  p.top_p = -1;
-  p.top_p_temperature = -1;
-  p.preprocessing = -1;
+  p.temperature = SILK_MODEL_VALUE;
+  p.top_k = SILK_MODEL_VALUE;
+  p.top_p = SILK_MODEL_VALUE;
+  p.top_p_temperature = SILK_MODEL_VALUE;
+  p.preprocessing = SILK_MODEL_VALUE;
   p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
   p.candidates = SILK_DEFAULT_CANDIDATES;
   p.orient = SILK_DEFAULT_ORIENT;

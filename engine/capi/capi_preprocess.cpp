@@ -52,8 +52,10 @@ silk_status silk_prepare_points(const silk_mesh* mesh, const double* cloud, size
     *out_rows = 0;
     SILK_CAPI_REQUIRE((mesh != nullptr) != (cloud != nullptr), "silk_prepare_points: give either a mesh or a cloud");
     SILK_CAPI_REQUIRE(!cloud || n_cloud > 0, "silk_prepare_points: the cloud has no points");
-    SILK_CAPI_REQUIRE(params->kind == SILK_PREPROCESS_SILK || params->kind == SILK_PREPROCESS_OFFICIAL,
-                      "silk_prepare_points: params->kind is not a silk_preprocess_kind");
+    for (const silk::Status& s : {silk::capi::CheckEnum("kind", params->kind, SILK_PREPROCESS_SILK,
+                                                        SILK_PREPROCESS_OFFICIAL, "silk_preprocess_kind"),
+                                  silk::capi::CheckFlag("round_float16", params->round_float16)})
+      if (!s.ok()) return SetError(s.WithContext("silk_prepare_points: "));
     const silk::PreprocessingParams p = silk::capi::FromCPreprocess(*params);
     if (silk::Status s = silk::ValidatePreprocessing(p); !s.ok()) return SetError(s.WithContext("silk_prepare_points: "));
     const size_t rows = cloud && n_cloud < static_cast<size_t>(p.n_points) ? n_cloud : static_cast<size_t>(p.n_points);

@@ -77,9 +77,10 @@ silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_para
     *out_mesh = nullptr;
     if (report) *report = nullptr;
     const silk_repair_params p = params ? *params : silk_repair_default_params();
-    SILK_CAPI_REQUIRE(p.holes >= SILK_HOLES_OFF && p.holes <= SILK_HOLES_REPAIR,
-                      "silk_tokens_repair: holes is not a silk_hole_policy (0..2)");
-    SILK_CAPI_REQUIRE(p.max_fill_loop >= 0, "silk_tokens_repair: max_fill_loop must be >= 0");
+    SILK_CAPI_CHECK("silk_tokens_repair",
+                    silk::capi::CheckEnum("holes", p.holes, SILK_HOLES_OFF, SILK_HOLES_REPAIR, "silk_hole_policy"));
+    SILK_CAPI_REQUIRE(p.max_fill_loop >= 0,
+                      "silk_tokens_repair: max_fill_loop " + std::to_string(p.max_fill_loop) + " must be >= 0");
     silk::GrammarOptions gopt;
     gopt.max_length = 0;
     gopt.window_rule = silk::WindowRule::kUnion;

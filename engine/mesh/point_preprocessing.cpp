@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "core/splitmix64.h"
 #include "mesh/close_vertex_merge.h"
@@ -16,8 +17,11 @@ namespace {
 constexpr int32_t kMaxPoints = 1 << 20;
 constexpr int32_t kMaxSurfaceSamples = 10000000;
 
-Status BadField(const char* field, const std::string& what) {
-  return InvalidArgument(std::string("preprocessing.") + field + " " + what);
+// "preprocessing.FIELD VALUE WHAT": the field and the value given.
+Status BadField(const char* field, double value, const std::string& what) {
+  std::ostringstream v;
+  v << value;
+  return InvalidArgument(std::string("preprocessing.") + field + " " + v.str() + " " + what);
 }
 
 std::vector<OrientedPoint> CloudPoints(const IoMesh& normalized, const std::vector<std::array<double, 3>>& normals) {
@@ -67,14 +71,15 @@ const char* PreprocessingKindName(PreprocessingKind kind) {
 
 Status ValidatePreprocessing(const PreprocessingParams& p) {
   if (p.kind != PreprocessingKind::kSilk && p.kind != PreprocessingKind::kOfficial)
-    return BadField("kind", "is neither \"silk\" nor \"official\"");
-  if (!(p.normalize_bound > 0 && p.normalize_bound <= 1)) return BadField("normalize_bound", "must be in (0, 1]");
+    return BadField("kind", static_cast<int>(p.kind), "is neither \"silk\" nor \"official\"");
+  if (!(p.normalize_bound > 0 && p.normalize_bound <= 1))
+    return BadField("normalize_bound", p.normalize_bound, "must be in (0, 1]");
   if (!(p.merge_distance_fraction >= 0 && p.merge_distance_fraction <= 0.5))
-    return BadField("merge_distance_fraction", "must be in [0, 0.5]");
+    return BadField("merge_distance_fraction", p.merge_distance_fraction, "must be in [0, 0.5]");
   if (p.surface_samples < 0 || p.surface_samples > kMaxSurfaceSamples)
-    return BadField("surface_samples", "must be in [0, " + std::to_string(kMaxSurfaceSamples) + "]");
+    return BadField("surface_samples", p.surface_samples, "must be in [0, " + std::to_string(kMaxSurfaceSamples) + "]");
   if (p.n_points <= 0 || p.n_points > kMaxPoints)
-    return BadField("n_points", "must be in [1, " + std::to_string(kMaxPoints) + "]");
+    return BadField("n_points", p.n_points, "must be in [1, " + std::to_string(kMaxPoints) + "]");
   return Status::Ok();
 }
 

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "decoder/face_cap.h"
 #include "decoder/grammar.h"
 #include "runtime/decoder_runner.h"
 #include "runtime/input_orientation.h"
@@ -387,6 +388,7 @@ StatusOr<TokenizerDecodedMesh> Generator::MeshSoFar() const {
   if (session_->options.unconstrained && session_->illegal_seen) return TokenizerDecodedMesh{};
   SILK_ASSIGN_OR_RETURN(TokenizerDecodedMesh mesh,
                         BuildMeshSoFar(session_->grammar, MeshBuildOptions{}, nullptr, &session_->so_far_cache));
+  if (session_->options.max_faces > 0) mesh = CapFaces(mesh, session_->options.max_faces);
   if (session_->orientation) OrientToInput(&mesh, *session_->orientation);
   return mesh;
 }
@@ -415,6 +417,7 @@ StatusOr<GenerateResult> Generator::Finish() {
   } else {
     SILK_ASSIGN_OR_RETURN(res.mesh, BuildMeshSoFar(s.grammar, bopt, &res.report));
   }
+  if (s.options.max_faces > 0) res.mesh = CapFaces(res.mesh, s.options.max_faces);  // the last layer may overshoot
   if (s.orientation) st.parts_flipped = OrientToInput(&res.mesh, *s.orientation).parts_flipped;
   st.seconds.build_mesh += Since(t0);
   st.faces = static_cast<int32_t>(res.mesh.faces.size());

@@ -336,20 +336,24 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
   ep.normalize = 2;
   silk_tokens* t = nullptr;
   EXPECT_EQ(silk_encode(m, &ep, &t, nullptr), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(silk_last_error()).find("normalize 2"), std::string::npos) << silk_last_error();
   ASSERT_EQ(silk_encode(m, nullptr, &t, nullptr), SILK_OK);
   silk_decode_params dp = silk_decode_default_params();
   dp.grid_coordinates = 3;
   silk_mesh* d = nullptr;
   EXPECT_EQ(silk_decode(t, &dp, &d), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(silk_last_error()).find("grid_coordinates 3"), std::string::npos) << silk_last_error();
   silk_save_params sp = silk_save_default_params();
   sp.part_colors = 5;
   EXPECT_EQ(silk_mesh_save_with_params(m, "unused.glb", &sp), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(silk_last_error()).find("part_colors 5"), std::string::npos) << silk_last_error();
   silk_tokens_destroy(t);
   if (silk_generation_available()) {
     silk_model_options o = silk_model_default_options();
     o.decoder = 7;
     silk_model* model = nullptr;
     EXPECT_EQ(silk_model_load(TinyModel().c_str(), &o, &model), SILK_ERR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(silk_last_error()).find("decoder 7"), std::string::npos) << silk_last_error();
     ASSERT_EQ(silk_model_load(TinyModel().c_str(), nullptr, &model), SILK_OK) << silk_last_error();
     silk_generator* g = nullptr;
     ASSERT_EQ(silk_generator_create(model, &g), SILK_OK);
@@ -378,6 +382,160 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
     silk_model_destroy(model);
   }
   silk_mesh_destroy(m);
+}
+
+// Issue 20, finding 3: SILK_MODEL_VALUE (-1) is the one "the model's value"; any other NaN,
+// infinite or negative sampling value, and an out-of-range flag, is refused, naming the field
+// and its value (before, NaN and every negative silently became the model's value).
+TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  silk_mesh* m = nullptr;
+  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &m), SILK_OK);
+  silk_model* model = nullptr;
+  ASSERT_EQ(silk_model_load(TinyModel().c_str(), nullptr, &model), SILK_OK) << silk_last_error();
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model, &g), SILK_OK);
+  struct Case {
+    const char* what;
+    void (*set)(silk_generate_params*);
+  };
+  const Case bad[] = {{"temperature nan", [](silk_generate_params* p) { p->temperature = std::nan(""); }},
+                      {"temperature -2", [](silk_generate_params* p) { p->temperature = -2; }},
+                      {"temperature -0.5", [](silk_generate_params* p) { p->temperature = -0.5; }},
+                      {"temperature -inf", [](silk_generate_params* p) { p->temperature = -INFINITY; }},
+                      {"temperature inf", [](silk_generate_params* p) { p->temperature = INFINITY; }},
+                      {"top_p nan", [](silk_generate_params* p) { p->top_p = std::nan(""); }},
+                      {"top_p -3", [](silk_generate_params* p) { p->top_p = -3; }},
+                      {"top_p 1.5", [](silk_generate_params* p) { p->top_p = 1.5; }},
+                      {"top_p_temperature nan", [](silk_generate_params* p) { p->top_p_temperature = std::nan(""); }},
+                      {"top_p_temperature -0.25", [](silk_generate_params* p) { p->top_p_temperature = -0.25; }},
+                      {"top_k -2", [](silk_generate_params* p) { p->top_k = -2; }},
+                      {"candidates -2", [](silk_generate_params* p) { p->candidates = -2; }},
+                      {"preprocessing -2", [](silk_generate_params* p) { p->preprocessing = -2; }},
+                      {"max_tokens -5", [](silk_generate_params* p) { p->max_tokens = -5; }},
+                      {"max_faces -1", [](silk_generate_params* p) { p->max_faces = -1; }},
+                      {"n_points -3", [](silk_generate_params* p) { p->n_points = -3; }},
+                      {"unconstrained 2", [](silk_generate_params* p) { p->unconstrained = 2; }},
+                      {"raw_points -1", [](silk_generate_params* p) { p->raw_points = -1; }},
+                      {"holes 3", [](silk_generate_params* p) { p->holes = 3; }},
+                      {"orient -1", [](silk_generate_params* p) { p->orient = -1; }}};
+  for (const Case& c : bad) {
+    silk_generate_params p = silk_generate_default_params();
+    p.max_tokens = 60;
+    c.set(&p);
+    silk_mesh* out = nullptr;
+    EXPECT_EQ(silk_generate(g, m, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << c.what;
+    EXPECT_NE(std::string(silk_last_error()).find(c.what), std::string::npos) << c.what << ": " << silk_last_error();
+    EXPECT_EQ(out, nullptr);
+    silk_mesh_destroy(out);
+  }
+  // The sentinel and the documented ranges' ends still run.
+  const Case good[] = {{"sentinel", [](silk_generate_params* p) {
+                          p->temperature = p->top_p = p->top_p_temperature = SILK_MODEL_VALUE;
+                          p->top_k = p->candidates = p->preprocessing = SILK_MODEL_VALUE;
+                        }},
+                       {"zeros", [](silk_generate_params* p) { p->temperature = p->top_p = p->top_p_temperature = 0; }},
+                       {"top_p 1", [](silk_generate_params* p) { p->top_p = 1; }}};
+  for (const Case& c : good) {
+    silk_generate_params p = silk_generate_default_params();
+    p.max_tokens = 60;
+    c.set(&p);
+    silk_mesh* out = nullptr;
+    EXPECT_EQ(silk_generate(g, m, &p, &out, nullptr, nullptr), SILK_OK) << c.what << ": " << silk_last_error();
+    silk_mesh_destroy(out);
+  }
+  silk_generate_params d = silk_generate_default_params();
+  EXPECT_EQ(d.temperature, SILK_MODEL_VALUE);
+  EXPECT_EQ(d.top_k, SILK_MODEL_VALUE);
+  EXPECT_EQ(d.top_p, SILK_MODEL_VALUE);
+  EXPECT_EQ(d.top_p_temperature, SILK_MODEL_VALUE);
+  EXPECT_EQ(d.preprocessing, SILK_MODEL_VALUE);
+  EXPECT_EQ(d.candidates, SILK_MODEL_VALUE);
+  silk_generator_destroy(g);
+  silk_model_destroy(model);
+  silk_mesh_destroy(m);
+}
+
+// Issue 20, finding 3: silk_prepare_points refuses an out-of-range flag or kind.
+TEST(CapiMisuse, PreparePointsRefusesOutOfRangeFlags) {
+  silk_mesh* m = nullptr;
+  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &m), SILK_OK);
+  struct Case {
+    const char* what;
+    void (*set)(silk_preprocess_params*);
+  };
+  const Case bad[] = {{"round_float16 2", [](silk_preprocess_params* p) { p->round_float16 = 2; }},
+                      {"round_float16 -1", [](silk_preprocess_params* p) { p->round_float16 = -1; }},
+                      {"kind 2", [](silk_preprocess_params* p) { p->kind = 2; }},
+                      {"normalize_bound nan", [](silk_preprocess_params* p) { p->normalize_bound = std::nan(""); }}};
+  for (const Case& c : bad) {
+    silk_preprocess_params p = silk_preprocess_default_params(SILK_PREPROCESS_OFFICIAL);
+    p.n_points = 64;
+    c.set(&p);
+    size_t rows = 0;
+    EXPECT_EQ(silk_prepare_points(m, nullptr, 0, &p, 1, nullptr, 0, &rows, nullptr), SILK_ERR_INVALID_ARGUMENT)
+        << c.what;
+    EXPECT_NE(std::string(silk_last_error()).find(c.what), std::string::npos) << c.what << ": " << silk_last_error();
+  }
+  for (int32_t flag : {0, 1}) {
+    silk_preprocess_params p = silk_preprocess_default_params(SILK_PREPROCESS_OFFICIAL);
+    p.n_points = 64;
+    p.round_float16 = flag;
+    size_t rows = 0;
+    std::vector<float> out(6 * 64);
+    EXPECT_EQ(silk_prepare_points(m, nullptr, 0, &p, 1, out.data(), out.size(), &rows, nullptr), SILK_OK)
+        << silk_last_error();
+  }
+  silk_mesh_destroy(m);
+}
+
+// Issue 20, finding 6: max_faces is a hard cap. The generation stops at the first layer end
+// with >= max_faces faces and returns at most max_faces of them, still edge- and
+// vertex-manifold and consistently oriented (before, max_faces 20 could return 447 faces).
+void ExpectCappedAndValid(const char* model_dir, std::initializer_list<int32_t> caps) {
+  silk_model* model = nullptr;
+  ASSERT_EQ(silk_model_load(model_dir, nullptr, &model), SILK_OK) << silk_last_error();
+  silk_mesh* input = nullptr;
+  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &input), SILK_OK);
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model, &g), SILK_OK);
+  for (int32_t cap : caps) {
+    int capped_runs = 0;
+    for (uint64_t seed = 0; seed < 3; ++seed) {
+      silk_generate_params p = silk_generate_default_params();
+      p.seed = seed;
+      p.candidates = 1;
+      p.max_faces = cap;
+      silk_mesh* out = nullptr;
+      silk_generate_stats st{};
+      ASSERT_EQ(silk_generate(g, input, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+      const std::string at = std::string(model_dir) + " cap " + std::to_string(cap) + " seed " + std::to_string(seed);
+      EXPECT_LE(silk_mesh_triangle_count(out), static_cast<size_t>(cap)) << at;
+      EXPECT_EQ(st.faces, static_cast<int32_t>(silk_mesh_triangle_count(out))) << at;
+      EXPECT_EQ(st.edge_manifold, 1) << at;
+      EXPECT_EQ(st.vertex_manifold, 1) << at;
+      EXPECT_EQ(st.consistently_oriented, 1) << at;
+      if (st.stop_reason == SILK_STOP_MAX_FACES) {
+        ++capped_runs;
+        EXPECT_GE(st.faces, 1) << at;
+      }
+      silk_mesh_destroy(out);
+    }
+    EXPECT_GE(capped_runs, 1) << model_dir << " cap " << cap << ": no run reached the cap";
+  }
+  silk_generator_destroy(g);
+  silk_mesh_destroy(input);
+  silk_model_destroy(model);
+}
+
+TEST(CapiMaxFaces, IsAHardCapWithAValidMeshTinyModel) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  ExpectCappedAndValid(TinyModel().c_str(), {1, 5, 20, 100});
+}
+
+TEST(CapiMaxFaces, IsAHardCapWithAValidMeshBundledModel) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  ExpectCappedAndValid(silk::testing::SourcePath("models/default").c_str(), {1, 20, 100});
 }
 
 TEST(CapiLog, TheCallbackFires) {

@@ -130,7 +130,8 @@ TEST_F(GeneratorTest, CapsAndCallbacks) {
     const auto faces = Run(o);
     if (faces.stats.stop_reason == "grammar_dead_end") continue;  // see GrammarStaysLive...
     EXPECT_EQ(faces.stats.stop_reason, "max_faces");
-    EXPECT_GE(faces.stats.faces, 10);
+    EXPECT_LE(faces.stats.faces, 10);  // a hard cap (face_cap.h)
+    EXPECT_GE(faces.stats.faces, 1);
     capped = true;
   }
   EXPECT_TRUE(capped);

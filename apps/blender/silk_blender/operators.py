@@ -31,7 +31,8 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                                "else 0.5); 0 = greedy", default=-1.0, min=-1.0, max=10.0)
     top_k: IntProperty(name="Top-k", description="-1 = the model's default (else 50); 0 = off",
                        default=-1, min=-1, max=10269)
-    max_faces: IntProperty(name="Max faces", description="Stop at the first layer end with this many faces (0 = off)",
+    max_faces: IntProperty(name="Max faces", description="At most this many faces: stop at the first layer end with this many, "
+                           "keep a valid subset (0 = off)",
                            default=0, min=0)
     max_tokens: IntProperty(name="Max tokens", description="Cap on generated ids (0 = the model's limit; else >= 14)",
                             default=0, min=0)

@@ -255,7 +255,7 @@ typedef struct silk_preprocess_params {
   double normalize_bound;         /* largest extent -> 2 * bound; 0.95 */
   double merge_distance_fraction; /* merge vertices closer than this share of the box diagonal (official 0.01) */
   int32_t surface_samples;        /* > n_points: sample this many, then draw n_points (official 50000); 0 = n_points */
-  int32_t round_float16;          /* 1: points and normals rounded to float16 before the draw (official) */
+  int32_t round_float16;          /* 1: points and normals rounded to float16 before the draw (official); 0 or 1 */
   int32_t n_points;               /* rows produced; 4096 */
 } silk_preprocess_params;
 /* The defaults of a kind (official: official_network.md §4; silk: Silk's own sampling). */
@@ -326,7 +326,7 @@ SILK_API void silk_generator_destroy(silk_generator* generator);
 typedef struct silk_generate_progress {
   int64_t tokens, max_tokens; /* max_tokens == tokens on the last id (a bar reaches 100 %) */
   int32_t components;         /* started so far */
-  int32_t faces;              /* at the last layer end when max_faces is set, else -1 */
+  int32_t faces;              /* at the last layer end when max_faces is set (before the cap), else -1 */
   double seconds;
 } silk_generate_progress;
 /* Called after every generated id (the last one included), on the calling thread. */
@@ -345,10 +345,15 @@ enum {
   SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report_json */
 };
 
+/* "Use the model's value" (model.json "sampling" / "preprocessing"): the one sentinel of
+ * silk_generate_params.temperature, top_k, top_p, top_p_temperature, preprocessing and
+ * candidates (their default). Exactly -1 (the value these fields always took); any other
+ * negative, NaN or infinite value is SILK_ERR_INVALID_ARGUMENT naming the field and value. */
+#define SILK_MODEL_VALUE (-1)
 /* The measured default of silk_generate_params.surface_tolerance; .candidates defaults to
  * SILK_MODEL_CANDIDATES, the model's own N (model.json "sampling.candidates", 1 when absent). */
 #define SILK_DEFAULT_SURFACE_TOLERANCE 2
-#define SILK_MODEL_CANDIDATES (-1)
+#define SILK_MODEL_CANDIDATES SILK_MODEL_VALUE
 #define SILK_DEFAULT_CANDIDATES SILK_MODEL_CANDIDATES
 /* Part orientation (silk_generate_params.orient). */
 typedef enum silk_orientation {
@@ -357,15 +362,23 @@ typedef enum silk_orientation {
 } silk_orientation;
 #define SILK_DEFAULT_ORIENT SILK_ORIENT_INPUT
 
-/* temperature, top_k, top_p, top_p_temperature and preprocessing default to -1: the model's
- * (model.json "sampling" / "preprocessing"; v2 models: 0.5, 50, 1.0, 0, Silk's kind). */
+/* temperature, top_k, top_p, top_p_temperature and preprocessing default to SILK_MODEL_VALUE (-1):
+ * the model's (model.json "sampling" / "preprocessing"; v2 models: 0.5, 50, 1.0, 0, Silk's kind).
+ * Any other negative, NaN or infinite value, top_p > 1, and a flag or enum out of its range is
+ * SILK_ERR_INVALID_ARGUMENT naming the field and its value. */
 typedef struct silk_generate_params {
   uint64_t seed;        /* default 0 */
   double temperature;   /* 0 = greedy */
   int32_t top_k;        /* 0 = off */
   double top_p;         /* 1.0 = off */
   int32_t max_tokens;   /* ids incl. EOS; 0 = the model's limit (default); else >= 14 (one triangle) */
-  int32_t max_faces;    /* stop at the first layer end with >= this many faces; 0 = off */
+  int32_t max_faces;    /* a hard cap on the result's faces; 0 = off (default). The generation stops at
+                           the first layer end with >= max_faces faces; since that layer may overshoot,
+                           the mesh (silk_generator_mesh too) keeps at most max_faces faces: in generation
+                           order, each unless it would give a vertex a second fan, so the result stays
+                           edge- and vertex-manifold and consistently oriented (it may have fewer than
+                           max_faces; unused vertices and empty parts are dropped). The ids are not cut:
+                           decoding them gives the whole last layer (docs/runtime.md "Caps") */
   int32_t holes;        /* silk_hole_policy, default SILK_HOLES_OFF */
   int32_t unconstrained;/* 1: no grammar mask (mesh = legal prefix); default 0 */
   int32_t n_points;     /* encoder points; 0 = the model's n_points (default) */

@@ -235,11 +235,13 @@ class Model(_Handle):
 
 
 
-def generate_params(seed: int = 0, temperature: float | None = -1, top_k: int | None = -1, top_p: float | None = -1,
+def generate_params(seed: int = 0, temperature: float | None = MODEL_VALUE, top_k: int | None = MODEL_VALUE,
+                    top_p: float | None = MODEL_VALUE,
                     max_tokens: int = 0, max_faces: int = 0, repair: str = "off", n_points: int = 0,
                     surface_tolerance: int | None = None, candidates: int | None = None,
                     orient: str | None = None) -> GenerateParams:
-    """silk_generate_params; negative or None sampling values mean the model's (model.json "sampling");
+    """silk_generate_params; None or -1 (MODEL_VALUE) sampling values mean the model's (model.json "sampling"),
+    any other negative or NaN value is refused by libsilk (SilkError, naming the field);
     surface_tolerance / orient ("input" or "tokens") None: libsilk's defaults; candidates None: the
     model's N (model.json "sampling.candidates", 1 when absent)."""
     p = lib().silk_generate_default_params()
@@ -251,7 +253,7 @@ def generate_params(seed: int = 0, temperature: float | None = -1, top_k: int | 
         p.surface_tolerance = int(surface_tolerance)
     if candidates is not None:
         p.candidates = int(candidates)
-    or_model = lambda v: -1 if v is None else v  # noqa: E731  (None: the model's, like -1)
+    or_model = lambda v: MODEL_VALUE if v is None else v  # noqa: E731  (None: the model's, like -1)
     p.seed, p.temperature = int(seed), float(or_model(temperature))
     p.top_k, p.top_p = int(or_model(top_k)), float(or_model(top_p))
     p.max_tokens, p.max_faces, p.n_points = int(max_tokens), int(max_faces), int(n_points)
