@@ -92,6 +92,12 @@ silk::StatusOr<silk::GenerateOptions> ToOptions(const silk_generate_params& p, c
   return o;
 }
 
+// The generator's own cancel flag alone (silk_generator_cancel): what the loops the caller's
+// callback is not polled in (input conversion and checks, scoring) poll in chunks.
+silk::CancelCheck FlagCheck(silk_generator* g) {
+  return [g] { return g->cancelled(); };
+}
+
 // The user's callbacks plus the generator's own cancel flag (silk_generator_cancel).
 silk::GenerateCallbacks ToCallbacks(silk_generator* g, const silk_generate_params& p) {
   silk::GenerateCallbacks cb;
@@ -102,13 +108,14 @@ silk::GenerateCallbacks ToCallbacks(silk_generator* g, const silk_generate_param
     };
   }
   cb.cancel = [g, fn = p.cancel, user = p.user_data]() {
-    return g->cancel_requested.load() || (fn && fn(user) != 0);
+    return g->cancelled() || (fn && fn(user) != 0);
   };
   return cb;
 }
 
-// The caller's input as the runtime's GenerationInput (mesh, point cloud, or raw points).
-silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in) {
+// The caller's input as the runtime's GenerationInput (mesh, point cloud, or raw points); polls
+// `cancel` every kCancelPollInterval points (a million take ~10 ms to convert and check).
+silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in, const silk::CancelCheck& cancel) {
   if ((in.mesh != nullptr) == (in.points != nullptr)) return silk::InvalidArgument("give exactly one of mesh, points");
   silk::GenerationInput out;
   if (in.mesh) {
@@ -121,13 +128,16 @@ silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in) {
     out.point_cloud = true;
     out.mesh.positions.resize(in.n_points);
     out.normals.resize(in.n_points);
-    for (size_t i = 0; i < in.n_points; ++i)
+    for (size_t i = 0; i < in.n_points; ++i) {
+      if (i % silk::kCancelPollInterval == 0 && silk::CancelRequested(cancel))
+        return silk::CancelledStatus("input conversion");
       for (int a = 0; a < 3; ++a) {
         out.mesh.positions[i][a] = in.points[6 * i + a];
         out.normals[i][a] = in.points[6 * i + 3 + a];
       }
+    }
   }
-  SILK_RETURN_IF_ERROR(silk::ValidateGenerationInput(out));
+  SILK_RETURN_IF_ERROR(silk::ValidateGenerationInput(out, cancel));
   return out;
 }
 
@@ -149,17 +159,22 @@ silk::Status PreparePoints(silk_generator* g, const silk::GenerationInput& in, c
 }
 
 // Checks the params and input, records the settings and prepares the encoder's points; what
-// starts a generation (step-wise or best of N) comes after.
+// starts a generation (step-wise or best of N) comes after. The run's cancel flag was cleared
+// as the call took the generator (BusyLock), so a cancel from then on is never lost.
 silk_status Prepare(silk_generator* g, const silk_generate_input& input, const silk_generate_params& p,
                     silk::GenerateOptions* options_out) {
+  const silk::GenerateCallbacks cb = ToCallbacks(g, p);
+  if (cb.cancel()) {  // the call's first poll, before the (long) input conversion
+    g->has_result = false;
+    return SetError(SILK_ERR_CANCELLED, "generation cancelled");
+  }
   auto options = ToOptions(p, g->model->config());
   if (!options.ok()) return SetError(options.status().WithContext("silk_generator_start: "));
   // Input problems name the input's file when it came from one.
   const std::string context = input.mesh && !input.mesh->source.empty() ? input.mesh->source + ": " : "input: ";
-  auto in = ToInput(input);
+  auto in = ToInput(input, FlagCheck(g));
   if (!in.ok()) return SetError(in.status().WithContext(context));
   g->has_result = false;
-  g->cancel_requested.store(false);
   GenerationSettings& s = g->settings;
   s = GenerationSettings{};
   s.input_name = input.mesh ? (input.mesh->source.empty() ? "mesh" : input.mesh->source) : "points";
@@ -169,8 +184,6 @@ silk_status Prepare(silk_generator* g, const silk_generate_input& input, const s
   s.input_faces = static_cast<int32_t>(in->mesh.triangles.size());
   s.params = p;
   s.options = *options;
-  const silk::GenerateCallbacks cb = ToCallbacks(g, p);
-  if (cb.cancel()) return SetError(SILK_ERR_CANCELLED, "generation cancelled");
   const auto t0 = Clock::now();
   if (silk::Status st = PreparePoints(g, *in, p, cb.cancel); !st.ok())
     return SetError(st.WithContext(context));
@@ -220,26 +233,48 @@ silk_status Deliver(silk_generator* g, silk::GenerateResult result, silk_mesh** 
   return Ok();
 }
 
-// Finishes the step-wise generation and scores it (its single candidate entry).
-silk_status Finish(silk_generator* g, silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+// A cancelled one-call run: stats of the generation (`st`, or the one in progress), which is
+// released unscored; its mesh is not returned and there is no report of it.
+silk_status Cancelled(silk_generator* g, silk_generate_stats* stats, const silk::GenerationStats* st = nullptr) {
+  const std::string message = silk_last_error();
+  if (stats) {
+    silk::capi::FillStats(st ? *st : g->generator.stats(), stats);
+    stats->stop_reason = SILK_STOP_CANCELLED;
+  }
+  if (g->generator.active()) {
+    auto r = g->generator.Finish();
+    if (r.ok()) g->result = std::move(*r);
+  }
+  g->has_result = false;
+  return SetError(SILK_ERR_CANCELLED, message);
+}
+
+// Finishes the generation and scores it (its single candidate entry); `scoring` (one-call runs)
+// may stop the scoring: then the run is cancelled.
+silk_status Finish(silk_generator* g, silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats,
+                   const silk::CancelCheck& scoring = {}) {
   auto r = g->generator.Finish();
   if (!r.ok()) return SetError(r.status());
-  silk::ScoreSingle(&*r, g->settings.options.sampling.seed, g->points);
+  if (silk::Status st = silk::ScoreSingle(&*r, g->settings.options.sampling.seed, g->points, scoring); !st.ok()) {
+    SetError(st);
+    g->result = std::move(*r);
+    return Cancelled(g, stats, &g->result.stats);
+  }
   return Deliver(g, std::move(*r), out_mesh, out_tokens, stats);
 }
 
-// A cancelled one-call run: stats of the generation in progress, which is then released.
-silk_status Cancelled(silk_generator* g, silk_generate_stats* stats) {
-  const std::string message = silk_last_error();
-  if (stats) {
-    silk::capi::FillStats(g->generator.stats(), stats);
-    stats->stop_reason = SILK_STOP_CANCELLED;
+// A one-call run cancelled after its last poll (while its output was built): the output is
+// dropped, as if the cancel had come a moment earlier.
+silk_status DropOutput(silk_generator* g, silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+  delete *out_mesh;
+  *out_mesh = nullptr;
+  if (out_tokens) {
+    delete *out_tokens;
+    *out_tokens = nullptr;
   }
-  if (g->generator.active()) {  // release the generation; its mesh is not returned
-    silk_mesh* discard = nullptr;
-    if (Finish(g, &discard, nullptr, nullptr) == SILK_OK) delete discard;
-  }
-  return SetError(SILK_ERR_CANCELLED, message);
+  if (stats) stats->stop_reason = SILK_STOP_CANCELLED;
+  g->has_result = false;
+  return SetError(SILK_ERR_CANCELLED, "generation cancelled");
 }
 
 // Best of N (candidates > 1): every candidate on the one generator, the closest returned.
@@ -247,7 +282,7 @@ silk_status RunBest(silk_generator* g, const silk_generate_input& input, const s
                     silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
   silk::GenerateOptions options;
   if (silk_status s = Prepare(g, input, p, &options); s != SILK_OK) return s;
-  auto r = silk::RunCandidates(&g->generator, g->points, options, ToCallbacks(g, p));
+  auto r = silk::RunCandidates(&g->generator, g->points, options, ToCallbacks(g, p), FlagCheck(g));
   if (!r.ok()) {
     const silk_status s = SetError(r.status());
     return s == SILK_ERR_CANCELLED ? Cancelled(g, stats) : s;
@@ -265,7 +300,7 @@ silk_status RunAll(silk_generator* g, const silk_generate_input& input, const si
   if (s == SILK_OK) s = Advance(g, INT32_MAX, SILK_ADVANCE_IDS);
   if (s == SILK_ERR_CANCELLED) return Cancelled(g, stats);
   if (s != SILK_OK) return s;
-  return Finish(g, out_mesh, out_tokens, stats);
+  return Finish(g, out_mesh, out_tokens, stats, FlagCheck(g));
 }
 
 }  // namespace
@@ -298,14 +333,19 @@ silk_status silk_generator_create(const silk_model* model, silk_generator** out)
   });
 }
 
-void silk_generator_destroy(silk_generator* generator) { delete generator; }
+void silk_generator_destroy(silk_generator* generator) {
+  if (!generator || silk::capi::DeferDestroy(generator)) return;  // deferred: the call inside frees it
+  delete generator;
+}
 
 silk_status silk_generator_start(silk_generator* g, const silk_generate_input* input, const silk_generate_params* params) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(g && input, "silk_generator_start: generator or input is NULL");
-    BusyLock lock(g);
+    BusyLock lock(g, BusyLock::kBegin);
     if (!lock.ok()) return Busy("silk_generator_start");
-    return Start(g, *input, params ? *params : silk_generate_default_params());
+    const silk_status s = Start(g, *input, params ? *params : silk_generate_default_params());
+    if (s == SILK_OK) lock.KeepRun();  // the run goes on until finish (a cancel now is for it)
+    return s;
   });
 }
 
@@ -326,9 +366,7 @@ silk_status silk_generator_advance(silk_generator* g, int32_t max_ids, int32_t u
 }
 
 void silk_generator_cancel(silk_generator* g) {
-  if (!g) return;
-  g->cancel_requested.store(true);  // first: Start polls the flag after clearing the terminate flag
-  g->generator.InterruptEncoder();
+  if (g) silk::capi::CancelRun(g);  // flag first: Start polls it after clearing the terminate flag
 }
 
 silk_status silk_generator_tokens(silk_generator* g, silk_tokens** out) {
@@ -386,7 +424,7 @@ silk_status silk_generator_finish(silk_generator* g, silk_mesh** out_mesh, silk_
     *out_mesh = nullptr;
     if (out_tokens) *out_tokens = nullptr;
     SILK_CAPI_REQUIRE(g, "silk_generator_finish: generator is NULL");
-    BusyLock lock(g);
+    BusyLock lock(g, BusyLock::kEnd);
     if (!lock.ok()) return Busy("silk_generator_finish");
     if (!g->generator.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_finish: no generation started");
     return Finish(g, out_mesh, out_tokens, stats);
@@ -419,9 +457,12 @@ silk_status silk_generate_input_run(silk_generator* g, const silk_generate_input
     *out_mesh = nullptr;
     if (out_tokens) *out_tokens = nullptr;
     SILK_CAPI_REQUIRE(g && input, "silk_generate: generator or input is NULL");
-    BusyLock lock(g);
+    BusyLock lock(g, BusyLock::kWhole);  // the run, and its cancel flag, begin here
     if (!lock.ok()) return Busy("silk_generate");
-    return RunAll(g, *input, params, out_mesh, out_tokens, stats);
+    const silk_status s = RunAll(g, *input, params, out_mesh, out_tokens, stats);
+    // The run ends here: a cancel that came before is honoured even if no poll was left to see it.
+    if (lock.EndRun() && s == SILK_OK) return DropOutput(g, out_mesh, out_tokens, stats);
+    return s;
   });
 }
 

@@ -1,10 +1,13 @@
 // The generation handles behind silk.h: silk_model shares its Model with every generator made
 // from it (destroy order is free), and silk_generator carries one step-wise generation, its
-// settings and a busy flag that turns concurrent use into SILK_ERR_BUSY.
+// settings and a call state word: busy (concurrent use -> SILK_ERR_BUSY), run, cancel, and a
+// destroy deferred to the end of the call in progress.
 #pragma once
 #if defined(SILK_HAVE_RUNTIME)
 #include <atomic>
+#include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -32,8 +35,15 @@ struct silk_generator {
   explicit silk_generator(std::shared_ptr<silk::Model> m) : model(std::move(m)), generator(*model) {}
   std::shared_ptr<silk::Model> model;  // keeps the model alive as long as the generator
   silk::Generator generator;
-  std::atomic<bool> busy{false};
-  std::atomic<bool> cancel_requested{false};
+  // kBusy: a call is inside. kRun: a run is in progress (a silk_generate* call; step-wise, from
+  // start until finish or a failed start). kCancel: the run is cancelled (set only under kRun,
+  // cleared when a run begins or ends). kDoomed: destroyed during a call, which frees the handle.
+  enum State : uint32_t { kBusy = 1, kRun = 2, kCancel = 4, kDoomed = 8 };
+  std::atomic<uint32_t> state{0};
+  // Held across a cancel's flag + encoder interrupt and while a run begins, so an interrupt meant
+  // for one run never reaches the next.
+  std::mutex cancel_mu;
+  bool cancelled() const { return (state.load() & kCancel) != 0; }
   GenerationSettings settings;
   silk::NormalizeTransform transform;  // model frame -> input frame (identity for raw points)
   std::vector<float> points;           // the encoder's input (kept for the trace)
@@ -44,19 +54,36 @@ struct silk_generator {
 
 namespace silk::capi {
 
-// Holds a generator's busy flag for one call; ok() is false when another thread holds it.
+// Holds a generator for one call: ok() is false (SILK_ERR_BUSY) when another call is inside.
+// Declared first in the call, so it is released last: its release ends the run when the call's
+// `run` says so, and frees the generator when silk_generator_destroy came during the call.
 class BusyLock {
  public:
-  explicit BusyLock(silk_generator* g) : g_(g), ok_(!g->busy.exchange(true)) {}
-  ~BusyLock() {
-    if (ok_) g_->busy.store(false);
-  }
+  enum Run {
+    kKeep,   // queries, advance: the run (and its cancel) go on
+    kBegin,  // start: a run begins (its cancel flag cleared in the same step); ends unless KeepRun()
+    kWhole,  // silk_generate*: a run begins and ends with the call
+    kEnd,    // finish: the run ends with the call
+  };
+  explicit BusyLock(silk_generator* g, Run run = kKeep);
+  ~BusyLock();
   bool ok() const { return ok_; }
+  // Ends the run now (kCancel with it): a cancel after this point is no longer for this run.
+  // Returns true when the run was cancelled before it ended.
+  bool EndRun();
+  void KeepRun() { end_run_ = false; }
 
  private:
   silk_generator* g_;
-  bool ok_;
+  bool ok_ = false;
+  bool end_run_;
 };
+
+// silk_generator_cancel / silk_generator_destroy on the state word (capi_generator_state.cpp).
+void CancelRun(silk_generator* g);
+// True: a call is inside; it is cancelled and frees the generator as it returns. False: the
+// caller deletes it now.
+bool DeferDestroy(silk_generator* g);
 
 // GenerationStats -> silk_generate_stats (the C view of the one stats struct).
 void FillStats(const GenerationStats& s, silk_generate_stats* out);

@@ -14,7 +14,7 @@ bool Contains(const std::vector<int32_t>& v, int32_t x) { return std::find(v.beg
 // Indices of the faces kept: a face joins when, for each corner, the corner has no face yet or
 // the face shares an edge with the corner's fan (its link gains an edge touching the link, so
 // the link stays connected: one fan).
-std::vector<size_t> KeptFaces(const DecodedMesh& mesh, size_t max_faces) {
+std::vector<size_t> KeptFaces(const TokenizerDecodedMesh& mesh, size_t max_faces) {
   std::vector<std::vector<int32_t>> link(mesh.positions.size());
   std::vector<size_t> kept;
   for (size_t i = 0; i < mesh.faces.size() && kept.size() < max_faces; ++i) {
@@ -35,7 +35,7 @@ std::vector<size_t> KeptFaces(const DecodedMesh& mesh, size_t max_faces) {
 
 }  // namespace
 
-DecodedMesh CapFaces(const DecodedMesh& mesh, int32_t max_faces) {
+TokenizerDecodedMesh CapFaces(const TokenizerDecodedMesh& mesh, int32_t max_faces) {
   if (max_faces <= 0 || mesh.faces.size() <= static_cast<size_t>(max_faces)) return mesh;
   const std::vector<size_t> kept = KeptFaces(mesh, static_cast<size_t>(max_faces));
   std::vector<int32_t> vertex_of(mesh.positions.size(), -1);
@@ -44,7 +44,7 @@ DecodedMesh CapFaces(const DecodedMesh& mesh, int32_t max_faces) {
     for (int32_t v : mesh.faces[i]) vertex_of[v] = 0;
     if (mesh.face_component[i] >= 0) component_of[mesh.face_component[i]] = 0;
   }
-  DecodedMesh out;
+  TokenizerDecodedMesh out;
   for (int32_t& c : component_of)
     if (c == 0) c = out.components++;
   for (size_t v = 0; v < mesh.positions.size(); ++v) {

@@ -12,6 +12,6 @@ namespace silk {
 // keeps one fan), until max_faces are kept. Edge-manifoldness and orientation hold for any
 // subset. Vertices no kept face uses and components left without faces are dropped (the rest
 // renumbered in order).
-DecodedMesh CapFaces(const DecodedMesh& mesh, int32_t max_faces);
+TokenizerDecodedMesh CapFaces(const TokenizerDecodedMesh& mesh, int32_t max_faces);
 
 }  // namespace silk

@@ -89,29 +89,45 @@ NearestPointIndex::Hit NearestPointIndex::Nearest(const Point3& q) const {
 }
 
 namespace {
-double MeanDistance(const std::vector<Point3>& from, const NearestPointIndex& to) {
+// The mean distance, summed in the same order whether or not `cancel` is polled (same value).
+StatusOr<double> MeanDistance(const std::vector<Point3>& from, const NearestPointIndex& to,
+                              const CancelCheck& cancel) {
   if (from.empty()) return kInf;
   double sum = 0;
-  for (const Point3& p : from) sum += to.Distance(p);
+  for (size_t i = 0; i < from.size(); ++i) {
+    if ((i + 1) % kChamferPollInterval == 0 && CancelRequested(cancel)) return CancelledStatus("scoring");
+    sum += to.Distance(from[i]);
+  }
   return sum / static_cast<double>(from.size());
 }
 }  // namespace
 
-ChamferDistance PointSetChamfer(const std::vector<Point3>& a, const std::vector<Point3>& b) {
+StatusOr<ChamferDistance> PointSetChamfer(const std::vector<Point3>& a, const std::vector<Point3>& b,
+                                          const CancelCheck& cancel) {
   ChamferDistance d;
-  d.a_to_b = MeanDistance(a, NearestPointIndex(b));
-  d.b_to_a = MeanDistance(b, NearestPointIndex(a));
+  SILK_ASSIGN_OR_RETURN(d.a_to_b, MeanDistance(a, NearestPointIndex(b), cancel));
+  if (CancelRequested(cancel)) return CancelledStatus("scoring");
+  SILK_ASSIGN_OR_RETURN(d.b_to_a, MeanDistance(b, NearestPointIndex(a), cancel));
   return d;
 }
 
-ChamferDistance MeshToPointsChamfer(const IoMesh& mesh, const std::vector<Point3>& points, int32_t samples,
-                                    uint64_t seed) {
+ChamferDistance PointSetChamfer(const std::vector<Point3>& a, const std::vector<Point3>& b) {
+  return PointSetChamfer(a, b, CancelCheck{}).value();
+}
+
+StatusOr<ChamferDistance> MeshToPointsChamfer(const IoMesh& mesh, const std::vector<Point3>& points, int32_t samples,
+                                              uint64_t seed, const CancelCheck& cancel) {
   auto s = SampleSurface(mesh, samples, seed);
   if (!s.ok() || s->empty()) return ChamferDistance{kInf, kInf};
   std::vector<Point3> a;
   a.reserve(s->size());
   for (const OrientedPoint& p : *s) a.push_back(p.position);
-  return PointSetChamfer(a, points);
+  return PointSetChamfer(a, points, cancel);
+}
+
+ChamferDistance MeshToPointsChamfer(const IoMesh& mesh, const std::vector<Point3>& points, int32_t samples,
+                                    uint64_t seed) {
+  return MeshToPointsChamfer(mesh, points, samples, seed, CancelCheck{}).value();
 }
 
 }  // namespace silk

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/cancel_check.h"
+#include "core/status.h"
 #include "io/io_mesh.h"
 
 namespace silk {
@@ -44,10 +46,18 @@ struct ChamferDistance {
 
 // Mean nearest-neighbour distances both ways (+infinity towards an empty set).
 ChamferDistance PointSetChamfer(const std::vector<Point3>& a, const std::vector<Point3>& b);
+// The same, polling `cancel` every kChamferPollInterval queries (a million points take seconds):
+// kCancelled when it asks to stop.
+StatusOr<ChamferDistance> PointSetChamfer(const std::vector<Point3>& a, const std::vector<Point3>& b,
+                                          const CancelCheck& cancel);
+inline constexpr int64_t kChamferPollInterval = 4096;  // nearest-point queries (~10 ms)
 
 // `samples` area-weighted surface samples of `mesh` (seeded) against `points`. A mesh without
 // a face of positive area scores +infinity both ways, so it never beats one with faces.
 ChamferDistance MeshToPointsChamfer(const IoMesh& mesh, const std::vector<Point3>& points, int32_t samples,
                                     uint64_t seed);
+// The same, polling `cancel` (as PointSetChamfer above).
+StatusOr<ChamferDistance> MeshToPointsChamfer(const IoMesh& mesh, const std::vector<Point3>& points, int32_t samples,
+                                              uint64_t seed, const CancelCheck& cancel);
 
 }  // namespace silk

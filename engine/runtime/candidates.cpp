@@ -43,23 +43,33 @@ uint64_t CandidateSeed(uint64_t seed, int32_t index) {
   return rng.Next();
 }
 
-double ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<float>& points) {
+StatusOr<double> ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<float>& points,
+                                    const CancelCheck& cancel) {
   IoMesh m;
   m.positions = DequantizePositions(mesh.positions);
   m.triangles = mesh.faces;
-  return MeshToPointsChamfer(m, PointRowPositions(points), kScoreSamples, kScoreSeed).value();
+  SILK_ASSIGN_OR_RETURN(const ChamferDistance d,
+                        MeshToPointsChamfer(m, PointRowPositions(points), kScoreSamples, kScoreSeed, cancel));
+  return d.value();
 }
 
-void ScoreSingle(GenerateResult* result, uint64_t seed, const std::vector<float>& points) {
+double ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<float>& points) {
+  return ScoreAgainstPoints(mesh, points, CancelCheck{}).value();
+}
+
+Status ScoreSingle(GenerateResult* result, uint64_t seed, const std::vector<float>& points,
+                   const CancelCheck& cancel) {
   const auto t0 = Clock::now();
-  const double score = ScoreAgainstPoints(result->mesh, points);
+  SILK_ASSIGN_OR_RETURN(const double score, ScoreAgainstPoints(result->mesh, points, cancel));
   result->stats.candidates = {Entry(*result, seed, score)};
   result->stats.chosen_candidate = 0;
   result->stats.seconds.scoring += std::chrono::duration<double>(Clock::now() - t0).count();
+  return Status::Ok();
 }
 
 StatusOr<GenerateResult> RunCandidates(Generator* generator, const std::vector<float>& points,
-                                       const GenerateOptions& options, const GenerateCallbacks& callbacks) {
+                                       const GenerateOptions& options, const GenerateCallbacks& callbacks,
+                                       const CancelCheck& scoring_cancel) {
   SILK_RETURN_IF_ERROR(CheckGenerateOptions(options));
   GenerateResult best;
   std::vector<CandidateScore> all;
@@ -71,7 +81,8 @@ StatusOr<GenerateResult> RunCandidates(Generator* generator, const std::vector<f
     o.sampling.seed = CandidateSeed(options.sampling.seed, i);
     SILK_ASSIGN_OR_RETURN(GenerateResult r, generator->Run(points, o, callbacks));
     const auto t0 = Clock::now();
-    all.push_back(Entry(r, o.sampling.seed, ScoreAgainstPoints(r.mesh, points)));
+    SILK_ASSIGN_OR_RETURN(const double score, ScoreAgainstPoints(r.mesh, points, scoring_cancel));
+    all.push_back(Entry(r, o.sampling.seed, score));
     r.stats.seconds.scoring += std::chrono::duration<double>(Clock::now() - t0).count();
     const PhaseSeconds& s = r.stats.seconds;
     using Sum = std::pair<double*, double>;

@@ -35,13 +35,14 @@ StatusOr<GenerationInput> LoadGenerationInput(const std::string& path) {
   return in;
 }
 
-Status ValidateGenerationInput(const GenerationInput& in) {
+Status ValidateGenerationInput(const GenerationInput& in, const CancelCheck& cancel) {
   if (in.mesh.positions.empty()) return InvalidArgument("input has no vertices");
   if (in.point_cloud) {
     if (in.normals.size() != in.mesh.positions.size())
       return InvalidArgument("point cloud: " + std::to_string(in.normals.size()) + " normals for " +
                              std::to_string(in.mesh.positions.size()) + " points");
     for (size_t i = 0; i < in.normals.size(); ++i) {
+      if (i % kCancelPollInterval == 0 && CancelRequested(cancel)) return CancelledStatus("the input check");
       const auto& n = in.normals[i];
       const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (!std::isfinite(len) || len == 0) return InvalidArgument("point " + std::to_string(i) + " has a zero or non-finite normal");

@@ -24,8 +24,9 @@ struct GenerationInput {
 // A PLY without faces is a point cloud and must carry nx/ny/nz; everything else is read as a
 // mesh (OBJ, PLY, STL, OFF, glTF/GLB, optionally gzipped).
 StatusOr<GenerationInput> LoadGenerationInput(const std::string& path);
-// Checks a caller-built input (sizes, finite values, index ranges).
-Status ValidateGenerationInput(const GenerationInput& input);
+// Checks a caller-built input (sizes, finite values, index ranges); polls `cancel` every
+// kCancelPollInterval points (kCancelled).
+Status ValidateGenerationInput(const GenerationInput& input, const CancelCheck& cancel = {});
 
 // The model's pre-processing (model.json "preprocessing", mesh/point_preprocessing.h) on a
 // validated input: normalised points and the transform back to the input frame.

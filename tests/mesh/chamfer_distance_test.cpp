@@ -1,5 +1,6 @@
 // Chamfer distance: the grid nearest-neighbour index against brute force on random sets (some
-// clustered, some queries far outside), the symmetric mean, and empty/degenerate meshes.
+// clustered, some queries far outside), the symmetric mean, empty/degenerate meshes, and the
+// cancel polled in chunks while scoring (issue 20).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -99,6 +100,24 @@ TEST(ChamferDistance, NoFaceOrNoPointIsInfinite) {
   EXPECT_TRUE(std::isinf(MeshToPointsChamfer(flat, pts, 100, 0).value()));
   EXPECT_TRUE(std::isinf(MeshToPointsChamfer(IoMesh{}, pts, 100, 0).value()));
   EXPECT_TRUE(std::isinf(NearestPointIndex({}).Distance({0, 0, 0})));
+}
+
+// Scoring against a million encoder points takes seconds: the cancellable form polls every
+// kChamferPollInterval queries, stops at the first poll that asks, and otherwise gives the
+// identical value.
+TEST(ChamferDistance, CancelIsPolledInChunksAndLeavesTheValue) {
+  SplitMix64 rng(9);
+  const std::vector<Point3> a = RandomPoints(&rng, static_cast<int>(3 * kChamferPollInterval + 5), 1.0, false);
+  const std::vector<Point3> b = RandomPoints(&rng, static_cast<int>(2 * kChamferPollInterval), 1.0, true);
+  int polls = 0;
+  const auto counted = PointSetChamfer(a, b, [&] { return ++polls < 0; });
+  ASSERT_TRUE(counted.ok());
+  EXPECT_EQ(counted->value(), PointSetChamfer(a, b).value());
+  EXPECT_EQ(polls, 3 + 1 + 2);  // a's queries, between the directions, b's queries
+  polls = 0;
+  const auto stopped = PointSetChamfer(a, b, [&] { return ++polls >= 2; });
+  EXPECT_EQ(stopped.status().code(), StatusCode::kCancelled);
+  EXPECT_EQ(polls, 2);
 }
 
 }  // namespace

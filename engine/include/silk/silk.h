@@ -29,7 +29,7 @@ typedef enum silk_status {
   SILK_ERR_CANCELLED = 7,
   SILK_ERR_INTERNAL = 8,
   SILK_ERR_BUFFER_TOO_SMALL = 9,
-  SILK_ERR_BUSY = 10           /* a silk_generator used from two threads at once ("generator busy") */
+  SILK_ERR_BUSY = 10           /* a silk_generator used by two calls at once ("generator busy") */
 } silk_status;
 
 /* Message of the last failed call on this thread ("" if none). Valid until the next call. */
@@ -276,11 +276,21 @@ SILK_API silk_status silk_prepare_points(const silk_mesh* mesh, const double* cl
  * Ownership and threads (onnxruntime-genai's model/generator split):
  *  - a silk_model is immutable; any number of generators on any threads may share it. Each
  *    generator holds a reference to its model, so silk_model_destroy may come before the
- *    generators' destroy calls (the model is freed with its last generator);
+ *    generators' destroy calls, even while they run (from another thread or from their own
+ *    callbacks): the model is freed with its last generator. Calls that take the model handle
+ *    itself (silk_generator_create, silk_model_get_*) must not race its destroy;
  *  - a silk_generator (KV cache, scratch, one generation in progress) serves one thread at a
  *    time: a call made while another thread is inside a call on the same generator fails with
- *    SILK_ERR_BUSY ("generator busy"). Use one generator per thread. silk_generator_cancel is
- *    the exception: any thread may call it at any time;
+ *    SILK_ERR_BUSY ("generator busy"). Use one generator per thread. Two calls are the
+ *    exceptions and may come at any time, from any thread or from the generator's own progress
+ *    and cancel callbacks: silk_generator_cancel, and silk_generator_destroy (see there: during a
+ *    call it cancels the call and the generator is freed as that call returns). After destroy the
+ *    handle is gone for every thread: a call that begins after it is a use after free;
+ *  - inputs are borrowed for the length of the call: a silk_mesh, point array or params passed to
+ *    silk_generate* / silk_generator_start must not be destroyed or changed until it returns
+ *    (its callbacks included). The same holds for every other call and handle (silk_mesh,
+ *    silk_tokens, silk_report): none is reference counted or locked, so destroy one only when no
+ *    call uses it;
  *  - all models in a process share one onnxruntime thread pool, sized by the first model loaded. */
 typedef struct silk_model silk_model;
 typedef struct silk_generator silk_generator;
@@ -321,6 +331,10 @@ SILK_API silk_status silk_model_get_preprocess_params(const silk_model* model, s
 SILK_API silk_status silk_model_get_info(const silk_model* model, silk_model_info* out);
 
 SILK_API silk_status silk_generator_create(const silk_model* model, silk_generator** out);
+/* NULL is ignored. With no call on the generator in progress it is freed at once. During a call
+ * (from another thread, or from that call's own progress or cancel callback) the call's run is
+ * cancelled (the call returns SILK_ERR_CANCELLED, or SILK_ERR_BUSY for a query) and the generator
+ * is freed as the call returns: never under it. Either way the handle must not be used again. */
 SILK_API void silk_generator_destroy(silk_generator* generator);
 
 typedef struct silk_generate_progress {
@@ -331,9 +345,9 @@ typedef struct silk_generate_progress {
 } silk_generate_progress;
 /* Called after every generated id (the last one included), on the calling thread. */
 typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* user_data);
-/* Polled before point sampling, every 65,536 surface samples, before the encoder and before every
- * id; non-zero stops the generation with SILK_ERR_CANCELLED. (silk_generator_cancel also stops an
- * encoder run in progress.) */
+/* Polled as the call begins, before point sampling, every 65,536 surface samples, before the
+ * encoder and before every id; non-zero stops the generation with SILK_ERR_CANCELLED.
+ * (silk_generator_cancel is honoured everywhere else too: see there.) */
 typedef int32_t (*silk_cancel_fn)(void* user_data);
 
 
@@ -469,8 +483,15 @@ typedef enum silk_advance_until {
  * generation finishable: finish then returns the completed layers and stop reason CANCELLED. */
 SILK_API silk_status silk_generator_advance(silk_generator* generator, int32_t max_ids, int32_t until,
                                             int32_t* out_done);
-/* Thread-safe, any time: the generation stops before its next id; a point sampling or encoder
- * run in progress is interrupted (silk_generator_start then returns SILK_ERR_CANCELLED). */
+/* Thread-safe, any time, also from the generator's own callbacks. Cancels the run in progress: a
+ * silk_generate* call from its first instruction to its return, or a step-wise generation from
+ * silk_generator_start until silk_generator_finish (or a failed start). With no run in progress
+ * it does nothing (it never reaches a later run). A cancelled silk_generate* returns
+ * SILK_ERR_CANCELLED with no mesh or ids, whenever in the call the cancel came (input conversion
+ * and checks, point sampling and the encoder run are interrupted, ids stop before the next one,
+ * scoring stops within ~10 ms; one that comes after the last of these still cancels the call).
+ * Step-wise: start returns SILK_ERR_CANCELLED, or (cancel after start's last poll) the next
+ * advance does; finish still returns the completed layers. */
 SILK_API void silk_generator_cancel(silk_generator* generator);
 SILK_API silk_status silk_generator_tokens(silk_generator* generator, silk_tokens** out);
 SILK_API silk_status silk_generator_mesh(silk_generator* generator, silk_mesh** out);
