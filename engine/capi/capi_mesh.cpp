@@ -5,10 +5,9 @@
 #include <memory>
 
 #include "capi/capi_internal.h"
-#include "io/files/file_bytes.h"
 #include "io/mesh_reader.h"
-#include "io/ply/ply_reader.h"
 #include "mesh/glb_parts.h"
+#include "mesh/input_file.h"
 #include "io/obj/obj_writer.h"
 #include "io/ply/ply_writer.h"
 
@@ -81,22 +80,16 @@ silk_status silk_mesh_load_with_params(const char* path, const silk_load_params*
     const silk_load_params lp = params ? *params : silk_load_default_params();
     SILK_CAPI_CHECK("silk_mesh_load", silk::capi::CheckFlag("point_clouds", lp.point_clouds));
     auto m = std::make_unique<silk_mesh>();
-    if (lp.point_clouds && EndsWith(path, ".ply")) {
-      // A PLY without faces is a point cloud and keeps its normals.
-      auto bytes = silk::ReadFileBytes(path, silk::ReadOptions{}.max_file_bytes);
-      if (!bytes.ok()) return SetError(bytes.status());
-      auto pc = silk::ReadPlyPointCloud(*bytes, path);
-      if (!pc.ok()) return SetError(pc.status());
-      if (pc->mesh.triangles.empty()) {
-        if (pc->normals.empty())
-          return SetError(SILK_ERR_INVALID_ARGUMENT,
-                          std::string(path) + ": a point-cloud PLY (no faces) needs per-vertex normals nx ny nz");
-        m->mesh = std::move(pc->mesh);
-        m->normals = std::move(pc->normals);
-        m->source = path;
-        *out = m.release();
-        return Ok();
-      }
+    if (lp.point_clouds) {
+      // A PLY without faces or an XYZ/PTS file is a point cloud: its normals, or estimated ones.
+      auto in = silk::ReadGenerationInputFile(path);
+      if (!in.ok()) return SetError(in.status());
+      m->mesh = std::move(in->mesh);
+      m->normals = std::move(in->normals);
+      m->triangle_component.assign(m->mesh.triangles.size(), 0);
+      m->source = path;
+      *out = m.release();
+      return Ok();
     }
     auto r = silk::ReadMeshFile(path);
     if (!r.ok()) return SetError(r.status());

@@ -17,6 +17,7 @@ const char* MeshFormatName(MeshFormat f) {
     case MeshFormat::kGltf: return "glTF";
     case MeshFormat::kGlb: return "GLB";
     case MeshFormat::kPmd: return "PMD";
+    case MeshFormat::kXyz: return "XYZ";
   }
   return "unknown";
 }
@@ -44,6 +45,7 @@ std::optional<MeshFormat> MeshFormatFromPath(const std::string& path) {
   if (EndsWith(p, ".gltf")) return MeshFormat::kGltf;
   if (EndsWith(p, ".glb")) return MeshFormat::kGlb;
   if (EndsWith(p, ".pmd")) return MeshFormat::kPmd;
+  if (EndsWith(p, ".xyz") || EndsWith(p, ".pts")) return MeshFormat::kXyz;
   return std::nullopt;
 }
 

@@ -8,7 +8,8 @@
 
 namespace silk {
 
-enum class MeshFormat { kObj, kPly, kStl, kOff, kGltf, kGlb, kPmd };
+// kXyz is a point cloud (.xyz, .pts: io/xyz/xyz_reader.h); read as a mesh it has no faces.
+enum class MeshFormat { kObj, kPly, kStl, kOff, kGltf, kGlb, kPmd, kXyz };
 
 const char* MeshFormatName(MeshFormat f);
 

@@ -13,6 +13,7 @@
 #include "io/ply/ply_reader.h"
 #include "io/read_error.h"
 #include "io/stl/stl_reader.h"
+#include "io/xyz/xyz_reader.h"
 
 namespace silk {
 
@@ -29,6 +30,11 @@ StatusOr<IoMesh> Dispatch(std::string_view bytes, MeshFormat fmt, const std::str
       case MeshFormat::kGltf: return ReadGltf(bytes, false, name, base_dir, from_memory, opts);
       case MeshFormat::kGlb: return ReadGltf(bytes, true, name, base_dir, from_memory, opts);
       case MeshFormat::kPmd: return ReadPmd(bytes, name, opts);
+      case MeshFormat::kXyz: {
+        SILK_ASSIGN_OR_RETURN(IoPointCloud pc, ReadXyz(bytes, name, opts));
+        return ParseErrorIn(name, "no faces (an XYZ file is a point cloud of " +
+                                      std::to_string(pc.mesh.positions.size()) + " points)");
+      }
     }
   } catch (const std::bad_alloc&) {
     return LimitErrorIn(name, "out of memory");
@@ -47,7 +53,7 @@ std::string DirName(const std::string& path) {
 
 }  // namespace
 
-StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts) {
+StatusOr<std::string> ReadInputFileBytes(const std::string& path, const ReadOptions& opts) {
   std::string bytes;
   {
     SILK_ASSIGN_OR_RETURN(bytes, ReadFileBytes(path, opts.max_file_bytes));
@@ -56,11 +62,16 @@ StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts) 
     SILK_ASSIGN_OR_RETURN(std::string inflated, GunzipBytes(bytes, path, InflatedLimit(opts, bytes.size())));
     bytes.swap(inflated);
   }
+  return bytes;
+}
+
+StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts) {
+  SILK_ASSIGN_OR_RETURN(std::string bytes, ReadInputFileBytes(path, opts));
   const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
   std::optional<MeshFormat> fmt = MeshFormatFromPath(path);
   const std::optional<MeshFormat> sniffed = SniffMeshFormat(data, bytes.size());
   if (!fmt) {
-    if (!sniffed) return Unsupported(path + ": unknown mesh format (extension not one of .obj .ply .stl .off .gltf .glb .pmd)");
+    if (!sniffed) return Unsupported(path + ": unknown mesh format (extension not one of .obj .ply .stl .off .gltf .glb .pmd .xyz .pts)");
     fmt = sniffed;
   }
   // A .gltf that is really a GLB container is read as GLB; a .glb without the magic is an

@@ -4,10 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "io/files/file_bytes.h"
-#include "io/mesh_format.h"
-#include "io/mesh_reader.h"
-#include "io/ply/ply_reader.h"
+#include "mesh/input_file.h"
 #include "mesh/mesh_checks.h"
 #include "mesh/surface_sampling.h"
 #include "tokenizer/cleanup/quantize.h"
@@ -16,20 +13,10 @@ namespace silk {
 
 StatusOr<GenerationInput> LoadGenerationInput(const std::string& path) {
   GenerationInput in;
-  auto fmt = MeshFormatFromPath(path);
-  if (fmt && *fmt == MeshFormat::kPly && !HasGzipSuffix(path)) {
-    SILK_ASSIGN_OR_RETURN(std::string bytes, ReadFileBytes(path, ReadOptions{}.max_file_bytes));
-    SILK_ASSIGN_OR_RETURN(PlyPointCloud pc, ReadPlyPointCloud(bytes, path));
-    if (pc.mesh.triangles.empty()) {
-      if (pc.normals.empty())
-        return InvalidArgument(path + ": a point-cloud PLY (no faces) needs per-vertex normals nx ny nz");
-      in.point_cloud = true;
-      in.normals = std::move(pc.normals);
-    }
-    in.mesh = std::move(pc.mesh);
-  } else {
-    SILK_ASSIGN_OR_RETURN(in.mesh, ReadMeshFile(path));
-  }
+  SILK_ASSIGN_OR_RETURN(IoPointCloud file, ReadGenerationInputFile(path));
+  in.point_cloud = file.mesh.triangles.empty();
+  in.mesh = std::move(file.mesh);
+  if (in.point_cloud) in.normals = std::move(file.normals);
   Status s = ValidateGenerationInput(in);
   if (!s.ok()) return s.WithContext(path + ": ");
   return in;

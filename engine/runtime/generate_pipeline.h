@@ -1,5 +1,5 @@
-// The file/mesh side of generation around Generator: reading the input (point-cloud PLY with
-// normals, or any mesh), normalising it and sampling the encoder's points, and putting the
+// The file/mesh side of generation around Generator: reading the input (a point cloud, or any
+// mesh), normalising it and sampling the encoder's points, and putting the
 // generated mesh back into the input's frame with its verdicts. Shared by silkgen and the C API.
 #pragma once
 #include <array>
@@ -21,8 +21,9 @@ struct GenerationInput {
   bool point_cloud = false;
 };
 
-// A PLY without faces is a point cloud and must carry nx/ny/nz; everything else is read as a
-// mesh (OBJ, PLY, STL, OFF, glTF/GLB, optionally gzipped).
+// A PLY without faces or an XYZ/PTS file is a point cloud, with its own normals or estimated
+// ones (ReadGenerationInputFile); everything else is read as a mesh (OBJ, PLY, STL, OFF,
+// glTF/GLB, PMD, optionally gzipped).
 StatusOr<GenerationInput> LoadGenerationInput(const std::string& path);
 // Checks a caller-built input (sizes, finite values, index ranges); polls `cancel` every
 // kCancelPollInterval points (kCancelled).

@@ -9,6 +9,7 @@
 
 #include "core/status.h"
 #include "io/io_mesh.h"
+#include "io/io_point_cloud.h"
 #include "io/read_options.h"
 
 namespace silk {
@@ -21,10 +22,7 @@ StatusOr<IoMesh> ReadPly(std::string_view data, const std::string& name, const R
 
 // A PLY that may be a point cloud: faces optional, per-vertex normals (nx, ny, nz) read when
 // the vertex element has all three (`normals` empty otherwise, else one per vertex).
-struct PlyPointCloud {
-  IoMesh mesh;
-  std::vector<std::array<double, 3>> normals;
-};
+using PlyPointCloud = IoPointCloud;
 StatusOr<PlyPointCloud> ReadPlyPointCloud(std::string_view data, const std::string& name,
                                           const ReadOptions& opts = {});
 

@@ -1,0 +1,168 @@
+// Minimum spanning forest over the kNN graph (Kruskal with a union-find) and the sign
+// propagation from each tree's outward seed.
+#include "mesh/normal_orientation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+namespace silk {
+
+namespace {
+
+double Dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Another sheet (CrossesSheets): normal lines within ~26 degrees of each other, and an edge
+// within ~37 degrees of both normals; measured on the closed dev meshes (docs/normals.md).
+constexpr double kSheetParallel = 0.9, kSheetSteep = 0.8;
+
+struct Edge {
+  double weight;
+  int32_t a, b;  // a < b
+  bool operator<(const Edge& o) const {
+    return weight < o.weight || (weight == o.weight && (a < o.a || (a == o.a && b < o.b)));
+  }
+};
+
+int32_t Find(std::vector<int32_t>* parent, int32_t x) {
+  std::vector<int32_t>& p = *parent;
+  while (p[x] != x) x = p[x] = p[p[x]];
+  return x;
+}
+
+// |cosine| between the edge a-b and each normal (0: the edge lies in both tangent planes).
+std::pair<double, double> EdgeSlopes(const std::vector<Point3>& points, const std::vector<Point3>& normals, int32_t a, int32_t b) {
+  const Point3 e{points[b][0] - points[a][0], points[b][1] - points[a][1], points[b][2] - points[a][2]};
+  const double len = std::sqrt(Dot(e, e));
+  if (!(len > 0)) return {0, 0};
+  return {std::fabs(Dot(e, normals[a])) / len, std::fabs(Dot(e, normals[b])) / len};
+}
+
+
+// True when b lies on another sheet of the surface than a: nearly parallel normal lines and an
+// edge that leaves both tangent planes steeply; on a closed surface two such sheets face
+// opposite ways along the edge (both away from, or both toward, the space between them).
+bool CrossesSheets(const std::vector<Point3>& points, const std::vector<Point3>& normals, int32_t a, int32_t b) {
+  const auto [sa, sb] = EdgeSlopes(points, normals, a, b);
+  return std::fabs(Dot(normals[a], normals[b])) > kSheetParallel && sa > kSheetSteep && sb > kSheetSteep;
+}
+
+// The forest as adjacency lists (CSR: offsets n + 1, targets).
+struct Forest {
+  std::vector<int32_t> offset, target;
+};
+
+Forest SpanningForest(const KnnGraph& graph, const std::vector<Point3>& normals) {
+  const size_t n = normals.size();
+  std::vector<Edge> edges;
+  edges.reserve(n * graph.k);
+  for (size_t i = 0; i < n; ++i)
+    for (int32_t s = 0; s < graph.k; ++s) {
+      const int32_t j = graph.Of(i)[s];
+      const int32_t a = std::min<int32_t>(static_cast<int32_t>(i), j), b = std::max<int32_t>(static_cast<int32_t>(i), j);
+      edges.push_back({1 - std::fabs(Dot(normals[a], normals[b])), a, b});  // a mutual pair appears twice
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<int32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<std::pair<int32_t, int32_t>> kept;
+  kept.reserve(n);
+  for (const Edge& e : edges) {
+    const int32_t ra = Find(&parent, e.a), rb = Find(&parent, e.b);
+    if (ra == rb) continue;
+    parent[std::max(ra, rb)] = std::min(ra, rb);
+    kept.push_back({e.a, e.b});
+  }
+  Forest f;
+  f.offset.assign(n + 1, 0);
+  for (const auto& [a, b] : kept) ++f.offset[a + 1], ++f.offset[b + 1];
+  for (size_t i = 0; i < n; ++i) f.offset[i + 1] += f.offset[i];
+  f.target.resize(kept.size() * 2);
+  std::vector<int32_t> fill(f.offset.begin(), f.offset.end() - 1);
+  for (const auto& [a, b] : kept) f.target[fill[a]++] = b, f.target[fill[b]++] = a;
+  return f;
+}
+
+// Breadth-first order of the tree holding `root`, marking `seen`.
+void TreeOrder(const Forest& f, int32_t root, std::vector<char>* seen, std::vector<int32_t>* order,
+               std::vector<int32_t>* parent_of) {
+  order->clear();
+  order->push_back(root);
+  (*seen)[root] = 1;
+  (*parent_of)[root] = -1;
+  for (size_t h = 0; h < order->size(); ++h) {
+    const int32_t u = (*order)[h];
+    for (int32_t e = f.offset[u]; e < f.offset[u + 1]; ++e) {
+      const int32_t v = f.target[e];
+      if ((*seen)[v]) continue;
+      (*seen)[v] = 1;
+      (*parent_of)[v] = u;
+      order->push_back(v);
+    }
+  }
+}
+
+// The tree's member farthest from the members' centroid (lowest index among equals), with its
+// normal turned away from the centroid.
+int32_t OutwardSeed(const std::vector<Point3>& points, const std::vector<int32_t>& members, std::vector<Point3>* normals) {
+  Point3 c{0, 0, 0};
+  for (int32_t m : members)
+    for (int a = 0; a < 3; ++a) c[a] += points[m][a];
+  for (double& x : c) x /= static_cast<double>(members.size());
+  int32_t seed = members[0];
+  double best = -1;
+  for (int32_t m : members) {
+    const Point3 d{points[m][0] - c[0], points[m][1] - c[1], points[m][2] - c[2]};
+    const double d2 = Dot(d, d);
+    if (d2 > best || (d2 == best && m < seed)) best = d2, seed = m;
+  }
+  const Point3 out{points[seed][0] - c[0], points[seed][1] - c[1], points[seed][2] - c[2]};
+  Point3& n = (*normals)[seed];
+  if (Dot(n, out) < 0)
+    for (double& x : n) x = -x;
+  return seed;
+}
+
+// Divergence theorem: over a closed surface, the integral of n . (p - c) is 3 x the volume, so
+// outward normals give a positive sum over uniform samples; a tree whose sum is negative is
+// reversed as a whole (this corrects a seed whose own normal was unreliable, e.g. at a tip).
+void VoteOutward(const std::vector<Point3>& points, const std::vector<int32_t>& members, std::vector<Point3>* normals) {
+  Point3 c{0, 0, 0};
+  for (int32_t m : members)
+    for (int a = 0; a < 3; ++a) c[a] += points[m][a];
+  for (double& x : c) x /= static_cast<double>(members.size());
+  double sum = 0;
+  for (int32_t m : members) sum += Dot((*normals)[m], Point3{points[m][0] - c[0], points[m][1] - c[1], points[m][2] - c[2]});
+  if (sum < 0)
+    for (int32_t m : members)
+      for (double& x : (*normals)[m]) x = -x;
+}
+
+}  // namespace
+
+int32_t OrientNormals(const std::vector<Point3>& points, const KnnGraph& graph, std::vector<Point3>* normals) {
+  const size_t n = points.size();
+  const Forest f = SpanningForest(graph, *normals);
+  std::vector<char> seen(n, 0), reseen(n, 0);
+  std::vector<int32_t> members, order, parent_of(n, -1);
+  int32_t trees = 0;
+  for (size_t start = 0; start < n; ++start) {
+    if (seen[start]) continue;
+    ++trees;
+    TreeOrder(f, static_cast<int32_t>(start), &seen, &members, &parent_of);
+    const int32_t seed = OutwardSeed(points, members, normals);
+    TreeOrder(f, seed, &reseen, &order, &parent_of);
+    for (size_t h = 1; h < order.size(); ++h) {
+      const int32_t v = order[h];
+      Point3& nv = (*normals)[v];
+      const bool opposite = CrossesSheets(points, *normals, parent_of[v], v);
+      if ((Dot(nv, (*normals)[parent_of[v]]) < 0) != opposite)
+        for (double& x : nv) x = -x;
+    }
+    VoteOutward(points, order, normals);
+  }
+  return trees;
+}
+
+}  // namespace silk

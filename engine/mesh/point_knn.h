@@ -1,0 +1,47 @@
+// k nearest neighbours of every point of a cloud (a k-d tree of our own): the neighbourhoods
+// normal estimation fits its planes to and the graph its orientation is propagated along.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace silk {
+
+using Point3 = std::array<double, 3>;
+
+// A k-d tree over a fixed point set (median splits on the widest axis, leaves of <= 8 points).
+class PointKdTree {
+ public:
+  explicit PointKdTree(const std::vector<Point3>& points);
+  // The k points nearest to q as (squared distance, index), nearest first, equal distances by
+  // lower index (so the answer never depends on the tree's shape); point `skip` (-1: none) is
+  // left out; fewer when the set is smaller.
+  void Nearest(const Point3& q, int32_t k, int32_t skip, std::vector<std::pair<double, int32_t>>* out) const;
+
+ private:
+  struct Node {
+    int32_t begin = 0, end = 0;  // range of order_ (leaves)
+    int32_t left = -1, right = -1;
+    int32_t axis = 0;
+    double split = 0;
+  };
+  int32_t Build(int32_t begin, int32_t end, int32_t depth);
+  void Search(int32_t node, const Point3& q, size_t k, int32_t skip,
+              std::vector<std::pair<double, int32_t>>* heap) const;
+  std::vector<Point3> points_;   // in order_'s order
+  std::vector<int32_t> order_;   // original index of each points_ entry
+  std::vector<Node> nodes_;
+};
+
+// Every point's k nearest other points: neighbors[i * k .. i * k + k), nearest first, ties by
+// lower index; k is min(k, n - 1). Deterministic (one thread, no hashing).
+struct KnnGraph {
+  int32_t k = 0;
+  std::vector<int32_t> neighbors;
+  const int32_t* Of(size_t i) const { return neighbors.data() + i * static_cast<size_t>(k); }
+};
+KnnGraph NearestNeighbors(const std::vector<Point3>& points, int32_t k);
+
+}  // namespace silk
