@@ -8,6 +8,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "model_locate.h"
 #include "progress_bar.h"
@@ -31,6 +32,12 @@ std::string CheckOutputPath(const std::string& path) {
   return path + ": unknown output format (use .glb, .obj or .ply)";
 }
 
+bool EndsWithPly(const std::string& path) {
+  std::string p = path;
+  for (char& c : p) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return p.size() >= 4 && p.compare(p.size() - 4, 4, ".ply") == 0;
+}
+
 // Writes text through a temporary file and a rename, so a failed run leaves no partial file.
 void WriteTextFile(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
@@ -48,8 +55,23 @@ void WriteTextFile(const std::string& path, const std::string& text) {
   }
 }
 
+// The encoder's points (rows of x y z nx ny nz) as an ascii PLY point cloud, exact doubles.
+std::string PointsPly(const std::vector<double>& rows) {
+  std::string text = "ply\nformat ascii 1.0\ncomment silkgen --save-points: the encoder's points, input frame\n"
+                     "element vertex " + std::to_string(rows.size() / 6) + "\n";
+  for (const char* p : {"x", "y", "z", "nx", "ny", "nz"}) text += std::string("property double ") + p + "\n";
+  text += "end_header\n";
+  char buf[32];
+  for (size_t i = 0; i < rows.size(); ++i) {
+    std::snprintf(buf, sizeof buf, "%.17g", rows[i]);
+    text += buf;
+    text += i % 6 == 5 ? '\n' : ' ';
+  }
+  return text;
+}
+
 struct Args {
-  std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path;
+  std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path, save_points;
   int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
   // Sampling, pre-processing and decoder precision default to model.json's; these sentinels
   // (SILK_MODEL_VALUE / empty) mean "not given"; the options' ranges refuse any other negative.
@@ -62,7 +84,8 @@ struct Args {
 };
 
 void AddOptions(CLI::App& app, Args& a) {
-  app.add_option("input", a.input, "Point-cloud PLY with normals (nx ny nz), or a mesh: PLY OBJ STL OFF glTF GLB")
+  app.add_option("input", a.input, "A point cloud (PLY without faces, XYZ/PTS; normals estimated when it has none), or a "
+                 "mesh: PLY OBJ STL OFF glTF GLB PMD")
       ->required()->check(CLI::ExistingFile);
   app.add_option("-o,--output", a.output, "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
   app.add_option("--model", a.model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx); default: the bundled model");
@@ -100,6 +123,9 @@ void AddOptions(CLI::App& app, Args& a) {
                  "input's normals) or tokens (the winding the ids carry, as silktok decode gives it)")
       ->check(CLI::IsMember({"input", "tokens"}))->capture_default_str();
   app.add_option("--stats", a.stats_path, "Write run figures as JSON");
+  app.add_option("--save-points", a.save_points,
+                 "Write the points the encoder saw, with their normals (estimated ones for a cloud without), in the "
+                 "input's frame, as an ascii PLY point cloud")->type_name("FILE.ply");
   app.add_option("--tokens", a.tokens_path, "Write the generated ids, one per line (EOS 10267 last when one was generated)");
   app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")->check(CLI::Range(0, 1 << 20));
   app.add_option("--decoder", a.decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
@@ -214,6 +240,7 @@ int Run(const Args& a, uint64_t seed) {
   sp.part_colors = a.part_colors ? 1 : 0;
   if (!a.output.empty()) result.Save(a.output, sp);
   if (!a.tokens_path.empty()) silk_cpp::Tokens::FromIds(ids).Save(a.tokens_path);
+  if (!a.save_points.empty()) WriteTextFile(a.save_points, PointsPly(generator.Points()));
   if (!a.trace_path.empty()) WriteTextFile(a.trace_path, generator.ReportJson(true));
   if (!a.stats_path.empty()) WriteTextFile(a.stats_path, generator.ReportJson(false));
   if (!a.quiet)
@@ -254,6 +281,8 @@ int main(int argc, char** argv) {
   }
   if (!a.output.empty())
     if (std::string e = CheckOutputPath(a.output); !e.empty()) return Fail(e);
+  if (!a.save_points.empty() && !EndsWithPly(a.save_points))
+    return Fail(a.save_points + ": --save-points writes a PLY point cloud (use a .ply name)");
   uint64_t seed = 0;
   if (!ParseSeed(a.seed_text, &seed)) {
     std::fprintf(stderr, "silkgen: --seed: '%s' is neither an unsigned integer nor 'random'\n", a.seed_text.c_str());

@@ -55,6 +55,10 @@ silk_status silk_generator_finish(silk_generator*, silk_mesh** m, silk_tokens**,
   return NoRuntime();
 }
 silk_status silk_generator_report_json(silk_generator*, int32_t, char*, size_t, size_t*) { return NoRuntime(); }
+silk_status silk_generator_points(silk_generator*, double*, size_t, size_t* rows) {
+  if (rows) *rows = 0;
+  return NoRuntime();
+}
 silk_status silk_generate_input_run(silk_generator*, const silk_generate_input*, const silk_generate_params*,
                                     silk_mesh** m, silk_tokens**, silk_generate_stats*) {
   if (m) *m = nullptr;

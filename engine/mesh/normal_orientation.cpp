@@ -5,17 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <utility>
 
 namespace silk {
 
 namespace {
 
 double Dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// Another sheet (CrossesSheets): normal lines within ~26 degrees of each other, and an edge
-// within ~37 degrees of both normals; measured on the closed dev meshes (docs/normals.md).
-constexpr double kSheetParallel = 0.9, kSheetSteep = 0.8;
 
 struct Edge {
   double weight;
@@ -29,23 +24,6 @@ int32_t Find(std::vector<int32_t>* parent, int32_t x) {
   std::vector<int32_t>& p = *parent;
   while (p[x] != x) x = p[x] = p[p[x]];
   return x;
-}
-
-// |cosine| between the edge a-b and each normal (0: the edge lies in both tangent planes).
-std::pair<double, double> EdgeSlopes(const std::vector<Point3>& points, const std::vector<Point3>& normals, int32_t a, int32_t b) {
-  const Point3 e{points[b][0] - points[a][0], points[b][1] - points[a][1], points[b][2] - points[a][2]};
-  const double len = std::sqrt(Dot(e, e));
-  if (!(len > 0)) return {0, 0};
-  return {std::fabs(Dot(e, normals[a])) / len, std::fabs(Dot(e, normals[b])) / len};
-}
-
-
-// True when b lies on another sheet of the surface than a: nearly parallel normal lines and an
-// edge that leaves both tangent planes steeply; on a closed surface two such sheets face
-// opposite ways along the edge (both away from, or both toward, the space between them).
-bool CrossesSheets(const std::vector<Point3>& points, const std::vector<Point3>& normals, int32_t a, int32_t b) {
-  const auto [sa, sb] = EdgeSlopes(points, normals, a, b);
-  return std::fabs(Dot(normals[a], normals[b])) > kSheetParallel && sa > kSheetSteep && sb > kSheetSteep;
 }
 
 // The forest as adjacency lists (CSR: offsets n + 1, targets).
@@ -156,8 +134,7 @@ int32_t OrientNormals(const std::vector<Point3>& points, const KnnGraph& graph, 
     for (size_t h = 1; h < order.size(); ++h) {
       const int32_t v = order[h];
       Point3& nv = (*normals)[v];
-      const bool opposite = CrossesSheets(points, *normals, parent_of[v], v);
-      if ((Dot(nv, (*normals)[parent_of[v]]) < 0) != opposite)
+      if (Dot(nv, (*normals)[parent_of[v]]) < 0)
         for (double& x : nv) x = -x;
     }
     VoteOutward(points, order, normals);

@@ -15,9 +15,7 @@ namespace silk {
 // tree the point farthest from the tree's centroid (for a closed surface its normal line goes
 // through the centroid, and outward is away from it) gets the normal facing away from the
 // centroid; every other point takes the sign that agrees with its parent's (n_child . n_parent
-// >= 0), except across an edge that joins two sheets of the surface (parallel normal lines, an
-// edge along them: the two sides of a thin part), where a closed surface's normals are opposite.
-// Last, a tree whose normals sum to an inward flux (sum of n . (p - centroid) < 0) is reversed
+// >= 0). Last, a tree whose normals sum to an inward flux (sum of n . (p - centroid) < 0) is reversed
 // as a whole: the divergence theorem's vote, which corrects a seed at a thin tip.
 // Returns the number of trees.
 int32_t OrientNormals(const std::vector<Point3>& points, const KnnGraph& graph, std::vector<Point3>* normals);

@@ -68,15 +68,17 @@ typedef struct silk_mesh silk_mesh;
 /* Copies the arrays: positions = 3*n_vertices doubles, triangles = 3*n_triangles indices. */
 SILK_API silk_status silk_mesh_create(const double* positions, size_t n_vertices, const int32_t* triangles,
                                       size_t n_triangles, silk_mesh** out);
-/* OBJ, PLY, STL, OFF, glTF/GLB, PMD, optionally gzip-compressed. A PLY without faces is a
- * point cloud and must carry per-vertex normals (nx ny nz): it loads as a mesh with no
- * triangles and with normals, which silk_generate* samples as points.
+/* OBJ, PLY, STL, OFF, glTF/GLB, PMD, optionally gzip-compressed. A PLY without faces and an
+ * XYZ/PTS file (lines "x y z" or "x y z nx ny nz") are point clouds: they load as a mesh with no
+ * triangles and one normal per vertex, which silk_generate* samples as points. A cloud without
+ * normals gets estimated ones (k-nearest-neighbour plane fits, oriented outward along a minimum
+ * spanning tree; docs/normals.md); one that has them keeps them as read.
  * Read limits: 50M vertices, 50M triangles, 4 GiB per file; a .gz inflates to at most
  * max(64 MiB, 32 x its compressed size), checked while inflating (a decompression bomb is
  * refused with SILK_ERR_LIMIT naming the file, without allocating its output; docs/io.md). */
 SILK_API silk_status silk_mesh_load(const char* path, silk_mesh** out);
 typedef struct silk_load_params {
-  int32_t point_clouds; /* 1: a PLY without faces is a point cloud, as silk_mesh_load reads it (default);
+  int32_t point_clouds; /* 1: a PLY without faces or an XYZ/PTS file is a point cloud, as silk_mesh_load reads it (default);
                            0: every file is read as a mesh, as the tokenizer sees it (normals ignored) */
 } silk_load_params;
 SILK_API silk_load_params silk_load_default_params(void);
@@ -506,6 +508,12 @@ SILK_API silk_status silk_generator_finish(silk_generator* generator, silk_mesh*
  * SILK_ERR_BUFFER_TOO_SMALL and *out_size = bytes needed including the terminating NUL. */
 SILK_API silk_status silk_generator_report_json(silk_generator* generator, int32_t trace, char* out, size_t capacity,
                                                 size_t* out_size);
+/* The encoder's points of the current or last generation (from its start on), in the input's
+ * frame: rows of 6 doubles x y z nx ny nz (the model-frame floats with the normalisation undone;
+ * unit normals; raw_points: as given). A point cloud loaded without normals shows the estimated
+ * ones. Query-then-copy: capacity in doubles, *out_rows (required) = rows; before any generation
+ * SILK_ERR_INVALID_ARGUMENT. */
+SILK_API silk_status silk_generator_points(silk_generator* generator, double* out, size_t capacity, size_t* out_rows);
 
 /* ---- one-call generation: start + advance to the end + finish --------------------------
  * The result is in the input's frame; silk_mesh_copy_triangle_components gives each

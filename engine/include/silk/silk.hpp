@@ -240,6 +240,15 @@ class Generator {
     out.resize(size ? size - 1 : 0);
     return out;
   }
+  // The encoder's points in the input frame: rows of x y z nx ny nz, flattened (silk_generator_points).
+  std::vector<double> Points() {
+    size_t rows = 0;
+    silk_status s = silk_generator_points(h_.get(), nullptr, 0, &rows);
+    if (s != SILK_ERR_BUFFER_TOO_SMALL) Check(s);
+    std::vector<double> out(rows * 6);
+    if (rows) Check(silk_generator_points(h_.get(), out.data(), out.size(), &rows));
+    return out;
+  }
   // points: rows of x y z nx ny nz.
   Mesh GenerateFromPoints(const std::vector<double>& points,
                           const silk_generate_params& p = silk_generate_default_params(),

@@ -1,0 +1,38 @@
+// C API: the encoder's points of a generation, put back into the input's frame (silkgen
+// --save-points), so a caller can see what the model saw, estimated normals included.
+#if defined(SILK_HAVE_RUNTIME)
+#include <string>
+
+#include "capi/capi_generator.h"
+
+using silk::capi::BusyLock;
+using silk::capi::Guard;
+using silk::capi::Ok;
+using silk::capi::SetError;
+
+extern "C" {
+
+silk_status silk_generator_points(silk_generator* g, double* out, size_t capacity, size_t* out_rows) {
+  return Guard([&] {
+    if (out_rows) *out_rows = 0;
+    SILK_CAPI_REQUIRE(g && out_rows, "silk_generator_points: generator or out_rows is NULL");
+    BusyLock lock(g);
+    if (!lock.ok())
+      return SetError(SILK_ERR_BUSY, "silk_generator_points: generator busy (in use on another thread; use one "
+                                     "generator per thread)");
+    if (!g->has_result && !g->generator.active())
+      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_points: no generation started");
+    const size_t rows = g->points.size() / 6;
+    *out_rows = rows;
+    if (silk_status c = silk::capi::CheckCopy("silk_generator_points", out, capacity, rows * 6); c != SILK_OK) return c;
+    for (size_t i = 0; i < rows; ++i) {
+      const float* r = &g->points[6 * i];
+      const auto p = silk::UndoNormalization({r[0], r[1], r[2]}, g->transform);
+      for (int a = 0; a < 3; ++a) out[6 * i + a] = p[a], out[6 * i + 3 + a] = r[3 + a];
+    }
+    return Ok();
+  });
+}
+
+}  // extern "C"
+#endif
