@@ -105,7 +105,7 @@ def glb(doc, buf):
 
 
 OWNED = ("obj_reader_fuzzer", "ply_reader_fuzzer", "ply_point_cloud_fuzzer", "stl_reader_fuzzer", "off_reader_fuzzer",
-         "gltf_reader_fuzzer", "glb_reader_fuzzer", "model_config_fuzzer")
+         "gltf_reader_fuzzer", "glb_reader_fuzzer", "model_config_fuzzer", "xyz_reader_fuzzer")
 
 
 def main():
@@ -129,6 +129,14 @@ def main():
     put("ply_point_cloud_fuzzer", "points_normals_be_double.ply", ply_points("binary_big_endian", double=True))
     put("ply_point_cloud_fuzzer", "points_only_ascii.ply", ply_points("ascii", normals=False))
     put("ply_point_cloud_fuzzer", "cube_with_normals.ply", ply_points("binary_little_endian", faces=True))
+    # XYZ/PTS point clouds: plain, with normals, PTS count line, commas + CRLF + comments
+    put("xyz_reader_fuzzer", "points.xyz", "".join(f"{x} {y} {z}\n" for x, y, z in CUBE_V))
+    put("xyz_reader_fuzzer", "points_normals.xyz",
+        "".join(f"{x} {y} {z} {x - 0.5:.4f} {y - 0.5:.4f} {z - 0.5:.4f}\n".replace("-0.5000", "-0.57735")
+                .replace("0.5000", "0.57735") for x, y, z in CUBE_V))
+    put("xyz_reader_fuzzer", "points_count.pts", "8\n" + "".join(f"{x} {y} {z}\n" for x, y, z in CUBE_V))
+    put("xyz_reader_fuzzer", "points_commas_crlf.xyz",
+        "# cube corners\r\n" + "".join(f"{x},{y},{z}\r\n" for x, y, z in CUBE_V))
     # model.json sidecars (docs/model_contract.md)
     copy("model_config_fuzzer", repo / "tests/models/tiny/model.json")
     meta = json.loads((repo / "tests/models/tiny/model.json").read_text())

@@ -9,6 +9,11 @@ if(Python3_FOUND AND TARGET silkgen)
                      $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR})
   endforeach()
   set_tests_properties(silkgen_reference PROPERTIES SKIP_RETURN_CODE 77)
+  # Scan-like clouds without normals (binary PLY, XYZ): estimated normals, --save-points, and an
+  # output mesh_check.py accepts (tests/tools/silkgen_points_checks.py; needs numpy).
+  add_test(NAME silkgen_points_estimated
+           COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/silkgen_points_checks.py
+                   $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR} ${SILK_SHARED_DIR_ABS})
   # model.json v3 on copies of the tiny model made at test time (tests/tools/silkgen_v3_checks.py).
   foreach(mode defaults errors raw)
     add_test(NAME silkgen_v3_${mode}

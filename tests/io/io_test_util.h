@@ -1,5 +1,5 @@
-// Helpers for the io tests: a temporary folder removed at the end of the test, and writing
-// test inputs (text or bytes) into it.
+// Helpers for the io tests: a temporary folder removed at the end of the test, writing test
+// inputs (text or bytes) into it, and gzip-compressing them.
 #pragma once
 #include <stdlib.h>
 #include <unistd.h>
@@ -11,7 +11,28 @@
 #include <string>
 #include <vector>
 
+#ifdef SILK_HAVE_ZLIB
+#include <zlib.h>
+#endif
+
 namespace silk::testing {
+
+#ifdef SILK_HAVE_ZLIB
+// `data` as a gzip stream ("" if zlib fails, which the reading test then reports).
+inline std::string Gzip(const std::string& data) {
+  z_stream zs{};
+  if (deflateInit2(&zs, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK) return "";
+  std::string out(deflateBound(&zs, data.size()) + 64, '\0');
+  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  zs.avail_in = static_cast<uInt>(data.size());
+  zs.next_out = reinterpret_cast<Bytef*>(&out[0]);
+  zs.avail_out = static_cast<uInt>(out.size());
+  const bool ok = deflate(&zs, Z_FINISH) == Z_STREAM_END;
+  out.resize(ok ? zs.total_out : 0);
+  deflateEnd(&zs);
+  return out;
+}
+#endif
 
 class TempDir {
  public:

@@ -118,9 +118,11 @@ def check_bad(silkgen, repo):
     model = repo / "tests/models/tiny"
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
-        nonormals = tmp / "nonormals.ply"
-        nonormals.write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                             "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n")
+        nonormals = tmp / "nonormals.ply"  # too few points to estimate normals from (3 or more since issue 22)
+        nonormals.write_text("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                             "property float z\nend_header\n0 0 0\n1 0 0\n")
+        colours = tmp / "colours.xyz"
+        colours.write_text("0 0 0 255 0 0\n1 0 0 0 255 0\n")
         garbage = tmp / "garbage.obj"
         garbage.write_text("v 0 0 0\nf 1 2 3\n")
         flat = tmp / "flat.obj"
@@ -146,7 +148,10 @@ def check_bad(silkgen, repo):
             ([sample, "-o", tmp / "o.obj", "--model", newer], 1, ["model_version 99"]),
             ([sample, "-o", tmp / "o.obj", "--model", other_tf], 1, ["token_format_version"]),
             ([sample, "-o", tmp / "o.obj", "--model", broken], 1, ["decoder.onnx"]),
-            ([nonormals, "-o", tmp / "o.obj", "--model", model], 1, ["nonormals.ply", "normals"]),
+            ([nonormals, "-o", tmp / "o.obj", "--model", model], 1, ["nonormals.ply", "normals", "at least 3"]),
+            ([colours, "-o", tmp / "o.obj", "--model", model], 1, ["colours.xyz:1", "not a unit normal"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--save-points", tmp / "o.xyz"], 1,
+             ["o.xyz", "--save-points"]),
             ([garbage, "-o", tmp / "o.obj", "--model", model], 1, ["garbage.obj"]),
             ([flat, "-o", tmp / "o.obj", "--model", model], 1, ["flat.obj", "area"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--seed", "abc"], 2, ["seed"]),

@@ -49,6 +49,8 @@ bool NextDataLine(TextLines* lines, XyzValues* values) {
   return false;
 }
 
+std::string Values(int n) { return std::to_string(n) + (n == 1 ? " value" : " values"); }
+
 std::string Shown(std::string_view tok) { return "'" + std::string(tok.substr(0, 32)) + "'"; }
 
 std::string LengthText(double len) {
@@ -79,11 +81,11 @@ Status AppendPoint(const XyzValues& v, int columns, int64_t ln, const std::strin
 Status CheckColumns(const XyzValues& v, int64_t ln, int64_t first_line, int columns, const std::string& name) {
   if (columns == 0) {
     if (v.count == 3 || v.count == 6) return Status::Ok();
-    return ParseErrorAt(name, ln, std::to_string(v.count) + " values; " + kLineForms +
+    return ParseErrorAt(name, ln, Values(v.count) + "; " + kLineForms +
                                       " (drop colour or intensity columns first)");
   }
   if (v.count == columns) return Status::Ok();
-  return ParseErrorAt(name, ln, std::to_string(v.count) + " values, but line " + std::to_string(first_line) +
+  return ParseErrorAt(name, ln, Values(v.count) + ", but line " + std::to_string(first_line) +
                                     " has " + std::to_string(columns) + " (every point line has the same columns)");
 }
 
