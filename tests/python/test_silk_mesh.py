@@ -122,11 +122,14 @@ def test_errors_name_the_file(tmp_path, lib_path):
     with pytest.raises(silk_mesh.SilkError) as e:
         silk_mesh.encode(tmp_path / "missing.obj")
     assert e.value.status == silk_mesh.SILK_ERR_IO and "missing.obj" in str(e.value)
+    with pytest.raises(TypeError, match="unknown parameter 'bogus'"):
+        silk_mesh.encode(KNOT, bogus=1)
+
+
+def test_model_errors_name_the_folder_and_the_value(tmp_path, generation):
     with pytest.raises(silk_mesh.SilkError) as e:
         silk_mesh.Model(tmp_path)
     assert str(tmp_path) in e.value.message
-    with pytest.raises(TypeError, match="unknown parameter 'bogus'"):
-        silk_mesh.encode(KNOT, bogus=1)
     with pytest.raises(ValueError, match="holes must be one of"):
         silk_mesh.generate(KNOT, model=TINY, holes="sometimes")
 

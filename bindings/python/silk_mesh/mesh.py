@@ -2,9 +2,8 @@
 arrays or read from a file, with its arrays copied out on request and saved in libsilk's formats."""
 from __future__ import annotations
 
-import os
-
 import ctypes
+import os
 
 from . import _arrays, _capi, _native, _params
 
