@@ -10,10 +10,10 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # works without `pip install -e export`
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bindings" / "python"))  # silk_mesh, likewise
 
 import torch  # noqa: E402
 
+import silk_export  # noqa: E402,F401  (puts the checkout's silk_mesh on the path when not installed)
 import silk_mesh  # noqa: E402
 
 torch.set_num_threads(1)  # deterministic, and fast on a shared machine (no thread oversubscription)

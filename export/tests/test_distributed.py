@@ -29,8 +29,7 @@ def train_argv(data: Path, out: Path, *extra: str) -> list[str]:
 
 def torchrun(argv: list[str]) -> None:
     env = {**os.environ, "SILK_LIBRARY": silk_mesh.library_path(), "OMP_NUM_THREADS": "1",
-           "PYTHONPATH": os.pathsep.join([str(EXPORT_DIR), str(EXPORT_DIR.parent / "bindings" / "python"),
-                                         os.environ.get("PYTHONPATH", "")])}
+           "PYTHONPATH": str(EXPORT_DIR) + os.pathsep + os.environ.get("PYTHONPATH", "")}
     cmd = [sys.executable, "-m", "torch.distributed.run", "--standalone", "--nproc_per_node", "2",
            "-m", "silk_export", *argv]
     r = subprocess.run(cmd, cwd=EXPORT_DIR, env=env, capture_output=True, text=True, timeout=600)
