@@ -14,11 +14,11 @@ import sys
 
 from pathlib import Path
 
-# The C declarations (structs, callback types, signatures of silk.h) are the package's single
-# copy, pure ctypes: export/silk_export/binding/silk_c.py.
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))
-from silk_export.binding.silk_c import (CANCEL_FN, PROGRESS_FN, SILK_ERR_CANCELLED, SILK_OK, GenerateStats as Stats,  # noqa: E402
-                                        ModelInfo, declare)
+# The C declarations (structs, callback types, signatures of silk.h) are the single copy, pure
+# ctypes, that the silk_mesh binding is built on: bindings/python/silk_mesh/_capi.py.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bindings" / "python"))
+from silk_mesh._capi import (CANCEL_FN, PROGRESS_FN, SILK_ERR_CANCELLED, SILK_OK, GenerateStats as Stats,  # noqa: E402
+                             ModelInfo, declare)
 
 
 def load(path):

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Makes the installable Blender add-on zip: apps/blender/silk_blender + libsilk (installed copy,
-# $ORIGIN RPATH) + onnxruntime and the other non-system libraries it needs + the bundled model.
+# Makes the installable Blender add-on zip: apps/blender/silk_blender + the Python binding
+# bindings/python/silk_mesh, copied unchanged into silk_blender/silk_mesh/, with libsilk (installed
+# copy, $ORIGIN RPATH), onnxruntime and the other non-system libraries it needs in silk_mesh/lib/
+# and the bundled model in silk_mesh/model/ (where silk_mesh looks for them).
 # Usage: scripts/make_blender_addon.sh [build dir] [output zip] [model dir]
 #   defaults: build, <build>/silk_blender.zip, models/default
 set -euo pipefail
@@ -16,25 +18,27 @@ STAGE="${OUT%.zip}_stage"
 rm -rf "$STAGE"
 cmake --install "$BUILD" --prefix "$STAGE/prefix" >/dev/null
 ADDON="$STAGE/silk_blender"
-mkdir -p "$ADDON/lib"
+BINDING="$ADDON/silk_mesh"  # vendored byte for byte (ctest blender_addon_vendored_binding checks the zip)
+mkdir -p "$BINDING/lib"
 cp "$ROOT"/apps/blender/silk_blender/*.py "$ROOT/apps/blender/silk_blender/blender_manifest.toml" "$ADDON/"
+cp "$ROOT"/bindings/python/silk_mesh/*.py "$ROOT/bindings/python/silk_mesh/README.md" "$BINDING/"
 LIBDIR=$(dirname "$(ls "$STAGE"/prefix/lib*/libsilk.so.* | head -1)")
 # One file per library, under its soname (zip has no symlinks); libsilk without debug info.
 SILK_SONAME=$(objdump -p "$LIBDIR/libsilk.so" | awk '/SONAME/ {print $2}')
-cp -L "$LIBDIR/libsilk.so" "$ADDON/lib/$SILK_SONAME"
-strip --strip-debug "$ADDON/lib/$SILK_SONAME"
+cp -L "$LIBDIR/libsilk.so" "$BINDING/lib/$SILK_SONAME"
+strip --strip-debug "$BINDING/lib/$SILK_SONAME"
 ORT_SONAME=$(objdump -p "$LIBDIR/libsilk.so" | awk '/NEEDED/ && /onnxruntime/ {print $2}')
-cp -L "$LIBDIR/$ORT_SONAME" "$ADDON/lib/$ORT_SONAME"
+cp -L "$LIBDIR/$ORT_SONAME" "$BINDING/lib/$ORT_SONAME"
 # Shared libraries libsilk needs that a stock Blender machine may lack (not libc/libstdc++).
 for dep in $(ldd "$LIBDIR/libsilk.so" | awk '/=> \// {print $3}'); do
   case "$(basename "$dep")" in
     libc.so*|libm.so*|libstdc++.so*|libgcc_s.so*|libpthread.so*|libdl.so*|librt.so*|libz.so*|libonnxruntime*) ;;
-    *) cp -L "$dep" "$ADDON/lib/" ;;
+    *) cp -L "$dep" "$BINDING/lib/" ;;
   esac
 done
 if [ -f "$MODEL/model.json" ]; then
-  mkdir -p "$ADDON/model"
-  python3 - "$MODEL" "$ADDON/model" <<'PY'
+  mkdir -p "$BINDING/model"
+  python3 - "$MODEL" "$BINDING/model" <<'PY'
 import json, shutil, sys
 src, dst = sys.argv[1], sys.argv[2]
 meta = json.load(open(f"{src}/model.json"))

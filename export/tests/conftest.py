@@ -13,7 +13,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # works without `p
 
 import torch  # noqa: E402
 
-from silk_export.binding import libsilk  # noqa: E402
+import silk_export  # noqa: E402,F401  (puts the checkout's silk_mesh on the path when not installed)
+import silk_mesh  # noqa: E402
 
 torch.set_num_threads(1)  # deterministic, and fast on a shared machine (no thread oversubscription)
 from silk_export.paths import shared_dir  # noqa: E402
@@ -21,9 +22,8 @@ from silk_export.paths import shared_dir  # noqa: E402
 
 @pytest.fixture(scope="session")
 def lib_path() -> Path:
-    path = Path(libsilk.library_path())
-    libsilk.lib()  # fails loudly with the build hint when no library is found
-    return path
+    silk_mesh.load_library()  # fails loudly, naming the file, when no library can be loaded
+    return Path(silk_mesh.library_path())
 
 
 @pytest.fixture(scope="session")

@@ -1,4 +1,4 @@
-"""The ctypes binding gives exactly the tokens `silktok encode` writes (and the official token
+"""The ctypes binding (silk_mesh) gives exactly the tokens `silktok encode` writes (and the official token
 files), reports errors and refusals with their names, and decodes back to a mesh."""
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from silk_export.binding import libsilk
+import silk_mesh
 from silk_export.vocab import load_vocab
 
 GOLDENS = ["cube", "torus_12x8", "nonmanifold_book", "two_components", "grid", "dirty_cube"]
@@ -20,16 +20,16 @@ def silktok_tokens(exe, mesh, tmp_path) -> bytes:
     return out.read_bytes()
 
 
-def as_text(tokens: np.ndarray) -> bytes:
+def as_text(tokens) -> bytes:
     return "".join(f"{int(t)}\n" for t in tokens).encode()
 
 
 @pytest.mark.parametrize("name", GOLDENS)
 def test_golden_tokens_equal_silktok_and_official(name, golden_dir, silktok, tmp_path):
     mesh = golden_dir / f"{name}.obj"
-    with libsilk.Mesh.load(mesh) as m:
-        tokens, stats = libsilk.encode(m)
-    assert tokens.dtype == np.int32 and stats["tokens"] == tokens.size > 0
+    with silk_mesh.Mesh.load(mesh) as m:
+        tokens, stats = silk_mesh.encode(m, return_stats=True)
+    assert all(type(t) is int for t in tokens) and stats["tokens"] == len(tokens) > 0
     assert as_text(tokens) == silktok_tokens(silktok, mesh, tmp_path)
     official = np.loadtxt(golden_dir / f"{name}.tokens.txt", dtype=np.int64).reshape(-1)
     assert np.array_equal(tokens, official)
@@ -38,7 +38,7 @@ def test_golden_tokens_equal_silktok_and_official(name, golden_dir, silktok, tmp
 @pytest.mark.parametrize("name", DEV)
 def test_dev_tokens_equal_silktok_and_official(name, dev_dir, silktok, tmp_path):
     mesh = dev_dir / f"{name}.obj"
-    tokens, _ = libsilk.encode_arrays(*libsilk.load_arrays(mesh))  # through silk_mesh_create
+    tokens = silk_mesh.encode(silk_mesh.load_arrays(mesh))  # through silk_mesh_create
     assert as_text(tokens) == silktok_tokens(silktok, mesh, tmp_path)
     official = dev_dir.parent.parent / "spec" / "golden-dev" / f"{name}.tokens.txt"
     assert np.array_equal(tokens, np.loadtxt(official, dtype=np.int64).reshape(-1))
@@ -46,15 +46,15 @@ def test_dev_tokens_equal_silktok_and_official(name, dev_dir, silktok, tmp_path)
 
 def test_refused_dev_mesh_is_refused_by_both(dev_dir, silktok, tmp_path):
     mesh = dev_dir / "gaia__bush_la_5.obj"  # every component too small (official: division by zero)
-    with pytest.raises(libsilk.SilkRefused) as e:
-        libsilk.encode(libsilk.Mesh.load(mesh))
-    assert e.value.reason == "all-components-dropped"
+    with pytest.raises(silk_mesh.SilkError) as e:
+        silk_mesh.encode(silk_mesh.Mesh.load(mesh))
+    assert e.value.status == silk_mesh.SILK_ERR_REFUSED and e.value.reason == "all-components-dropped"
     r = subprocess.run([str(silktok), "encode", str(mesh), "-o", str(tmp_path / "x.txt")], capture_output=True)
     assert r.returncode == 1 and b"all-components-dropped" in r.stderr
 
 
 def test_vocab_matches_layout_file():
-    info, v = libsilk.vocab_info(), load_vocab()
+    info, v = silk_mesh.vocab(), load_vocab()
     assert info["format_vocab_size"] == v.format_vocab_size
     assert (info["eos_id"], info["pad_id"], info["model_vocab_size"]) == (v.eos_id, v.pad_id, v.model_vocab_size)
     for cls in ("X", "S", "B", "K", "O"):
@@ -64,22 +64,22 @@ def test_vocab_matches_layout_file():
 
 
 def test_decode_round_trip_keeps_every_face(golden_dir):
-    v, f = libsilk.load_arrays(golden_dir / "torus_12x8.obj")
-    tokens, _ = libsilk.encode_arrays(v, f)
-    with libsilk.decode(tokens) as m:
-        assert m.triangle_count() == f.shape[0]
-        assert m.vertex_count() == len(np.unique(v, axis=0))
-        again, _ = libsilk.encode(m)
-    assert np.array_equal(again, tokens)
+    v, f = silk_mesh.load_arrays(golden_dir / "torus_12x8.obj")
+    tokens = silk_mesh.encode((v, f))
+    with silk_mesh.decode(tokens) as m:
+        assert m.triangle_count == f.shape[0]
+        assert m.vertex_count == len(np.unique(v, axis=0))
+        again = silk_mesh.encode(m)
+    assert again == tokens
 
 
 def test_errors_carry_status_and_message(tmp_path):
-    with pytest.raises(libsilk.SilkError) as e:
-        libsilk.Mesh.load(tmp_path / "missing.obj")
+    with pytest.raises(silk_mesh.SilkError) as e:
+        silk_mesh.Mesh.load(tmp_path / "missing.obj")
     assert e.value.status == 2 and "missing.obj" in e.value.message
     (tmp_path / "broken.obj").write_text("v 0 0 0\nf 1 2 3\n")
-    with pytest.raises(libsilk.SilkError):
-        libsilk.Mesh.load(tmp_path / "broken.obj")
+    with pytest.raises(silk_mesh.SilkError):
+        silk_mesh.Mesh.load(tmp_path / "broken.obj")
 
 
 def test_refusal_is_named():
@@ -95,6 +95,6 @@ def test_refusal_is_named():
         a, b = 2 * i, 2 * i + 1
         c, d = (2 * (i + 1), 2 * (i + 1) + 1) if i + 1 < n else (1, 0)  # the half twist
         f += [(a, b, d), (a, d, c)]
-    with pytest.raises(libsilk.SilkRefused) as e:
-        libsilk.encode_arrays(np.array(v), np.array(f))
-    assert e.value.reason == "mobius"
+    with pytest.raises(silk_mesh.SilkError) as e:
+        silk_mesh.encode((np.array(v), np.array(f)))
+    assert e.value.status == silk_mesh.SILK_ERR_REFUSED and e.value.reason == "mobius"

@@ -10,7 +10,7 @@ import shutil
 import numpy as np
 import pytest
 
-from silk_export.binding import libsilk
+import silk_mesh
 from silk_export.cli import main
 from silk_export.data.dataset_index import build_index, merge_shards
 from silk_export.data.samples import make_sample
@@ -43,10 +43,10 @@ def tree(golden_dir, tmp_path_factory):
     shutil.copy(golden_dir / "cube.obj", root / "a" / "cube.obj")
     shutil.copy(golden_dir / "grid.obj", root / "grid.obj")
     shutil.copy(golden_dir / "icosphere2.obj", root / "c" / "icosphere2.obj")
-    libsilk.Mesh.load(golden_dir / "torus_12x8.obj").save(root / "a" / "b" / "torus_12x8.ply")
-    v, f = libsilk.load_arrays(golden_dir / "octahedron.obj")
+    silk_mesh.Mesh.load(golden_dir / "torus_12x8.obj").save(root / "a" / "b" / "torus_12x8.ply")
+    v, f = silk_mesh.load_arrays(golden_dir / "octahedron.obj")
     write_off(root / "c" / "octahedron.off", v.tolist(), f.tolist())
-    v, f = libsilk.load_arrays(golden_dir / "tetrahedron.obj")
+    v, f = silk_mesh.load_arrays(golden_dir / "tetrahedron.obj")
     write_stl(root / "c" / "tetrahedron.stl", v.tolist(), f.tolist())
     for name in BAD:
         shutil.copy(golden_dir.parents[1] / "corpus" / "bad" / name, root / "bad" / name)
@@ -95,7 +95,7 @@ def test_cache_holds_the_official_tokens_and_the_loaded_arrays(builds, tree, gol
         stem = r["file"].rsplit("/", 1)[-1].split(".")[0]
         golden = np.loadtxt(golden_dir / f"{stem}.tokens.txt", dtype=np.int32)
         assert np.array_equal(src.tokens(i), golden), r["file"]
-        v, f = libsilk.load_arrays(tree / r["file"])
+        v, f = silk_mesh.load_arrays(tree / r["file"])
         assert np.array_equal(src.arrays(i)[0], v) and np.array_equal(src.arrays(i)[1], f)
     assert isinstance(Shard(one / "shard-00000-of-00001").tokens, np.memmap)
 

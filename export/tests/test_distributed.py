@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 import torch
 
-from silk_export.binding import libsilk
+import silk_mesh
 from silk_export.cli import main
 
 EXPORT_DIR = Path(__file__).resolve().parents[1]
@@ -28,7 +28,7 @@ def train_argv(data: Path, out: Path, *extra: str) -> list[str]:
 
 
 def torchrun(argv: list[str]) -> None:
-    env = {**os.environ, "SILK_LIBRARY": libsilk.library_path(), "OMP_NUM_THREADS": "1",
+    env = {**os.environ, "SILK_LIBRARY": silk_mesh.library_path(), "OMP_NUM_THREADS": "1",
            "PYTHONPATH": str(EXPORT_DIR) + os.pathsep + os.environ.get("PYTHONPATH", "")}
     cmd = [sys.executable, "-m", "torch.distributed.run", "--standalone", "--nproc_per_node", "2",
            "-m", "silk_export", *argv]

@@ -11,7 +11,7 @@ import math
 import pytest
 import torch
 
-from silk_export.binding import libsilk
+import silk_mesh
 from silk_export.cli import main
 from silk_export.json_io import NonFiniteJSONError, dumps, jsonl_line, write_json
 from silk_export.models.checkpoint import save_state
@@ -95,21 +95,15 @@ TINY_MODEL = REPO_ROOT / "tests/models/tiny"
 KNOT = REPO_ROOT / "samples/torus_knot.obj"
 
 
-@pytest.mark.skipif(not libsilk.lib().silk_generation_available(), reason="libsilk without onnxruntime")
-def test_capi_reports_with_an_infinite_chamfer_score_are_valid_json(monkeypatch):
+@pytest.mark.skipif(not silk_mesh.generation_available(), reason="libsilk without onnxruntime")
+def test_capi_reports_with_an_infinite_chamfer_score_are_valid_json():
     """Unconstrained (no grammar mask) at a high temperature, the first id is illegal: no face, so
     each candidate's Chamfer score against the input is +inf, which the report must not print."""
-    plain = libsilk.generate_params
-
-    def unconstrained(**kw):
-        p = plain(**kw)
-        p.unconstrained = 1
-        p.debug_flags = 8  # SILK_DEBUG_RECORD_TRACE: report_json(trace=True) is available
-        return p
-    monkeypatch.setattr(libsilk, "generate_params", unconstrained)
-    with libsilk.Model(TINY_MODEL, threads=1) as model, libsilk.Generator(model) as gen, \
-            libsilk.Mesh.load(KNOT) as src:
-        mesh, _, st = gen.generate(src, seed=3, max_tokens=14, candidates=2, temperature=5.0, top_k=0)
+    with silk_mesh.Model(TINY_MODEL, threads=1) as model, silk_mesh.Generator(model) as gen, \
+            silk_mesh.Mesh.load(KNOT) as src:
+        # debug_flags 8 = SILK_DEBUG_RECORD_TRACE: report_json(trace=True) is available
+        mesh, _, st = gen.run(src, seed=3, max_tokens=14, candidates=2, temperature=5.0, top_k=0,
+                              unconstrained=1, debug_flags=8)
         mesh.close()
         assert st["faces"] == 0 and st["score"] == math.inf
         report = strict_loads(gen.report_json())

@@ -10,7 +10,7 @@ import shutil
 import numpy as np
 import pytest
 
-from silk_export.binding import libsilk
+import silk_mesh
 from silk_export.json_io import write_json
 from silk_export.paths import REPO_ROOT
 
@@ -18,31 +18,31 @@ TINY = REPO_ROOT / "tests/models/tiny"
 KNOT = REPO_ROOT / "samples/torus_knot.obj"
 GOLDEN = REPO_ROOT / "tests/models/golden/torus_knot_s7.tokens.txt"
 
-pytestmark = pytest.mark.skipif(not libsilk.lib().silk_generation_available(), reason="libsilk without onnxruntime")
+pytestmark = pytest.mark.skipif(not silk_mesh.generation_available(), reason="libsilk without onnxruntime")
 
 
 def test_python_generation_matches_the_silkgen_golden():
     want = np.array([int(x) for x in GOLDEN.read_text().split()], np.int32)
-    with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        mesh, ids, stats = gen.generate(src, seed=7, max_tokens=300, surface_tolerance=0, candidates=1)
+    with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+        mesh, ids, stats = gen.run(src, seed=7, max_tokens=300, surface_tolerance=0, candidates=1)
         with mesh:
             assert np.array_equal(ids, want)
-            assert stats["faces"] == mesh.triangle_count() > 0
+            assert stats["faces"] == mesh.triangle_count > 0
             assert stats["stop_reason"] == "eos"
         report = json.loads(gen.report_json())
         assert report["tokens"] == len(want) and report["settings"]["seed"] == 7
 
 
 def test_step_wise_grows_by_layers_and_ends_with_the_same_ids():
-    with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
+    with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
         # A plain run (no surface guidance): this seed's stream closes several layers.
-        _, whole, _ = gen.generate(src, seed=3, max_tokens=200, surface_tolerance=0)
+        _, whole, _ = gen.run(src, seed=3, max_tokens=200, surface_tolerance=0)
         gen.start(src, seed=3, max_tokens=200, surface_tolerance=0)
         faces, done = [], False
         while not done:
             done = gen.advance(10_000, until_layer=True)
-            with gen.mesh_so_far() as m:
-                faces.append(m.triangle_count())
+            with gen.preview() as m:
+                faces.append(m.triangle_count)
         assert faces == sorted(faces) and len(set(faces)) > 2
         mesh, ids, stats = gen.finish()
         mesh.close()
@@ -50,22 +50,22 @@ def test_step_wise_grows_by_layers_and_ends_with_the_same_ids():
 
 
 def test_generator_outlives_its_model():
-    model = libsilk.Model(TINY, threads=1)
-    gen = libsilk.Generator(model)
+    model = silk_mesh.Model(TINY, threads=1)
+    gen = silk_mesh.Generator(model)
     model.close()  # e.g. a garbage collector picking this order
-    with libsilk.Mesh.load(KNOT) as src:
-        mesh, ids, _ = gen.generate(src, seed=1, max_tokens=100)
+    with silk_mesh.Mesh.load(KNOT) as src:
+        mesh, ids, _ = gen.run(src, seed=1, max_tokens=100)
         mesh.close()
-    assert ids.size > 0
+    assert len(ids) > 0
     gen.close()
 
 
 def test_cancel_keeps_the_stats():
     calls = []
-    with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        with pytest.raises(libsilk.SilkError) as e:
-            gen.generate(src, seed=1, max_tokens=200, progress=calls.append, cancel=lambda: len(calls) >= 12)
-        assert e.value.status == libsilk.SILK_ERR_CANCELLED
+    with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+        with pytest.raises(silk_mesh.SilkError) as e:
+            gen.run(src, seed=1, max_tokens=200, progress=calls.append, cancel=lambda: len(calls) >= 12)
+        assert e.value.status == silk_mesh.SILK_ERR_CANCELLED
         assert gen.stats()["stop_reason"] in ("cancelled", "running")  # the generation was released
         assert len(calls) == 12 and calls[-1]["tokens"] == 12
 
@@ -81,9 +81,9 @@ def test_nan_weights_fail_naming_the_model(tmp_path):
     arr[...] = np.nan
     biggest.CopyFrom(numpy_helper.from_array(arr, biggest.name))
     onnx.save(m, str(bad / "decoder.onnx"))
-    with libsilk.Model(bad, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        with pytest.raises(libsilk.SilkError) as e:
-            gen.generate(src, seed=1, max_tokens=100)
+    with silk_mesh.Model(bad, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+        with pytest.raises(silk_mesh.SilkError) as e:
+            gen.run(src, seed=1, max_tokens=100)
     assert str(bad) in e.value.message and "non-finite" in e.value.message
 
 
@@ -107,7 +107,7 @@ def _c_struct_fields(name: str) -> list[tuple[str, str]]:
                                               ("silk_generate_stats", "GenerateStats")])
 def test_ctypes_declarations_follow_silk_h(c_name, py_struct):
     import ctypes
-    from silk_export.binding import silk_c
+    from silk_mesh import _capi as silk_c
     scalar = {"int32_t": ctypes.c_int32, "int64_t": ctypes.c_int64, "uint64_t": ctypes.c_uint64,
               "double": ctypes.c_double}
     want = _c_struct_fields(c_name)
@@ -119,14 +119,14 @@ def test_ctypes_declarations_follow_silk_h(c_name, py_struct):
 
 
 def test_candidates_and_guidance_through_ctypes():
-    with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        mesh, ids, st = gen.generate(src, seed=3, max_tokens=200, surface_tolerance=2, candidates=3)
+    with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+        mesh, ids, st = gen.run(src, seed=3, max_tokens=200, surface_tolerance=2, candidates=3)
         with mesh:
             assert st["candidates"] == 3 and 0 <= st["chosen_candidate"] < 3
             assert st["guided_tokens"] > 0 and st["guidance_fallbacks"] >= 0
-            assert st["faces"] == mesh.triangle_count()
-        with pytest.raises(libsilk.SilkError, match="candidates 0"):
-            gen.generate(src, seed=3, max_tokens=200, candidates=0)
+            assert st["faces"] == mesh.triangle_count
+        with pytest.raises(silk_mesh.SilkError, match="candidates 0"):
+            gen.run(src, seed=3, max_tokens=200, candidates=0)
 
 
 def _orient_both(gen, src, seed):
@@ -136,11 +136,11 @@ def _orient_both(gen, src, seed):
         gen.start(src, orient=orient, seed=seed, max_tokens=1500, surface_tolerance=0)
         while not gen.advance(10_000):
             pass
-        with gen.mesh_so_far() as m:
-            preview = (m.positions().copy(), m.triangles().copy())
+        with gen.preview() as m:
+            preview = (m.positions.copy(), m.triangles.copy())
         mesh, ids, stats = gen.finish()
         with mesh:
-            out[orient] = (ids, mesh.positions().copy(), mesh.triangles().copy(), stats, preview)
+            out[orient] = (ids, mesh.positions.copy(), mesh.triangles.copy(), stats, preview)
     return out
 
 
@@ -150,8 +150,8 @@ def test_orientation_reverses_whole_parts_in_the_preview_and_the_result():
     stats say); and the step-wise preview at the end equals the result, i.e. it is oriented too.
     Seeds 0.. until one run reverses a part (eight without one is a failure)."""
     default = REPO_ROOT / "models/default"
-    with libsilk.Model(default, threads=1) as model, libsilk.Generator(model) as gen, \
-            libsilk.Mesh.load(KNOT) as src:
+    with silk_mesh.Model(default, threads=1) as model, silk_mesh.Generator(model) as gen, \
+            silk_mesh.Mesh.load(KNOT) as src:
         for seed in range(8):
             out = _orient_both(gen, src, seed)
             t_ids, t_pos, t_tri, t_stats, _ = out["tokens"]
@@ -182,16 +182,16 @@ def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
     meta = json.loads((greedy / "model.json").read_text())
     meta["sampling"] = {"temperature": 0.0, "top_k": 1}
     write_json(greedy / "model.json", meta)
-    with libsilk.Model(TINY, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        _, explicit, _ = gen.generate(src, seed=5, max_tokens=120, temperature=0.0, top_k=1)
-        _, default, _ = gen.generate(src, seed=5, max_tokens=120)
+    with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+        _, explicit, _ = gen.run(src, seed=5, max_tokens=120, temperature=0.0, top_k=1)
+        _, default, _ = gen.run(src, seed=5, max_tokens=120)
         assert json.loads(gen.report_json())["settings"]["temperature"] == 0.5
     assert not np.array_equal(explicit, default)  # the check can tell greedy from the built-in defaults
-    with libsilk.Model(greedy, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        _, from_json, _ = gen.generate(src, seed=5, max_tokens=120)
+    with silk_mesh.Model(greedy, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+        _, from_json, _ = gen.run(src, seed=5, max_tokens=120)
         s = json.loads(gen.report_json())["settings"]
         assert (s["temperature"], s["top_k"]) == (0.0, 1)
-        gen.generate(src, seed=5, max_tokens=120, temperature=0.7)
+        gen.run(src, seed=5, max_tokens=120, temperature=0.7)
         assert json.loads(gen.report_json())["settings"]["temperature"] == 0.7
     assert np.array_equal(from_json, explicit)
     res = generate_with_runtime(greedy, [KNOT], tmp_path / "gen", seed=5, max_tokens=120)
@@ -209,10 +209,10 @@ def test_model_json_candidates_is_the_default_best_of_n(tmp_path):
     meta = json.loads((three / "model.json").read_text())
     meta["sampling"] = {"candidates": 3}
     write_json(three / "model.json", meta)
-    with libsilk.Model(three, threads=1) as model, libsilk.Generator(model) as gen, libsilk.Mesh.load(KNOT) as src:
-        _, _, st = gen.generate(src, seed=5, max_tokens=120)
+    with silk_mesh.Model(three, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+        _, _, st = gen.run(src, seed=5, max_tokens=120)
         assert st["candidates"] == 3 and json.loads(gen.report_json())["settings"]["candidates"] == 3
-        _, _, st = gen.generate(src, seed=5, max_tokens=120, candidates=1)
+        _, _, st = gen.run(src, seed=5, max_tokens=120, candidates=1)
         assert st["candidates"] == 1
     res = generate_with_runtime(three, [KNOT], tmp_path / "gen", seed=5, max_tokens=120)
     assert res["settings"]["candidates"] == 3 and res["meshes"][0]["candidates"] == 3

@@ -8,7 +8,7 @@ import json
 import numpy as np
 import pytest
 
-from silk_export.binding import libsilk
+import silk_mesh
 from silk_export.cli import main
 from silk_export.evaluation.metrics import compare_meshes
 from silk_export.evaluation.structure import mesh_structure
@@ -81,10 +81,10 @@ def test_eval_cli_on_folders(tmp_path, capsys):
     gen, ref = tmp_path / "gen", tmp_path / "ref"
     gen.mkdir()
     ref.mkdir()
-    with libsilk.Mesh.from_arrays(CUBE_V, CUBE_F) as m:
+    with silk_mesh.Mesh(CUBE_V, CUBE_F) as m:
         m.save(ref / "cube.obj")
         m.save(gen / "cube.obj")
-    with libsilk.Mesh.from_arrays(CUBE_V, CUBE_F[:, ::-1]) as m:
+    with silk_mesh.Mesh(CUBE_V, CUBE_F[:, ::-1]) as m:
         m.save(gen / "flip.obj")
         m.save(ref / "flip.obj")
     assert main(["eval", str(gen), str(ref), "--points", "1000", "--out", str(tmp_path / "e.json")]) == 0

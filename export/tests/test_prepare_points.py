@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from silk_export.binding import libsilk
+import silk_mesh
 from silk_export.data import pointcloud
 
 # A box [0,2]x[0,1]x[0,1] of 12 triangles.
@@ -16,9 +16,9 @@ F = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
 
 
 def test_official_points_are_seeded_float16_and_on_the_box(lib_path):
-    a, centre, scale = libsilk.prepare_points(V, F, "official", n_points=4096, seed=5)
-    b, _, _ = libsilk.prepare_points(V, F, "official", n_points=4096, seed=5)
-    c, _, _ = libsilk.prepare_points(V, F, "official", n_points=4096, seed=6)
+    a, centre, scale = silk_mesh.prepare_points(V, F, "official", n_points=4096, seed=5)
+    b, _, _ = silk_mesh.prepare_points(V, F, "official", n_points=4096, seed=5)
+    c, _, _ = silk_mesh.prepare_points(V, F, "official", n_points=4096, seed=6)
     assert a.shape == (4096, 6) and a.dtype == np.float32
     assert np.array_equal(a, b) and not np.array_equal(a, c)
     assert np.array_equal(a.astype(np.float16).astype(np.float32), a)
@@ -32,7 +32,7 @@ def test_training_point_cloud_uses_the_library(lib_path):
     rng = np.random.default_rng(3)
     seed = int(np.random.default_rng(3).integers(0, 2**63))
     pts = pointcloud.point_cloud(V, F, rng, n=256, noise=False)
-    want, _, _ = libsilk.prepare_points(V, F, "silk", n_points=256, seed=seed)
+    want, _, _ = silk_mesh.prepare_points(V, F, "silk", n_points=256, seed=seed)
     assert np.array_equal(pts, want)
     p, n = pointcloud.sample_surface(V, F, 500, np.random.default_rng(1))
     assert p.shape == (500, 3) and (p.min(axis=0) >= -1e-6).all() and (p.max(axis=0) <= np.array([2, 1, 1]) + 1e-6).all()
@@ -41,9 +41,9 @@ def test_training_point_cloud_uses_the_library(lib_path):
 
 def test_clouds_and_errors(lib_path):
     cloud = np.concatenate([np.random.default_rng(0).random((100, 3)), np.tile([0, 0, 3.0], (100, 1))], axis=1)
-    rows, _, _ = libsilk.prepare_points(cloud, None, "official", n_points=64, seed=1)
+    rows, _, _ = silk_mesh.prepare_points(cloud, None, "official", n_points=64, seed=1)
     assert rows.shape == (64, 6) and (rows[:, 5] == 1).all()
-    with pytest.raises(libsilk.SilkError, match="surface_samples"):
-        libsilk.prepare_points(V, F, "official", n_points=64, surface_samples=-1)
+    with pytest.raises(silk_mesh.SilkError, match="surface_samples"):
+        silk_mesh.prepare_points(V, F, "official", n_points=64, surface_samples=-1)
     with pytest.raises(TypeError):
-        libsilk.prepare_points(V, F, "silk", bogus=1)
+        silk_mesh.prepare_points(V, F, "silk", bogus=1)

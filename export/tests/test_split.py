@@ -9,7 +9,7 @@ import json
 import numpy as np
 import pytest
 
-from silk_export.binding import libsilk
+import silk_mesh
 from silk_export.data.dataset_index import dev_exclusion, encode_one
 from silk_export.data.mesh_files import default_0ad_root
 from silk_export.paths import data_dir
@@ -74,5 +74,5 @@ def test_built_index_never_trains_on_dev(dev):
     assert sum(r["split"] == DEV for r in rows) >= 160
     for r in rows:
         if r["split"] != DEV and r["faces"] <= 8000 and r["key"].startswith("art/meshes/g"):
-            v, f = libsilk.load_arrays(default_0ad_root() / r["file"])
+            v, f = silk_mesh.load_arrays(default_0ad_root() / r["file"])
             assert shape_key(v, f.shape[0]) not in dev.shape_keys, r["key"]

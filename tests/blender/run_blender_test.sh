@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
 # ctest blender_addon / blender_addon_modal: builds the add-on zip (bundled model = the tiny test
 # model) and runs a Blender test against it: `headless` (blender -b, test_silk_addon.py) or `modal`
-# (a real window under Xvfb with event simulation, test_silk_addon_modal.py). Exit 77 (ctest:
+# (a real window under Xvfb with event simulation, test_silk_addon_modal.py), or `vendored` (the zip's
+# silk_mesh is bindings/python/silk_mesh unchanged; no Blender). Exit 77 (ctest:
 # skipped) where Blender, or for `modal` xvfb-run, is not installed.
-# Usage: run_blender_test.sh headless|modal BUILD_DIR SOURCE_DIR WORK_DIR SILKGEN DEV_MESH
+# Usage: run_blender_test.sh headless|modal|vendored BUILD_DIR SOURCE_DIR WORK_DIR SILKGEN DEV_MESH
 set -euo pipefail
 MODE=$1 BUILD=$2 SRC=$3 WORK=$4 SILKGEN=$5 DEV_MESH=$6
+MODEL=${SILK_ADDON_MODEL:-$SRC/tests/models/tiny}  # the docs picture uses models/default
+if [ "$MODE" = vendored ]; then  # the zip's copy of bindings/python/silk_mesh (no Blender needed)
+  rm -rf "$WORK" && mkdir -p "$WORK"
+  bash "$SRC/scripts/make_blender_addon.sh" "$BUILD" "$WORK/silk_blender.zip" "$MODEL" >/dev/null
+  exec python3 "$SRC/tests/blender/check_vendored_binding.py" "$WORK/silk_blender.zip" "$SRC"
+fi
 if ! command -v blender >/dev/null; then
   echo "blender not installed: skipped (scripts/setup.sh installs Debian's blender)"
   exit 77
@@ -15,7 +22,6 @@ if [ "$MODE" = modal ] && ! command -v xvfb-run >/dev/null; then
   exit 77
 fi
 rm -rf "$WORK" && mkdir -p "$WORK/user_scripts"
-MODEL=${SILK_ADDON_MODEL:-$SRC/tests/models/tiny}  # the docs picture uses models/default
 bash "$SRC/scripts/make_blender_addon.sh" "$BUILD" "$WORK/silk_blender.zip" "$MODEL" >/dev/null
 if [ "$MODE" = modal ]; then
   # A windowed Blender on a private X server; Mesa's software OpenGL draws it.

@@ -32,17 +32,20 @@ def check(cond, what):
 
 # -- install the zip and enable the add-on ------------------------------------------------------
 check(addon_setup.install_and_enable(env["SILK_ADDON_ZIP"], failures), "add-on enabled (silk.generate_mesh registered)")
-from silk_blender import blender_mesh, silk_api  # noqa: E402  (the installed copy)
+from silk_blender import blender_mesh, silk_mesh  # noqa: E402  (the installed copy, vendored binding)
 
-check(os.path.dirname(silk_api.library_candidates()[0]).startswith(os.path.dirname(silk_api.__file__)),
-      f"libsilk is the copy inside the add-on: {silk_api.library_candidates()[0]}")
+silk_mesh.load_library()
+check(silk_mesh.library_path().startswith(os.path.join(os.path.dirname(silk_mesh.__file__), "lib")),
+      f"libsilk is the copy inside the add-on: {silk_mesh.library_path()}")
+check(os.path.isfile(os.path.join(silk_mesh.bundled_model_dir(), "model.json")),
+      f"the bundled model is beside it: {silk_mesh.bundled_model_dir()}")
 
 # -- a dev-corpus mesh, placed off the origin ---------------------------------------------------
 src = addon_setup.import_active_mesh(env["SILK_DEV_MESH"])
 
 # silkgen on the same mesh as Blender holds it (evaluated, object frame).
 pos, tri = blender_mesh.mesh_arrays(src, bpy.context.evaluated_depsgraph_get())
-with silk_api.Mesh.from_arrays(pos, tri) as m:
+with silk_mesh.Mesh(pos, tri) as m:
     m.save(os.path.join(work, "source.obj"))
 glb, stats_path = os.path.join(work, "silkgen.glb"), os.path.join(work, "silkgen.json")
 subprocess.run([env["SILKGEN"], os.path.join(work, "source.obj"), "-o", glb, "--model", env["SILK_TEST_MODEL"],

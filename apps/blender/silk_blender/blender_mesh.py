@@ -1,6 +1,7 @@
-"""Between Blender meshes and Silk's flat arrays: the active object's evaluated mesh as
+"""Between Blender meshes and Silk's arrays: the active object's evaluated mesh as flat
 triangles (object frame), a face-less object's vertices + normals as a point cloud, and the
-generated mesh back as one object per part under an empty in the source object's frame."""
+generated mesh (silk_mesh rows: numpy arrays or lists of tuples) back as one object per part
+under an empty in the source object's frame."""
 from __future__ import annotations
 
 import array
@@ -46,10 +47,16 @@ def point_cloud_arrays(obj: bpy.types.Object, depsgraph) -> list[float]:
         ev.to_mesh_clear()
 
 
-def split_parts(positions: list[float], triangles: list[int], components: list[int]):
+def rows(values) -> list:
+    """silk_mesh's arrays (numpy when Blender's Python has it, else lists) as plain Python lists."""
+    return values.tolist() if hasattr(values, "tolist") else list(values)
+
+
+def split_parts(positions, triangles, components):
     """[(vertices [(x,y,z)], faces [(a,b,c)])] per component, in component order."""
+    positions, triangles = rows(positions), rows(triangles)
     by_part: dict[int, list[int]] = {}
-    for f, c in enumerate(components):
+    for f, c in enumerate(rows(components)):
         by_part.setdefault(c, []).append(f)
     parts = []
     for c in sorted(by_part):
@@ -57,11 +64,10 @@ def split_parts(positions: list[float], triangles: list[int], components: list[i
         verts, faces = [], []
         for f in by_part[c]:
             face = []
-            for k in range(3):
-                v = triangles[3 * f + k]
+            for v in triangles[f]:
                 if v not in remap:
                     remap[v] = len(verts)
-                    verts.append((positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]))
+                    verts.append(tuple(positions[v]))
                 face.append(remap[v])
             faces.append(tuple(face))
         parts.append((verts, faces))
@@ -80,13 +86,11 @@ def new_mesh_object(name: str, verts, faces, collection, parent=None) -> bpy.typ
     return obj
 
 
-def set_mesh_data(obj: bpy.types.Object, positions: list[float], triangles: list[int]) -> None:
+def set_mesh_data(obj: bpy.types.Object, positions, triangles) -> None:
     """Replaces an object's mesh data (the growing preview)."""
     me = obj.data
     me.clear_geometry()
-    verts = [(positions[i], positions[i + 1], positions[i + 2]) for i in range(0, len(positions), 3)]
-    faces = [(triangles[i], triangles[i + 1], triangles[i + 2]) for i in range(0, len(triangles), 3)]
-    me.from_pydata(verts, [], faces)
+    me.from_pydata(rows(positions), [], rows(triangles))
     me.update()
 
 

@@ -10,13 +10,14 @@ import bpy
 from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from . import blender_mesh, silk_api
+from . import blender_mesh, silk_mesh  # silk_mesh: bindings/python/silk_mesh, vendored unchanged
 
 PREVIEW_NAME = "Silk preview"
 
 
-def _model_dir(path: str) -> str:
-    return bpy.path.abspath(path) if path else silk_api.BUNDLED_MODEL
+def _model_dir(path: str) -> str | None:
+    """None: the model bundled with the add-on (silk_mesh/model beside silk_mesh/lib)."""
+    return bpy.path.abspath(path) if path else None
 
 
 class SILK_OT_generate_mesh(bpy.types.Operator):
@@ -63,20 +64,28 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
     def _start(self, context):
         src = context.active_object
         dg = context.evaluated_depsgraph_get()
-        settings = dict(seed=self.seed, temperature=self.temperature, top_k=self.top_k, max_faces=self.max_faces,
-                        max_tokens=self.max_tokens, repair=self.repair, orient=self.orient,
+        # None (a negative property): libsilk's default (sampling: the model's own values).
+        settings = dict(seed=self.seed, temperature=None if self.temperature < 0 else self.temperature,
+                        top_k=None if self.top_k < 0 else self.top_k, max_faces=self.max_faces,
+                        max_tokens=self.max_tokens, holes=self.repair, orient=self.orient,
                         surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
-        if len(src.data.polygons) > 0:
-            pos, tri = blender_mesh.mesh_arrays(src, dg)
-            with silk_api.Mesh.from_arrays(pos, tri) as m:
-                return src, silk_api.Generation(_model_dir(self.model_dir), m, None, **settings)
-        pts = blender_mesh.point_cloud_arrays(src, dg)
-        return src, silk_api.Generation(_model_dir(self.model_dir), None, pts, **settings)
+        job = silk_mesh.Generator(_model_dir(self.model_dir))
+        try:
+            if len(src.data.polygons) > 0:
+                pos, tri = blender_mesh.mesh_arrays(src, dg)
+                with silk_mesh.Mesh(pos, tri) as m:
+                    job.start(m, **settings)
+            else:
+                job.start(points=blender_mesh.point_cloud_arrays(src, dg), **settings)
+        except BaseException:
+            job.close()
+            raise
+        return src, job
 
     def _finish(self, context, job, src):
-        mesh, stats = job.finish()
+        mesh, _, stats = job.finish()
         with mesh:
-            pos, tri, comp = mesh.arrays()
+            pos, tri, comp = mesh.positions, mesh.triangles, mesh.parts
         empty = blender_mesh.build_result(context, src, pos, tri, comp, stats)
         self.report({"INFO"}, f"Silk: {stats['faces']} faces in {stats['components']} part(s), "
                               f"{stats['tokens']} tokens ({stats['stop_reason']})")
@@ -86,7 +95,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         """Synchronous: scripts and background mode."""
         try:
             src, job = self._start(context)
-        except (silk_api.SilkError, silk_api.SilkLibraryMissing) as e:
+        except silk_mesh.SilkError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         try:
@@ -96,15 +105,15 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                     job.cancel()
                 try:
                     job.advance(32, until_layer=False)
-                except silk_api.SilkError as e:
-                    if e.status == silk_api.SILK_ERR_CANCELLED:
+                except silk_mesh.SilkError as e:
+                    if e.status == silk_mesh.SILK_ERR_CANCELLED:
                         self.report({"WARNING"}, "Silk: generation cancelled")
                         return {"CANCELLED"}
                     raise
                 steps += 1
             self._finish(context, job, src)
             return {"FINISHED"}
-        except silk_api.SilkError as e:
+        except silk_mesh.SilkError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         finally:
@@ -116,7 +125,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             return self.execute(context)
         try:
             self._src, self._job = self._start(context)
-        except (silk_api.SilkError, silk_api.SilkLibraryMissing) as e:
+        except silk_mesh.SilkError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         coll = self._src.users_collection[0] if self._src.users_collection else context.scene.collection
@@ -151,9 +160,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             while not self._job.done and time.monotonic() < t_end:
                 self._job.advance(64, until_layer=True)
             st = self._job.stats()
-            with self._job.mesh_so_far() as m:
-                pos, tri, _ = m.arrays()
-            if len(tri) // 3 != len(self._preview.data.polygons):
+            with self._job.preview() as m:
+                pos, tri = m.positions, m.triangles
+            if len(tri) != len(self._preview.data.polygons):
                 blender_mesh.set_mesh_data(self._preview, pos, tri)
             cap = self.max_tokens or "model limit"
             context.workspace.status_text_set(f"Silk: {st['tokens']} / {cap} tokens, {st['faces']} faces "
@@ -162,7 +171,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                 self._finish(context, self._job, self._src)
                 self._cleanup(context)
                 return {"FINISHED"}
-        except silk_api.SilkError as e:
+        except silk_mesh.SilkError as e:
             self._cleanup(context)
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
@@ -179,14 +188,12 @@ class SILK_OT_import_tokens(bpy.types.Operator, ImportHelper):
 
     def execute(self, context):
         try:
-            with silk_api.decode_file(self.filepath) as m:
-                pos, tri, _ = m.arrays()
-        except (silk_api.SilkError, silk_api.SilkLibraryMissing) as e:
+            with silk_mesh.decode(self.filepath) as m:
+                verts, faces = blender_mesh.rows(m.positions), blender_mesh.rows(m.triangles)
+        except silk_mesh.SilkError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         name = os.path.splitext(os.path.basename(self.filepath))[0]
-        verts = [tuple(pos[i:i + 3]) for i in range(0, len(pos), 3)]
-        faces = [tuple(tri[i:i + 3]) for i in range(0, len(tri), 3)]
         obj = blender_mesh.new_mesh_object(name, verts, faces, context.collection)
         context.view_layer.objects.active = obj
         self.report({"INFO"}, f"Silk: {len(faces)} faces from {len(verts)} vertices")
@@ -209,9 +216,8 @@ class SILK_OT_export_tokens(bpy.types.Operator, ExportHelper):
     def execute(self, context):
         try:
             pos, tri = blender_mesh.mesh_arrays(context.active_object, context.evaluated_depsgraph_get())
-            with silk_api.Mesh.from_arrays(pos, tri) as m:
-                silk_api.encode_to_file(m, self.filepath)
-        except (silk_api.SilkError, silk_api.SilkLibraryMissing) as e:
+            silk_mesh.write_ids(self.filepath, silk_mesh.encode((pos, tri)))
+        except silk_mesh.SilkError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         self.report({"INFO"}, f"Silk: tokens written to {self.filepath}")

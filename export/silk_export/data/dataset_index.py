@@ -10,9 +10,10 @@ import time
 from collections import Counter
 from pathlib import Path
 
+import numpy as np
+import silk_mesh
 from tqdm import tqdm
 
-from ..binding import libsilk
 from ..json_io import jsonl_line, write_json
 from ..paths import shared_dir
 from .mesh_files import list_meshes
@@ -25,12 +26,12 @@ DATASET_FORMAT = "silk-dataset/1"
 def dev_exclusion(dev_dir: Path | None, pmd_root: Path | None = None) -> DevExclusion:
     """Dev corpus paths and shape keys (from its OBJ files and, when present, the original PMDs)."""
     dev_dir = Path(dev_dir) if dev_dir else shared_dir() / "corpus" / "dev"
-    ex = load_dev_exclusion(dev_dir, libsilk.load_arrays)
+    ex = load_dev_exclusion(dev_dir, silk_mesh.load_arrays)
     if pmd_root is not None:
         for zp in sorted(ex.zip_paths):
             p = Path(pmd_root) / zp
             if p.is_file():
-                v, f = libsilk.load_arrays(p)
+                v, f = silk_mesh.load_arrays(p)
                 ex.shape_keys.add(shape_key(v, f.shape[0]))
     return ex
 
@@ -41,17 +42,17 @@ def encode_one(key: str, path: Path, root: Path, dev: DevExclusion | None):
     row = {"key": key, "file": path.relative_to(root).as_posix()}
     arrays = (None, None, None)
     try:
-        v, f = libsilk.load_arrays(path)
+        v, f = silk_mesh.load_arrays(path)
         row.update(vertices=int(v.shape[0]), faces=int(f.shape[0]))
         row["split"] = TRAIN if dev is None else assign_split(key, shape_key(v, f.shape[0]), dev)
-        tokens, stats = libsilk.encode_arrays(v, f)
+        ids, stats = silk_mesh.encode((v, f), return_stats=True)
+        tokens = np.asarray(ids, dtype=np.int32)
         row.update(tokens=int(tokens.size), processed_faces=int(stats["processed_faces"]),
                    layers=int(stats["layers"]), max_layer_size=int(stats["max_layer_size"]), refused=None)
         arrays = (tokens, v, f)
-    except libsilk.SilkRefused as e:
-        row.update(tokens=None, refused=e.reason, detail=e.message)
-    except libsilk.SilkError as e:
-        row.update(tokens=None, refused=f"error:{e.name}", detail=e.message)
+    except silk_mesh.SilkError as e:
+        refused = e.reason if e.status == silk_mesh.SILK_ERR_REFUSED else f"error:{e.name}"
+        row.update(tokens=None, refused=refused, detail=e.message)
     if "split" not in row:
         row["split"] = TRAIN if dev is None else assign_split(key, "", dev)
     return (row, *arrays)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..binding import libsilk
+import silk_mesh
 
 N_POINTS = 4096
 NOISE_PROBABILITY = 0.5
@@ -20,7 +20,7 @@ def sample_surface(v: np.ndarray, f: np.ndarray, n: int, rng: np.random.Generato
                    ) -> tuple[np.ndarray, np.ndarray]:
     """n points uniformly distributed over the surface area (in v's own frame), and their faces'
     unit normals (float64 arrays [n, 3])."""
-    rows, centre, scale = libsilk.prepare_points(v, f, "silk", n_points=n, seed=_seed(rng))
+    rows, centre, scale = silk_mesh.prepare_points(v, f, "silk", n_points=n, seed=_seed(rng))
     return rows[:, :3].astype(np.float64) / scale + centre, rows[:, 3:].astype(np.float64)
 
 
@@ -28,7 +28,7 @@ def point_cloud(v_normalized: np.ndarray, f: np.ndarray, rng: np.random.Generato
                 n: int = N_POINTS, noise: bool = True, kind: str = "silk") -> np.ndarray:
     """float32 [n, 6] condition by the `kind` pre-processing ("silk" or "official"); with
     noise=True adds N(0, 0.01²) to xyz with probability 0.5."""
-    rows, _, _ = libsilk.prepare_points(v_normalized, f, kind, n_points=n, seed=_seed(rng))
+    rows, _, _ = silk_mesh.prepare_points(v_normalized, f, kind, n_points=n, seed=_seed(rng))
     if noise and rng.random() < NOISE_PROBABILITY:
         rows[:, :3] = rows[:, :3] + rng.normal(0.0, NOISE_STD, size=(rows.shape[0], 3))
     return rows

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import torch
 
-from ..binding import libsilk
+import silk_mesh
 from ..models.architecture import IGNORE_INDEX
 from ..vocab import load_vocab
 from .augment import augment_vertices
@@ -33,13 +33,14 @@ class Sample:
 def make_sample(v: np.ndarray, f: np.ndarray, rng: np.random.Generator, max_tokens: int,
                 augment: bool = True, n_points: int = 4096, key: str = "", tokens=None,
                 points_kind: str = "silk") -> Sample:
-    """Raises TooLong, libsilk.SilkRefused (e.g. a layer over 200 vertices) or ValueError.
+    """Raises TooLong, silk_mesh.SilkError (refused, e.g. a layer over 200 vertices) or ValueError.
     tokens: the un-augmented mesh's tokens when already known (a dataset cache); augment=False only.
     points_kind: the architecture's point pre-processing (model.json `preprocessing.kind`)."""
     if augment:
         v, _ = augment_vertices(v, rng)
     if tokens is None or augment:
-        tokens, _ = libsilk.encode_arrays(v, f, normalize=True, normalize_bound=BOUND, nonmanifold_processing=True)
+        tokens = np.asarray(silk_mesh.encode((v, f), normalize=True, normalize_bound=BOUND,
+                                             nonmanifold_processing=True), dtype=np.int32)
     if tokens.size == 0 or tokens.size > max_tokens:
         raise TooLong(f"{key}: {tokens.size} tokens (max {max_tokens})")
     pts = point_cloud(normalize_vertices(v, BOUND), f, rng, n=n_points, noise=augment, kind=points_kind)
@@ -60,7 +61,7 @@ class MeshCache:
 
     def arrays(self, i: int) -> tuple[np.ndarray, np.ndarray]:
         if i not in self._arrays:
-            self._arrays[i] = libsilk.load_arrays(self.root / self.rows[i]["file"])
+            self._arrays[i] = silk_mesh.load_arrays(self.root / self.rows[i]["file"])
         return self._arrays[i]
 
     def sample(self, i: int, rng: np.random.Generator, max_tokens: int, augment: bool = True,

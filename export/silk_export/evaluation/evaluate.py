@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..binding import libsilk
+import silk_mesh
 from ..data.mesh_files import is_mesh_file
 from .metrics import compare_meshes
 from .structure import mesh_structure
@@ -21,10 +21,10 @@ def _stem(p: Path) -> str:
 
 
 def evaluate_pair(generated: Path, reference: Path | None, n_points: int = 10000, seed: int = 0) -> dict:
-    vg, fg = libsilk.load_arrays(generated)
+    vg, fg = silk_mesh.load_arrays(generated)
     row = {"name": _stem(Path(generated)), "structure": mesh_structure(vg, fg)}
     if reference is not None:
-        vr, fr = libsilk.load_arrays(reference)
+        vr, fr = silk_mesh.load_arrays(reference)
         row["reference_faces"] = int(fr.shape[0])
         row["metrics"] = compare_meshes(vg, fg, vr, fr, n_points, seed)
     return row
@@ -61,6 +61,6 @@ def evaluate_paths(generated: Path, reference: Path | None = None, n_points: int
             continue
         try:
             rows.append(evaluate_pair(g, r, n_points, seed))
-        except (libsilk.SilkError, ValueError) as e:
+        except (silk_mesh.SilkError, ValueError) as e:
             rows.append({"name": _stem(g), "error": str(e)})
     return {"summary": summarize(rows), "meshes": rows}

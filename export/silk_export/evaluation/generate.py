@@ -12,7 +12,7 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
-from ..binding import libsilk
+import silk_mesh
 from ..data.geometry import normalize_vertices
 from ..data.pointcloud import point_cloud
 from ..json_io import write_json
@@ -71,20 +71,20 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
     rows = []
     for p in tqdm(inputs, desc="generate", unit="mesh"):
         stem = p.name.split(".")[0]
-        v, f = libsilk.load_arrays(p)
+        v, f = silk_mesh.load_arrays(p)
         vn = normalize_vertices(v, 0.95)
-        with libsilk.Mesh.from_arrays(vn, f) as ref:
+        with silk_mesh.Mesh(vn, f) as ref:
             ref.save(ref_dir / f"{stem}.obj")
         t0 = time.time()
         pts = point_cloud(vn, f, rng, n=model.cfg.n_points, noise=False, kind=model.points_kind(model.cfg))
         toks, eos = sample_tokens(model, pts, max_tokens or model.cfg.max_seq_len - 1, temperature, top_k, g)
         row = {"name": stem, "tokens": int(toks.size), "eos": eos, "seconds": round(time.time() - t0, 2)}
         try:
-            with libsilk.decode(toks) as m:
-                row["faces"] = m.triangle_count()
-                if m.triangle_count():
+            with silk_mesh.decode(toks) as m:
+                row["faces"] = m.triangle_count
+                if m.triangle_count:
                     m.save(gen_dir / f"{stem}.obj")
-        except libsilk.SilkError as e:
+        except silk_mesh.SilkError as e:
             row["decode_error"] = str(e)
         rows.append(row)
     summary = {"inputs": len(rows), "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
@@ -104,20 +104,20 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
     gen_dir.mkdir(parents=True, exist_ok=True)
     ref_dir.mkdir(parents=True, exist_ok=True)
     rows, sampling = [], None
-    with libsilk.Model(model_dir, threads=threads) as model, libsilk.Generator(model) as gen:
+    with silk_mesh.Model(model_dir, threads=threads) as model, silk_mesh.Generator(model) as gen:
         for p in tqdm(inputs, desc="silk runtime", unit="mesh"):
             stem = p.name.split(".")[0]
-            v, f = libsilk.load_arrays(p)
-            with libsilk.Mesh.from_arrays(normalize_vertices(v, 0.95), f) as ref:
+            v, f = silk_mesh.load_arrays(p)
+            with silk_mesh.Mesh(normalize_vertices(v, 0.95), f) as ref:
                 ref.save(ref_dir / f"{stem}.obj")
             row = {"name": stem}
             try:
-                with libsilk.Mesh.load(p) as src:
-                    mesh, _, st = gen.generate(src, seed=seed, max_tokens=max_tokens, temperature=temperature,
+                with silk_mesh.Mesh.load(p) as src:
+                    mesh, _, st = gen.run(src, seed=seed, max_tokens=max_tokens, temperature=temperature,
                                                top_k=top_k, surface_tolerance=surface_tolerance,
                                                candidates=candidates)
                 with mesh:
-                    if mesh.triangle_count():
+                    if mesh.triangle_count:
                         mesh.save(gen_dir / f"{stem}.obj")
                 row.update(tokens=st["tokens"], eos=st["stop_reason"] == "eos", faces=st["faces"],
                            stop_reason=st["stop_reason"], seconds=st["seconds_total"],
@@ -128,7 +128,7 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
                     s = json.loads(gen.report_json())["settings"]
                     sampling = {k: s[k] for k in ("temperature", "top_k", "top_p", "surface_tolerance",
                                                   "candidates", "orient") if k in s}
-            except libsilk.SilkError as e:
+            except silk_mesh.SilkError as e:
                 row.update(eos=False, decode_error=str(e)[-300:])
             rows.append(row)
     summary = {"runtime": "libsilk", "inputs": len(rows), "settings": sampling or {},

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import torch
 
-from ..binding import libsilk
+import silk_mesh
 from ..data.dataset_index import read_index
 from ..models.checkpoint import model_from_checkpoint
 from ..training.train import fixed_val_samples, evaluate_loss, select_rows
@@ -24,7 +24,7 @@ def unigram_baseline(root: Path, rows: list[dict], eval_tokens: np.ndarray, n_id
     """Cross-entropy (nats/token) of add-½-smoothed unigram frequencies of `rows` on eval_tokens."""
     counts = np.full(n_ids, 0.5)
     for r in rows:
-        t, _ = libsilk.encode_arrays(*libsilk.load_arrays(Path(root) / r["file"]))
+        t = np.asarray(silk_mesh.encode(silk_mesh.load_arrays(Path(root) / r["file"])), dtype=np.int32)
         np.add.at(counts, t, 1)
         counts[eos_id] += 1
     return float(-np.log(counts[eval_tokens] / counts.sum()).mean())

@@ -230,11 +230,11 @@ def sidecar(cfg: ModelConfig, training: dict, files: dict, extra: dict | None = 
     import onnx
     import onnxruntime
 
-    from ..binding import libsilk
+    import silk_mesh
     arch = get_architecture(cfg.arch)
     vocab = load_vocab()
     try:
-        lib_version = libsilk.version()
+        lib_version = silk_mesh.version()
     except OSError:
         lib_version = None
     meta = {"format": "silk-model", "model_version": arch.model_version}

@@ -16,7 +16,7 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
-from ..binding import libsilk
+import silk_mesh
 from ..data.dataset_index import build_index, read_index
 from ..data.resample import ProgressiveBalancedSampler
 from ..data.samples import MeshCache, TooLong, collate
@@ -109,7 +109,7 @@ def val_samples(source, cfg, n, seed):
     for i in range(min(n, len(source))):
         try:
             out.append(source.sample(i, rng, cfg.max_tokens, augment=False, n_points=cfg.n_points))
-        except (TooLong, libsilk.SilkError, ValueError):
+        except (TooLong, silk_mesh.SilkError, ValueError):
             pass
     return out
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from ..binding import libsilk
+import silk_mesh
 from ..data.samples import TooLong
 
 TRIES_PER_SLOT = 50
@@ -29,7 +29,7 @@ def draw_sample(source, sampler, seed: int, step: int, slot: int, cfg, augment: 
         i = int(sampler.sample(step, 1, rng)[0])
         try:
             return source.sample(i, rng, cfg.max_tokens, augment=augment, n_points=cfg.n_points)
-        except (TooLong, libsilk.SilkError, ValueError):
+        except (TooLong, silk_mesh.SilkError, ValueError):
             continue
     raise RuntimeError(f"step {step} slot {slot}: {TRIES_PER_SLOT} draws refused or too long; check the data")
 

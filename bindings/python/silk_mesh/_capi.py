@@ -1,6 +1,6 @@
 """The C declarations of libsilk's API (engine/include/silk/silk.h) for ctypes: status codes,
-structs and function signatures, in one place for every Python client (export/silk_export's
-libsilk.py and the Blender add-on, whose zip carries a copy). Pure ctypes, no numpy."""
+structs and function signatures, in one place for every Python client (the silk_mesh package,
+which export/silk_export uses and the Blender add-on vendors). Pure ctypes, no numpy."""
 from __future__ import annotations
 
 import ctypes
@@ -10,6 +10,7 @@ _c_double_p = ctypes.POINTER(ctypes.c_double)
 
 SILK_OK = 0
 SILK_ERR_INVALID_ARGUMENT = 1
+SILK_ERR_IO = 2
 SILK_ERR_REFUSED = 5
 SILK_ERR_CANCELLED = 7
 SILK_ERR_BUFFER_TOO_SMALL = 9
@@ -154,6 +155,13 @@ class GenerateInput(ctypes.Structure):
     _fields_ = [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("n_points", ctypes.c_size_t)]
 
 
+
+class SaveParams(ctypes.Structure):
+    _fields_ = [("part_colors", ctypes.c_int32), ("obj_comment", ctypes.c_char_p), ("format", ctypes.c_int32)]
+
+
+SAVE_FORMATS = {"by_extension": 0, "obj": 1, "ply": 2, "glb": 3}  # silk_mesh_format
+
 SIGNATURES = {
     "silk_last_error": (ctypes.c_char_p, []),
     "silk_status_name": (ctypes.c_char_p, [ctypes.c_int]),
@@ -234,6 +242,10 @@ SIGNATURES = {
     "silk_generate_input_run": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
                                                ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
                                                ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
+    "silk_save_default_params": (SaveParams, []),
+    "silk_mesh_save_with_params": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p, ctypes.POINTER(SaveParams)]),
+    "silk_mesh_has_normals": (ctypes.c_int32, [ctypes.c_void_p]),
+    "silk_mesh_copy_normals": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t]),
 }
 
 

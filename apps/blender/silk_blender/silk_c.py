@@ -1,1 +1,0 @@
-../../../export/silk_export/binding/silk_c.py

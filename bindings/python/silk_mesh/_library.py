@@ -1,0 +1,110 @@
+"""Finding and loading libsilk, and its one error type: SilkError(status, message) with the
+library's own message (silk_last_error), also raised when the library cannot be loaded.
+
+Search order (the first that exists is loaded; a failed load names the file and the OS's reason):
+load_library(path) before the first call, else $SILK_LIBRARY, else the package's own folder
+(silk_mesh/lib/libsilk.so*), else a build tree when the package runs from a checkout
+(<repo>/build/engine/libsilk.so, else the newest <repo>/build*/engine/libsilk.so), else the
+system loader ("libsilk.so")."""
+from __future__ import annotations
+
+import ctypes
+import glob
+import os
+import threading
+
+from . import _capi
+
+PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+# bindings/python/silk_mesh -> the repository root, when this is a checkout (silk.h beside it).
+_CHECKOUT = os.path.dirname(os.path.dirname(os.path.dirname(PACKAGE_DIR)))
+
+
+class SilkError(RuntimeError):
+    """A libsilk call failed. `status` is the silk_status code (SILK_ERR_* in this module), `name`
+    its name ("refused", ...), `message` the library's message. For a refused mesh (status
+    SILK_ERR_REFUSED) `reason` is the named refusal ("mobius", ...), else None. A library that
+    cannot be loaded raises it too, with status SILK_ERR_IO and name "library"."""
+
+    def __init__(self, status: int, message: str, name: str | None = None):
+        super().__init__(f"{name}: {message}" if name else message)
+        self.status, self.message, self.name = int(status), message, name
+
+    @property
+    def reason(self) -> str | None:
+        if self.status != _capi.SILK_ERR_REFUSED:
+            return None
+        return self.message.split(":", 1)[0].strip()
+
+
+_lock = threading.Lock()
+_loaded: tuple[str, ctypes.CDLL] | None = None
+
+
+def library_candidates() -> list[str]:
+    """The files tried, in order, when no library is loaded yet (see the module's docstring)."""
+    env = os.environ.get("SILK_LIBRARY")
+    if env:
+        return [env]
+    out = sorted(glob.glob(os.path.join(PACKAGE_DIR, "lib", "libsilk.so*")), key=len)
+    if os.path.isfile(os.path.join(_CHECKOUT, "engine", "include", "silk", "silk.h")):
+        first = os.path.join(_CHECKOUT, "build", "engine", "libsilk.so")
+        others = [p for p in glob.glob(os.path.join(_CHECKOUT, "build*", "engine", "libsilk.so")) if p != first]
+        others.sort(key=os.path.getmtime, reverse=True)
+        out += ([first] if os.path.exists(first) else []) + others
+    return out + ["libsilk.so"]
+
+
+def _first_candidate() -> str:
+    """$SILK_LIBRARY as given (a missing file fails naming it), else the first that exists."""
+    cands = library_candidates()
+    if os.environ.get("SILK_LIBRARY"):
+        return cands[0]
+    return next(p for p in cands if p == "libsilk.so" or os.path.exists(p))
+
+
+def _open(path: str) -> ctypes.CDLL:
+    try:
+        handle = ctypes.CDLL(path)
+    except OSError as e:
+        hint = ("set SILK_LIBRARY to the path of libsilk.so, or build it (scripts/build.sh)"
+                if path == "libsilk.so" else "check the file, or set SILK_LIBRARY to another libsilk.so")
+        raise SilkError(_capi.SILK_ERR_IO, f"cannot load libsilk from '{path}': {e}; {hint}", "library") from e
+    try:
+        _capi.declare(handle)
+    except AttributeError as e:
+        raise SilkError(_capi.SILK_ERR_IO, f"'{path}' is not a matching libsilk: {e}", "library") from e
+    return handle
+
+
+def load_library(path: str | os.PathLike | None = None) -> ctypes.CDLL:
+    """Loads libsilk: `path` (a full path), or the first candidate that exists. Once per process:
+    a later call with another path raises SilkError (objects would mix two libraries)."""
+    global _loaded
+    with _lock:
+        if _loaded is not None:
+            if path is not None and os.path.abspath(os.fspath(path)) != os.path.abspath(_loaded[0]):
+                raise SilkError(_capi.SILK_ERR_INVALID_ARGUMENT, f"libsilk is already loaded from '{_loaded[0]}'; "
+                                f"load_library('{os.fspath(path)}') must come before the first call", "library")
+            return _loaded[1]
+        chosen = os.fspath(path) if path is not None else _first_candidate()
+        _loaded = (chosen, _open(chosen))
+        return _loaded[1]
+
+
+def lib() -> ctypes.CDLL:
+    """The loaded library (loaded on first use)."""
+    return _loaded[1] if _loaded is not None else load_library()
+
+
+def library_path() -> str:
+    """The file libsilk was (or would be) loaded from."""
+    return _loaded[0] if _loaded is not None else _first_candidate()
+
+
+def check(status: int) -> None:
+    """Raises SilkError with the library's message for a status other than SILK_OK."""
+    if status != _capi.SILK_OK:
+        L = lib()
+        raise SilkError(status, L.silk_last_error().decode(errors="replace"),
+                        L.silk_status_name(status).decode())

@@ -1,0 +1,234 @@
+"""The thin internal layer: every call into libsilk is made here (declarations in _capi), so a
+change of the C API (a renamed function, a count query folded into its copy call) is adapted in
+this file alone. Handles are ctypes.c_void_p, arrays ctypes arrays; nothing Pythonic."""
+from __future__ import annotations
+
+import ctypes
+from ctypes import byref, c_void_p
+
+from . import _capi
+from ._library import check, lib
+
+
+def _out(fn, *args) -> c_void_p:
+    h = c_void_p()
+    check(fn(*args, byref(h)))
+    return h
+
+
+def _copy(count_fn, copy_fn, h, ctype, width: int):
+    n = int(count_fn(h)) * width
+    buf = (ctype * n)()
+    check(copy_fn(h, buf, n))
+    return buf
+
+
+# -- library ---------------------------------------------------------------------------------
+def version() -> str:
+    return lib().silk_version().decode()
+
+
+def vocab() -> _capi.VocabInfo:
+    return lib().silk_vocab()
+
+
+def generation_available() -> bool:
+    return bool(lib().silk_generation_available())
+
+
+# -- meshes ----------------------------------------------------------------------------------
+def mesh_create(positions, n_vertices: int, triangles, n_triangles: int) -> c_void_p:
+    return _out(lib().silk_mesh_create, positions, n_vertices, triangles, n_triangles)
+
+
+def mesh_load(path: bytes, point_clouds: bool) -> c_void_p:
+    L = lib()
+    params = L.silk_load_default_params()
+    params.point_clouds = int(bool(point_clouds))
+    return _out(L.silk_mesh_load_with_params, path, byref(params))
+
+
+def mesh_save(h: c_void_p, path: bytes, params: _capi.SaveParams) -> None:
+    check(lib().silk_mesh_save_with_params(h, path, byref(params)))
+
+
+def save_defaults() -> _capi.SaveParams:
+    return lib().silk_save_default_params()
+
+
+def mesh_destroy(h: c_void_p) -> None:
+    lib().silk_mesh_destroy(h)
+
+
+def mesh_vertex_count(h: c_void_p) -> int:
+    return int(lib().silk_mesh_vertex_count(h))
+
+
+def mesh_triangle_count(h: c_void_p) -> int:
+    return int(lib().silk_mesh_triangle_count(h))
+
+
+def mesh_positions(h: c_void_p):
+    L = lib()
+    return _copy(L.silk_mesh_vertex_count, L.silk_mesh_copy_positions, h, ctypes.c_double, 3)
+
+
+def mesh_triangles(h: c_void_p):
+    L = lib()
+    return _copy(L.silk_mesh_triangle_count, L.silk_mesh_copy_triangles, h, ctypes.c_int32, 3)
+
+
+def mesh_parts(h: c_void_p):
+    L = lib()
+    return _copy(L.silk_mesh_triangle_count, L.silk_mesh_copy_triangle_components, h, ctypes.c_int32, 1)
+
+
+def mesh_normals(h: c_void_p):
+    """Per-vertex normals (3 doubles each), or None when the mesh has none."""
+    L = lib()
+    if not L.silk_mesh_has_normals(h):
+        return None
+    return _copy(L.silk_mesh_vertex_count, L.silk_mesh_copy_normals, h, ctypes.c_double, 3)
+
+
+# -- token sequences -------------------------------------------------------------------------
+def tokens_create(ids, count: int) -> c_void_p:
+    return _out(lib().silk_tokens_create, ids, count)
+
+
+def tokens_load(path: bytes) -> c_void_p:
+    return _out(lib().silk_tokens_load, path)
+
+
+def tokens_save(h: c_void_p, path: bytes) -> None:
+    check(lib().silk_tokens_save(h, path))
+
+
+def tokens_destroy(h: c_void_p) -> None:
+    lib().silk_tokens_destroy(h)
+
+
+def tokens_take(h: c_void_p) -> list[int]:
+    """The ids of a tokens handle, which is destroyed."""
+    L = lib()
+    try:
+        return list(_copy(L.silk_tokens_count, L.silk_tokens_copy, h, ctypes.c_int32, 1))
+    finally:
+        L.silk_tokens_destroy(h)
+
+
+# -- encode / decode -------------------------------------------------------------------------
+def encode_defaults() -> _capi.EncodeParams:
+    return lib().silk_encode_default_params()
+
+
+def encode(mesh: c_void_p, params: _capi.EncodeParams) -> tuple[c_void_p, _capi.EncodeStats]:
+    stats, h = _capi.EncodeStats(), c_void_p()
+    check(lib().silk_encode(mesh, byref(params), byref(h), byref(stats)))
+    return h, stats
+
+
+def decode_defaults() -> _capi.DecodeParams:
+    return lib().silk_decode_default_params()
+
+
+def decode(tokens: c_void_p, params: _capi.DecodeParams) -> tuple[c_void_p, _capi.DecodeStats]:
+    stats, h = _capi.DecodeStats(), c_void_p()
+    check(lib().silk_decode_with_stats(tokens, byref(params), byref(h), byref(stats)))
+    return h, stats
+
+
+# -- pre-processing --------------------------------------------------------------------------
+def preprocess_defaults(kind: int) -> _capi.PreprocessParams:
+    return lib().silk_preprocess_default_params(kind)
+
+
+def prepare_points(mesh, cloud, n_cloud: int, params: _capi.PreprocessParams, seed: int):
+    """(float array of rows * 6, transform double[4]) by silk_prepare_points (size query first)."""
+    L, rows, transform = lib(), ctypes.c_size_t(), (ctypes.c_double * 4)()
+    s = ctypes.c_uint64(int(seed) & (2**64 - 1))
+    check(L.silk_prepare_points(mesh, cloud, n_cloud, byref(params), s, None, 0, byref(rows), None))
+    out = (ctypes.c_float * (6 * rows.value))()
+    check(L.silk_prepare_points(mesh, cloud, n_cloud, byref(params), s, out, len(out), byref(rows), transform))
+    return out, transform
+
+
+# -- models and generators -------------------------------------------------------------------
+def model_load(path: bytes, threads: int, decoder: int) -> c_void_p:
+    L = lib()
+    opts = L.silk_model_default_options()
+    opts.threads, opts.decoder = threads, decoder
+    return _out(L.silk_model_load, path, byref(opts))
+
+
+def model_destroy(h: c_void_p) -> None:
+    lib().silk_model_destroy(h)
+
+
+def model_info(h: c_void_p) -> _capi.ModelInfo:
+    info = _capi.ModelInfo()
+    check(lib().silk_model_get_info(h, byref(info)))
+    return info
+
+
+def generator_create(model: c_void_p) -> c_void_p:
+    return _out(lib().silk_generator_create, model)
+
+
+def generator_destroy(h: c_void_p) -> None:
+    lib().silk_generator_destroy(h)
+
+
+def generate_defaults() -> _capi.GenerateParams:
+    return lib().silk_generate_default_params()
+
+
+def generator_start(g: c_void_p, inp: _capi.GenerateInput, params: _capi.GenerateParams) -> None:
+    check(lib().silk_generator_start(g, byref(inp), byref(params)))
+
+
+def generator_advance(g: c_void_p, max_ids: int, until_layer: bool) -> bool:
+    done = ctypes.c_int32()
+    check(lib().silk_generator_advance(g, max_ids, 1 if until_layer else 0, byref(done)))
+    return bool(done.value)
+
+
+def generator_cancel(g: c_void_p) -> None:
+    lib().silk_generator_cancel(g)
+
+
+def generator_tokens(g: c_void_p) -> c_void_p:
+    return _out(lib().silk_generator_tokens, g)
+
+
+def generator_mesh(g: c_void_p) -> c_void_p:
+    return _out(lib().silk_generator_mesh, g)
+
+
+def generator_stats(g: c_void_p) -> _capi.GenerateStats:
+    st = _capi.GenerateStats()
+    check(lib().silk_generator_stats(g, byref(st)))
+    return st
+
+
+def generator_finish(g: c_void_p) -> tuple[c_void_p, c_void_p, _capi.GenerateStats]:
+    mh, th, st = c_void_p(), c_void_p(), _capi.GenerateStats()
+    check(lib().silk_generator_finish(g, byref(mh), byref(th), byref(st)))
+    return mh, th, st
+
+
+def generator_run(g: c_void_p, inp: _capi.GenerateInput, params: _capi.GenerateParams):
+    """silk_generate_input_run: (mesh handle, tokens handle, stats)."""
+    mh, th, st = c_void_p(), c_void_p(), _capi.GenerateStats()
+    check(lib().silk_generate_input_run(g, byref(inp), byref(params), byref(mh), byref(th), byref(st)))
+    return mh, th, st
+
+
+def generator_report_json(g: c_void_p, trace: bool) -> str:
+    L, size = lib(), ctypes.c_size_t()
+    status = L.silk_generator_report_json(g, int(trace), None, 0, byref(size))
+    if status != _capi.SILK_ERR_BUFFER_TOO_SMALL:
+        check(status)
+    buf = ctypes.create_string_buffer(size.value)
+    check(L.silk_generator_report_json(g, int(trace), buf, size.value, byref(size)))
+    return buf.value.decode()

@@ -1,0 +1,237 @@
+"""Generation: silk_mesh.Model (a loaded model folder), silk_mesh.Generator (one generation at a
+time, in one call or step by step: start / advance / preview / finish / cancel, with a progress
+callback) and silk_mesh.generate (one call with a fresh generator). Results are Result(mesh, ids,
+stats); the mesh is in the input's frame, its `parts` give each triangle's part."""
+from __future__ import annotations
+
+import ctypes
+import os
+from typing import NamedTuple
+
+from . import _arrays, _capi, _native, _params
+from ._library import SilkError, library_path
+from .mesh import Mesh, _Borrowed
+
+_ENUMS = {"holes": _capi.HOLES, "orient": _capi.ORIENT, "preprocessing": _capi.PREPROCESS_KINDS}
+_HIDDEN = ("progress", "cancel", "user_data")  # set from Python callables, not keywords
+
+
+def bundled_model_dir() -> str:
+    """The model shipped beside the library: <library folder>/../model (silk_mesh/model)."""
+    return os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(library_path()))), "model")
+
+
+class Model:
+    """A loaded model folder (model.json, encoder.onnx, decoder.onnx). dir None: the bundled model
+    (bundled_model_dir()), else SilkError naming where it looked. threads: the process's shared
+    pool (0 = physical cores; the first load decides); decoder: "default", "int8", "fp32", "int4".
+    Generators keep the model alive: close() may come first."""
+
+    _h = None
+
+    def __init__(self, dir: str | os.PathLike | None = None, threads: int = 0, decoder: str = "default"):
+        if dir is None:
+            dir = bundled_model_dir()
+            if not os.path.isfile(os.path.join(dir, "model.json")):
+                raise SilkError(_capi.SILK_ERR_IO, f"no bundled model: '{dir}' (beside the library "
+                                f"'{library_path()}') has no model.json; pass Model(dir)", "model")
+        if decoder not in _capi.DECODERS:
+            raise ValueError(f"Model: decoder must be one of {sorted(_capi.DECODERS)}, not {decoder!r}")
+        self.dir = os.fspath(dir)
+        self._h = _native.model_load(os.fsencode(self.dir), int(threads), _capi.DECODERS[decoder])
+
+    def info(self) -> dict:
+        """model.json figures and the options in use (d_model, n_points, decoder, ...)."""
+        return _params.as_dict(_native.model_info(self.handle))
+
+    @property
+    def handle(self) -> ctypes.c_void_p:
+        if not self._h:
+            raise ValueError("silk_mesh.Model: the model is closed")
+        return self._h
+
+    def close(self) -> None:
+        if self._h:
+            _native.model_destroy(self._h)
+            self._h = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown
+            pass
+
+    def __enter__(self) -> "Model":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+class Result(NamedTuple):
+    mesh: Mesh   # the generated mesh (input frame); Mesh.parts: each triangle's part
+    ids: list    # the generated token ids (format ids, EOS included when generated)
+    stats: dict  # silk_generate_stats by field name; stop_reason as a name ("eos", ...)
+
+
+def _progress_dict(p) -> dict:
+    return {name: getattr(p[0], name) for name, _ in _capi.GenerateProgress._fields_}
+
+
+class Generator:
+    """One generation at a time on a Model (a Model, a folder path, or None: the bundled model).
+    One call: run(input, **params) -> Result. Step-wise: start(input, **params), advance(...) until
+    it returns True (also `done`), preview() / ids() / stats() at any point, finish() -> Result;
+    cancel() from anywhere (a callback, another thread). Use one generator per thread.
+
+    input: a Mesh, a mesh file path or (positions, triangles); or points= rows x y z nx ny nz.
+    params: fields of silk_generate_params by name: seed, temperature, top_k, top_p, max_tokens,
+    max_faces, holes ("off", "report", "repair"), n_points, surface_tolerance, candidates, orient
+    ("input", "tokens"), ...; None keeps libsilk's default (sampling: the model's values).
+    progress(dict) is called after every id (tokens, max_tokens, components, faces, seconds);
+    cancel() -> truthy stops the run (SilkError with status SILK_ERR_CANCELLED). An exception in
+    either callback cancels the run and is raised from the call."""
+
+    _h = None
+
+    def __init__(self, model: Model | str | os.PathLike | None = None):
+        self._own_model = not isinstance(model, Model)
+        self.model = Model(model) if self._own_model else model
+        self._h = _native.generator_create(self.model.handle)
+        self._keep, self._error, self.done = (), None, False
+
+    @property
+    def handle(self) -> ctypes.c_void_p:
+        if not self._h:
+            raise ValueError("silk_mesh.Generator: the generator is closed")
+        return self._h
+
+    def _prepare(self, source, points, progress, cancel, params: dict):
+        """(GenerateInput, GenerateParams); their Python-side objects stay in self._keep."""
+        p = _params.fill(_native.generate_defaults(), params, "generate", _ENUMS, _HIDDEN)
+        callbacks = []
+        if progress is not None:
+            callbacks.append(_capi.PROGRESS_FN(lambda pr, _u: self._guard(progress, _progress_dict(pr))))
+            p.progress = callbacks[-1]
+        if cancel is not None:
+            callbacks.append(_capi.CANCEL_FN(lambda _u: 1 if self._guard(cancel) else 0))
+            p.cancel = callbacks[-1]
+        gi, borrowed = _capi.GenerateInput(), None
+        if (source is None) == (points is None):
+            raise TypeError("generate: give exactly one of an input mesh and points=")
+        if points is not None:
+            ptr, rows, keep = _arrays.to_c(points, ctypes.c_double, 6, "points")
+            gi.points, gi.n_points = ptr, rows
+        else:
+            borrowed = _Borrowed(source, "generate")
+            gi.mesh, keep = borrowed.mesh.handle, borrowed
+        self._keep, self._error = (callbacks, keep, p), None
+        return gi, p
+
+    def _guard(self, fn, *args):
+        """Runs a callback; an exception is kept for the caller and cancels the run."""
+        try:
+            return fn(*args)
+        except BaseException as e:  # noqa: BLE001 - re-raised by _release
+            self._error = self._error or e
+            _native.generator_cancel(self._h)
+            return True
+
+    def _release(self, keep_callbacks: bool = False) -> None:
+        callbacks, keep, _ = self._keep or ((), None, None)
+        if isinstance(keep, _Borrowed):
+            keep.__exit__()
+        self._keep = (callbacks, None, None) if keep_callbacks else ()
+        if self._error is not None:
+            err, self._error = self._error, None
+            raise err
+
+    def run(self, input=None, *, points=None, progress=None, cancel=None, **params) -> Result:
+        """One call (best of `candidates` runs): the Result."""
+        gi, p = self._prepare(input, points, progress, cancel, params)
+        try:
+            mh, th, st = _native.generator_run(self.handle, gi, p)
+        except SilkError:
+            self._release()
+            raise
+        self._release()
+        return Result(Mesh._adopt(mh), _native.tokens_take(th), st.as_dict())
+
+    def start(self, input=None, *, points=None, progress=None, cancel=None, **params) -> None:
+        """Prepares the points and runs the encoder; then advance() adds ids."""
+        gi, p = self._prepare(input, points, progress, cancel, params)
+        self.done = False
+        try:
+            _native.generator_start(self.handle, gi, p)
+        except SilkError:
+            self._release()
+            raise
+        self._release(keep_callbacks=True)  # the input is copied by start; callbacks run on
+
+    def advance(self, max_ids: int = 64, until_layer: bool = False) -> bool:
+        """Adds up to max_ids ids (until_layer: stops at the next completed layer); True once done.
+        A cancel raises SilkError(SILK_ERR_CANCELLED); finish() still gives the completed layers."""
+        try:
+            self.done = _native.generator_advance(self.handle, int(max_ids), until_layer)
+        finally:
+            if self._error is not None:
+                err, self._error = self._error, None
+                raise err
+        return self.done
+
+    def preview(self) -> Mesh:
+        """The faces of the layers completed so far (input frame)."""
+        return Mesh._adopt(_native.generator_mesh(self.handle))
+
+    def ids(self) -> list[int]:
+        return _native.tokens_take(_native.generator_tokens(self.handle))
+
+    def stats(self) -> dict:
+        return _native.generator_stats(self.handle).as_dict()
+
+    def finish(self) -> Result:
+        """Ends the generation (cancelling it first when not done): the final mesh, ids, stats."""
+        try:
+            mh, th, st = _native.generator_finish(self.handle)
+        finally:
+            self._keep = ()
+        self.done = True
+        return Result(Mesh._adopt(mh), _native.tokens_take(th), st.as_dict())
+
+    def cancel(self) -> None:
+        """Thread-safe, any time: cancels the run in progress (nothing when none is)."""
+        if self._h:
+            _native.generator_cancel(self._h)
+
+    def report_json(self, trace: bool = False) -> str:
+        """The last finished generation as JSON (settings, input, figures; trace: per-id legal sets
+        when started with debug_flags=8)."""
+        return _native.generator_report_json(self.handle, trace)
+
+    def close(self) -> None:
+        if self._h:
+            _native.generator_destroy(self._h)
+            self._h = None
+        self._keep = ()
+        if self._own_model:
+            self.model.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown
+            pass
+
+    def __enter__(self) -> "Generator":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def generate(input=None, model: Model | str | os.PathLike | None = None, *, points=None, progress=None,
+             cancel=None, **params) -> Result:
+    """One generation with a fresh Generator (see Generator for input and params); model: a
+    Model, a model folder, or None for the bundled model."""
+    with Generator(model) as gen:  # closes the model too when it made it
+        return gen.run(input, points=points, progress=progress, cancel=cancel, **params)
