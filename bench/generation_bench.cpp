@@ -374,7 +374,7 @@ void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
   silk::SamplingParams sp;
   sp.temperature = 0.5;
   sp.top_k = 50;
-  silk::Sampler sampler(sp);
+  auto sampler = silk::BuildSamplerChain({sp});
   std::vector<std::vector<float>> logits;
   std::vector<silk::TokenMask> masks;
   double mask_cpu = 0;
@@ -397,7 +397,7 @@ void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
         pending.clear();
         logits.emplace_back(runner.last_logits(), runner.last_logits() + c.model_vocab_size);
         masks.push_back(m);
-        id = sampler.Sample(runner.last_logits(), &m);
+        id = sampler->Sample(runner.last_logits(), &m);
       }
       if (!grammar.Accept(id).ok() || id == c.eos_id) break;
       pending.push_back(id);
@@ -406,24 +406,18 @@ void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
   if (logits.empty()) return;
   const int reps = 20;
   double cpu[2] = {0, 0};
-  int64_t illegal = 0;
+  silk::GenerationStats stats;
   for (int order = 0; order < 2; ++order) {
-    silk::Sampler s(sp);
+    silk::SamplerChainSettings settings{sp};
+    settings.sample_then_check = order == 1;
+    settings.stats = &stats;
+    auto s = silk::BuildSamplerChain(settings);
     const double t0 = ThreadCpuSeconds();
     for (int r = 0; r < reps; ++r)
-      for (size_t i = 0; i < logits.size(); ++i) {
-        if (order == 0) {
-          (void)s.Sample(logits[i].data(), &masks[i]);
-        } else {
-          const int32_t id = s.Sample(logits[i].data(), nullptr);
-          if (!masks[i].Test(id)) {
-            illegal += r == 0;
-            (void)s.Sample(logits[i].data(), &masks[i]);
-          }
-        }
-      }
+      for (size_t i = 0; i < logits.size(); ++i) (void)s->Sample(logits[i].data(), &masks[i]);
     cpu[order] = (ThreadCpuSeconds() - t0) / (reps * logits.size());
   }
+  const int64_t illegal = stats.resampled / reps;
   std::printf("\nSampling order on %zu recorded steps of the tiny model (thread CPU time per sampled id):\n"
               "  legal mask (grammar, needed by both): %.1f us per id\n"
               "  mask-first:        %.1f us\n  sample-then-check: %.1f us (%lld of %zu unmasked draws illegal -> "

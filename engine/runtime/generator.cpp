@@ -17,7 +17,6 @@
 #include "runtime/input_orientation.h"
 #include "runtime/model_impl.h"
 #include "runtime/surface_guide.h"
-#include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {
@@ -52,6 +51,19 @@ int64_t FirstNonFinite(const float* logits, int64_t n) {
   return -1;
 }
 
+// The sampling chain of one generation: the grammar mask unless unconstrained, then the guide
+// (set only when constrained), the measurement order, the sampling values.
+SamplerChainSettings ChainSettings(const GenerateOptions& o, Grammar* grammar, const SurfaceGuide* guide,
+                                   GenerationStats* stats) {
+  SamplerChainSettings c;
+  c.sampling = o.sampling;
+  c.grammar = o.unconstrained ? nullptr : grammar;
+  c.guide = guide;
+  c.sample_then_check = o.order == SampleOrder::kSampleThenCheck;
+  c.stats = stats;
+  return c;
+}
+
 }  // namespace
 
 Status CheckGenerateOptions(const GenerateOptions& options) {
@@ -73,7 +85,7 @@ Status CheckGenerateOptions(const GenerateOptions& options) {
 }
 
 // One generation in progress: the encoder output, the decoder runner over the KV cache, the
-// grammar and the sampler, the ids so far.
+// grammar and the sampling chain, the ids so far.
 struct Generator::Session {
   Session(const Model::Impl& m, KvCache* cache, Ort::Value cross_kv, const GenerateOptions& o, const GenerateCallbacks& cb,
           int32_t cap)
@@ -82,8 +94,7 @@ struct Generator::Session {
         cap(cap),
         cross(std::move(cross_kv)),
         runner(m, cache, cross.GetTensorMutableData<float>(), o.kv_in_place ? KvMode::kInPlace : KvMode::kCopy),
-        grammar(MakeGrammarOptions(cap)),
-        sampler(o.sampling) {}
+        grammar(MakeGrammarOptions(cap)) {}
   static GrammarOptions MakeGrammarOptions(int32_t cap) {
     GrammarOptions g;
     g.max_length = cap;
@@ -95,14 +106,13 @@ struct Generator::Session {
   Ort::Value cross;
   DecoderRunner runner;
   Grammar grammar;
-  Sampler sampler;
+  std::unique_ptr<SamplerChain> chain;  // built in Start, once the guide is known
   GenerateResult res;
   std::vector<int32_t> pending;
   int32_t faces_at_close = -1;
   int64_t layers_closed = 0;
   std::shared_ptr<const SurfaceGuide> guide;  // surface_tolerance > 0, constrained mode
   std::shared_ptr<const OrientedPointSet> orientation;  // orient_to_input
-  TokenMask guided;                     // the legal mask after guidance (what is sampled from)
   mutable MeshBuildCache so_far_cache;  // max_faces / MeshSoFar: closed components are built once
   bool illegal_seen = false;
   bool failed = false;
@@ -183,6 +193,7 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
     if (!orientation_) orientation_ = MakeInputOrientation(points);
     s.orientation = orientation_;
   }
+  s.chain = BuildSamplerChain(ChainSettings(options, &s.grammar, s.guide.get(), &st));
   s.pending = {cfg.bos_id};
   s.t_start = t_start;
   s.t_loop = Clock::now();
@@ -223,15 +234,14 @@ Status Generator::StepOnce() {
   return Status::Ok();
 }
 
-// The grammar's forced id (or -1) and legal mask, guided when surface guidance is on. False at
-// a dead end (no legal id), with the stop reason set.
+// The chain's stages before the logits: the grammar's forced id (or -1) and legal mask, guided
+// when surface guidance is on. False at a dead end (no legal id), with the stop reason set.
 bool Generator::ConsultGrammar(StepChoice* c) {
   Session& s = *session_;
   GenerationStats& st = s.res.stats;
-  const auto t0 = Clock::now();
-  c->id = s.grammar.Forced();
-  c->mask = &s.grammar.LegalMask();
-  st.seconds.grammar += Since(t0);
+  const SamplerCandidates& narrowed = s.chain->Narrow();
+  c->id = narrowed.forced;
+  c->mask = narrowed.mask;
   if (c->mask->Empty()) {
     // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
     // rather than fail the whole run, and say so in the stats.
@@ -240,7 +250,6 @@ bool Generator::ConsultGrammar(StepChoice* c) {
     return false;
   }
   c->forced = c->id >= 0;
-  if (s.guide) c->mask = Guide(c->id, c->mask);
   return true;
 }
 
@@ -259,8 +268,7 @@ Status Generator::FeedPending() {
   return Status::Ok();
 }
 
-// Samples the id unless the grammar forced it (kSampleThenCheck: over all ids first, resampled
-// from the mask when illegal).
+// Samples the id unless the grammar forced it: the chain's stages on the logits.
 void Generator::ChooseId(StepChoice* c) {
   Session& s = *session_;
   GenerationStats& st = s.res.stats;
@@ -269,15 +277,7 @@ void Generator::ChooseId(StepChoice* c) {
     return;
   }
   const auto t0 = Clock::now();
-  if (s.options.order == SampleOrder::kSampleThenCheck && c->mask) {
-    c->id = s.sampler.Sample(s.runner.last_logits(), nullptr);
-    if (!c->mask->Test(c->id)) {
-      ++st.resampled;
-      c->id = s.sampler.Sample(s.runner.last_logits(), c->mask);
-    }
-  } else {
-    c->id = s.sampler.Sample(s.runner.last_logits(), c->mask);
-  }
+  c->id = s.chain->Sample(s.runner.last_logits(), c->mask);
   st.seconds.sampling += Since(t0);
   ++st.sampled_tokens;
 }
@@ -342,32 +342,6 @@ void Generator::CheckFaceCap() {
   st.seconds.build_mesh += Since(t0);
   if (so_far.ok()) s.faces_at_close = static_cast<int32_t>(so_far->faces.size());
   if (s.faces_at_close >= s.options.max_faces) st.stop_reason = "max_faces";
-}
-
-// Surface guidance on the legal mask (sampled ids) or a check of a forced vertex id; returns the
-// mask to sample from. Fallbacks (no legal id within the tolerance) are counted.
-const TokenMask* Generator::Guide(int32_t forced_id, const TokenMask* legal) {
-  Session& s = *session_;
-  GenerationStats& st = s.res.stats;
-  const auto t0 = Clock::now();
-  const bool offsets = s.grammar.phase() == GrammarPhase::kWantO;
-  const int32_t block = offsets ? s.res.tokens.back() : -1;
-  if (forced_id >= 0) {
-    if (forced_id >= vocab::kKBegin && forced_id < vocab::kKEnd)
-      st.guidance_fallbacks += s.guide->Within(s.guide->BlockDistance2(forced_id - vocab::kKBegin)) ? 0 : 1;
-    else if (offsets && forced_id >= vocab::kOBegin && forced_id < vocab::kOEnd)
-      st.guidance_fallbacks += s.guide->Within(s.guide->CellDistance2(VertexOfTokens(block, forced_id))) ? 0 : 1;
-    st.seconds.guidance += Since(t0);
-    return legal;
-  }
-  const int32_t first_k = legal->Next(vocab::kKBegin);
-  if (!offsets && (first_k < 0 || first_k >= vocab::kKEnd)) return legal;  // no vertex id legal now
-  s.guided = *legal;
-  const bool fallback = offsets ? s.guide->RestrictOffsets(block, &s.guided) : s.guide->RestrictBlocks(&s.guided);
-  ++st.guided_tokens;
-  st.guidance_fallbacks += fallback ? 1 : 0;
-  st.seconds.guidance += Since(t0);
-  return &s.guided;
 }
 
 void Generator::ReportProgress() {

@@ -1,9 +1,9 @@
 // Generator: one constrained generation, point cloud -> token ids -> mesh, run in one call
 // (Run) or step-wise (Start, Step until finished, MeshSoFar at any point, Finish). Holds the
-// KV cache between runs (reuse one Generator per thread). The grammar mask, then surface
-// guidance (runtime/surface_guide.h, when on), is applied before the sampling chain; ids the
-// grammar forces are appended without sampling and fed to the
-// model later as one chunk together with the next sampled id (chunked prefill of known tokens).
+// KV cache between runs (reuse one Generator per thread). Each id the grammar does not force
+// comes from the sampling chain (runtime/sampler.h: grammar mask, surface guidance when on, then
+// the numeric stages), built once per generation; forced ids are appended without sampling and
+// fed to the model later as one chunk together with the next sampled id (chunked prefill).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -132,7 +132,6 @@ class Generator {
   Status AcceptId(int32_t id);
   void AppendId(int32_t id);
   void CheckFaceCap();
-  const TokenMask* Guide(int32_t forced_id, const TokenMask* legal);
   void ReportProgress();
   const Model& model_;
   KvCache cache_;

@@ -1,12 +1,15 @@
-// Sampler: the token sampling chain, applied to the logits of the legal ids only (the
-// grammar mask comes first): temperature -> top-k -> top-p -> one uniform draw from a seeded
-// SplitMix64. Fully specified so tests/models/reference_loop.py reproduces it exactly.
-// With top_p_temperature > 0 the chain is the official one (official_network.md §4): top-k on the
-// logits, top-p on softmax(survivors / top_p_temperature) keeping the top id and the one that
-// crosses top_p, then softmax(kept / temperature) and the draw.
+// The sampling chain, built as llama.cpp builds one: small stages behind one interface, each
+// narrowing the candidate ids of one step or choosing among them, assembled once per generation
+// by BuildSamplerChain from the resolved settings and run per step by Generator:
+//   grammar mask -> surface guidance | (sample-then-check) -> candidates -> temperature -> top-k
+//   -> (official top-p) -> softmax -> (top-p) -> draw; greedy (temperature <= 0): candidates ->
+//   greedy draw. Stages: runtime/sampler_stages.h (numeric), runtime/legal_stages.h (legality).
+// Every draw comes from one seeded SplitMix64, so tests/models/reference_loop.py reproduces the
+// chain bit for bit.
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -14,6 +17,10 @@
 #include "decoder/token_mask.h"
 
 namespace silk {
+
+class Grammar;
+class SurfaceGuide;
+struct GenerationStats;
 
 struct SamplingParams {
   double temperature = 1.0;  // <= 0: greedy (largest logit, lowest id on ties; no draw)
@@ -23,27 +30,59 @@ struct SamplingParams {
   uint64_t seed = 0;
 };
 
-class Sampler {
+// What the stages of one step share. Before the logits: the forced id and the mask; then the
+// candidate ids, their scores (best first once ranked), the survivors' weights, the choice.
+struct SamplerCandidates {
+  int32_t forced = -1;              // the grammar's only legal id, or -1
+  const TokenMask* mask = nullptr;  // the ids that may be chosen; null: every id but PAD
+  const float* logits = nullptr;    // vocab::k_model_vocab_size entries
+  std::vector<int32_t> ids;         // the candidates, ascending
+  std::vector<std::pair<double, int32_t>> scored;  // (score, id)
+  std::vector<double> probs;        // unnormalised weights of the first `keep` of scored
+  size_t keep = 0;                  // survivors: the first `keep` of scored
+  double mass = 0;                  // the sum of probs over the survivors
+  int32_t id = -1;                  // the choice (-1: none)
+  bool done = false;                // the choice is made (or there is none): later stages are skipped
+};
+
+class SamplerStage {
  public:
-  explicit Sampler(const SamplingParams& params) : params_(params), rng_(params.seed) {}
+  virtual ~SamplerStage() = default;
+  virtual void Apply(SamplerCandidates* c) = 0;
+};
 
-  // Samples among the ids set in `legal` (nullptr: every id of logits except PAD). Returns -1
-  // when no id is allowed. `logits` has vocab::k_model_vocab_size entries.
-  int32_t Sample(const float* logits, const TokenMask* legal);
-  // Same chain over an explicit candidate list (ascending ids).
-  int32_t SampleFrom(const float* logits, const std::vector<int32_t>& candidates);
+class SamplerChain {
+ public:
+  // `rng` is shared with any nested chain (sample-then-check draws twice from one stream).
+  explicit SamplerChain(std::shared_ptr<SplitMix64> rng) : rng_(std::move(rng)) {}
 
-  const SamplingParams& params() const { return params_; }
+  // Stages that need no logits (grammar mask, surface guidance), run by Narrow, in order.
+  void AddBeforeLogits(std::unique_ptr<SamplerStage> stage) { before_logits_.push_back(std::move(stage)); }
+  // Stages on the logits, run by Sample, in order.
+  void Add(std::unique_ptr<SamplerStage> stage) { on_logits_.push_back(std::move(stage)); }
+  SplitMix64* rng() const { return rng_.get(); }
+
+  // A step's start, before the decoder runs: the forced id and the mask to sample from (an
+  // empty mask: a dead end; the later stages are skipped).
+  const SamplerCandidates& Narrow();
+  // The id chosen among the ids of `mask` (null: every id but PAD); -1 when there is none.
+  int32_t Sample(const float* logits, const TokenMask* mask);
 
  private:
-  SamplingParams params_;
-  SplitMix64 rng_;
-  std::vector<int32_t> ids_;
-  std::vector<std::pair<double, int32_t>> scored_;
-  std::vector<double> probs_;
-
-  // How many of the first `keep` sorted candidates the official top-p rule keeps.
-  size_t OfficialTopP(const float* logits, size_t keep);
+  std::shared_ptr<SplitMix64> rng_;
+  std::vector<std::unique_ptr<SamplerStage>> before_logits_, on_logits_;
+  SamplerCandidates c_;
 };
+
+// The resolved settings of one generation's chain.
+struct SamplerChainSettings {
+  SamplingParams sampling;
+  Grammar* grammar = nullptr;           // the grammar mask's source; null: no mask (unconstrained)
+  const SurfaceGuide* guide = nullptr;  // surface guidance (needs the grammar); null: off
+  bool sample_then_check = false;       // measurement: draw over all ids, the masked chain if illegal
+  GenerationStats* stats = nullptr;     // counters and phase seconds of the stages; may be null
+};
+
+std::unique_ptr<SamplerChain> BuildSamplerChain(const SamplerChainSettings& settings);
 
 }  // namespace silk

@@ -1,5 +1,5 @@
-// The sampling chain: only legal ids, greedy/top-k/top-p semantics, seeded determinism, and
-// draws that follow the softmax of the logits.
+// The sampling chain: only legal ids, greedy/top-k/top-p semantics, seeded determinism, draws
+// that follow the softmax of the logits, and the sample-then-check arrangement.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,6 +7,7 @@
 #include <map>
 #include <vector>
 
+#include "runtime/generation_stats.h"
 #include "runtime/sampler.h"
 #include "tokenizer/vocabulary_layout.h"
 
@@ -34,33 +35,33 @@ TokenMask Legal() {
 TEST(Sampler, GreedyTakesBestLegalId) {
   SamplingParams p;
   p.temperature = 0;
-  Sampler s(p);
+  auto s = BuildSamplerChain({p});
   const auto l = Logits();
   const TokenMask m = Legal();
-  EXPECT_EQ(s.Sample(l.data(), &m), 10);
-  EXPECT_EQ(s.Sample(l.data(), nullptr), 13);  // unconstrained: PAD never, even at 50
+  EXPECT_EQ(s->Sample(l.data(), &m), 10);
+  EXPECT_EQ(s->Sample(l.data(), nullptr), 13);  // unconstrained: PAD never, even at 50
 }
 
 TEST(Sampler, TopKOneIsGreedy) {
   SamplingParams p;
   p.top_k = 1;
   p.seed = 9;
-  Sampler s(p);
+  auto s = BuildSamplerChain({p});
   const auto l = Logits();
   const TokenMask m = Legal();
-  for (int i = 0; i < 50; ++i) EXPECT_EQ(s.Sample(l.data(), &m), 10);
+  for (int i = 0; i < 50; ++i) EXPECT_EQ(s->Sample(l.data(), &m), 10);
 }
 
 TEST(Sampler, NeverIllegalAndFollowsSoftmax) {
   SamplingParams p;
   p.temperature = 1.0;
   p.seed = 1234;
-  Sampler s(p);
+  auto s = BuildSamplerChain({p});
   const auto l = Logits();
   const TokenMask m = Legal();
   std::map<int, int> counts;
   const int n = 20000;
-  for (int i = 0; i < n; ++i) ++counts[s.Sample(l.data(), &m)];
+  for (int i = 0; i < n; ++i) ++counts[s->Sample(l.data(), &m)];
   ASSERT_EQ(counts.size(), 3u);
   const double z = std::exp(2.0) + std::exp(1.0) + std::exp(0.0);
   const double expect[3] = {std::exp(2.0) / z, std::exp(1.0) / z, 1.0 / z};
@@ -71,15 +72,15 @@ TEST(Sampler, TopPKeepsSmallestNucleus) {
   SamplingParams p;
   p.top_p = 0.6;  // p(10) = 0.665 >= 0.6: only id 10 survives
   p.seed = 3;
-  Sampler s(p);
+  auto s = BuildSamplerChain({p});
   const auto l = Logits();
   const TokenMask m = Legal();
-  for (int i = 0; i < 200; ++i) EXPECT_EQ(s.Sample(l.data(), &m), 10);
+  for (int i = 0; i < 200; ++i) EXPECT_EQ(s->Sample(l.data(), &m), 10);
   SamplingParams q = p;
   q.top_p = 0.9;  // 0.665 + 0.245 = 0.91: ids 10 and 11
-  Sampler t(q);
+  auto t = BuildSamplerChain({q});
   std::map<int, int> c;
-  for (int i = 0; i < 2000; ++i) ++c[t.Sample(l.data(), &m)];
+  for (int i = 0; i < 2000; ++i) ++c[t->Sample(l.data(), &m)];
   EXPECT_EQ(c.size(), 2u);
   EXPECT_EQ(c.count(12), 0u);
 }
@@ -89,16 +90,16 @@ TEST(Sampler, SameSeedSameDraws) {
   p.seed = 77;
   p.temperature = 1.5;
   p.top_k = 0;
-  Sampler a(p), b(p);
+  auto a = BuildSamplerChain({p}), b = BuildSamplerChain({p});
   std::vector<float> l(vocab::k_model_vocab_size);
   for (size_t i = 0; i < l.size(); ++i) l[i] = std::sin(static_cast<float>(i));
   int differ_from_other_seed = 0;
   p.seed = 78;
-  Sampler c(p);
+  auto c = BuildSamplerChain({p});
   for (int i = 0; i < 100; ++i) {
-    const int x = a.Sample(l.data(), nullptr);
-    EXPECT_EQ(x, b.Sample(l.data(), nullptr));
-    differ_from_other_seed += x != c.Sample(l.data(), nullptr);
+    const int x = a->Sample(l.data(), nullptr);
+    EXPECT_EQ(x, b->Sample(l.data(), nullptr));
+    differ_from_other_seed += x != c->Sample(l.data(), nullptr);
   }
   EXPECT_GT(differ_from_other_seed, 50);
 }
@@ -153,10 +154,10 @@ TEST(Sampler, OfficialChainMatchesIndependentReference) {
     p.temperature = st.temperature;
     p.top_p_temperature = 1.0;
     p.seed = 99;
-    Sampler s(p);
+    auto s = BuildSamplerChain({p});
     SplitMix64 rng(99);
     for (int i = 0; i < 100; ++i)
-      ASSERT_EQ(s.Sample(l.data(), &mask),
+      ASSERT_EQ(s->Sample(l.data(), &mask),
                 ReferenceOfficialDraw(l, legal_ids, st.top_k, st.top_p, 1.0, st.temperature, &rng))
           << "top_k " << st.top_k << " top_p " << st.top_p << " draw " << i;
   }
@@ -174,10 +175,10 @@ TEST(Sampler, OfficialTopPKeepsTheCrossingIdAndUsesItsOwnTemperature) {
   p.temperature = 0.5;
   p.top_p_temperature = 1.0;
   p.seed = 5;
-  Sampler official(p);
+  auto official = BuildSamplerChain({p});
   std::map<int, int> c;
   const int n = 20000;
-  for (int i = 0; i < n; ++i) ++c[official.Sample(l.data(), &m)];
+  for (int i = 0; i < n; ++i) ++c[official->Sample(l.data(), &m)];
   EXPECT_EQ(c.count(23), 0u);
   // Draw at temperature 0.5 over {20, 21, 22}: proportional to 0.25, 0.09, 0.0225.
   const double z = 0.25 + 0.09 + 0.0225;
@@ -185,23 +186,57 @@ TEST(Sampler, OfficialTopPKeepsTheCrossingIdAndUsesItsOwnTemperature) {
   EXPECT_NEAR(c[22] / double(n), 0.0225 / z, 0.01);
   // Today's chain computes top-p at temperature 0.5 (0.69, 0.25, ...): id 22 never survives.
   p.top_p_temperature = 0;
-  Sampler silk(p);
-  for (int i = 0; i < 2000; ++i) EXPECT_NE(silk.Sample(l.data(), &m), 22);
+  auto silk = BuildSamplerChain({p});
+  for (int i = 0; i < 2000; ++i) EXPECT_NE(silk->Sample(l.data(), &m), 22);
   // The top id alone survives when it already exceeds top_p.
   p.top_p_temperature = 1.0;
   p.top_p = 0.4;
-  Sampler only_top(p);
-  for (int i = 0; i < 200; ++i) EXPECT_EQ(only_top.Sample(l.data(), &m), 20);
+  auto only_top = BuildSamplerChain({p});
+  for (int i = 0; i < 200; ++i) EXPECT_EQ(only_top->Sample(l.data(), &m), 20);
+}
+
+// Sample-then-check: an unmasked draw first; an illegal one is counted and redrawn from the mask.
+TEST(Sampler, SampleThenCheckRedrawsIllegalIdsFromTheMask) {
+  const auto l = Logits();
+  const TokenMask m = Legal();
+  GenerationStats stats;
+  SamplerChainSettings greedy;
+  greedy.sampling.temperature = 0;
+  greedy.sample_then_check = true;
+  greedy.stats = &stats;
+  auto s = BuildSamplerChain(greedy);
+  EXPECT_EQ(s->Sample(l.data(), &m), 10);  // 13 first (illegal), then the masked best
+  EXPECT_EQ(stats.resampled, 1);
+  TokenMask with13 = m;
+  with13.Set(13);
+  EXPECT_EQ(s->Sample(l.data(), &with13), 13);  // legal: the first draw stands
+  EXPECT_EQ(stats.resampled, 1);
+  // Drawing: always legal; with every id legal, one draw per step, as the unmasked chain draws.
+  SamplerChainSettings drawn = greedy;
+  drawn.sampling = SamplingParams{};
+  drawn.sampling.seed = 21;
+  stats.resampled = 0;
+  auto d = BuildSamplerChain(drawn);
+  for (int i = 0; i < 200; ++i) EXPECT_TRUE(m.Test(d->Sample(l.data(), &m)));
+  EXPECT_GT(stats.resampled, 0);
+  EXPECT_LE(stats.resampled, 200);
+  TokenMask all;
+  all.SetRange(0, vocab::k_model_vocab_size);
+  all.Reset(vocab::k_pad_id);
+  auto checked = BuildSamplerChain(drawn), plain = BuildSamplerChain({drawn.sampling});
+  stats.resampled = 0;
+  for (int i = 0; i < 200; ++i) EXPECT_EQ(checked->Sample(l.data(), &all), plain->Sample(l.data(), nullptr));
+  EXPECT_EQ(stats.resampled, 0);
 }
 
 TEST(Sampler, EmptyOrSingleCandidate) {
-  Sampler s(SamplingParams{});
+  auto s = BuildSamplerChain({SamplingParams{}});
   const auto l = Logits();
   TokenMask none;
-  EXPECT_EQ(s.Sample(l.data(), &none), -1);
+  EXPECT_EQ(s->Sample(l.data(), &none), -1);
   TokenMask one;
   one.Set(4242);
-  EXPECT_EQ(s.Sample(l.data(), &one), 4242);
+  EXPECT_EQ(s->Sample(l.data(), &one), 4242);
 }
 
 }  // namespace

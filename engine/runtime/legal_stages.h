@@ -1,0 +1,26 @@
+// The legality stages of the sampling chain (runtime/sampler.h): which ids may be chosen. The
+// grammar mask and surface guidance narrow the mask before the decoder runs; sample-then-check
+// (a measurement order) draws over every id first and lets the masked chain redraw an illegal id.
+#pragma once
+#include <cstdint>
+#include <memory>
+
+#include "runtime/sampler.h"
+
+namespace silk {
+
+// The grammar's forced id (or -1) and legal mask; an empty mask ends the step (a dead end).
+// Its time counts as stats->seconds.grammar.
+std::unique_ptr<SamplerStage> MakeGrammarMaskStage(Grammar* grammar, GenerationStats* stats);
+
+// Surface guidance after the grammar mask: vertex ids restricted to the guide's tolerance
+// (stats->guided_tokens), a forced vertex id checked; legal ids off the surface when no legal id
+// is within it count as stats->guidance_fallbacks. Time: stats->seconds.guidance.
+std::unique_ptr<SamplerStage> MakeSurfaceGuideStage(const SurfaceGuide* guide, const Grammar* grammar,
+                                                    GenerationStats* stats);
+
+// First on the logits: `unmasked` draws over every id but PAD; a legal draw is the choice, an
+// illegal one is counted (*resampled) and the rest of the chain draws from the mask.
+std::unique_ptr<SamplerStage> MakeSampleThenCheckStage(std::unique_ptr<SamplerChain> unmasked, int64_t* resampled);
+
+}  // namespace silk
