@@ -74,21 +74,25 @@ class Mesh:
     @classmethod
     def load(cls, path: str) -> "Mesh":
         h = ctypes.c_void_p()
-        check(lib().silk_mesh_load(os.fsencode(path), ctypes.byref(h)))
+        check(lib().silk_mesh_load(os.fsencode(path), None, ctypes.byref(h)))
         return cls(h)
 
     def save(self, path: str) -> None:
-        check(lib().silk_mesh_save(self.handle, os.fsencode(path)))
+        check(lib().silk_mesh_save(self.handle, os.fsencode(path), None))
 
     def arrays(self) -> tuple[list[float], list[int], list[int]]:
         """(positions xyz..., triangles abc..., component per triangle)."""
         L = lib()
-        nv, nt = L.silk_mesh_vertex_count(self.handle), L.silk_mesh_triangle_count(self.handle)
-        pos, tri, comp = (ctypes.c_double * (3 * nv))(), (ctypes.c_int32 * (3 * nt))(), (ctypes.c_int32 * nt)()
-        check(L.silk_mesh_copy_positions(self.handle, pos, 3 * nv))
-        check(L.silk_mesh_copy_triangles(self.handle, tri, 3 * nt))
-        check(L.silk_mesh_copy_triangle_components(self.handle, comp, nt))
-        return list(pos), list(tri), list(comp)
+        return tuple(self._copied(copy, ctype) for copy, ctype in (  # size query, then the copy
+            (L.silk_mesh_copy_positions, ctypes.c_double), (L.silk_mesh_copy_triangles, ctypes.c_int32),
+            (L.silk_mesh_copy_triangle_components, ctypes.c_int32)))
+
+    def _copied(self, copy, ctype) -> list:
+        n = ctypes.c_size_t()
+        check(copy(self.handle, None, 0, ctypes.byref(n)))
+        buf = (ctype * n.value)()
+        check(copy(self.handle, buf, n.value, ctypes.byref(n)))
+        return list(buf)
 
     def close(self) -> None:
         if self.handle:
@@ -104,7 +108,7 @@ class Mesh:
 
 def encode_to_file(mesh: Mesh, path: str) -> None:
     t = ctypes.c_void_p()
-    check(lib().silk_encode(mesh.handle, None, ctypes.byref(t), None))
+    check(lib().silk_mesh_encode(mesh.handle, None, ctypes.byref(t), None))
     try:
         check(lib().silk_tokens_save(t, os.fsencode(path)))
     finally:
@@ -116,7 +120,7 @@ def decode_file(path: str) -> Mesh:
     check(lib().silk_tokens_load(os.fsencode(path), ctypes.byref(t)))
     try:
         h = ctypes.c_void_p()
-        check(lib().silk_decode(t, None, ctypes.byref(h)))
+        check(lib().silk_tokens_decode(t, None, ctypes.byref(h), None))
         return Mesh(h)
     finally:
         lib().silk_tokens_destroy(t)
@@ -131,7 +135,7 @@ class Generation:
         L = lib()
         if not L.silk_generation_available():
             raise SilkError(4, "this libsilk was built without onnxruntime (no generation)")
-        opts = L.silk_model_default_options()
+        opts = L.silk_model_default_params()
         self.model, self.gen = ctypes.c_void_p(), ctypes.c_void_p()
         check(L.silk_model_load(os.fsencode(model_dir), ctypes.byref(opts), ctypes.byref(self.model)))
         try:

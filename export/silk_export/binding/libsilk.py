@@ -19,6 +19,16 @@ from .silk_c import *  # noqa: F401,F403  (status codes, structs, callback types
 from .silk_c import _c_double_p, _c_int32_p, declare as _declare
 
 
+def _copied(copy, handle, dtype, ctype) -> np.ndarray:
+    """All elements of a silk.h copy function: the size query, then the copy (flat array)."""
+    n = ctypes.c_size_t()
+    _check(copy(handle, None, 0, ctypes.byref(n)))
+    out = np.empty(n.value, dtype=dtype)
+    if n.value:
+        _check(copy(handle, out.ctypes.data_as(ctypes.POINTER(ctype)), out.size, ctypes.byref(n)))
+    return out
+
+
 class SilkError(RuntimeError):
     """A libsilk call failed; `status` is the silk_status code, the message silk_last_error()."""
 
@@ -78,8 +88,9 @@ def version() -> str:
 
 
 def vocab_info() -> dict:
-    v = lib().silk_vocab()
-    return {name: getattr(v, name) for name, _ in VocabInfo._fields_}
+    v = VocabInfo()
+    _check(lib().silk_vocab_get_info(ctypes.byref(v)))
+    return v.as_dict()
 
 
 class _Handle:
@@ -117,7 +128,7 @@ class Mesh(_Handle):
     @classmethod
     def load(cls, path: str | os.PathLike) -> "Mesh":
         h = ctypes.c_void_p()
-        _check(lib().silk_mesh_load(os.fsencode(path), ctypes.byref(h)))
+        _check(lib().silk_mesh_load(os.fsencode(path), None, ctypes.byref(h)))
         return cls(h)
 
     @classmethod
@@ -135,29 +146,28 @@ class Mesh(_Handle):
             raise ValueError("mesh is closed")
         return self._h
 
+    def _count(self, copy) -> int:
+        n = ctypes.c_size_t()
+        _check(copy(self.handle, None, 0, ctypes.byref(n)))
+        return n.value
+
     def vertex_count(self) -> int:
-        return int(lib().silk_mesh_vertex_count(self.handle))
+        return self._count(lib().silk_mesh_copy_positions) // 3
 
     def triangle_count(self) -> int:
-        return int(lib().silk_mesh_triangle_count(self.handle))
+        return self._count(lib().silk_mesh_copy_triangles) // 3
 
     def positions(self) -> np.ndarray:
-        out = np.empty((self.vertex_count(), 3), dtype=np.float64)
-        _check(lib().silk_mesh_copy_positions(self.handle, out.ctypes.data_as(_c_double_p), out.size))
-        return out
+        return _copied(lib().silk_mesh_copy_positions, self.handle, np.float64, ctypes.c_double).reshape(-1, 3)
 
     def triangles(self) -> np.ndarray:
-        out = np.empty((self.triangle_count(), 3), dtype=np.int32)
-        _check(lib().silk_mesh_copy_triangles(self.handle, out.ctypes.data_as(_c_int32_p), out.size))
-        return out
+        return _copied(lib().silk_mesh_copy_triangles, self.handle, np.int32, ctypes.c_int32).reshape(-1, 3)
 
     def triangle_components(self) -> np.ndarray:
-        out = np.empty(self.triangle_count(), dtype=np.int32)
-        _check(lib().silk_mesh_copy_triangle_components(self.handle, out.ctypes.data_as(_c_int32_p), out.size))
-        return out
+        return _copied(lib().silk_mesh_copy_triangle_components, self.handle, np.int32, ctypes.c_int32)
 
     def save(self, path: str | os.PathLike) -> None:
-        _check(lib().silk_mesh_save(self.handle, os.fsencode(path)))
+        _check(lib().silk_mesh_save(self.handle, os.fsencode(path), None))
 
 
 def load_arrays(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
@@ -169,10 +179,7 @@ def load_arrays(path: str | os.PathLike) -> tuple[np.ndarray, np.ndarray]:
 def _tokens_to_numpy(h: ctypes.c_void_p) -> np.ndarray:
     L = lib()
     try:
-        n = int(L.silk_tokens_count(h))
-        out = np.empty(n, dtype=np.int32)
-        _check(L.silk_tokens_copy(h, out.ctypes.data_as(_c_int32_p), n))
-        return out
+        return _copied(L.silk_tokens_copy, h, np.int32, ctypes.c_int32)
     finally:
         L.silk_tokens_destroy(h)
 
@@ -187,7 +194,7 @@ def encode(mesh: Mesh, normalize: bool = True, normalize_bound: float = 0.95,
     params.nonmanifold_processing = int(bool(nonmanifold_processing))
     stats = EncodeStats()
     h = ctypes.c_void_p()
-    _check(L.silk_encode(mesh.handle, ctypes.byref(params), ctypes.byref(h), ctypes.byref(stats)))
+    _check(L.silk_mesh_encode(mesh.handle, ctypes.byref(params), ctypes.byref(h), ctypes.byref(stats)))
     return _tokens_to_numpy(h), stats.as_dict()
 
 
@@ -206,7 +213,7 @@ def decode(tokens: np.ndarray, grid_coordinates: bool = False) -> Mesh:
         params = L.silk_decode_default_params()
         params.grid_coordinates = int(bool(grid_coordinates))
         mh = ctypes.c_void_p()
-        _check(L.silk_decode(th, ctypes.byref(params), ctypes.byref(mh)))
+        _check(L.silk_tokens_decode(th, ctypes.byref(params), ctypes.byref(mh), None))
         return Mesh(mh)
     finally:
         L.silk_tokens_destroy(th)
@@ -219,7 +226,7 @@ class Model(_Handle):
 
     def __init__(self, model_dir: str | os.PathLike, threads: int = 0, decoder: str = "default"):
         L = lib()
-        opts = L.silk_model_default_options()
+        opts = L.silk_model_default_params()
         if decoder not in DECODERS:
             raise ValueError(f"decoder must be one of {sorted(DECODERS)}, not {decoder!r}")
         opts.threads, opts.decoder = int(threads), DECODERS[decoder]
@@ -229,7 +236,7 @@ class Model(_Handle):
     def info(self) -> dict:
         i = ModelInfo()
         _check(lib().silk_model_get_info(self._h, ctypes.byref(i)))
-        d = {name: getattr(i, name) for name, _ in ModelInfo._fields_}
+        d = i.as_dict()
         d["config"] = i.config.decode(errors="replace")
         return d
 
@@ -320,13 +327,12 @@ class Generator(_Handle):
         return Mesh(mh), _tokens_to_numpy(th), st.as_dict()
 
     def report_json(self, trace: bool = False) -> str:
-        L, size = lib(), ctypes.c_size_t()
-        status = L.silk_generator_report_json(self._h, int(trace), None, 0, ctypes.byref(size))
-        if status != SILK_ERR_BUFFER_TOO_SMALL:
-            _check(status)
-        buf = ctypes.create_string_buffer(size.value)
-        _check(L.silk_generator_report_json(self._h, int(trace), buf, size.value, ctypes.byref(size)))
-        return buf.value.decode()
+        L, report = lib(), ctypes.c_void_p()
+        _check(L.silk_generator_report(self._h, int(trace), ctypes.byref(report)))
+        try:
+            return L.silk_report_json(report).decode()
+        finally:
+            L.silk_report_destroy(report)
 
     def generate(self, mesh: Mesh | None = None, points: np.ndarray | None = None,
                  progress=None, cancel=None, **params) -> tuple[Mesh, np.ndarray, dict]:
@@ -349,28 +355,28 @@ class Generator(_Handle):
 
 def prepare_points(positions: np.ndarray, triangles: np.ndarray | None, kind: str = "silk",
                    n_points: int = 4096, seed: int = 0, **overrides) -> tuple[np.ndarray, np.ndarray, float]:
-    """The encoder's points by libsilk's pre-processing (silk_prepare_points), the same code
+    """The encoder's points by libsilk's pre-processing (silk_points_prepare), the same code
     generation runs: a mesh (triangles given) or an oriented cloud (positions [N, 6], triangles
     None). `kind` "silk" or "official" picks the defaults; `overrides` set PreprocessParams
     fields (normalize_bound, merge_distance_fraction, surface_samples, round_float16).
     Returns (float32 [n, 6] normalised xyz + normal, centre [3], scale): model = (input - centre) * scale."""
     L = lib()
     params = L.silk_preprocess_default_params(PREPROCESS_KINDS[kind])
-    params.n_points = int(n_points)
+    params.point_count = int(n_points)
     for name, value in overrides.items():
-        if name not in dict(PreprocessParams._fields_) or name in ("kind", "n_points"):
+        if name not in dict(PreprocessParams._fields_) or name in ("kind", "point_count", "struct_size"):
             raise TypeError(f"prepare_points: unknown pre-processing field '{name}'")
         setattr(params, name, type(getattr(params, name))(value))
     transform = np.zeros(4, dtype=np.float64)
-    rows = ctypes.c_size_t()
+    floats = ctypes.c_size_t()
     seed = ctypes.c_uint64(int(seed) & (2**64 - 1))
 
     def run(*source) -> np.ndarray:  # size query, then the rows
-        _check(L.silk_prepare_points(*source, ctypes.byref(params), seed, None, 0, ctypes.byref(rows), None))
-        out = np.empty((rows.value, 6), dtype=np.float32)
-        _check(L.silk_prepare_points(*source, ctypes.byref(params), seed,
+        _check(L.silk_points_prepare(*source, ctypes.byref(params), seed, None, 0, ctypes.byref(floats), None))
+        out = np.empty((floats.value // 6, 6), dtype=np.float32)
+        _check(L.silk_points_prepare(*source, ctypes.byref(params), seed,
                                      out.ctypes.data_as(ctypes.POINTER(ctypes.c_float)), out.size,
-                                     ctypes.byref(rows), transform.ctypes.data_as(_c_double_p)))
+                                     ctypes.byref(floats), transform.ctypes.data_as(_c_double_p)))
         return out
 
     if triangles is None:
