@@ -47,7 +47,7 @@ def main():
     if not lib.silk_generation_available():
         print("this libsilk has no generation (built without onnxruntime)")
         return 1
-    opts = lib.silk_model_default_options()
+    opts = lib.silk_model_default_params()
     opts.threads = 1
     model, gen, mesh, out, tokens = C.c_void_p(), C.c_void_p(), C.c_void_p(), C.c_void_p(), C.c_void_p()
     check(lib, lib.silk_model_load(a.model.encode(), C.byref(opts), C.byref(model)), "silk_model_load")
@@ -55,7 +55,7 @@ def main():
     check(lib, lib.silk_model_get_info(model, C.byref(info)), "silk_model_get_info")
     print(f"model {info.config.decode()}: {info.n_layers} layers, d {info.d_model}, {info.threads} thread(s)")
     check(lib, lib.silk_generator_create(model, C.byref(gen)), "silk_generator_create")
-    check(lib, lib.silk_mesh_load(a.input.encode(), C.byref(mesh)), "silk_mesh_load")
+    check(lib, lib.silk_mesh_load(a.input.encode(), None, C.byref(mesh)), "silk_mesh_load")
 
     seen = []
 
@@ -68,22 +68,26 @@ def main():
     stats = Stats()
     check(lib, lib.silk_generate(gen, mesh, C.byref(params), C.byref(out), C.byref(tokens), C.byref(stats)),
           "silk_generate")
-    n_tri = lib.silk_mesh_triangle_count(out)
+    n = C.c_size_t()  # the size query, then the copy (silk.h's one rule)
+    check(lib, lib.silk_mesh_copy_triangle_components(out, None, 0, C.byref(n)), "count components")
+    n_tri = n.value
     parts = (C.c_int32 * max(n_tri, 1))()
-    check(lib, lib.silk_mesh_copy_triangle_components(out, parts, n_tri), "copy components")
+    check(lib, lib.silk_mesh_copy_triangle_components(out, parts, n_tri, C.byref(n)), "copy components")
     print(f"{stats.tokens} ids ({stats.forced_tokens} forced) -> {stats.faces} faces in "
           f"{len(set(parts[:n_tri]))} part(s), {stats.tokens_per_second:.0f} tok/s, stop reason {stats.stop_reason}, "
           f"edge-manifold {bool(stats.edge_manifold)}, vertex-manifold {bool(stats.vertex_manifold)}, "
           f"oriented {bool(stats.consistently_oriented)}, watertight {bool(stats.watertight)}")
     if a.out:
-        check(lib, lib.silk_mesh_save(out, a.out.encode()), "silk_mesh_save")
+        check(lib, lib.silk_mesh_save(out, a.out.encode(), None), "silk_mesh_save")
 
     failures = []
     if a.check:
         if not (stats.faces > 0 and n_tri == stats.faces and stats.edge_manifold and stats.consistently_oriented):
             failures.append("result mesh")
-        if lib.silk_tokens_count(tokens) != stats.tokens or len(seen) < stats.tokens - 1 or seen != sorted(seen):
-            failures.append(f"tokens/progress ({lib.silk_tokens_count(tokens)}, {len(seen)} callbacks)")
+        n_ids = C.c_size_t()
+        check(lib, lib.silk_tokens_copy(tokens, None, 0, C.byref(n_ids)), "count ids")
+        if n_ids.value != stats.tokens or len(seen) < stats.tokens - 1 or seen != sorted(seen):
+            failures.append(f"tokens/progress ({n_ids.value}, {len(seen)} callbacks)")
 
         @CANCEL_FN
         def cancel_soon(_user):

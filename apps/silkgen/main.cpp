@@ -197,7 +197,7 @@ const char* StopName(int32_t r) {
 }
 
 int Run(const Args& a, uint64_t seed) {
-  silk_model_options mo = silk_model_default_options();
+  silk_model_params mo = silk_model_default_params();
   mo.threads = a.threads;
   const std::string decoder = a.int8 ? "int8" : a.decoder;
   mo.decoder = decoder == "int8" ? SILK_DECODER_INT8 : decoder == "int4" ? SILK_DECODER_INT4

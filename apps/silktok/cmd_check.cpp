@@ -21,7 +21,7 @@ int Run(const CheckArgs& a) {
   p.window_rule = a.union_windows ? SILK_WINDOW_UNION : SILK_WINDOW_CANONICAL;
   p.allow_prefix = a.allow_prefix ? 1 : 0;
   size_t count = 0;
-  silk_check_result r{};
+  silk_check_result r = silk_cpp::Sized<silk_check_result>();
   try {
     const silk_cpp::Tokens tokens = silk_cpp::Tokens::Load(a.input);
     count = tokens.size();

@@ -29,7 +29,7 @@ int Run(const DecodeArgs& a) {
     p.grid_coordinates = a.grid ? 1 : 0;
     // Faithful by default: the official streams contain a few vertices with two fans.
     p.split_nonmanifold_vertices = a.split_nonmanifold ? 1 : 0;
-    silk_decode_stats stats{};
+    silk_decode_stats stats = silk_cpp::Sized<silk_decode_stats>();
     silk_cpp::Mesh mesh = [&] {
       try {
         return silk_cpp::Mesh::Decode(tokens, p, &stats);

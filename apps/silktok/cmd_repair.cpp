@@ -35,7 +35,7 @@ int Run(const RepairArgs& a) {
   silk_repair_params p = silk_repair_default_params();
   p.holes = a.policy == "off" ? SILK_HOLES_OFF : a.policy == "report" ? SILK_HOLES_REPORT : SILK_HOLES_REPAIR;
   p.max_fill_loop = a.max_loop;
-  silk_repair_stats st{};
+  silk_repair_stats st = silk_cpp::Sized<silk_repair_stats>();
   nlohmann::json report;
   try {
     const silk_cpp::Tokens tokens = silk_cpp::Tokens::Load(a.input);

@@ -15,7 +15,7 @@ struct RoundtripArgs {
 };
 
 int Run(const RoundtripArgs& a) {
-  silk_roundtrip_report r{};
+  silk_roundtrip_report r = silk_cpp::Sized<silk_roundtrip_report>();
   try {
     const silk_cpp::Mesh mesh = LoadMesh(a.input);
     try {

@@ -18,7 +18,7 @@ struct StatsArgs {
 };
 
 nlohmann::json StatsJson(const std::string& path, const silk_encode_stats& s, double total_s) {
-  const silk_vocab_info v = silk_vocab();
+  const silk_vocab_info v = silk_cpp::Vocab();
   const double faces = std::max(1, s.processed_faces);
   const double bits_per_token = std::log2(static_cast<double>(v.format_vocab_size));
   nlohmann::json j;
@@ -97,7 +97,7 @@ int Run(const StatsArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   silk_encode_params params = silk_encode_default_params();
   params.nonmanifold_processing = a.no_nonmanifold ? 0 : 1;
-  silk_encode_stats stats{};
+  silk_encode_stats stats = silk_cpp::Sized<silk_encode_stats>();
   try {
     LoadAndEncode(a.input, params, &stats);
   } catch (const silk_cpp::Error& e) {

@@ -1,4 +1,4 @@
-// Reading + encoding one mesh file for silktok (silk_mesh_load_with_params, silk_encode).
+// Reading + encoding one mesh file for silktok (silk_mesh_load, silk_mesh_encode).
 #include "mesh_input.h"
 
 namespace silktok {

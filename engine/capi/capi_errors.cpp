@@ -1,4 +1,5 @@
-// C API: per-thread error messages, status names, version, the log callback, vocabulary.
+// C API: per-thread error messages, status names, version, the log callback, vocabulary, and the
+// two boundary rules every call shares: the size query of copies and the struct_size check.
 #include <atomic>
 #include <mutex>
 
@@ -52,12 +53,35 @@ silk_status Ok() {
   g_last_error.clear();
   return SILK_OK;
 }
-silk_status CheckCopy(const char* function, const void* out, size_t capacity, size_t needed) {
-  if (capacity < needed)
-    return SetError(SILK_ERR_BUFFER_TOO_SMALL, std::string(function) + ": need " + std::to_string(needed) +
-                                                   " elements, capacity is " + std::to_string(capacity));
-  if (!out && capacity > 0) return SetError(SILK_ERR_INVALID_ARGUMENT, std::string(function) + ": out is NULL");
-  return Ok();
+bool BeginCopy(const char* function, const void* out, size_t capacity, size_t needed, size_t* out_count,
+               silk_status* answer) {
+  if (out_count) *out_count = needed;
+  if (!out && capacity == 0) {
+    *answer = Ok();  // the size query
+    return false;
+  }
+  if (!out) {
+    *answer = SetError(SILK_ERR_INVALID_ARGUMENT, std::string(function) + ": out is NULL with capacity " +
+                                                      std::to_string(capacity) + " (a size query passes NULL, 0)");
+    return false;
+  }
+  if (capacity < needed) {
+    *answer = SetError(SILK_ERR_BUFFER_TOO_SMALL, std::string(function) + ": need " + std::to_string(needed) +
+                                                      " elements, capacity is " + std::to_string(capacity));
+    return false;
+  }
+  return true;
+}
+
+silk_status CheckStructSize(const char* function, const char* type, uint32_t given, size_t expected,
+                            const std::string& how) {
+  // Every size this library has shipped for the type (1.0: one). A later release that appends
+  // fields accepts the old sizes here too (docs/c_api.md "Struct growth").
+  if (given == expected) return SILK_OK;
+  return SetError(SILK_ERR_INVALID_ARGUMENT, std::string(function) + ": " + type + ".struct_size " +
+                                                 std::to_string(given) + " is not a size of " + type +
+                                                 " this library knows (expected " + std::to_string(expected) +
+                                                 "): " + how);
 }
 
 void Log(silk_log_level level, const std::string& message) {
@@ -88,15 +112,9 @@ const char* silk_status_name(silk_status s) {
   return "unknown";
 }
 
-const char* silk_version(void) {
-#ifdef SILK_VERSION_STRING
-  return SILK_VERSION_STRING;
-#else
-  return "0";
-#endif
-}
+const char* silk_version(void) { return SILK_VERSION_STRING; }
 
-void silk_set_log_callback(silk_log_fn fn, void* user_data) {
+void silk_log_set_callback(silk_log_fn fn, void* user_data) {
   {
     std::lock_guard<std::mutex> lock(silk::capi::g_log_mu);
     silk::capi::g_log_fn = fn;
@@ -108,28 +126,33 @@ void silk_set_log_callback(silk_log_fn fn, void* user_data) {
 #endif
 }
 
-silk_vocab_info silk_vocab(void) {
-  namespace v = silk::vocab;
-  silk_vocab_info i{};
-  i.token_format_version = v::k_token_format_version;
-  i.format_vocab_size = v::k_format_vocab_size;
-  i.eos_id = v::k_eos_id;
-  i.pad_id = v::k_pad_id;
-  i.model_vocab_size = v::k_model_vocab_size;
-  i.c_id = v::kCBegin;
-  i.u_id = v::kUBegin;
-  i.e_id = v::kEBegin;
-  i.x_begin = v::kXBegin; i.x_end = v::kXEnd;
-  i.s_begin = v::kSBegin; i.s_end = v::kSEnd;
-  i.b_begin = v::kBBegin; i.b_end = v::kBEnd;
-  i.k_begin = v::kKBegin; i.k_end = v::kKEnd;
-  i.o_begin = v::kOBegin; i.o_end = v::kOEnd;
-  i.quant_bins = v::k_quant_bins;
-  i.layer_vertex_limit = v::k_layer_vertex_limit;
-  i.layer_count_limit = v::k_layer_count_limit;
-  i.max_faces = v::k_max_faces;
-  i.max_seq_length = v::k_max_seq_length;
-  return i;
+silk_status silk_vocab_get_info(silk_vocab_info* out) {
+  return silk::capi::Guard([&] {
+    SILK_CAPI_REQUIRE(out, "silk_vocab_get_info: out is NULL");
+    SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_vocab_get_info", "silk_vocab_info", out));
+    namespace v = silk::vocab;
+    silk_vocab_info i = silk::capi::Blank<silk_vocab_info>();
+    i.token_format_version = v::k_token_format_version;
+    i.format_vocab_size = v::k_format_vocab_size;
+    i.eos_id = v::k_eos_id;
+    i.pad_id = v::k_pad_id;
+    i.model_vocab_size = v::k_model_vocab_size;
+    i.c_id = v::kCBegin;
+    i.u_id = v::kUBegin;
+    i.e_id = v::kEBegin;
+    i.x_begin = v::kXBegin; i.x_end = v::kXEnd;
+    i.s_begin = v::kSBegin; i.s_end = v::kSEnd;
+    i.b_begin = v::kBBegin; i.b_end = v::kBEnd;
+    i.k_begin = v::kKBegin; i.k_end = v::kKEnd;
+    i.o_begin = v::kOBegin; i.o_end = v::kOEnd;
+    i.quant_bins = v::k_quant_bins;
+    i.layer_vertex_limit = v::k_layer_vertex_limit;
+    i.layer_count_limit = v::k_layer_count_limit;
+    i.max_faces = v::k_max_faces;
+    i.max_seq_length = v::k_max_seq_length;
+    silk::capi::StoreOut(out, i);
+    return silk::capi::Ok();
+  });
 }
 
 }  // extern "C"

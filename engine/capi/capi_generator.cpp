@@ -431,21 +431,20 @@ silk_status silk_generator_finish(silk_generator* g, silk_mesh** out_mesh, silk_
   });
 }
 
-silk_status silk_generator_report_json(silk_generator* g, int32_t trace, char* out, size_t capacity, size_t* out_size) {
+silk_status silk_generator_report(silk_generator* g, int32_t trace, silk_report** out) {
   return Guard([&] {
-    if (out_size) *out_size = 0;
-    SILK_CAPI_REQUIRE(g, "silk_generator_report_json: generator is NULL");
-    SILK_CAPI_REQUIRE(trace == 0 || trace == 1, "silk_generator_report_json: trace takes 0 or 1");
+    SILK_CAPI_REQUIRE(out, "silk_generator_report: out is NULL");
+    *out = nullptr;
+    SILK_CAPI_REQUIRE(g, "silk_generator_report: generator is NULL");
+    SILK_CAPI_REQUIRE(trace == 0 || trace == 1, "silk_generator_report: trace takes 0 or 1");
     BusyLock lock(g);
-    if (!lock.ok()) return Busy("silk_generator_report_json");
-    if (!g->has_result) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_report_json: no finished generation");
+    if (!lock.ok()) return Busy("silk_generator_report");
+    if (!g->has_result) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_report: no finished generation");
     if (trace && !(g->settings.params.debug_flags & SILK_DEBUG_RECORD_TRACE))
-      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_report_json: the generation ran without SILK_DEBUG_RECORD_TRACE");
-    const std::string json = silk::capi::ReportJson(*g, trace != 0);
-    if (out_size) *out_size = json.size() + 1;
-    if (silk_status c = silk::capi::CheckCopy("silk_generator_report_json", out, capacity, json.size() + 1); c != SILK_OK)
-      return c;
-    std::memcpy(out, json.c_str(), json.size() + 1);
+      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_report: the generation ran without SILK_DEBUG_RECORD_TRACE");
+    auto r = std::make_unique<silk_report>();
+    r->json = silk::capi::ReportJson(*g, trace != 0);
+    *out = r.release();
     return Ok();
   });
 }

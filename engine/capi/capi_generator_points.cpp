@@ -12,19 +12,19 @@ using silk::capi::SetError;
 
 extern "C" {
 
-silk_status silk_generator_points(silk_generator* g, double* out, size_t capacity, size_t* out_rows) {
+silk_status silk_generator_copy_points(silk_generator* g, double* out, size_t capacity, size_t* out_count) {
   return Guard([&] {
-    if (out_rows) *out_rows = 0;
-    SILK_CAPI_REQUIRE(g && out_rows, "silk_generator_points: generator or out_rows is NULL");
+    if (out_count) *out_count = 0;
+    SILK_CAPI_REQUIRE(g, "silk_generator_copy_points: generator is NULL");
     BusyLock lock(g);
     if (!lock.ok())
-      return SetError(SILK_ERR_BUSY, "silk_generator_points: generator busy (in use on another thread; use one "
+      return SetError(SILK_ERR_BUSY, "silk_generator_copy_points: generator busy (in use on another thread; use one "
                                      "generator per thread)");
     if (!g->has_result && !g->generator.active())
-      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_points: no generation started");
+      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_copy_points: no generation started");
     const size_t rows = g->points.size() / 6;
-    *out_rows = rows;
-    if (silk_status c = silk::capi::CheckCopy("silk_generator_points", out, capacity, rows * 6); c != SILK_OK) return c;
+    if (silk_status c; !silk::capi::BeginCopy("silk_generator_copy_points", out, capacity, rows * 6, out_count, &c))
+      return c;
     for (size_t i = 0; i < rows; ++i) {
       const float* r = &g->points[6 * i];
       const auto p = silk::UndoNormalization({r[0], r[1], r[2]}, g->transform);

@@ -2,6 +2,7 @@
 // which turns Status and any C++ exception into a silk_status so nothing crosses the ABI.
 #pragma once
 #include <array>
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <new>
@@ -45,6 +46,10 @@ void Log(silk_log_level level, const std::string& message);
 std::unique_ptr<silk_mesh> MeshHandle(std::vector<std::array<double, 3>> positions,
                                       const TokenizerDecodedMesh& decoded);
 
+// silk_encode_params (NULL: defaults) for silk_mesh_encode and silk_mesh_roundtrip: struct_size,
+// flags and normalize_bound, failures prefixed with `function`.
+silk_status CheckEncodeParams(const char* function, const silk_encode_params* params);
+
 // Field checks of the params structs (capi_params.cpp): Ok, or an InvalidArgument naming the
 // field and the value given ("round_float16 2 takes 0 or 1").
 std::string ValueText(double v);  // "-0.5", "nan", "inf"
@@ -66,10 +71,56 @@ silk_status Guard(F&& f) noexcept {
   }
 }
 
-// (out, capacity) of a query-then-copy call needing `needed` elements: OK to copy, a size
-// query answered, or too small. Returns SILK_OK only when the copy should go ahead.
-silk_status CheckCopy(const char* function, const void* out, size_t capacity, size_t needed);
+// The one size-query rule of every copy function (silk.h, docs/c_api.md): *out_count (if given)
+// = needed; (NULL, 0) is the size query (SILK_OK, nothing copied); NULL with a capacity is an
+// invalid argument; a capacity below `needed` is SILK_ERR_BUFFER_TOO_SMALL. Returns true when the
+// copy should go ahead; otherwise *answer is the call's status.
+bool BeginCopy(const char* function, const void* out, size_t capacity, size_t needed, size_t* out_count,
+               silk_status* answer);
 
+// The one struct_size rule (docs/c_api.md "Struct growth"): `given` must be a size this library
+// has shipped for `type` (1.0: sizeof); otherwise SILK_ERR_INVALID_ARGUMENT naming the struct, the
+// size given and the size expected, and `how` (the way to initialise it).
+silk_status CheckStructSize(const char* function, const char* type, uint32_t given, size_t expected,
+                            const std::string& how);
+// A params struct (NULL: fine, the defaults apply) and a struct the library fills (NULL: fine
+// where optional; the caller checks required ones).
+template <typename T>
+silk_status CheckParamsSize(const char* function, const char* type, const T* p, const char* defaults) {
+  return p ? CheckStructSize(function, type, p->struct_size, sizeof(T), std::string("initialise it with ") + defaults)
+           : SILK_OK;
+}
+template <typename T>
+silk_status CheckOutSize(const char* function, const char* type, const T* p) {
+  return p ? CheckStructSize(function, type, p->struct_size, sizeof(T),
+                             std::string("set struct_size = sizeof(") + type + ") before the call")
+           : SILK_OK;
+}
+// The caller's params over the defaults: only the caller's struct_size bytes are read.
+template <typename T>
+T ReadParams(const T* p, T defaults) {
+  if (p) std::memcpy(&defaults, p, p->struct_size < sizeof(T) ? p->struct_size : sizeof(T));
+  defaults.struct_size = static_cast<uint32_t>(sizeof(T));
+  return defaults;
+}
+// `value` into the caller's out struct: only the caller's struct_size bytes are written.
+template <typename T>
+void StoreOut(T* out, T value) {
+  const uint32_t size = out->struct_size;
+  value.struct_size = size;
+  std::memcpy(out, &value, size < sizeof(T) ? size : sizeof(T));
+}
+// A fresh value of an out struct (zeroed, struct_size set), for StoreOut.
+template <typename T>
+T Blank() {
+  T t;
+  std::memset(&t, 0, sizeof(t));
+  t.struct_size = static_cast<uint32_t>(sizeof(T));
+  return t;
+}
+
+#define SILK_CAPI_TRY(expr) \
+  if (silk_status silk_try_ = (expr); silk_try_ != SILK_OK) return silk_try_
 #define SILK_CAPI_REQUIRE(cond, what) \
   if (!(cond)) return ::silk::capi::SetError(SILK_ERR_INVALID_ARGUMENT, what)
 // A field check (CheckFlag, CheckEnum, ...) of `function`'s params: on failure, its message

@@ -66,18 +66,18 @@ silk_status silk_mesh_create(const double* positions, size_t n_vertices, const i
 
 silk_load_params silk_load_default_params(void) {
   silk_load_params p;
+  p.struct_size = sizeof(p);
   p.point_clouds = 1;
   return p;
 }
 
-silk_status silk_mesh_load(const char* path, silk_mesh** out) { return silk_mesh_load_with_params(path, nullptr, out); }
-
-silk_status silk_mesh_load_with_params(const char* path, const silk_load_params* params, silk_mesh** out) {
+silk_status silk_mesh_load(const char* path, const silk_load_params* params, silk_mesh** out) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(out, "silk_mesh_load: out is NULL");
     *out = nullptr;
     SILK_CAPI_REQUIRE(path, "silk_mesh_load: path is NULL");
-    const silk_load_params lp = params ? *params : silk_load_default_params();
+    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_mesh_load", "silk_load_params", params, "silk_load_default_params()"));
+    const silk_load_params lp = silk::capi::ReadParams(params, silk_load_default_params());
     SILK_CAPI_CHECK("silk_mesh_load", silk::capi::CheckFlag("point_clouds", lp.point_clouds));
     auto m = std::make_unique<silk_mesh>();
     if (lp.point_clouds) {
@@ -103,16 +103,18 @@ silk_status silk_mesh_load_with_params(const char* path, const silk_load_params*
 
 silk_save_params silk_save_default_params(void) {
   silk_save_params p;
+  p.struct_size = sizeof(p);
   p.part_colors = 0;
   p.obj_comment = nullptr;
   p.format = SILK_FORMAT_BY_EXTENSION;
   return p;
 }
 
-silk_status silk_mesh_save_with_params(const silk_mesh* mesh, const char* path, const silk_save_params* params) {
+silk_status silk_mesh_save(const silk_mesh* mesh, const char* path, const silk_save_params* params) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(mesh && path, "silk_mesh_save: mesh or path is NULL");
-    const silk_save_params sp = params ? *params : silk_save_default_params();
+    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_mesh_save", "silk_save_params", params, "silk_save_default_params()"));
+    const silk_save_params sp = silk::capi::ReadParams(params, silk_save_default_params());
     SILK_CAPI_CHECK("silk_mesh_save", silk::capi::CheckFlag("part_colors", sp.part_colors));
     SILK_CAPI_CHECK("silk_mesh_save", silk::capi::CheckEnum("format", sp.format, SILK_FORMAT_BY_EXTENSION, SILK_FORMAT_GLB,
                                                             "silk_mesh_format"));
@@ -134,42 +136,38 @@ silk_status silk_mesh_save_with_params(const silk_mesh* mesh, const char* path, 
   });
 }
 
-silk_status silk_mesh_save(const silk_mesh* mesh, const char* path) {
-  return silk_mesh_save_with_params(mesh, path, nullptr);
-}
-
 void silk_mesh_destroy(silk_mesh* mesh) { delete mesh; }
-size_t silk_mesh_vertex_count(const silk_mesh* mesh) { return mesh ? mesh->mesh.positions.size() : 0; }
-size_t silk_mesh_triangle_count(const silk_mesh* mesh) { return mesh ? mesh->mesh.triangles.size() : 0; }
 
-silk_status silk_mesh_copy_positions(const silk_mesh* mesh, double* out, size_t capacity) {
+silk_status silk_mesh_copy_positions(const silk_mesh* mesh, double* out, size_t capacity, size_t* out_count) {
   return Guard([&] {
+    if (out_count) *out_count = 0;
     SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_positions: mesh is NULL");
     const size_t n = mesh->mesh.positions.size() * 3;
-    if (silk_status c = silk::capi::CheckCopy("silk_mesh_copy_positions", out, capacity, n); c != SILK_OK) return c;
+    if (silk_status c; !silk::capi::BeginCopy("silk_mesh_copy_positions", out, capacity, n, out_count, &c)) return c;
     for (size_t i = 0; i < mesh->mesh.positions.size(); ++i)
       for (int a = 0; a < 3; ++a) out[3 * i + a] = mesh->mesh.positions[i][a];
     return Ok();
   });
 }
 
-silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t capacity) {
+silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t capacity, size_t* out_count) {
   return Guard([&] {
+    if (out_count) *out_count = 0;
     SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_triangles: mesh is NULL");
     const size_t n = mesh->mesh.triangles.size() * 3;
-    if (silk_status c = silk::capi::CheckCopy("silk_mesh_copy_triangles", out, capacity, n); c != SILK_OK) return c;
+    if (silk_status c; !silk::capi::BeginCopy("silk_mesh_copy_triangles", out, capacity, n, out_count, &c)) return c;
     for (size_t f = 0; f < mesh->mesh.triangles.size(); ++f)
       for (int k = 0; k < 3; ++k) out[3 * f + k] = mesh->mesh.triangles[f][k];
     return Ok();
   });
 }
 
-silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity) {
+silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity, size_t* out_count) {
   return Guard([&] {
+    if (out_count) *out_count = 0;
     SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_triangle_components: mesh is NULL");
     const size_t n = mesh->triangle_component.size();
-    if (silk_status c = silk::capi::CheckCopy("silk_mesh_copy_triangle_components", out, capacity, n); c != SILK_OK)
-      return c;
+    if (silk_status c; !silk::capi::BeginCopy("silk_mesh_copy_triangle_components", out, capacity, n, out_count, &c)) return c;
     std::copy(mesh->triangle_component.begin(), mesh->triangle_component.end(), out);
     return Ok();
   });
@@ -177,11 +175,12 @@ silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* o
 
 int32_t silk_mesh_has_normals(const silk_mesh* mesh) { return mesh && !mesh->normals.empty() ? 1 : 0; }
 
-silk_status silk_mesh_copy_normals(const silk_mesh* mesh, double* out, size_t capacity) {
+silk_status silk_mesh_copy_normals(const silk_mesh* mesh, double* out, size_t capacity, size_t* out_count) {
   return Guard([&] {
+    if (out_count) *out_count = 0;
     SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_normals: mesh is NULL");
     const size_t n = mesh->normals.size() * 3;
-    if (silk_status c = silk::capi::CheckCopy("silk_mesh_copy_normals", out, capacity, n); c != SILK_OK) return c;
+    if (silk_status c; !silk::capi::BeginCopy("silk_mesh_copy_normals", out, capacity, n, out_count, &c)) return c;
     for (size_t i = 0; i < mesh->normals.size(); ++i)
       for (int a = 0; a < 3; ++a) out[3 * i + a] = mesh->normals[i][a];
     return Ok();

@@ -13,19 +13,22 @@ extern "C" {
 
 int32_t silk_generation_available(void) { return 1; }
 
-silk_model_options silk_model_default_options(void) {
-  silk_model_options o;
+silk_model_params silk_model_default_params(void) {
+  silk_model_params o;
+  o.struct_size = sizeof(o);
   o.threads = 0;
   o.decoder = SILK_DECODER_DEFAULT;
   return o;
 }
 
-silk_status silk_model_load(const char* dir, const silk_model_options* options, silk_model** out) {
+silk_status silk_model_load(const char* dir, const silk_model_params* params, silk_model** out) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(out, "silk_model_load: out is NULL");
     *out = nullptr;
     SILK_CAPI_REQUIRE(dir, "silk_model_load: dir is NULL");
-    const silk_model_options o = options ? *options : silk_model_default_options();
+    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_model_load", "silk_model_params", params,
+                                              "silk_model_default_params()"));
+    const silk_model_params o = silk::capi::ReadParams(params, silk_model_default_params());
     SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("decoder", o.decoder, SILK_DECODER_DEFAULT, SILK_DECODER_INT4,
                                                              "silk_decoder_precision"));
     silk::ModelLoadOptions lo;
@@ -54,23 +57,26 @@ void silk_model_destroy(silk_model* model) { delete model; }
 silk_status silk_model_get_info(const silk_model* model, silk_model_info* out) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(model && out, "silk_model_get_info: NULL argument");
-    std::memset(out, 0, sizeof(*out));
+    SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_model_get_info", "silk_model_info", out));
+    silk_model_info info = silk::capi::Blank<silk_model_info>();
+    silk_model_info* o = &info;
     const silk::ModelConfig& c = model->model->config();
-    std::strncpy(out->config, c.config_name.c_str(), sizeof(out->config) - 1);
-    out->d_model = c.dims.d_model;
-    out->n_layers = c.dims.n_layers;
-    out->n_heads = c.dims.n_heads;
-    out->head_dim = c.dims.head_dim;
-    out->n_latents = c.dims.n_latents;
-    out->n_points = c.dims.n_points;
-    out->max_seq_len = c.dims.max_seq_len;
-    out->threads = model->model->threads();
+    std::strncpy(o->config, c.config_name.c_str(), sizeof(o->config) - 1);
+    o->d_model = c.dims.d_model;
+    o->n_layers = c.dims.n_layers;
+    o->n_heads = c.dims.n_heads;
+    o->head_dim = c.dims.head_dim;
+    o->n_latents = c.dims.n_latents;
+    o->default_points = c.dims.n_points;
+    o->max_seq_len = c.dims.max_seq_len;
+    o->threads = model->model->threads();
     const silk::DecoderPrecision d = model->model->precision();
-    out->int8 = d == silk::DecoderPrecision::kInt8;
-    out->decoder = d == silk::DecoderPrecision::kInt8 ? SILK_DECODER_INT8
+    o->int8 = d == silk::DecoderPrecision::kInt8;
+    o->decoder = d == silk::DecoderPrecision::kInt8 ? SILK_DECODER_INT8
                    : d == silk::DecoderPrecision::kInt4 ? SILK_DECODER_INT4 : SILK_DECODER_FP32;
-    out->arch = c.arch == silk::ModelArch::kOfficial ? 1 : 0;
-    out->encoder_points = static_cast<int32_t>(model->model->encoder_points());
+    o->arch = c.arch == silk::ModelArch::kOfficial ? 1 : 0;
+    o->encoder_points = static_cast<int32_t>(model->model->encoder_points());
+    silk::capi::StoreOut(out, info);
     return Ok();
   });
 }
@@ -78,7 +84,8 @@ silk_status silk_model_get_info(const silk_model* model, silk_model_info* out) {
 silk_status silk_model_get_preprocess_params(const silk_model* model, silk_preprocess_params* out) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(model && out, "silk_model_get_preprocess_params: NULL argument");
-    *out = silk::capi::ToCPreprocess(model->model->config().preprocessing);
+    SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_model_get_preprocess_params", "silk_preprocess_params", out));
+    silk::capi::StoreOut(out, silk::capi::ToCPreprocess(model->model->config().preprocessing));
     return Ok();
   });
 }

@@ -13,7 +13,9 @@ silk_status NoRuntime() { return silk::capi::SetError(SILK_ERR_UNSUPPORTED, kNoR
 extern "C" {
 
 int32_t silk_generation_available(void) { return 0; }
-silk_model_options silk_model_default_options(void) { return silk_model_options{0, SILK_DECODER_DEFAULT}; }
+silk_model_params silk_model_default_params(void) {
+  return silk_model_params{sizeof(silk_model_params), 0, SILK_DECODER_DEFAULT};
+}
 silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));
@@ -27,7 +29,7 @@ silk_generate_params silk_generate_default_params(void) {
   p.orient = SILK_DEFAULT_ORIENT;
   return p;
 }
-silk_status silk_model_load(const char*, const silk_model_options*, silk_model** out) {
+silk_status silk_model_load(const char*, const silk_model_params*, silk_model** out) {
   if (out) *out = nullptr;
   return NoRuntime();
 }
@@ -54,9 +56,12 @@ silk_status silk_generator_finish(silk_generator*, silk_mesh** m, silk_tokens**,
   if (m) *m = nullptr;
   return NoRuntime();
 }
-silk_status silk_generator_report_json(silk_generator*, int32_t, char*, size_t, size_t*) { return NoRuntime(); }
-silk_status silk_generator_points(silk_generator*, double*, size_t, size_t* rows) {
-  if (rows) *rows = 0;
+silk_status silk_generator_report(silk_generator*, int32_t, silk_report** out) {
+  if (out) *out = nullptr;
+  return NoRuntime();
+}
+silk_status silk_generator_copy_points(silk_generator*, double*, size_t, size_t* out_count) {
+  if (out_count) *out_count = 0;
   return NoRuntime();
 }
 silk_status silk_generate_input_run(silk_generator*, const silk_generate_input*, const silk_generate_params*,

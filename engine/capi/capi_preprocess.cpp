@@ -15,12 +15,13 @@ namespace silk::capi {
 silk_preprocess_params ToCPreprocess(const PreprocessingParams& p) {
   silk_preprocess_params c;
   std::memset(&c, 0, sizeof(c));
+  c.struct_size = sizeof(c);
   c.kind = p.kind == PreprocessingKind::kOfficial ? SILK_PREPROCESS_OFFICIAL : SILK_PREPROCESS_SILK;
   c.normalize_bound = p.normalize_bound;
   c.merge_distance_fraction = p.merge_distance_fraction;
   c.surface_samples = p.surface_samples;
   c.round_float16 = p.round_float16 ? 1 : 0;
-  c.n_points = p.n_points;
+  c.point_count = p.n_points;
   return c;
 }
 
@@ -31,7 +32,7 @@ PreprocessingParams FromCPreprocess(const silk_preprocess_params& c) {
   p.merge_distance_fraction = c.merge_distance_fraction;
   p.surface_samples = c.surface_samples;
   p.round_float16 = c.round_float16 != 0;
-  p.n_points = c.n_points;
+  p.n_points = c.point_count;
   return p;
 }
 
@@ -44,25 +45,25 @@ silk_preprocess_params silk_preprocess_default_params(int32_t kind) {
                                                                     : silk::SilkPreprocessing(0.95, 4096));
 }
 
-silk_status silk_prepare_points(const silk_mesh* mesh, const double* cloud, size_t n_cloud,
+silk_status silk_points_prepare(const silk_mesh* mesh, const double* cloud, size_t n_cloud,
                                 const silk_preprocess_params* params, uint64_t seed, float* out, size_t capacity,
-                                size_t* out_rows, double* transform) {
+                                size_t* out_count, double* transform) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(out_rows && params, "silk_prepare_points: out_rows or params is NULL");
-    *out_rows = 0;
-    SILK_CAPI_REQUIRE((mesh != nullptr) != (cloud != nullptr), "silk_prepare_points: give either a mesh or a cloud");
-    SILK_CAPI_REQUIRE(!cloud || n_cloud > 0, "silk_prepare_points: the cloud has no points");
-    for (const silk::Status& s : {silk::capi::CheckEnum("kind", params->kind, SILK_PREPROCESS_SILK,
+    if (out_count) *out_count = 0;
+    SILK_CAPI_REQUIRE((mesh != nullptr) != (cloud != nullptr), "silk_points_prepare: give either a mesh or a cloud");
+    SILK_CAPI_REQUIRE(!cloud || n_cloud > 0, "silk_points_prepare: the cloud has no points");
+    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_points_prepare", "silk_preprocess_params", params,
+                                              "silk_preprocess_default_params(kind)"));
+    const silk_preprocess_params cp =
+        silk::capi::ReadParams(params, silk_preprocess_default_params(SILK_PREPROCESS_SILK));
+    for (const silk::Status& s : {silk::capi::CheckEnum("kind", cp.kind, SILK_PREPROCESS_SILK,
                                                         SILK_PREPROCESS_OFFICIAL, "silk_preprocess_kind"),
-                                  silk::capi::CheckFlag("round_float16", params->round_float16)})
-      if (!s.ok()) return SetError(s.WithContext("silk_prepare_points: "));
-    const silk::PreprocessingParams p = silk::capi::FromCPreprocess(*params);
-    if (silk::Status s = silk::ValidatePreprocessing(p); !s.ok()) return SetError(s.WithContext("silk_prepare_points: "));
+                                  silk::capi::CheckFlag("round_float16", cp.round_float16)})
+      if (!s.ok()) return SetError(s.WithContext("silk_points_prepare: "));
+    const silk::PreprocessingParams p = silk::capi::FromCPreprocess(cp);
+    if (silk::Status s = silk::ValidatePreprocessing(p); !s.ok()) return SetError(s.WithContext("silk_points_prepare: "));
     const size_t rows = cloud && n_cloud < static_cast<size_t>(p.n_points) ? n_cloud : static_cast<size_t>(p.n_points);
-    *out_rows = rows;
-    if (!out) return Ok();
-    if (capacity < rows * 6)
-      return SetError(SILK_ERR_BUFFER_TOO_SMALL, "silk_prepare_points: need " + std::to_string(rows * 6) + " floats");
+    if (silk_status c; !silk::capi::BeginCopy("silk_points_prepare", out, capacity, rows * 6, out_count, &c)) return c;
     silk::IoMesh cloud_mesh;
     std::vector<std::array<double, 3>> normals;
     if (cloud) {
@@ -74,14 +75,14 @@ silk_status silk_prepare_points(const silk_mesh* mesh, const double* cloud, size
         const auto& n = normals[i];
         const double len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
         SILK_CAPI_REQUIRE(len2 > 0 && std::isfinite(len2),
-                          "silk_prepare_points: point " + std::to_string(i) + " has a zero or non-finite normal");
+                          "silk_points_prepare: point " + std::to_string(i) + " has a zero or non-finite normal");
       }
     } else {
-      SILK_CAPI_REQUIRE(!mesh->mesh.triangles.empty(), "silk_prepare_points: the mesh has no faces");
+      SILK_CAPI_REQUIRE(!mesh->mesh.triangles.empty(), "silk_points_prepare: the mesh has no faces");
     }
     auto r = silk::PreparePoints(cloud ? cloud_mesh : mesh->mesh, cloud ? &normals : nullptr, p, seed);
-    if (!r.ok()) return SetError(r.status().WithContext("silk_prepare_points: "));
-    if (r->rows.size() != rows * 6) return SetError(SILK_ERR_INTERNAL, "silk_prepare_points: unexpected row count");
+    if (!r.ok()) return SetError(r.status().WithContext("silk_points_prepare: "));
+    if (r->rows.size() != rows * 6) return SetError(SILK_ERR_INTERNAL, "silk_points_prepare: unexpected row count");
     std::memcpy(out, r->rows.data(), r->rows.size() * sizeof(float));
     if (transform) {
       for (int a = 0; a < 3; ++a) transform[a] = r->transform.center[a];

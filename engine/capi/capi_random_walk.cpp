@@ -18,6 +18,7 @@ extern "C" {
 silk_random_walk_params silk_random_walk_default_params(void) {
   const silk::RandomWalkOptions o;
   silk_random_walk_params p;
+  p.struct_size = sizeof(p);
   p.seed = 1;
   p.max_components = o.max_components;
   p.max_layers = o.max_layers;
@@ -30,7 +31,9 @@ silk_status silk_tokens_random_walk(const silk_random_walk_params* params, silk_
     SILK_CAPI_REQUIRE(out_tokens, "silk_tokens_random_walk: out_tokens is NULL");
     *out_tokens = nullptr;
     if (out_mesh) *out_mesh = nullptr;
-    const silk_random_walk_params p = params ? *params : silk_random_walk_default_params();
+    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_tokens_random_walk", "silk_random_walk_params", params,
+                                              "silk_random_walk_default_params()"));
+    const silk_random_walk_params p = silk::capi::ReadParams(params, silk_random_walk_default_params());
     SILK_CAPI_REQUIRE(p.max_components >= 1 && p.max_components <= 1000,
                       "silk_tokens_random_walk: max_components must be in [1, 1000]");
     SILK_CAPI_REQUIRE(p.max_layers >= 0 && p.max_layers <= 199, "silk_tokens_random_walk: max_layers must be in [0, 199]");

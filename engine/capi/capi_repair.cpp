@@ -44,8 +44,9 @@ Json ReportJson(size_t accepted, const silk::Rejection& illegal, int32_t illegal
 }
 
 void FillStats(size_t accepted, bool illegal, const silk::TokenizerDecodedMesh& mesh, const silk::MeshBuildReport& rep,
-               silk_repair_stats* out) {
-  std::memset(out, 0, sizeof(*out));
+               silk_repair_stats* stats) {
+  silk_repair_stats o = silk::capi::Blank<silk_repair_stats>();
+  silk_repair_stats* out = &o;
   out->tokens_accepted = static_cast<int64_t>(accepted);
   out->illegal_at = illegal ? static_cast<int64_t>(accepted) : -1;
   out->vertices = static_cast<int32_t>(mesh.positions.size());
@@ -57,6 +58,7 @@ void FillStats(size_t accepted, bool illegal, const silk::TokenizerDecodedMesh& 
   out->faces_added = rep.faces_added;
   out->open_edges_before = rep.open_edges_before;
   out->open_edges_after = rep.open_edges_after;
+  silk::capi::StoreOut(stats, o);
 }
 
 }  // namespace
@@ -65,6 +67,7 @@ extern "C" {
 
 silk_repair_params silk_repair_default_params(void) {
   silk_repair_params p;
+  p.struct_size = sizeof(p);
   p.holes = SILK_HOLES_REPAIR;
   p.max_fill_loop = silk::MeshBuildOptions{}.max_fill_loop;
   return p;
@@ -76,7 +79,10 @@ silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_para
     SILK_CAPI_REQUIRE(tokens && out_mesh, "silk_tokens_repair: tokens or out_mesh is NULL");
     *out_mesh = nullptr;
     if (report) *report = nullptr;
-    const silk_repair_params p = params ? *params : silk_repair_default_params();
+    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_tokens_repair", "silk_repair_params", params,
+                                              "silk_repair_default_params()"));
+    SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_tokens_repair", "silk_repair_stats", stats));
+    const silk_repair_params p = silk::capi::ReadParams(params, silk_repair_default_params());
     SILK_CAPI_CHECK("silk_tokens_repair",
                     silk::capi::CheckEnum("holes", p.holes, SILK_HOLES_OFF, SILK_HOLES_REPAIR, "silk_hole_policy"));
     SILK_CAPI_REQUIRE(p.max_fill_loop >= 0,

@@ -13,15 +13,13 @@ using silk::capi::SetError;
 
 extern "C" {
 
-silk_status silk_roundtrip(const silk_mesh* mesh, const silk_encode_params* params, silk_roundtrip_report* out) {
+silk_status silk_mesh_roundtrip(const silk_mesh* mesh, const silk_encode_params* params, silk_roundtrip_report* out) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(mesh && out, "silk_roundtrip: mesh or out is NULL");
-    std::memset(out, 0, sizeof(*out));
-    const silk_encode_params p = params ? *params : silk_encode_default_params();
-    SILK_CAPI_REQUIRE((p.normalize == 0 || p.normalize == 1) && (p.nonmanifold_processing == 0 || p.nonmanifold_processing == 1),
-                      "silk_roundtrip: normalize and nonmanifold_processing take 0 or 1");
-    SILK_CAPI_REQUIRE(!p.normalize || (p.normalize_bound > 0 && p.normalize_bound <= 1),
-                      "silk_roundtrip: normalize_bound must lie in (0, 1]");
+    SILK_CAPI_REQUIRE(mesh && out, "silk_mesh_roundtrip: mesh or out is NULL");
+    SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_mesh_roundtrip", "silk_roundtrip_report", out));
+    silk::capi::StoreOut(out, silk::capi::Blank<silk_roundtrip_report>());
+    SILK_CAPI_TRY(silk::capi::CheckEncodeParams("silk_mesh_roundtrip", params));
+    const silk_encode_params p = silk::capi::ReadParams(params, silk_encode_default_params());
     silk::IoMesh normalized;
     if (p.normalize) {
       auto n = silk::NormalizeMesh(mesh->mesh, p.normalize_bound);
@@ -35,15 +33,17 @@ silk_status silk_roundtrip(const silk_mesh* mesh, const silk_encode_params* para
     auto dec = silk::DecodeTokens(enc->tokens);
     if (!dec.ok()) return SetError(dec.status().WithContext("decoding our own tokens: "));
     const silk::RoundTripReport r = silk::CompareRoundTrip(*enc, *dec);
-    out->tokens = static_cast<int64_t>(enc->tokens.size());
-    out->processed_faces = r.processed_faces;
-    out->representable_faces = r.representable_faces;
-    out->recovered = r.recovered;
-    out->reversed = r.reversed;
-    out->missing = r.missing;
-    out->extra = r.extra;
-    out->decoded_faces = static_cast<int64_t>(dec->faces.size());
-    out->exact = r.exact() ? 1 : 0;
+    silk_roundtrip_report o = silk::capi::Blank<silk_roundtrip_report>();
+    o.tokens = static_cast<int64_t>(enc->tokens.size());
+    o.processed_faces = r.processed_faces;
+    o.representable_faces = r.representable_faces;
+    o.recovered = r.recovered;
+    o.reversed = r.reversed;
+    o.missing = r.missing;
+    o.extra = r.extra;
+    o.decoded_faces = static_cast<int64_t>(dec->faces.size());
+    o.exact = r.exact() ? 1 : 0;
+    silk::capi::StoreOut(out, o);
     return Ok();
   });
 }

@@ -1,4 +1,4 @@
-"""libsilk's pre-processing through the binding (silk_prepare_points): the training point
+"""libsilk's pre-processing through the binding (silk_points_prepare): the training point
 clouds come from the same code as generation; the official kind is seeded, float16-valued and
 on the surface; bad arguments raise SilkError."""
 from __future__ import annotations

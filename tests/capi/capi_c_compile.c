@@ -12,17 +12,20 @@ int main(void) {
   silk_tokens* tokens = NULL;
   silk_mesh* back = NULL;
   silk_encode_params ep = silk_encode_default_params();
-  silk_encode_stats stats;
+  silk_encode_stats stats = {.struct_size = sizeof stats};
+  size_t count = 0;
   if (silk_mesh_create(xyz, 4, tris, 4, &mesh) != SILK_OK) return 1;
-  if (silk_encode(mesh, &ep, &tokens, &stats) != SILK_OK) {
+  if (silk_mesh_encode(mesh, &ep, &tokens, &stats) != SILK_OK) {
     fprintf(stderr, "encode: %s\n", silk_last_error());
     return 2;
   }
-  if (silk_tokens_count(tokens) != 17 || stats.processed_faces != 4) return 3; /* token_format.md §8.3: 17 tokens */
-  if (silk_decode(tokens, NULL, &back) != SILK_OK) return 4;
-  if (silk_mesh_triangle_count(back) != 4 || silk_mesh_vertex_count(back) != 4) return 5;
+  if (silk_tokens_copy(tokens, NULL, 0, &count) != SILK_OK || count != 17 || stats.processed_faces != 4)
+    return 3; /* token_format.md §8.3: 17 tokens */
+  if (silk_tokens_decode(tokens, NULL, &back, NULL) != SILK_OK) return 4;
+  if (silk_mesh_copy_triangles(back, NULL, 0, &count) != SILK_OK || count != 12) return 5;
+  if (silk_mesh_copy_positions(back, NULL, 0, &count) != SILK_OK || count != 12) return 5;
   /* errors: NULL arguments give a status and a message, never a crash */
-  if (silk_encode(NULL, NULL, &tokens, NULL) != SILK_ERR_INVALID_ARGUMENT || strlen(silk_last_error()) == 0) return 6;
+  if (silk_mesh_encode(NULL, NULL, &tokens, NULL) != SILK_ERR_INVALID_ARGUMENT || strlen(silk_last_error()) == 0) return 6;
   /* generation entry points exist in every build; without onnxruntime they say so */
   {
     silk_generate_params gp = silk_generate_default_params();
@@ -40,41 +43,47 @@ int main(void) {
   /* pre-processing works in every build: size query, then the official kind's rows */
   {
     silk_preprocess_params pp = silk_preprocess_default_params(SILK_PREPROCESS_OFFICIAL);
-    size_t rows = 0;
+    size_t floats = 0;
     float buf[6 * 64];
     double transform[4];
-    pp.n_points = 64;
+    pp.point_count = 64;
     if (pp.surface_samples != 50000 || pp.round_float16 != 1) return 11;
-    if (silk_prepare_points(mesh, NULL, 0, &pp, 1, NULL, 0, &rows, NULL) != SILK_OK || rows != 64) return 12;
-    if (silk_prepare_points(mesh, NULL, 0, &pp, 1, buf, 10, &rows, NULL) != SILK_ERR_BUFFER_TOO_SMALL) return 13;
-    if (silk_prepare_points(mesh, NULL, 0, &pp, 1, buf, 6 * 64, &rows, transform) != SILK_OK) return 14;
+    if (silk_points_prepare(mesh, NULL, 0, &pp, 1, NULL, 0, &floats, NULL) != SILK_OK || floats != 6 * 64) return 12;
+    if (silk_points_prepare(mesh, NULL, 0, &pp, 1, buf, 10, &floats, NULL) != SILK_ERR_BUFFER_TOO_SMALL) return 13;
+    if (silk_points_prepare(mesh, NULL, 0, &pp, 1, buf, 6 * 64, &floats, transform) != SILK_OK) return 14;
     if (transform[3] != 1.9 || buf[0] < -0.951f || buf[0] > 0.951f) return 15;
-    if (silk_prepare_points(mesh, xyz, 2, &pp, 1, buf, 6 * 64, &rows, NULL) != SILK_ERR_INVALID_ARGUMENT) return 16;
+    if (silk_points_prepare(mesh, xyz, 2, &pp, 1, buf, 6 * 64, &floats, NULL) != SILK_ERR_INVALID_ARGUMENT) return 16;
     pp.kind = 7;
-    if (silk_prepare_points(mesh, NULL, 0, &pp, 1, buf, 6 * 64, &rows, NULL) != SILK_ERR_INVALID_ARGUMENT) return 17;
+    if (silk_points_prepare(mesh, NULL, 0, &pp, 1, buf, 6 * 64, &floats, NULL) != SILK_ERR_INVALID_ARGUMENT) return 17;
   }
   /* the tokenizer tools silktok uses: round trip, grammar check, repair (+ its JSON report), walk */
   {
-    silk_roundtrip_report rr;
-    silk_check_result cr;
-    silk_repair_stats rs;
+    silk_roundtrip_report rr = {.struct_size = sizeof rr};
+    silk_check_result cr = {.struct_size = sizeof cr};
+    silk_repair_stats rs = {.struct_size = sizeof rs};
     silk_report* report = NULL;
     silk_mesh* repaired = NULL;
     silk_tokens* walk = NULL;
     silk_random_walk_params wp = silk_random_walk_default_params();
-    if (silk_roundtrip(mesh, NULL, &rr) != SILK_OK || !rr.exact || rr.tokens != 17) return 18;
+    if (silk_mesh_roundtrip(mesh, NULL, &rr) != SILK_OK || !rr.exact || rr.tokens != 17) return 18;
     if (silk_tokens_check(tokens, NULL, &cr) != SILK_OK || !cr.accepted) return 19;
     if (silk_tokens_repair(tokens, NULL, &repaired, &rs, &report) != SILK_OK || rs.faces != 4 || !rs.watertight) return 20;
     if (strstr(silk_report_json(report), "\"holes\"") == NULL) return 21;
     silk_report_destroy(report);
     silk_mesh_destroy(repaired);
     wp.seed = 5;
-    if (silk_tokens_random_walk(&wp, &walk, NULL) != SILK_OK || silk_tokens_count(walk) < 14) return 22;
+    if (silk_tokens_random_walk(&wp, &walk, NULL) != SILK_OK || silk_tokens_copy(walk, NULL, 0, &count) != SILK_OK ||
+        count < 14)
+      return 22;
     silk_tokens_destroy(walk);
   }
   silk_mesh_destroy(back);
   silk_tokens_destroy(tokens);
   silk_mesh_destroy(mesh);
+  /* the header's version is the library's */
+  if (strcmp(silk_version(), SILK_VERSION_STRING) != 0 || SILK_VERSION_NUMBER != 10000 * SILK_VERSION_MAJOR +
+                                                              100 * SILK_VERSION_MINOR + SILK_VERSION_PATCH)
+    return 23;
   printf("C API from C: ok (%s)\n", silk_version());
   return 0;
 }

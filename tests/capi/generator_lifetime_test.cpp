@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "silk/silk.h"
+#include "silk/silk.hpp"
+#include "support/capi_counts.h"
 #include "support/test_paths.h"
 
 namespace {
@@ -33,8 +35,8 @@ constexpr bool kSanitized = false;
 double Ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
 
 std::vector<int32_t> IdsOf(silk_tokens* t) {
-  std::vector<int32_t> ids(t ? silk_tokens_count(t) : 0);
-  if (!ids.empty()) silk_tokens_copy(t, ids.data(), ids.size());
+  std::vector<int32_t> ids(t ? silk::testing::TokenCount(t) : 0);
+  if (!ids.empty()) silk_tokens_copy(t, ids.data(), ids.size(), nullptr);
   return ids;
 }
 
@@ -53,11 +55,11 @@ class CapiLifetime : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
-    silk_model_options o = silk_model_default_options();
+    silk_model_params o = silk_model_default_params();
     o.threads = 1;
     ASSERT_EQ(silk_model_load(silk::testing::SourcePath("tests/models/tiny").c_str(), &o, &model_), SILK_OK)
         << silk_last_error();
-    ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &mesh_), SILK_OK)
+    ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), nullptr, &mesh_), SILK_OK)
         << silk_last_error();
   }
   void TearDown() override {

@@ -1,7 +1,7 @@
 // Point clouds through the C API (silk.h only): silk_mesh_load gives a cloud without normals
 // estimated ones (radial and outward on a sphere), keeps a cloud's own normals as read, reads
-// XYZ, refuses what it cannot estimate from; silk_generator_points returns the encoder's points
-// in the input frame (= silk_prepare_points with the model's pre-processing, normalisation undone).
+// XYZ, refuses what it cannot estimate from; silk_generator_copy_points returns the encoder's points
+// in the input frame (= silk_points_prepare with the model's pre-processing, normalisation undone).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -45,8 +45,10 @@ std::vector<std::array<double, 3>> Sphere(int n) {
 }
 
 std::vector<double> Normals(const silk_mesh* m) {
-  std::vector<double> n(silk_mesh_vertex_count(m) * 3);
-  EXPECT_EQ(silk_mesh_copy_normals(m, n.data(), n.size()), SILK_OK) << silk_last_error();
+  size_t count = 0;
+  EXPECT_EQ(silk_mesh_copy_normals(m, nullptr, 0, &count), SILK_OK) << silk_last_error();
+  std::vector<double> n(count);
+  EXPECT_EQ(silk_mesh_copy_normals(m, n.data(), n.size(), nullptr), SILK_OK) << silk_last_error();
   return n;
 }
 
@@ -63,8 +65,10 @@ TEST_F(CapiPointClouds, CloudsWithoutNormalsGetOutwardEstimates) {
   }
   for (const std::string& path : {Write("s.ply", ply), Write("s.xyz", xyz)}) {
     silk_mesh* m = nullptr;
-    ASSERT_EQ(silk_mesh_load(path.c_str(), &m), SILK_OK) << silk_last_error();
-    EXPECT_EQ(silk_mesh_triangle_count(m), 0u);
+    ASSERT_EQ(silk_mesh_load(path.c_str(), nullptr, &m), SILK_OK) << silk_last_error();
+    size_t triangles = 1;
+    EXPECT_EQ(silk_mesh_copy_triangles(m, nullptr, 0, &triangles), SILK_OK);
+    EXPECT_EQ(triangles, 0u);
     ASSERT_EQ(silk_mesh_has_normals(m), 1) << path;
     const std::vector<double> n = Normals(m);
     for (size_t i = 0; i < pts.size(); ++i) {
@@ -78,55 +82,58 @@ TEST_F(CapiPointClouds, CloudsWithoutNormalsGetOutwardEstimates) {
 TEST_F(CapiPointClouds, OwnNormalsKeptAndRefusals) {
   const std::string given = Write("g.xyz", "0 0 0 0 0 1\n1 0 0 0.6 0.8 0\n0 1 0 0 -1 0\n");
   silk_mesh* m = nullptr;
-  ASSERT_EQ(silk_mesh_load(given.c_str(), &m), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk_mesh_load(given.c_str(), nullptr, &m), SILK_OK) << silk_last_error();
   EXPECT_EQ(Normals(m), (std::vector<double>{0, 0, 1, 0.6, 0.8, 0, 0, -1, 0}));
   silk_mesh_destroy(m);
   m = nullptr;
   const std::string two = Write("two.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
                                            "property float z\nend_header\n0 0 0\n1 0 0\n");
-  EXPECT_EQ(silk_mesh_load(two.c_str(), &m), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(silk_mesh_load(two.c_str(), nullptr, &m), SILK_ERR_INVALID_ARGUMENT);
   EXPECT_EQ(m, nullptr);
   EXPECT_NE(std::string(silk_last_error()).find("two.ply: a point cloud without normals: cannot estimate normals from 2"),
             std::string::npos)
       << silk_last_error();
   silk_load_params lp = silk_load_default_params();
   lp.point_clouds = 0;  // the tokenizer's view: an XYZ file has no faces
-  EXPECT_EQ(silk_mesh_load_with_params(given.c_str(), &lp, &m), SILK_ERR_PARSE);
+  EXPECT_EQ(silk_mesh_load(given.c_str(), &lp, &m), SILK_ERR_PARSE);
   EXPECT_NE(std::string(silk_last_error()).find("no faces"), std::string::npos) << silk_last_error();
   const std::string bad = Write("bad.xyz", "0 0 0\n1 0 0 7\n");
-  EXPECT_EQ(silk_mesh_load(bad.c_str(), &m), SILK_ERR_PARSE);
+  EXPECT_EQ(silk_mesh_load(bad.c_str(), nullptr, &m), SILK_ERR_PARSE);
   EXPECT_NE(std::string(silk_last_error()).find("bad.xyz:2: 4 values"), std::string::npos) << silk_last_error();
 }
 
 TEST_F(CapiPointClouds, GeneratorPointsAreThePreparedPointsInTheInputFrame) {
   if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
-  silk_model_options o = silk_model_default_options();
+  silk_model_params o = silk_model_default_params();
   o.threads = 1;
   silk_model* model = nullptr;
   ASSERT_EQ(silk_model_load(silk::testing::SourcePath("tests/models/tiny").c_str(), &o, &model), SILK_OK);
   silk_mesh* input = nullptr;
-  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &input), SILK_OK);
+  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), nullptr, &input), SILK_OK);
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model, &g), SILK_OK);
-  size_t rows = 7;
-  EXPECT_EQ(silk_generator_points(g, nullptr, 0, &rows), SILK_ERR_INVALID_ARGUMENT);  // nothing generated yet
-  EXPECT_EQ(rows, 0u);
+  size_t count = 7;
+  EXPECT_EQ(silk_generator_copy_points(g, nullptr, 0, &count), SILK_ERR_INVALID_ARGUMENT);  // nothing generated yet
+  EXPECT_EQ(count, 0u);
   silk_generate_params p = silk_generate_default_params();
   p.seed = 5;
   p.max_tokens = 60;
   silk_mesh* out = nullptr;
   ASSERT_EQ(silk_generate(g, input, &p, &out, nullptr, nullptr), SILK_OK) << silk_last_error();
-  EXPECT_EQ(silk_generator_points(g, nullptr, 0, &rows), SILK_ERR_BUFFER_TOO_SMALL);
-  std::vector<double> pts(rows * 6);
-  ASSERT_EQ(silk_generator_points(g, pts.data(), pts.size(), &rows), SILK_OK) << silk_last_error();
-  silk_preprocess_params pp;
+  EXPECT_EQ(silk_generator_copy_points(g, nullptr, 0, &count), SILK_OK);  // the size query
+  ASSERT_EQ(count % 6, 0u);
+  const size_t rows = count / 6;
+  std::vector<double> pts(count);
+  EXPECT_EQ(silk_generator_copy_points(g, pts.data(), count - 1, nullptr), SILK_ERR_BUFFER_TOO_SMALL);
+  ASSERT_EQ(silk_generator_copy_points(g, pts.data(), pts.size(), &count), SILK_OK) << silk_last_error();
+  silk_preprocess_params pp = silk_preprocess_default_params(SILK_PREPROCESS_SILK);
   ASSERT_EQ(silk_model_get_preprocess_params(model, &pp), SILK_OK);
   size_t n = 0;
   double t[4];
   std::vector<float> prepared(pts.size());
-  ASSERT_EQ(silk_prepare_points(input, nullptr, 0, &pp, 5, prepared.data(), prepared.size(), &n, t), SILK_OK);
-  ASSERT_EQ(n, rows);
-  EXPECT_EQ(static_cast<int32_t>(rows), pp.n_points);
+  ASSERT_EQ(silk_points_prepare(input, nullptr, 0, &pp, 5, prepared.data(), prepared.size(), &n, t), SILK_OK);
+  ASSERT_EQ(n, count);
+  EXPECT_EQ(static_cast<int32_t>(rows), pp.point_count);
   for (size_t i = 0; i < rows * 6; ++i) {
     const size_t a = i % 6;
     const double want = a < 3 ? prepared[i] / t[3] + t[a] : prepared[i];  // model = (input - c) * scale

@@ -21,6 +21,8 @@
 #include "decoder/grammar.h"
 #include "io/tokens/token_text.h"
 #include "silk/silk.h"
+#include "silk/silk.hpp"
+#include "support/capi_counts.h"
 #include "support/test_paths.h"
 #include "tokenizer/adjacency/between_layer_encoder.h"
 #include "tokenizer/packing/token_writer.h"
@@ -42,9 +44,9 @@ silk_tokens* MakeTokens(const std::vector<int32_t>& ids) {
 }
 
 std::vector<int32_t> Triangles(const silk_mesh* m) {
-  std::vector<int32_t> v(3 * silk_mesh_triangle_count(m));
+  std::vector<int32_t> v(3 * silk::testing::TriangleCount(m));
   if (!v.empty()) {
-    EXPECT_EQ(silk_mesh_copy_triangles(m, v.data(), v.size()), SILK_OK);
+    EXPECT_EQ(silk_mesh_copy_triangles(m, v.data(), v.size(), nullptr), SILK_OK);
   }
   return v;
 }
@@ -84,13 +86,14 @@ int VerticesWithSeveralFans(const std::vector<int32_t>& tris) {
 
 TEST(CapiTokens, EncodeStatsCarryCleanupCountsAndPhaseTimes) {
   silk_mesh* m = nullptr;
-  ASSERT_EQ(silk_mesh_load(silk::testing::SharedPath("spec/golden/dirty_cube.obj").c_str(), &m), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk_mesh_load(silk::testing::SharedPath("spec/golden/dirty_cube.obj").c_str(), nullptr, &m), SILK_OK) << silk_last_error();
   silk_tokens* t = nullptr;
   silk_encode_stats st;
   std::memset(&st, 0xff, sizeof st);
-  ASSERT_EQ(silk_encode(m, nullptr, &t, &st), SILK_OK) << silk_last_error();
-  EXPECT_EQ(silk_tokens_count(t), GoldenIds("dirty_cube").size());  // the official ids' count
-  EXPECT_EQ(st.tokens, static_cast<int64_t>(silk_tokens_count(t)));
+  st.struct_size = sizeof st;
+  ASSERT_EQ(silk_mesh_encode(m, nullptr, &t, &st), SILK_OK) << silk_last_error();
+  EXPECT_EQ(silk::testing::TokenCount(t), GoldenIds("dirty_cube").size());  // the official ids' count
+  EXPECT_EQ(st.tokens, static_cast<int64_t>(silk::testing::TokenCount(t)));
   // dirty_cube is unwelded (every quad has its own vertices) and has a 2-face component that is
   // dropped (spec/golden/make_inputs.py).
   EXPECT_GT(st.merged_vertices, 0);
@@ -114,17 +117,17 @@ TEST(CapiTokens, LoadAsMeshReadsAPlyAsTheTokenizerDoes) {
                         "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
                         "end_header\n0 0 0 0 0 1\n";
   silk_mesh* m = nullptr;
-  ASSERT_EQ(silk_mesh_load(ply.c_str(), &m), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk_mesh_load(ply.c_str(), nullptr, &m), SILK_OK) << silk_last_error();
   EXPECT_EQ(silk_mesh_has_normals(m), 1);
   silk_mesh_destroy(m);
   silk_load_params lp = silk_load_default_params();
   EXPECT_EQ(lp.point_clouds, 1);
   lp.point_clouds = 0;
-  EXPECT_EQ(silk_mesh_load_with_params(ply.c_str(), &lp, &m), SILK_ERR_PARSE);
+  EXPECT_EQ(silk_mesh_load(ply.c_str(), &lp, &m), SILK_ERR_PARSE);
   EXPECT_EQ(m, nullptr);
   EXPECT_NE(std::string(silk_last_error()).find("no faces"), std::string::npos) << silk_last_error();
   lp.point_clouds = 2;
-  EXPECT_EQ(silk_mesh_load_with_params(ply.c_str(), &lp, &m), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(silk_mesh_load(ply.c_str(), &lp, &m), SILK_ERR_INVALID_ARGUMENT);
   fs::remove_all(dir);
 }
 
@@ -137,17 +140,17 @@ TEST(CapiTokens, DecodeSplitsEveryVertexWithSeveralFans) {
     silk_decode_params p = silk_decode_default_params();
     EXPECT_EQ(p.split_nonmanifold_vertices, 0);
     silk_mesh *keep = nullptr, *split = nullptr;
-    silk_decode_stats ks, ss;
-    ASSERT_EQ(silk_decode_with_stats(t, &p, &keep, &ks), SILK_OK) << e.path();
+    silk_decode_stats ks = silk_cpp::Sized<silk_decode_stats>(), ss = ks;
+    ASSERT_EQ(silk_tokens_decode(t, &p, &keep, &ks), SILK_OK) << e.path();
     p.split_nonmanifold_vertices = 1;
-    ASSERT_EQ(silk_decode_with_stats(t, &p, &split, &ss), SILK_OK) << e.path();
+    ASSERT_EQ(silk_tokens_decode(t, &p, &split, &ss), SILK_OK) << e.path();
     const int bowties = VerticesWithSeveralFans(Triangles(keep));
     EXPECT_EQ(VerticesWithSeveralFans(Triangles(split)), 0) << e.path();
     EXPECT_EQ(ks.vertices_split, 0);
     EXPECT_EQ(ss.vertices_split, bowties) << e.path();
-    EXPECT_EQ(static_cast<size_t>(ks.vertices), silk_mesh_vertex_count(keep));
-    EXPECT_GE(silk_mesh_vertex_count(split), silk_mesh_vertex_count(keep) + static_cast<size_t>(bowties));
-    EXPECT_EQ(silk_mesh_triangle_count(split), silk_mesh_triangle_count(keep));
+    EXPECT_EQ(static_cast<size_t>(ks.vertices), silk::testing::VertexCount(keep));
+    EXPECT_GE(silk::testing::VertexCount(split), silk::testing::VertexCount(keep) + static_cast<size_t>(bowties));
+    EXPECT_EQ(silk::testing::TriangleCount(split), silk::testing::TriangleCount(keep));
     EXPECT_EQ(ss.components, ks.components);
     streams_with_bowties += bowties > 0;
     silk_mesh_destroy(keep);
@@ -160,9 +163,9 @@ TEST(CapiTokens, DecodeSplitsEveryVertexWithSeveralFans) {
 TEST(CapiTokens, RoundTripOfTheGoldensIsExact) {
   for (const char* name : {"cube", "icosphere2", "nonmanifold_book", "cylinder_capped"}) {
     silk_mesh* m = nullptr;
-    ASSERT_EQ(silk_mesh_load(silk::testing::SharedPath(std::string("spec/golden/") + name + ".obj").c_str(), &m), SILK_OK);
-    silk_roundtrip_report r;
-    ASSERT_EQ(silk_roundtrip(m, nullptr, &r), SILK_OK) << silk_last_error();
+    ASSERT_EQ(silk_mesh_load(silk::testing::SharedPath(std::string("spec/golden/") + name + ".obj").c_str(), nullptr, &m), SILK_OK);
+    silk_roundtrip_report r = silk_cpp::Sized<silk_roundtrip_report>();
+    ASSERT_EQ(silk_mesh_roundtrip(m, nullptr, &r), SILK_OK) << silk_last_error();
     EXPECT_EQ(r.tokens, static_cast<int64_t>(GoldenIds(name).size())) << name;
     EXPECT_EQ(r.exact, 1) << name;
     EXPECT_EQ(r.missing + r.reversed, 0) << name;
@@ -170,13 +173,13 @@ TEST(CapiTokens, RoundTripOfTheGoldensIsExact) {
     EXPECT_GT(r.decoded_faces, 0) << name;
     silk_mesh_destroy(m);
   }
-  EXPECT_EQ(silk_roundtrip(nullptr, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(silk_mesh_roundtrip(nullptr, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT);
 }
 
 TEST(CapiTokens, CheckAcceptsGoldensAndNamesTheFirstIllegalId) {
   std::vector<int32_t> ids = GoldenIds("icosphere2");
   silk_tokens* t = MakeTokens(ids);
-  silk_check_result r;
+  silk_check_result r = silk_cpp::Sized<silk_check_result>();
   ASSERT_EQ(silk_tokens_check(t, nullptr, &r), SILK_OK);
   EXPECT_EQ(r.accepted, 1);
   EXPECT_EQ(r.position, -1);
@@ -198,12 +201,12 @@ TEST(CapiTokens, CheckAcceptsGoldensAndNamesTheFirstIllegalId) {
   silk_tokens_destroy(t);
   // A PAD (never legal, token_format.md §9) at index 5.
   std::vector<int32_t> pad = ids;
-  pad[5] = silk_vocab().pad_id;
+  pad[5] = silk_cpp::Vocab().pad_id;
   t = MakeTokens(pad);
   ASSERT_EQ(silk_tokens_check(t, nullptr, &r), SILK_OK);
   EXPECT_EQ(r.accepted, 0);
   EXPECT_EQ(r.position, 5);
-  EXPECT_EQ(r.id, silk_vocab().pad_id);
+  EXPECT_EQ(r.id, silk_cpp::Vocab().pad_id);
   EXPECT_STREQ(silk_reject_reason_name(r.reason), "pad_token");
   EXPECT_NE(std::string(r.message).find("token 5"), std::string::npos) << r.message;
   // A length limit below the stream's length.
@@ -240,11 +243,11 @@ TEST(CapiTokens, RepairClosesAKnownHoleAndReportsIt) {
   EXPECT_EQ(p.holes, SILK_HOLES_REPAIR);
   EXPECT_EQ(p.max_fill_loop, 8);
   silk_mesh* m = nullptr;
-  silk_repair_stats st;
+  silk_repair_stats st = silk_cpp::Sized<silk_repair_stats>();
   silk_report* rep = nullptr;
   ASSERT_EQ(silk_tokens_repair(t, &p, &m, &st, &rep), SILK_OK) << silk_last_error();
   EXPECT_EQ(st.illegal_at, -1);
-  EXPECT_EQ(st.tokens_accepted, static_cast<int64_t>(silk_tokens_count(t)));
+  EXPECT_EQ(st.tokens_accepted, static_cast<int64_t>(silk::testing::TokenCount(t)));
   EXPECT_EQ(st.holes_found, 1);
   EXPECT_EQ(st.holes_repaired, 1);
   EXPECT_EQ(st.watertight, 1);
@@ -276,10 +279,10 @@ TEST(CapiTokens, RepairClosesAKnownHoleAndReportsIt) {
 
 TEST(CapiTokens, RepairStopsAtTheFirstIllegalId) {
   std::vector<int32_t> ids = GoldenIds("cube");
-  ids.insert(ids.begin() + 30, silk_vocab().pad_id);
+  ids.insert(ids.begin() + 30, silk_cpp::Vocab().pad_id);
   silk_tokens* t = MakeTokens(ids);
   silk_mesh* m = nullptr;
-  silk_repair_stats st;
+  silk_repair_stats st = silk_cpp::Sized<silk_repair_stats>();
   silk_report* rep = nullptr;
   ASSERT_EQ(silk_tokens_repair(t, nullptr, &m, &st, &rep), SILK_OK) << silk_last_error();
   EXPECT_EQ(st.illegal_at, 30);
@@ -301,10 +304,10 @@ TEST(CapiTokens, RandomWalksAreLegalSeededAndDecode) {
     silk_tokens* t = nullptr;
     silk_mesh* m = nullptr;
     ASSERT_EQ(silk_tokens_random_walk(&p, &t, &m), SILK_OK) << silk_last_error();
-    std::vector<int32_t> ids(silk_tokens_count(t));
-    ASSERT_EQ(silk_tokens_copy(t, ids.data(), ids.size()), SILK_OK);
-    EXPECT_EQ(ids.back(), silk_vocab().eos_id);
-    silk_check_result r;
+    std::vector<int32_t> ids(silk::testing::TokenCount(t));
+    ASSERT_EQ(silk_tokens_copy(t, ids.data(), ids.size(), nullptr), SILK_OK);
+    EXPECT_EQ(ids.back(), silk_cpp::Vocab().eos_id);
+    silk_check_result r = silk_cpp::Sized<silk_check_result>();
     ASSERT_EQ(silk_tokens_check(t, nullptr, &r), SILK_OK);
     EXPECT_EQ(r.accepted, 1) << r.message;
     EXPECT_EQ(VerticesWithSeveralFans(Triangles(m)), 0);  // vertex fans resolved
@@ -329,14 +332,14 @@ TEST(CapiTokens, SaveWritesTheRequestedFormatAndComment) {
   silk_decode_params dp = silk_decode_default_params();
   dp.grid_coordinates = 1;
   silk_mesh* m = nullptr;
-  ASSERT_EQ(silk_decode(t, &dp, &m), SILK_OK);
+  ASSERT_EQ(silk_tokens_decode(t, &dp, &m, nullptr), SILK_OK);
   silk_save_params sp = silk_save_default_params();
   EXPECT_EQ(sp.format, SILK_FORMAT_BY_EXTENSION);
-  EXPECT_EQ(silk_mesh_save_with_params(m, (dir / "cube.mesh").c_str(), &sp), SILK_ERR_UNSUPPORTED);
+  EXPECT_EQ(silk_mesh_save(m, (dir / "cube.mesh").c_str(), &sp), SILK_ERR_UNSUPPORTED);
   EXPECT_FALSE(fs::exists(dir / "cube.mesh"));
   sp.format = SILK_FORMAT_OBJ;
   sp.obj_comment = "line one\nline two";
-  ASSERT_EQ(silk_mesh_save_with_params(m, (dir / "cube.mesh").c_str(), &sp), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk_mesh_save(m, (dir / "cube.mesh").c_str(), &sp), SILK_OK) << silk_last_error();
   std::ifstream in(dir / "cube.mesh");
   std::string l1, l2, l3;
   std::getline(in, l1);
@@ -347,7 +350,7 @@ TEST(CapiTokens, SaveWritesTheRequestedFormatAndComment) {
   EXPECT_EQ(l3.rfind("v ", 0), 0u);
   EXPECT_EQ(l3.find('.'), std::string::npos) << l3;  // grid coordinates print as integers
   sp.format = 9;
-  EXPECT_EQ(silk_mesh_save_with_params(m, (dir / "x.obj").c_str(), &sp), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(silk_mesh_save(m, (dir / "x.obj").c_str(), &sp), SILK_ERR_INVALID_ARGUMENT);
   silk_mesh_destroy(m);
   silk_tokens_destroy(t);
   fs::remove_all(dir);

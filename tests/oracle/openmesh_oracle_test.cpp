@@ -208,7 +208,7 @@ TEST_F(OpenMeshOracle, DecodedGoldenDevStreams) {
     SCOPED_TRACE(f);
     auto ids = ReadTokenText(f);
     ASSERT_TRUE(ids.ok()) << ids.status().ToString();
-    auto mesh = DecodeTokens(*ids);  // silktok decode, silk_decode
+    auto mesh = DecodeTokens(*ids);  // silktok decode, silk_tokens_decode
     ASSERT_TRUE(mesh.ok()) << mesh.status().ToString();
     const auto n = static_cast<int32_t>(mesh->positions.size());
     ExpectAgreement(mesh->faces, n, CheckFaces(mesh->faces, n), &decoded);

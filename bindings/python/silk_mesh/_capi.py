@@ -7,6 +7,7 @@ import ctypes
 
 _c_int32_p = ctypes.POINTER(ctypes.c_int32)
 _c_double_p = ctypes.POINTER(ctypes.c_double)
+_c_size_p = ctypes.POINTER(ctypes.c_size_t)
 
 SILK_OK = 0
 SILK_ERR_INVALID_ARGUMENT = 1
@@ -22,21 +23,36 @@ HOLES = {"off": 0, "report": 1, "repair": 2}
 ORIENT = {"tokens": 0, "input": 1}  # silk_orientation
 
 
-class VocabInfo(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int32) for n in (
+class _Sized(ctypes.Structure):
+    """A silk.h struct that starts with uint32_t struct_size (C API 1.0, docs/c_api.md): a
+    Python-made one carries its own size; *_default_params() return it set."""
+
+    def __init__(self, *args, **kw):
+        super().__init__(*args, **kw)
+        self.struct_size = ctypes.sizeof(self)
+
+    def as_dict(self) -> dict:
+        return {name: getattr(self, name) for name, _ in self._fields_ if name != "struct_size"}
+
+
+_SIZE = [("struct_size", ctypes.c_uint32)]
+
+
+class VocabInfo(_Sized):
+    _fields_ = _SIZE + [(n, ctypes.c_int32) for n in (
         "token_format_version", "format_vocab_size", "eos_id", "pad_id", "model_vocab_size",
         "c_id", "u_id", "e_id", "x_begin", "x_end", "s_begin", "s_end", "b_begin", "b_end",
         "k_begin", "k_end", "o_begin", "o_end", "quant_bins", "layer_vertex_limit",
         "layer_count_limit", "max_faces", "max_seq_length")]
 
 
-class EncodeParams(ctypes.Structure):
-    _fields_ = [("normalize", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
+class EncodeParams(_Sized):
+    _fields_ = _SIZE + [("normalize", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
                 ("nonmanifold_processing", ctypes.c_int32)]
 
 
-class EncodeStats(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int32) for n in (
+class EncodeStats(_Sized):
+    _fields_ = _SIZE + [(n, ctypes.c_int32) for n in (
         "input_vertices", "input_faces", "processed_vertices", "processed_faces",
         "emitted_vertices", "encodable_faces", "components_found", "components_encoded",
         "components_dropped_small", "layers", "max_layer_size", "max_layer_count")] + [
@@ -46,69 +62,66 @@ class EncodeStats(ctypes.Structure):
         "seconds_quantize_cleanup", "seconds_nonmanifold", "seconds_orientation", "seconds_components",
         "seconds_layering", "seconds_codecs", "seconds_packing")]
 
-    def as_dict(self) -> dict:
-        return {name: getattr(self, name) for name, _ in self._fields_}
+
+class DecodeParams(_Sized):
+    _fields_ = _SIZE + [("grid_coordinates", ctypes.c_int32), ("split_nonmanifold_vertices", ctypes.c_int32)]
 
 
-class DecodeParams(ctypes.Structure):
-    _fields_ = [("grid_coordinates", ctypes.c_int32), ("split_nonmanifold_vertices", ctypes.c_int32)]
+class DecodeStats(_Sized):
+    _fields_ = _SIZE + [(n, ctypes.c_int32) for n in ("vertices", "faces", "components", "vertices_split")]
 
 
-class DecodeStats(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int32) for n in ("vertices", "faces", "components", "vertices_split")]
+class LoadParams(_Sized):
+    _fields_ = _SIZE + [("point_clouds", ctypes.c_int32)]
 
 
-class LoadParams(ctypes.Structure):
-    _fields_ = [("point_clouds", ctypes.c_int32)]
-
-
-class RoundtripReport(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int64) for n in (
+class RoundtripReport(_Sized):
+    _fields_ = _SIZE + [(n, ctypes.c_int64) for n in (
         "tokens", "processed_faces", "representable_faces", "recovered", "reversed", "missing", "extra",
         "decoded_faces")] + [("exact", ctypes.c_int32)]
 
 
-class CheckParams(ctypes.Structure):
-    _fields_ = [("max_length", ctypes.c_int32), ("window_rule", ctypes.c_int32), ("allow_prefix", ctypes.c_int32)]
+class CheckParams(_Sized):
+    _fields_ = _SIZE + [("max_length", ctypes.c_int32), ("window_rule", ctypes.c_int32), ("allow_prefix", ctypes.c_int32)]
 
 
-class CheckResult(ctypes.Structure):
-    _fields_ = [("accepted", ctypes.c_int32), ("reason", ctypes.c_int32), ("position", ctypes.c_int64),
+class CheckResult(_Sized):
+    _fields_ = _SIZE + [("accepted", ctypes.c_int32), ("reason", ctypes.c_int32), ("position", ctypes.c_int64),
                 ("id", ctypes.c_int32), ("message", ctypes.c_char * 512)]
 
 
-class RepairParams(ctypes.Structure):
-    _fields_ = [("holes", ctypes.c_int32), ("max_fill_loop", ctypes.c_int32)]
+class RepairParams(_Sized):
+    _fields_ = _SIZE + [("holes", ctypes.c_int32), ("max_fill_loop", ctypes.c_int32)]
 
 
-class RepairStats(ctypes.Structure):
-    _fields_ = [("tokens_accepted", ctypes.c_int64), ("illegal_at", ctypes.c_int64)] + [
+class RepairStats(_Sized):
+    _fields_ = _SIZE + [("tokens_accepted", ctypes.c_int64), ("illegal_at", ctypes.c_int64)] + [
         (n, ctypes.c_int32) for n in ("vertices", "faces", "watertight", "window_findings", "holes_found",
                                       "holes_repaired", "faces_added", "open_edges_before", "open_edges_after")]
 
 
-class RandomWalkParams(ctypes.Structure):
-    _fields_ = [("seed", ctypes.c_uint64), ("max_components", ctypes.c_int32), ("max_layers", ctypes.c_int32),
+class RandomWalkParams(_Sized):
+    _fields_ = _SIZE + [("seed", ctypes.c_uint64), ("max_components", ctypes.c_int32), ("max_layers", ctypes.c_int32),
                 ("max_layer_size", ctypes.c_int32)]
 
 
-class PreprocessParams(ctypes.Structure):
-    _fields_ = [("kind", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
+class PreprocessParams(_Sized):
+    _fields_ = _SIZE + [("kind", ctypes.c_int32), ("normalize_bound", ctypes.c_double),
                 ("merge_distance_fraction", ctypes.c_double), ("surface_samples", ctypes.c_int32),
-                ("round_float16", ctypes.c_int32), ("n_points", ctypes.c_int32)]
+                ("round_float16", ctypes.c_int32), ("point_count", ctypes.c_int32)]
 
 
 PREPROCESS_KINDS = {"silk": 0, "official": 1}
 DECODERS = {"default": 0, "int8": 1, "fp32": 2, "int4": 3}  # silk_decoder_precision
 
 
-class ModelOptions(ctypes.Structure):
-    _fields_ = [("threads", ctypes.c_int32), ("decoder", ctypes.c_int32)]  # silk_decoder_precision
+class ModelParams(_Sized):
+    _fields_ = _SIZE + [("threads", ctypes.c_int32), ("decoder", ctypes.c_int32)]  # silk_decoder_precision
 
 
-class ModelInfo(ctypes.Structure):
-    _fields_ = [("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in (
-        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "n_points", "max_seq_len", "threads", "int8",
+class ModelInfo(_Sized):
+    _fields_ = _SIZE + [("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in (
+        "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "default_points", "max_seq_len", "threads", "int8",
         "decoder", "arch", "encoder_points")]
 
 
@@ -156,8 +169,8 @@ class GenerateInput(ctypes.Structure):
 
 
 
-class SaveParams(ctypes.Structure):
-    _fields_ = [("part_colors", ctypes.c_int32), ("obj_comment", ctypes.c_char_p), ("format", ctypes.c_int32)]
+class SaveParams(_Sized):
+    _fields_ = _SIZE + [("part_colors", ctypes.c_int32), ("obj_comment", ctypes.c_char_p), ("format", ctypes.c_int32)]
 
 
 SAVE_FORMATS = {"by_extension": 0, "obj": 1, "ply": 2, "glb": 3}  # silk_mesh_format
@@ -166,41 +179,36 @@ SIGNATURES = {
     "silk_last_error": (ctypes.c_char_p, []),
     "silk_status_name": (ctypes.c_char_p, [ctypes.c_int]),
     "silk_version": (ctypes.c_char_p, []),
-    "silk_vocab": (VocabInfo, []),
+    "silk_vocab_get_info": (ctypes.c_int, [ctypes.POINTER(VocabInfo)]),
     "silk_mesh_create": (ctypes.c_int, [_c_double_p, ctypes.c_size_t, _c_int32_p, ctypes.c_size_t,
                                         ctypes.POINTER(ctypes.c_void_p)]),
-    "silk_mesh_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]),
-    "silk_mesh_save": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p]),
+    "silk_mesh_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(LoadParams), ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_mesh_save": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p, ctypes.POINTER(SaveParams)]),
     "silk_mesh_destroy": (None, [ctypes.c_void_p]),
-    "silk_mesh_vertex_count": (ctypes.c_size_t, [ctypes.c_void_p]),
-    "silk_mesh_triangle_count": (ctypes.c_size_t, [ctypes.c_void_p]),
-    "silk_mesh_copy_positions": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t]),
-    "silk_mesh_copy_triangles": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
-    "silk_mesh_copy_triangle_components": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
+    "silk_mesh_copy_positions": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t, _c_size_p]),
+    "silk_mesh_copy_triangles": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t, _c_size_p]),
+    "silk_mesh_copy_triangle_components": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t, _c_size_p]),
+    "silk_mesh_copy_normals": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t, _c_size_p]),
+    "silk_mesh_has_normals": (ctypes.c_int32, [ctypes.c_void_p]),
     "silk_tokens_create": (ctypes.c_int, [_c_int32_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_void_p)]),
     "silk_tokens_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]),
     "silk_tokens_save": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p]),
     "silk_tokens_destroy": (None, [ctypes.c_void_p]),
-    "silk_tokens_count": (ctypes.c_size_t, [ctypes.c_void_p]),
-    "silk_tokens_copy": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t]),
+    "silk_tokens_copy": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, ctypes.c_size_t, _c_size_p]),
     "silk_encode_default_params": (EncodeParams, []),
-    "silk_encode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams),
+    "silk_mesh_encode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams),
                                    ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(EncodeStats)]),
     "silk_preprocess_default_params": (PreprocessParams, [ctypes.c_int32]),
-    "silk_prepare_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
+    "silk_points_prepare": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
                                            ctypes.POINTER(PreprocessParams), ctypes.c_uint64,
                                            ctypes.POINTER(ctypes.c_float), ctypes.c_size_t,
                                            ctypes.POINTER(ctypes.c_size_t), _c_double_p]),
     "silk_model_get_preprocess_params": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(PreprocessParams)]),
     "silk_decode_default_params": (DecodeParams, []),
-    "silk_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
-                                   ctypes.POINTER(ctypes.c_void_p)]),
-    "silk_decode_with_stats": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
-                                              ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(DecodeStats)]),
+    "silk_tokens_decode": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(DecodeParams),
+                                          ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(DecodeStats)]),
     "silk_load_default_params": (LoadParams, []),
-    "silk_mesh_load_with_params": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(LoadParams),
-                                                  ctypes.POINTER(ctypes.c_void_p)]),
-    "silk_roundtrip": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams), ctypes.POINTER(RoundtripReport)]),
+    "silk_mesh_roundtrip": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(EncodeParams), ctypes.POINTER(RoundtripReport)]),
     "silk_report_json": (ctypes.c_char_p, [ctypes.c_void_p]),
     "silk_report_destroy": (None, [ctypes.c_void_p]),
     "silk_check_default_params": (CheckParams, []),
@@ -213,8 +221,8 @@ SIGNATURES = {
     "silk_tokens_random_walk": (ctypes.c_int, [ctypes.POINTER(RandomWalkParams), ctypes.POINTER(ctypes.c_void_p),
                                                ctypes.POINTER(ctypes.c_void_p)]),
     "silk_generation_available": (ctypes.c_int32, []),
-    "silk_model_default_options": (ModelOptions, []),
-    "silk_model_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ModelOptions),
+    "silk_model_default_params": (ModelParams, []),
+    "silk_model_load": (ctypes.c_int, [ctypes.c_char_p, ctypes.POINTER(ModelParams),
                                        ctypes.POINTER(ctypes.c_void_p)]),
     "silk_model_destroy": (None, [ctypes.c_void_p]),
     "silk_model_get_info": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ModelInfo)]),
@@ -231,8 +239,7 @@ SIGNATURES = {
     "silk_generator_stats": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateStats)]),
     "silk_generator_finish": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p),
                                              ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
-    "silk_generator_report_json": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.c_char_p,
-                                                  ctypes.c_size_t, ctypes.POINTER(ctypes.c_size_t)]),
+    "silk_generator_report": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.POINTER(ctypes.c_void_p)]),
     "silk_generate": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(GenerateParams),
                                      ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_void_p),
                                      ctypes.POINTER(GenerateStats)]),
@@ -243,9 +250,7 @@ SIGNATURES = {
                                                ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
                                                ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
     "silk_save_default_params": (SaveParams, []),
-    "silk_mesh_save_with_params": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_char_p, ctypes.POINTER(SaveParams)]),
-    "silk_mesh_has_normals": (ctypes.c_int32, [ctypes.c_void_p]),
-    "silk_mesh_copy_normals": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t]),
+    "silk_generator_copy_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t, _c_size_p]),
 }
 
 

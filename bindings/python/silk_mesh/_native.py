@@ -16,10 +16,19 @@ def _out(fn, *args) -> c_void_p:
     return h
 
 
-def _copy(count_fn, copy_fn, h, ctype, width: int):
-    n = int(count_fn(h)) * width
+def _count(copy_fn, h) -> int:
+    """Elements a copy function would write: its size query (out NULL, capacity 0)."""
+    n = ctypes.c_size_t()
+    check(copy_fn(h, None, 0, byref(n)))
+    return n.value
+
+
+def _copy(copy_fn, h, ctype):
+    """Every element of a silk.h copy function: the size query, then the copy."""
+    n = _count(copy_fn, h)
     buf = (ctype * n)()
-    check(copy_fn(h, buf, n))
+    if n:
+        check(copy_fn(h, buf, n, None))
     return buf
 
 
@@ -29,7 +38,9 @@ def version() -> str:
 
 
 def vocab() -> _capi.VocabInfo:
-    return lib().silk_vocab()
+    info = _capi.VocabInfo()
+    check(lib().silk_vocab_get_info(byref(info)))
+    return info
 
 
 def generation_available() -> bool:
@@ -45,11 +56,11 @@ def mesh_load(path: bytes, point_clouds: bool) -> c_void_p:
     L = lib()
     params = L.silk_load_default_params()
     params.point_clouds = int(bool(point_clouds))
-    return _out(L.silk_mesh_load_with_params, path, byref(params))
+    return _out(L.silk_mesh_load, path, byref(params))
 
 
 def mesh_save(h: c_void_p, path: bytes, params: _capi.SaveParams) -> None:
-    check(lib().silk_mesh_save_with_params(h, path, byref(params)))
+    check(lib().silk_mesh_save(h, path, byref(params)))
 
 
 def save_defaults() -> _capi.SaveParams:
@@ -61,26 +72,23 @@ def mesh_destroy(h: c_void_p) -> None:
 
 
 def mesh_vertex_count(h: c_void_p) -> int:
-    return int(lib().silk_mesh_vertex_count(h))
+    return _count(lib().silk_mesh_copy_positions, h) // 3
 
 
 def mesh_triangle_count(h: c_void_p) -> int:
-    return int(lib().silk_mesh_triangle_count(h))
+    return _count(lib().silk_mesh_copy_triangles, h) // 3
 
 
 def mesh_positions(h: c_void_p):
-    L = lib()
-    return _copy(L.silk_mesh_vertex_count, L.silk_mesh_copy_positions, h, ctypes.c_double, 3)
+    return _copy(lib().silk_mesh_copy_positions, h, ctypes.c_double)
 
 
 def mesh_triangles(h: c_void_p):
-    L = lib()
-    return _copy(L.silk_mesh_triangle_count, L.silk_mesh_copy_triangles, h, ctypes.c_int32, 3)
+    return _copy(lib().silk_mesh_copy_triangles, h, ctypes.c_int32)
 
 
 def mesh_parts(h: c_void_p):
-    L = lib()
-    return _copy(L.silk_mesh_triangle_count, L.silk_mesh_copy_triangle_components, h, ctypes.c_int32, 1)
+    return _copy(lib().silk_mesh_copy_triangle_components, h, ctypes.c_int32)
 
 
 def mesh_normals(h: c_void_p):
@@ -88,7 +96,7 @@ def mesh_normals(h: c_void_p):
     L = lib()
     if not L.silk_mesh_has_normals(h):
         return None
-    return _copy(L.silk_mesh_vertex_count, L.silk_mesh_copy_normals, h, ctypes.c_double, 3)
+    return _copy(L.silk_mesh_copy_normals, h, ctypes.c_double)
 
 
 # -- token sequences -------------------------------------------------------------------------
@@ -112,7 +120,7 @@ def tokens_take(h: c_void_p) -> list[int]:
     """The ids of a tokens handle, which is destroyed."""
     L = lib()
     try:
-        return list(_copy(L.silk_tokens_count, L.silk_tokens_copy, h, ctypes.c_int32, 1))
+        return list(_copy(L.silk_tokens_copy, h, ctypes.c_int32))
     finally:
         L.silk_tokens_destroy(h)
 
@@ -124,7 +132,7 @@ def encode_defaults() -> _capi.EncodeParams:
 
 def encode(mesh: c_void_p, params: _capi.EncodeParams) -> tuple[c_void_p, _capi.EncodeStats]:
     stats, h = _capi.EncodeStats(), c_void_p()
-    check(lib().silk_encode(mesh, byref(params), byref(h), byref(stats)))
+    check(lib().silk_mesh_encode(mesh, byref(params), byref(h), byref(stats)))
     return h, stats
 
 
@@ -134,7 +142,7 @@ def decode_defaults() -> _capi.DecodeParams:
 
 def decode(tokens: c_void_p, params: _capi.DecodeParams) -> tuple[c_void_p, _capi.DecodeStats]:
     stats, h = _capi.DecodeStats(), c_void_p()
-    check(lib().silk_decode_with_stats(tokens, byref(params), byref(h), byref(stats)))
+    check(lib().silk_tokens_decode(tokens, byref(params), byref(h), byref(stats)))
     return h, stats
 
 
@@ -144,19 +152,19 @@ def preprocess_defaults(kind: int) -> _capi.PreprocessParams:
 
 
 def prepare_points(mesh, cloud, n_cloud: int, params: _capi.PreprocessParams, seed: int):
-    """(float array of rows * 6, transform double[4]) by silk_prepare_points (size query first)."""
+    """(float array of rows * 6, transform double[4]) by silk_points_prepare (size query first)."""
     L, rows, transform = lib(), ctypes.c_size_t(), (ctypes.c_double * 4)()
     s = ctypes.c_uint64(int(seed) & (2**64 - 1))
-    check(L.silk_prepare_points(mesh, cloud, n_cloud, byref(params), s, None, 0, byref(rows), None))
-    out = (ctypes.c_float * (6 * rows.value))()
-    check(L.silk_prepare_points(mesh, cloud, n_cloud, byref(params), s, out, len(out), byref(rows), transform))
+    check(L.silk_points_prepare(mesh, cloud, n_cloud, byref(params), s, None, 0, byref(rows), None))
+    out = (ctypes.c_float * rows.value)()
+    check(L.silk_points_prepare(mesh, cloud, n_cloud, byref(params), s, out, len(out), byref(rows), transform))
     return out, transform
 
 
 # -- models and generators -------------------------------------------------------------------
 def model_load(path: bytes, threads: int, decoder: int) -> c_void_p:
     L = lib()
-    opts = L.silk_model_default_options()
+    opts = L.silk_model_default_params()
     opts.threads, opts.decoder = threads, decoder
     return _out(L.silk_model_load, path, byref(opts))
 
@@ -225,10 +233,14 @@ def generator_run(g: c_void_p, inp: _capi.GenerateInput, params: _capi.GenerateP
 
 
 def generator_report_json(g: c_void_p, trace: bool) -> str:
-    L, size = lib(), ctypes.c_size_t()
-    status = L.silk_generator_report_json(g, int(trace), None, 0, byref(size))
-    if status != _capi.SILK_ERR_BUFFER_TOO_SMALL:
-        check(status)
-    buf = ctypes.create_string_buffer(size.value)
-    check(L.silk_generator_report_json(g, int(trace), buf, size.value, byref(size)))
-    return buf.value.decode()
+    L, report = lib(), c_void_p()
+    check(L.silk_generator_report(g, int(trace), byref(report)))
+    try:
+        return L.silk_report_json(report).decode()
+    finally:
+        L.silk_report_destroy(report)
+
+
+def generator_points(g: c_void_p):
+    """The encoder's points of the current or last generation, input frame (rows of 6 doubles)."""
+    return _copy(lib().silk_generator_copy_points, g, ctypes.c_double)

@@ -1,6 +1,7 @@
-/* silk.h — the one public C API of libsilk (Mesh Silksong engine).
- * Opaque handles, create/destroy pairs, *_default_params(), status codes plus a per-thread
- * error message, query-then-copy buffers; no exception ever crosses this boundary. */
+/* silk.h — the one public C API of libsilk (Mesh Silksong engine), version 1.0.
+ * Opaque handles, create/destroy pairs, one silk_<x>_default_params() per params struct, status
+ * codes plus a per-thread error message, one size-query rule for every copy, one way to return
+ * JSON (silk_report); no exception ever crosses this boundary. The rules: docs/c_api.md. */
 #ifndef SILK_SILK_H_
 #define SILK_SILK_H_
 
@@ -13,9 +14,41 @@
 #define SILK_API __attribute__((visibility("default")))
 #endif
 
+/* ---- version (the one source: CMake reads these three lines) ------------------------------
+ * MAJOR changes only with an incompatible change; MINOR adds functions or appends struct fields;
+ * PATCH fixes. silk_version() is the library's own string (compare it with SILK_VERSION_STRING
+ * to detect a header/library mismatch). */
+#define SILK_VERSION_MAJOR 1
+#define SILK_VERSION_MINOR 0
+#define SILK_VERSION_PATCH 0
+#define SILK_STR_(x) #x
+#define SILK_STR(x) SILK_STR_(x)
+#define SILK_VERSION_STRING SILK_STR(SILK_VERSION_MAJOR) "." SILK_STR(SILK_VERSION_MINOR) "." SILK_STR(SILK_VERSION_PATCH)
+/* 10000 * MAJOR + 100 * MINOR + PATCH (1.0.0 = 10000), for #if comparisons. */
+#define SILK_VERSION_NUMBER (SILK_VERSION_MAJOR * 10000 + SILK_VERSION_MINOR * 100 + SILK_VERSION_PATCH)
+
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* ---- the rules every function below follows (docs/c_api.md) -----------------------------
+ * Size query: a function that copies into a caller's buffer takes (T* out, size_t capacity,
+ *   size_t* out_count) with capacity in elements of T. *out_count (may be NULL) always receives
+ *   the number of elements needed. out == NULL with capacity == 0 is the size query: SILK_OK,
+ *   nothing copied. A non-NULL out with capacity below the need is SILK_ERR_BUFFER_TOO_SMALL and
+ *   nothing is written to out.
+ * JSON: returned as a silk_report* out-handle (silk_report_json gives its text).
+ * Struct growth: every params struct and every struct the library fills for the caller (stats,
+ *   info, results) starts with uint32_t struct_size. Params: take them from their
+ *   silk_<x>_default_params() (which sets struct_size). Out structs: set struct_size = sizeof
+ *   before the call (C: silk_encode_stats st = {sizeof st}; or {.struct_size = sizeof st}).
+ *   A size this library has not shipped is SILK_ERR_INVALID_ARGUMENT naming the struct. Fields
+ *   are only ever appended; the library reads and fills only struct_size bytes.
+ * Params: a NULL params pointer means the defaults; int32_t flags take 0 or 1 and enum fields
+ *   their listed values, anything else is SILK_ERR_INVALID_ARGUMENT naming the field.
+ * Ownership: every silk_<object>** out receives a new handle the caller owns and frees with
+ *   silk_<object>_destroy (NULL is ignored); on failure *out is NULL. const char* results are
+ *   borrowed: their lifetime is stated at each function. Inputs are borrowed for the call only. */
 
 /* ---- status and errors ------------------------------------------------------------- */
 typedef enum silk_status {
@@ -32,21 +65,26 @@ typedef enum silk_status {
   SILK_ERR_BUSY = 10           /* a silk_generator used by two calls at once ("generator busy") */
 } silk_status;
 
-/* Message of the last failed call on this thread ("" if none). Valid until the next call. */
+/* Message of the last call on this thread ("" after a success). Borrowed: valid until the
+ * thread's next silk_* call. */
 SILK_API const char* silk_last_error(void);
+/* Static strings (never freed). */
 SILK_API const char* silk_status_name(silk_status s);
+/* The library's version, SILK_VERSION_STRING as it was built ("1.0.0"); a static string. */
 SILK_API const char* silk_version(void);
 
 /* ---- logging: the library prints nothing itself ------------------------------------ */
 typedef enum silk_log_level { SILK_LOG_DEBUG = 0, SILK_LOG_INFO = 1, SILK_LOG_WARN = 2, SILK_LOG_ERROR = 3 } silk_log_level;
+/* message is borrowed for the callback's duration. */
 typedef void (*silk_log_fn)(silk_log_level level, const char* message, void* user_data);
 /* Process-wide; NULL disables logging (the default). Receives every failed call's message
  * (SILK_LOG_ERROR), model loads (SILK_LOG_INFO), ignored settings (SILK_LOG_WARN) and
  * onnxruntime's own warnings. Called on the thread that makes the call. */
-SILK_API void silk_set_log_callback(silk_log_fn fn, void* user_data);
+SILK_API void silk_log_set_callback(silk_log_fn fn, void* user_data);
 
 /* ---- vocabulary (single source: engine/tokenizer/vocabulary_layout.json) ------------ */
 typedef struct silk_vocab_info {
+  uint32_t struct_size; /* set by the caller: sizeof(silk_vocab_info) */
   int32_t token_format_version;
   int32_t format_vocab_size; /* 10267: ids 0..10266 */
   int32_t eos_id, pad_id, model_vocab_size;
@@ -54,73 +92,72 @@ typedef struct silk_vocab_info {
   int32_t x_begin, x_end, s_begin, s_end, b_begin, b_end, k_begin, k_end, o_begin, o_end;
   int32_t quant_bins, layer_vertex_limit, layer_count_limit, max_faces, max_seq_length;
 } silk_vocab_info;
-SILK_API silk_vocab_info silk_vocab(void);
+SILK_API silk_status silk_vocab_get_info(silk_vocab_info* out);
 
 /* ---- meshes ------------------------------------------------------------------------- */
 typedef struct silk_mesh silk_mesh;
-/* Query-then-copy everywhere: a copy call takes the capacity of `out` in elements; (NULL, 0) is a
- * size query that returns SILK_OK when there is nothing to copy and SILK_ERR_BUFFER_TOO_SMALL
- * (the needed count in silk_last_error()) otherwise; the *_count functions give the sizes.
- * Every *_default_params() and *_default_options() returns the documented defaults by value; a NULL
- * params pointer means the defaults; int32_t flags take 0 or 1 and enum fields their listed
- * values, anything else is SILK_ERR_INVALID_ARGUMENT. */
 
-/* Copies the arrays: positions = 3*n_vertices doubles, triangles = 3*n_triangles indices. */
+/* Copies the arrays: positions = 3*n_vertices doubles, triangles = 3*n_triangles indices.
+ * *out: owned by the caller, silk_mesh_destroy. */
 SILK_API silk_status silk_mesh_create(const double* positions, size_t n_vertices, const int32_t* triangles,
                                       size_t n_triangles, silk_mesh** out);
-/* OBJ, PLY, STL, OFF, glTF/GLB, PMD, optionally gzip-compressed. A PLY without faces and an
- * XYZ/PTS file (lines "x y z" or "x y z nx ny nz") are point clouds: they load as a mesh with no
- * triangles and one normal per vertex, which silk_generate* samples as points. A cloud without
- * normals gets estimated ones (k-nearest-neighbour plane fits, oriented outward along a minimum
- * spanning tree; docs/normals.md); one that has them keeps them as read.
- * Read limits: 50M vertices, 50M triangles, 4 GiB per file; a .gz inflates to at most
- * max(64 MiB, 32 x its compressed size), checked while inflating (a decompression bomb is
- * refused with SILK_ERR_LIMIT naming the file, without allocating its output; docs/io.md). */
-SILK_API silk_status silk_mesh_load(const char* path, silk_mesh** out);
 typedef struct silk_load_params {
-  int32_t point_clouds; /* 1: a PLY without faces or an XYZ/PTS file is a point cloud, as silk_mesh_load reads it (default);
+  uint32_t struct_size; /* set by silk_load_default_params() */
+  int32_t point_clouds; /* 1: a PLY without faces or an XYZ/PTS file is a point cloud (default);
                            0: every file is read as a mesh, as the tokenizer sees it (normals ignored) */
 } silk_load_params;
 SILK_API silk_load_params silk_load_default_params(void);
-SILK_API silk_status silk_mesh_load_with_params(const char* path, const silk_load_params* params, silk_mesh** out);
-/* By extension: .obj, .ply, or .glb (one node per part: triangles grouped by component, smooth
- * normals per part); written atomically (a failed save leaves no partial file). */
-SILK_API silk_status silk_mesh_save(const silk_mesh* mesh, const char* path);
+/* OBJ, PLY, STL, OFF, glTF/GLB, PMD, optionally gzip-compressed (params NULL = defaults). A PLY
+ * without faces and an XYZ/PTS file (lines "x y z" or "x y z nx ny nz") are point clouds: they
+ * load as a mesh with no triangles and one normal per vertex, which silk_generate* samples as
+ * points. A cloud without normals gets estimated ones (k-nearest-neighbour plane fits, oriented
+ * outward along a minimum spanning tree; docs/normals.md); one that has them keeps them as read.
+ * Read limits: 50M vertices, 50M triangles, 4 GiB per file; a .gz inflates to at most
+ * max(64 MiB, 32 x its compressed size), checked while inflating (a decompression bomb is
+ * refused with SILK_ERR_LIMIT naming the file, without allocating its output; docs/io.md).
+ * *out: owned by the caller, silk_mesh_destroy. */
+SILK_API silk_status silk_mesh_load(const char* path, const silk_load_params* params, silk_mesh** out);
 typedef enum silk_mesh_format {
   SILK_FORMAT_BY_EXTENSION = 0, SILK_FORMAT_OBJ = 1, SILK_FORMAT_PLY = 2, SILK_FORMAT_GLB = 3
 } silk_mesh_format;
 typedef struct silk_save_params {
-  int32_t part_colors; /* .glb: a distinct COLOR_0 per part; default 0 */
+  uint32_t struct_size;    /* set by silk_save_default_params() */
+  int32_t part_colors;     /* .glb: a distinct COLOR_0 per part; default 0 */
   const char* obj_comment; /* .obj: written first as "# ..." lines (one per line of the text); NULL
                               (default) or "": none. Borrowed: read during the call only */
   int32_t format;          /* silk_mesh_format; default SILK_FORMAT_BY_EXTENSION; another value writes
                               that format whatever the path's extension */
 } silk_save_params;
 SILK_API silk_save_params silk_save_default_params(void);
-SILK_API silk_status silk_mesh_save_with_params(const silk_mesh* mesh, const char* path, const silk_save_params* params);
+/* By extension (or params->format): .obj, .ply, or .glb (one node per part: triangles grouped by
+ * component, smooth normals per part); written atomically (a failed save leaves no partial file).
+ * params NULL = defaults. */
+SILK_API silk_status silk_mesh_save(const silk_mesh* mesh, const char* path, const silk_save_params* params);
 SILK_API void silk_mesh_destroy(silk_mesh* mesh);
-SILK_API size_t silk_mesh_vertex_count(const silk_mesh* mesh);
-SILK_API size_t silk_mesh_triangle_count(const silk_mesh* mesh);
-/* Query-then-copy: capacity in elements (3 per vertex / triangle). */
-SILK_API silk_status silk_mesh_copy_positions(const silk_mesh* mesh, double* out, size_t capacity);
-SILK_API silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t capacity);
-/* Component index per triangle (decoded meshes; 0 for loaded ones). capacity = triangles. */
-SILK_API silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity);
-/* Point clouds: 1 when the mesh carries one normal per vertex (3 doubles each). */
+/* Copies (size-query rule above; element counts): positions 3 doubles per vertex, triangles 3
+ * indices per triangle, components one part index per triangle (decoded and generated meshes;
+ * 0 for loaded ones), normals 3 doubles per vertex for point clouds (0 elements otherwise). */
+SILK_API silk_status silk_mesh_copy_positions(const silk_mesh* mesh, double* out, size_t capacity, size_t* out_count);
+SILK_API silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t capacity, size_t* out_count);
+SILK_API silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity,
+                                                        size_t* out_count);
+SILK_API silk_status silk_mesh_copy_normals(const silk_mesh* mesh, double* out, size_t capacity, size_t* out_count);
+/* Point clouds: 1 when the mesh carries one normal per vertex. */
 SILK_API int32_t silk_mesh_has_normals(const silk_mesh* mesh);
-SILK_API silk_status silk_mesh_copy_normals(const silk_mesh* mesh, double* out, size_t capacity);
 
 /* ---- token sequences ---------------------------------------------------------------- */
 typedef struct silk_tokens silk_tokens;
+/* *out: owned by the caller, silk_tokens_destroy (also for silk_tokens_load). */
 SILK_API silk_status silk_tokens_create(const int32_t* ids, size_t count, silk_tokens** out);
 SILK_API silk_status silk_tokens_load(const char* path, silk_tokens** out); /* one id per line */
 SILK_API silk_status silk_tokens_save(const silk_tokens* tokens, const char* path);
 SILK_API void silk_tokens_destroy(silk_tokens* tokens);
-SILK_API size_t silk_tokens_count(const silk_tokens* tokens);
-SILK_API silk_status silk_tokens_copy(const silk_tokens* tokens, int32_t* out, size_t capacity);
+/* The ids (size-query rule above). */
+SILK_API silk_status silk_tokens_copy(const silk_tokens* tokens, int32_t* out, size_t capacity, size_t* out_count);
 
 /* ---- encode: mesh -> tokens (bit-exact with the reference tokenizer) ---------------- */
 typedef struct silk_encode_params {
+  uint32_t struct_size;           /* set by silk_encode_default_params() */
   int32_t normalize;              /* 1: bounding-box normalise first (default); 0: already in [-1,1] */
   double normalize_bound;         /* default 0.95 */
   int32_t nonmanifold_processing; /* default 1 */
@@ -128,6 +165,7 @@ typedef struct silk_encode_params {
 SILK_API silk_encode_params silk_encode_default_params(void);
 
 typedef struct silk_encode_stats {
+  uint32_t struct_size; /* set by the caller: sizeof(silk_encode_stats) */
   int32_t input_vertices, input_faces, processed_vertices, processed_faces;
   int32_t emitted_vertices, encodable_faces;
   int32_t components_found, components_encoded, components_dropped_small;
@@ -141,30 +179,32 @@ typedef struct silk_encode_stats {
   double seconds_quantize_cleanup, seconds_nonmanifold, seconds_orientation, seconds_components, seconds_layering,
       seconds_codecs, seconds_packing;
 } silk_encode_stats;
-/* stats may be NULL. A refused mesh returns SILK_ERR_REFUSED with the reason's name first in
- * the message (e.g. "mobius: ..."). */
-SILK_API silk_status silk_encode(const silk_mesh* mesh, const silk_encode_params* params, silk_tokens** out,
-                                 silk_encode_stats* stats);
+/* params NULL = defaults; stats may be NULL. A refused mesh returns SILK_ERR_REFUSED with the
+ * reason's name first in the message (e.g. "mobius: ..."). *out: owned, silk_tokens_destroy. */
+SILK_API silk_status silk_mesh_encode(const silk_mesh* mesh, const silk_encode_params* params, silk_tokens** out,
+                                      silk_encode_stats* stats);
 
 /* ---- decode: tokens -> mesh (every face the tokens carry, consistently oriented) ----- */
 typedef struct silk_decode_params {
+  uint32_t struct_size;     /* set by silk_decode_default_params() */
   int32_t grid_coordinates; /* 1: positions are grid integers 0..127; 0: dequantised [-1,1] (default) */
   int32_t split_nonmanifold_vertices; /* 1: every vertex whose faces form two or more fans is split (one
                                          copy per extra fan, same position, appended); 0: the mesh the
                                          tokens encode (default) */
 } silk_decode_params;
 SILK_API silk_decode_params silk_decode_default_params(void);
-SILK_API silk_status silk_decode(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out);
 typedef struct silk_decode_stats {
+  uint32_t struct_size;                /* set by the caller: sizeof(silk_decode_stats) */
   int32_t vertices, faces, components; /* components: C tokens read (a component may carry no face) */
   int32_t vertices_split;              /* split_nonmanifold_vertices: vertices split */
 } silk_decode_stats;
-/* silk_decode plus its figures; stats may be NULL. */
-SILK_API silk_status silk_decode_with_stats(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out,
-                                            silk_decode_stats* stats);
+/* params NULL = defaults; stats may be NULL. *out: owned, silk_mesh_destroy. */
+SILK_API silk_status silk_tokens_decode(const silk_tokens* tokens, const silk_decode_params* params, silk_mesh** out,
+                                        silk_decode_stats* stats);
 
 /* ---- round trip: encode, decode, compare ---------------------------------------------- */
 typedef struct silk_roundtrip_report {
+  uint32_t struct_size;        /* set by the caller: sizeof(silk_roundtrip_report) */
   int64_t tokens;
   int64_t processed_faces;     /* faces of the emitted components, after clean-up */
   int64_t representable_faces; /* processed faces whose three edges the stream carries */
@@ -175,13 +215,14 @@ typedef struct silk_roundtrip_report {
   int64_t decoded_faces;
   int32_t exact;               /* 1: nothing missing or reversed */
 } silk_roundtrip_report;
-/* Encodes `mesh` (params as silk_encode), decodes the ids and compares faces by grid corners and
- * winding. A mesh the encoder refuses fails as in silk_encode; an inexact result is SILK_OK. */
-SILK_API silk_status silk_roundtrip(const silk_mesh* mesh, const silk_encode_params* params, silk_roundtrip_report* out);
+/* Encodes `mesh` (params as silk_mesh_encode), decodes the ids and compares faces by grid corners
+ * and winding. A mesh the encoder refuses fails as in silk_mesh_encode; an inexact result is SILK_OK. */
+SILK_API silk_status silk_mesh_roundtrip(const silk_mesh* mesh, const silk_encode_params* params,
+                                         silk_roundtrip_report* out);
 
 /* ---- reports: JSON documents some calls produce -------------------------------------- */
 typedef struct silk_report silk_report;
-/* The document, NUL-terminated, owned by the report (valid until silk_report_destroy). */
+/* The document, NUL-terminated. Borrowed: owned by the report, valid until silk_report_destroy. */
 SILK_API const char* silk_report_json(const silk_report* report);
 SILK_API void silk_report_destroy(silk_report* report);
 
@@ -191,12 +232,14 @@ typedef enum silk_window_rule {
   SILK_WINDOW_UNION = 1      /* the official decoder's: a pair is an edge if either row says so */
 } silk_window_rule;
 typedef struct silk_check_params {
+  uint32_t struct_size; /* set by silk_check_default_params() */
   int32_t max_length;   /* tokens incl. EOS; 0 = unlimited; default 10240 (token_format.md §9) */
   int32_t window_rule;  /* silk_window_rule; default SILK_WINDOW_CANONICAL */
   int32_t allow_prefix; /* 1: a stream that stops inside a component is accepted; default 0 */
 } silk_check_params;
 SILK_API silk_check_params silk_check_default_params(void);
 typedef struct silk_check_result {
+  uint32_t struct_size; /* set by the caller: sizeof(silk_check_result) */
   int32_t accepted;  /* 1: every id is legal (and the stream ends after an E unless allow_prefix) */
   int32_t reason;    /* 0 when accepted, else a stable code named by silk_reject_reason_name */
   int64_t position;  /* index of the first rejected id (the count when the stream ends too early); -1 if accepted */
@@ -206,18 +249,21 @@ typedef struct silk_check_result {
 /* Runs the ids (EOS optional at the end) through the grammar token by token. A rejected stream is
  * SILK_OK with accepted = 0; only bad arguments fail. */
 SILK_API silk_status silk_tokens_check(const silk_tokens* tokens, const silk_check_params* params, silk_check_result* out);
-/* "wrong_class", "not_canonical", ... for a silk_check_result reason ("none" for 0; "unknown" out of range). */
+/* "wrong_class", "not_canonical", ... for a silk_check_result reason ("none" for 0; "unknown" out
+ * of range). A static string. */
 SILK_API const char* silk_reject_reason_name(int32_t reason);
 
 /* ---- hole repair of a token stream (token_format.md §12.2) --------------------------------------- */
 /* What to do with holes (loops of open edges); also silk_generate_params.holes. */
 typedef enum silk_hole_policy { SILK_HOLES_OFF = 0, SILK_HOLES_REPORT = 1, SILK_HOLES_REPAIR = 2 } silk_hole_policy;
 typedef struct silk_repair_params {
+  uint32_t struct_size;  /* set by silk_repair_default_params() */
   int32_t holes;         /* silk_hole_policy; default SILK_HOLES_REPAIR */
   int32_t max_fill_loop; /* longest hole loop (edges) that is triangulated; >= 0; default 8 */
 } silk_repair_params;
 SILK_API silk_repair_params silk_repair_default_params(void);
 typedef struct silk_repair_stats {
+  uint32_t struct_size;    /* set by the caller: sizeof(silk_repair_stats) */
   int64_t tokens_accepted; /* ids read before EOS, -1 padding or the first illegal id */
   int64_t illegal_at;      /* index of the first illegal id, -1 if none */
   int32_t vertices, faces, watertight;
@@ -226,7 +272,8 @@ typedef struct silk_repair_stats {
 } silk_repair_stats;
 /* Reads the ids through the grammar (union window rule, no length limit) up to EOS, a -1 or the
  * first illegal id, then builds the mesh of the accepted prefix (closed layers) with the hole
- * policy; positions dequantised to [-1, 1]. stats and report may be NULL; *report (destroy it)
+ * policy; positions dequantised to [-1, 1]. stats and report may be NULL. *out_mesh: owned,
+ * silk_mesh_destroy; *report: owned, silk_report_destroy; it
  * holds {"tokens_accepted", "illegal": null or {"position", "id", "reason", "message"},
  * "vertices", "faces", "watertight", "window_findings": [{"component", "layer", "row_a", "row_b"}],
  * "holes": [{"component", "loop", "layers", "repaired", "added_edges"}], "faces_added",
@@ -236,6 +283,7 @@ SILK_API silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_re
 
 /* ---- random legal token streams (property tests, fuzzing, demos) ---------------------- */
 typedef struct silk_random_walk_params {
+  uint32_t struct_size;   /* set by silk_random_walk_default_params() */
   uint64_t seed;          /* default 1 */
   int32_t max_components; /* 1..1000; default 2 */
   int32_t max_layers;     /* most layers per component after the root, 0..199 (0 acts as 1); default 6 */
@@ -244,7 +292,8 @@ typedef struct silk_random_walk_params {
 SILK_API silk_random_walk_params silk_random_walk_default_params(void);
 /* One seeded walk: ids drawn uniformly from the grammar's legal masks (biased toward closing
  * layers) up to EOS (included), and the mesh they decode to (holes off, vertex fans resolved;
- * positions dequantised). out_mesh may be NULL. */
+ * positions dequantised). out_mesh may be NULL. *out_tokens: owned, silk_tokens_destroy;
+ * *out_mesh: owned, silk_mesh_destroy. */
 SILK_API silk_status silk_tokens_random_walk(const silk_random_walk_params* params, silk_tokens** out_tokens,
                                              silk_mesh** out_mesh);
 
@@ -253,23 +302,25 @@ SILK_API silk_status silk_tokens_random_walk(const silk_random_walk_params* para
  * "preprocessing", docs/runtime.md); training code uses it too. */
 typedef enum silk_preprocess_kind { SILK_PREPROCESS_SILK = 0, SILK_PREPROCESS_OFFICIAL = 1 } silk_preprocess_kind;
 typedef struct silk_preprocess_params {
+  uint32_t struct_size;           /* set by silk_preprocess_default_params() */
   int32_t kind;                   /* silk_preprocess_kind */
   double normalize_bound;         /* largest extent -> 2 * bound; 0.95 */
   double merge_distance_fraction; /* merge vertices closer than this share of the box diagonal (official 0.01) */
-  int32_t surface_samples;        /* > n_points: sample this many, then draw n_points (official 50000); 0 = n_points */
+  int32_t surface_samples;        /* > point_count: sample this many, then draw point_count (official 50000);
+                                     0 = point_count */
   int32_t round_float16;          /* 1: points and normals rounded to float16 before the draw (official); 0 or 1 */
-  int32_t n_points;               /* rows produced; 4096 */
+  int32_t point_count;            /* rows produced (model.json preprocessing.n_points); 4096 */
 } silk_preprocess_params;
 /* The defaults of a kind (official: official_network.md §4; silk: Silk's own sampling). */
 SILK_API silk_preprocess_params silk_preprocess_default_params(int32_t kind);
 /* Either a mesh (cloud NULL) or an oriented point cloud (mesh NULL; n_cloud rows of 6 doubles x y z
- * nx ny nz) -> rows of 6 floats (normalised xyz, normal), all draws from `seed`. Size query: with
- * out NULL, *out_rows is set to the row count and nothing is computed; with capacity (floats) <
- * 6 * rows, SILK_ERR_BUFFER_TOO_SMALL. transform (may be NULL) receives cx, cy, cz, scale with
- * model = (input - c) * scale. */
-SILK_API silk_status silk_prepare_points(const silk_mesh* mesh, const double* cloud, size_t n_cloud,
+ * nx ny nz) -> rows of 6 floats (normalised xyz, normal), all draws from `seed`. Size-query rule
+ * above, in floats: *out_count = 6 * rows (rows = point_count, or n_cloud when the cloud is
+ * smaller); the size query computes nothing. transform (may be NULL) receives cx, cy, cz, scale
+ * with model = (input - c) * scale. params NULL = silk_preprocess_default_params(SILK_PREPROCESS_SILK). */
+SILK_API silk_status silk_points_prepare(const silk_mesh* mesh, const double* cloud, size_t n_cloud,
                                          const silk_preprocess_params* params, uint64_t seed, float* out,
-                                         size_t capacity, size_t* out_rows, double* transform);
+                                         size_t capacity, size_t* out_count, double* transform);
 
 /* ---- generation: point cloud or mesh -> generated mesh ---------------------------------
  * Needs a libsilk built with onnxruntime (silk_generation_available() == 1); otherwise every
@@ -307,31 +358,37 @@ typedef enum silk_decoder_precision {
   SILK_DECODER_INT4 = 3
 } silk_decoder_precision;
 
-typedef struct silk_model_options {
+typedef struct silk_model_params {
+  uint32_t struct_size; /* set by silk_model_default_params() */
   int32_t threads; /* threads of the process's shared pool (first load decides); 0 = physical
                       cores (default); at most max(64, hardware threads) */
   int32_t decoder; /* silk_decoder_precision (error if the model lacks that file); default SILK_DECODER_DEFAULT */
-} silk_model_options;
-SILK_API silk_model_options silk_model_default_options(void);
+} silk_model_params;
+SILK_API silk_model_params silk_model_default_params(void);
 /* dir holds model.json, encoder.onnx, decoder.onnx (docs/model_contract.md). A model of another
  * format/token-format version is refused with SILK_ERR_UNSUPPORTED. Every file the folder names,
  * ONNX external data included, must resolve inside it (no absolute path, no "..", no symlink
- * leading out): otherwise SILK_ERR_PARSE naming the model file and the location. options may be NULL. */
-SILK_API silk_status silk_model_load(const char* dir, const silk_model_options* options, silk_model** out);
+ * leading out): otherwise SILK_ERR_PARSE naming the model file and the location. params NULL = defaults.
+ * *out: owned by the caller, silk_model_destroy (generators keep the model alive, see above). */
+SILK_API silk_status silk_model_load(const char* dir, const silk_model_params* params, silk_model** out);
 SILK_API void silk_model_destroy(silk_model* model);
 
 typedef struct silk_model_info {
+  uint32_t struct_size; /* set by the caller: sizeof(silk_model_info) */
   char config[32]; /* model.json "config" (truncated) */
-  int32_t d_model, n_layers, n_heads, head_dim, n_latents, n_points, max_seq_len;
+  int32_t d_model, n_layers, n_heads, head_dim, n_latents;
+  int32_t default_points; /* encoder points per generation by default (model.json dims.n_points) */
+  int32_t max_seq_len;
   int32_t threads, int8;
   int32_t decoder;      /* silk_decoder_precision in use (never DEFAULT) */
   int32_t arch;         /* 0 = "silk", 1 = "official" */
   int32_t encoder_points; /* the encoder graph's fixed point count; -1 = any */
 } silk_model_info;
-/* The model's pre-processing (model.json "preprocessing"). */
+/* The model's pre-processing (model.json "preprocessing"); out->struct_size as for an out struct. */
 SILK_API silk_status silk_model_get_preprocess_params(const silk_model* model, silk_preprocess_params* out);
 SILK_API silk_status silk_model_get_info(const silk_model* model, silk_model_info* out);
 
+/* *out: owned by the caller, silk_generator_destroy. */
 SILK_API silk_status silk_generator_create(const silk_model* model, silk_generator** out);
 /* NULL is ignored. With no call on the generator in progress it is freed at once. During a call
  * (from another thread, or from that call's own progress or cancel callback) the call's run is
@@ -358,7 +415,7 @@ enum {
   SILK_DEBUG_NO_SKIP_FORCED = 1,     /* run the model for forced ids too */
   SILK_DEBUG_KV_COPY = 2,            /* naive KV cache handling */
   SILK_DEBUG_SAMPLE_THEN_CHECK = 4,  /* sample unmasked, fall back to the mask */
-  SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report_json */
+  SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report */
 };
 
 /* "Use the model's value" (model.json "sampling" / "preprocessing"): the one sentinel of
@@ -503,17 +560,16 @@ SILK_API silk_status silk_generator_stats(silk_generator* generator, silk_genera
 /* out_mesh required, out_tokens and stats may be NULL. Before the end, it cancels first. */
 SILK_API silk_status silk_generator_finish(silk_generator* generator, silk_mesh** out_mesh, silk_tokens** out_tokens,
                                            silk_generate_stats* stats);
-/* The last finished generation as JSON (settings, input, figures; with SILK_DEBUG_RECORD_TRACE
- * also the encoder points and every id's legal set). Query-then-copy: out NULL/capacity 0 gives
- * SILK_ERR_BUFFER_TOO_SMALL and *out_size = bytes needed including the terminating NUL. */
-SILK_API silk_status silk_generator_report_json(silk_generator* generator, int32_t trace, char* out, size_t capacity,
-                                                size_t* out_size);
+/* The last finished generation as a JSON report (settings, input, figures; trace 1: also the
+ * encoder points and every id's legal set, for a generation run with SILK_DEBUG_RECORD_TRACE).
+ * *out: owned by the caller, silk_report_destroy. */
+SILK_API silk_status silk_generator_report(silk_generator* generator, int32_t trace, silk_report** out);
 /* The encoder's points of the current or last generation (from its start on), in the input's
  * frame: rows of 6 doubles x y z nx ny nz (the model-frame floats with the normalisation undone;
  * unit normals; raw_points: as given). A point cloud loaded without normals shows the estimated
- * ones. Query-then-copy: capacity in doubles, *out_rows (required) = rows; before any generation
+ * ones. Copy rule: capacity and *out_count in doubles (6 per point); before any generation
  * SILK_ERR_INVALID_ARGUMENT. */
-SILK_API silk_status silk_generator_points(silk_generator* generator, double* out, size_t capacity, size_t* out_rows);
+SILK_API silk_status silk_generator_copy_points(silk_generator* generator, double* out, size_t capacity, size_t* out_count);
 
 /* ---- one-call generation: start + advance to the end + finish --------------------------
  * The result is in the input's frame; silk_mesh_copy_triangle_components gives each

@@ -31,6 +31,37 @@ inline void Check(silk_status s) {
   }
 }
 
+// A struct the library fills, ready for the call: zeroed, struct_size set (silk.h, "Struct growth").
+template <typename T>
+T Sized() {
+  T t{};
+  t.struct_size = static_cast<uint32_t>(sizeof(T));
+  return t;
+}
+
+// silk.h's size-query rule: copy(out, capacity, out_count) asked for the count, then called.
+template <typename T, typename Copy>
+std::vector<T> CopyAll(Copy copy) {
+  size_t n = 0;
+  Check(copy(static_cast<T*>(nullptr), 0, &n));
+  std::vector<T> v(n);
+  if (n) Check(copy(v.data(), v.size(), &n));
+  return v;
+}
+// The number of elements a copy function would copy (its size query).
+template <typename T, typename Copy>
+size_t CountOf(Copy copy) {
+  size_t n = 0;
+  Check(copy(static_cast<T*>(nullptr), 0, &n));
+  return n;
+}
+
+inline silk_vocab_info Vocab() {
+  silk_vocab_info v = Sized<silk_vocab_info>();
+  Check(silk_vocab_get_info(&v));
+  return v;
+}
+
 struct ReportDeleter {
   void operator()(silk_report* r) const { silk_report_destroy(r); }
 };
@@ -61,15 +92,15 @@ class Tokens {
     return Tokens(t);
   }
   std::vector<int32_t> ids() const {
-    std::vector<int32_t> v(silk_tokens_count(h_.get()));
-    if (!v.empty()) Check(silk_tokens_copy(h_.get(), v.data(), v.size()));
-    return v;
+    return CopyAll<int32_t>([&](int32_t* o, size_t c, size_t* n) { return silk_tokens_copy(h_.get(), o, c, n); });
   }
   void Save(const std::string& path) const { Check(silk_tokens_save(h_.get(), path.c_str())); }
-  size_t size() const { return silk_tokens_count(h_.get()); }
+  size_t size() const {
+    return CountOf<int32_t>([&](int32_t* o, size_t c, size_t* n) { return silk_tokens_copy(h_.get(), o, c, n); });
+  }
   // The grammar's verdict (a rejection is a result, not an exception).
   silk_check_result GrammarCheck(const silk_check_params& p = silk_check_default_params()) const {
-    silk_check_result r;
+    silk_check_result r = Sized<silk_check_result>();
     silk_cpp::Check(silk_tokens_check(h_.get(), &p, &r));
     return r;
   }
@@ -89,44 +120,47 @@ class Mesh {
   }
   static Mesh Load(const std::string& path, const silk_load_params& p = silk_load_default_params()) {
     silk_mesh* m = nullptr;
-    Check(silk_mesh_load_with_params(path.c_str(), &p, &m));
+    Check(silk_mesh_load(path.c_str(), &p, &m));
     return Mesh(m);
   }
   void Save(const std::string& path, const silk_save_params& p = silk_save_default_params()) const {
-    Check(silk_mesh_save_with_params(h_.get(), path.c_str(), &p));
+    Check(silk_mesh_save(h_.get(), path.c_str(), &p));
   }
-  size_t vertex_count() const { return silk_mesh_vertex_count(h_.get()); }
-  size_t triangle_count() const { return silk_mesh_triangle_count(h_.get()); }
+  size_t vertex_count() const {
+    return CountOf<double>([&](double* o, size_t c, size_t* n) { return silk_mesh_copy_positions(h_.get(), o, c, n); }) / 3;
+  }
+  size_t triangle_count() const {
+    return CountOf<int32_t>([&](int32_t* o, size_t c, size_t* n) { return silk_mesh_copy_triangles(h_.get(), o, c, n); }) /
+           3;
+  }
   bool is_point_cloud() const { return silk_mesh_has_normals(h_.get()) && triangle_count() == 0; }
   std::vector<double> positions() const {
-    std::vector<double> v(3 * silk_mesh_vertex_count(h_.get()));
-    if (!v.empty()) Check(silk_mesh_copy_positions(h_.get(), v.data(), v.size()));
-    return v;
+    return CopyAll<double>([&](double* o, size_t c, size_t* n) { return silk_mesh_copy_positions(h_.get(), o, c, n); });
   }
   std::vector<int32_t> triangles() const {
-    std::vector<int32_t> v(3 * silk_mesh_triangle_count(h_.get()));
-    if (!v.empty()) Check(silk_mesh_copy_triangles(h_.get(), v.data(), v.size()));
-    return v;
+    return CopyAll<int32_t>([&](int32_t* o, size_t c, size_t* n) { return silk_mesh_copy_triangles(h_.get(), o, c, n); });
   }
   std::vector<int32_t> triangle_components() const {
-    std::vector<int32_t> v(silk_mesh_triangle_count(h_.get()));
-    if (!v.empty()) Check(silk_mesh_copy_triangle_components(h_.get(), v.data(), v.size()));
-    return v;
+    return CopyAll<int32_t>(
+        [&](int32_t* o, size_t c, size_t* n) { return silk_mesh_copy_triangle_components(h_.get(), o, c, n); });
+  }
+  std::vector<double> normals() const {
+    return CopyAll<double>([&](double* o, size_t c, size_t* n) { return silk_mesh_copy_normals(h_.get(), o, c, n); });
   }
   Tokens Encode(const silk_encode_params& p = silk_encode_default_params(), silk_encode_stats* stats = nullptr) const {
     silk_tokens* t = nullptr;
-    Check(silk_encode(h_.get(), &p, &t, stats));
+    Check(silk_mesh_encode(h_.get(), &p, &t, stats));
     return Tokens(t);
   }
   static Mesh Decode(const Tokens& t, const silk_decode_params& p = silk_decode_default_params(),
                      silk_decode_stats* stats = nullptr) {
     silk_mesh* m = nullptr;
-    Check(silk_decode_with_stats(t.get(), &p, &m, stats));
+    Check(silk_tokens_decode(t.get(), &p, &m, stats));
     return Mesh(m);
   }
   silk_roundtrip_report Roundtrip(const silk_encode_params& p = silk_encode_default_params()) const {
-    silk_roundtrip_report r;
-    Check(silk_roundtrip(h_.get(), &p, &r));
+    silk_roundtrip_report r = Sized<silk_roundtrip_report>();
+    Check(silk_mesh_roundtrip(h_.get(), &p, &r));
     return r;
   }
   // Hole repair of a token stream (silk_tokens_repair); report_json (may be null) gets the report.
@@ -165,13 +199,13 @@ struct GeneratorDeleter {
 // A loaded model folder (shareable between threads).
 class Model {
  public:
-  static Model Load(const std::string& dir, const silk_model_options& o = silk_model_default_options()) {
+  static Model Load(const std::string& dir, const silk_model_params& o = silk_model_default_params()) {
     silk_model* m = nullptr;
     Check(silk_model_load(dir.c_str(), &o, &m));
     return Model(m);
   }
   silk_model_info info() const {
-    silk_model_info i;
+    silk_model_info i = Sized<silk_model_info>();
     Check(silk_model_get_info(h_.get(), &i));
     return i;
   }
@@ -232,22 +266,13 @@ class Generator {
   }
   // The last finished generation as JSON (trace: with points and legal sets).
   std::string ReportJson(bool trace = false) {
-    size_t size = 0;
-    silk_status s = silk_generator_report_json(h_.get(), trace ? 1 : 0, nullptr, 0, &size);
-    if (s != SILK_ERR_BUFFER_TOO_SMALL) Check(s);
-    std::string out(size, '\0');
-    Check(silk_generator_report_json(h_.get(), trace ? 1 : 0, &out[0], out.size(), &size));
-    out.resize(size ? size - 1 : 0);
-    return out;
+    silk_report* r = nullptr;
+    Check(silk_generator_report(h_.get(), trace ? 1 : 0, &r));
+    return TakeReport(r);
   }
-  // The encoder's points in the input frame: rows of x y z nx ny nz, flattened (silk_generator_points).
+  // The encoder's points in the input frame: rows of x y z nx ny nz, flattened (silk_generator_copy_points).
   std::vector<double> Points() {
-    size_t rows = 0;
-    silk_status s = silk_generator_points(h_.get(), nullptr, 0, &rows);
-    if (s != SILK_ERR_BUFFER_TOO_SMALL) Check(s);
-    std::vector<double> out(rows * 6);
-    if (rows) Check(silk_generator_points(h_.get(), out.data(), out.size(), &rows));
-    return out;
+    return CopyAll<double>([&](double* o, size_t c, size_t* n) { return silk_generator_copy_points(h_.get(), o, c, n); });
   }
   // points: rows of x y z nx ny nz.
   Mesh GenerateFromPoints(const std::vector<double>& points,

@@ -1,5 +1,5 @@
 """The model's point-cloud condition [N, 6] (xyz then unit normal) through libsilk's
-pre-processing (silk_prepare_points: the code generation runs, no second copy in numpy), with
+pre-processing (silk_points_prepare: the code generation runs, no second copy in numpy), with
 optional Gaussian jitter as in training."""
 from __future__ import annotations
 

@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
     if (n_tokens == 0) return 1;
     if (SILK_HAS_GENERATION_AT_CONFIGURE != silk_generation_available()) return 1;
     if (argc > 1 && silk_generation_available()) {
-      silk_model_options mo = silk_model_default_options();
+      silk_model_params mo = silk_model_default_params();
       mo.threads = 1;
       silk_cpp::Model model = silk_cpp::Model::Load(argv[1], mo);
       silk_cpp::Generator gen(model);

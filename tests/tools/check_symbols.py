@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""libsilk.so exports exactly the C API: the dynamic symbols of the built library, the functions
+silk.h declares and the committed list engine/libsilk.symbols are the same set, and every one is
+silk_* (docs/c_api.md "Exported symbols").
+
+  check_symbols.py LIB LIST HEADER           compare; fails naming added / missing / non-silk_ symbols
+  check_symbols.py --write LIB LIST HEADER   regenerate LIST from LIB (after an intended API change;
+                                             the header must agree with it)
+  check_symbols.py --selftest                the comparison fails on a known bad set (the check can fail)
+"""
+import re
+import subprocess
+import sys
+
+DECL = re.compile(r"^SILK_API\s+[^;(]*?\b(silk_\w+)\s*\(", re.M)
+
+
+def exported(lib):
+    """Defined dynamic symbols of LIB (nm -D --defined-only)."""
+    out = subprocess.run(["nm", "-D", "--defined-only", lib], check=True, capture_output=True, text=True).stdout
+    names = set()
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) >= 3:
+            names.add(parts[2].split("@")[0])
+    return names
+
+
+def declared(header):
+    with open(header, encoding="utf-8") as f:
+        return set(DECL.findall(f.read()))
+
+
+def read_list(path):
+    with open(path, encoding="utf-8") as f:
+        return {l.strip() for l in f if l.strip() and not l.startswith("#")}
+
+
+def problems(lib_syms, listed, header_syms):
+    """Every difference, one line each (empty: all agree)."""
+    out = [f"not a silk_ symbol: {s}" for s in sorted(lib_syms) if not s.startswith("silk_")]
+    out += [f"exported but not in the list (added): {s}" for s in sorted(lib_syms - listed)]
+    out += [f"in the list but not exported (missing): {s}" for s in sorted(listed - lib_syms)]
+    out += [f"exported but not declared in silk.h: {s}" for s in sorted(lib_syms - header_syms)]
+    out += [f"declared in silk.h but not exported: {s}" for s in sorted(header_syms - lib_syms)]
+    return out
+
+
+HOW = "python3 tests/tools/check_symbols.py --write build/engine/libsilk.so engine/libsilk.symbols " \
+      "engine/include/silk/silk.h"
+
+
+def main(argv):
+    if argv[1:] == ["--selftest"]:
+        bad = problems({"silk_a", "silk_new", "helper"}, {"silk_a", "silk_gone"}, {"silk_a", "silk_new"})
+        want = ["not a silk_ symbol: helper", "added): helper", "added): silk_new", "missing): silk_gone",
+                "not declared in silk.h: helper"]
+        missing = [w for w in want if not any(w in b for b in bad)]
+        if missing or problems({"silk_a"}, {"silk_a"}, {"silk_a"}):
+            print("selftest failed:", missing or "a matching set reported problems")
+            return 1
+        print("selftest ok: the comparison reports added, missing and non-silk_ symbols")
+        return 0
+    write = argv[1:2] == ["--write"]
+    args = argv[2:] if write else argv[1:]
+    if len(args) != 3:
+        print(__doc__)
+        return 2
+    lib, listed_path, header = args
+    lib_syms, header_syms = exported(lib), declared(header)
+    if write:
+        bad = problems(lib_syms, lib_syms, header_syms)
+        if bad:
+            print("\n".join(bad))
+            return 1
+        with open(listed_path, "w", encoding="utf-8") as f:
+            f.write("# The dynamic symbols of libsilk.so: the C API of silk.h (docs/c_api.md). Regenerate with\n")
+            f.write(f"# {HOW}\n")
+            f.write("".join(s + "\n" for s in sorted(lib_syms)))
+        print(f"wrote {len(lib_syms)} symbols to {listed_path}")
+        return 0
+    bad = problems(lib_syms, read_list(listed_path), header_syms)
+    if bad:
+        print("\n".join(bad))
+        print(f"after an intended API change, regenerate the list: {HOW}")
+        return 1
+    print(f"{len(lib_syms)} exported symbols: all silk_*, as listed and declared")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
