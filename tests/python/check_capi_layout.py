@@ -23,7 +23,8 @@ def structures() -> dict:
     """{C struct name: ctypes class} for every Structure _capi declares."""
     out = {}
     for name, obj in vars(_capi).items():
-        if isinstance(obj, type) and issubclass(obj, ctypes.Structure) and obj is not ctypes.Structure:
+        # Concrete structs only (an abstract base such as _Sized declares no _fields_).
+        if isinstance(obj, type) and issubclass(obj, ctypes.Structure) and "_fields_" in vars(obj):
             out["silk_" + re.sub(r"(?<!^)(?=[A-Z])", "_", name).lower()] = obj
     return out
 

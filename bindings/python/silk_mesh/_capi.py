@@ -31,6 +31,12 @@ class _Sized(ctypes.Structure):
         super().__init__(*args, **kw)
         self.struct_size = ctypes.sizeof(self)
 
+    def __setattr__(self, name, value):
+        # ctypes would quietly keep an unknown attribute (a renamed field would be ignored).
+        if not any(name == field for field, _ in type(self)._fields_):
+            raise AttributeError(f"{type(self).__name__} has no field '{name}'")
+        super().__setattr__(name, value)
+
     def as_dict(self) -> dict:
         return {name: getattr(self, name) for name, _ in self._fields_ if name != "struct_size"}
 

@@ -10,7 +10,7 @@ def fill(struct: ctypes.Structure, params: dict, where: str, enums: dict | None 
          hidden: tuple = ()) -> ctypes.Structure:
     """Sets struct fields from params (see the module docstring) and returns the struct."""
     enums = enums or {}
-    fields = {name: ctype for name, ctype in type(struct)._fields_ if name not in hidden}
+    fields = {name: ctype for name, ctype in type(struct)._fields_ if name not in hidden and name != "struct_size"}
     for name, value in params.items():
         if name not in fields:
             raise TypeError(f"{where}: unknown parameter '{name}' (known: {', '.join(sorted(fields))})")

@@ -17,8 +17,8 @@ def prepare_points(source, triangles=None, kind: str = "silk", n_points: int = 4
     if kind not in _capi.PREPROCESS_KINDS:
         raise ValueError(f"prepare_points: kind must be one of {sorted(_capi.PREPROCESS_KINDS)}, not {kind!r}")
     p = _params.fill(_native.preprocess_defaults(_capi.PREPROCESS_KINDS[kind]), params, "prepare_points",
-                     hidden=("kind", "n_points"))
-    p.n_points = int(n_points)
+                     hidden=("struct_size", "kind", "point_count"))
+    p.point_count = int(n_points)
     if triangles is not None:
         source = (source, triangles)
     if triangles is None and not isinstance(source, _Borrowed.SOURCES):
