@@ -127,7 +127,7 @@ class Generation:
 
     def __init__(self, model_dir: str, source: Mesh | None, points: list[float] | None, seed: int,
                  temperature: float, top_k: int, max_faces: int, max_tokens: int, repair: str,
-                 surface_tolerance: int | None = None, orient: str = "INPUT"):
+                 surface_tolerance: int | None = None, orient: str = "INPUT", candidates: int = -1):
         L = lib()
         if not L.silk_generation_available():
             raise SilkError(4, "this libsilk was built without onnxruntime (no generation)")
@@ -149,6 +149,8 @@ class Generation:
         if surface_tolerance is not None:  # None: libsilk's measured default
             p.surface_tolerance = surface_tolerance
         p.orient = silk_c.ORIENT[orient.lower()]
+        if candidates >= 1:  # < 1: the model's best of N (model.json "sampling.candidates")
+            p.candidates = candidates
         gi = GenerateInput()
         if source is not None:
             gi.mesh = source.handle
