@@ -69,7 +69,8 @@ struct GenerateProgress {
 
 struct GenerateCallbacks {
   std::function<void(const GenerateProgress&)> progress;  // after every id, the last one included
-  // Polled during point sampling, before the encoder and every id; true: stop (kCancelled).
+  // Polled before the encoder and every id (GenerationSession: during point sampling too);
+  // true: stop (kCancelled).
   std::function<bool()> cancel;
 };
 

@@ -503,7 +503,7 @@ SILK_API silk_status silk_generator_advance(silk_generator* generator, int32_t m
  * and checks, point sampling and the encoder run are interrupted, ids stop before the next one,
  * scoring stops within ~10 ms; one that comes after the last of these still cancels the call).
  * Step-wise: start returns SILK_ERR_CANCELLED, or (cancel after start's last poll) the next
- * advance does; finish still returns the completed layers. */
+ * advance does; finish still returns the candidates' best so far (see silk_generator_advance). */
 SILK_API void silk_generator_cancel(silk_generator* generator);
 SILK_API silk_status silk_generator_tokens(silk_generator* generator, silk_tokens** out);
 SILK_API silk_status silk_generator_mesh(silk_generator* generator, silk_mesh** out);
