@@ -185,17 +185,6 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   return p;
 }
 
-const char* StopName(int32_t r) {
-  switch (r) {
-    case SILK_STOP_EOS: return "eos";
-    case SILK_STOP_MAX_TOKENS: return "max_tokens";
-    case SILK_STOP_MAX_FACES: return "max_faces";
-    case SILK_STOP_GRAMMAR_DEAD_END: return "grammar_dead_end";
-    case SILK_STOP_CANCELLED: return "cancelled";
-  }
-  return "?";
-}
-
 int Run(const Args& a, uint64_t seed) {
   silk_model_params mo = silk_model_default_params();
   mo.threads = a.threads;
@@ -247,7 +236,7 @@ int Run(const Args& a, uint64_t seed) {
     std::fprintf(stderr,
                  "silkgen: %lld tokens (%s, %.0f%% forced) -> %d faces, %d part(s); %.1f tok/s, %.2f s total; "
                  "edge-manifold %s, vertex-manifold %s, oriented %s, watertight %s\n",
-                 static_cast<long long>(st.tokens), StopName(st.stop_reason),
+                 static_cast<long long>(st.tokens), silk_stop_reason_name(st.stop_reason),
                  st.tokens ? 100.0 * st.forced_tokens / st.tokens : 0.0, st.faces, st.components, st.tokens_per_second,
                  st.seconds_total, st.edge_manifold ? "yes" : "no", st.vertex_manifold ? "yes" : "no",
                  st.consistently_oriented ? "yes" : "no", st.watertight ? "yes" : "no");

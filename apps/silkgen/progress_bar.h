@@ -1,5 +1,5 @@
 // A one-line progress bar on stderr (only when stderr is a terminal), redrawn at most ten
-// times a second: tokens so far / cap, components, tokens per second.
+// times a second: the candidate (best of N), tokens so far / cap, components, tokens per second.
 #pragma once
 #include <chrono>
 #include <cstdint>

@@ -1,6 +1,7 @@
 // The generation handles behind silk.h: silk_model shares its Model with every generator made
-// from it (destroy order is free), and silk_generator carries one step-wise generation, its
-// settings and a call state word: busy (concurrent use -> SILK_ERR_BUSY), run, cancel, and a
+// from it (destroy order is free), and silk_generator carries one GenerationSession (the runtime's
+// generation, runtime/generation_session.h), the settings as the caller gave them, the last
+// result, and a call state word: busy (concurrent use -> SILK_ERR_BUSY), run, cancel, and a
 // destroy deferred to the end of the call in progress.
 #pragma once
 #if defined(SILK_HAVE_RUNTIME)
@@ -12,29 +13,26 @@
 #include <vector>
 
 #include "capi/capi_internal.h"
-#include "mesh/normalize.h"
-#include "runtime/generate_pipeline.h"
+#include "runtime/generation_session.h"
 #include "runtime/model.h"
 
 struct silk_model {
   std::shared_ptr<silk::Model> model;
 };
 
-// What the report needs to say about the last generation besides its stats (the settings as
-// given; the resolved sampling values are in GenerationStats::sampling).
+// What the report needs to say about the last generation besides its stats and the session's
+// resolved plan and points: the input and the params as given.
 struct GenerationSettings {
   std::string input_name;
-  std::string preprocessing;  // "silk", "official" or "raw"
-  bool point_cloud = false, raw = false;
-  int32_t input_vertices = 0, input_faces = 0, points = 0;
+  bool point_cloud = false;
+  int32_t input_vertices = 0, input_faces = 0;
   silk_generate_params params{};
-  silk::GenerateOptions options;  // resolved (model.json defaults applied)
 };
 
 struct silk_generator {
-  explicit silk_generator(std::shared_ptr<silk::Model> m) : model(std::move(m)), generator(*model) {}
+  explicit silk_generator(std::shared_ptr<silk::Model> m) : model(std::move(m)), session(*model) {}
   std::shared_ptr<silk::Model> model;  // keeps the model alive as long as the generator
-  silk::Generator generator;
+  silk::GenerationSession session;
   // kBusy: a call is inside. kRun: a run is in progress (a silk_generate* call; step-wise, from
   // start until finish or a failed start). kCancel: the run is cancelled (set only under kRun,
   // cleared when a run begins or ends). kDoomed: destroyed during a call, which frees the handle.
@@ -45,11 +43,8 @@ struct silk_generator {
   std::mutex cancel_mu;
   bool cancelled() const { return (state.load() & kCancel) != 0; }
   GenerationSettings settings;
-  silk::NormalizeTransform transform;  // model frame -> input frame (identity for raw points)
-  std::vector<float> points;           // the encoder's input (kept for the trace)
-  double prepare_seconds = 0;
   bool has_result = false;              // a finished generation (for the report)
-  silk::GenerateResult result;          // tokens, stats, trace of the last finished generation
+  silk::GenerateResult result;          // tokens, stats, trace of the last finished (or cancelled) one
 };
 
 namespace silk::capi {
@@ -87,7 +82,6 @@ bool DeferDestroy(silk_generator* g);
 
 // GenerationStats -> silk_generate_stats (the C view of the one stats struct).
 void FillStats(const GenerationStats& s, silk_generate_stats* out);
-int32_t StopCode(const std::string& reason);
 // The report JSON (settings, input, figures; trace: points and every id's legal set).
 std::string ReportJson(const silk_generator& g, bool trace);
 

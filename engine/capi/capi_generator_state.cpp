@@ -51,7 +51,7 @@ void CancelRun(silk_generator* g) {
   do {
     if (!(s & kRun)) return;  // no run in progress: nothing to cancel (it never leaks into a later one)
   } while (!g->state.compare_exchange_weak(s, s | kCancel));
-  g->generator.InterruptEncoder();
+  g->session.InterruptEncoder();
 }
 
 bool DeferDestroy(silk_generator* g) {
@@ -61,7 +61,7 @@ bool DeferDestroy(silk_generator* g) {
     if (s & kBusy) {  // a call is inside: cancel its run, and it frees the generator as it returns
       const uint32_t next = s | kDoomed | ((s & kRun) ? kCancel : 0u);
       if (!g->state.compare_exchange_weak(s, next)) continue;
-      if (s & kRun) g->generator.InterruptEncoder();
+      if (s & kRun) g->session.InterruptEncoder();
       return true;
     }
     if (g->state.compare_exchange_weak(s, s | kBusy | kDoomed)) return false;  // no call may begin now

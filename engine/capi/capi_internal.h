@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/status.h"
+#include "core/value_text.h"
 #include "io/io_mesh.h"
 #include "mesh/point_preprocessing.h"
 #include "silk/silk.h"
@@ -52,11 +53,9 @@ silk_status CheckEncodeParams(const char* function, const silk_encode_params* pa
 
 // Field checks of the params structs (capi_params.cpp): Ok, or an InvalidArgument naming the
 // field and the value given ("round_float16 2 takes 0 or 1").
-std::string ValueText(double v);  // "-0.5", "nan", "inf"
+using silk::ValueText;  // "-0.5", "nan", "inf" (core/value_text.h)
 Status CheckFlag(const char* field, int32_t value);
 Status CheckEnum(const char* field, int32_t value, int32_t lo, int32_t hi, const char* type);
-// SILK_MODEL_VALUE (exactly -1), or a finite value in [0, hi] (hi infinite: any finite >= 0).
-Status CheckModelValueOr(const char* field, double value, double hi);
 
 template <typename F>
 silk_status Guard(F&& f) noexcept {

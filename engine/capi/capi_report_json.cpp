@@ -23,7 +23,8 @@ const char* HolesName(int32_t h) {
 
 Json SettingsJson(const silk_generator& g) {
   const silk_generate_params& p = g.settings.params;
-  const SamplingParams& sp = g.settings.options.sampling;  // resolved: model.json defaults applied
+  const GenerationPlan& plan = g.session.plan();  // resolved: model.json defaults applied
+  const SamplingParams& sp = plan.options.sampling;
   return Json{{"input", g.settings.input_name},
               {"model", g.model->config().dir},
               {"model_config", g.model->config().config_name},
@@ -33,13 +34,13 @@ Json SettingsJson(const silk_generator& g) {
               {"top_k", sp.top_k},
               {"top_p", sp.top_p},
               {"top_p_temperature", sp.top_p_temperature},
-              {"preprocessing", g.settings.preprocessing},
+              {"preprocessing", plan.preprocessing_name()},
               {"max_tokens", p.max_tokens},
               {"max_faces", p.max_faces},
               {"repair", HolesName(p.holes)},
               {"unconstrained", p.unconstrained != 0},
               {"surface_tolerance", p.surface_tolerance},
-              {"candidates", g.settings.options.candidates},  // resolved: the model's N applied
+              {"candidates", plan.options.candidates},  // resolved: the model's N applied
               {"orient", p.orient == SILK_ORIENT_INPUT ? "input" : "tokens"}};
 }
 
@@ -47,9 +48,11 @@ Json StatsJson(const silk_generator& g) {
   const GenerationStats& st = g.result.stats;
   Json j;
   j["settings"] = SettingsJson(g);
-  j["input"] = {{"vertices", g.settings.input_vertices}, {"faces", g.settings.input_faces}, {"points", g.settings.points}};
+  j["input"] = {{"vertices", g.settings.input_vertices},
+                {"faces", g.settings.input_faces},
+                {"points", g.session.points().size() / 6}};
   j["tokens"] = st.tokens;
-  j["stop_reason"] = st.stop_reason;
+  j["stop_reason"] = StopReasonName(st.stop_reason);
   if (!st.dead_end.empty()) j["grammar_dead_end"] = st.dead_end;
   j["faces"] = st.faces;
   j["vertices"] = st.vertices;
@@ -97,8 +100,9 @@ Json TraceJson(const silk_generator& g) {
   const GenerationStats& st = g.result.stats;
   if (!st.candidates.empty()) j["settings"]["seed"] = st.candidates[static_cast<size_t>(st.chosen_candidate)].seed;
   std::string pts = "[";
-  for (size_t i = 0; i < g.points.size(); ++i)
-    pts += (i ? "," : "") + JsonNumber(static_cast<double>(g.points[i]), 9);  // null, never nan/inf
+  const std::vector<float>& points = g.session.points();
+  for (size_t i = 0; i < points.size(); ++i)
+    pts += (i ? "," : "") + JsonNumber(static_cast<double>(points[i]), 9);  // null, never nan/inf
   pts += "]";
   j["points"] = Json::parse(pts);
   j["tokens"] = g.result.tokens;
@@ -118,14 +122,13 @@ std::string ReportJson(const silk_generator& g, bool trace) {
   return trace ? TraceJson(g).dump() + "\n" : StatsJson(g).dump(2) + "\n";
 }
 
-int32_t StopCode(const std::string& reason) {
-  if (reason.empty()) return SILK_STOP_NONE;
-  if (reason == "max_tokens") return SILK_STOP_MAX_TOKENS;
-  if (reason == "max_faces") return SILK_STOP_MAX_FACES;
-  if (reason == "grammar_dead_end") return SILK_STOP_GRAMMAR_DEAD_END;
-  if (reason == "cancelled") return SILK_STOP_CANCELLED;
-  return SILK_STOP_EOS;
-}
+// StopReason is silk_stop_reason value for value (silk_stop_reason_name relies on it too).
+static_assert(static_cast<int32_t>(StopReason::kNone) == SILK_STOP_NONE &&
+              static_cast<int32_t>(StopReason::kEos) == SILK_STOP_EOS &&
+              static_cast<int32_t>(StopReason::kMaxTokens) == SILK_STOP_MAX_TOKENS &&
+              static_cast<int32_t>(StopReason::kMaxFaces) == SILK_STOP_MAX_FACES &&
+              static_cast<int32_t>(StopReason::kGrammarDeadEnd) == SILK_STOP_GRAMMAR_DEAD_END &&
+              static_cast<int32_t>(StopReason::kCancelled) == SILK_STOP_CANCELLED);
 
 void FillStats(const GenerationStats& s, silk_generate_stats* out) {
   std::memset(out, 0, sizeof(*out));
@@ -133,7 +136,7 @@ void FillStats(const GenerationStats& s, silk_generate_stats* out) {
   out->forced_tokens = s.forced_tokens;
   out->sampled_tokens = s.sampled_tokens;
   out->model_calls = s.model_calls;
-  out->stop_reason = StopCode(s.stop_reason);
+  out->stop_reason = static_cast<int32_t>(s.stop_reason);
   out->faces = s.faces;
   out->vertices = s.vertices;
   out->components = s.components;

@@ -1,4 +1,4 @@
-// Best of N over Generator::Run: seed derivation, Chamfer scoring in the model frame, choice.
+// Best of N's parts: seed derivation, Chamfer scoring in the model frame, the running choice.
 #include "runtime/candidates.h"
 
 #include <chrono>
@@ -57,50 +57,35 @@ double ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<fl
   return ScoreAgainstPoints(mesh, points, CancelCheck{}).value();
 }
 
-Status ScoreSingle(GenerateResult* result, uint64_t seed, const std::vector<float>& points,
-                   const CancelCheck& cancel) {
+Status CandidateChoice::Add(GenerateResult* r, uint64_t seed, const std::vector<float>& points,
+                            const CancelCheck& cancel) {
   const auto t0 = Clock::now();
-  SILK_ASSIGN_OR_RETURN(const double score, ScoreAgainstPoints(result->mesh, points, cancel));
-  result->stats.candidates = {Entry(*result, seed, score)};
-  result->stats.chosen_candidate = 0;
-  result->stats.seconds.scoring += std::chrono::duration<double>(Clock::now() - t0).count();
+  SILK_ASSIGN_OR_RETURN(const double score, ScoreAgainstPoints(r->mesh, points, cancel));
+  all_.push_back(Entry(*r, seed, score));
+  r->stats.seconds.scoring += std::chrono::duration<double>(Clock::now() - t0).count();
+  const PhaseSeconds& s = r->stats.seconds;
+  using Sum = std::pair<double*, double>;
+  for (const Sum& e : std::initializer_list<Sum>{{&total_.encoder, s.encoder}, {&total_.decoder, s.decoder},
+                                                 {&total_.grammar, s.grammar}, {&total_.sampling, s.sampling},
+                                                 {&total_.build_mesh, s.build_mesh}, {&total_.guidance, s.guidance},
+                                                 {&total_.scoring, s.scoring}})
+    *e.first += e.second;
+  generation_seconds_ += r->stats.generation_seconds;
+  const int32_t index = size() - 1;
+  if (index == 0 || Better(all_.back(), all_[static_cast<size_t>(chosen_)])) {
+    chosen_ = index;
+    best_ = std::move(*r);
+  }
   return Status::Ok();
 }
 
-StatusOr<GenerateResult> RunCandidates(Generator* generator, const std::vector<float>& points,
-                                       const GenerateOptions& options, const GenerateCallbacks& callbacks,
-                                       const CancelCheck& scoring_cancel) {
-  SILK_RETURN_IF_ERROR(CheckGenerateOptions(options));
-  GenerateResult best;
-  std::vector<CandidateScore> all;
-  PhaseSeconds total;
-  double generation_seconds = 0;
-  int32_t chosen = 0;
-  for (int32_t i = 0; i < options.candidates; ++i) {
-    GenerateOptions o = options;
-    o.sampling.seed = CandidateSeed(options.sampling.seed, i);
-    SILK_ASSIGN_OR_RETURN(GenerateResult r, generator->Run(points, o, callbacks));
-    const auto t0 = Clock::now();
-    SILK_ASSIGN_OR_RETURN(const double score, ScoreAgainstPoints(r.mesh, points, scoring_cancel));
-    all.push_back(Entry(r, o.sampling.seed, score));
-    r.stats.seconds.scoring += std::chrono::duration<double>(Clock::now() - t0).count();
-    const PhaseSeconds& s = r.stats.seconds;
-    using Sum = std::pair<double*, double>;
-    for (const Sum& e : std::initializer_list<Sum>{{&total.encoder, s.encoder}, {&total.decoder, s.decoder},
-                                                   {&total.grammar, s.grammar}, {&total.sampling, s.sampling},
-                                                   {&total.build_mesh, s.build_mesh}, {&total.guidance, s.guidance},
-                                                   {&total.scoring, s.scoring}})
-      *e.first += e.second;
-    generation_seconds += r.stats.generation_seconds;
-    if (i == 0 || Better(all.back(), all[chosen])) {
-      chosen = i;
-      best = std::move(r);
-    }
-  }
-  best.stats.candidates = std::move(all);
-  best.stats.chosen_candidate = chosen;
-  best.stats.seconds = total;
-  best.stats.generation_seconds = generation_seconds;
+GenerateResult CandidateChoice::Take() {
+  GenerateResult best = std::move(best_);
+  best.stats.candidates = std::move(all_);
+  best.stats.chosen_candidate = chosen_;
+  best.stats.seconds = total_;
+  best.stats.generation_seconds = generation_seconds_;
+  *this = CandidateChoice{};
   return best;
 }
 

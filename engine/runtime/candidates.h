@@ -1,5 +1,6 @@
-// Best of N: several generations of one input with derived seeds, the one closest to the input
-// kept (symmetric Chamfer distance from its surface samples to the encoder's points).
+// Best of N's parts: the candidates' seeds, their score (symmetric Chamfer distance from a
+// candidate's surface samples to the encoder's points) and the running choice of the closest.
+// GenerationSession (runtime/generation_session.h) runs the candidates.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -23,20 +24,25 @@ double ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<fl
 StatusOr<double> ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<float>& points,
                                     const CancelCheck& cancel);
 
-// options.candidates generations with CandidateSeed(options.sampling.seed, i), each a full
-// Generator::Run on the same points (the decoder graph has batch 1, docs/runtime.md). Returns the
-// lowest-scoring one (the earliest on ties; a candidate with faces always beats one without),
-// with stats.candidates listing every candidate and stats.chosen_candidate its index; the
-// stats' times cover all candidates. A failure or cancel of any candidate fails the whole.
-// `scoring_cancel` is polled while candidates are scored (callbacks.cancel is not, so a caller's
-// callback sees the polls it always saw).
-StatusOr<GenerateResult> RunCandidates(Generator* generator, const std::vector<float>& points,
-                                       const GenerateOptions& options, const GenerateCallbacks& callbacks = {},
-                                       const CancelCheck& scoring_cancel = {});
+// The choice among the candidates of one input, added in order: each scored, the lowest score
+// kept (the earliest on ties; a candidate with faces always beats one without), the phase times
+// summed over all.
+class CandidateChoice {
+ public:
+  // Scores `*result` (generated with `seed`) against `points`, polling `cancel`; kCancelled leaves
+  // `*result` and the choice as they were. Otherwise the result is taken when it is the best so far.
+  Status Add(GenerateResult* result, uint64_t seed, const std::vector<float>& points, const CancelCheck& cancel);
+  int32_t size() const { return static_cast<int32_t>(all_.size()); }
+  // The chosen one, with stats.candidates listing every candidate, stats.chosen_candidate its
+  // index, and stats.seconds / generation_seconds covering all candidates. Leaves the choice empty.
+  GenerateResult Take();
 
-// Puts a single generation's own entry (its seed, score) into stats.candidates (index 0);
-// kCancelled (nothing put) when `cancel` stops the scoring.
-Status ScoreSingle(GenerateResult* result, uint64_t seed, const std::vector<float>& points,
-                   const CancelCheck& cancel = {});
+ private:
+  GenerateResult best_;
+  std::vector<CandidateScore> all_;
+  int32_t chosen_ = 0;
+  PhaseSeconds total_;
+  double generation_seconds_ = 0;
+};
 
 }  // namespace silk

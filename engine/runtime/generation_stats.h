@@ -1,14 +1,16 @@
 // GenerationStats: what one generation did and how long each phase took (silkgen --stats,
-// silk_generate_stats). Plain data, filled by Generator and the generation pipeline.
+// silk_generate_stats). Plain data, filled by Generator and GenerationSession.
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "runtime/stop_reason.h"
+
 namespace silk {
 
 struct PhaseSeconds {
-  double load_input = 0;    // reading + normalising + surface sampling (pipeline)
+  double load_input = 0;    // input check + normalising + surface sampling (session)
   double encoder = 0;       // encoder.onnx
   double decoder = 0;       // decoder.onnx calls (all chunks)
   double grammar = 0;       // legal masks + Accept
@@ -16,7 +18,6 @@ struct PhaseSeconds {
   double build_mesh = 0;    // tokens -> faces (+ hole handling)
   double guidance = 0;      // surface guidance: distance field + K/O mask restriction
   double scoring = 0;       // candidates' Chamfer scores
-  double write_output = 0;  // pipeline
   double total = 0;
 };
 
@@ -37,7 +38,7 @@ struct GenerationStats {
   int64_t model_calls = 0;     // decoder.onnx runs
   int64_t fed_positions = 0;   // positions written to the KV cache (BOS included)
   int64_t resampled = 0;       // sample-then-check order: draws that were illegal
-  std::string stop_reason;     // "eos", "max_tokens", "max_faces", "grammar_dead_end"
+  StopReason stop_reason = StopReason::kNone;  // kNone while running
   std::string dead_end;        // grammar_dead_end: where (a grammar bug; reported, not fatal)
   int32_t faces = 0, vertices = 0, components = 0;
   int32_t holes_found = 0, holes_repaired = 0, faces_added = 0, window_findings = 0;

@@ -122,7 +122,7 @@ struct Generator::Session {
 Generator::Generator(const Model& model) : model_(model), encoder_run_(std::make_unique<Ort::RunOptions>()) {}
 Generator::~Generator() = default;
 
-bool Generator::finished() const { return session_ && !session_->res.stats.stop_reason.empty(); }
+bool Generator::finished() const { return session_ && session_->res.stats.stop_reason != StopReason::kNone; }
 const std::vector<int32_t>& Generator::tokens() const {
   static const std::vector<int32_t> kNone;
   return session_ ? session_->res.tokens : kNone;
@@ -134,7 +134,7 @@ const GenerationStats& Generator::stats() const {
 int64_t Generator::layers_closed() const { return session_ ? session_->layers_closed : 0; }
 
 void Generator::Cancel() {
-  if (session_ && !finished()) session_->res.stats.stop_reason = "cancelled";
+  if (session_ && !finished()) session_->res.stats.stop_reason = StopReason::kCancelled;
 }
 
 void Generator::InterruptEncoder() { encoder_run_->SetTerminate(); }
@@ -220,7 +220,7 @@ struct Generator::StepChoice {
 Status Generator::StepOnce() {
   Session& s = *session_;
   if (s.callbacks.cancel && s.callbacks.cancel()) {
-    s.res.stats.stop_reason = "cancelled";
+    s.res.stats.stop_reason = StopReason::kCancelled;
     return Status(StatusCode::kCancelled, "generation cancelled");
   }
   StepChoice c;
@@ -245,7 +245,7 @@ bool Generator::ConsultGrammar(StepChoice* c) {
   if (c->mask->Empty()) {
     // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
     // rather than fail the whole run, and say so in the stats.
-    st.stop_reason = "grammar_dead_end";
+    st.stop_reason = StopReason::kGrammarDeadEnd;
     st.dead_end = "no legal id after " + TailText(s.res.tokens);
     return false;
   }
@@ -323,9 +323,9 @@ void Generator::AppendId(int32_t id) {
   s.res.tokens.push_back(id);
   st.tokens = static_cast<int64_t>(s.res.tokens.size());
   if (id == vocab::k_eos_id) {
-    st.stop_reason = "eos";
+    st.stop_reason = StopReason::kEos;
   } else if (static_cast<int32_t>(s.res.tokens.size()) >= s.cap) {
-    st.stop_reason = "max_tokens";
+    st.stop_reason = StopReason::kMaxTokens;
   } else {
     s.pending.push_back(id);
     if (ClosesLayer(id) && !s.illegal_seen) ++s.layers_closed;
@@ -341,7 +341,7 @@ void Generator::CheckFaceCap() {
   auto so_far = BuildMeshSoFar(s.grammar, MeshBuildOptions{}, nullptr, &s.so_far_cache);
   st.seconds.build_mesh += Since(t0);
   if (so_far.ok()) s.faces_at_close = static_cast<int32_t>(so_far->faces.size());
-  if (s.faces_at_close >= s.options.max_faces) st.stop_reason = "max_faces";
+  if (s.faces_at_close >= s.options.max_faces) st.stop_reason = StopReason::kMaxFaces;
 }
 
 void Generator::ReportProgress() {
@@ -350,7 +350,7 @@ void Generator::ReportProgress() {
   GenerateProgress p;
   p.tokens = static_cast<int64_t>(s.res.tokens.size());
   // The bar reaches 100 % on the last id, whatever stopped the generation.
-  p.max_tokens = s.res.stats.stop_reason.empty() ? s.cap : p.tokens;
+  p.max_tokens = s.res.stats.stop_reason == StopReason::kNone ? s.cap : p.tokens;
   p.components = static_cast<int32_t>(s.grammar.stream().components.size());
   p.faces = s.faces_at_close;
   p.seconds = Since(s.t_start);
@@ -384,7 +384,7 @@ StatusOr<GenerateResult> Generator::Finish() {
   auto t0 = Clock::now();
   MeshBuildOptions bopt;
   bopt.holes = s.options.holes;
-  const bool complete = !s.options.unconstrained ? st.stop_reason == "eos" || st.stop_reason == "max_tokens"
+  const bool complete = !s.options.unconstrained ? st.stop_reason == StopReason::kEos || st.stop_reason == StopReason::kMaxTokens
                                                  : (!s.illegal_seen && s.grammar.Ended());
   if (complete) {
     SILK_ASSIGN_OR_RETURN(res.mesh, BuildMesh(s.grammar.stream(), bopt, &res.report));

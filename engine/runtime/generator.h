@@ -1,9 +1,11 @@
-// Generator: one constrained generation, point cloud -> token ids -> mesh, run in one call
-// (Run) or step-wise (Start, Step until finished, MeshSoFar at any point, Finish). Holds the
-// KV cache between runs (reuse one Generator per thread). Each id the grammar does not force
-// comes from the sampling chain (runtime/sampler.h: grammar mask, surface guidance when on, then
-// the numeric stages), built once per generation; forced ids are appended without sampling and
-// fed to the model later as one chunk together with the next sampled id (chunked prefill).
+// Generator: one constrained generation, encoder points -> token ids -> grid mesh, step-wise
+// (Start, Step until finished, MeshSoFar at any point, Finish; Run loops over them). Holds the
+// KV cache between runs (reuse one Generator per thread). Callers that start from an input and
+// want best of N use GenerationSession (runtime/generation_session.h), which runs its candidates
+// on one Generator. Each id the grammar does not force comes from the sampling chain
+// (runtime/sampler.h: grammar mask, surface guidance when on, then the numeric stages), built once
+// per generation; forced ids are appended without sampling and fed to the model later as one
+// chunk together with the next sampled id (chunked prefill).
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -46,8 +48,8 @@ struct GenerateOptions {
   // cells of an input point's cell; 0 = off. Constrained mode only: with `unconstrained` there
   // is no mask to restrict, so the setting is ignored (stats.guided_tokens stays 0).
   int32_t surface_tolerance = 0;
-  // Best of N (runtime/candidates.h, RunCandidates): N generations with derived seeds, the one
-  // closest to the input kept. Generator::Run/Start run one generation and ignore it.
+  // Best of N: the candidates GenerationSession runs (runtime/generation_session.h), each a
+  // Generator run with a derived seed. A Generator runs one generation and ignores it.
   int32_t candidates = 1;
   // Part orientation (runtime/input_orientation.h): every generated part whose winding
   // disagrees with the encoder's points' normals (area-weighted vote) is reversed, in the final
@@ -61,12 +63,14 @@ struct GenerateProgress {
   int64_t tokens = 0, max_tokens = 0;
   int32_t components = 0;  // started so far
   int32_t faces = -1;      // at the last layer close, when max_faces is set; else -1
-  double seconds = 0;
+  double seconds = 0;      // since the candidate's Start
+  int32_t candidate = 0, candidates = 1;  // best of N: the one generating (GenerationSession)
 };
 
 struct GenerateCallbacks {
   std::function<void(const GenerateProgress&)> progress;  // after every id, the last one included
-  // Polled during point sampling, before the encoder and every id; true: stop (kCancelled).
+  // Polled before the encoder and every id (GenerationSession: during point sampling too);
+  // true: stop (kCancelled).
   std::function<bool()> cancel;
 };
 
@@ -106,7 +110,7 @@ class Generator {
   Status Step();
   bool active() const { return session_ != nullptr; }
   bool finished() const;
-  // Marks the generation cancelled (stop reason "cancelled"); Finish still returns its stats.
+  // Marks the generation cancelled (StopReason::kCancelled); Finish still returns its stats.
   void Cancel();
   // Thread-safe, any time: stops an encoder run in progress (Start then fails; it answers
   // kCancelled when callbacks.cancel says so, which is how a caller asks for both).

@@ -130,10 +130,12 @@ def test_candidates_and_guidance_through_ctypes():
 
 
 def _orient_both(gen, src, seed):
-    """One step-wise run per orientation: {orient: (ids, positions, triangles, stats, preview)}."""
+    """One step-wise run per orientation: {orient: (ids, positions, triangles, stats, preview)}.
+    One candidate: the preview at the end is then the result (with best of N it is the last
+    candidate's, and the result the chosen one)."""
     out = {}
     for orient in ("tokens", "input"):
-        gen.start(src, orient=orient, seed=seed, max_tokens=1500, surface_tolerance=0)
+        gen.start(src, orient=orient, seed=seed, max_tokens=1500, surface_tolerance=0, candidates=1)
         while not gen.advance(10_000):
             pass
         with gen.preview() as m:

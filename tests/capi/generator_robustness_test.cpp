@@ -697,7 +697,8 @@ TEST_F(CapiGeneration, RawPointsReproduceTheTracedEncoderInput) {
 }
 
 // Best of N through the C API: the stats and the report agree, the returned mesh's score is
-// the lowest; N = 1 (and the step-wise API, which runs candidate 0) gives the plain run's ids.
+// the lowest; N = 1, one-call and step-wise, gives the plain run's ids (the step-wise API with
+// N > 1: generator_best_of_n_test.cpp).
 TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
@@ -723,7 +724,7 @@ TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
   for (double s : scores) EXPECT_LE(st.score, s + 1e-12);
   EXPECT_NE(json.find("\"chosen_candidate\": " + std::to_string(st.chosen_candidate)), std::string::npos);
 
-  // N = 1 and the step-wise API: the plain run.
+  // N = 1, one-call and step-wise: the plain run.
   silk_generate_params one = Params(5, 200);
   one.candidates = 1;
   silk_tokens* t1 = nullptr;
@@ -733,7 +734,6 @@ TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
   EXPECT_EQ(st.chosen_candidate, 0);
   silk_generate_input in{};
   in.mesh = mesh_;
-  one.candidates = 4;  // ignored step-wise
   ASSERT_EQ(silk_generator_start(g, &in, &one), SILK_OK);
   int32_t done = 0;
   ASSERT_EQ(silk_generator_advance(g, 100000, SILK_ADVANCE_IDS, &done), SILK_OK);

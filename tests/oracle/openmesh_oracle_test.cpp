@@ -37,6 +37,7 @@
 #include "tokenizer/vocabulary_layout.h"
 #ifdef SILK_HAVE_RUNTIME
 #include "runtime/runtime_test_util.h"
+#include "runtime/generation_output.h"
 #endif
 
 namespace silk {

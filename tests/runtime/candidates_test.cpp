@@ -1,7 +1,8 @@
-// Best of N with the tiny model: seed derivation, N = 1 equals a plain run, every candidate is
-// the plain run of its seed, the returned one has the lowest score, scores are recomputable.
+// Best of N's parts with the tiny model: seed derivation, the score, and the choice among scored
+// candidates (the session's runs of N: generation_session_test.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -45,45 +46,45 @@ class CandidatesTest : public ::testing::Test {
   std::vector<float> points_;
 };
 
-TEST_F(CandidatesTest, OneCandidateIsThePlainRun) {
+// The choice keeps the lowest score (the earliest on ties), a candidate with faces before one
+// without, lists every entry in order, sums the times, and leaves a cancelled scoring undone.
+TEST_F(CandidatesTest, TheChoiceKeepsTheLowestScore) {
   Generator gen(*model_);
-  auto plain = gen.Run(points_, Options(4, 1));
-  auto best = RunCandidates(&gen, points_, Options(4, 1));
-  ASSERT_TRUE(plain.ok() && best.ok());
-  EXPECT_EQ(plain->tokens, best->tokens);
-  ASSERT_EQ(best->stats.candidates.size(), 1u);
-  EXPECT_EQ(best->stats.candidates[0].seed, 4u);
-  EXPECT_EQ(best->stats.chosen_candidate, 0);
-}
-
-TEST_F(CandidatesTest, TheReturnedCandidateHasTheLowestScore) {
-  Generator gen(*model_);
-  const int32_t n = 4;
-  auto best = RunCandidates(&gen, points_, Options(11, n));
-  ASSERT_TRUE(best.ok()) << best.status().ToString();
-  const auto& c = best->stats.candidates;
-  ASSERT_EQ(c.size(), static_cast<size_t>(n));
-  const CandidateScore& chosen = c[static_cast<size_t>(best->stats.chosen_candidate)];
-  // The returned mesh's own score, recomputed, is the reported one and the minimum.
-  EXPECT_EQ(ScoreAgainstPoints(best->mesh, points_), chosen.score);
-  std::set<std::vector<int32_t>> distinct;
-  for (int32_t i = 0; i < n; ++i) {
-    EXPECT_EQ(c[i].seed, CandidateSeed(11, i));
-    if (c[i].faces > 0 || chosen.faces == 0) {
-      EXPECT_LE(chosen.score, c[i].score) << "candidate " << i;
-    }
-    // Each candidate is exactly the plain run of its seed.
-    auto r = gen.Run(points_, Options(c[i].seed, 1));
-    ASSERT_TRUE(r.ok());
-    EXPECT_EQ(static_cast<int64_t>(r->tokens.size()), c[i].tokens);
-    EXPECT_EQ(static_cast<int32_t>(r->mesh.faces.size()), c[i].faces);
-    EXPECT_EQ(ScoreAgainstPoints(r->mesh, points_), c[i].score);
-    if (i == best->stats.chosen_candidate) {
-      EXPECT_EQ(r->tokens, best->tokens);
-    }
-    distinct.insert(r->tokens);
+  std::vector<GenerateResult> runs;
+  for (uint64_t seed : {21, 22, 23}) {
+    auto r = gen.Run(points_, Options(seed, 1));
+    ASSERT_TRUE(r.ok()) << r.status().ToString();
+    ASSERT_GT(r->mesh.faces.size(), 0u) << seed;
+    runs.push_back(std::move(*r));
   }
-  EXPECT_GT(distinct.size(), 1u);  // the seeds really differ
+  GenerateResult empty;  // no faces: never chosen, whatever its score
+  std::vector<double> scores;
+  for (const auto& r : runs) scores.push_back(ScoreAgainstPoints(r.mesh, points_));
+  CandidateChoice choice;
+  GenerateResult copy = runs[0];
+  EXPECT_EQ(choice.Add(&copy, 21, points_, [] { return true; }).code(), StatusCode::kCancelled);
+  EXPECT_EQ(choice.size(), 0);
+  EXPECT_EQ(copy.tokens, runs[0].tokens);  // left as it was
+  ASSERT_TRUE(choice.Add(&empty, 20, points_, {}).ok());
+  double generation_seconds = 0;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    generation_seconds += runs[i].stats.generation_seconds;
+    GenerateResult r = runs[i];
+    ASSERT_TRUE(choice.Add(&r, 21 + i, points_, {}).ok());
+  }
+  const size_t want = static_cast<size_t>(std::min_element(scores.begin(), scores.end()) - scores.begin());
+  const GenerateResult best = choice.Take();
+  EXPECT_EQ(choice.size(), 0);
+  ASSERT_EQ(best.stats.candidates.size(), 4u);
+  EXPECT_TRUE(std::isinf(best.stats.candidates[0].score));
+  EXPECT_EQ(best.stats.chosen_candidate, static_cast<int32_t>(want + 1));
+  EXPECT_EQ(best.tokens, runs[want].tokens);
+  for (size_t i = 0; i < runs.size(); ++i) {
+    EXPECT_EQ(best.stats.candidates[i + 1].seed, 21 + i);
+    EXPECT_EQ(best.stats.candidates[i + 1].score, scores[i]);
+    EXPECT_EQ(best.stats.candidates[i + 1].tokens, static_cast<int64_t>(runs[i].tokens.size()));
+  }
+  EXPECT_NEAR(best.stats.generation_seconds, generation_seconds, 1e-9);
 }
 
 TEST_F(CandidatesTest, ScoreIsSmallerForTheInputItself) {

@@ -57,7 +57,7 @@ TEST_F(GeneratorTest, SameSeedSameTokensAcrossRunsAndGenerators) {
 TEST_F(GeneratorTest, GrammarStaysLiveUnderTheTokenBudget) {
   for (uint64_t seed = 0; seed < 6; ++seed) {
     const auto r = Run(Options(seed));
-    EXPECT_NE(r.stats.stop_reason, "grammar_dead_end") << "seed " << seed << ": " << r.stats.dead_end;
+    EXPECT_NE(r.stats.stop_reason, StopReason::kGrammarDeadEnd) << "seed " << seed << ": " << r.stats.dead_end;
   }
 }
 
@@ -69,7 +69,7 @@ TEST_F(GeneratorTest, EveryResultIsALegalSequenceAndAGoodMesh) {
     const auto r = Run(o);
     ASSERT_FALSE(r.tokens.empty());
     EXPECT_LE(r.tokens.size(), 300u);
-    if (r.stats.stop_reason != "eos") continue;
+    if (r.stats.stop_reason != StopReason::kEos) continue;
     ++ended;
     EXPECT_EQ(r.tokens.back(), vocab::k_eos_id);
     GrammarOptions go;
@@ -128,8 +128,8 @@ TEST_F(GeneratorTest, CapsAndCallbacks) {
     GenerateOptions o = Options(seed, 0);
     o.max_faces = 10;
     const auto faces = Run(o);
-    if (faces.stats.stop_reason == "grammar_dead_end") continue;  // see GrammarStaysLive...
-    EXPECT_EQ(faces.stats.stop_reason, "max_faces");
+    if (faces.stats.stop_reason == StopReason::kGrammarDeadEnd) continue;  // see GrammarStaysLive...
+    EXPECT_EQ(faces.stats.stop_reason, StopReason::kMaxFaces);
     EXPECT_LE(faces.stats.faces, 10);  // a hard cap (face_cap.h)
     EXPECT_GE(faces.stats.faces, 1);
     capped = true;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "io/mesh_reader.h"
-#include "runtime/generate_pipeline.h"
+#include "runtime/generation_input.h"
 #include "runtime/model.h"
 #include "support/test_paths.h"
 

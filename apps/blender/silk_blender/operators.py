@@ -39,10 +39,11 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                             default=0, min=0)
     surface_tolerance: IntProperty(name="Surface tolerance",
                                    description="New vertices only within this many grid cells (of 128) of the "
-                                               "input surface (0 = off, -1 = libsilk's measured default). "
-                                               "Best-of-N candidates need silkgen or silk_generate: this "
-                                               "operator runs step-wise, one candidate",
+                                               "input surface (0 = off, -1 = libsilk's measured default)",
                                    default=-1, min=-1, max=127)
+    candidates: IntProperty(name="Candidates", description="Best of N: generate N meshes one after another and "
+                            "keep the one closest to the input (-1 = the model's N, model.json sampling)",
+                            default=-1, min=-1, max=64)
     orient: EnumProperty(name="Orientation",
                          items=[("INPUT", "Face the input", "Reverse every part whose winding disagrees with the "
                                  "source's normals"),
@@ -68,6 +69,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         settings = dict(seed=self.seed, temperature=None if self.temperature < 0 else self.temperature,
                         top_k=None if self.top_k < 0 else self.top_k, max_faces=self.max_faces,
                         max_tokens=self.max_tokens, holes=self.repair, orient=self.orient,
+                        candidates=None if self.candidates <= 0 else self.candidates,
                         surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
         job = silk_mesh.Generator(_model_dir(self.model_dir))
         try:
@@ -165,7 +167,8 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             if len(tri) != len(self._preview.data.polygons):
                 blender_mesh.set_mesh_data(self._preview, pos, tri)
             cap = self.max_tokens or "model limit"
-            context.workspace.status_text_set(f"Silk: {st['tokens']} / {cap} tokens, {st['faces']} faces "
+            which = f"candidate {st['chosen_candidate'] + 1} of {st['candidates']}: " if st["candidates"] > 1 else ""
+            context.workspace.status_text_set(f"Silk: {which}{st['tokens']} / {cap} tokens, {st['faces']} faces "
                                               f"in {st['components']} part(s) - Esc to cancel")
             if self._job.done:
                 self._finish(context, self._job, self._src)

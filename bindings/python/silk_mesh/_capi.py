@@ -133,7 +133,8 @@ class ModelInfo(_Sized):
 
 class GenerateProgress(ctypes.Structure):
     _fields_ = [("tokens", ctypes.c_int64), ("max_tokens", ctypes.c_int64), ("components", ctypes.c_int32),
-                ("faces", ctypes.c_int32), ("seconds", ctypes.c_double)]
+                ("faces", ctypes.c_int32), ("seconds", ctypes.c_double), ("candidate", ctypes.c_int32),
+                ("candidates", ctypes.c_int32)]
 
 
 PROGRESS_FN = ctypes.CFUNCTYPE(None, ctypes.POINTER(GenerateProgress), ctypes.c_void_p)

@@ -396,16 +396,19 @@ SILK_API silk_status silk_generator_create(const silk_model* model, silk_generat
  * is freed as the call returns: never under it. Either way the handle must not be used again. */
 SILK_API void silk_generator_destroy(silk_generator* generator);
 
+/* Per candidate: with best of N (silk_generate_params.candidates) the counts start again for
+ * each candidate, which `candidate` (0-based, of `candidates`) names. */
 typedef struct silk_generate_progress {
-  int64_t tokens, max_tokens; /* max_tokens == tokens on the last id (a bar reaches 100 %) */
+  int64_t tokens, max_tokens; /* max_tokens == tokens on the candidate's last id (a bar reaches 100 %) */
   int32_t components;         /* started so far */
   int32_t faces;              /* at the last layer end when max_faces is set (before the cap), else -1 */
-  double seconds;
+  double seconds;             /* since the candidate's encoder run began */
+  int32_t candidate, candidates; /* the candidate generating (0-based) and N */
 } silk_generate_progress;
 /* Called after every generated id (the last one included), on the calling thread. */
 typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* user_data);
-/* Polled as the call begins, before point sampling, every 65,536 surface samples, before the
- * encoder and before every id; non-zero stops the generation with SILK_ERR_CANCELLED.
+/* Polled as the call begins, before point sampling, every 65,536 surface samples, before each
+ * candidate's encoder run and before every id; non-zero stops the generation with SILK_ERR_CANCELLED.
  * (silk_generator_cancel is honoured everywhere else too: see there.) */
 typedef int32_t (*silk_cancel_fn)(void* user_data);
 
@@ -468,12 +471,13 @@ typedef struct silk_generate_params {
    * so the mask never empties. 0 = off; 0..127. Constrained mode only (ignored when unconstrained).
    * Default: SILK_DEFAULT_SURFACE_TOLERANCE (chosen by measurement, docs/runtime.md). */
   int32_t surface_tolerance;
-  /* Best of N, 1..64: silk_generate* runs N generations on the same encoder points with seeds
-   * derived from `seed` (candidate 0: seed itself, so N = 1 is a plain run; candidate i >= 1: the
-   * first SplitMix64 output seeded with seed + i) and returns the one whose surface is closest to
-   * the input (symmetric Chamfer distance to the encoder's points; one with faces always beats
-   * one without). The step-wise API (silk_generator_start) runs candidate 0 only and ignores N;
-   * its stats still carry the score. Default: SILK_MODEL_CANDIDATES (-1), the model's N
+  /* Best of N, 1..64: a generation runs N candidates one after another on the same encoder
+   * points with seeds derived from `seed` (candidate 0: seed itself, so N = 1 is a plain run;
+   * candidate i >= 1: the first SplitMix64 output seeded with seed + i) and returns the one whose
+   * surface is closest to the input (symmetric Chamfer distance to the encoder's points; one with
+   * faces always beats one without). silk_generate* and the step-wise API alike (the same ids and
+   * mesh for the same params): step-wise, advance runs the candidates in turn, silk_generator_mesh
+   * shows the one in progress and finish returns the chosen one. Default: SILK_MODEL_CANDIDATES (-1), the model's N
    * (model.json "sampling.candidates", chosen by measurement for that model: docs/runtime.md;
    * 1 when the model names none). */
   int32_t candidates;
@@ -493,6 +497,9 @@ typedef enum silk_stop_reason {
   SILK_STOP_GRAMMAR_DEAD_END = 3, /* no legal id left (a grammar bug; the closed part is returned) */
   SILK_STOP_CANCELLED = 4
 } silk_stop_reason;
+/* "eos", "max_tokens", "max_faces", "grammar_dead_end", "cancelled" ("none" for SILK_STOP_NONE;
+ * "unknown" out of range). */
+SILK_API const char* silk_stop_reason_name(int32_t reason);
 
 typedef struct silk_generate_stats {
   int64_t tokens, forced_tokens, sampled_tokens, model_calls;
@@ -510,8 +517,9 @@ typedef struct silk_generate_stats {
   /* surface guidance: vertex ids sampled under it; vertex ids (sampled or forced) taken outside
    * the tolerance because no legal id was within it */
   int64_t guided_tokens, guidance_fallbacks;
-  int32_t candidates;       /* generations run (1 for the step-wise API) */
-  int32_t chosen_candidate; /* index of the returned one (the report JSON lists every seed and score) */
+  int32_t candidates;       /* candidates run (N; fewer after a cancel). During a step-wise run: N */
+  int32_t chosen_candidate; /* index of the returned one (the report JSON lists every seed and score);
+                               during a step-wise run: the one in progress */
   double score;             /* returned mesh: symmetric Chamfer distance to the encoder's points, model frame */
   double seconds_guidance, seconds_scoring;
   int32_t parts_flipped; /* parts reversed to face the input's normals (params.orient) */
@@ -528,18 +536,22 @@ typedef struct silk_generate_input {
 /* ---- step-wise generation --------------------------------------------------------------
  * start -> advance ... (done) -> finish. start prepares the points and runs the encoder; each
  * advance adds ids; silk_generator_tokens / silk_generator_mesh / silk_generator_stats show
- * the state at any point (mesh: the faces of the layers completed so far, in the input frame);
- * finish returns the final mesh (hole policy, verdicts) and ends the generation. A new start
- * discards an unfinished one. */
+ * the state at any point (tokens and mesh: those of the candidate in progress, the mesh being the
+ * faces of its layers completed so far, in the input frame); finish returns the final mesh (hole
+ * policy, verdicts) and ends the generation. With best of N (params.candidates) the candidates
+ * run in turn inside advance, done comes after the last, and finish returns the chosen one:
+ * exactly what silk_generate returns for the same params. A new start discards an unfinished one. */
 SILK_API silk_status silk_generator_start(silk_generator* generator, const silk_generate_input* input,
                                           const silk_generate_params* params);
 typedef enum silk_advance_until {
-  SILK_ADVANCE_IDS = 0,  /* max_ids ids (fewer if the generation ends) */
-  SILK_ADVANCE_LAYER = 1 /* up to the next completed layer, at most max_ids ids */
+  SILK_ADVANCE_IDS = 0,  /* max_ids ids (fewer if the generation ends), across candidates */
+  SILK_ADVANCE_LAYER = 1 /* up to the next completed layer or the end of a candidate, at most max_ids ids */
 } silk_advance_until;
-/* max_ids >= 1. *out_done (may be NULL) becomes 1 once a stop reason is set. A cancel (the
- * params' cancel callback or silk_generator_cancel) returns SILK_ERR_CANCELLED and leaves the
- * generation finishable: finish then returns the completed layers and stop reason CANCELLED. */
+/* max_ids >= 1. When a candidate before the last has ended, the next advance scores it and starts
+ * the next one (its encoder run) before adding ids. *out_done (may be NULL) becomes 1 once the
+ * last candidate has a stop reason. A cancel (the params' cancel callback or silk_generator_cancel)
+ * returns SILK_ERR_CANCELLED, ends the run and leaves it finishable: finish then returns the best of
+ * the candidates so far (the one cancelled with its completed layers) and stop reason CANCELLED. */
 SILK_API silk_status silk_generator_advance(silk_generator* generator, int32_t max_ids, int32_t until,
                                             int32_t* out_done);
 /* Thread-safe, any time, also from the generator's own callbacks. Cancels the run in progress: a
@@ -550,14 +562,15 @@ SILK_API silk_status silk_generator_advance(silk_generator* generator, int32_t m
  * and checks, point sampling and the encoder run are interrupted, ids stop before the next one,
  * scoring stops within ~10 ms; one that comes after the last of these still cancels the call).
  * Step-wise: start returns SILK_ERR_CANCELLED, or (cancel after start's last poll) the next
- * advance does; finish still returns the completed layers. */
+ * advance does; finish still returns the candidates' best so far (see silk_generator_advance). */
 SILK_API void silk_generator_cancel(silk_generator* generator);
 SILK_API silk_status silk_generator_tokens(silk_generator* generator, silk_tokens** out);
 SILK_API silk_status silk_generator_mesh(silk_generator* generator, silk_mesh** out);
 /* During a generation: tokens, counters, faces of the completed layers, stop reason (NONE while
  * running). After finish: the final figures, as silk_generate fills them. */
 SILK_API silk_status silk_generator_stats(silk_generator* generator, silk_generate_stats* out);
-/* out_mesh required, out_tokens and stats may be NULL. Before the end, it cancels first. */
+/* out_mesh required, out_tokens and stats may be NULL. Scores the last candidate and returns the
+ * chosen one. Before the end, it cancels first (as above). */
 SILK_API silk_status silk_generator_finish(silk_generator* generator, silk_mesh** out_mesh, silk_tokens** out_tokens,
                                            silk_generate_stats* stats);
 /* The last finished generation as a JSON report (settings, input, figures; trace 1: also the

@@ -1,0 +1,48 @@
+// What a caller asks of one generation (silk_generate_params in the runtime's terms), with "the
+// model's value" left unset, and its one resolution against the model (model.json "sampling",
+// "preprocessing"): every unset value filled in, every value range-checked with a message that
+// names the field and the value.
+#pragma once
+#include <cstdint>
+#include <optional>
+
+#include "core/status.h"
+#include "mesh/point_preprocessing.h"
+#include "runtime/generator.h"
+#include "runtime/model_config.h"
+
+namespace silk {
+
+struct GenerationRequest {
+  uint64_t seed = 0;  // sampling (candidate 0; CandidateSeed for the others) and pre-processing
+  // Unset: the model's (model.json "sampling"; DefaultSamplingParams for a v2 model).
+  std::optional<double> temperature, top_p, top_p_temperature;
+  std::optional<int32_t> top_k;
+  std::optional<int32_t> candidates;               // best of N, 1..kMaxCandidates; unset: the model's N
+  std::optional<PreprocessingKind> preprocessing;  // unset: model.json "preprocessing"
+  std::optional<int32_t> n_points;                 // encoder points; unset: the model's pre-processing's
+  bool raw_points = false;  // the input's points are the encoder input as given (RawModelPoints)
+  int32_t max_tokens = 0, max_faces = 0;  // GenerateOptions' caps
+  HolePolicy holes = HolePolicy::kOff;
+  bool unconstrained = false;
+  bool skip_forced = true, kv_in_place = true;  // measurement switches (GenerateOptions)
+  SampleOrder order = SampleOrder::kMaskFirst;
+  bool record_trace = false;
+  int32_t surface_tolerance = 0;
+  bool orient_to_input = false;
+};
+
+// A request resolved: what the session runs.
+struct GenerationPlan {
+  GenerateOptions options;            // sampling resolved, seed = the request's, candidates = N
+  PreprocessingParams preprocessing;  // the model's, with the request's kind and n_points
+  bool raw_points = false;
+  // "raw", or the pre-processing kind's name ("silk", "official").
+  const char* preprocessing_name() const;
+};
+
+// Fills the request's unset values from `config` and checks every value (NaN, negative, out of
+// range: InvalidArgument naming the field and value, then CheckGenerateOptions).
+StatusOr<GenerationPlan> ResolveRequest(const GenerationRequest& request, const ModelConfig& config);
+
+}  // namespace silk

@@ -1,0 +1,173 @@
+// GenerationSession: request -> encoder points -> candidates one after another -> the chosen one
+// in the input frame. A candidate's end is handled lazily (scored as the next one starts), so a
+// caller stepping by layers sees each candidate's last layer before the next begins.
+#include "runtime/generation_session.h"
+
+#include <chrono>
+#include <string>
+#include <utility>
+
+#include "runtime/generation_output.h"
+
+namespace silk {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+GenerationSession::GenerationSession(const Model& model) : model_(model), generator_(model) {}
+
+void GenerationSession::Reset() {
+  active_ = cancelled_ = failed_ = false;
+  candidate_ = 0;
+  choice_ = CandidateChoice{};
+  ended_.reset();
+}
+
+Status GenerationSession::Start(const GenerationRequest& request, const GenerationInput& input,
+                                const GenerateCallbacks& callbacks, const CancelCheck& flag) {
+  Reset();
+  SILK_ASSIGN_OR_RETURN(plan_, ResolveRequest(request, model_.config()));
+  const std::string context = (input.name.empty() ? std::string("input") : input.name) + ": ";
+  if (Status s = ValidateGenerationInput(input, flag); !s.ok()) return s.WithContext(context);
+  if (Status s = PreparePoints(request, input, callbacks.cancel); !s.ok()) return s.WithContext(context);
+  callbacks_ = callbacks;
+  flag_ = flag;
+  SILK_RETURN_IF_ERROR(StartCandidate());
+  active_ = true;
+  return Status::Ok();
+}
+
+// The encoder's points: raw ones as given (the model's n_points), else the plan's pre-processing.
+Status GenerationSession::PreparePoints(const GenerationRequest& request, const GenerationInput& input,
+                                        const CancelCheck& cancel) {
+  const auto t0 = Clock::now();
+  SILK_ASSIGN_OR_RETURN(PreparedPoints pts, plan_.raw_points
+                                                ? RawModelPoints(input, model_.config().dims.n_points)
+                                                : PrepareModelPoints(input, plan_.preprocessing, request.seed, cancel));
+  points_ = std::move(pts.rows);
+  transform_ = pts.transform;
+  prepare_seconds_ = Since(t0);
+  return Status::Ok();
+}
+
+// Candidate candidate_ on the generator: its derived seed, progress reports tagged with its index.
+Status GenerationSession::StartCandidate() {
+  GenerateOptions o = plan_.options;
+  o.sampling.seed = CandidateSeed(plan_.options.sampling.seed, candidate_);
+  GenerateCallbacks cb;
+  cb.cancel = callbacks_.cancel;
+  if (callbacks_.progress) {
+    cb.progress = [this](const GenerateProgress& p) {
+      GenerateProgress tagged = p;
+      tagged.candidate = candidate_;
+      tagged.candidates = candidates();
+      callbacks_.progress(tagged);
+    };
+  }
+  return generator_.Start(points_, o, cb);
+}
+
+// The candidate that has ended (or is ended now: Generator::Finish cancels one in progress):
+// its mesh built, then scored into the choice, polling `cancel`.
+Status GenerationSession::CloseCandidate(const CancelCheck& cancel) {
+  if (!ended_) {
+    SILK_ASSIGN_OR_RETURN(GenerateResult r, generator_.Finish());
+    ended_ = std::move(r);
+  }
+  SILK_RETURN_IF_ERROR(
+      choice_.Add(&*ended_, CandidateSeed(plan_.options.sampling.seed, candidate_), points_, cancel));
+  ended_.reset();
+  return Status::Ok();
+}
+
+Status GenerationSession::NextCandidate() {
+  SILK_RETURN_IF_ERROR(CloseCandidate(flag_));
+  ++candidate_;
+  return StartCandidate();
+}
+
+Status GenerationSession::Note(Status status) {
+  if (status.code() == StatusCode::kCancelled) cancelled_ = true;
+  else if (!status.ok()) failed_ = true;
+  return status;
+}
+
+bool GenerationSession::done() const {
+  return active_ && (cancelled_ || (candidate_ + 1 >= candidates() && generator_.finished()));
+}
+
+Status GenerationSession::Advance(int32_t max_ids, AdvanceUntil until) {
+  if (!active_ || failed_) return InvalidArgument("generate: no generation in progress (Start first)");
+  int64_t layers = generator_.layers_closed();
+  for (int32_t ids = 0; ids < max_ids && !done();) {
+    if (generator_.finished()) {  // a candidate before the last has ended
+      if (until == AdvanceUntil::kLayer && ids > 0) break;
+      SILK_RETURN_IF_ERROR(Note(NextCandidate()));
+      layers = 0;
+      continue;
+    }
+    SILK_RETURN_IF_ERROR(Note(generator_.Step()));
+    ++ids;
+    if (until == AdvanceUntil::kLayer && generator_.layers_closed() > layers) break;
+  }
+  return Status::Ok();
+}
+
+StatusOr<SessionResult> GenerationSession::Finish(const CancelCheck& scoring) {
+  if (!active_) return InvalidArgument("generate: no generation started");
+  if (failed_) {
+    Reset();
+    return InvalidArgument("generate: no generation to finish (it failed)");
+  }
+  const bool complete = done() && !cancelled_;
+  if (generator_.active() || ended_) {
+    if (Status s = CloseCandidate(scoring); !s.ok()) {
+      if (s.code() != StatusCode::kCancelled) Reset();
+      return s;
+    }
+  }
+  SessionResult out;
+  out.generation = choice_.Take();
+  GenerationStats& st = out.generation.stats;
+  if (!complete) st.stop_reason = StopReason::kCancelled;
+  out.output = FinishOutput(&out.generation, transform_);  // verdicts into the stats
+  st.seconds.load_input += prepare_seconds_;
+  st.seconds.total = st.seconds.load_input + st.generation_seconds + st.seconds.build_mesh + st.seconds.scoring;
+  Reset();
+  return out;
+}
+
+void GenerationSession::Abandon() {
+  if (active_ && generator_.active()) (void)generator_.Finish();  // releases the candidate's state
+  Reset();
+}
+
+const std::vector<int32_t>& GenerationSession::tokens() const {
+  static const std::vector<int32_t> kNone;
+  if (!active_) return kNone;
+  if (generator_.active()) return generator_.tokens();
+  return ended_ ? ended_->tokens : kNone;
+}
+
+const GenerationStats& GenerationSession::stats() const {
+  static const GenerationStats kNone;
+  if (!active_) return kNone;
+  if (generator_.active()) return generator_.stats();
+  return ended_ ? ended_->stats : kNone;
+}
+
+StatusOr<SessionPreview> GenerationSession::Preview() const {
+  if (!active_) return InvalidArgument("generate: no generation in progress");
+  SessionPreview p;
+  if (generator_.active()) {
+    SILK_ASSIGN_OR_RETURN(p.grid, generator_.MeshSoFar());
+  } else if (ended_) {
+    p.grid = ended_->mesh;
+  }
+  p.output = ToInputFrame(p.grid, transform_);
+  return p;
+}
+
+}  // namespace silk

@@ -1,0 +1,105 @@
+// GenerationSession: one generation as a caller runs it, step by step; the C API's step-wise
+// generator and silk_generate* are both loops over it. Start resolves the request against the
+// model and prepares the input into the encoder's points; Advance generates ids, running best of
+// N's candidates one after another on one Generator; Preview shows the candidate in progress;
+// Finish scores and returns the chosen candidate in the input frame with verdicts and stats.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/cancel_check.h"
+#include "core/status.h"
+#include "io/io_mesh.h"
+#include "mesh/normalize.h"
+#include "runtime/candidates.h"
+#include "runtime/generation_input.h"
+#include "runtime/generation_request.h"
+#include "runtime/generator.h"
+#include "runtime/model.h"
+
+namespace silk {
+
+// Where Advance may stop before max_ids ids.
+enum class AdvanceUntil {
+  kIds,    // only at max_ids (or the end): candidates follow one another within the call
+  kLayer,  // also after the next completed layer, and at the end of a candidate
+};
+
+// A finished generation: the chosen candidate (ids, grid mesh with its parts, report, stats with
+// every candidate's score) and its mesh in the input frame.
+struct SessionResult {
+  GenerateResult generation;
+  IoMesh output;
+};
+
+// The completed layers of the candidate in progress, on the grid (parts) and in the input frame.
+struct SessionPreview {
+  TokenizerDecodedMesh grid;
+  IoMesh output;
+};
+
+class GenerationSession {
+ public:
+  explicit GenerationSession(const Model& model);
+  GenerationSession(const GenerationSession&) = delete;
+  GenerationSession& operator=(const GenerationSession&) = delete;
+
+  // Discards a generation in progress, resolves `request` (ResolveRequest: its messages name the
+  // field), checks `input`, prepares the encoder's points (the model's pre-processing, or raw
+  // points) and starts candidate 0 (its encoder run). callbacks.cancel is polled where Generator
+  // polls it (pre-processing, before each candidate's encoder run, before every id); `flag` (a
+  // caller's own cancel flag) in the loops the callback is not polled in: the input check, scoring.
+  // Progress reports carry the candidate's index and N.
+  Status Start(const GenerationRequest& request, const GenerationInput& input, const GenerateCallbacks& callbacks = {},
+               const CancelCheck& flag = {});
+  // Up to max_ids ids. When a candidate before the last has ended, the next call (kIds: the same
+  // call) scores it (polling `flag`) and starts the next one (its encoder run). A cancel
+  // (kCancelled) ends the run: done() and Finish returns what there is. Any other error fails it.
+  Status Advance(int32_t max_ids, AdvanceUntil until = AdvanceUntil::kIds);
+  // The chosen candidate of those generated: all N when done(), else (cancelled, or finished
+  // early, which cancels) the ended ones and the one in progress with its completed layers, with
+  // stop reason kCancelled. kCancelled from `scoring` leaves the session as it was (Finish again,
+  // or Abandon); any other error ends it.
+  StatusOr<SessionResult> Finish(const CancelCheck& scoring = {});
+  // Ends the run without a result.
+  void Abandon();
+  // Thread-safe, any time: stops an encoder run in progress (Generator::InterruptEncoder).
+  void InterruptEncoder() { generator_.InterruptEncoder(); }
+
+  bool active() const { return active_; }  // started, not yet finished or abandoned
+  bool done() const;                       // every candidate has ended, or a cancel ended the run
+  int32_t candidate() const { return candidate_; }  // the one in progress (0-based)
+  int32_t candidates() const { return plan_.options.candidates; }
+  // The candidate in progress (or ended, awaiting its score); empty when there is none.
+  const std::vector<int32_t>& tokens() const;
+  const GenerationStats& stats() const;
+  StatusOr<SessionPreview> Preview() const;
+  // The last started run's resolved request and encoder points (kept after Finish).
+  const GenerationPlan& plan() const { return plan_; }
+  const std::vector<float>& points() const { return points_; }
+
+ private:
+  Status PreparePoints(const GenerationRequest& request, const GenerationInput& input, const CancelCheck& cancel);
+  Status StartCandidate();
+  Status CloseCandidate(const CancelCheck& cancel);
+  Status NextCandidate();
+  // A failed step: kCancelled ends the run (finishable), anything else fails it.
+  Status Note(Status status);
+  void Reset();
+
+  const Model& model_;
+  Generator generator_;
+  GenerationPlan plan_;
+  std::vector<float> points_;
+  NormalizeTransform transform_;  // model frame -> input frame (identity for raw points)
+  double prepare_seconds_ = 0;
+  GenerateCallbacks callbacks_;
+  CancelCheck flag_;
+  CandidateChoice choice_;
+  std::optional<GenerateResult> ended_;  // a finished candidate whose scoring was cancelled
+  int32_t candidate_ = 0;
+  bool active_ = false, cancelled_ = false, failed_ = false;
+};
+
+}  // namespace silk
