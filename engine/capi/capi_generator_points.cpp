@@ -1,7 +1,9 @@
 // C API: the encoder's points of a generation, put back into the input's frame (silkgen
 // --save-points), so a caller can see what the model saw, estimated normals included.
 #if defined(SILK_HAVE_RUNTIME)
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "capi/capi_generator.h"
 
@@ -20,16 +22,12 @@ silk_status silk_generator_copy_points(silk_generator* g, double* out, size_t ca
     if (!lock.ok())
       return SetError(SILK_ERR_BUSY, "silk_generator_copy_points: generator busy (in use on another thread; use one "
                                      "generator per thread)");
-    if (!g->has_result && !g->generator.active())
+    if (!g->has_result && !g->session.active())
       return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_copy_points: no generation started");
-    const size_t rows = g->points.size() / 6;
-    if (silk_status c; !silk::capi::BeginCopy("silk_generator_copy_points", out, capacity, rows * 6, out_count, &c))
+    const std::vector<double> points = g->session.InputFramePoints();
+    if (silk_status c; !silk::capi::BeginCopy("silk_generator_copy_points", out, capacity, points.size(), out_count, &c))
       return c;
-    for (size_t i = 0; i < rows; ++i) {
-      const float* r = &g->points[6 * i];
-      const auto p = silk::UndoNormalization({r[0], r[1], r[2]}, g->transform);
-      for (int a = 0; a < 3; ++a) out[6 * i + a] = p[a], out[6 * i + 3 + a] = r[3 + a];
-    }
+    std::copy(points.begin(), points.end(), out);
     return Ok();
   });
 }

@@ -170,4 +170,13 @@ StatusOr<SessionPreview> GenerationSession::Preview() const {
   return p;
 }
 
+std::vector<double> GenerationSession::InputFramePoints() const {
+  std::vector<double> out(points_.size());
+  for (size_t i = 0; i + 6 <= points_.size(); i += 6) {
+    const auto p = UndoNormalization({points_[i], points_[i + 1], points_[i + 2]}, transform_);
+    for (int a = 0; a < 3; ++a) out[i + a] = p[a], out[i + 3 + a] = points_[i + 3 + a];
+  }
+  return out;
+}
+
 }  // namespace silk

@@ -78,6 +78,9 @@ class GenerationSession {
   // The last started run's resolved request and encoder points (kept after Finish).
   const GenerationPlan& plan() const { return plan_; }
   const std::vector<float>& points() const { return points_; }
+  // The same points in the input's frame (normalisation undone; normals as they are): rows of 6
+  // doubles (silk_generator_copy_points, silkgen --save-points). Empty before the first Start.
+  std::vector<double> InputFramePoints() const;
 
  private:
   Status PreparePoints(const GenerationRequest& request, const GenerationInput& input, const CancelCheck& cancel);

@@ -21,17 +21,23 @@ struct Outcome {
   silk_generate_stats stats{};
 };
 
+// Every element of a silk.h copy function (size query, then copy).
+template <typename T, typename H>
+std::vector<T> All(silk_status (*copy)(const H*, T*, size_t, size_t*), const H* h) {
+  size_t n = 0;
+  EXPECT_EQ(copy(h, nullptr, 0, &n), SILK_OK) << silk_last_error();
+  std::vector<T> out(n);
+  if (n) EXPECT_EQ(copy(h, out.data(), n, nullptr), SILK_OK) << silk_last_error();
+  return out;
+}
+
 Outcome Collect(silk_mesh* m, silk_tokens* t, const silk_generate_stats& st) {
   Outcome o;
   o.stats = st;
-  o.ids.resize(silk_tokens_count(t));
-  silk_tokens_copy(t, o.ids.data(), o.ids.size());
-  o.triangles.resize(3 * silk_mesh_triangle_count(m));
-  silk_mesh_copy_triangles(m, o.triangles.data(), o.triangles.size());
-  o.parts.resize(silk_mesh_triangle_count(m));
-  silk_mesh_copy_triangle_components(m, o.parts.data(), o.parts.size());
-  o.positions.resize(3 * silk_mesh_vertex_count(m));
-  silk_mesh_copy_positions(m, o.positions.data(), o.positions.size());
+  o.ids = All(silk_tokens_copy, t);
+  o.triangles = All(silk_mesh_copy_triangles, m);
+  o.parts = All(silk_mesh_copy_triangle_components, m);
+  o.positions = All(silk_mesh_copy_positions, m);
   silk_tokens_destroy(t);
   silk_mesh_destroy(m);
   return o;
@@ -41,11 +47,11 @@ class CapiBestOfN : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
-    silk_model_options o = silk_model_default_options();
+    silk_model_params o = silk_model_default_params();
     o.threads = 1;
     ASSERT_EQ(silk_model_load(silk::testing::SourcePath("tests/models/tiny").c_str(), &o, &model_), SILK_OK)
         << silk_last_error();
-    ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), &mesh_), SILK_OK);
+    ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), nullptr, &mesh_), SILK_OK);
     ASSERT_EQ(silk_generator_create(model_, &g_), SILK_OK);
     in_.mesh = mesh_;
   }
@@ -134,7 +140,7 @@ TEST_F(CapiBestOfN, LayerStepsCrossTheCandidatesAndNameTheOneInProgress) {
     EXPECT_EQ(st.candidates, 3);
     silk_mesh* so_far = nullptr;
     ASSERT_EQ(silk_generator_mesh(g_, &so_far), SILK_OK) << silk_last_error();
-    const size_t faces = silk_mesh_triangle_count(so_far);
+    const size_t faces = All(silk_mesh_copy_triangle_components, so_far).size();
     silk_mesh_destroy(so_far);
     EXPECT_EQ(static_cast<size_t>(st.faces), faces);
     if (st.chosen_candidate != last) {  // the next candidate began: its preview starts again
