@@ -1,7 +1,10 @@
 # Windows cross-build (scripts/build_windows.sh): the GoogleTest executables of the layers whose
 # tests need no POSIX API, run under Wine by scripts/test_windows.sh (not by ctest: the build
 # machine cannot run them). Test files that use POSIX-only calls are listed with the reason.
-set(SILK_WINDOWS_TEST_LAYERS core io mesh tokenizer decoder capi)
+set(SILK_WINDOWS_TEST_LAYERS io mesh tokenizer decoder capi)
+if(SILK_HAVE_ONNXRUNTIME)
+  list(APPEND SILK_WINDOWS_TEST_LAYERS runtime)
+endif()
 set(SILK_WINDOWS_POSIX_ONLY_TESTS
   io/mesh_reader_test.cpp   # setrlimit (sys/resource.h)
   io/writers_test.cpp       # POSIX permissions (sys/stat.h chmod) for unwritable folders
