@@ -88,7 +88,7 @@ echo "  missing_onnxruntime_dll: exit $rc, \"$msg\""
 result silktok_without_onnxruntime_dll $?
 
 echo "test_windows: ran $((${#passed[@]} + ${#failed[@]})) checks, ${#passed[@]} passed, ${#failed[@]} failed; passed: ${passed[*]:-none}; failed: ${failed[*]:-none}"
-echo "test_windows: not run under Wine: test_core (no tests/core), test_oracle (OpenMesh is not cross-built),"
+echo "test_windows: not run under Wine: test_oracle (OpenMesh is not cross-built),"
 echo "  io/mesh_reader_test.cpp (setrlimit), io/writers_test.cpp (POSIX chmod permissions),"
 echo "  capi/tokens_api_test.cpp (std::filesystem::path::c_str() is wchar_t on Windows), *Slow* suites (time),"
 echo "  ModelFolderFiles symlink tests (no create_symlink in MinGW's libstdc++) and its absolute-path test,"
