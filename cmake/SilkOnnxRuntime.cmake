@@ -5,9 +5,29 @@
 # (the library file and its soname links, for installing next to libsilk).
 set(ONNXRUNTIME_ROOT "${PROJECT_SOURCE_DIR}/.deps/onnxruntime" CACHE PATH
     "onnxruntime tree with include/ and lib/ (used when no onnxruntime CMake package is found)")
+set(ONNXRUNTIME_DLL_DIR "${PROJECT_SOURCE_DIR}/.deps/onnxruntime-windows" CACHE PATH
+    "Windows build: folder holding onnxruntime.dll (scripts/fetch_onnxruntime_windows.sh)")
 set(SILK_HAVE_ONNXRUNTIME OFF)
 set(SILK_ORT_LIBRARY_FILES)
 
+if(WIN32)
+  # Windows (MinGW cross-build, scripts/build_windows.sh): headers only, never linked. libsilk
+  # loads onnxruntime.dll itself from its own folder (runtime/ort_dll_load.cpp), so a missing DLL
+  # is a Silk error naming the file, and tokenizer-only use needs no onnxruntime.dll.
+  find_path(SILK_ORT_INCLUDE_DIR onnxruntime_cxx_api.h
+            PATHS "${ONNXRUNTIME_ROOT}/include" NO_DEFAULT_PATH NO_CMAKE_FIND_ROOT_PATH)
+  find_file(SILK_ORT_DLL onnxruntime.dll PATHS "${ONNXRUNTIME_DLL_DIR}" NO_DEFAULT_PATH NO_CMAKE_FIND_ROOT_PATH)
+  if(SILK_ORT_INCLUDE_DIR AND SILK_ORT_DLL)
+    set(SILK_HAVE_ONNXRUNTIME ON)
+    set(SILK_ORT_LIBRARY_FILES "${SILK_ORT_DLL}")
+    add_library(onnxruntime::onnxruntime INTERFACE IMPORTED)
+    set_target_properties(onnxruntime::onnxruntime PROPERTIES
+      INTERFACE_INCLUDE_DIRECTORIES "${SILK_ORT_INCLUDE_DIR}"
+      INTERFACE_COMPILE_DEFINITIONS ORT_API_MANUAL_INIT
+      INTERFACE_COMPILE_OPTIONS "SHELL:-include ${PROJECT_SOURCE_DIR}/cmake/windows/onnxruntime_mingw_compat.h")
+    message(STATUS "onnxruntime: ${SILK_ORT_DLL} (loaded at run time)")
+  endif()
+else()  # linked like any shared library
 find_package(onnxruntime CONFIG QUIET)
 if(onnxruntime_FOUND AND TARGET onnxruntime::onnxruntime)
   set(SILK_HAVE_ONNXRUNTIME ON)
@@ -30,6 +50,7 @@ else()
     file(GLOB SILK_ORT_LIBRARY_FILES "${_ort_dir}/libonnxruntime.so*")
     message(STATUS "onnxruntime: ${SILK_ORT_LIBRARY}")
   endif()
+endif()
 endif()
 
 if(NOT SILK_HAVE_ONNXRUNTIME)

@@ -11,6 +11,21 @@ bash scripts/build.sh
 echo "=== export/ (pytest, through build/engine/libsilk.so) ==="
 SILK_LIBRARY="$PWD/build/engine/libsilk.so" python3 -m pytest -q export/tests
 
+# Windows x64 (MinGW-w64 cross-build, run under Wine): only where scripts/setup_windows.sh has
+# installed MinGW-w64 and Wine (SILK_WINDOWS_TESTS=1 requires it, =0 turns it off).
+echo "=== Windows x64 build under Wine (scripts/build_windows.sh, scripts/test_windows.sh) ==="
+if [ "${SILK_WINDOWS_TESTS:-auto}" = 0 ]; then
+  echo "skipped (SILK_WINDOWS_TESTS=0)"
+elif command -v x86_64-w64-mingw32-g++-posix >/dev/null && { command -v wine64 || [ -x /usr/lib/wine/wine64 ]; } >/dev/null &&
+     [ -f .deps/onnxruntime-windows/onnxruntime.dll ]; then
+  bash scripts/build_windows.sh && bash scripts/test_windows.sh
+elif [ "${SILK_WINDOWS_TESTS:-auto}" = 1 ]; then
+  echo "SILK_WINDOWS_TESTS=1 but MinGW-w64 / Wine / onnxruntime.dll are missing: run scripts/setup_windows.sh" >&2
+  exit 1
+else
+  echo "skipped (no MinGW-w64 + Wine here: scripts/setup_windows.sh installs them)"
+fi
+
 echo "=== sanitizer build (ASan + UBSan) ==="
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSILK_SANITIZE=ON -DSILK_BUILD_BENCH=OFF >/dev/null
 cmake --build build-asan -j "$JOBS"

@@ -1,8 +1,13 @@
-// The binary's own folder comes from /proc/self/exe, so the lookup works from any cwd.
+// The binary's own folder comes from /proc/self/exe (Windows: GetModuleFileNameW), so the
+// lookup works from any cwd.
 #include "model_locate.h"
 
 #include <sys/stat.h>
+#ifdef _WIN32
+#include <windows.h>
+#else
 #include <unistd.h>
+#endif
 
 #include <climits>
 
@@ -10,6 +15,19 @@ namespace silkgen {
 
 namespace {
 
+#ifdef _WIN32
+// Windows: GetModuleFileNameW, as UTF-8 (the encoding of every path Silk's API takes).
+std::string ExeDir() {
+  std::wstring w(32768, L'\0');
+  w.resize(GetModuleFileNameW(nullptr, w.data(), static_cast<DWORD>(w.size())));
+  const size_t slash = w.find_last_of(L"\\/");
+  if (w.empty() || slash == std::wstring::npos) return "";
+  const int n = WideCharToMultiByte(CP_UTF8, 0, w.data(), static_cast<int>(slash), nullptr, 0, nullptr, nullptr);
+  std::string p(static_cast<size_t>(n), '\0');
+  WideCharToMultiByte(CP_UTF8, 0, w.data(), static_cast<int>(slash), p.data(), n, nullptr, nullptr);
+  return p;
+}
+#else
 std::string ExeDir() {
   char buf[PATH_MAX];
   const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
@@ -18,6 +36,7 @@ std::string ExeDir() {
   const size_t slash = p.rfind('/');
   return slash == std::string::npos ? "" : p.substr(0, slash);
 }
+#endif
 
 }  // namespace
 

@@ -45,7 +45,11 @@ StatusOr<IoMesh> Dispatch(std::string_view bytes, MeshFormat fmt, const std::str
 }
 
 std::string DirName(const std::string& path) {
+#ifdef _WIN32
+  size_t slash = path.find_last_of("/\\");  // either separator (std::filesystem writes '\\')
+#else
   size_t slash = path.find_last_of('/');
+#endif
   if (slash == std::string::npos) return ".";
   if (slash == 0) return "/";
   return path.substr(0, slash);

@@ -1,6 +1,35 @@
-// Linux topology from /sys/devices/system/cpu/cpuN/topology, restricted to the affinity mask.
+// Linux topology from /sys/devices/system/cpu/cpuN/topology, restricted to the affinity mask
+// (Windows: the processor-core records of GetLogicalProcessorInformationEx, all groups).
 #include "runtime/cpu_info.h"
 
+#ifdef _WIN32
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+#include "core/windows_text.h"
+
+namespace silk {
+
+int PhysicalCoreCount() {
+  const int logical = std::max(1u, std::thread::hardware_concurrency());
+  DWORD len = 0;
+  GetLogicalProcessorInformationEx(RelationProcessorCore, nullptr, &len);
+  std::vector<char> buf(len);
+  auto* info = reinterpret_cast<SYSTEM_LOGICAL_PROCESSOR_INFORMATION_EX*>(buf.data());
+  if (len == 0 || !GetLogicalProcessorInformationEx(RelationProcessorCore, info, &len)) return logical;
+  int cores = 0;
+  for (DWORD off = 0; off < len;) {
+    auto* rec = reinterpret_cast<SYSTEM_LOGICAL_PROCESSOR_INFORMATION_EX*>(buf.data() + off);
+    if (rec->Size == 0) break;
+    if (rec->Relationship == RelationProcessorCore) ++cores;
+    off += rec->Size;
+  }
+  return cores > 0 ? std::min(cores, logical) : logical;
+}
+
+}  // namespace silk
+#else
 #include <sched.h>
 
 #include <algorithm>
@@ -42,3 +71,4 @@ int PhysicalCoreCount() {
 }
 
 }  // namespace silk
+#endif  // _WIN32

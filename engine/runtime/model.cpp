@@ -7,6 +7,10 @@
 #include "io/files/file_system.h"
 #include "runtime/cpu_info.h"
 #include "runtime/model_files.h"
+#ifdef _WIN32
+#include "core/windows_text.h"
+#include "runtime/ort_dll_load.h"
+#endif
 
 namespace silk {
 
@@ -93,6 +97,9 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   if (options.threads < 0 || options.threads > MaxThreads())
     return InvalidArgument("threads " + std::to_string(options.threads) + " is outside 0.." +
                            std::to_string(MaxThreads()) + " (0 = physical cores)");
+#ifdef _WIN32
+  SILK_RETURN_IF_ERROR(LoadOnnxRuntimeLibrary());  // before any Ort object; names onnxruntime.dll
+#endif
   auto impl = std::make_unique<Impl>();
   impl->precision = options.decoder.value_or(config.default_decoder);
   const std::string decoder_file = config.DecoderFile(impl->precision);
@@ -128,8 +135,13 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
     Ort::Env& env = OrtEnvironment(options.threads, options.allow_spinning);
     impl->threads = SharedPoolThreads();
     Ort::SessionOptions so = MakeOrtSessionOptions();
+#ifdef _WIN32  // ORTCHAR_T is wchar_t there: the UTF-16 paths
+    impl->encoder = std::make_unique<Ort::Session>(env, WidePath(enc_path).c_str(), so);
+    impl->decoder = std::make_unique<Ort::Session>(env, WidePath(dec_path).c_str(), so);
+#else
     impl->encoder = std::make_unique<Ort::Session>(env, enc_path.c_str(), so);
     impl->decoder = std::make_unique<Ort::Session>(env, dec_path.c_str(), so);
+#endif
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, true, {{"points", kF, {1, -1, 6}}}, enc_path));
     SILK_ASSIGN_OR_RETURN(impl->encoder_points, EncoderPoints(*impl->encoder, config.dims.n_points, enc_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, false, {{"cross_kv", kF, cross}}, enc_path));

@@ -40,7 +40,12 @@ class TempDir {
     std::string base = std::filesystem::temp_directory_path().string() + "/silk_io_XXXXXX";
     std::vector<char> buf(base.begin(), base.end());
     buf.push_back('\0');
+#ifdef _WIN32  // no mkdtemp: _mktemp_s names it, create_directory refuses an existing one
+    path_ = _mktemp_s(buf.data(), buf.size()) == 0 && std::filesystem::create_directory(buf.data())
+                ? std::string(buf.data()) : std::string();
+#else
     path_ = mkdtemp(buf.data()) ? std::string(buf.data()) : std::string();
+#endif
   }
   ~TempDir() {
     std::error_code ec;

@@ -1,6 +1,13 @@
-// mkstemp + write loop + fsync + rename, with cleanup on every failure path.
+// mkstemp + write loop + fsync + rename, with cleanup on every failure path (Windows: a
+// CreateFileW temp file + WriteFile + FlushFileBuffers + MoveFileExW replacing the target).
 #include "io/files/atomic_file.h"
 
+#ifdef _WIN32
+#include <algorithm>
+#include <atomic>
+
+#include "core/windows_text.h"
+#else
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -9,8 +16,40 @@
 #include <cstdio>
 #include <cstring>
 #include <vector>
+#endif
 
 namespace silk {
+
+#ifdef _WIN32
+Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
+  if (path.empty()) return InvalidArgument("empty output path");
+  static std::atomic<unsigned> counter{0};
+  const std::wstring target = WidePath(path);
+  const std::wstring tmp = target + L".tmp." + std::to_wstring(GetCurrentProcessId()) + L"." + std::to_wstring(counter++);
+  HANDLE h = CreateFileW(tmp.c_str(), GENERIC_WRITE, 0, nullptr, CREATE_NEW, FILE_ATTRIBUTE_NORMAL, nullptr);
+  if (h == INVALID_HANDLE_VALUE) return IoError(path + ": cannot create temporary file: " + WindowsErrorText(GetLastError()));
+  auto fail = [&](const std::string& what) {
+    const DWORD err = GetLastError();
+    if (h != INVALID_HANDLE_VALUE) CloseHandle(h);
+    DeleteFileW(tmp.c_str());
+    return IoError(path + ": " + what + ": " + WindowsErrorText(err));
+  };
+  size_t done = 0;
+  while (done < bytes.size()) {
+    const DWORD chunk = static_cast<DWORD>(std::min<size_t>(bytes.size() - done, 1u << 30));
+    DWORD wrote = 0;
+    if (!WriteFile(h, bytes.data() + done, chunk, &wrote, nullptr)) return fail("write failed");
+    done += wrote;
+  }
+  if (!FlushFileBuffers(h)) return fail("flush failed");
+  const BOOL closed = CloseHandle(h);
+  h = INVALID_HANDLE_VALUE;
+  if (!closed) return fail("close failed");
+  if (!MoveFileExW(tmp.c_str(), target.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
+    return fail("rename failed");
+  return Status::Ok();
+}
+#else
 
 namespace {
 std::string DirOf(const std::string& path) {
@@ -61,5 +100,6 @@ Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
   }
   return Status::Ok();
 }
+#endif  // _WIN32
 
 }  // namespace silk

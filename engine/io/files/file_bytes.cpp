@@ -1,4 +1,5 @@
-// Whole-file reading through POSIX read(2), size checked with fstat before allocating.
+// Whole-file reading through POSIX read(2), size checked with fstat before allocating
+// (Windows: the same calls of MinGW's C runtime, the file opened by its UTF-16 path in binary mode).
 #include "io/files/file_bytes.h"
 
 #include <fcntl.h>
@@ -8,10 +9,18 @@
 #include <cerrno>
 #include <cstring>
 
+#ifdef _WIN32
+#include "core/windows_text.h"  // WidePath: the UTF-8 path for _wopen
+#endif
+
 namespace silk {
 
 StatusOr<std::string> ReadFileBytes(const std::string& path, uint64_t max_bytes) {
+#ifdef _WIN32
+  int fd = ::_wopen(WidePath(path).c_str(), _O_RDONLY | _O_BINARY);
+#else
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+#endif
   if (fd < 0) return IoError(path + ": cannot open: " + std::strerror(errno));
   struct stat st;
   if (::fstat(fd, &st) != 0) {

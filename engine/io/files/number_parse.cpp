@@ -9,12 +9,14 @@
 
 namespace silk {
 
+#ifndef _WIN32
 namespace {
 locale_t CLocale() {
   static locale_t loc = newlocale(LC_ALL_MASK, "C", static_cast<locale_t>(nullptr));
   return loc;
 }
 }  // namespace
+#endif
 
 bool ParseDoubleToken(std::string_view token, double* out) {
   if (token.empty()) return false;
@@ -33,7 +35,13 @@ bool ParseDoubleToken(std::string_view token, double* out) {
   unsigned char c0 = static_cast<unsigned char>(s[0]);
   if (c0 == ' ' || (c0 >= '\t' && c0 <= '\r')) return false;  // strtod would skip it
   char* end = nullptr;
+#ifdef _WIN32
+  // Windows has no newlocale/strtod_l; MinGW-w64's own strtod (gdtoa, correctly rounded, '.'
+  // unless the host program changed LC_NUMERIC), not the C runtime's.
+  double v = __mingw_strtod(s, &end);
+#else
   double v = strtod_l(s, &end, CLocale());
+#endif
   if (end != s + token.size()) return false;
   *out = v;
   return true;

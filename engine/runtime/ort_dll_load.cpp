@@ -1,0 +1,57 @@
+// Windows only (see ort_dll_load.h): LoadLibraryExW + GetProcAddress("OrtGetApiBase").
+#ifdef _WIN32
+#include "runtime/ort_dll_load.h"
+
+#include <onnxruntime_cxx_api.h>
+
+#include <mutex>
+#include <string>
+
+#include "core/windows_text.h"
+
+namespace silk {
+
+namespace {
+
+// The folder of the module holding this code: libsilk.dll, or the program when linked statically.
+std::wstring OwnFolder() {
+  HMODULE self = nullptr;
+  GetModuleHandleExW(GET_MODULE_HANDLE_EX_FLAG_FROM_ADDRESS | GET_MODULE_HANDLE_EX_FLAG_UNCHANGED_REFCOUNT,
+                     reinterpret_cast<LPCWSTR>(&OwnFolder), &self);
+  std::wstring p(32768, L'\0');
+  const DWORD n = GetModuleFileNameW(self, p.data(), static_cast<DWORD>(p.size()));
+  p.resize(n);
+  const size_t slash = p.find_last_of(L"\\/");
+  return slash == std::wstring::npos ? L"." : p.substr(0, slash);
+}
+
+Status LoadOnce() {
+  const std::wstring path = OwnFolder() + L"\\onnxruntime.dll";
+  const std::string name = Utf8FromWide(path);
+  HMODULE dll = LoadLibraryExW(path.c_str(), nullptr, LOAD_WITH_ALTERED_SEARCH_PATH);
+  if (!dll)
+    return IoError(name + ": cannot load onnxruntime (needed for generation; it belongs next to libsilk.dll): " +
+                   WindowsErrorText(GetLastError()));
+  using GetApiBase = const OrtApiBase*(ORT_API_CALL*)();
+  auto get_base = reinterpret_cast<GetApiBase>(reinterpret_cast<void*>(GetProcAddress(dll, "OrtGetApiBase")));
+  if (!get_base) return IoError(name + ": not an onnxruntime library (no OrtGetApiBase)");
+  const OrtApiBase* base = get_base();
+  const OrtApi* api = base ? base->GetApi(ORT_API_VERSION) : nullptr;
+  if (!api)
+    return Unsupported(name + ": onnxruntime " + (base ? base->GetVersionString() : "?") +
+                       " does not offer C API version " + std::to_string(ORT_API_VERSION));
+  Ort::InitApi(api);
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status LoadOnnxRuntimeLibrary() {
+  static std::once_flag once;
+  static Status result = Status::Ok();
+  std::call_once(once, [] { result = LoadOnce(); });
+  return result;
+}
+
+}  // namespace silk
+#endif  // _WIN32
