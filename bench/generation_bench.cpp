@@ -36,8 +36,8 @@
 #include "io/files/file_system.h"
 #include "runtime/decoder_runner.h"
 #include "runtime/generator.h"
-#include "runtime/model.h"
-#include "runtime/model_config.h"
+#include "runtime/model/model.h"
+#include "runtime/model/model_config.h"
 
 namespace {
 

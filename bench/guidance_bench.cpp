@@ -9,7 +9,7 @@
 
 #include "core/splitmix64.h"
 #include "mesh/chamfer_distance.h"
-#include "runtime/surface_guide.h"
+#include "runtime/sampling/surface_guide.h"
 #include "tokenizer/vocabulary_layout.h"
 
 using namespace silk;

@@ -12,7 +12,7 @@ set(SILK_ORT_LIBRARY_FILES)
 
 if(WIN32)
   # Windows (MinGW cross-build, scripts/build_windows.sh): headers only, never linked. libsilk
-  # loads onnxruntime.dll itself from its own folder (runtime/ort_dll_load.cpp), so a missing DLL
+  # loads onnxruntime.dll itself from its own folder (runtime/model/ort_dll_load.cpp), so a missing DLL
   # is a Silk error naming the file, and tokenizer-only use needs no onnxruntime.dll.
   find_path(SILK_ORT_INCLUDE_DIR onnxruntime_cxx_api.h
             PATHS "${ONNXRUNTIME_ROOT}/include" NO_DEFAULT_PATH NO_CMAKE_FIND_ROOT_PATH)

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/model_config.h"
+#include "runtime/model/model_config.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   auto c = silk::ParseModelConfig(std::string(reinterpret_cast<const char*>(data), size), "fuzz/model.json");

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/onnx_external_data.h"
+#include "runtime/model/onnx_external_data.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

@@ -8,7 +8,7 @@
 #include "runtime/stop_reason.h"
 #include "tokenizer/vocabulary_layout.h"
 #ifdef SILK_HAVE_RUNTIME
-#include "runtime/ort_support.h"
+#include "runtime/model/ort_support.h"
 #endif
 
 namespace silk::capi {

@@ -14,7 +14,7 @@
 
 #include "capi/capi_internal.h"
 #include "runtime/generation_session.h"
-#include "runtime/model.h"
+#include "runtime/model/model.h"
 
 struct silk_model {
   std::shared_ptr<silk::Model> model;

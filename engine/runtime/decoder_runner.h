@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "runtime/kv_cache.h"
-#include "runtime/model_impl.h"
+#include "runtime/model/model_impl.h"
 
 namespace silk {
 

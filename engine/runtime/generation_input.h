@@ -11,7 +11,7 @@
 #include "core/status.h"
 #include "io/io_mesh.h"
 #include "mesh/point_preprocessing.h"
-#include "runtime/model_config.h"
+#include "runtime/model/model_config.h"
 
 namespace silk {
 

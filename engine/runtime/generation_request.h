@@ -9,7 +9,7 @@
 #include "core/status.h"
 #include "mesh/point_preprocessing.h"
 #include "runtime/generator.h"
-#include "runtime/model_config.h"
+#include "runtime/model/model_config.h"
 
 namespace silk {
 

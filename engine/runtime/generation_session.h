@@ -16,7 +16,7 @@
 #include "runtime/generation_input.h"
 #include "runtime/generation_request.h"
 #include "runtime/generator.h"
-#include "runtime/model.h"
+#include "runtime/model/model.h"
 
 namespace silk {
 

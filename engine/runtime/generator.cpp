@@ -15,8 +15,8 @@
 #include "decoder/grammar.h"
 #include "runtime/decoder_runner.h"
 #include "runtime/input_orientation.h"
-#include "runtime/model_impl.h"
-#include "runtime/surface_guide.h"
+#include "runtime/model/model_impl.h"
+#include "runtime/sampling/surface_guide.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {

@@ -3,7 +3,7 @@
 // KV cache between runs (reuse one Generator per thread). Callers that start from an input and
 // want best of N use GenerationSession (runtime/generation_session.h), which runs its candidates
 // on one Generator. Each id the grammar does not force comes from the sampling chain
-// (runtime/sampler.h: grammar mask, surface guidance when on, then the numeric stages), built once
+// (runtime/sampling/sampler.h: grammar mask, surface guidance when on, then the numeric stages), built once
 // per generation; forced ids are appended without sampling and fed to the model later as one
 // chunk together with the next sampled id (chunked prefill).
 #pragma once
@@ -17,8 +17,8 @@
 #include "decoder/mesh_builder.h"
 #include "runtime/generation_stats.h"
 #include "runtime/kv_cache.h"
-#include "runtime/model.h"
-#include "runtime/sampler.h"
+#include "runtime/model/model.h"
+#include "runtime/sampling/sampler.h"
 
 namespace Ort {
 struct RunOptions;
@@ -44,7 +44,7 @@ struct GenerateOptions {
   bool kv_in_place = true;     // false: naive copying cache (measurement)
   SampleOrder order = SampleOrder::kMaskFirst;
   bool record_trace = false;   // fill GenerateResult::trace (golden test reference check)
-  // Surface guidance (runtime/surface_guide.h): vertex ids only on grid cells within this many
+  // Surface guidance (runtime/sampling/surface_guide.h): vertex ids only on grid cells within this many
   // cells of an input point's cell; 0 = off. Constrained mode only: with `unconstrained` there
   // is no mask to restrict, so the setting is ignored (stats.guided_tokens stays 0).
   int32_t surface_tolerance = 0;

@@ -27,7 +27,9 @@ std::vector<T> All(silk_status (*copy)(const H*, T*, size_t, size_t*), const H* 
   size_t n = 0;
   EXPECT_EQ(copy(h, nullptr, 0, &n), SILK_OK) << silk_last_error();
   std::vector<T> out(n);
-  if (n) EXPECT_EQ(copy(h, out.data(), n, nullptr), SILK_OK) << silk_last_error();
+  if (n) {
+    EXPECT_EQ(copy(h, out.data(), n, nullptr), SILK_OK) << silk_last_error();
+  }
   return out;
 }
 

@@ -51,7 +51,7 @@ class SplitMix64:
 
 
 def sample(logits, candidates, temperature, top_k, top_p, rng: SplitMix64) -> int:
-    """The chain of engine/runtime/sampler_stages.cpp, step for step."""
+    """The chain of engine/runtime/sampling/sampler_stages.cpp, step for step."""
     if len(candidates) == 1:
         return candidates[0]
     if temperature <= 0:

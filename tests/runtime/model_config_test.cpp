@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "io/files/file_bytes.h"
-#include "runtime/model.h"
-#include "runtime/model_config.h"
+#include "runtime/model/model.h"
+#include "runtime/model/model_config.h"
 #include "runtime_test_util.h"
 
 namespace silk {

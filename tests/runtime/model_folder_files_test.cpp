@@ -10,7 +10,7 @@
 #include "io/files/file_bytes.h"
 #include "io/io_test_util.h"
 #include "runtime/generator.h"
-#include "runtime/onnx_external_data.h"
+#include "runtime/model/onnx_external_data.h"
 #include "runtime_test_util.h"
 
 namespace silk {

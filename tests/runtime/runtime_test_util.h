@@ -7,7 +7,7 @@
 
 #include "io/mesh_reader.h"
 #include "runtime/generation_input.h"
-#include "runtime/model.h"
+#include "runtime/model/model.h"
 #include "support/test_paths.h"
 
 namespace silk::testing {

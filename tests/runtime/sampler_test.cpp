@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "runtime/generation_stats.h"
-#include "runtime/sampler.h"
+#include "runtime/sampling/sampler.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {

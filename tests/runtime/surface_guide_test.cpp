@@ -9,7 +9,7 @@
 #include "core/splitmix64.h"
 #include "decoder/grammar.h"
 #include "runtime/generator.h"
-#include "runtime/surface_guide.h"
+#include "runtime/sampling/surface_guide.h"
 #include "runtime_test_util.h"
 #include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"

@@ -1,5 +1,5 @@
 // model.json parsing and the compatibility checks of docs/model_contract.md.
-#include "runtime/model_config.h"
+#include "runtime/model/model_config.h"
 
 #include <cmath>
 #include <cstdint>

@@ -8,7 +8,7 @@
 
 #include "core/status.h"
 #include "mesh/point_preprocessing.h"
-#include "runtime/sampler.h"
+#include "runtime/sampling/sampler.h"
 
 namespace silk {
 

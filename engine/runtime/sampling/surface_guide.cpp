@@ -1,6 +1,6 @@
 // Surface guidance: occupancy of the encoder's points on the 128^3 grid, its exact squared
 // Euclidean distance transform, and the K/O mask restriction with the nearest-cells fallback.
-#include "runtime/surface_guide.h"
+#include "runtime/sampling/surface_guide.h"
 
 #include <algorithm>
 #include <limits>

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/model.h"
-#include "runtime/ort_support.h"
+#include "runtime/model/model.h"
+#include "runtime/model/ort_support.h"
 
 namespace silk {
 

@@ -1,15 +1,15 @@
 // Model loading: model.json, then the ONNX sessions, whose inputs/outputs are checked against
 // docs/model_contract.md (names, element types, ranks, and every fixed dimension).
-#include "runtime/model_impl.h"
+#include "runtime/model/model_impl.h"
 
 #include <array>
 
 #include "io/files/file_system.h"
 #include "runtime/cpu_info.h"
-#include "runtime/model_files.h"
+#include "runtime/model/model_files.h"
 #ifdef _WIN32
 #include "core/windows_text.h"
-#include "runtime/ort_dll_load.h"
+#include "runtime/model/ort_dll_load.h"
 #endif
 
 namespace silk {

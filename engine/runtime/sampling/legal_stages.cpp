@@ -1,11 +1,11 @@
-// The grammar mask, surface guidance and sample-then-check stages (runtime/legal_stages.h).
-#include "runtime/legal_stages.h"
+// The grammar mask, surface guidance and sample-then-check stages (runtime/sampling/legal_stages.h).
+#include "runtime/sampling/legal_stages.h"
 
 #include <chrono>
 
 #include "decoder/grammar.h"
 #include "runtime/generation_stats.h"
-#include "runtime/surface_guide.h"
+#include "runtime/sampling/surface_guide.h"
 #include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 

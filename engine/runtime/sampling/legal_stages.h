@@ -1,11 +1,11 @@
-// The legality stages of the sampling chain (runtime/sampler.h): which ids may be chosen. The
+// The legality stages of the sampling chain (runtime/sampling/sampler.h): which ids may be chosen. The
 // grammar mask and surface guidance narrow the mask before the decoder runs; sample-then-check
 // (a measurement order) draws over every id first and lets the masked chain redraw an illegal id.
 #pragma once
 #include <cstdint>
 #include <memory>
 
-#include "runtime/sampler.h"
+#include "runtime/sampling/sampler.h"
 
 namespace silk {
 

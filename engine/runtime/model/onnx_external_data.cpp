@@ -1,6 +1,6 @@
 // Protobuf wire-format walk of an ONNX ModelProto down to TensorProto.external_data entries.
 // Only the messages that can hold tensors are entered; every other field is skipped by length.
-#include "runtime/onnx_external_data.h"
+#include "runtime/model/onnx_external_data.h"
 
 #include <algorithm>
 #include <fstream>

@@ -7,7 +7,7 @@
 // in double over the top-k survivors, normalised; an id is kept while the mass before it is
 // <= top_p (official_network.md §4: the cumulative mass shifted right by one), then the draw is at
 // `temperature`.
-#include "runtime/sampler_stages.h"
+#include "runtime/sampling/sampler_stages.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "runtime/model_config.h"
+#include "runtime/model/model_config.h"
 
 namespace silk {
 

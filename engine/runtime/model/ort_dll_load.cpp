@@ -1,6 +1,6 @@
 // Windows only (see ort_dll_load.h): LoadLibraryExW + GetProcAddress("OrtGetApiBase").
 #ifdef _WIN32
-#include "runtime/ort_dll_load.h"
+#include "runtime/model/ort_dll_load.h"
 
 #include <onnxruntime_cxx_api.h>
 

@@ -1,9 +1,9 @@
-// The chain's runner and its one assembly from the resolved settings (runtime/sampler.h).
-#include "runtime/sampler.h"
+// The chain's runner and its one assembly from the resolved settings (runtime/sampling/sampler.h).
+#include "runtime/sampling/sampler.h"
 
 #include "runtime/generation_stats.h"
-#include "runtime/legal_stages.h"
-#include "runtime/sampler_stages.h"
+#include "runtime/sampling/legal_stages.h"
+#include "runtime/sampling/sampler_stages.h"
 
 namespace silk {
 

@@ -3,7 +3,7 @@
 // by BuildSamplerChain from the resolved settings and run per step by Generator:
 //   grammar mask -> surface guidance | (sample-then-check) -> candidates -> temperature -> top-k
 //   -> (official top-p) -> softmax -> (top-p) -> draw; greedy (temperature <= 0): candidates ->
-//   greedy draw. Stages: runtime/sampler_stages.h (numeric), runtime/legal_stages.h (legality).
+//   greedy draw. Stages: runtime/sampling/sampler_stages.h (numeric), runtime/sampling/legal_stages.h (legality).
 // Every draw comes from one seeded SplitMix64, so tests/models/reference_loop.py reproduces the
 // chain bit for bit.
 #pragma once

@@ -1,12 +1,12 @@
 // Model-folder confinement: lexical checks (absolute paths, "..") first, then the resolved
 // path (std::filesystem::canonical, symlinks followed) must lie under the resolved folder.
-#include "runtime/model_files.h"
+#include "runtime/model/model_files.h"
 
 #include <cctype>
 #include <filesystem>
 #include <set>
 
-#include "runtime/onnx_external_data.h"
+#include "runtime/model/onnx_external_data.h"
 
 namespace silk {
 

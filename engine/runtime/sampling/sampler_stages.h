@@ -1,7 +1,7 @@
-// The numeric stages of the sampling chain (runtime/sampler.h), one small class each, and the
+// The numeric stages of the sampling chain (runtime/sampling/sampler.h), one small class each, and the
 // function that appends them in order for a set of SamplingParams.
 #pragma once
-#include "runtime/sampler.h"
+#include "runtime/sampling/sampler.h"
 
 namespace silk {
 

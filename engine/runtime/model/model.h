@@ -1,13 +1,13 @@
 // Model: a loaded model folder (model.json + encoder/decoder ONNX sessions). Immutable after
 // Load and safe to share between threads; each concurrent generation needs its own Generator.
-// onnxruntime stays out of this header (Impl in runtime/model_impl.h).
+// onnxruntime stays out of this header (Impl in runtime/model/model_impl.h).
 #pragma once
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "core/status.h"
-#include "runtime/model_config.h"
+#include "runtime/model/model_config.h"
 
 namespace silk {
 

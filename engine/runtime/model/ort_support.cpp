@@ -1,6 +1,6 @@
 // One Env per process (onnxruntime's logging/telemetry root) holding one intra-op thread pool
 // that all sessions of all models share, so loading several models does not multiply threads.
-#include "runtime/ort_support.h"
+#include "runtime/model/ort_support.h"
 
 #include <algorithm>
 #include <mutex>
