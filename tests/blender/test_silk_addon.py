@@ -52,7 +52,11 @@ subprocess.run([env["SILKGEN"], os.path.join(work, "source.obj"), "-o", glb, "--
                 "--seed", str(SEED), "--max-tokens", str(MAX_TOKENS), "--threads", "1", "--stats", stats_path, "-q"],
                check=True)
 want = json.load(open(stats_path))
-print(f"silkgen --stats: {want['faces']} faces, {want['components']} part(s), {want['tokens']} tokens")
+print(f"silkgen --stats: {want['faces']} faces, {want['components']} part(s), {want['tokens']} tokens, "
+      f"candidate {want['chosen_candidate']} of {len(want['candidates'])}")
+if env.get("SILK_EXPECT_BEST_OF"):  # the model's own N ran (the bundled model's defaults)
+    check(len(want["candidates"]) == int(env["SILK_EXPECT_BEST_OF"]),
+          f"silkgen ran the model's best of {env['SILK_EXPECT_BEST_OF']} ({len(want['candidates'])} candidates)")
 
 # -- generate in Blender (model_dir empty: the model bundled in the zip) ------------------------
 before = set(bpy.data.objects)

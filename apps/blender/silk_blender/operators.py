@@ -89,8 +89,10 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         with mesh:
             pos, tri, comp = mesh.positions, mesh.triangles, mesh.parts
         empty = blender_mesh.build_result(context, src, pos, tri, comp, stats)
+        best = (f", best of {stats['candidates']} (candidate {stats['chosen_candidate'] + 1})"
+                if stats["candidates"] > 1 else "")
         self.report({"INFO"}, f"Silk: {stats['faces']} faces in {stats['components']} part(s), "
-                              f"{stats['tokens']} tokens ({stats['stop_reason']})")
+                              f"{stats['tokens']} tokens ({stats['stop_reason']}){best}")
         return empty
 
     def execute(self, context):
