@@ -55,5 +55,5 @@ endif()
 
 if(NOT SILK_HAVE_ONNXRUNTIME)
   message(STATUS "onnxruntime not found (run scripts/fetch_onnxruntime.sh or set ONNXRUNTIME_ROOT): "
-                 "engine/runtime, silkgen, silk_generate and the generation tests/benchmarks are not built")
+                 "engine/runtime, silkgen, silk_generator_run and the generation tests/benchmarks are not built")
 endif()

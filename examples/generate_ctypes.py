@@ -5,7 +5,7 @@
         --model models/default --input samples/torus_knot.obj --out out.obj [--seed 1]
 
 Shows the whole API surface of one-call generation: silk_model_load, silk_generator_create,
-silk_generate with progress and cancel callbacks, stats, the output mesh and its parts.
+silk_generator_run with progress and cancel callbacks, stats, the output mesh and its parts.
 --check additionally asserts the results (used by ctest capi_generate_ctypes).
 """
 import argparse
@@ -17,8 +17,8 @@ from pathlib import Path
 # The C declarations (structs, callback types, signatures of silk.h) are the single copy, pure
 # ctypes, that the silk_mesh binding is built on: bindings/python/silk_mesh/_capi.py.
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bindings" / "python"))
-from silk_mesh._capi import (CANCEL_FN, PROGRESS_FN, SILK_ERR_CANCELLED, SILK_OK, GenerateStats as Stats,  # noqa: E402
-                             ModelInfo, declare)
+from silk_mesh._capi import (CANCEL_FN, PROGRESS_FN, SILK_ERR_CANCELLED, SILK_OK, GenerateInput,  # noqa: E402
+                             GenerateStats as Stats, ModelInfo, declare)
 
 
 def load(path):
@@ -65,9 +65,10 @@ def main():
 
     params = lib.silk_generate_default_params()
     params.seed, params.max_tokens, params.progress = a.seed, a.max_tokens, on_progress
-    stats = Stats()
-    check(lib, lib.silk_generate(gen, mesh, C.byref(params), C.byref(out), C.byref(tokens), C.byref(stats)),
-          "silk_generate")
+    stats = Stats()  # struct_size set (sizeof), as every silk_*_stats the caller passes
+    source = GenerateInput(mesh=mesh)  # or points= / point_rows= (rows of x y z nx ny nz)
+    check(lib, lib.silk_generator_run(gen, C.byref(source), C.byref(params), C.byref(out), C.byref(tokens),
+                                      C.byref(stats)), "silk_generator_run")
     n = C.c_size_t()  # the size query, then the copy (silk.h's one rule)
     check(lib, lib.silk_mesh_copy_triangle_components(out, None, 0, C.byref(n)), "count components")
     n_tri = n.value
@@ -96,7 +97,7 @@ def main():
         cancel_soon.calls = 0
         params.cancel = cancel_soon
         out2 = C.c_void_p()
-        st = lib.silk_generate(gen, mesh, C.byref(params), C.byref(out2), None, None)
+        st = lib.silk_generator_run(gen, C.byref(source), C.byref(params), C.byref(out2), None, None)
         if st != SILK_ERR_CANCELLED or out2.value:
             failures.append(f"cancel gave status {st}")
         bad = C.c_void_p()

@@ -175,13 +175,13 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.max_faces = a.max_faces;
   p.holes = a.repair == "repair" ? SILK_HOLES_REPAIR : a.repair == "report" ? SILK_HOLES_REPORT : SILK_HOLES_OFF;
   p.unconstrained = a.unconstrained ? 1 : 0;
-  p.n_points = a.n_points;
+  p.point_count = a.n_points;
   p.surface_tolerance = a.surface_tolerance;
   p.candidates = a.candidates;
   p.orient = a.orient == "input" ? SILK_ORIENT_INPUT : SILK_ORIENT_TOKENS;
   p.debug_flags = (a.no_skip_forced ? SILK_DEBUG_NO_SKIP_FORCED : 0) | (a.kv_copy ? SILK_DEBUG_KV_COPY : 0) |
-                  (a.sample_then_check ? SILK_DEBUG_SAMPLE_THEN_CHECK : 0) |
-                  (a.trace_path.empty() ? 0 : SILK_DEBUG_RECORD_TRACE);
+                  (a.sample_then_check ? SILK_DEBUG_SAMPLE_THEN_CHECK : 0);
+  p.report_flags = a.trace_path.empty() ? 0 : SILK_GENERATE_RECORD_TRACE;
   return p;
 }
 
@@ -218,9 +218,9 @@ int Run(const Args& a, uint64_t seed) {
   p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };
   p.user_data = &bar;
   silk_cpp::Generator generator(model);
-  silk_generate_input in{};
+  silk_generate_input in = silk_cpp::Sized<silk_generate_input>();
   in.mesh = input.get();
-  silk_generate_stats st;
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
   std::vector<int32_t> ids;
   silk_cpp::Mesh result = generator.Generate(in, p, &st, &ids);
   bar.Finish();

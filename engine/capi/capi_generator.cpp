@@ -1,5 +1,5 @@
 // C API: the step-wise generator (start / advance / query / cancel / finish) and the one-call
-// silk_generate* (start + advance to the end + finish), both over the runtime's GenerationSession:
+// silk_generator_run (start + advance to the end + finish), both over the runtime's GenerationSession:
 // here only the C structs <-> runtime types, argument checks, errors and the call state.
 #if defined(SILK_HAVE_RUNTIME)
 #include <cstring>
@@ -14,8 +14,8 @@ using silk::capi::SetError;
 
 namespace {
 
-constexpr int32_t kAllDebugFlags =
-    SILK_DEBUG_NO_SKIP_FORCED | SILK_DEBUG_KV_COPY | SILK_DEBUG_SAMPLE_THEN_CHECK | SILK_DEBUG_RECORD_TRACE;
+constexpr int32_t kAllDebugFlags = SILK_DEBUG_NO_SKIP_FORCED | SILK_DEBUG_KV_COPY | SILK_DEBUG_SAMPLE_THEN_CHECK;
+constexpr int32_t kAllReportFlags = SILK_GENERATE_RECORD_TRACE;
 
 silk_status Busy(const char* function) {
   return SetError(SILK_ERR_BUSY, std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
@@ -35,10 +35,13 @@ silk::Status CheckParams(const silk_generate_params& p) {
                                    "silk_preprocess_kind (or SILK_MODEL_VALUE, -1)"));
   if (p.debug_flags & ~kAllDebugFlags)
     return silk::InvalidArgument("debug_flags " + std::to_string(p.debug_flags) + " has unknown bits");
+  if (p.point_count < 0) return silk::InvalidArgument("point_count " + std::to_string(p.point_count) + " is negative");
+  if (p.report_flags & ~kAllReportFlags)
+    return silk::InvalidArgument("report_flags " + std::to_string(p.report_flags) + " has unknown bits");
   return silk::Status::Ok();
 }
 
-// The C params as the runtime's request: SILK_MODEL_VALUE (and n_points 0) become "unset", the
+// The C params as the runtime's request: SILK_MODEL_VALUE (and point_count 0) become "unset", the
 // model's value; anything else is passed on as given, for the runtime to check.
 silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p) {
   SILK_RETURN_IF_ERROR(CheckParams(p));
@@ -52,7 +55,7 @@ silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p)
   if (p.preprocessing != SILK_MODEL_VALUE)
     r.preprocessing = p.preprocessing == SILK_PREPROCESS_OFFICIAL ? silk::PreprocessingKind::kOfficial
                                                                   : silk::PreprocessingKind::kSilk;
-  if (p.n_points != 0) r.n_points = p.n_points;
+  if (p.point_count != 0) r.n_points = p.point_count;
   r.raw_points = p.raw_points != 0;
   r.max_tokens = p.max_tokens;
   r.max_faces = p.max_faces;
@@ -63,7 +66,7 @@ silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p)
   r.kv_in_place = !(p.debug_flags & SILK_DEBUG_KV_COPY);
   r.order = (p.debug_flags & SILK_DEBUG_SAMPLE_THEN_CHECK) ? silk::SampleOrder::kSampleThenCheck
                                                           : silk::SampleOrder::kMaskFirst;
-  r.record_trace = (p.debug_flags & SILK_DEBUG_RECORD_TRACE) != 0;
+  r.record_trace = (p.report_flags & SILK_GENERATE_RECORD_TRACE) != 0;
   r.surface_tolerance = p.surface_tolerance;
   r.orient_to_input = p.orient == SILK_ORIENT_INPUT;
   return r;
@@ -80,7 +83,8 @@ silk::GenerateCallbacks ToCallbacks(silk_generator* g, const silk_generate_param
   silk::GenerateCallbacks cb;
   if (p.progress) {
     cb.progress = [fn = p.progress, user = p.user_data](const silk::GenerateProgress& x) {
-      silk_generate_progress c{x.tokens, x.max_tokens, x.components, x.faces, x.seconds, x.candidate, x.candidates};
+      silk_generate_progress c{sizeof(silk_generate_progress), x.tokens,    x.max_tokens, x.components,
+                               x.faces,                        x.seconds,   x.candidate,  x.candidates};
       fn(&c, user);
     };
   }
@@ -102,12 +106,12 @@ silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in, con
     out.name = in.mesh->source;
     return out;
   }
-  if (in.n_points == 0) return silk::InvalidArgument("no points");
-  if (in.n_points > (size_t{1} << 26)) return silk::InvalidArgument("more than 2^26 points");
+  if (in.point_rows == 0) return silk::InvalidArgument("no points (point_rows is 0)");
+  if (in.point_rows > (size_t{1} << 26)) return silk::InvalidArgument("more than 2^26 points");
   out.point_cloud = true;
-  out.mesh.positions.resize(in.n_points);
-  out.normals.resize(in.n_points);
-  for (size_t i = 0; i < in.n_points; ++i) {
+  out.mesh.positions.resize(in.point_rows);
+  out.normals.resize(in.point_rows);
+  for (size_t i = 0; i < in.point_rows; ++i) {
     if (i % silk::kCancelPollInterval == 0 && silk::CancelRequested(cancel))
       return silk::CancelledStatus("input conversion");
     for (int a = 0; a < 3; ++a) {
@@ -148,6 +152,13 @@ silk_status Advance(silk_generator* g, int32_t max_ids, int32_t until) {
                                                                           : silk::AdvanceUntil::kIds));
 }
 
+// The runtime's figures into the caller's stats (only its struct_size bytes).
+void StoreStats(const silk::GenerationStats& st, silk_generate_stats* out) {
+  silk_generate_stats full;
+  silk::capi::FillStats(st, &full);
+  silk::capi::StoreOut(out, full);
+}
+
 // A finished generation (the chosen candidate) as the caller's mesh, ids and figures.
 silk_status Deliver(silk_generator* g, silk::SessionResult r, silk_mesh** out_mesh, silk_tokens** out_tokens,
                     silk_generate_stats* stats) {
@@ -160,7 +171,7 @@ silk_status Deliver(silk_generator* g, silk::SessionResult r, silk_mesh** out_me
     tokens = std::make_unique<silk_tokens>();
     tokens->ids = g->result.tokens;
   }
-  if (stats) silk::capi::FillStats(st, stats);
+  if (stats) StoreStats(st, stats);
   silk::capi::Log(SILK_LOG_DEBUG, "generated " + std::to_string(st.tokens) + " ids (" +
                                       silk::StopReasonName(st.stop_reason) + ") -> " + std::to_string(st.faces) + " faces");
   *out_mesh = mesh.release();
@@ -169,7 +180,7 @@ silk_status Deliver(silk_generator* g, silk::SessionResult r, silk_mesh** out_me
 }
 
 // A cancelled one-call run: the ids and stats of the candidate in progress (stop reason
-// cancelled) are kept for silk_generator_tokens/stats; the run is released unscored, its mesh
+// cancelled) are kept for silk_generator_get_tokens/get_stats; the run is released unscored, its mesh
 // is not returned and there is no report of it.
 silk_status Cancelled(silk_generator* g, silk_generate_stats* stats) {
   const std::string message = silk_last_error();
@@ -179,7 +190,7 @@ silk_status Cancelled(silk_generator* g, silk_generate_stats* stats) {
   g->result.stats.stop_reason = silk::StopReason::kCancelled;
   g->session.Abandon();
   g->has_result = false;
-  if (stats) silk::capi::FillStats(g->result.stats, stats);
+  if (stats) StoreStats(g->result.stats, stats);
   return SetError(SILK_ERR_CANCELLED, message);
 }
 
@@ -204,7 +215,11 @@ silk_status DropOutput(silk_generator* g, silk_mesh** out_mesh, silk_tokens** ou
     delete *out_tokens;
     *out_tokens = nullptr;
   }
-  if (stats) stats->stop_reason = SILK_STOP_CANCELLED;
+  if (stats) {
+    silk_generate_stats st = silk::capi::Blank<silk_generate_stats>();
+    st.stop_reason = SILK_STOP_CANCELLED;
+    silk::capi::StoreOut(stats, st);
+  }
   g->has_result = false;
   return SetError(SILK_ERR_CANCELLED, "generation cancelled");
 }
@@ -212,13 +227,24 @@ silk_status DropOutput(silk_generator* g, silk_mesh** out_mesh, silk_tokens** ou
 // start + advance to the end + finish; a cancel still fills the stats.
 silk_status RunAll(silk_generator* g, const silk_generate_input& input, const silk_generate_params* params,
                    silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
-  const silk_generate_params p = params ? *params : silk_generate_default_params();
-  if (stats) std::memset(stats, 0, sizeof(*stats));
+  const silk_generate_params p = silk::capi::ReadParams(params, silk_generate_default_params());
+  if (stats) silk::capi::StoreOut(stats, silk::capi::Blank<silk_generate_stats>());
   silk_status s = Start(g, input, p);
   if (s == SILK_OK) s = Advance(g, INT32_MAX, SILK_ADVANCE_IDS);
   if (s == SILK_ERR_CANCELLED) return Cancelled(g, stats);
   if (s != SILK_OK) return s;
   return Finish(g, out_mesh, out_tokens, stats, FlagCheck(g));
+}
+
+// The struct_size checks of a call taking an input, params and stats (each may be NULL here).
+silk_status CheckSizes(const char* function, const silk_generate_input* input, const silk_generate_params* params,
+                       const silk_generate_stats* stats) {
+  if (input)
+    SILK_CAPI_TRY(silk::capi::CheckStructSize(function, "silk_generate_input", input->struct_size,
+                                              sizeof(silk_generate_input),
+                                              "set struct_size = sizeof(silk_generate_input) before the call"));
+  SILK_CAPI_TRY(silk::capi::CheckParamsSize(function, "silk_generate_params", params, "silk_generate_default_params()"));
+  return silk::capi::CheckOutSize(function, "silk_generate_stats", stats);
 }
 
 }  // namespace
@@ -228,6 +254,7 @@ extern "C" {
 silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));
+  p.struct_size = sizeof(p);
   p.seed = 0;
   p.temperature = SILK_MODEL_VALUE;  // the model's (model.json "sampling")
   p.top_k = SILK_MODEL_VALUE;
@@ -259,9 +286,10 @@ void silk_generator_destroy(silk_generator* generator) {
 silk_status silk_generator_start(silk_generator* g, const silk_generate_input* input, const silk_generate_params* params) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(g && input, "silk_generator_start: generator or input is NULL");
+    SILK_CAPI_TRY(CheckSizes("silk_generator_start", input, params, nullptr));
     BusyLock lock(g, BusyLock::kBegin);
     if (!lock.ok()) return Busy("silk_generator_start");
-    const silk_status s = Start(g, *input, params ? *params : silk_generate_default_params());
+    const silk_status s = Start(g, *input, silk::capi::ReadParams(params, silk_generate_default_params()));
     if (s == SILK_OK) lock.KeepRun();  // the run goes on until finish (a cancel now is for it)
     return s;
   });
@@ -287,12 +315,12 @@ void silk_generator_cancel(silk_generator* g) {
   if (g) silk::capi::CancelRun(g);  // flag first: Start polls it after clearing the terminate flag
 }
 
-silk_status silk_generator_tokens(silk_generator* g, silk_tokens** out) {
+silk_status silk_generator_get_tokens(silk_generator* g, silk_tokens** out) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(g && out, "silk_generator_tokens: NULL argument");
+    SILK_CAPI_REQUIRE(g && out, "silk_generator_get_tokens: NULL argument");
     *out = nullptr;
     BusyLock lock(g);
-    if (!lock.ok()) return Busy("silk_generator_tokens");
+    if (!lock.ok()) return Busy("silk_generator_get_tokens");
     auto t = std::make_unique<silk_tokens>();
     t->ids = g->session.active() ? g->session.tokens() : g->result.tokens;
     *out = t.release();
@@ -300,13 +328,13 @@ silk_status silk_generator_tokens(silk_generator* g, silk_tokens** out) {
   });
 }
 
-silk_status silk_generator_mesh(silk_generator* g, silk_mesh** out) {
+silk_status silk_generator_get_mesh(silk_generator* g, silk_mesh** out) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(g && out, "silk_generator_mesh: NULL argument");
+    SILK_CAPI_REQUIRE(g && out, "silk_generator_get_mesh: NULL argument");
     *out = nullptr;
     BusyLock lock(g);
-    if (!lock.ok()) return Busy("silk_generator_mesh");
-    if (!g->session.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_mesh: no generation in progress");
+    if (!lock.ok()) return Busy("silk_generator_get_mesh");
+    if (!g->session.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_get_mesh: no generation in progress");
     auto preview = g->session.Preview();
     if (!preview.ok()) return SetError(preview.status());
     auto h = silk::capi::MeshHandle(std::move(preview->output.positions), preview->grid);
@@ -315,24 +343,27 @@ silk_status silk_generator_mesh(silk_generator* g, silk_mesh** out) {
   });
 }
 
-silk_status silk_generator_stats(silk_generator* g, silk_generate_stats* out) {
+silk_status silk_generator_get_stats(silk_generator* g, silk_generate_stats* out) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(g && out, "silk_generator_stats: NULL argument");
+    SILK_CAPI_REQUIRE(g && out, "silk_generator_get_stats: NULL argument");
+    SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_generator_get_stats", "silk_generate_stats", out));
     BusyLock lock(g);
-    if (!lock.ok()) return Busy("silk_generator_stats");
+    if (!lock.ok()) return Busy("silk_generator_get_stats");
     if (!g->session.active()) {
-      silk::capi::FillStats(g->result.stats, out);
+      StoreStats(g->result.stats, out);
       return Ok();
     }
-    silk::capi::FillStats(g->session.stats(), out);
+    silk_generate_stats st;
+    silk::capi::FillStats(g->session.stats(), &st);
     auto preview = g->session.Preview();
     if (preview.ok()) {
-      out->faces = static_cast<int32_t>(preview->grid.faces.size());
-      out->vertices = static_cast<int32_t>(preview->grid.positions.size());
-      out->components = preview->grid.components;
+      st.faces = static_cast<int32_t>(preview->grid.faces.size());
+      st.vertices = static_cast<int32_t>(preview->grid.positions.size());
+      st.components = preview->grid.components;
     }
-    out->candidates = g->session.candidates();        // during a run: N
-    out->chosen_candidate = g->session.candidate();  // and the one in progress
+    st.candidates = g->session.candidates();        // during a run: N
+    st.chosen_candidate = g->session.candidate();  // and the one in progress
+    silk::capi::StoreOut(out, st);
     return Ok();
   });
 }
@@ -344,6 +375,7 @@ silk_status silk_generator_finish(silk_generator* g, silk_mesh** out_mesh, silk_
     *out_mesh = nullptr;
     if (out_tokens) *out_tokens = nullptr;
     SILK_CAPI_REQUIRE(g, "silk_generator_finish: generator is NULL");
+    SILK_CAPI_TRY(CheckSizes("silk_generator_finish", nullptr, nullptr, stats));
     BusyLock lock(g, BusyLock::kEnd);
     if (!lock.ok()) return Busy("silk_generator_finish");
     if (!g->session.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_finish: no generation started");
@@ -360,8 +392,9 @@ silk_status silk_generator_report(silk_generator* g, int32_t trace, silk_report*
     BusyLock lock(g);
     if (!lock.ok()) return Busy("silk_generator_report");
     if (!g->has_result) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_report: no finished generation");
-    if (trace && !(g->settings.params.debug_flags & SILK_DEBUG_RECORD_TRACE))
-      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_report: the generation ran without SILK_DEBUG_RECORD_TRACE");
+    if (trace && !(g->settings.params.report_flags & SILK_GENERATE_RECORD_TRACE))
+      return SetError(SILK_ERR_INVALID_ARGUMENT,
+                      "silk_generator_report: the generation ran without report_flags SILK_GENERATE_RECORD_TRACE");
     auto r = std::make_unique<silk_report>();
     r->json = silk::capi::ReportJson(*g, trace != 0);
     *out = r.release();
@@ -369,44 +402,21 @@ silk_status silk_generator_report(silk_generator* g, int32_t trace, silk_report*
   });
 }
 
-silk_status silk_generate_input_run(silk_generator* g, const silk_generate_input* input, const silk_generate_params* params,
-                                    silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+silk_status silk_generator_run(silk_generator* g, const silk_generate_input* input, const silk_generate_params* params,
+                              silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
   return Guard([&] {
-    SILK_CAPI_REQUIRE(out_mesh, "silk_generate: out_mesh is NULL");
+    SILK_CAPI_REQUIRE(out_mesh, "silk_generator_run: out_mesh is NULL");
     *out_mesh = nullptr;
     if (out_tokens) *out_tokens = nullptr;
-    SILK_CAPI_REQUIRE(g && input, "silk_generate: generator or input is NULL");
+    SILK_CAPI_REQUIRE(g && input, "silk_generator_run: generator or input is NULL");
+    SILK_CAPI_TRY(CheckSizes("silk_generator_run", input, params, stats));
     BusyLock lock(g, BusyLock::kWhole);  // the run, and its cancel flag, begin here
-    if (!lock.ok()) return Busy("silk_generate");
+    if (!lock.ok()) return Busy("silk_generator_run");
     const silk_status s = RunAll(g, *input, params, out_mesh, out_tokens, stats);
     // The run ends here: a cancel that came before is honoured even if no poll was left to see it.
     if (lock.EndRun() && s == SILK_OK) return DropOutput(g, out_mesh, out_tokens, stats);
     return s;
   });
-}
-
-silk_status silk_generate(silk_generator* g, const silk_mesh* mesh, const silk_generate_params* params,
-                          silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
-  if (!mesh) {
-    if (out_mesh) *out_mesh = nullptr;
-    return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generate: generator or mesh is NULL");
-  }
-  silk_generate_input in{};
-  in.mesh = mesh;
-  return silk_generate_input_run(g, &in, params, out_mesh, out_tokens, stats);
-}
-
-silk_status silk_generate_from_points(silk_generator* g, const double* points, size_t n_points,
-                                      const silk_generate_params* params, silk_mesh** out_mesh,
-                                      silk_tokens** out_tokens, silk_generate_stats* stats) {
-  if (!points || n_points == 0) {
-    if (out_mesh) *out_mesh = nullptr;
-    return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generate_from_points: no generator or no points");
-  }
-  silk_generate_input in{};
-  in.points = points;
-  in.n_points = n_points;
-  return silk_generate_input_run(g, &in, params, out_mesh, out_tokens, stats);
 }
 
 }  // extern "C"

@@ -33,7 +33,7 @@ struct silk_generator {
   explicit silk_generator(std::shared_ptr<silk::Model> m) : model(std::move(m)), session(*model) {}
   std::shared_ptr<silk::Model> model;  // keeps the model alive as long as the generator
   silk::GenerationSession session;
-  // kBusy: a call is inside. kRun: a run is in progress (a silk_generate* call; step-wise, from
+  // kBusy: a call is inside. kRun: a run is in progress (a silk_generator_run call; step-wise, from
   // start until finish or a failed start). kCancel: the run is cancelled (set only under kRun,
   // cleared when a run begins or ends). kDoomed: destroyed during a call, which frees the handle.
   enum State : uint32_t { kBusy = 1, kRun = 2, kCancel = 4, kDoomed = 8 };
@@ -57,7 +57,7 @@ class BusyLock {
   enum Run {
     kKeep,   // queries, advance: the run (and its cancel) go on
     kBegin,  // start: a run begins (its cancel flag cleared in the same step); ends unless KeepRun()
-    kWhole,  // silk_generate*: a run begins and ends with the call
+    kWhole,  // silk_generator_run: a run begins and ends with the call
     kEnd,    // finish: the run ends with the call
   };
   explicit BusyLock(silk_generator* g, Run run = kKeep);
@@ -80,7 +80,8 @@ void CancelRun(silk_generator* g);
 // caller deletes it now.
 bool DeferDestroy(silk_generator* g);
 
-// GenerationStats -> silk_generate_stats (the C view of the one stats struct).
+// GenerationStats -> silk_generate_stats (the C view of the one stats struct): a full struct
+// (struct_size = sizeof), for StoreOut into the caller's.
 void FillStats(const GenerationStats& s, silk_generate_stats* out);
 // The report JSON (settings, input, figures; trace: points and every id's legal set).
 std::string ReportJson(const silk_generator& g, bool trace);

@@ -19,6 +19,7 @@ silk_model_params silk_model_default_params(void) {
 silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));
+  p.struct_size = sizeof(p);
   p.temperature = SILK_MODEL_VALUE;
   p.top_k = SILK_MODEL_VALUE;
   p.top_p = SILK_MODEL_VALUE;
@@ -49,9 +50,15 @@ silk_status silk_generator_advance(silk_generator*, int32_t, int32_t, int32_t* d
   return NoRuntime();
 }
 void silk_generator_cancel(silk_generator*) {}
-silk_status silk_generator_tokens(silk_generator*, silk_tokens**) { return NoRuntime(); }
-silk_status silk_generator_mesh(silk_generator*, silk_mesh**) { return NoRuntime(); }
-silk_status silk_generator_stats(silk_generator*, silk_generate_stats*) { return NoRuntime(); }
+silk_status silk_generator_get_tokens(silk_generator*, silk_tokens** out) {
+  if (out) *out = nullptr;
+  return NoRuntime();
+}
+silk_status silk_generator_get_mesh(silk_generator*, silk_mesh** out) {
+  if (out) *out = nullptr;
+  return NoRuntime();
+}
+silk_status silk_generator_get_stats(silk_generator*, silk_generate_stats*) { return NoRuntime(); }
 silk_status silk_generator_finish(silk_generator*, silk_mesh** m, silk_tokens**, silk_generate_stats*) {
   if (m) *m = nullptr;
   return NoRuntime();
@@ -64,19 +71,10 @@ silk_status silk_generator_copy_points(silk_generator*, double*, size_t, size_t*
   if (out_count) *out_count = 0;
   return NoRuntime();
 }
-silk_status silk_generate_input_run(silk_generator*, const silk_generate_input*, const silk_generate_params*,
-                                    silk_mesh** m, silk_tokens**, silk_generate_stats*) {
+silk_status silk_generator_run(silk_generator*, const silk_generate_input*, const silk_generate_params*, silk_mesh** m,
+                              silk_tokens** t, silk_generate_stats*) {
   if (m) *m = nullptr;
-  return NoRuntime();
-}
-silk_status silk_generate(silk_generator*, const silk_mesh*, const silk_generate_params*, silk_mesh** m, silk_tokens**,
-                          silk_generate_stats*) {
-  if (m) *m = nullptr;
-  return NoRuntime();
-}
-silk_status silk_generate_from_points(silk_generator*, const double*, size_t, const silk_generate_params*, silk_mesh** m,
-                                      silk_tokens**, silk_generate_stats*) {
-  if (m) *m = nullptr;
+  if (t) *t = nullptr;
   return NoRuntime();
 }
 

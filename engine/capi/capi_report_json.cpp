@@ -131,7 +131,7 @@ static_assert(static_cast<int32_t>(StopReason::kNone) == SILK_STOP_NONE &&
               static_cast<int32_t>(StopReason::kCancelled) == SILK_STOP_CANCELLED);
 
 void FillStats(const GenerationStats& s, silk_generate_stats* out) {
-  std::memset(out, 0, sizeof(*out));
+  *out = Blank<silk_generate_stats>();
   out->tokens = s.tokens;
   out->forced_tokens = s.forced_tokens;
   out->sampled_tokens = s.sampled_tokens;

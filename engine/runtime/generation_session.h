@@ -1,5 +1,5 @@
 // GenerationSession: one generation as a caller runs it, step by step; the C API's step-wise
-// generator and silk_generate* are both loops over it. Start resolves the request against the
+// generator and silk_generator_run are both loops over it. Start resolves the request against the
 // model and prepares the input into the encoder's points; Advance generates ids, running best of
 // N's candidates one after another on one Generator; Preview shows the candidate in progress;
 // Finish scores and returns the chosen candidate in the input frame with verdicts and stats.

@@ -101,9 +101,9 @@ def test_capi_reports_with_an_infinite_chamfer_score_are_valid_json():
     each candidate's Chamfer score against the input is +inf, which the report must not print."""
     with silk_mesh.Model(TINY_MODEL, threads=1) as model, silk_mesh.Generator(model) as gen, \
             silk_mesh.Mesh.load(KNOT) as src:
-        # debug_flags 8 = SILK_DEBUG_RECORD_TRACE: report_json(trace=True) is available
+        # report_flags 1 = SILK_GENERATE_RECORD_TRACE: report_json(trace=True) is available
         mesh, _, st = gen.run(src, seed=3, max_tokens=14, candidates=2, temperature=5.0, top_k=0,
-                              unconstrained=1, debug_flags=8)
+                              unconstrained=1, report_flags=1)
         mesh.close()
         assert st["faces"] == 0 and st["score"] == math.inf
         report = strict_loads(gen.report_json())

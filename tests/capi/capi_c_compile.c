@@ -38,7 +38,11 @@ int main(void) {
       return 7;
     if (st == SILK_OK || model != NULL || strlen(silk_last_error()) == 0) return 8;
     if (!silk_generation_available() && st != SILK_ERR_UNSUPPORTED) return 9;
-    if (silk_generate(NULL, mesh, &gp, &out, NULL, NULL) != SILK_ERR_INVALID_ARGUMENT || out != NULL) return 10;
+    silk_generate_input in = {.struct_size = sizeof in};
+    silk_generate_stats gs = {.struct_size = sizeof gs};
+    in.mesh = mesh;
+    if (gp.struct_size != sizeof gp) return 19;
+    if (silk_generator_run(NULL, &in, &gp, &out, NULL, &gs) != SILK_ERR_INVALID_ARGUMENT || out != NULL) return 10;
   }
   /* pre-processing works in every build: size query, then the official kind's rows */
   {

@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "silk/silk.h"
+#include "silk/silk.hpp"
+#include "support/test_paths.h"
 
 namespace {
 
@@ -194,6 +196,52 @@ TEST(CapiRules, DefaultsCarryTheirSizeAndARightSizeIsAccepted) {
   ASSERT_EQ(silk_mesh_roundtrip(m, nullptr, &r), SILK_OK) << silk_last_error();
   EXPECT_EQ(r.tokens, 17);  // token_format.md §8.3
   silk_mesh_destroy(m);
+}
+
+// The generation structs (phase 2): params, input and stats refused naming the struct in every
+// function taking them; the defaults and the progress the library passes carry their size.
+TEST(CapiRules, GenerationStructsCarryAndCheckTheirSize) {
+  EXPECT_EQ(silk_generate_default_params().struct_size, sizeof(silk_generate_params));
+  if (!silk_generation_available()) GTEST_SKIP() << "libsilk without onnxruntime";
+  silk_model* model = nullptr;
+  ASSERT_EQ(silk_model_load(silk::testing::SourcePath("tests/models/tiny").c_str(), nullptr, &model), SILK_OK)
+      << silk_last_error();
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model, &g), SILK_OK) << silk_last_error();
+  silk_mesh* m = Tetrahedron();
+  silk_generate_input in = silk_cpp::Sized<silk_generate_input>();
+  in.mesh = m;
+  silk_generate_params p = silk_generate_default_params();
+  p.max_tokens = 40;
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  silk_mesh* out = nullptr;
+  silk_tokens* out_t = nullptr;
+  SILK_REFUSED_PARAMS(silk_generate_params, silk_generate_default_params(),
+                      silk_generator_run(g, &in, &x, &out, &out_t, &st));
+  SILK_REFUSED_PARAMS(silk_generate_params, silk_generate_default_params(), silk_generator_start(g, &in, &x));
+  SILK_REFUSED_OUT(silk_generate_input, silk_generator_run(g, &x, &p, &out, &out_t, &st));
+  SILK_REFUSED_OUT(silk_generate_input, silk_generator_start(g, &x, &p));
+  SILK_REFUSED_OUT(silk_generate_stats, silk_generator_run(g, &in, &p, &out, &out_t, &x));
+  SILK_REFUSED_OUT(silk_generate_stats, silk_generator_get_stats(g, &x));
+  EXPECT_EQ(out, nullptr);  // nothing was made
+  EXPECT_EQ(out_t, nullptr);
+  // Step-wise: finish refuses a wrong stats size too (the run stays finishable).
+  ASSERT_EQ(silk_generator_start(g, &in, &p), SILK_OK) << silk_last_error();
+  SILK_REFUSED_OUT(silk_generate_stats, silk_generator_finish(g, &out, nullptr, &x));
+  ASSERT_EQ(silk_generator_finish(g, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  silk_mesh_destroy(out);
+  // Right sizes: the run goes through, the library keeps the caller's size, the progress carries its own.
+  uint32_t progress_size = 0;
+  p.progress = [](const silk_generate_progress* pr, void* u) { *static_cast<uint32_t*>(u) = pr->struct_size; };
+  p.user_data = &progress_size;
+  ASSERT_EQ(silk_generator_run(g, &in, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  EXPECT_EQ(st.struct_size, sizeof st);
+  EXPECT_GT(st.tokens, 0);
+  EXPECT_EQ(progress_size, sizeof(silk_generate_progress));
+  silk_mesh_destroy(out);
+  silk_mesh_destroy(m);
+  silk_generator_destroy(g);
+  silk_model_destroy(model);
 }
 
 TEST(CapiRules, TheHeaderVersionIsTheLibrarys) {

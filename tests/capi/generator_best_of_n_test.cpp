@@ -1,5 +1,5 @@
 // Issue 20 (the runtime owns generation), silk.h only: the step-wise API honours best of N.
-// start / advance / finish with N = 3 returns exactly what silk_generate returns (ids, faces,
+// start / advance / finish with N = 3 returns exactly what silk_generator_run returns (ids, faces,
 // parts, chosen candidate), advancing by layers crosses the candidates (stats and progress name
 // the one in progress), a cancel in candidate 2 of 3 leaves finish usable, and the stop reasons
 // have their names.
@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "silk/silk.h"
+#include "silk/silk.hpp"
+#include "support/capi_generate.h"
 #include "support/test_paths.h"
 
 namespace {
@@ -18,7 +20,7 @@ namespace {
 struct Outcome {
   std::vector<int32_t> ids, triangles, parts;
   std::vector<double> positions;
-  silk_generate_stats stats{};
+  silk_generate_stats stats = silk_cpp::Sized<silk_generate_stats>();
 };
 
 // Every element of a silk.h copy function (size query, then copy).
@@ -72,21 +74,21 @@ class CapiBestOfN : public ::testing::Test {
   Outcome OneCall(const silk_generate_params& p) {
     silk_mesh* m = nullptr;
     silk_tokens* t = nullptr;
-    silk_generate_stats st;
-    EXPECT_EQ(silk_generate(g_, mesh_, &p, &m, &t, &st), SILK_OK) << silk_last_error();
+    silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+    EXPECT_EQ(silk::testing::GenerateFromMesh(g_, mesh_, &p, &m, &t, &st), SILK_OK) << silk_last_error();
     return Collect(m, t, st);
   }
   Outcome Finish() {
     silk_mesh* m = nullptr;
     silk_tokens* t = nullptr;
-    silk_generate_stats st;
+    silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
     EXPECT_EQ(silk_generator_finish(g_, &m, &t, &st), SILK_OK) << silk_last_error();
     return Collect(m, t, st);
   }
   silk_model* model_ = nullptr;
   silk_mesh* mesh_ = nullptr;
   silk_generator* g_ = nullptr;
-  silk_generate_input in_{};
+  silk_generate_input in_ = silk_cpp::Sized<silk_generate_input>();
 };
 
 void ExpectSame(const Outcome& a, const Outcome& b, const std::string& what) {
@@ -137,11 +139,11 @@ TEST_F(CapiBestOfN, LayerStepsCrossTheCandidatesAndNameTheOneInProgress) {
   size_t last_faces = 0;
   while (!done) {
     ASSERT_EQ(silk_generator_advance(g_, 100000, SILK_ADVANCE_LAYER, &done), SILK_OK) << silk_last_error();
-    silk_generate_stats st;
-    ASSERT_EQ(silk_generator_stats(g_, &st), SILK_OK);
+    silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+    ASSERT_EQ(silk_generator_get_stats(g_, &st), SILK_OK);
     EXPECT_EQ(st.candidates, 3);
     silk_mesh* so_far = nullptr;
-    ASSERT_EQ(silk_generator_mesh(g_, &so_far), SILK_OK) << silk_last_error();
+    ASSERT_EQ(silk_generator_get_mesh(g_, &so_far), SILK_OK) << silk_last_error();
     const size_t faces = All(silk_mesh_copy_triangle_components, so_far).size();
     silk_mesh_destroy(so_far);
     EXPECT_EQ(static_cast<size_t>(st.faces), faces);
@@ -183,8 +185,8 @@ TEST_F(CapiBestOfN, CancelInTheSecondCandidateLeavesFinishUsable) {
   int32_t done = 0;
   EXPECT_EQ(silk_generator_advance(g_, 1 << 30, SILK_ADVANCE_IDS, &done), SILK_ERR_CANCELLED);
   EXPECT_EQ(done, 1);
-  silk_generate_stats st;
-  ASSERT_EQ(silk_generator_stats(g_, &st), SILK_OK);
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  ASSERT_EQ(silk_generator_get_stats(g_, &st), SILK_OK);
   EXPECT_EQ(st.chosen_candidate, 1);
   EXPECT_EQ(st.tokens, 20);
   EXPECT_EQ(st.stop_reason, SILK_STOP_CANCELLED);

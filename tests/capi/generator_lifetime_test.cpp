@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "silk/silk.h"
+#include "support/capi_generate.h"
 #include "silk/silk.hpp"
 #include "support/capi_counts.h"
 #include "support/test_paths.h"
@@ -84,7 +85,7 @@ struct Handles {
   std::atomic<bool> inside{false};
 };
 
-// Finding 1: silk_generator_destroy from another thread while silk_generate runs on the generator
+// Finding 1: silk_generator_destroy from another thread while silk_generator_run runs on the generator
 // (before: SIGSEGV). The destroy lands at random moments of the call; the call returns SILK_OK
 // (destroy after its end; delays up to 120 ms, about a call's length) or SILK_ERR_CANCELLED (destroy during it: the call is cancelled and frees
 // the generator as it returns) and never crashes; ASan/LSan check the memory.
@@ -103,7 +104,7 @@ TEST_F(CapiLifetime, DestroyFromAnotherThreadDuringACallIsSafe) {
     };
     silk_status s = SILK_ERR_INTERNAL;
     silk_mesh* out = nullptr;
-    std::thread caller([&] { s = silk_generate(h.g, mesh_, &p, &out, nullptr, nullptr); });
+    std::thread caller([&] { s = silk::testing::GenerateFromMesh(h.g, mesh_, &p, &out, nullptr, nullptr); });
     while (!h.inside) std::this_thread::yield();
     std::this_thread::sleep_for(std::chrono::microseconds(std::uniform_int_distribution<int>(0, 120000)(rng)));
     silk_generator_destroy(h.g);  // the generator is not used after this by anyone
@@ -135,8 +136,8 @@ TEST_F(CapiLifetime, DestroyFromItsOwnProgressCallbackIsSafe) {
   };
   silk_mesh* out = nullptr;
   silk_tokens* t = nullptr;
-  silk_generate_stats st;
-  EXPECT_EQ(silk_generate(h.g, mesh_, &p, &out, &t, &st), SILK_ERR_CANCELLED) << silk_last_error();
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  EXPECT_EQ(silk::testing::GenerateFromMesh(h.g, mesh_, &p, &out, &t, &st), SILK_ERR_CANCELLED) << silk_last_error();
   EXPECT_EQ(out, nullptr);
   EXPECT_EQ(t, nullptr);
   EXPECT_EQ(st.stop_reason, SILK_STOP_CANCELLED);
@@ -144,7 +145,7 @@ TEST_F(CapiLifetime, DestroyFromItsOwnProgressCallbackIsSafe) {
 
   // Step-wise: destroyed inside advance; advance returns cancelled and the handle is gone.
   ASSERT_EQ(silk_generator_create(model_, &h.g), SILK_OK);
-  silk_generate_input in{};
+  silk_generate_input in = silk_cpp::Sized<silk_generate_input>();
   in.mesh = mesh_;
   ASSERT_EQ(silk_generator_start(h.g, &in, &p), SILK_OK) << silk_last_error();
   int32_t done = 0;
@@ -159,7 +160,7 @@ TEST_F(CapiLifetime, ModelDestroyedDuringACallIsSafe) {
   silk_generate_params p = Params(4, 120);
   silk_mesh* out = nullptr;
   silk_tokens* t = nullptr;
-  ASSERT_EQ(silk_generate(g, mesh_, &p, &out, &t, nullptr), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, &t, nullptr), SILK_OK) << silk_last_error();
   const std::vector<int32_t> expected = IdsOf(t);
   silk_tokens_destroy(t);
   silk_mesh_destroy(out);
@@ -171,7 +172,7 @@ TEST_F(CapiLifetime, ModelDestroyedDuringACallIsSafe) {
     if (pr->tokens == h->at) silk_model_destroy(h->model);
   };
   model_ = nullptr;
-  EXPECT_EQ(silk_generate(g, mesh_, &p, &out, &t, nullptr), SILK_OK) << silk_last_error();
+  EXPECT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, &t, nullptr), SILK_OK) << silk_last_error();
   EXPECT_EQ(IdsOf(t), expected);
   silk_tokens_destroy(t);
   silk_mesh_destroy(out);
@@ -190,14 +191,14 @@ TEST_F(CapiLifetime, CancelAfterTheLastIdIsNotLost) {
   };
   silk_mesh* out = nullptr;
   silk_tokens* t = nullptr;
-  silk_generate_stats st;
-  EXPECT_EQ(silk_generate(h.g, mesh_, &p, &out, &t, &st), SILK_ERR_CANCELLED) << silk_last_error();
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  EXPECT_EQ(silk::testing::GenerateFromMesh(h.g, mesh_, &p, &out, &t, &st), SILK_ERR_CANCELLED) << silk_last_error();
   EXPECT_EQ(out, nullptr);
   EXPECT_EQ(t, nullptr);
   EXPECT_EQ(st.stop_reason, SILK_STOP_CANCELLED);
   // The cancel belonged to that call: the next one runs to its end.
   p.progress = nullptr;
-  EXPECT_EQ(silk_generate(h.g, mesh_, &p, &out, &t, &st), SILK_OK) << silk_last_error();
+  EXPECT_EQ(silk::testing::GenerateFromMesh(h.g, mesh_, &p, &out, &t, &st), SILK_OK) << silk_last_error();
   EXPECT_FALSE(IdsOf(t).empty());
   silk_tokens_destroy(t);
   silk_mesh_destroy(out);
@@ -228,7 +229,7 @@ Trial RunAndCancel(silk_generator* g, const std::vector<double>& pts, const silk
   silk_tokens* t = nullptr;
   r.called = Clock::now();
   started = true;
-  r.status = silk_generate_from_points(g, pts.data(), pts.size() / 6, &p, &out, &t, nullptr);
+  r.status = silk::testing::GenerateFromPoints(g, pts.data(), pts.size() / 6, &p, &out, &t, nullptr);
   r.returned = Clock::now();
   canceller.join();
   r.ids = IdsOf(t);

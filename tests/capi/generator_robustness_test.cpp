@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "silk/silk.h"
+#include "support/capi_generate.h"
 #include "silk/silk.hpp"
 #include "support/capi_counts.h"
 #include "support/test_paths.h"
@@ -53,7 +54,7 @@ class CapiGeneration : public ::testing::Test {
     silk_generate_params p = Params(seed);
     silk_mesh* out = nullptr;
     silk_tokens* t = nullptr;
-    const silk_status s = silk_generate(g, mesh_, &p, &out, &t, nullptr);
+    const silk_status s = silk::testing::GenerateFromMesh(g, mesh_, &p, &out, &t, nullptr);
     if (status) *status = s;
     std::vector<int32_t> ids(t ? silk::testing::TokenCount(t) : 0);
     if (!ids.empty()) silk_tokens_copy(t, ids.data(), ids.size(), nullptr);
@@ -84,14 +85,14 @@ TEST_F(CapiGeneration, MaxTokensBelowTheSmallestMeshIsRefused) {
   for (int32_t cap : {1, 2, 13}) {
     silk_generate_params p = Params(1, cap);
     silk_mesh* out = nullptr;
-    EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << cap;
+    EXPECT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << cap;
     EXPECT_NE(std::string(silk_last_error()).find("max_tokens"), std::string::npos) << silk_last_error();
     EXPECT_EQ(out, nullptr);
   }
   silk_generate_params p = Params(1, 14);
   silk_mesh* out = nullptr;
-  silk_generate_stats st;
-  EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  EXPECT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
   EXPECT_LE(st.tokens, 14);
   silk_mesh_destroy(out);
   silk_generator_destroy(g);
@@ -144,7 +145,7 @@ TEST_F(CapiGeneration, ConcurrentUseOfOneGeneratorSaysBusy) {
     std::thread other([b] {  // a second thread uses the generator while this call runs
       silk_generate_params q = silk_generate_default_params();
       silk_mesh* out = nullptr;
-      if (silk_generate(b->g, b->mesh, &q, &out, nullptr, nullptr) == SILK_ERR_BUSY) {
+      if (silk::testing::GenerateFromMesh(b->g, b->mesh, &q, &out, nullptr, nullptr) == SILK_ERR_BUSY) {
         b->busy = 1;
         b->message = silk_last_error();
       }
@@ -154,7 +155,7 @@ TEST_F(CapiGeneration, ConcurrentUseOfOneGeneratorSaysBusy) {
     other.join();
   };
   silk_mesh* out = nullptr;
-  EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, nullptr), SILK_OK) << silk_last_error();
+  EXPECT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, nullptr, nullptr), SILK_OK) << silk_last_error();
   EXPECT_EQ(probe.busy.load(), 2);
   EXPECT_NE(probe.message.find("generator busy"), std::string::npos) << probe.message;
   silk_mesh_destroy(out);
@@ -205,9 +206,9 @@ TEST_F(CapiGeneration, CancelIsPolledBeforeSamplingAndTheEncoder) {
     };
     p.progress = [](const silk_generate_progress*, void* u) { ++static_cast<CancelProbe*>(u)->progress_calls; };
     silk_mesh* out = nullptr;
-    silk_generate_stats st;
+    silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
     st.tokens = 99;
-    EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, &st), SILK_ERR_CANCELLED) << at;
+    EXPECT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, nullptr, &st), SILK_ERR_CANCELLED) << at;
     EXPECT_EQ(c.polls, at);
     EXPECT_EQ(c.progress_calls, 0);
     EXPECT_EQ(st.tokens, 0);
@@ -235,7 +236,7 @@ TEST_F(CapiGeneration, CancelFromAnotherThreadInterruptsTheEncoderRun) {
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
   silk_generate_params p = Params(3);
-  p.n_points = static_cast<int32_t>(n);
+  p.point_count = static_cast<int32_t>(n);
   std::atomic<int> polls{0};
   p.user_data = &polls;
   p.cancel = [](void* u) -> int32_t {
@@ -252,8 +253,8 @@ TEST_F(CapiGeneration, CancelFromAnotherThreadInterruptsTheEncoderRun) {
     silk_generator_cancel(g);
   });
   silk_mesh* out = nullptr;
-  silk_generate_stats st;
-  const silk_status s = silk_generate_from_points(g, pts.data(), n, &p, &out, nullptr, &st);
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  const silk_status s = silk::testing::GenerateFromPoints(g, pts.data(), n, &p, &out, nullptr, &st);
   const auto returned_at = std::chrono::steady_clock::now();
   const std::string message = silk_last_error();
   canceller.join();
@@ -290,8 +291,8 @@ TEST_F(CapiGeneration, StatsAfterCancelAndProgressReachesTheEnd) {
     c->last = *pr;
   };
   silk_mesh* out = nullptr;
-  silk_generate_stats st;
-  EXPECT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, &st), SILK_ERR_CANCELLED);
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  EXPECT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, nullptr, &st), SILK_ERR_CANCELLED);
   EXPECT_EQ(st.tokens, 20);
   EXPECT_EQ(st.forced_tokens + st.sampled_tokens, 20);
   EXPECT_EQ(st.stop_reason, SILK_STOP_CANCELLED);
@@ -301,7 +302,7 @@ TEST_F(CapiGeneration, StatsAfterCancelAndProgressReachesTheEnd) {
   silk_generate_params q = Params(2);
   q.user_data = &d;
   q.progress = p.progress;
-  ASSERT_EQ(silk_generate(g, mesh_, &q, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &q, &out, nullptr, &st), SILK_OK) << silk_last_error();
   EXPECT_EQ(d.progress_calls, st.tokens);
   EXPECT_EQ(d.last.tokens, st.tokens);
   EXPECT_EQ(d.last.max_tokens, d.last.tokens);
@@ -346,6 +347,7 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
     const Case cases[] = {{"holes", [](silk_generate_params* p) { p->holes = 7; }},
                           {"unconstrained", [](silk_generate_params* p) { p->unconstrained = 2; }},
                           {"debug_flags", [](silk_generate_params* p) { p->debug_flags = 64; }},
+                          {"report_flags", [](silk_generate_params* p) { p->report_flags = 2; }},
                           {"surface_tolerance -1", [](silk_generate_params* p) { p->surface_tolerance = -1; }},
                           {"surface_tolerance 128", [](silk_generate_params* p) { p->surface_tolerance = 128; }},
                           {"candidates 0", [](silk_generate_params* p) { p->candidates = 0; }},
@@ -355,7 +357,7 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
       silk_generate_params p = silk_generate_default_params();
       c.set(&p);
       silk_mesh* out = nullptr;
-      EXPECT_EQ(silk_generate(g, m, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << c.what;
+      EXPECT_EQ(silk::testing::GenerateFromMesh(g, m, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << c.what;
       EXPECT_NE(std::string(silk_last_error()).find(c.what), std::string::npos) << silk_last_error();
     }
     int32_t done = 0;
@@ -396,7 +398,7 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
                       {"preprocessing -2", [](silk_generate_params* p) { p->preprocessing = -2; }},
                       {"max_tokens -5", [](silk_generate_params* p) { p->max_tokens = -5; }},
                       {"max_faces -1", [](silk_generate_params* p) { p->max_faces = -1; }},
-                      {"n_points -3", [](silk_generate_params* p) { p->n_points = -3; }},
+                      {"point_count -3", [](silk_generate_params* p) { p->point_count = -3; }},
                       {"unconstrained 2", [](silk_generate_params* p) { p->unconstrained = 2; }},
                       {"raw_points -1", [](silk_generate_params* p) { p->raw_points = -1; }},
                       {"holes 3", [](silk_generate_params* p) { p->holes = 3; }},
@@ -406,7 +408,7 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
     p.max_tokens = 60;
     c.set(&p);
     silk_mesh* out = nullptr;
-    EXPECT_EQ(silk_generate(g, m, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << c.what;
+    EXPECT_EQ(silk::testing::GenerateFromMesh(g, m, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << c.what;
     EXPECT_NE(std::string(silk_last_error()).find(c.what), std::string::npos) << c.what << ": " << silk_last_error();
     EXPECT_EQ(out, nullptr);
     silk_mesh_destroy(out);
@@ -423,7 +425,7 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
     p.max_tokens = 60;
     c.set(&p);
     silk_mesh* out = nullptr;
-    EXPECT_EQ(silk_generate(g, m, &p, &out, nullptr, nullptr), SILK_OK) << c.what << ": " << silk_last_error();
+    EXPECT_EQ(silk::testing::GenerateFromMesh(g, m, &p, &out, nullptr, nullptr), SILK_OK) << c.what << ": " << silk_last_error();
     silk_mesh_destroy(out);
   }
   silk_generate_params d = silk_generate_default_params();
@@ -489,8 +491,8 @@ void ExpectCappedAndValid(const char* model_dir, std::initializer_list<int32_t> 
       p.candidates = 1;
       p.max_faces = cap;
       silk_mesh* out = nullptr;
-      silk_generate_stats st{};
-      ASSERT_EQ(silk_generate(g, input, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+      silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+      ASSERT_EQ(silk::testing::GenerateFromMesh(g, input, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
       const std::string at = std::string(model_dir) + " cap " + std::to_string(cap) + " seed " + std::to_string(seed);
       EXPECT_LE(silk::testing::TriangleCount(out), static_cast<size_t>(cap)) << at;
       EXPECT_EQ(st.faces, static_cast<int32_t>(silk::testing::TriangleCount(out))) << at;
@@ -612,7 +614,7 @@ TEST_F(CapiGeneration, StepWiseMatchesOneCallAndGrowsByLayers) {
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
   const std::vector<int32_t> whole = Ids(g, 9);
-  silk_generate_input in{};
+  silk_generate_input in = silk_cpp::Sized<silk_generate_input>();
   in.mesh = mesh_;
   silk_generate_params p = Params(9);
   ASSERT_EQ(silk_generator_start(g, &in, &p), SILK_OK) << silk_last_error();
@@ -622,21 +624,21 @@ TEST_F(CapiGeneration, StepWiseMatchesOneCallAndGrowsByLayers) {
   while (!done) {
     ASSERT_EQ(silk_generator_advance(g, 1000, SILK_ADVANCE_LAYER, &done), SILK_OK) << silk_last_error();
     silk_mesh* so_far = nullptr;
-    ASSERT_EQ(silk_generator_mesh(g, &so_far), SILK_OK) << silk_last_error();
+    ASSERT_EQ(silk_generator_get_mesh(g, &so_far), SILK_OK) << silk_last_error();
     const size_t faces = silk::testing::TriangleCount(so_far);
     EXPECT_GE(faces, last_faces);
     growths += faces > last_faces;
     last_faces = faces;
     silk_mesh_destroy(so_far);
-    silk_generate_stats st;
-    ASSERT_EQ(silk_generator_stats(g, &st), SILK_OK);
+    silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+    ASSERT_EQ(silk_generator_get_stats(g, &st), SILK_OK);
     EXPECT_EQ(st.stop_reason == SILK_STOP_NONE, done == 0);
     ++steps;
   }
   EXPECT_GT(growths, 1);
   silk_mesh* out = nullptr;
   silk_tokens* t = nullptr;
-  silk_generate_stats st;
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
   ASSERT_EQ(silk_generator_finish(g, &out, &t, &st), SILK_OK) << silk_last_error();
   std::vector<int32_t> ids(silk::testing::TokenCount(t));
   silk_tokens_copy(t, ids.data(), ids.size(), nullptr);
@@ -661,10 +663,10 @@ TEST_F(CapiGeneration, RawPointsReproduceTheTracedEncoderInput) {
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
   silk_generate_params p = Params(4);
-  p.debug_flags = SILK_DEBUG_RECORD_TRACE;
+  p.report_flags = SILK_GENERATE_RECORD_TRACE;
   silk_mesh* out = nullptr;
   silk_tokens* t = nullptr;
-  ASSERT_EQ(silk_generate(g, mesh_, &p, &out, &t, nullptr), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, &t, nullptr), SILK_OK) << silk_last_error();
   std::vector<int32_t> want(silk::testing::TokenCount(t));
   silk_tokens_copy(t, want.data(), want.size(), nullptr);
   silk_tokens_destroy(t);
@@ -682,12 +684,12 @@ TEST_F(CapiGeneration, RawPointsReproduceTheTracedEncoderInput) {
     c = end;
   }
   ASSERT_EQ(points.size() % 6, 0u);
-  silk_generate_input in{};
+  silk_generate_input in = silk_cpp::Sized<silk_generate_input>();
   in.points = points.data();
-  in.n_points = points.size() / 6;
+  in.point_rows = points.size() / 6;
   silk_generate_params q = Params(4);
   q.raw_points = 1;
-  ASSERT_EQ(silk_generate_input_run(g, &in, &q, &out, &t, nullptr), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk_generator_run(g, &in, &q, &out, &t, nullptr), SILK_OK) << silk_last_error();
   std::vector<int32_t> got(silk::testing::TokenCount(t));
   silk_tokens_copy(t, got.data(), got.size(), nullptr);
   EXPECT_EQ(got, want);
@@ -706,8 +708,8 @@ TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
   p.candidates = 3;
   p.surface_tolerance = 2;
   silk_mesh* out = nullptr;
-  silk_generate_stats st;
-  ASSERT_EQ(silk_generate(g, mesh_, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
   EXPECT_EQ(st.candidates, 3);
   ASSERT_TRUE(st.chosen_candidate >= 0 && st.chosen_candidate < 3);
   EXPECT_GT(st.guided_tokens, 0);
@@ -728,11 +730,11 @@ TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
   silk_generate_params one = Params(5, 200);
   one.candidates = 1;
   silk_tokens* t1 = nullptr;
-  ASSERT_EQ(silk_generate(g, mesh_, &one, &out, &t1, &st), SILK_OK);
+  ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &one, &out, &t1, &st), SILK_OK);
   silk_mesh_destroy(out);
   EXPECT_EQ(st.candidates, 1);
   EXPECT_EQ(st.chosen_candidate, 0);
-  silk_generate_input in{};
+  silk_generate_input in = silk_cpp::Sized<silk_generate_input>();
   in.mesh = mesh_;
   ASSERT_EQ(silk_generator_start(g, &in, &one), SILK_OK);
   int32_t done = 0;
@@ -774,8 +776,8 @@ TEST(CapiModel, DefaultCandidatesAreTheModels) {
     p.max_tokens = 120;
     p.candidates = asked;
     silk_mesh* out = nullptr;
-    silk_generate_stats st;
-    ASSERT_EQ(silk_generate(g, mesh, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
+    silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+    ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
     silk_mesh_destroy(out);
     const int32_t want = asked == SILK_MODEL_CANDIDATES ? 3 : asked;
     EXPECT_EQ(st.candidates, want) << "asked " << asked;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "silk/silk.h"
+#include "support/capi_generate.h"
 #include "support/test_paths.h"
 
 namespace {
@@ -119,7 +120,7 @@ TEST_F(CapiPointClouds, GeneratorPointsAreThePreparedPointsInTheInputFrame) {
   p.seed = 5;
   p.max_tokens = 60;
   silk_mesh* out = nullptr;
-  ASSERT_EQ(silk_generate(g, input, &p, &out, nullptr, nullptr), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk::testing::GenerateFromMesh(g, input, &p, &out, nullptr, nullptr), SILK_OK) << silk_last_error();
   EXPECT_EQ(silk_generator_copy_points(g, nullptr, 0, &count), SILK_OK);  // the size query
   ASSERT_EQ(count % 6, 0u);
   const size_t rows = count / 6;

@@ -131,8 +131,8 @@ class ModelInfo(_Sized):
         "decoder", "arch", "encoder_points")]
 
 
-class GenerateProgress(ctypes.Structure):
-    _fields_ = [("tokens", ctypes.c_int64), ("max_tokens", ctypes.c_int64), ("components", ctypes.c_int32),
+class GenerateProgress(_Sized):
+    _fields_ = _SIZE + [("tokens", ctypes.c_int64), ("max_tokens", ctypes.c_int64), ("components", ctypes.c_int32),
                 ("faces", ctypes.c_int32), ("seconds", ctypes.c_double), ("candidate", ctypes.c_int32),
                 ("candidates", ctypes.c_int32)]
 
@@ -141,38 +141,45 @@ PROGRESS_FN = ctypes.CFUNCTYPE(None, ctypes.POINTER(GenerateProgress), ctypes.c_
 CANCEL_FN = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_void_p)
 
 
-class GenerateParams(ctypes.Structure):
-    _fields_ = [("seed", ctypes.c_uint64), ("temperature", ctypes.c_double), ("top_k", ctypes.c_int32),
-                ("top_p", ctypes.c_double), ("max_tokens", ctypes.c_int32), ("max_faces", ctypes.c_int32),
-                ("holes", ctypes.c_int32), ("unconstrained", ctypes.c_int32), ("n_points", ctypes.c_int32),
-                ("progress", PROGRESS_FN), ("cancel", CANCEL_FN), ("user_data", ctypes.c_void_p),
-                ("top_p_temperature", ctypes.c_double), ("preprocessing", ctypes.c_int32),
-                ("raw_points", ctypes.c_int32), ("debug_flags", ctypes.c_int32),
-                ("surface_tolerance", ctypes.c_int32), ("candidates", ctypes.c_int32), ("orient", ctypes.c_int32)]
+SILK_GENERATE_RECORD_TRACE = 1  # silk_generate_params.report_flags
 
 
-class GenerateStats(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_int64) for n in ("tokens", "forced_tokens", "sampled_tokens", "model_calls")] + [
+class GenerateParams(_Sized):
+    _fields_ = _SIZE + [("seed", ctypes.c_uint64), ("temperature", ctypes.c_double), ("top_k", ctypes.c_int32),
+                        ("top_p", ctypes.c_double), ("max_tokens", ctypes.c_int32), ("max_faces", ctypes.c_int32),
+                        ("holes", ctypes.c_int32), ("point_count", ctypes.c_int32),
+                        ("progress", PROGRESS_FN), ("cancel", CANCEL_FN), ("user_data", ctypes.c_void_p),
+                        ("top_p_temperature", ctypes.c_double), ("preprocessing", ctypes.c_int32),
+                        ("raw_points", ctypes.c_int32), ("report_flags", ctypes.c_int32),
+                        ("surface_tolerance", ctypes.c_int32), ("candidates", ctypes.c_int32),
+                        ("orient", ctypes.c_int32),
+                        # measurement only (docs/runtime.md): may change in a minor version
+                        ("unconstrained", ctypes.c_int32), ("debug_flags", ctypes.c_int32)]
+
+
+class GenerateStats(_Sized):
+    _fields_ = _SIZE + [(n, ctypes.c_int64) for n in ("tokens", "forced_tokens", "sampled_tokens", "model_calls")] + [
         (n, ctypes.c_int32) for n in ("stop_reason", "faces", "vertices", "components", "holes_found",
                                       "holes_repaired", "faces_added", "edge_manifold", "watertight",
                                       "consistently_oriented", "open_edges")] + [
-        ("illegal_at", ctypes.c_int64), ("tokens_per_second", ctypes.c_double)] + [
-        (n, ctypes.c_double) for n in ("seconds_prepare", "seconds_encoder", "seconds_decoder", "seconds_grammar",
-                                       "seconds_sampling", "seconds_build_mesh", "seconds_total")] + [
+        ("illegal_at", ctypes.c_int64)] + [
         (n, ctypes.c_int32) for n in ("vertex_manifold", "nonmanifold_vertices", "fan_gaps_closed", "vertices_split")] + [
         (n, ctypes.c_int64) for n in ("guided_tokens", "guidance_fallbacks")] + [
         (n, ctypes.c_int32) for n in ("candidates", "chosen_candidate")] + [
-        (n, ctypes.c_double) for n in ("score", "seconds_guidance", "seconds_scoring")] + [
-        ("parts_flipped", ctypes.c_int32)]
+        ("score", ctypes.c_double), ("parts_flipped", ctypes.c_int32)] + [
+        # timings
+        (n, ctypes.c_double) for n in ("tokens_per_second", "seconds_prepare", "seconds_encoder", "seconds_decoder",
+                                       "seconds_grammar", "seconds_sampling", "seconds_build_mesh",
+                                       "seconds_guidance", "seconds_scoring", "seconds_total")]
 
     def as_dict(self) -> dict:
-        d = {name: getattr(self, name) for name, _ in self._fields_}
+        d = super().as_dict()
         d["stop_reason"] = STOP_REASONS.get(self.stop_reason, str(self.stop_reason))
         return d
 
 
-class GenerateInput(ctypes.Structure):
-    _fields_ = [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("n_points", ctypes.c_size_t)]
+class GenerateInput(_Sized):
+    _fields_ = _SIZE + [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("point_rows", ctypes.c_size_t)]
 
 
 
@@ -241,21 +248,15 @@ SIGNATURES = {
     "silk_generator_advance": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.c_int32,
                                               ctypes.POINTER(ctypes.c_int32)]),
     "silk_generator_cancel": (None, [ctypes.c_void_p]),
-    "silk_generator_tokens": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
-    "silk_generator_mesh": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
-    "silk_generator_stats": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateStats)]),
+    "silk_generator_get_tokens": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_generator_get_mesh": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]),
+    "silk_generator_get_stats": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateStats)]),
     "silk_generator_finish": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p),
                                              ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
     "silk_generator_report": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.POINTER(ctypes.c_void_p)]),
-    "silk_generate": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(GenerateParams),
-                                     ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(ctypes.c_void_p),
-                                     ctypes.POINTER(GenerateStats)]),
-    "silk_generate_from_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t,
-                                                 ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
-                                                 ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
-    "silk_generate_input_run": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
-                                               ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
-                                               ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
+    "silk_generator_run": (ctypes.c_int, [ctypes.c_void_p, ctypes.POINTER(GenerateInput),
+                                          ctypes.POINTER(GenerateParams), ctypes.POINTER(ctypes.c_void_p),
+                                          ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
     "silk_save_default_params": (SaveParams, []),
     "silk_generator_copy_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t, _c_size_p]),
 }

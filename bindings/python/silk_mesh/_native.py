@@ -206,16 +206,16 @@ def generator_cancel(g: c_void_p) -> None:
 
 
 def generator_tokens(g: c_void_p) -> c_void_p:
-    return _out(lib().silk_generator_tokens, g)
+    return _out(lib().silk_generator_get_tokens, g)
 
 
 def generator_mesh(g: c_void_p) -> c_void_p:
-    return _out(lib().silk_generator_mesh, g)
+    return _out(lib().silk_generator_get_mesh, g)
 
 
 def generator_stats(g: c_void_p) -> _capi.GenerateStats:
     st = _capi.GenerateStats()
-    check(lib().silk_generator_stats(g, byref(st)))
+    check(lib().silk_generator_get_stats(g, byref(st)))
     return st
 
 
@@ -226,9 +226,9 @@ def generator_finish(g: c_void_p) -> tuple[c_void_p, c_void_p, _capi.GenerateSta
 
 
 def generator_run(g: c_void_p, inp: _capi.GenerateInput, params: _capi.GenerateParams):
-    """silk_generate_input_run: (mesh handle, tokens handle, stats)."""
+    """silk_generator_run: (mesh handle, tokens handle, stats)."""
     mh, th, st = c_void_p(), c_void_p(), _capi.GenerateStats()
-    check(lib().silk_generate_input_run(g, byref(inp), byref(params), byref(mh), byref(th), byref(st)))
+    check(lib().silk_generator_run(g, byref(inp), byref(params), byref(mh), byref(th), byref(st)))
     return mh, th, st
 
 

@@ -75,7 +75,7 @@ class Result(NamedTuple):
 
 
 def _progress_dict(p) -> dict:
-    return {name: getattr(p[0], name) for name, _ in _capi.GenerateProgress._fields_}
+    return p[0].as_dict()
 
 
 class Generator:
@@ -86,8 +86,9 @@ class Generator:
 
     input: a Mesh, a mesh file path or (positions, triangles); or points= rows x y z nx ny nz.
     params: fields of silk_generate_params by name: seed, temperature, top_k, top_p, max_tokens,
-    max_faces, holes ("off", "report", "repair"), n_points, surface_tolerance, candidates, orient
-    ("input", "tokens"), ...; None keeps libsilk's default (sampling: the model's values).
+    max_faces, holes ("off", "report", "repair"), point_count (n_points= is kept as its old name),
+    surface_tolerance, candidates, orient ("input", "tokens"), report_flags (1: record the trace for
+    report_json(trace=True)), ...; None keeps libsilk's default (sampling: the model's values).
     progress(dict) is called after every id (tokens, max_tokens, components, faces, seconds);
     cancel() -> truthy stops the run (SilkError with status SILK_ERR_CANCELLED). An exception in
     either callback cancels the run and is raised from the call."""
@@ -108,6 +109,11 @@ class Generator:
 
     def _prepare(self, source, points, progress, cancel, params: dict):
         """(GenerateInput, GenerateParams); their Python-side objects stay in self._keep."""
+        if "n_points" in params:  # the keyword's name before C API 1.0 phase 2 (silk_generate_params.point_count)
+            if "point_count" in params:
+                raise TypeError("generate: give point_count or n_points, not both")
+            params = dict(params, point_count=params["n_points"])
+            del params["n_points"]
         p = _params.fill(_native.generate_defaults(), params, "generate", _ENUMS, _HIDDEN)
         callbacks = []
         if progress is not None:
@@ -121,7 +127,7 @@ class Generator:
             raise TypeError("generate: give exactly one of an input mesh and points=")
         if points is not None:
             ptr, rows, keep = _arrays.to_c(points, ctypes.c_double, 6, "points")
-            gi.points, gi.n_points = ptr, rows
+            gi.points, gi.point_rows = ptr, rows
         else:
             borrowed = _Borrowed(source, "generate")
             gi.mesh, keep = borrowed.mesh.handle, borrowed
@@ -205,7 +211,7 @@ class Generator:
 
     def report_json(self, trace: bool = False) -> str:
         """The last finished generation as JSON (settings, input, figures; trace: per-id legal sets
-        when started with debug_flags=8)."""
+        when started with report_flags=1, SILK_GENERATE_RECORD_TRACE)."""
         return _native.generator_report_json(self.handle, trace)
 
     def close(self) -> None:

@@ -109,7 +109,7 @@ typedef struct silk_load_params {
 SILK_API silk_load_params silk_load_default_params(void);
 /* OBJ, PLY, STL, OFF, glTF/GLB, PMD, optionally gzip-compressed (params NULL = defaults). A PLY
  * without faces and an XYZ/PTS file (lines "x y z" or "x y z nx ny nz") are point clouds: they
- * load as a mesh with no triangles and one normal per vertex, which silk_generate* samples as
+ * load as a mesh with no triangles and one normal per vertex, which silk_generator_run samples as
  * points. A cloud without normals gets estimated ones (k-nearest-neighbour plane fits, oriented
  * outward along a minimum spanning tree; docs/normals.md); one that has them keeps them as read.
  * Read limits: 50M vertices, 50M triangles, 4 GiB per file; a .gz inflates to at most
@@ -340,7 +340,7 @@ SILK_API silk_status silk_points_prepare(const silk_mesh* mesh, const double* cl
  *    call it cancels the call and the generator is freed as that call returns). After destroy the
  *    handle is gone for every thread: a call that begins after it is a use after free;
  *  - inputs are borrowed for the length of the call: a silk_mesh, point array or params passed to
- *    silk_generate* / silk_generator_start must not be destroyed or changed until it returns
+ *    silk_generator_run / silk_generator_start must not be destroyed or changed until it returns
  *    (its callbacks included). The same holds for every other call and handle (silk_mesh,
  *    silk_tokens, silk_report): none is reference counted or locked, so destroy one only when no
  *    call uses it;
@@ -399,6 +399,7 @@ SILK_API void silk_generator_destroy(silk_generator* generator);
 /* Per candidate: with best of N (silk_generate_params.candidates) the counts start again for
  * each candidate, which `candidate` (0-based, of `candidates`) names. */
 typedef struct silk_generate_progress {
+  uint32_t struct_size;       /* set by the library: sizeof(silk_generate_progress) of this libsilk */
   int64_t tokens, max_tokens; /* max_tokens == tokens on the candidate's last id (a bar reaches 100 %) */
   int32_t components;         /* started so far */
   int32_t faces;              /* at the last layer end when max_faces is set (before the cap), else -1 */
@@ -413,12 +414,16 @@ typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* u
 typedef int32_t (*silk_cancel_fn)(void* user_data);
 
 
-/* Measurement switches (docs/runtime.md); 0 for normal use. */
+/* silk_generate_params.report_flags: what the generation keeps for silk_generator_report. */
+enum {
+  SILK_GENERATE_RECORD_TRACE = 1 /* keep the encoder points and every id's legal set (report trace 1) */
+};
+/* silk_generate_params.debug_flags: measurement switches (docs/runtime.md), 0 for normal use;
+ * measurement only: they may change in a minor version. */
 enum {
   SILK_DEBUG_NO_SKIP_FORCED = 1,     /* run the model for forced ids too */
   SILK_DEBUG_KV_COPY = 2,            /* naive KV cache handling */
-  SILK_DEBUG_SAMPLE_THEN_CHECK = 4,  /* sample unmasked, fall back to the mask */
-  SILK_DEBUG_RECORD_TRACE = 8        /* keep every id's legal set for silk_generator_report */
+  SILK_DEBUG_SAMPLE_THEN_CHECK = 4   /* sample unmasked, fall back to the mask */
 };
 
 /* "Use the model's value" (model.json "sampling" / "preprocessing"): the one sentinel of
@@ -443,6 +448,7 @@ typedef enum silk_orientation {
  * Any other negative, NaN or infinite value, top_p > 1, and a flag or enum out of its range is
  * SILK_ERR_INVALID_ARGUMENT naming the field and its value. */
 typedef struct silk_generate_params {
+  uint32_t struct_size; /* set by silk_generate_default_params() */
   uint64_t seed;        /* default 0 */
   double temperature;   /* 0 = greedy */
   int32_t top_k;        /* 0 = off */
@@ -450,33 +456,32 @@ typedef struct silk_generate_params {
   int32_t max_tokens;   /* ids incl. EOS; 0 = the model's limit (default); else >= 14 (one triangle) */
   int32_t max_faces;    /* a hard cap on the result's faces; 0 = off (default). The generation stops at
                            the first layer end with >= max_faces faces; since that layer may overshoot,
-                           the mesh (silk_generator_mesh too) keeps at most max_faces faces: in generation
+                           the mesh (silk_generator_get_mesh too) keeps at most max_faces faces: in generation
                            order, each unless it would give a vertex a second fan, so the result stays
                            edge- and vertex-manifold and consistently oriented (it may have fewer than
                            max_faces; unused vertices and empty parts are dropped). The ids are not cut:
                            decoding them gives the whole last layer (docs/runtime.md "Caps") */
   int32_t holes;        /* silk_hole_policy, default SILK_HOLES_OFF */
-  int32_t unconstrained;/* 1: no grammar mask (mesh = legal prefix); default 0 */
-  int32_t n_points;     /* encoder points; 0 = the model's n_points (default) */
+  int32_t point_count;  /* encoder points; 0 = the model's (silk_model_info.default_points; default) */
   silk_progress_fn progress; /* may be NULL */
   silk_cancel_fn cancel;     /* may be NULL */
   void* user_data;           /* passed to both callbacks */
   double top_p_temperature;  /* > 0: top-p on the top-k logits at this temperature (official chain); 0: at temperature */
   int32_t preprocessing;     /* silk_preprocess_kind with that kind's defaults */
   int32_t raw_points;        /* 1 (point clouds only): the points are the encoder input as given, output in the model's frame */
-  int32_t debug_flags;       /* SILK_DEBUG_* bits; default 0 */
+  int32_t report_flags;      /* SILK_GENERATE_* bits (SILK_GENERATE_RECORD_TRACE); default 0 */
   /* Surface guidance: each new vertex's block and offset ids are restricted to grid cells (of the
    * model's 128^3 grid) within this many cells (Euclidean) of a cell holding an encoder point;
    * when no legal id is that close, the nearest legal ones are kept (a "fallback" in the stats),
-   * so the mask never empties. 0 = off; 0..127. Constrained mode only (ignored when unconstrained).
+   * so the mask never empties. 0 = off; 0..127. Ignored when unconstrained (below).
    * Default: SILK_DEFAULT_SURFACE_TOLERANCE (chosen by measurement, docs/runtime.md). */
   int32_t surface_tolerance;
   /* Best of N, 1..64: a generation runs N candidates one after another on the same encoder
    * points with seeds derived from `seed` (candidate 0: seed itself, so N = 1 is a plain run;
    * candidate i >= 1: the first SplitMix64 output seeded with seed + i) and returns the one whose
    * surface is closest to the input (symmetric Chamfer distance to the encoder's points; one with
-   * faces always beats one without). silk_generate* and the step-wise API alike (the same ids and
-   * mesh for the same params): step-wise, advance runs the candidates in turn, silk_generator_mesh
+   * faces always beats one without). silk_generator_run and the step-wise API alike (the same ids and
+   * mesh for the same params): step-wise, advance runs the candidates in turn, silk_generator_get_mesh
    * shows the one in progress and finish returns the chosen one. Default: SILK_MODEL_CANDIDATES (-1), the model's N
    * (model.json "sampling.candidates", chosen by measurement for that model: docs/runtime.md;
    * 1 when the model names none). */
@@ -484,8 +489,11 @@ typedef struct silk_generate_params {
   /* silk_orientation. SILK_ORIENT_INPUT: every generated part whose winding disagrees with the
    * encoder's points' normals (the sum over its faces of area * dot(face normal, normal of the
    * nearest point) is negative) has all its faces reversed, in the final mesh and in
-   * silk_generator_mesh; the ids are unchanged. Default: SILK_DEFAULT_ORIENT (docs/runtime.md). */
+   * silk_generator_get_mesh; the ids are unchanged. Default: SILK_DEFAULT_ORIENT (docs/runtime.md). */
   int32_t orient;
+  /* ---- measurement only (docs/runtime.md): may change in a minor version ---- */
+  int32_t unconstrained; /* 1: no grammar mask (mesh = legal prefix); default 0 */
+  int32_t debug_flags;   /* SILK_DEBUG_* bits; default 0 */
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
 
@@ -501,16 +509,16 @@ typedef enum silk_stop_reason {
  * "unknown" out of range). */
 SILK_API const char* silk_stop_reason_name(int32_t reason);
 
+/* The caller sets struct_size (silk_generate_stats st = {sizeof st};); the library writes only
+ * struct_size bytes. */
 typedef struct silk_generate_stats {
+  uint32_t struct_size;
   int64_t tokens, forced_tokens, sampled_tokens, model_calls;
   int32_t stop_reason; /* silk_stop_reason */
   int32_t faces, vertices, components;
   int32_t holes_found, holes_repaired, faces_added;
   int32_t edge_manifold, watertight, consistently_oriented, open_edges;
   int64_t illegal_at; /* unconstrained: index of the first id the grammar rejects, else -1 */
-  double tokens_per_second;
-  double seconds_prepare, seconds_encoder, seconds_decoder, seconds_grammar, seconds_sampling,
-      seconds_build_mesh, seconds_total;
   /* vertex_manifold: the faces around every vertex of the output form one fan; the decoder's
    * vertex-fan rule closed fan_gaps_closed gaps (repair policy) and split vertices_split vertices */
   int32_t vertex_manifold, nonmanifold_vertices, fan_gaps_closed, vertices_split;
@@ -521,26 +529,31 @@ typedef struct silk_generate_stats {
   int32_t chosen_candidate; /* index of the returned one (the report JSON lists every seed and score);
                                during a step-wise run: the one in progress */
   double score;             /* returned mesh: symmetric Chamfer distance to the encoder's points, model frame */
-  double seconds_guidance, seconds_scoring;
   int32_t parts_flipped; /* parts reversed to face the input's normals (params.orient) */
+  /* ---- timings (measurement; seconds, wall clock) ---- */
+  double tokens_per_second;
+  double seconds_prepare, seconds_encoder, seconds_decoder, seconds_grammar, seconds_sampling,
+      seconds_build_mesh, seconds_guidance, seconds_scoring, seconds_total;
 } silk_generate_stats;
 
-/* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh). */
+/* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh), borrowed for
+ * the call. The caller sets struct_size (silk_generate_input in = {sizeof in};). */
 typedef struct silk_generate_input {
+  uint32_t struct_size;
   const silk_mesh* mesh; /* a mesh (area-weighted surface samples with normals) or a point cloud
                             (a silk_mesh without triangles, with normals: a seeded subset) */
-  const double* points;  /* or n_points rows of 6 doubles (x y z nx ny nz) */
-  size_t n_points;      /* (params.raw_points: the encoder's input as is, output in the model frame) */
+  const double* points;  /* or point_rows rows of 6 doubles (x y z nx ny nz), input frame */
+  size_t point_rows;     /* (params.raw_points: the encoder's input as is, output in the model frame) */
 } silk_generate_input;
 
 /* ---- step-wise generation --------------------------------------------------------------
  * start -> advance ... (done) -> finish. start prepares the points and runs the encoder; each
- * advance adds ids; silk_generator_tokens / silk_generator_mesh / silk_generator_stats show
+ * advance adds ids; silk_generator_get_tokens / _get_mesh / _get_stats show
  * the state at any point (tokens and mesh: those of the candidate in progress, the mesh being the
  * faces of its layers completed so far, in the input frame); finish returns the final mesh (hole
  * policy, verdicts) and ends the generation. With best of N (params.candidates) the candidates
  * run in turn inside advance, done comes after the last, and finish returns the chosen one:
- * exactly what silk_generate returns for the same params. A new start discards an unfinished one. */
+ * exactly what silk_generator_run returns for the same params. A new start discards an unfinished one. */
 SILK_API silk_status silk_generator_start(silk_generator* generator, const silk_generate_input* input,
                                           const silk_generate_params* params);
 typedef enum silk_advance_until {
@@ -555,26 +568,33 @@ typedef enum silk_advance_until {
 SILK_API silk_status silk_generator_advance(silk_generator* generator, int32_t max_ids, int32_t until,
                                             int32_t* out_done);
 /* Thread-safe, any time, also from the generator's own callbacks. Cancels the run in progress: a
- * silk_generate* call from its first instruction to its return, or a step-wise generation from
+ * silk_generator_run call from its first instruction to its return, or a step-wise generation from
  * silk_generator_start until silk_generator_finish (or a failed start). With no run in progress
- * it does nothing (it never reaches a later run). A cancelled silk_generate* returns
+ * it does nothing (it never reaches a later run). A cancelled silk_generator_run returns
  * SILK_ERR_CANCELLED with no mesh or ids, whenever in the call the cancel came (input conversion
  * and checks, point sampling and the encoder run are interrupted, ids stop before the next one,
  * scoring stops within ~10 ms; one that comes after the last of these still cancels the call).
  * Step-wise: start returns SILK_ERR_CANCELLED, or (cancel after start's last poll) the next
  * advance does; finish still returns the candidates' best so far (see silk_generator_advance). */
 SILK_API void silk_generator_cancel(silk_generator* generator);
-SILK_API silk_status silk_generator_tokens(silk_generator* generator, silk_tokens** out);
-SILK_API silk_status silk_generator_mesh(silk_generator* generator, silk_mesh** out);
+/* The ids so far (during a generation: the candidate in progress; after it: the last run's).
+ * *out: a new silk_tokens owned by the caller, silk_tokens_destroy (a copy: later advances do not change it). */
+SILK_API silk_status silk_generator_get_tokens(silk_generator* generator, silk_tokens** out);
+/* During a generation only: the faces of the completed layers, input frame.
+ * *out: a new silk_mesh owned by the caller, silk_mesh_destroy (a copy). */
+SILK_API silk_status silk_generator_get_mesh(silk_generator* generator, silk_mesh** out);
 /* During a generation: tokens, counters, faces of the completed layers, stop reason (NONE while
- * running). After finish: the final figures, as silk_generate fills them. */
-SILK_API silk_status silk_generator_stats(silk_generator* generator, silk_generate_stats* out);
+ * running). After finish: the final figures, as silk_generator_run fills them. out->struct_size
+ * as for every out struct (set by the caller). */
+SILK_API silk_status silk_generator_get_stats(silk_generator* generator, silk_generate_stats* out);
 /* out_mesh required, out_tokens and stats may be NULL. Scores the last candidate and returns the
- * chosen one. Before the end, it cancels first (as above). */
+ * chosen one. Before the end, it cancels first (as above). *out_mesh: owned by the caller,
+ * silk_mesh_destroy; *out_tokens: owned by the caller, silk_tokens_destroy (both NULL on error). */
 SILK_API silk_status silk_generator_finish(silk_generator* generator, silk_mesh** out_mesh, silk_tokens** out_tokens,
                                            silk_generate_stats* stats);
 /* The last finished generation as a JSON report (settings, input, figures; trace 1: also the
- * encoder points and every id's legal set, for a generation run with SILK_DEBUG_RECORD_TRACE).
+ * encoder points and every id's legal set, for a generation run with report_flags
+ * SILK_GENERATE_RECORD_TRACE).
  * *out: owned by the caller, silk_report_destroy. */
 SILK_API silk_status silk_generator_report(silk_generator* generator, int32_t trace, silk_report** out);
 /* The encoder's points of the current or last generation (from its start on), in the input's
@@ -585,19 +605,14 @@ SILK_API silk_status silk_generator_report(silk_generator* generator, int32_t tr
 SILK_API silk_status silk_generator_copy_points(silk_generator* generator, double* out, size_t capacity, size_t* out_count);
 
 /* ---- one-call generation: start + advance to the end + finish --------------------------
- * The result is in the input's frame; silk_mesh_copy_triangle_components gives each
- * triangle's part. out_tokens and stats may be NULL; after a cancel, stats are still filled
- * (stop reason CANCELLED). */
-SILK_API silk_status silk_generate(silk_generator* generator, const silk_mesh* mesh, const silk_generate_params* params,
-                                   silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats);
-/* Same from a point cloud: points = n_points rows of 6 doubles (x y z nx ny nz), input frame. */
-SILK_API silk_status silk_generate_from_points(silk_generator* generator, const double* points, size_t n_points,
-                                               const silk_generate_params* params, silk_mesh** out_mesh,
-                                               silk_tokens** out_tokens, silk_generate_stats* stats);
-/* Same from any input. */
-SILK_API silk_status silk_generate_input_run(silk_generator* generator, const silk_generate_input* input,
-                                             const silk_generate_params* params, silk_mesh** out_mesh,
-                                             silk_tokens** out_tokens, silk_generate_stats* stats);
+ * From any input (a mesh, a point-cloud silk_mesh or rows of points). The result is in the
+ * input's frame; silk_mesh_copy_triangle_components gives each triangle's part. out_tokens and
+ * stats may be NULL; after a cancel, stats are still filled (stop reason CANCELLED).
+ * *out_mesh: owned by the caller, silk_mesh_destroy; *out_tokens: owned by the caller,
+ * silk_tokens_destroy (both NULL on error). */
+SILK_API silk_status silk_generator_run(silk_generator* generator, const silk_generate_input* input,
+                                        const silk_generate_params* params, silk_mesh** out_mesh,
+                                        silk_tokens** out_tokens, silk_generate_stats* stats);
 
 #ifdef __cplusplus
 } /* extern "C" */

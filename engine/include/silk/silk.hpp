@@ -224,19 +224,19 @@ class Generator {
     Check(silk_generator_create(model.get(), &g));
     h_.reset(g);
   }
-  Mesh Generate(const Mesh& input, const silk_generate_params& p = silk_generate_default_params(),
-                silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
-    silk_mesh* m = nullptr;
-    silk_tokens* t = nullptr;
-    Check(silk_generate(h_.get(), input.get(), &p, &m, tokens ? &t : nullptr, stats));
-    return Finish(m, t, tokens);
-  }
+  // silk_generator_run. stats (may be NULL): its struct_size set by the caller (silk.h).
   Mesh Generate(const silk_generate_input& input, const silk_generate_params& p = silk_generate_default_params(),
                 silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
     silk_mesh* m = nullptr;
     silk_tokens* t = nullptr;
-    Check(silk_generate_input_run(h_.get(), &input, &p, &m, tokens ? &t : nullptr, stats));
+    Check(silk_generator_run(h_.get(), &input, &p, &m, tokens ? &t : nullptr, stats));
     return Finish(m, t, tokens);
+  }
+  // From a mesh or a point-cloud mesh.
+  Mesh Generate(const Mesh& input, const silk_generate_params& p = silk_generate_default_params(),
+                silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
+    silk_generate_input in{sizeof(silk_generate_input), input.get(), nullptr, 0};
+    return Generate(in, p, stats, tokens);
   }
   // Step-wise (silk.h): Start, Advance until it returns true (done), Finish.
   void Start(const silk_generate_input& input, const silk_generate_params& p = silk_generate_default_params()) {
@@ -250,12 +250,13 @@ class Generator {
   void Cancel() { silk_generator_cancel(h_.get()); }
   Mesh MeshSoFar() {
     silk_mesh* m = nullptr;
-    Check(silk_generator_mesh(h_.get(), &m));
+    Check(silk_generator_get_mesh(h_.get(), &m));
     return Mesh(m);
   }
   silk_generate_stats Stats() {
-    silk_generate_stats s;
-    Check(silk_generator_stats(h_.get(), &s));
+    silk_generate_stats s{};
+    s.struct_size = sizeof(s);
+    Check(silk_generator_get_stats(h_.get(), &s));
     return s;
   }
   Mesh Finish(silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
@@ -278,10 +279,8 @@ class Generator {
   Mesh GenerateFromPoints(const std::vector<double>& points,
                           const silk_generate_params& p = silk_generate_default_params(),
                           silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
-    silk_mesh* m = nullptr;
-    silk_tokens* t = nullptr;
-    Check(silk_generate_from_points(h_.get(), points.data(), points.size() / 6, &p, &m, tokens ? &t : nullptr, stats));
-    return Finish(m, t, tokens);
+    silk_generate_input in{sizeof(silk_generate_input), nullptr, points.data(), points.size() / 6};
+    return Generate(in, p, stats, tokens);
   }
 
  private:

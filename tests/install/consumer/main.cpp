@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
       silk_cpp::Generator gen(model);
       silk_generate_params p = silk_generate_default_params();
       p.max_tokens = 120;
-      silk_generate_stats st;
+      silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
       silk_cpp::Mesh out = gen.Generate(mesh, p, &st);
       std::printf("generated %lld ids -> %d faces\n", static_cast<long long>(st.tokens), st.faces);
       if (st.faces <= 0 || out.triangles().size() != 3u * st.faces) return 1;
