@@ -108,3 +108,29 @@ def check(status: int) -> None:
         L = lib()
         raise SilkError(status, L.silk_last_error().decode(errors="replace"),
                         L.silk_status_name(status).decode())
+
+
+class _Owned:
+    """A libsilk handle this object owns: close() frees it at once (_free), also on leaving a
+    `with` block and on garbage collection; subclasses set _h and implement _free."""
+
+    _h = None
+
+    def _free(self) -> None:
+        raise NotImplementedError
+
+    def close(self) -> None:
+        self._free()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # interpreter shutdown
+            pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+

@@ -9,7 +9,7 @@ import os
 from typing import NamedTuple
 
 from . import _arrays, _capi, _native, _params
-from ._library import SilkError, library_path
+from ._library import SilkError, _Owned, library_path
 from .mesh import Mesh, _Borrowed
 
 _ENUMS = {"holes": _capi.HOLES, "orient": _capi.ORIENT, "preprocessing": _capi.PREPROCESS_KINDS}
@@ -21,7 +21,7 @@ def bundled_model_dir() -> str:
     return os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(library_path()))), "model")
 
 
-class Model:
+class Model(_Owned):
     """A loaded model folder (model.json, encoder.onnx, decoder.onnx). dir None: the bundled model
     (bundled_model_dir()), else SilkError naming where it looked. threads: the process's shared
     pool (0 = physical cores; the first load decides); decoder: "default", "int8", "fp32", "int4".
@@ -50,22 +50,11 @@ class Model:
             raise ValueError("silk_mesh.Model: the model is closed")
         return self._h
 
-    def close(self) -> None:
+    def _free(self) -> None:
         if self._h:
             _native.model_destroy(self._h)
             self._h = None
 
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:  # interpreter shutdown
-            pass
-
-    def __enter__(self) -> "Model":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
 
 
 class Result(NamedTuple):
@@ -78,7 +67,7 @@ def _progress_dict(p) -> dict:
     return p[0].as_dict()
 
 
-class Generator:
+class Generator(_Owned):
     """One generation at a time on a Model (a Model, a folder path, or None: the bundled model).
     One call: run(input, **params) -> Result. Step-wise: start(input, **params), advance(...) until
     it returns True (also `done`), preview() / ids() / stats() at any point, finish() -> Result;
@@ -214,7 +203,7 @@ class Generator:
         when started with report_flags=1, SILK_GENERATE_RECORD_TRACE)."""
         return _native.generator_report_json(self.handle, trace)
 
-    def close(self) -> None:
+    def _free(self) -> None:
         if self._h:
             _native.generator_destroy(self._h)
             self._h = None
@@ -222,17 +211,6 @@ class Generator:
         if self._own_model:
             self.model.close()
 
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:  # interpreter shutdown
-            pass
-
-    def __enter__(self) -> "Generator":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
 
 
 def generate(input=None, model: Model | str | os.PathLike | None = None, *, points=None, progress=None,

@@ -6,9 +6,10 @@ import ctypes
 import os
 
 from . import _arrays, _capi, _native, _params
+from ._library import _Owned
 
 
-class Mesh:
+class Mesh(_Owned):
     """An owned libsilk mesh. Mesh(positions, triangles) copies the arrays (rows or flat, numpy or
     sequences); Mesh.load(path) reads OBJ, PLY, STL, OFF, glTF/GLB, PMD (optionally .gz). Every
     array property copies out of libsilk (see silk_mesh's array rule). close() frees it at once
@@ -73,22 +74,11 @@ class Mesh:
         buf = _native.mesh_normals(self.handle)
         return None if buf is None else _arrays.from_c(buf, 3)
 
-    def close(self) -> None:
+    def _free(self) -> None:
         if self._h:
             _native.mesh_destroy(self._h)
             self._h = None
 
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:  # interpreter shutdown
-            pass
-
-    def __enter__(self) -> "Mesh":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
 
     def __repr__(self) -> str:
         if not self._h:
