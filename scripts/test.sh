@@ -23,7 +23,7 @@ elif [ "${SILK_WINDOWS_TESTS:-auto}" = 1 ]; then
   echo "SILK_WINDOWS_TESTS=1 but MinGW-w64 / Wine / onnxruntime.dll are missing: run scripts/setup_windows.sh" >&2
   exit 1
 else
-  echo "skipped (no MinGW-w64 + Wine here: scripts/setup_windows.sh installs them)"
+  echo "skipped (MinGW-w64, Wine or .deps/onnxruntime-windows missing here: scripts/setup_windows.sh installs them)"
 fi
 
 echo "=== sanitizer build (ASan + UBSan) ==="
