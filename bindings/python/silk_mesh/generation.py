@@ -41,7 +41,7 @@ class Model(_Owned):
         self._h = _native.model_load(os.fsencode(self.dir), int(threads), _capi.DECODERS[decoder])
 
     def info(self) -> dict:
-        """model.json figures and the options in use (d_model, n_points, decoder, ...)."""
+        """model.json figures and the options in use (d_model, default_points, decoder, ...)."""
         return _params.as_dict(_native.model_info(self.handle))
 
     @property
@@ -75,7 +75,7 @@ class Generator(_Owned):
 
     input: a Mesh, a mesh file path or (positions, triangles); or points= rows x y z nx ny nz.
     params: fields of silk_generate_params by name: seed, temperature, top_k, top_p, max_tokens,
-    max_faces, holes ("off", "report", "repair"), point_count (n_points= is kept as its old name),
+    max_faces, holes ("off", "report", "repair"), point_count,
     surface_tolerance, candidates, orient ("input", "tokens"), report_flags (1: record the trace for
     report_json(trace=True)), ...; None keeps libsilk's default (sampling: the model's values).
     progress(dict) is called after every id (tokens, max_tokens, components, faces, seconds);
@@ -98,11 +98,6 @@ class Generator(_Owned):
 
     def _prepare(self, source, points, progress, cancel, params: dict):
         """(GenerateInput, GenerateParams); their Python-side objects stay in self._keep."""
-        if "n_points" in params:  # the keyword's name before C API 1.0 phase 2 (silk_generate_params.point_count)
-            if "point_count" in params:
-                raise TypeError("generate: give point_count or n_points, not both")
-            params = dict(params, point_count=params["n_points"])
-            del params["n_points"]
         p = _params.fill(_native.generate_defaults(), params, "generate", _ENUMS, _HIDDEN)
         callbacks = []
         if progress is not None:
