@@ -1,42 +1,15 @@
 // Chamfer distance between a mesh's surface and a point set: the score that picks the best of
 // several generated candidates (closest to the input), computed without Python.
 #pragma once
-#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "core/cancel_check.h"
 #include "core/status.h"
 #include "io/io_mesh.h"
+#include "mesh/nearest_points.h"
 
 namespace silk {
-
-using Point3 = std::array<double, 3>;
-
-// Nearest-neighbour queries over a fixed point set: a uniform grid of about two points per
-// cell, searched ring by ring around the query's cell until no closer point can remain.
-class NearestPointIndex {
- public:
-  explicit NearestPointIndex(const std::vector<Point3>& points);
-  struct Hit {
-    double distance;  // Euclidean; +infinity when the set is empty
-    int32_t index;    // into the points given to the constructor; -1 when the set is empty
-  };
-  // The nearest point (the first of the constructor's order among equally near ones).
-  Hit Nearest(const Point3& q) const;
-  // Euclidean distance to the nearest point; +infinity when the set is empty.
-  double Distance(const Point3& q) const { return Nearest(q).distance; }
-
- private:
-  std::array<int32_t, 3> CellOf(const Point3& q) const;
-  void ScanCell(int32_t x, int32_t y, int32_t z, const Point3& q, double* best2, int32_t* best) const;
-  std::vector<Point3> points_;        // sorted by cell
-  std::vector<int32_t> ids_;          // constructor index of each points_ entry
-  std::vector<int32_t> cell_start_;   // cells + 1 offsets into points_
-  std::array<int32_t, 3> dims_{1, 1, 1};
-  Point3 origin_{0, 0, 0};
-  double cell_ = 1;
-};
 
 struct ChamferDistance {
   double a_to_b = 0;  // mean over a of the distance to the nearest point of b

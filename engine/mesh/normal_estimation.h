@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "mesh/point_knn.h"
+#include "mesh/nearest_points.h"
 
 namespace silk {
 

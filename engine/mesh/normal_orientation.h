@@ -5,7 +5,7 @@
 #pragma once
 #include <vector>
 
-#include "mesh/point_knn.h"
+#include "mesh/nearest_points.h"
 
 namespace silk {
 

@@ -1,4 +1,4 @@
-// Normal estimation (mesh/point_knn, plane_fit, normal_orientation, normal_estimation) on clouds
+// Normal estimation (mesh/nearest_points, plane_fit, normal_orientation, normal_estimation) on clouds
 // whose true normals are known exactly: a sphere (radial, outward), a plane (+-z, one sign), a
 // cube's faces (the face normals, outward, away from the edges); the k-d tree against brute
 // force; the Jacobi eigen-decomposition against its definition; determinism and refusals.
@@ -12,7 +12,7 @@
 #include "core/splitmix64.h"
 #include "mesh/normal_estimation.h"
 #include "mesh/plane_fit.h"
-#include "mesh/point_knn.h"
+#include "mesh/nearest_points.h"
 
 namespace silk {
 namespace {

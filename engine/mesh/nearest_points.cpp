@@ -1,14 +1,17 @@
-// k-d tree construction (nth_element medians, a total order on (coordinate, index)) and the
-// bounded-heap k-nearest search with plane pruning.
-#include "mesh/point_knn.h"
+// k-d tree construction (nth_element medians, a total order on (coordinate, index)), the
+// nearest-point and bounded-heap k-nearest searches with plane pruning.
+#include "mesh/nearest_points.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace silk {
 
 namespace {
 constexpr int32_t kLeafSize = 8;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double Dist2(const Point3& a, const Point3& b) {
   const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
@@ -16,7 +19,7 @@ double Dist2(const Point3& a, const Point3& b) {
 }
 }  // namespace
 
-PointKdTree::PointKdTree(const std::vector<Point3>& points) : points_(points), order_(points.size()) {
+NearestPointIndex::NearestPointIndex(const std::vector<Point3>& points) : points_(points), order_(points.size()) {
   std::iota(order_.begin(), order_.end(), 0);
   if (!points_.empty()) {
     nodes_.reserve(2 * points_.size() / kLeafSize + 2);
@@ -28,7 +31,7 @@ PointKdTree::PointKdTree(const std::vector<Point3>& points) : points_(points), o
 }
 
 // Splits order_[begin, end) at its median along the widest axis; points_ is still in input order.
-int32_t PointKdTree::Build(int32_t begin, int32_t end, int32_t depth) {
+int32_t NearestPointIndex::Build(int32_t begin, int32_t end, int32_t depth) {
   const int32_t id = static_cast<int32_t>(nodes_.size());
   nodes_.push_back(Node{begin, end});
   if (end - begin <= kLeafSize || depth > 60) return id;
@@ -54,7 +57,29 @@ int32_t PointKdTree::Build(int32_t begin, int32_t end, int32_t depth) {
   return id;
 }
 
-void PointKdTree::Search(int32_t node, const Point3& q, size_t k, int32_t skip,
+void NearestPointIndex::SearchOne(int32_t node, const Point3& q, double* best2, int32_t* best) const {
+  const Node& n = nodes_[node];
+  if (n.left < 0) {
+    for (int32_t i = n.begin; i < n.end; ++i) {
+      const double d2 = Dist2(points_[i], q);
+      if (d2 < *best2 || (d2 == *best2 && order_[i] < *best)) *best2 = d2, *best = order_[i];
+    }
+    return;
+  }
+  const double diff = q[n.axis] - n.split;
+  SearchOne(diff < 0 ? n.left : n.right, q, best2, best);
+  if (diff * diff <= *best2) SearchOne(diff < 0 ? n.right : n.left, q, best2, best);
+}
+
+NearestPointIndex::Hit NearestPointIndex::Nearest(const Point3& q) const {
+  if (nodes_.empty()) return {kInf, -1};
+  double best2 = kInf;
+  int32_t best = -1;
+  SearchOne(0, q, &best2, &best);
+  return {std::sqrt(best2), best};
+}
+
+void NearestPointIndex::Search(int32_t node, const Point3& q, size_t k, int32_t skip,
                          std::vector<std::pair<double, int32_t>>* heap) const {
   const Node& n = nodes_[node];
   if (n.left < 0) {
@@ -78,7 +103,7 @@ void PointKdTree::Search(int32_t node, const Point3& q, size_t k, int32_t skip,
   if (heap->size() < k || diff * diff <= heap->front().first) Search(diff < 0 ? n.right : n.left, q, k, skip, heap);
 }
 
-void PointKdTree::Nearest(const Point3& q, int32_t k, int32_t skip,
+void NearestPointIndex::Nearest(const Point3& q, int32_t k, int32_t skip,
                           std::vector<std::pair<double, int32_t>>* out) const {
   out->clear();
   if (nodes_.empty() || k <= 0) return;
@@ -92,7 +117,7 @@ KnnGraph NearestNeighbors(const std::vector<Point3>& points, int32_t k) {
   g.k = static_cast<int32_t>(std::max<int64_t>(0, std::min<int64_t>(k, n - 1)));
   if (g.k == 0) return g;
   g.neighbors.resize(static_cast<size_t>(n) * g.k);
-  const PointKdTree tree(points);
+  const NearestPointIndex tree(points);
   std::vector<std::pair<double, int32_t>> found;
   for (int64_t i = 0; i < n; ++i) {
     tree.Nearest(points[i], g.k, static_cast<int32_t>(i), &found);

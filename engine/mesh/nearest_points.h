@@ -1,5 +1,6 @@
-// k nearest neighbours of every point of a cloud (a k-d tree of our own): the neighbourhoods
-// normal estimation fits its planes to and the graph its orientation is propagated along.
+// Nearest points of a fixed point set (one k-d tree of our own): the Chamfer score's nearest
+// point, the input normal a generated vertex borrows, and the neighbourhoods normal estimation
+// fits its planes to and propagates orientation along.
 #pragma once
 #include <array>
 #include <cstddef>
@@ -12,12 +13,21 @@ namespace silk {
 using Point3 = std::array<double, 3>;
 
 // A k-d tree over a fixed point set (median splits on the widest axis, leaves of <= 8 points).
-class PointKdTree {
+// Equal distances are broken by lower index, so no answer depends on the tree's shape; a
+// clustered set or far outliers cost depth, never a scan of the whole set per query.
+class NearestPointIndex {
  public:
-  explicit PointKdTree(const std::vector<Point3>& points);
+  explicit NearestPointIndex(const std::vector<Point3>& points);
+  struct Hit {
+    double distance;  // Euclidean; +infinity when the set is empty
+    int32_t index;    // into the points given to the constructor; -1 when the set is empty
+  };
+  // The nearest point (the lowest index among equally near ones).
+  Hit Nearest(const Point3& q) const;
+  // Euclidean distance to the nearest point; +infinity when the set is empty.
+  double Distance(const Point3& q) const { return Nearest(q).distance; }
   // The k points nearest to q as (squared distance, index), nearest first, equal distances by
-  // lower index (so the answer never depends on the tree's shape); point `skip` (-1: none) is
-  // left out; fewer when the set is smaller.
+  // lower index; point `skip` (-1: none) is left out; fewer when the set is smaller.
   void Nearest(const Point3& q, int32_t k, int32_t skip, std::vector<std::pair<double, int32_t>>* out) const;
 
  private:
@@ -28,6 +38,7 @@ class PointKdTree {
     double split = 0;
   };
   int32_t Build(int32_t begin, int32_t end, int32_t depth);
+  void SearchOne(int32_t node, const Point3& q, double* best2, int32_t* best) const;
   void Search(int32_t node, const Point3& q, size_t k, int32_t skip,
               std::vector<std::pair<double, int32_t>>* heap) const;
   std::vector<Point3> points_;   // in order_'s order
