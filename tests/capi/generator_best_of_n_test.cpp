@@ -47,27 +47,21 @@ Outcome Collect(silk_mesh* m, silk_tokens* t, const silk_generate_stats& st) {
   return o;
 }
 
-class CapiBestOfN : public ::testing::Test {
+class CapiBestOfN : public silk::testing::TinyModelTest {
  protected:
   void SetUp() override {
-    if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
-    silk_model_params o = silk_model_default_params();
-    o.threads = 1;
-    ASSERT_EQ(silk_model_load(silk::testing::SourcePath("tests/models/tiny").c_str(), &o, &model_), SILK_OK)
-        << silk_last_error();
-    ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), nullptr, &mesh_), SILK_OK);
+    TinyModelTest::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
     ASSERT_EQ(silk_generator_create(model_, &g_), SILK_OK);
     in_.mesh = mesh_;
   }
   void TearDown() override {
     silk_generator_destroy(g_);
-    silk_mesh_destroy(mesh_);
-    silk_model_destroy(model_);
+    TinyModelTest::TearDown();
   }
+  // Candidates matter here; the id cap is one value throughout.
   static silk_generate_params Params(uint64_t seed, int32_t candidates) {
-    silk_generate_params p = silk_generate_default_params();
-    p.seed = seed;
-    p.max_tokens = 200;
+    silk_generate_params p = TinyModelTest::Params(seed, 200);
     p.candidates = candidates;
     return p;
   }
@@ -85,8 +79,6 @@ class CapiBestOfN : public ::testing::Test {
     EXPECT_EQ(silk_generator_finish(g_, &m, &t, &st), SILK_OK) << silk_last_error();
     return Collect(m, t, st);
   }
-  silk_model* model_ = nullptr;
-  silk_mesh* mesh_ = nullptr;
   silk_generator* g_ = nullptr;
   silk_generate_input in_ = silk_cpp::Sized<silk_generate_input>();
 };

@@ -52,30 +52,7 @@ std::vector<double> Sphere(size_t n) {
   return pts;
 }
 
-class CapiLifetime : public ::testing::Test {
- protected:
-  void SetUp() override {
-    if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
-    silk_model_params o = silk_model_default_params();
-    o.threads = 1;
-    ASSERT_EQ(silk_model_load(silk::testing::SourcePath("tests/models/tiny").c_str(), &o, &model_), SILK_OK)
-        << silk_last_error();
-    ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), nullptr, &mesh_), SILK_OK)
-        << silk_last_error();
-  }
-  void TearDown() override {
-    silk_mesh_destroy(mesh_);
-    silk_model_destroy(model_);
-  }
-  static silk_generate_params Params(uint64_t seed, int32_t max_tokens) {
-    silk_generate_params p = silk_generate_default_params();
-    p.seed = seed;
-    p.max_tokens = max_tokens;
-    return p;
-  }
-  silk_model* model_ = nullptr;
-  silk_mesh* mesh_ = nullptr;
-};
+class CapiLifetime : public silk::testing::TinyModelTest {};
 
 // What a callback needs to reach the handles (user_data).
 struct Handles {

@@ -29,26 +29,8 @@ namespace fs = std::filesystem;
 
 std::string TinyModel() { return silk::testing::SourcePath("tests/models/tiny"); }
 
-class CapiGeneration : public ::testing::Test {
+class CapiGeneration : public silk::testing::TinyModelTest {
  protected:
-  void SetUp() override {
-    if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
-    silk_model_params o = silk_model_default_params();
-    o.threads = 1;
-    ASSERT_EQ(silk_model_load(TinyModel().c_str(), &o, &model_), SILK_OK) << silk_last_error();
-    ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), nullptr, &mesh_), SILK_OK)
-        << silk_last_error();
-  }
-  void TearDown() override {
-    silk_mesh_destroy(mesh_);
-    silk_model_destroy(model_);
-  }
-  static silk_generate_params Params(uint64_t seed, int32_t max_tokens = 120) {
-    silk_generate_params p = silk_generate_default_params();
-    p.seed = seed;
-    p.max_tokens = max_tokens;
-    return p;
-  }
   // Ids of one generation on `g` (empty on failure).
   std::vector<int32_t> Ids(silk_generator* g, uint64_t seed, silk_status* status = nullptr) {
     silk_generate_params p = Params(seed);
@@ -62,8 +44,6 @@ class CapiGeneration : public ::testing::Test {
     silk_mesh_destroy(out);
     return ids;
   }
-  silk_model* model_ = nullptr;
-  silk_mesh* mesh_ = nullptr;
 };
 
 TEST_F(CapiGeneration, GeneratorKeepsItsModelAlive) {

@@ -1,10 +1,14 @@
-// The one-call generation from a silk_mesh or from rows of points through silk_generator_run
-// (C API 1.0 phase 2 has one entry point), so the capi tests that only need a generation read short.
+// What the C API generation tests share: the one-call generation from a silk_mesh or from rows
+// of points through silk_generator_run, and a fixture holding the tiny test model and the sample.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <cstddef>
+#include <cstdint>
 
 #include "silk/silk.h"
 #include "silk/silk.hpp"
+#include "support/test_paths.h"
 
 namespace silk::testing {
 
@@ -21,5 +25,32 @@ inline silk_status GenerateFromPoints(silk_generator* g, const double* points, s
   in.point_rows = rows;
   return silk_generator_run(g, &in, p, out, tokens, stats);
 }
+
+// tests/models/tiny (one thread) and samples/torus_knot.obj, loaded once per test through
+// silk.h; skipped where libsilk was built without onnxruntime.
+class TinyModelTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
+    silk_model_params o = silk_model_default_params();
+    o.threads = 1;
+    ASSERT_EQ(silk_model_load(SourcePath("tests/models/tiny").c_str(), &o, &model_), SILK_OK) << silk_last_error();
+    ASSERT_EQ(silk_mesh_load(SourcePath("samples/torus_knot.obj").c_str(), nullptr, &mesh_), SILK_OK)
+        << silk_last_error();
+  }
+  void TearDown() override {
+    silk_mesh_destroy(mesh_);
+    silk_model_destroy(model_);
+  }
+  // The default parameters with a seed and an id cap.
+  static silk_generate_params Params(uint64_t seed, int32_t max_tokens = 120) {
+    silk_generate_params p = silk_generate_default_params();
+    p.seed = seed;
+    p.max_tokens = max_tokens;
+    return p;
+  }
+  silk_model* model_ = nullptr;
+  silk_mesh* mesh_ = nullptr;
+};
 
 }  // namespace silk::testing
