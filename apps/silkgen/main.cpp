@@ -10,13 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "batch_options.h"
+#include "batch_run.h"
+#include "exit_codes.h"
 #include "model_locate.h"
 #include "progress_bar.h"
 #include "silk/silk.hpp"
 
 namespace {
 
-constexpr int kExitOk = 0, kExitFail = 1, kExitUsage = 2;
+using silkgen::kExitFail, silkgen::kExitOk, silkgen::kExitUsage;
 
 int Fail(const std::string& message) {
   std::fprintf(stderr, "silkgen: %s\n", message.c_str());
@@ -81,12 +84,13 @@ struct Args {
   std::string decoder, preprocessing, orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
   bool unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
+  silkgen::BatchArgs batch;
 };
 
 void AddOptions(CLI::App& app, Args& a) {
   app.add_option("input", a.input, "A point cloud (PLY without faces, XYZ/PTS; normals estimated when it has none), or a "
-                 "mesh: PLY OBJ STL OFF glTF GLB PMD")
-      ->required()->check(CLI::ExistingFile);
+                 "mesh: PLY OBJ STL OFF glTF GLB PMD (or --batch)")
+      ->check(CLI::ExistingFile);
   app.add_option("-o,--output", a.output, "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
   app.add_option("--model", a.model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx); default: the bundled model");
   app.add_option("--seed", a.seed_text, "Random seed (integer) or 'random'")->capture_default_str();
@@ -143,6 +147,7 @@ void AddOptions(CLI::App& app, Args& a) {
   app.add_flag("--no-skip-forced", a.no_skip_forced, "Run the model for forced ids too")->group("");
   app.add_flag("--kv-copy", a.kv_copy, "Naive KV cache handling (copy per step)")->group("");
   app.add_flag("--sample-then-check", a.sample_then_check, "Sample unmasked, fall back to the mask")->group("");
+  silkgen::AddBatchOptions(app, a.batch);
 }
 
 // --seed: an unsigned integer or "random"; false if neither.
@@ -185,13 +190,23 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   return p;
 }
 
-int Run(const Args& a, uint64_t seed) {
+silk_model_params ToModelParams(const Args& a) {
   silk_model_params mo = silk_model_default_params();
   mo.threads = a.threads;
   const std::string decoder = a.int8 ? "int8" : a.decoder;
   mo.decoder = decoder == "int8" ? SILK_DECODER_INT8 : decoder == "int4" ? SILK_DECODER_INT4
                : decoder == "fp32" ? SILK_DECODER_FP32 : SILK_DECODER_DEFAULT;
-  silk_cpp::Model model = silk_cpp::Model::Load(a.model_dir, mo);
+  return mo;
+}
+
+silk_save_params ToSaveParams(const Args& a) {
+  silk_save_params sp = silk_save_default_params();
+  sp.part_colors = a.part_colors ? 1 : 0;
+  return sp;
+}
+
+int Run(const Args& a, uint64_t seed) {
+  silk_cpp::Model model = silk_cpp::Model::Load(a.model_dir, ToModelParams(a));
   silk_cpp::Mesh input = silk_cpp::Mesh::Load(a.input);
   const silk_model_info info = model.info();
   silk_generate_params p = ToParams(a, seed);
@@ -225,9 +240,7 @@ int Run(const Args& a, uint64_t seed) {
   silk_cpp::Mesh result = generator.Generate(in, p, &st, &ids);
   bar.Finish();
 
-  silk_save_params sp = silk_save_default_params();
-  sp.part_colors = a.part_colors ? 1 : 0;
-  if (!a.output.empty()) result.Save(a.output, sp);
+  if (!a.output.empty()) result.Save(a.output, ToSaveParams(a));
   if (!a.tokens_path.empty()) silk_cpp::Tokens::FromIds(ids).Save(a.tokens_path);
   if (!a.save_points.empty()) WriteTextFile(a.save_points, PointsPly(generator.Points()));
   if (!a.trace_path.empty()) WriteTextFile(a.trace_path, generator.ReportJson(true));
@@ -250,6 +263,42 @@ int Run(const Args& a, uint64_t seed) {
   return kExitOk;
 }
 
+// --seed parsed and the bundled model found when --model is not given (kExitOk or the exit status).
+int SeedAndModel(Args& a, uint64_t* seed) {
+  if (!ParseSeed(a.seed_text, seed)) {
+    std::fprintf(stderr, "silkgen: --seed: '%s' is neither an unsigned integer nor 'random'\n", a.seed_text.c_str());
+    return kExitUsage;
+  }
+  if (a.model_dir.empty()) {
+    a.model_dir = silkgen::DefaultModelDir();
+    if (a.model_dir.empty()) {
+      std::string tried;
+      for (const std::string& c : silkgen::DefaultModelCandidates()) tried += "\n  " + c;
+      return Fail("no bundled model found; pass --model DIR (looked in:" + tried + ")");
+    }
+  }
+  return kExitOk;
+}
+
+// silkgen --batch: the single run's settings for every input (batch_run.h); per-input side files are refused.
+int Batch(Args& a) {
+  if (!a.input.empty() || a.output.empty() || !a.tokens_path.empty() || !a.stats_path.empty() ||
+      !a.trace_path.empty() || !a.save_points.empty()) {
+    std::fprintf(stderr, "silkgen: --batch LIST_OR_DIR takes -o OUTDIR and no input file, --tokens, --stats, --trace "
+                         "or --save-points (the report holds each input's figures)\n");
+    return kExitUsage;
+  }
+  silkgen::BatchSettings s;
+  if (int rc = SeedAndModel(a, &s.seed); rc != kExitOk) return rc;
+  s.model_dir = a.model_dir;
+  s.output_dir = a.output;
+  s.model = ToModelParams(a);
+  s.generate = ToParams(a, s.seed);
+  s.save = ToSaveParams(a);
+  s.quiet = a.quiet;
+  return silkgen::RunBatch(a.batch, s);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -263,6 +312,20 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
+  try {
+    if (!a.batch.source.empty()) return Batch(a);
+  } catch (const silk_cpp::Error& e) {
+    return Fail(e.what());
+  }
+  for (const char* only : {"--format", "--shard", "--report", "--overwrite"})
+    if (app.count(only)) {
+      std::fprintf(stderr, "silkgen: %s is a --batch option\n", only);
+      return kExitUsage;
+    }
+  if (a.input.empty()) {
+    std::fprintf(stderr, "silkgen: give an input file (or --batch LIST_OR_DIR); --help lists the options\n");
+    return kExitUsage;
+  }
   // Settings that can be checked before any work.
   if (a.output.empty() && a.tokens_path.empty()) {
     std::fprintf(stderr, "silkgen: give -o/--output (a mesh) or --tokens (the ids), or both\n");
@@ -273,18 +336,7 @@ int main(int argc, char** argv) {
   if (!a.save_points.empty() && !EndsWithPly(a.save_points))
     return Fail(a.save_points + ": --save-points writes a PLY point cloud (use a .ply name)");
   uint64_t seed = 0;
-  if (!ParseSeed(a.seed_text, &seed)) {
-    std::fprintf(stderr, "silkgen: --seed: '%s' is neither an unsigned integer nor 'random'\n", a.seed_text.c_str());
-    return kExitUsage;
-  }
-  if (a.model_dir.empty()) {
-    a.model_dir = silkgen::DefaultModelDir();
-    if (a.model_dir.empty()) {
-      std::string tried;
-      for (const std::string& c : silkgen::DefaultModelCandidates()) tried += "\n  " + c;
-      return Fail("no bundled model found; pass --model DIR (looked in:" + tried + ")");
-    }
-  }
+  if (int rc = SeedAndModel(a, &seed); rc != kExitOk) return rc;
   try {
     return Run(a, seed);
   } catch (const silk_cpp::Error& e) {

@@ -1,0 +1,20 @@
+// silkgen --batch's own options (the generation options are silkgen's usual ones, applied to
+// every input); their help text is the one description of the batch mode on the command line.
+#pragma once
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace silkgen {
+
+struct BatchArgs {
+  std::string source;  // --batch LIST_OR_DIR; empty: a single-input run
+  std::string format = "glb", shard, report;
+  bool overwrite = false;
+};
+
+void AddBatchOptions(CLI::App& app, BatchArgs& b);
+
+}  // namespace silkgen

@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""Meshes per hour of `silkgen --batch` (docs/batch.md) over a fixed subset of the dev corpus
+(every STRIDE-th file of the sorted list), each figure beside the baseline measured in the same
+run: one `silkgen FILE` process per mesh (the model loaded each time), 2 threads.
+
+  1 process x 2 threads     silkgen --batch LIST --threads 2
+  2 processes x 1 thread    silkgen --batch LIST --shard i/2 --threads 1, both at once
+  best of N                 the 1 x 2 run with --candidates N against --candidates 1
+
+Usage: python3 bench/batch_throughput.py [--silkgen build/apps/silkgen] [--model DIR]
+       [--corpus ../shared/corpus/dev] [--stride 20] [--candidates 8] [--max-tokens 0]
+"""
+import argparse, pathlib, subprocess, sys, tempfile, time
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def timed(cmds):
+    """Runs the commands at once; wall seconds until the last ends (each must exit 0)."""
+    t0 = time.perf_counter()
+    procs = [subprocess.Popen([str(c) for c in cmd], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE) for cmd in cmds]
+    for p, cmd in zip(procs, cmds):
+        err = p.communicate()[1]
+        if p.returncode != 0:
+            sys.exit(f"failed ({p.returncode}): {' '.join(map(str, cmd))}\n{err.decode()[-2000:]}")
+    return time.perf_counter() - t0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--silkgen", default=ROOT / "build/apps/silkgen", type=pathlib.Path)
+    ap.add_argument("--model", default=ROOT / "models/default", type=pathlib.Path)
+    ap.add_argument("--corpus", default=ROOT.parent / "shared/corpus/dev", type=pathlib.Path)
+    ap.add_argument("--stride", type=int, default=20, help="every STRIDE-th file of the sorted corpus")
+    ap.add_argument("--candidates", type=int, default=8, help="N of the best-of-N row")
+    ap.add_argument("--max-tokens", type=int, default=0, help="id cap per mesh (0 = the model's)")
+    a = ap.parse_args()
+    files = sorted(a.corpus.glob("*.obj"))[:: a.stride]
+    common = ["--model", a.model, "--seed", "0", "--max-tokens", a.max_tokens, "-q"]
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        lst = tmp / "list.txt"
+        lst.write_text("".join(f"{f}\n" for f in files))
+
+        def batch(name, *extra):
+            return ["--batch", lst, "-o", tmp / name, *common, *extra]
+
+        rows = []
+        timed([[a.silkgen, files[0], "-o", tmp / "warm.glb", *common, "--threads", 2, "--candidates", 1]])  # page cache
+        base = sum(timed([[a.silkgen, f, "-o", tmp / f"single_{f.stem}.glb", *common, "--threads", 2,
+                           "--candidates", 1]]) for f in files)
+        rows.append(("separate processes, 2 threads, best of 1 (baseline)", base))
+        rows.append(("--batch 1 process x 2 threads, best of 1",
+                     timed([[a.silkgen, *batch("b12", "--threads", 2, "--candidates", 1)]])))
+        rows.append(("--batch 2 processes x 1 thread, best of 1",
+                     timed([[a.silkgen, *batch("b21", "--threads", 1, "--candidates", 1, "--shard", f"{i}/2")]
+                            for i in range(2)])))
+        rows.append((f"--batch 1 process x 2 threads, best of {a.candidates}",
+                     timed([[a.silkgen, *batch("b12n", "--threads", 2, "--candidates", a.candidates)]])))
+    print(f"{len(files)} meshes (every {a.stride}th of {a.corpus}), model {a.model}, max-tokens {a.max_tokens}")
+    print(f"{'configuration':58s} {'wall s':>8s} {'meshes/h':>9s} {'vs baseline':>11s}")
+    for name, s in rows:
+        print(f"{name:58s} {s:8.1f} {len(files) * 3600 / s:9.0f} {base / s:10.2f}x")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
