@@ -258,7 +258,7 @@ int Run(const Args& a, uint64_t seed) {
                  st.parts_flipped, st.components);
   if (!a.quiet && (st.candidates > 1 || st.guided_tokens > 0))
     std::fprintf(stderr, "silkgen: candidate %d of %d written (Chamfer %.4f); guidance: %lld vertex ids, %lld fallbacks\n",
-                 st.chosen_candidate, st.candidates, st.score, static_cast<long long>(st.guided_tokens),
+                 st.chosen_candidate + 1, st.candidates, st.score, static_cast<long long>(st.guided_tokens),
                  static_cast<long long>(st.guidance_fallbacks));
   return kExitOk;
 }
