@@ -68,9 +68,11 @@ Status LoadOnce() {
   const std::string path = JoinRelative(OwnFolder(), SILK_ORT_RELATIVE_PATH);
   void* lib = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!lib) {
-    const char* why = dlerror();
+    const char* err = dlerror();
+    std::string why = err ? err : "unknown reason";
+    if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);  // dlerror repeats the path
     return IoError(path + ": cannot load onnxruntime (needed for generation; the onnxruntime package "
-                   "belongs beside silk_mesh): " + (why ? why : "unknown reason"));
+                   "belongs beside silk_mesh): " + why);
   }
   return InitFrom(lib, path);
 }
