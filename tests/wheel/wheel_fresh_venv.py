@@ -4,6 +4,7 @@ because it builds libsilk in Release and downloads onnxruntime and numpy from Py
 user gets it. Builds it with scripts/build_wheel.sh (or takes --wheel), installs it into a fresh venv
 (no system site-packages; a private pip cache, whose size is the download) and runs everything from a
 scratch folder with a clean environment, so nothing of the source or build tree is on any path:
+  * the console scripts' launcher imports neither silk_mesh nor numpy (its cost is printed);
   * silkgen (console script) with the tiny model and the golden run's arguments: ids identical to
     tests/models/golden/torus_knot_s7.tokens.txt (the silkgen_golden ctest's golden);
   * silkgen with no --model (the bundled model) on samples/torus_knot.obj: ids identical to the build
@@ -71,6 +72,19 @@ def make_venv(tmp, wheel):
           f"(silk_mesh + silk_mesh.libs + silk_export {ours / 1e6:.1f} MB)")
     sh([venv / "bin/pip", "list"], env, tmp)
     return venv, env, site
+
+
+def check_launcher(env, tmp, site):
+    """The console scripts exec the bundled binaries without importing silk_mesh (numpy)."""
+    p = sh(["python", "-c", "import sys, silk_mesh_tools as t; print(t.tool_path('silkgen')); "
+            "print('numpy imported:', 'numpy' in sys.modules)"], env, tmp)
+    expect(p.stdout.split()[0] == str(site / "silk_mesh/bin/silkgen") and "numpy imported: False" in p.stdout,
+           "console-script launcher: finds silk_mesh/bin/silkgen without importing silk_mesh or numpy")
+    for cmd in (["silktok", "--version"], [site / "silk_mesh/bin/silktok", "--version"]):
+        t = time.monotonic()
+        for _ in range(3):
+            sh(cmd, env, tmp, show=False)
+        print(f"{' '.join(map(str, cmd))}: {(time.monotonic() - t) / 3 * 1e3:.0f} ms per run")
 
 
 def check_silkgen(repo, venv, env, tmp, build_silkgen):
@@ -157,6 +171,7 @@ def main():
     wheel = a.wheel.resolve() if a.wheel else build_wheel(repo, tmp / "dist")
     print(f"wheel: {wheel.name}, {wheel.stat().st_size / 1e6:.1f} MB (build {time.monotonic() - t:.0f} s)")
     venv, env, site = make_venv(tmp, wheel)
+    check_launcher(env, tmp, site)
     check_silkgen(repo, venv, env, tmp, a.build_silkgen)
     check_silktok_and_python(repo, shared, env, tmp, site)
     check_failures(venv, env, tmp, repo)
