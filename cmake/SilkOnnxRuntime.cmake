@@ -45,6 +45,8 @@ elseif(SILK_WHEEL)
       INTERFACE_COMPILE_DEFINITIONS "ORT_API_MANUAL_INIT;SILK_ORT_RUNTIME_LOAD;SILK_ORT_SONAME=\"libonnxruntime.so.1\";SILK_ORT_RELATIVE_PATH=\"../../onnxruntime/capi/libonnxruntime.so.${SILK_ORT_VERSION}\""
       INTERFACE_LINK_LIBRARIES "${CMAKE_DL_LIBS}")
     message(STATUS "onnxruntime: headers ${SILK_ORT_INCLUDE_DIR}; the wheel loads the onnxruntime ${SILK_ORT_VERSION} package's library at run time")
+  else()  # a wheel without generation would pass for a complete one
+    message(FATAL_ERROR "SILK_WHEEL: no onnxruntime headers and VERSION in ${ONNXRUNTIME_ROOT} (run scripts/fetch_onnxruntime.sh)")
   endif()
 else()  # linked like any shared library
 find_package(onnxruntime CONFIG QUIET)
