@@ -23,9 +23,30 @@ if(WIN32)
     add_library(onnxruntime::onnxruntime INTERFACE IMPORTED)
     set_target_properties(onnxruntime::onnxruntime PROPERTIES
       INTERFACE_INCLUDE_DIRECTORIES "${SILK_ORT_INCLUDE_DIR}"
-      INTERFACE_COMPILE_DEFINITIONS ORT_API_MANUAL_INIT
+      INTERFACE_COMPILE_DEFINITIONS "ORT_API_MANUAL_INIT;SILK_ORT_RUNTIME_LOAD"
       INTERFACE_COMPILE_OPTIONS "SHELL:-include ${PROJECT_SOURCE_DIR}/cmake/windows/onnxruntime_mingw_compat.h")
     message(STATUS "onnxruntime: ${SILK_ORT_DLL} (loaded at run time)")
+  endif()
+elseif(SILK_WHEEL)
+  # The pip wheel (cmake/SilkWheel.cmake): headers only, never linked. libsilk loads the onnxruntime
+  # package's library at run time (runtime/model/ort_so_load.cpp): one silk_mesh preloaded by full
+  # path, else site-packages/onnxruntime/capi/libonnxruntime.so.<version> relative to itself
+  # (silk_mesh/lib/). <version>: the one fetch_onnxruntime.sh fetched (its VERSION file).
+  find_path(SILK_ORT_INCLUDE_DIR onnxruntime_cxx_api.h
+            PATHS "${ONNXRUNTIME_ROOT}/include" "${ONNXRUNTIME_ROOT}/include/onnxruntime" NO_DEFAULT_PATH)
+  if(EXISTS "${ONNXRUNTIME_ROOT}/VERSION")
+    file(STRINGS "${ONNXRUNTIME_ROOT}/VERSION" SILK_ORT_VERSION LIMIT_COUNT 1)
+  endif()
+  if(SILK_ORT_INCLUDE_DIR AND SILK_ORT_VERSION)
+    set(SILK_HAVE_ONNXRUNTIME ON)
+    add_library(onnxruntime::onnxruntime INTERFACE IMPORTED)
+    set_target_properties(onnxruntime::onnxruntime PROPERTIES
+      INTERFACE_INCLUDE_DIRECTORIES "${SILK_ORT_INCLUDE_DIR}"
+      INTERFACE_COMPILE_DEFINITIONS "ORT_API_MANUAL_INIT;SILK_ORT_RUNTIME_LOAD;SILK_ORT_SONAME=\"libonnxruntime.so.1\";SILK_ORT_RELATIVE_PATH=\"../../onnxruntime/capi/libonnxruntime.so.${SILK_ORT_VERSION}\""
+      INTERFACE_LINK_LIBRARIES "${CMAKE_DL_LIBS}")
+    message(STATUS "onnxruntime: headers ${SILK_ORT_INCLUDE_DIR}; the wheel loads the onnxruntime ${SILK_ORT_VERSION} package's library at run time")
+  else()  # a wheel without generation would pass for a complete one
+    message(FATAL_ERROR "SILK_WHEEL: no onnxruntime headers and VERSION in ${ONNXRUNTIME_ROOT} (run scripts/fetch_onnxruntime.sh)")
   endif()
 else()  # linked like any shared library
 find_package(onnxruntime CONFIG QUIET)

@@ -11,6 +11,16 @@ bash scripts/build.sh
 echo "=== export/ (pytest, through build/engine/libsilk.so) ==="
 SILK_LIBRARY="$PWD/build/engine/libsilk.so" python3 -m pytest -q export/tests
 
+# The pip wheel (scripts/build_wheel.sh: a Release build of libsilk, ~9 min on 2 cores without
+# ccache) installed into a fresh venv with onnxruntime and numpy from PyPI: ctest wheel_fresh_venv.
+# Needs python3's venv module and PyPI; SILK_WHEEL_TESTS=0 turns it off.
+echo "=== pip wheel in a fresh venv (ctest wheel_fresh_venv) ==="
+if [ "${SILK_WHEEL_TESTS:-1}" = 0 ]; then
+  echo "skipped (SILK_WHEEL_TESTS=0)"
+else
+  (cd build && SILK_TEST_WHEEL=1 ctest --output-on-failure -R '^wheel_fresh_venv$')
+fi
+
 # Windows x64 (MinGW-w64 cross-build, run under Wine): only where scripts/setup_windows.sh has
 # installed MinGW-w64 and Wine (SILK_WINDOWS_TESTS=1 requires it, =0 turns it off).
 echo "=== Windows x64 build under Wine (scripts/build_windows.sh, scripts/test_windows.sh) ==="

@@ -3,13 +3,14 @@ library's own message (silk_last_error), also raised when the library cannot be 
 
 Search order (the first that exists is loaded; a failed load names the file and the OS's reason):
 load_library(path) before the first call, else $SILK_LIBRARY, else the package's own folder
-(silk_mesh/lib/libsilk.so*), else a build tree when the package runs from a checkout
+(silk_mesh/lib/libsilk.so*: the pip wheel, the add-on), else a build tree when the package runs from a checkout
 (<repo>/build/engine/libsilk.so, else the newest <repo>/build*/engine/libsilk.so), else the
 system loader ("libsilk.so")."""
 from __future__ import annotations
 
 import ctypes
 import glob
+import importlib.util
 import os
 import threading
 
@@ -100,6 +101,41 @@ def lib() -> ctypes.CDLL:
 def library_path() -> str:
     """The file libsilk was (or would be) loaded from."""
     return _loaded[0] if _loaded is not None else _first_candidate()
+
+
+def onnxruntime_library() -> str | None:
+    """The onnxruntime package's C library (onnxruntime/capi/libonnxruntime.so.<version>), located
+    through importlib without importing onnxruntime; None when the package or the file is absent."""
+    spec = importlib.util.find_spec("onnxruntime")
+    for folder in (spec.submodule_search_locations or []) if spec else []:
+        found = sorted(glob.glob(os.path.join(folder, "capi", "libonnxruntime.so.*")), key=len)
+        if found:
+            return found[-1]
+    return None
+
+
+_onnxruntime: ctypes.CDLL | None = None
+
+
+def preload_onnxruntime() -> None:
+    """Before the first model: the pip wheel's libsilk (silk_mesh/lib/ with no onnxruntime beside it)
+    loads onnxruntime itself and takes one already in the process first, so this loads the onnxruntime
+    package's library by the full path importlib gives (also when that package lives in another
+    site-packages). Elsewhere (a build tree, the add-on) libsilk is linked to its own: nothing done.
+    No package found: nothing either; libsilk's own lookup then names the file it tried."""
+    global _onnxruntime
+    own = os.path.join(PACKAGE_DIR, "lib")
+    if (_onnxruntime is not None or os.path.dirname(os.path.abspath(library_path())) != own
+            or glob.glob(os.path.join(own, "libonnxruntime*"))):
+        return
+    path = onnxruntime_library()
+    if path is None:
+        return
+    try:
+        _onnxruntime = ctypes.CDLL(path)
+    except OSError as e:
+        raise SilkError(_capi.SILK_ERR_IO, f"cannot load onnxruntime from '{path}' (the onnxruntime package, "
+                        f"found by importlib): {e}", "library") from e
 
 
 def check(status: int) -> None:

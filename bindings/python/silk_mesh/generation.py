@@ -9,7 +9,7 @@ import os
 from typing import NamedTuple
 
 from . import _arrays, _capi, _native, _params
-from ._library import SilkError, _Owned, library_path
+from ._library import SilkError, _Owned, library_path, preload_onnxruntime
 from .mesh import Mesh, _Borrowed
 
 _ENUMS = {"holes": _capi.HOLES, "orient": _capi.ORIENT, "preprocessing": _capi.PREPROCESS_KINDS}
@@ -38,6 +38,7 @@ class Model(_Owned):
         if decoder not in _capi.DECODERS:
             raise ValueError(f"Model: decoder must be one of {sorted(_capi.DECODERS)}, not {decoder!r}")
         self.dir = os.fspath(dir)
+        preload_onnxruntime()  # the pip wheel's libsilk: the onnxruntime package's library
         self._h = _native.model_load(os.fsencode(self.dir), int(threads), _capi.DECODERS[decoder])
 
     def info(self) -> dict:

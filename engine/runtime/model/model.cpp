@@ -9,6 +9,8 @@
 #include "runtime/model/model_files.h"
 #ifdef _WIN32
 #include "core/windows_text.h"
+#endif
+#ifdef SILK_ORT_RUNTIME_LOAD
 #include "runtime/model/ort_dll_load.h"
 #endif
 
@@ -97,8 +99,8 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   if (options.threads < 0 || options.threads > MaxThreads())
     return InvalidArgument("threads " + std::to_string(options.threads) + " is outside 0.." +
                            std::to_string(MaxThreads()) + " (0 = physical cores)");
-#ifdef _WIN32
-  SILK_RETURN_IF_ERROR(LoadOnnxRuntimeLibrary());  // before any Ort object; names onnxruntime.dll
+#ifdef SILK_ORT_RUNTIME_LOAD
+  SILK_RETURN_IF_ERROR(LoadOnnxRuntimeLibrary());  // before any Ort object; names the library file
 #endif
   auto impl = std::make_unique<Impl>();
   impl->precision = options.decoder.value_or(config.default_decoder);

@@ -1,5 +1,5 @@
-// Windows only (see ort_dll_load.h): LoadLibraryExW + GetProcAddress("OrtGetApiBase").
-#ifdef _WIN32
+// Windows (see ort_dll_load.h): LoadLibraryExW + GetProcAddress("OrtGetApiBase").
+#if defined(_WIN32) && defined(SILK_ORT_RUNTIME_LOAD)
 #include "runtime/model/ort_dll_load.h"
 
 #include <onnxruntime_cxx_api.h>

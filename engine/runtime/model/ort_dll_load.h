@@ -1,16 +1,21 @@
-// Windows only: libsilk loads onnxruntime.dll itself, by full path from its own folder, so a
-// missing or unusable DLL is an ordinary Silk error naming the file and the reason (not a loader
-// failure before main), tokenizer-only use needs no onnxruntime.dll, and Windows' own, older
-// System32\onnxruntime.dll is never picked up by the search order.
+// Builds with SILK_ORT_RUNTIME_LOAD (Windows, and the Linux pip wheel): libsilk is not linked
+// against onnxruntime but loads it itself, by full path, when the first model is loaded. So a
+// missing or unusable library is an ordinary Silk error naming the file and the reason (not a
+// loader failure before main), tokenizer-only use needs no onnxruntime, and no search path
+// (Windows' System32\onnxruntime.dll, PATH, LD_LIBRARY_PATH) is ever consulted.
+//   Windows (ort_dll_load.cpp): <folder of libsilk.dll>\onnxruntime.dll.
+//   Linux (ort_so_load.cpp): an onnxruntime already in the process (the Python package silk_mesh
+//   loads the onnxruntime package's library by the full path importlib gives), else
+//   <folder of libsilk.so>/SILK_ORT_RELATIVE_PATH (the wheel: the onnxruntime package beside it).
 #pragma once
-#ifdef _WIN32
+#ifdef SILK_ORT_RUNTIME_LOAD
 #include "core/status.h"
 
 namespace silk {
 
-// Loads <folder of this module>\onnxruntime.dll once and initialises onnxruntime's C++ API
-// (built with ORT_API_MANUAL_INIT); later calls return the first call's result.
+// Loads onnxruntime once and initialises its C++ API (built with ORT_API_MANUAL_INIT); later
+// calls return the first call's result.
 Status LoadOnnxRuntimeLibrary();
 
 }  // namespace silk
-#endif  // _WIN32
+#endif  // SILK_ORT_RUNTIME_LOAD

@@ -1,0 +1,90 @@
+// Linux builds with SILK_ORT_RUNTIME_LOAD (the pip wheel; see ort_dll_load.h): dlopen by full path
+// (or one already loaded, RTLD_NOLOAD) + dlsym("OrtGetApiBase").
+#if defined(SILK_ORT_RUNTIME_LOAD) && !defined(_WIN32)
+#include <dlfcn.h>
+#include <onnxruntime_cxx_api.h>
+
+#include <climits>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+
+#include "runtime/model/ort_dll_load.h"
+
+#ifndef SILK_ORT_SONAME
+#error "SILK_ORT_SONAME (onnxruntime's soname, e.g. libonnxruntime.so.1) is set by cmake/SilkOnnxRuntime.cmake"
+#endif
+#ifndef SILK_ORT_RELATIVE_PATH
+#error "SILK_ORT_RELATIVE_PATH (onnxruntime relative to libsilk's folder) is set by cmake/SilkOnnxRuntime.cmake"
+#endif
+
+namespace silk {
+
+namespace {
+
+// The folder of the module holding this code (libsilk.so), without symbolic links.
+std::string OwnFolder() {
+  Dl_info info{};
+  if (!dladdr(reinterpret_cast<void*>(&OwnFolder), &info) || !info.dli_fname) return ".";
+  char buf[PATH_MAX];
+  const std::string p = realpath(info.dli_fname, buf) ? std::string(buf) : std::string(info.dli_fname);
+  const size_t slash = p.rfind('/');
+  return slash == std::string::npos ? "." : p.substr(0, slash);
+}
+
+// folder + "/" + rel, with rel's leading "../" applied to folder (so messages show a plain path).
+std::string JoinRelative(std::string folder, std::string rel) {
+  while (rel.rfind("../", 0) == 0 && folder.rfind('/') != std::string::npos && folder.rfind('/') > 0) {
+    folder.resize(folder.rfind('/'));
+    rel.erase(0, 3);
+  }
+  return folder + "/" + rel;
+}
+
+// The file a loaded library came from (for messages), found through one of its symbols.
+std::string FileOf(void* symbol, const std::string& fallback) {
+  Dl_info info{};
+  return dladdr(symbol, &info) && info.dli_fname ? std::string(info.dli_fname) : fallback;
+}
+
+Status InitFrom(void* lib, const std::string& fallback_name) {
+  using GetApiBase = const OrtApiBase* (*)();
+  auto get_base = reinterpret_cast<GetApiBase>(dlsym(lib, "OrtGetApiBase"));
+  if (!get_base) return IoError(fallback_name + ": not an onnxruntime library (no OrtGetApiBase)");
+  const std::string name = FileOf(reinterpret_cast<void*>(get_base), fallback_name);
+  const OrtApiBase* base = get_base();
+  const OrtApi* api = base ? base->GetApi(ORT_API_VERSION) : nullptr;
+  if (!api)
+    return Unsupported(name + ": onnxruntime " + (base ? base->GetVersionString() : "?") +
+                       " does not offer C API version " + std::to_string(ORT_API_VERSION));
+  Ort::InitApi(api);
+  return Status::Ok();
+}
+
+Status LoadOnce() {
+  // Already in the process (RTLD_NOLOAD never searches a path): silk_mesh's preload.
+  if (void* lib = dlopen(SILK_ORT_SONAME, RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD))
+    return InitFrom(lib, SILK_ORT_SONAME);
+  const std::string path = JoinRelative(OwnFolder(), SILK_ORT_RELATIVE_PATH);
+  void* lib = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!lib) {
+    const char* err = dlerror();
+    std::string why = err ? err : "unknown reason";
+    if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);  // dlerror repeats the path
+    return IoError(path + ": cannot load onnxruntime (needed for generation; the onnxruntime package "
+                   "belongs beside silk_mesh): " + why);
+  }
+  return InitFrom(lib, path);
+}
+
+}  // namespace
+
+Status LoadOnnxRuntimeLibrary() {
+  static std::once_flag once;
+  static Status result = Status::Ok();
+  std::call_once(once, [] { result = LoadOnce(); });
+  return result;
+}
+
+}  // namespace silk
+#endif  // SILK_ORT_RUNTIME_LOAD && !_WIN32
