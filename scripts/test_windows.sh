@@ -164,5 +164,7 @@ echo "test_windows: not run under Wine: test_oracle (OpenMesh is not cross-built
 echo "  io/mesh_reader_test.cpp (setrlimit), io/writers_test.cpp (POSIX chmod permissions),"
 echo "  capi/tokens_api_test.cpp (std::filesystem::path::c_str() is wchar_t on Windows), *Slow* suites (time),"
 echo "  ModelFolderFiles symlink tests (no create_symlink in MinGW's libstdc++) and its absolute-path test,"
-echo "  python/CLI script tests (tests/tools: they drive Linux binaries)"
+echo "  python/CLI script tests (tests/tools: they drive Linux binaries), silk_mesh and the Blender add-on"
+echo "  on Windows (no Windows Python or Blender here: the loader's Windows diagnosis runs on Linux with"
+echo "  PE files, tests/python/test_platform_libs.py; the zip's contents are checked above)"
 [ ${#failed[@]} = 0 ]
