@@ -5,23 +5,41 @@
 # and the bundled model in silk_mesh/model/ (where silk_mesh looks for them).
 # Usage: scripts/make_blender_addon.sh [build dir] [output zip] [model dir]
 #   defaults: build, <build>/silk_blender.zip, models/default
+# The windows-x64 variant, from the Windows zip's folder (scripts/build_windows.sh): libsilk.dll
+# and onnxruntime.dll in silk_mesh/lib/, the folder's models/default, manifest platform windows-x64:
+#   scripts/make_blender_addon.sh --windows [dist folder] [output zip]
+#   defaults: build-windows/dist/silk-windows-x64, build-windows/dist/silk_blender-windows-x64.zip
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-BUILD="$(cd "${1:-$ROOT/build}" && pwd)"
-OUT="${2:-$BUILD/silk_blender.zip}"
-MODEL="${3:-$ROOT/models/default}"
+WINDOWS=0
+if [ "${1:-}" = "--windows" ]; then
+  WINDOWS=1
+  shift
+  DIST="$(cd "${1:-$ROOT/build-windows/dist/silk-windows-x64}" && pwd)"
+  OUT="${2:-$(dirname "$DIST")/silk_blender-windows-x64.zip}"
+  MODEL="$DIST/models/default"
+else
+  BUILD="$(cd "${1:-$ROOT/build}" && pwd)"
+  OUT="${2:-$BUILD/silk_blender.zip}"
+  MODEL="${3:-$ROOT/models/default}"
+fi
 # Scratch folder beside the zip, so two makes with different outputs (ctest runs blender_addon
 # and blender_addon_modal in parallel) never share one.
 mkdir -p "$(dirname "$OUT")"
 OUT="$(cd "$(dirname "$OUT")" && pwd)/$(basename "$OUT")"
 STAGE="${OUT%.zip}_stage"
 rm -rf "$STAGE"
-cmake --install "$BUILD" --prefix "$STAGE/prefix" >/dev/null
 ADDON="$STAGE/silk_blender"
 BINDING="$ADDON/silk_mesh"  # vendored byte for byte (ctest blender_addon_vendored_binding checks the zip)
 mkdir -p "$BINDING/lib"
 cp "$ROOT"/apps/blender/silk_blender/*.py "$ROOT/apps/blender/silk_blender/blender_manifest.toml" "$ADDON/"
 cp "$ROOT"/bindings/python/silk_mesh/*.py "$ROOT/bindings/python/silk_mesh/README.md" "$BINDING/"
+if [ "$WINDOWS" = 1 ]; then
+  # silk_mesh loads onnxruntime.dll first, then libsilk.dll, both by full path from lib/.
+  cp "$DIST/libsilk.dll" "$DIST/onnxruntime.dll" "$BINDING/lib/"
+  sed -i 's/^platforms = .*/platforms = ["windows-x64"]/' "$ADDON/blender_manifest.toml"
+else
+cmake --install "$BUILD" --prefix "$STAGE/prefix" >/dev/null
 LIBDIR=$(dirname "$(ls "$STAGE"/prefix/lib*/libsilk.so.* | head -1)")
 # One file per library, under its soname (zip has no symlinks); libsilk without debug info.
 SILK_SONAME=$(objdump -p "$LIBDIR/libsilk.so" | awk '/SONAME/ {print $2}')
@@ -36,6 +54,7 @@ for dep in $(ldd "$LIBDIR/libsilk.so" | awk '/=> \// {print $3}'); do
     *) cp -L "$dep" "$BINDING/lib/" ;;
   esac
 done
+fi
 if [ -f "$MODEL/model.json" ]; then
   mkdir -p "$BINDING/model"
   python3 - "$MODEL" "$BINDING/model" <<'PY'

@@ -1,28 +1,21 @@
 #!/usr/bin/env bash
 # Installs what the Windows x64 cross-build and its Wine tests need (scripts/build_windows.sh,
-# scripts/test_windows.sh) on Debian bookworm, on top of scripts/setup.sh's packages: MinGW-w64
-# (posix threads), zlib for MinGW, Wine 8 (64-bit), GoogleTest's sources; and onnxruntime.dll
-# from PyPI's win_amd64 wheel (same pinned version as the Linux library) into
-# .deps/onnxruntime-windows. Idempotent; network only through apt and pip.
+# scripts/test_windows.sh) on Debian bookworm, on top of scripts/setup.sh (run it first: the
+# header-only libraries, GoogleTest's sources and onnxruntime's headers come from there):
+# MinGW-w64 (posix threads), zlib for MinGW, Wine 8 (64-bit), zip; and onnxruntime.dll from
+# PyPI's win_amd64 wheel (the Linux library's pinned version) into .deps/onnxruntime-windows.
+# Idempotent and quick when everything is there (no apt, no network); network only through apt
+# and pip. Usage: scripts/setup_windows.sh [dest for onnxruntime.dll]
 set -euo pipefail
 REPO="$(cd "$(dirname "$0")/.." && pwd)"
-APT_PACKAGES=(g++-mingw-w64-x86-64-posix binutils-mingw-w64-x86-64 libz-mingw-w64-dev wine64 googletest zip
-              libtinygltf-dev libcli11-dev nlohmann-json3-dev)
-missing=()
-for p in "${APT_PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+# shellcheck source=apt_install_missing.sh
+source "$REPO/scripts/apt_install_missing.sh"
+apt_install_missing setup_windows g++-mingw-w64-x86-64-posix binutils-mingw-w64-x86-64 libz-mingw-w64-dev wine64 zip
+for h in /usr/include/tiny_gltf.h /usr/include/CLI/CLI.hpp /usr/include/nlohmann/json.hpp /usr/src/googletest/CMakeLists.txt; do
+  [ -e "$h" ] || { echo "setup_windows: $h missing: run scripts/setup.sh first" >&2; exit 1; }
 done
-if ((${#missing[@]})); then
-  echo "setup_windows: installing ${missing[*]}"
-  SUDO=""
-  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
-else
-  echo "setup_windows: all system packages present"
-fi
 
-# onnxruntime's C/C++ headers: the Linux build's (scripts/fetch_onnxruntime.sh).
+# onnxruntime's C/C++ headers: the Linux build's (scripts/fetch_onnxruntime.sh; a no-op when there).
 bash "$REPO/scripts/fetch_onnxruntime.sh"
 ORT_VERSION="$(sed -n 's/^ORT_VERSION=//p' "$REPO/scripts/fetch_onnxruntime.sh")"
 DEST="${1:-$REPO/.deps/onnxruntime-windows}"

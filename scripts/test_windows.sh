@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Runs the Windows x64 build (scripts/build_windows.sh) under Wine: the cross-built GoogleTest
-# executables (slow suites left out, as in the sanitizer run), silktok.exe on the official golden
-# meshes, silkgen.exe (tiny model, greedy) against the Linux build's ids, and the missing-
-# onnxruntime.dll message. Exit 77 (skipped) when MinGW-w64 or Wine is not installed.
+# executables (slow suites left out, as in the sanitizer run; tests/capi/file_paths_test.cpp holds
+# the Unicode / backslash / CRLF / open-file cases), silktok.exe on the official golden meshes,
+# silkgen.exe (tiny model, greedy and sampled) against the Linux build's ids, the missing-
+# onnxruntime.dll message, non-ASCII and backslashed paths on the command line, and the Blender
+# add-on's windows-x64 zip. Exit 77 (skipped) when MinGW-w64 or Wine is not installed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 ROOT="$PWD"
@@ -76,6 +78,28 @@ else
   echo "  silkgen_vs_linux: not run (no Linux build/apps/silkgen: scripts/build.sh)"
 fi
 
+# 3b. Sampled runs: the same seed gives the same ids and OBJ on both platforms (docs/runtime.md,
+#     "Windows and Linux": the encoder's points are equal to the last bit, the logits agree
+#     closely enough that no sampled draw lands on the other side of a boundary for these seeds).
+if [ -x build/apps/silkgen ]; then
+  same=0; seeds=(1 2 3 4 5 6)
+  for seed in "${seeds[@]}"; do
+    sargs=(samples/torus_knot.obj --model tests/models/tiny --temperature 1 --seed "$seed" --max-tokens 600)
+    "$WINE" "$DIST/silkgen.exe" "${sargs[@]}" --tokens "$T/s$seed.win.txt" --save-points "$T/s$seed.win.ply" \
+      -o "$T/s$seed.win.obj" > "$T/s$seed.win.log" 2>&1
+    build/apps/silkgen "${sargs[@]}" --tokens "$T/s$seed.lin.txt" --save-points "$T/s$seed.lin.ply" \
+      -o "$T/s$seed.lin.obj" > /dev/null 2>&1
+    if cmp -s "$T/s$seed.win.txt" "$T/s$seed.lin.txt" && cmp -s "$T/s$seed.win.obj" "$T/s$seed.lin.obj" &&
+       cmp -s "$T/s$seed.win.ply" "$T/s$seed.lin.ply"; then
+      same=$((same + 1))
+    else
+      echo "  sampled seed $seed: Windows and Linux differ" >&2
+    fi
+  done
+  echo "  silkgen_sampled_vs_linux: $same of ${#seeds[@]} seeds (temperature 1) give the same points, ids and OBJ"
+  [ $same = ${#seeds[@]} ]; result silkgen_sampled_vs_linux $?
+fi
+
 # 4. Without onnxruntime.dll: silkgen.exe fails with a message naming it; silktok.exe still works.
 rm -rf "$T/no-ort"; cp -r "$DIST" "$T/no-ort"; rm "$T/no-ort/onnxruntime.dll"
 "$WINE" "$T/no-ort/silkgen.exe" "${args[@]}" -o "$T/no-ort.obj" > "$T/no-ort.log" 2>&1
@@ -87,10 +111,60 @@ echo "  missing_onnxruntime_dll: exit $rc, \"$msg\""
   cmp -s "$T/no-ort-cube.txt" "$SHARED/spec/golden/cube.tokens.txt"
 result silktok_without_onnxruntime_dll $?
 
+# 5. Non-ASCII paths on the command line (UTF-8 argv from GetCommandLineW), a backslashed
+#    drive-letter path, and silkgen's outputs (mesh, --stats, --tokens) in a folder "Ünïcødé 形状":
+#    the same ids and OBJ as the ASCII run of step 3.
+U="$T/Ünïcødé 形状"; mkdir -p "$U/modèle 模型"
+cp "$SHARED/spec/golden/cube.obj" "$U/würfel 立方体.obj"; cp tests/models/tiny/* "$U/modèle 模型/"
+cp samples/torus_knot.obj "$U/knoten 结.obj"
+UW="Z:$(cd "$U" && pwd)"; UW_BACK="$(echo "$UW" | tr / '\\')"
+LC_ALL=C.UTF-8 "$WINE" "$DIST/silktok.exe" encode "$UW_BACK\\würfel 立方体.obj" -o "$UW/würfel 立方体.tokens.txt" \
+  > "$T/unicode_silktok.log" 2>&1 && cmp -s "$U/würfel 立方体.tokens.txt" "$SHARED/spec/golden/cube.tokens.txt"
+rc=$?; echo "  unicode_paths_silktok: $([ $rc = 0 ] && echo "golden ids from '$UW_BACK\\würfel 立方体.obj'" || echo FAILED)"
+result unicode_paths_silktok $rc
+LC_ALL=C.UTF-8 "$WINE" "$DIST/silkgen.exe" "$UW/knoten 结.obj" --model "$UW_BACK\\modèle 模型" --temperature 0 \
+  --tokens "$UW/出力.txt" --stats "$UW/统计.json" -o "$UW/出力.obj" > "$T/unicode_silkgen.log" 2>&1 &&
+  cmp -s "$U/出力.txt" "$T/gen_windows.txt" && cmp -s "$U/出力.obj" "$T/gen_windows.obj" && [ -s "$U/统计.json" ]
+rc=$?; echo "  unicode_paths_silkgen: $([ $rc = 0 ] && echo "same ids and OBJ as the ASCII run, report written" || echo FAILED)"
+[ $rc = 0 ] || tail -3 "$T/unicode_silkgen.log" >&2
+result unicode_paths_silkgen $rc
+# --stats over an existing report (NTFS: the rename must replace it), then no temporary file left.
+echo old > "$U/统计.json"
+LC_ALL=C.UTF-8 "$WINE" "$DIST/silkgen.exe" "$UW/knoten 结.obj" --model "$UW/modèle 模型" --temperature 0 \
+  --stats "$UW/统计.json" -o "$UW/出力.obj" > /dev/null 2>&1 && grep -q '"tokens"' "$U/统计.json" &&
+  [ -z "$(ls "$U" | grep '\.tmp')" ]
+rc=$?; echo "  silkgen_replaces_outputs: $([ $rc = 0 ] && echo "an existing --stats file replaced, no temporary left" || echo FAILED)"
+result silkgen_replaces_outputs $rc
+
+# 6. The Blender add-on's windows-x64 zip (scripts/make_blender_addon.sh --windows): libsilk.dll and
+#    onnxruntime.dll in silk_mesh/lib as PE x86-64 files silk_mesh's loader accepts on Windows, the
+#    binding byte for byte, the manifest's platform. (Blender's Windows Python cannot run here.)
+bash scripts/make_blender_addon.sh --windows "$DIST" "$T/silk_blender-windows-x64.zip" > "$T/addon.log" 2>&1 &&
+python3 - "$T/silk_blender-windows-x64.zip" <<'PY' > "$T/addon_check.log" 2>&1
+import pathlib, sys, tempfile, zipfile
+sys.path.insert(0, "bindings/python")
+from silk_mesh import _platform_libs as P
+with tempfile.TemporaryDirectory() as tmp, zipfile.ZipFile(sys.argv[1]) as z:
+    z.extractall(tmp)
+    b = pathlib.Path(tmp, "silk_blender", "silk_mesh")
+    assert sorted(p.name for p in (b / "lib").iterdir()) == ["libsilk.dll", "onnxruntime.dll"]
+    for f in (b / "lib").iterdir():
+        assert P.binary_kind(str(f)) == ("PE", "x86-64") and P.diagnose(str(f), plat="win32", machine="x86-64") == "", f
+    for f in pathlib.Path("bindings/python/silk_mesh").glob("*.py"):
+        assert (b / f.name).read_bytes() == f.read_bytes(), f.name
+    assert 'platforms = ["windows-x64"]' in (b.parent / "blender_manifest.toml").read_text()
+    assert (b / "model" / "model.json").is_file() or not pathlib.Path("models/default/model.json").is_file()
+    print(f"{sys.argv[1]}: {len(z.namelist())} files, lib/ = libsilk.dll + onnxruntime.dll (PE x86-64)")
+PY
+rc=$?; echo "  blender_addon_windows_zip: $(tail -1 "$T/addon_check.log")"
+result blender_addon_windows_zip $rc
+
 echo "test_windows: ran $((${#passed[@]} + ${#failed[@]})) checks, ${#passed[@]} passed, ${#failed[@]} failed; passed: ${passed[*]:-none}; failed: ${failed[*]:-none}"
 echo "test_windows: not run under Wine: test_oracle (OpenMesh is not cross-built),"
 echo "  io/mesh_reader_test.cpp (setrlimit), io/writers_test.cpp (POSIX chmod permissions),"
 echo "  capi/tokens_api_test.cpp (std::filesystem::path::c_str() is wchar_t on Windows), *Slow* suites (time),"
 echo "  ModelFolderFiles symlink tests (no create_symlink in MinGW's libstdc++) and its absolute-path test,"
-echo "  python/CLI script tests (tests/tools: they drive Linux binaries)"
+echo "  python/CLI script tests (tests/tools: they drive Linux binaries), silk_mesh and the Blender add-on"
+echo "  on Windows (no Windows Python or Blender here: the loader's Windows diagnosis runs on Linux with"
+echo "  PE files, tests/python/test_platform_libs.py; the zip's contents are checked above)"
 [ ${#failed[@]} = 0 ]

@@ -1,4 +1,5 @@
 // Listing, sorting, stem check and sharding of silkgen --batch inputs (batch_inputs.h).
+#include "../common/app_files.h"
 #include "batch_inputs.h"
 
 #include <algorithm>
@@ -41,20 +42,20 @@ std::string Trim(const std::string& s) {
 
 // Lines of a list file: '#' starts a comment line, blank lines and CR before LF are ignored.
 bool ReadList(const std::string& list, std::vector<BatchInput>* out, std::string* error) {
-  std::ifstream f(list, std::ios::binary);
+  std::ifstream f(silkapp::FsPath(list), std::ios::binary);
   if (!f) {
     *error = list + ": cannot read the input list";
     return false;
   }
-  const fs::path folder = fs::path(list).parent_path();
+  const fs::path folder = silkapp::FsPath(list).parent_path();
   std::string line;
   while (std::getline(f, line)) {
     const std::string entry = Trim(line);
     if (entry.empty() || entry[0] == '#') continue;
-    const fs::path p(entry);
+    const fs::path p = silkapp::FsPath(entry);
     BatchInput in;
     in.entry = entry;
-    in.path = (p.is_absolute() ? p : folder / p).lexically_normal().string();
+    in.path = silkapp::Utf8((p.is_absolute() ? p : folder / p).lexically_normal());
     out->push_back(in);
   }
   return true;
@@ -62,14 +63,14 @@ bool ReadList(const std::string& list, std::vector<BatchInput>* out, std::string
 
 bool ReadFolder(const std::string& dir, std::vector<BatchInput>* out, std::string* error) {
   std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
+  for (fs::directory_iterator it(silkapp::FsPath(dir), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = silkapp::Utf8(it->path().filename());
     if (name.empty() || name[0] == '.' || !IsSupportedInput(name)) continue;  // hidden: temp files
     std::error_code ec2;
     if (!it->is_regular_file(ec2)) continue;
     BatchInput in;
     in.entry = name;
-    in.path = it->path().string();
+    in.path = silkapp::Utf8(it->path());
     out->push_back(in);
   }
   if (ec) *error = dir + ": cannot list the folder (" + ec.message() + ")";
@@ -145,15 +146,15 @@ bool IsSupportedInput(const std::string& path) {
 }
 
 std::string InputStem(const std::string& path) {
-  fs::path name = fs::path(path).filename();
-  if (Lower(name.extension().string()) == ".gz") name = name.stem();
-  return name.stem().string();
+  fs::path name = silkapp::FsPath(path).filename();
+  if (Lower(silkapp::Utf8(name.extension())) == ".gz") name = name.stem();
+  return silkapp::Utf8(name.stem());
 }
 
 bool ListInputs(const std::string& source, std::vector<BatchInput>* inputs, std::string* error) {
   std::vector<BatchInput> all;
   std::error_code ec;
-  if (fs::is_directory(source, ec)) {
+  if (fs::is_directory(silkapp::FsPath(source), ec)) {
     if (!ReadFolder(source, &all, error)) return false;
   } else if (IsSupportedInput(source)) {
     *error = source + ": a mesh file; --batch takes a list file (one path a line) or a folder";

@@ -1,4 +1,5 @@
 // The JSON Lines report of silkgen --batch (batch_report.h).
+#include "../common/app_files.h"
 #include "batch_report.h"
 
 #include <cerrno>
@@ -58,7 +59,7 @@ BatchReport::~BatchReport() {
 }
 
 bool BatchReport::Open(const std::string& path, std::string* error) {
-  file_ = std::fopen(path.c_str(), "ab");
+  file_ = silkapp::OpenFile(path, "ab");
   if (!file_) {
     *error = path + ": cannot open the report for appending (" + std::strerror(errno) + ")";
     return false;

@@ -1,4 +1,5 @@
 // The --batch loop (batch_run.h): shard and list first, then the model once, then each input.
+#include "../common/app_files.h"
 #include "batch_run.h"
 
 #include <unistd.h>
@@ -62,19 +63,20 @@ std::string DefaultReport(const std::string& outdir, const Shard& s) {
   const std::string name = s.count == 1 ? "silkgen_batch.jsonl"
                                         : "silkgen_batch.shard-" + std::to_string(s.index) + "-of-" +
                                               std::to_string(s.count) + ".jsonl";
-  return (fs::path(outdir) / name).string();
+  return silkapp::Utf8(silkapp::FsPath(outdir) / name);
 }
 
 // The output folder exists (made if needed) and is not the input folder (outputs would become
 // inputs on the next run).
 bool PrepareOutputDir(const BatchArgs& args, const std::string& outdir, std::string* error) {
   std::error_code ec;
-  fs::create_directories(outdir, ec);
-  if (!fs::is_directory(outdir)) {
+  fs::create_directories(silkapp::FsPath(outdir), ec);
+  if (!fs::is_directory(silkapp::FsPath(outdir))) {
     *error = outdir + ": cannot create the output folder" + (ec ? " (" + ec.message() + ")" : "");
     return false;
   }
-  if (fs::is_directory(args.source, ec) && fs::equivalent(args.source, outdir, ec)) {
+  if (fs::is_directory(silkapp::FsPath(args.source), ec) &&
+      fs::equivalent(silkapp::FsPath(args.source), silkapp::FsPath(outdir), ec)) {
     *error = outdir + ": the output folder is the input folder (its outputs would be inputs next time); use another -o";
     return false;
   }
@@ -94,7 +96,8 @@ void Fill(const silk_generate_stats& st, const silk_cpp::Mesh& mesh, BatchResult
   r->edge_manifold = st.edge_manifold;
 }
 
-// Generation and the atomic save (a hidden temporary in OUTDIR, renamed into place).
+// Generation and the save (libsilk's writers are atomic: a temporary beside the output, renamed
+// into place, so a failed or killed run never leaves a partial output).
 void Generate(silk_cpp::Generator& generator, const BatchSettings& s, const BatchInput& in, const std::string& format,
               BatchResult* r) {
   silk_cpp::Mesh input = silk_cpp::Mesh::Load(in.path);
@@ -103,24 +106,16 @@ void Generate(silk_cpp::Generator& generator, const BatchSettings& s, const Batc
   Fill(st, result, r);
   silk_save_params sp = s.save;
   sp.format = format == "obj" ? SILK_FORMAT_OBJ : format == "ply" ? SILK_FORMAT_PLY : SILK_FORMAT_GLB;
-  const fs::path out(r->output);
-  const fs::path tmp = out.parent_path() / ("." + out.filename().string() + ".tmp-" + std::to_string(getpid()));
-  result.Save(tmp.string(), sp);
-  std::error_code ec;
-  fs::rename(tmp, out, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw silk_cpp::Error(SILK_ERR_IO, r->output + ": cannot move the finished output into place");
-  }
+  result.Save(r->output, sp);
 }
 
 BatchResult OneInput(silk_cpp::Generator& generator, const BatchSettings& s, const BatchArgs& args,
                      const BatchInput& in) {
   const auto t0 = std::chrono::steady_clock::now();
   BatchResult r;
-  r.output = (fs::path(s.output_dir) / (in.stem + "." + args.format)).string();
+  r.output = silkapp::Utf8(silkapp::FsPath(s.output_dir) / (in.stem + "." + args.format));
   std::error_code ec;
-  if (!args.overwrite && fs::exists(r.output, ec)) {
+  if (!args.overwrite && fs::exists(silkapp::FsPath(r.output), ec)) {
     r.status = "skipped";
     return r;
   }

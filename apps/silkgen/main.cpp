@@ -5,11 +5,12 @@
 
 #include <cctype>
 #include <cstdio>
-#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "../common/app_files.h"
+#include "../common/utf8_args.h"
 #include "batch_options.h"
 #include "batch_run.h"
 #include "exit_codes.h"
@@ -43,19 +44,8 @@ bool EndsWithPly(const std::string& path) {
 
 // Writes text through a temporary file and a rename, so a failed run leaves no partial file.
 void WriteTextFile(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    if (!f.flush()) {
-      std::remove(tmp.c_str());
-      throw silk_cpp::Error(SILK_ERR_IO, path + ": cannot write");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw silk_cpp::Error(SILK_ERR_IO, path + ": cannot write");
-  }
+  const std::string why = silkapp::WriteFileAtomically(path, text);
+  if (!why.empty()) throw silk_cpp::Error(SILK_ERR_IO, path + ": " + why);
 }
 
 // The encoder's points (rows of x y z nx ny nz) as an ascii PLY point cloud, exact doubles.
@@ -90,7 +80,7 @@ struct Args {
 void AddOptions(CLI::App& app, Args& a) {
   app.add_option("input", a.input, "A point cloud (PLY without faces, XYZ/PTS; normals estimated when it has none), or a "
                  "mesh: PLY OBJ STL OFF glTF GLB PMD (or --batch)")
-      ->check(CLI::ExistingFile);
+      ->check(silkapp::ExistingFile());
   app.add_option("-o,--output", a.output, "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
   app.add_option("--model", a.model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx); default: the bundled model");
   app.add_option("--seed", a.seed_text, "Random seed (integer) or 'random'")->capture_default_str();
@@ -302,6 +292,7 @@ int Batch(Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  silkapp::UseUtf8Arguments(argc, argv);  // Windows: UTF-8, not the ANSI code page
   CLI::App app{"silkgen — generate a mesh from a point cloud or a mesh (Mesh Silksong, grammar-constrained)"};
   app.set_version_flag("--version", silk_version());
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);  // later options win

@@ -2,7 +2,6 @@
 // lookup works from any cwd.
 #include "model_locate.h"
 
-#include <sys/stat.h>
 #ifdef _WIN32
 #include <windows.h>
 #else
@@ -10,6 +9,8 @@
 #endif
 
 #include <climits>
+
+#include "../common/app_files.h"
 
 namespace silkgen {
 
@@ -52,14 +53,9 @@ std::vector<std::string> DefaultModelCandidates() {
   return c;
 }
 
-bool IsRegularFile(const std::string& path) {
-  struct stat st;
-  return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
-}
-
 std::string DefaultModelDir() {
   for (const std::string& d : DefaultModelCandidates())
-    if (IsRegularFile(d + "/model.json")) return d;
+    if (silkapp::IsRegularFile(d + "/model.json")) return d;
   return "";
 }
 

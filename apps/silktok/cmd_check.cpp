@@ -2,6 +2,7 @@
 // illegal token (position, id, reason) or accept. Replays files the grammar tests dump.
 #include <cstdio>
 
+#include "../common/app_files.h"
 #include "commands.h"
 #include "cli_errors.h"
 
@@ -48,7 +49,7 @@ void RegisterCheckCommand(CLI::App& app) {
       "Check a token file (one id per line, EOS 10267 optional at the end) against the grammar of\n"
       "token_format.md §11 token by token. Prints the first illegal token's position, id and reason and exits 1,\n"
       "or exits 0.");
-  cmd->add_option("input", args->input, "Token file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("input", args->input, "Token file")->required()->check(silkapp::ExistingFile());
   cmd->add_option("--max-length", args->max_length,
                   "Length limit in tokens including EOS; 0 = unlimited (default: 10240, token_format.md §9)");
   cmd->add_flag("--union-windows", args->union_windows,

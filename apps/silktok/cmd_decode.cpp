@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <string>
 
+#include "../common/app_files.h"
 #include "commands.h"
 #include "cli_errors.h"
 
@@ -57,7 +58,7 @@ void RegisterDecodeCommand(CLI::App& app) {
       "decode",
       "Decode a token file (one id per line) into an OBJ mesh with every face the tokens carry,\n"
       "consistently oriented. Vertices are in token reading order.");
-  cmd->add_option("input", args->input, "Token file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("input", args->input, "Token file")->required()->check(silkapp::ExistingFile());
   cmd->add_option("-o,--output", args->output, "Output OBJ file (written atomically)")->required();
   cmd->add_flag("--grid", args->grid,
                 "Write integer grid coordinates 0..127 instead of dequantised [-1, 1] bin centres (default: off)");

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
-#include <filesystem>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "../common/app_files.h"
 #include "commands.h"
 #include "mesh_input.h"
 
@@ -24,7 +24,7 @@ struct EncodeArgs {
 };
 
 std::string StemOf(const std::string& path) {
-  std::string base = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
+  std::string base = silkapp::FileName(path);
   for (const char* ext : {".gz"}) {
     const std::string e = ext;
     if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0) base.resize(base.size() - e.size());
@@ -38,23 +38,17 @@ void EncodeOne(const std::string& in, const std::string& out, const silk_encode_
   LoadAndEncode(in, params).Save(out);
 }
 
-bool IsDirectory(const std::string& path) {
-  std::error_code ec;
-  return std::filesystem::is_directory(path, ec);
-}
-
 // mkdir -p; fine if it exists as a folder.
 void MakeDirectories(const std::string& path) {
-  std::error_code ec;
-  std::filesystem::create_directories(path, ec);
-  if (ec || !IsDirectory(path)) throw AppError(SILK_ERR_IO, path + ": cannot create folder: " + ec.message());
+  const std::string why = silkapp::MakeDirectories(path);
+  if (!why.empty()) throw AppError(SILK_ERR_IO, path + ": cannot create folder: " + why);
 }
 
 int Run(const EncodeArgs& a) {
   silk_encode_params params = silk_encode_default_params();
   params.nonmanifold_processing = a.no_nonmanifold ? 0 : 1;
   try {
-    if (a.inputs.size() == 1 && !IsDirectory(a.output)) {
+    if (a.inputs.size() == 1 && !silkapp::IsDirectory(a.output)) {
       EncodeOne(a.inputs[0], a.output, params);
       return kExitOk;
     }
@@ -99,7 +93,7 @@ void RegisterEncodeCommand(CLI::App& app) {
       "  silktok encode IN -o OUT.txt\n"
       "  silktok encode IN1 IN2 ... -o DIR [-j N]   (writes DIR/<stem>.tokens.txt per input)\n"
       "Each mesh is normalised to [-0.95, 0.95] (bounding box) and quantised to 128 bins.");
-  cmd->add_option("inputs", args->inputs, "Input mesh files")->required()->check(CLI::ExistingFile);
+  cmd->add_option("inputs", args->inputs, "Input mesh files")->required()->check(silkapp::ExistingFile());
   cmd->add_option("-o,--output", args->output, "Output token file, or folder when several inputs are given")->required();
   cmd->add_option("-j,--jobs", args->jobs, "Parallel encodes in batch form (default: hardware threads)")
       ->check(CLI::Range(0, 1024));

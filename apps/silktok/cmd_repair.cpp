@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../common/app_files.h"
 #include "commands.h"
 #include "cli_errors.h"
 
@@ -78,7 +79,7 @@ void RegisterRepairCommand(CLI::App& app) {
       "decoder), find holes (loops of open edges) and close those of <= --max-loop edges whose chords\n"
       "join vertices of equal or adjacent layers. Writes the mesh and reports every repair.\n"
       "An illegal token stops reading; the accepted prefix (closed layers) is decoded.");
-  cmd->add_option("input", args->input, "Token file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("input", args->input, "Token file")->required()->check(silkapp::ExistingFile());
   cmd->add_option("-o,--output", args->output, "Output OBJ file")->required();
   cmd->add_flag("--json", args->json, "Print the report as JSON (default: text)");
   cmd->add_option("--policy", args->policy, "off | report | repair (default: repair)")

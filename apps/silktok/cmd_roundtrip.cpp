@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "../common/app_files.h"
 #include "commands.h"
 #include "mesh_input.h"
 
@@ -60,7 +61,7 @@ void RegisterRoundtripCommand(CLI::App& app) {
       "Encode a mesh, decode the tokens, and compare with the processed mesh: representable faces\n"
       "recovered, reversed windings, missing and extra faces. Exit 1 if a representable face is\n"
       "missing or reversed.");
-  cmd->add_option("input", args->input, "Input mesh file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("input", args->input, "Input mesh file")->required()->check(silkapp::ExistingFile());
   cmd->add_flag("--json", args->json, "Print JSON instead of text (default: text)");
   cmd->callback([args] { ExitCode() = Run(*args); });
 }

@@ -1,9 +1,9 @@
 // `silktok sample --random N`: N random legal sequences drawn from the grammar's masks (biased
 // toward closing layers), each written as DIR/NNNN.tokens.txt and its mesh DIR/NNNN.obj.
 #include <cstdio>
-#include <filesystem>
 #include <vector>
 
+#include "../common/app_files.h"
 #include "commands.h"
 #include "cli_errors.h"
 
@@ -43,10 +43,9 @@ void WriteSample(const SampleArgs& a, int32_t k) {
 }
 
 int Run(const SampleArgs& a) {
-  std::error_code ec;
-  std::filesystem::create_directories(a.dir, ec);
+  const std::string why = silkapp::MakeDirectories(a.dir);
   try {
-    if (ec) throw AppError(SILK_ERR_IO, a.dir + ": cannot create directory: " + ec.message());
+    if (!why.empty()) throw AppError(SILK_ERR_IO, a.dir + ": cannot create directory: " + why);
     for (int32_t k = 0; k < a.count; ++k) WriteSample(a, k);
   } catch (const silk_cpp::Error& e) {
     ReportError(e);

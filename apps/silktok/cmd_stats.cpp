@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "../common/app_files.h"
 #include "commands.h"
 #include "mesh_input.h"
 
@@ -124,7 +125,7 @@ void RegisterStatsCommand(CLI::App& app) {
       "Encode a mesh and report faces, vertices, components (found / encoded / dropped and why), layers,\n"
       "max layer size, tokens, tokens/face, bits/face (tokens x log2(10267) / faces), compression ratio\n"
       "(tokens / (9 x faces), the paper's measure), structure limits and time per phase.");
-  cmd->add_option("input", args->input, "Input mesh file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("input", args->input, "Input mesh file")->required()->check(silkapp::ExistingFile());
   cmd->add_flag("--json", args->json, "Print JSON instead of text (default: text)");
   cmd->add_flag("--no-nonmanifold", args->no_nonmanifold, "Skip non-manifold processing (default: off)");
   cmd->callback([args] { ExitCode() = Run(*args); });

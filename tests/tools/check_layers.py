@@ -3,9 +3,10 @@
 Order: core -> io -> mesh -> tokenizer -> decoder -> runtime -> capi (the C API sees all).
 
   check_layers.py ENGINE_DIR            the layer order inside engine/
-  check_layers.py --apps APPS_DIR       silkgen and silktok include nothing of libsilk but the
-                                        public headers (silk/silk.h, silk/silk.hpp): every
-                                        #include "..." is one of those or a file of the app itself
+  check_layers.py --apps APPS_DIR       silkgen, silktok and common/ (sources both build in)
+                                        include nothing of libsilk but the public headers
+                                        (silk/silk.h, silk/silk.hpp): every #include "..." is one
+                                        of those or a file of the apps' own (e.g. "../common/x.h")
   check_layers.py --apps-selftest       the apps check on a scratch app that includes
                                         "tokenizer/tokenizer.h" must fail (the check can fail)
   check_layers.py --folders ENGINE_DIR  no engine folder holds more than 40 source files
@@ -17,7 +18,7 @@ Headers in PRIVATE belong to their layer alone (docs/mesh_types.md): no other la
 import pathlib, re, sys, tempfile
 
 ORDER = ["core", "io", "mesh", "tokenizer", "decoder", "runtime", "capi"]
-APPS = ["silkgen", "silktok"]
+APPS = ["silkgen", "silktok", "common"]  # common/: sources both tools build in
 PUBLIC = {"silk/silk.h", "silk/silk.hpp"}
 SOURCES = (".h", ".hpp", ".cpp", ".cc")
 # Layer-internal headers: the tokenizer's encoder mesh (TokenizerProcessedMesh) and the encoder

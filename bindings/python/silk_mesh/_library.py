@@ -1,11 +1,14 @@
 """Finding and loading libsilk, and its one error type: SilkError(status, message) with the
 library's own message (silk_last_error), also raised when the library cannot be loaded.
 
-Search order (the first that exists is loaded; a failed load names the file and the OS's reason):
+Search order (the first that exists is loaded; a failed load names the file, the OS's reason and
+the diagnosis of _platform_libs: missing dependency, wrong architecture, blocked file):
 load_library(path) before the first call, else $SILK_LIBRARY, else the package's own folder
-(silk_mesh/lib/libsilk.so*: the pip wheel, the add-on), else a build tree when the package runs from a checkout
-(<repo>/build/engine/libsilk.so, else the newest <repo>/build*/engine/libsilk.so), else the
-system loader ("libsilk.so")."""
+(silk_mesh/lib/libsilk.so*, libsilk.dll on Windows: the pip wheel, the add-on), else a build tree
+when the package runs from a checkout (<repo>/build/engine/libsilk.so, else the newest
+<repo>/build*/engine/libsilk.so), else the system loader ("libsilk.so"). onnxruntime is loaded
+first, by full path (never from PATH or a system copy): the copy in libsilk's folder (the add-on,
+the Windows zip), else the onnxruntime package's own library (the wheel)."""
 from __future__ import annotations
 
 import ctypes
@@ -14,7 +17,7 @@ import importlib.util
 import os
 import threading
 
-from . import _capi
+from . import _capi, _platform_libs
 
 PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 # bindings/python/silk_mesh -> the repository root, when this is a checkout (silk.h beside it).
@@ -40,6 +43,8 @@ class SilkError(RuntimeError):
 
 _lock = threading.Lock()
 _loaded: tuple[str, ctypes.CDLL] | None = None
+_dependencies: list[ctypes.CDLL] = []  # kept loaded for libsilk's lifetime
+_NAME = _platform_libs.library_name()
 
 
 def library_candidates() -> list[str]:
@@ -47,13 +52,13 @@ def library_candidates() -> list[str]:
     env = os.environ.get("SILK_LIBRARY")
     if env:
         return [env]
-    out = sorted(glob.glob(os.path.join(PACKAGE_DIR, "lib", "libsilk.so*")), key=len)
+    out = sorted(glob.glob(os.path.join(PACKAGE_DIR, "lib", _platform_libs.library_pattern())), key=len)
     if os.path.isfile(os.path.join(_CHECKOUT, "engine", "include", "silk", "silk.h")):
-        first = os.path.join(_CHECKOUT, "build", "engine", "libsilk.so")
-        others = [p for p in glob.glob(os.path.join(_CHECKOUT, "build*", "engine", "libsilk.so")) if p != first]
+        first = os.path.join(_CHECKOUT, "build", "engine", _NAME)
+        others = [p for p in glob.glob(os.path.join(_CHECKOUT, "build*", "engine", _NAME)) if p != first]
         others.sort(key=os.path.getmtime, reverse=True)
         out += ([first] if os.path.exists(first) else []) + others
-    return out + ["libsilk.so"]
+    return out + [_NAME]
 
 
 def _first_candidate() -> str:
@@ -61,16 +66,37 @@ def _first_candidate() -> str:
     cands = library_candidates()
     if os.environ.get("SILK_LIBRARY"):
         return cands[0]
-    return next(p for p in cands if p == "libsilk.so" or os.path.exists(p))
+    return next(p for p in cands if p == _NAME or os.path.exists(p))
+
+
+def _load_dependencies(path: str) -> None:
+    """onnxruntime from libsilk's own folder, by full path, before libsilk (a missing one is fine:
+    the build tree's libsilk finds it through its RPATH)."""
+    if os.path.basename(path) == path:
+        return
+    folder = os.path.dirname(os.path.abspath(path))
+    for pattern in _platform_libs.dependency_patterns():
+        found = sorted(glob.glob(os.path.join(folder, pattern)), key=len)
+        if not found:
+            continue
+        try:
+            _dependencies.append(ctypes.CDLL(found[0]))
+        except OSError as e:
+            why = _platform_libs.diagnose(found[0], e)
+            raise SilkError(_capi.SILK_ERR_IO, f"cannot load onnxruntime from '{found[0]}' (needed by libsilk): {e}"
+                            + (f"; {why}" if why else ""), "library") from e
 
 
 def _open(path: str) -> ctypes.CDLL:
+    _load_dependencies(path)
     try:
         handle = ctypes.CDLL(path)
     except OSError as e:
-        hint = ("set SILK_LIBRARY to the path of libsilk.so, or build it (scripts/build.sh)"
-                if path == "libsilk.so" else "check the file, or set SILK_LIBRARY to another libsilk.so")
-        raise SilkError(_capi.SILK_ERR_IO, f"cannot load libsilk from '{path}': {e}; {hint}", "library") from e
+        hint = (f"set SILK_LIBRARY to the path of {_NAME}, or build it (scripts/build.sh)"
+                if path == _NAME else f"check the file, or set SILK_LIBRARY to another {_NAME}")
+        why = _platform_libs.diagnose(path, e) if path != _NAME else ""
+        raise SilkError(_capi.SILK_ERR_IO, f"cannot load libsilk from '{path}': {e}; " + (f"{why}; " if why else "")
+                        + hint, "library") from e
     try:
         _capi.declare(handle)
     except AttributeError as e:

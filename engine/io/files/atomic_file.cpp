@@ -7,6 +7,7 @@
 #include <atomic>
 
 #include "core/windows_text.h"
+#include "io/files/native_path.h"
 #else
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -24,7 +25,7 @@ namespace silk {
 Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
   if (path.empty()) return InvalidArgument("empty output path");
   static std::atomic<unsigned> counter{0};
-  const std::wstring target = WidePath(path);
+  const std::wstring target = NativePath(path).wstring();
   const std::wstring tmp = target + L".tmp." + std::to_wstring(GetCurrentProcessId()) + L"." + std::to_wstring(counter++);
   HANDLE h = CreateFileW(tmp.c_str(), GENERIC_WRITE, 0, nullptr, CREATE_NEW, FILE_ATTRIBUTE_NORMAL, nullptr);
   if (h == INVALID_HANDLE_VALUE) return IoError(path + ": cannot create temporary file: " + WindowsErrorText(GetLastError()));
@@ -45,8 +46,17 @@ Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
   const BOOL closed = CloseHandle(h);
   h = INVALID_HANDLE_VALUE;
   if (!closed) return fail("close failed");
-  if (!MoveFileExW(tmp.c_str(), target.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
+  // NTFS semantics: std::rename does not replace an existing file there; MoveFileExW does, and
+  // refuses (the old file intact) while another program holds the target open without sharing.
+  if (!MoveFileExW(tmp.c_str(), target.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH)) {
+    const DWORD err = GetLastError();
+    if (err == ERROR_SHARING_VIOLATION || err == ERROR_ACCESS_DENIED || err == ERROR_LOCK_VIOLATION) {
+      SetLastError(err);
+      return fail("cannot replace the file: it is open in another program or read-only (the old file is kept)");
+    }
+    SetLastError(err);
     return fail("rename failed");
+  }
   return Status::Ok();
 }
 #else

@@ -9,15 +9,13 @@
 #include <cerrno>
 #include <cstring>
 
-#ifdef _WIN32
-#include "core/windows_text.h"  // WidePath: the UTF-8 path for _wopen
-#endif
+#include "io/files/native_path.h"
 
 namespace silk {
 
 StatusOr<std::string> ReadFileBytes(const std::string& path, uint64_t max_bytes) {
 #ifdef _WIN32
-  int fd = ::_wopen(WidePath(path).c_str(), _O_RDONLY | _O_BINARY);
+  int fd = ::_wopen(NativePath(path).c_str(), _O_RDONLY | _O_BINARY);
 #else
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
 #endif

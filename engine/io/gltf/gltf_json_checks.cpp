@@ -1,10 +1,9 @@
 // Pre-validation of glTF JSON with a depth scan and nlohmann::json (exceptions caught here).
 #include "io/gltf/gltf_json_checks.h"
 
-#include <sys/stat.h>
-
 #include <nlohmann/json.hpp>
 
+#include "io/files/file_system.h"
 #include "io/read_error.h"
 
 namespace silk {
@@ -73,8 +72,7 @@ Status CheckGltfExternalBuffers(std::string_view json, const std::string& name,
       const std::string what = "buffer " + std::to_string(i) + ": external file '" + uri + "'";
       if (from_memory) return IoError(name + ": " + what + " cannot be loaded (mesh read from memory)");
       const std::string path = (base_dir.empty() ? std::string() : base_dir + "/") + DecodeUriPercent(uri);
-      struct stat st;
-      if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return IoError(name + ": " + what + " not found");
+      if (!IsRegularFile(path)) return IoError(name + ": " + what + " not found");
     }
   } catch (const std::exception& e) {
     return ParseErrorIn(name, std::string("glTF JSON: ") + e.what());

@@ -2,14 +2,12 @@
 // primitive extraction. No exception thrown by tinygltf or nlohmann leaves this file.
 #include "io/gltf/gltf_reader.h"
 
-#include <sys/stat.h>
-
-#include <fstream>
-#include <iterator>
 #include <new>
 
 #include <tiny_gltf.h>
 
+#include "io/files/file_bytes.h"
+#include "io/files/file_system.h"
 #include "io/gltf/glb_container.h"
 #include "io/gltf/gltf_json_checks.h"
 #include "io/gltf/gltf_primitives.h"
@@ -28,8 +26,7 @@ struct FsContext {
 bool FileExistsCb(const std::string& path, void* user) {
   const auto* ctx = static_cast<const FsContext*>(user);
   if (ctx->from_memory) return false;
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+  return IsRegularFile(path);
 }
 
 std::string ExpandFilePathCb(const std::string& path, void*) { return path; }
@@ -40,21 +37,19 @@ bool ReadWholeFileCb(std::vector<unsigned char>* out, std::string* err, const st
     if (err) *err += "external file '" + path + "' cannot be loaded (mesh read from memory)\n";
     return false;
   }
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
+  if (!IsRegularFile(path)) {
     if (err) *err += "external file '" + path + "' not found\n";
     return false;
   }
-  if (static_cast<uint64_t>(st.st_size) > ctx->max_bytes) {
-    if (err) *err += "external file '" + path + "' is larger than the size limit\n";
+  StatusOr<std::string> bytes = ReadFileBytes(path, ctx->max_bytes);
+  if (!bytes.ok()) {
+    if (err && bytes.status().code() == StatusCode::kLimitExceeded)
+      *err += "external file '" + path + "' is larger than the size limit\n";
+    else if (err)
+      *err += "cannot open external file '" + path + "'\n";
     return false;
   }
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    if (err) *err += "cannot open external file '" + path + "'\n";
-    return false;
-  }
-  out->assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  out->assign(bytes->begin(), bytes->end());
   return true;
 }
 

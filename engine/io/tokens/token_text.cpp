@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <climits>
 
+#include "io/files/native_path.h"
+
 namespace silk {
 
 StatusOr<std::vector<int32_t>> ParseTokenText(const std::string& text, const std::string& name) {
@@ -32,7 +34,7 @@ StatusOr<std::vector<int32_t>> ParseTokenText(const std::string& text, const std
 }
 
 StatusOr<std::vector<int32_t>> ReadTokenText(const std::string& path, size_t max_bytes) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(NativePath(path), std::ios::binary);
   if (!in) return IoError(path + ": cannot open token file");
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();

@@ -5,11 +5,9 @@
 #include <array>
 
 #include "io/files/file_system.h"
+#include "io/files/native_path.h"
 #include "runtime/cpu_info.h"
 #include "runtime/model/model_files.h"
-#ifdef _WIN32
-#include "core/windows_text.h"
-#endif
 #ifdef SILK_ORT_RUNTIME_LOAD
 #include "runtime/model/ort_dll_load.h"
 #endif
@@ -137,13 +135,9 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
     Ort::Env& env = OrtEnvironment(options.threads, options.allow_spinning);
     impl->threads = SharedPoolThreads();
     Ort::SessionOptions so = MakeOrtSessionOptions();
-#ifdef _WIN32  // ORTCHAR_T is wchar_t there: the UTF-16 paths
-    impl->encoder = std::make_unique<Ort::Session>(env, WidePath(enc_path).c_str(), so);
-    impl->decoder = std::make_unique<Ort::Session>(env, WidePath(dec_path).c_str(), so);
-#else
-    impl->encoder = std::make_unique<Ort::Session>(env, enc_path.c_str(), so);
-    impl->decoder = std::make_unique<Ort::Session>(env, dec_path.c_str(), so);
-#endif
+    // ORTCHAR_T is the native path character (wchar_t on Windows): NativePath's UTF-16 there.
+    impl->encoder = std::make_unique<Ort::Session>(env, NativePath(enc_path).c_str(), so);
+    impl->decoder = std::make_unique<Ort::Session>(env, NativePath(dec_path).c_str(), so);
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, true, {{"points", kF, {1, -1, 6}}}, enc_path));
     SILK_ASSIGN_OR_RETURN(impl->encoder_points, EncoderPoints(*impl->encoder, config.dims.n_points, enc_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, false, {{"cross_kv", kF, cross}}, enc_path));

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 
+#include "io/files/native_path.h"
 #include "runtime/model/onnx_external_data.h"
 
 namespace silk {
@@ -48,12 +49,12 @@ Status CheckInsideModelFolder(const std::string& dir, const std::string& locatio
                               const std::string& what) {
   SILK_RETURN_IF_ERROR(CheckLexically(location, named_by, what));
   std::error_code ec;
-  const fs::path folder = fs::canonical(dir, ec);
+  const fs::path folder = fs::canonical(NativePath(dir), ec);
   if (ec) return IoError(dir + ": model folder cannot be resolved (" + ec.message() + ")");
-  const fs::path file = fs::canonical(fs::path(dir) / location, ec);
+  const fs::path file = fs::canonical(NativePath(dir) / NativePath(location), ec);
   if (ec) return IoError(named_by + ": " + what + " '" + location + "' is missing in the model folder");
   if (!IsUnder(file, folder))
-    return Refuse(named_by, what, location, "leads outside the model folder (to " + file.string() + ")");
+    return Refuse(named_by, what, location, "leads outside the model folder (to " + Utf8Path(file) + ")");
   if (!fs::is_regular_file(file, ec)) return Refuse(named_by, what, location, "is not a regular file");
   return Status::Ok();
 }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <vector>
 
+#include "io/files/native_path.h"
+
 namespace silk {
 
 namespace {
@@ -193,7 +195,7 @@ Status ForEachExternalDataLocation(std::string_view bytes, const std::string& na
 }
 
 Status ForEachExternalDataLocationInFile(const std::string& path, const ExternalDataVisitor& visit) {
-  std::ifstream f(path, std::ios::binary | std::ios::ate);
+  std::ifstream f(NativePath(path), std::ios::binary | std::ios::ate);
   if (!f) return IoError(path + ": cannot open");
   const std::streamoff size = f.tellg();
   if (size < 0) return IoError(path + ": cannot read its size");
