@@ -43,11 +43,11 @@ if [ "$MODE" = bpy ]; then
   exit
 fi
 if ! command -v blender >/dev/null; then
-  echo "blender not installed: skipped (scripts/setup.sh installs Debian's blender)"
+  echo "blender not installed: skipped (scripts/setup.sh --test installs Debian's blender)"
   exit 77
 fi
 if [ "$MODE" = modal ] && ! command -v xvfb-run >/dev/null; then
-  echo "xvfb-run not installed: skipped (scripts/setup.sh installs Debian's xvfb)"
+  echo "xvfb-run not installed: skipped (scripts/setup.sh --test installs Debian's xvfb)"
   exit 77
 fi
 rm -rf "$WORK" && mkdir -p "$WORK/user_scripts"
