@@ -34,6 +34,19 @@ BINDING="$ADDON/silk_mesh"  # vendored byte for byte (ctest blender_addon_vendor
 mkdir -p "$BINDING/lib"
 cp "$ROOT"/apps/blender/silk_blender/*.py "$ROOT/apps/blender/silk_blender/blender_manifest.toml" "$ADDON/"
 cp "$ROOT"/bindings/python/silk_mesh/*.py "$ROOT/bindings/python/silk_mesh/README.md" "$BINDING/"
+# The add-on's version is Silk's (silk.h, the one version source): stamped into the manifest and bl_info.
+python3 - "$ROOT/engine/include/silk/silk.h" "$ADDON" <<'PY'
+import re, sys
+header, addon = sys.argv[1], sys.argv[2]
+ver = [re.search(rf"^#define SILK_VERSION_{k} (\d+)$", open(header).read(), re.M).group(1) for k in ("MAJOR", "MINOR", "PATCH")]
+for name, pattern, repl in (("blender_manifest.toml", r'^version = ".*"$', f'version = "{".".join(ver)}"'),
+                            ("__init__.py", r'^    "version": \(.*?\),.*$', f'    "version": ({", ".join(ver)}),')):
+    path = f"{addon}/{name}"
+    text, n = re.subn(pattern, repl, open(path).read(), count=1, flags=re.M)
+    if n != 1:
+        sys.exit(f"make_blender_addon: no version line in {name} to stamp")
+    open(path, "w").write(text)
+PY
 if [ "$WINDOWS" = 1 ]; then
   # silk_mesh loads onnxruntime.dll first, then libsilk.dll, both by full path from lib/.
   cp "$DIST/libsilk.dll" "$DIST/onnxruntime.dll" "$BINDING/lib/"

@@ -7,11 +7,11 @@
 #   bash scripts/render_pictures.sh grid DIR [PNG]    # DIR from `silk-export generate`: reference/<name>.obj
 #                                                     # beside generated/<name>.obj, 4 per row, each side
 #                                                     # fitted to the cell (references are normalised); default DIR/grid.png
-# Needs Debian's blender (scripts/setup.sh installs it); prints a note and exits 0 without it.
+# Needs Debian's blender (scripts/setup.sh --test installs it); prints a note and exits 0 without it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v blender >/dev/null 2>&1; then
-  echo "render_pictures: blender not found (scripts/setup.sh installs it); no picture rendered"
+  echo "render_pictures: blender not found (scripts/setup.sh --test installs it); no picture rendered"
   exit 0
 fi
 render() {  # args for render_pairs.py

@@ -1,10 +1,11 @@
 """Headless check of the Blender add-on, run as
   blender -b --factory-startup --python-exit-code 1 --python tests/blender/test_silk_addon.py
-by tests/blender/run_blender_test.sh (ctest blender_addon). Environment: SILK_ADDON_ZIP (the
-installable zip, its bundled model = the tiny test model), SILKGEN, SILK_TEST_MODEL, SILK_DEV_MESH,
-SILK_WORK (scratch folder), SILK_RENDER (picture to write). It installs + enables the add-on,
+by tests/blender/run_blender_test.sh (ctest blender_addon), or in PyPI's bpy module after `import bpy`
+(ctest blender_addon_bpy_*, blender_extension_bpy_*). Environment: SILK_ADDON_ZIP (the installable
+zip, its bundled model = the tiny test model), SILK_ADDON_KIND (addon or extension), SILKGEN, SILK_TEST_MODEL, SILK_DEV_MESH,
+SILK_WORK (scratch folder), SILK_RENDER (picture to write), SILK_MESH_CHECK (../shared/tools/mesh_check.py). It installs + enables the add-on,
 imports a dev-corpus mesh, generates with a fixed seed and checks the objects against
-`silkgen --stats` on the same mesh as Blender holds it (object frame); checks that a cancel leaves
+`silkgen --stats` on the same mesh as Blender holds it (object frame) and with mesh_check.py; checks that a cancel leaves
 nothing behind, that silkgen's GLB imports with the same object/face counts, and renders a picture."""
 import json
 import os
@@ -31,8 +32,14 @@ def check(cond, what):
 
 
 # -- install the zip and enable the add-on ------------------------------------------------------
-check(addon_setup.install_and_enable(env["SILK_ADDON_ZIP"], failures), "add-on enabled (silk.generate_mesh registered)")
-from silk_blender import blender_mesh, silk_mesh  # noqa: E402  (the installed copy, vendored binding)
+kind = env.get("SILK_ADDON_KIND", "addon")  # addon (legacy zip) or extension (Blender 4.2+)
+print(f"Blender {bpy.app.version_string}, {kind} {os.path.basename(env['SILK_ADDON_ZIP'])}")
+addon = addon_setup.install_and_enable(env["SILK_ADDON_ZIP"], failures, kind)
+check(addon is not None, f"{kind} enabled (silk.generate_mesh registered)")
+if addon is None:
+    sys.exit(f"blender add-on test: cannot go on ({failures})")
+blender_mesh = addon_setup.submodule(addon, "blender_mesh")  # the installed copy
+silk_mesh = addon_setup.submodule(addon, "silk_mesh")  # its vendored binding
 
 silk_mesh.load_library()
 check(silk_mesh.library_path().startswith(os.path.join(os.path.dirname(silk_mesh.__file__), "lib")),
@@ -88,6 +95,21 @@ for p in parts:
     check(nonmanifold_e == 0, f"{p.name}: edge-manifold ({nonmanifold_e} edges with 3+ faces)")
     check(inconsistent == 0, f"{p.name}: consistently oriented ({inconsistent} edges with opposing faces)")
 
+# -- the parts as Blender holds them, judged by the independent checker (../shared/tools) -------
+if env.get("SILK_MESH_CHECK"):
+    objs = []
+    for p in parts:
+        ppos, ptri = blender_mesh.mesh_arrays(p, bpy.context.evaluated_depsgraph_get())
+        objs.append(os.path.join(work, f"part_{len(objs)}.obj"))
+        with silk_mesh.Mesh(ppos, ptri) as m:
+            m.save(objs[-1])
+    run = subprocess.run(["python3", env["SILK_MESH_CHECK"], "--json"] + objs, capture_output=True, text=True)
+    verdicts = json.loads(run.stdout[:run.stdout.rindex("}") + 1])
+    bad = {os.path.basename(k): v for k, v in verdicts.items() if not v.get("ok")}
+    check(run.returncode == 0 and not bad, f"mesh_check.py: {len(objs)} part(s) edge/vertex-manifold, oriented, "
+          f"no degenerate or duplicate faces{'' if not bad else f' (failed: {bad})'}")
+    check(sum(v.get("faces", 0) for v in verdicts.values()) == want["faces"], "mesh_check.py counts silkgen's faces")
+
 # -- a cancel after a few steps leaves no object ------------------------------------------------
 before = set(bpy.data.objects)
 mesh_count = len(bpy.data.meshes)
@@ -98,7 +120,7 @@ check(set(bpy.data.objects) == before and len(bpy.data.meshes) == mesh_count, "a
 # -- silkgen's GLB imports with the expected objects and faces ----------------------------------
 before = set(bpy.data.objects)
 import numpy  # noqa: E402
-if not hasattr(numpy, "bool"):  # Blender 3.4's glTF importer uses np.bool, gone since numpy 1.24 (Debian's)
+if bpy.app.version < (3, 5, 0):  # Blender 3.4's glTF importer uses np.bool, gone since numpy 1.24 (Debian's)
     numpy.bool = bool
 bpy.ops.import_scene.gltf(filepath=glb)
 glb_objs = [o for o in set(bpy.data.objects) - before if o.type == "MESH"]

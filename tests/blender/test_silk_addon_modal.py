@@ -39,8 +39,9 @@ def finish():
 
 
 check(not bpy.app.background, "a windowed session (not -b)")
-check(addon_setup.install_and_enable(env["SILK_ADDON_ZIP"], failures), "add-on enabled")
-from silk_blender import operators  # noqa: E402  (the installed copy)
+addon = addon_setup.install_and_enable(env["SILK_ADDON_ZIP"], failures)
+check(addon is not None, "add-on enabled")
+operators = addon_setup.submodule(addon, "operators")  # the installed copy
 
 src = addon_setup.import_active_mesh(env["SILK_DEV_MESH"])
 

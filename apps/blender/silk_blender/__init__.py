@@ -4,7 +4,7 @@ the active object, step by step inside Blender, through libsilk's C API (ctypes)
 bl_info = {
     "name": "Silk: Artist Mesh Generation",
     "author": "Silk contributors",
-    "version": (0, 1, 0),
+    "version": (0, 0, 0),  # stamped with Silk's version (silk.h) by scripts/make_blender_addon.sh
     "blender": (3, 4, 0),
     "location": "View3D > Object > Silk: Generate Artist Mesh; File > Import/Export > Silk tokens",
     "description": "Point-cloud-conditioned mesh generation (Mesh Silksong) on the CPU through libsilk",
