@@ -52,6 +52,7 @@ if [ "$WINDOWS" = 1 ]; then
   cp "$DIST/libsilk.dll" "$DIST/onnxruntime.dll" "$BINDING/lib/"
   sed -i 's/^platforms = .*/platforms = ["windows-x64"]/' "$ADDON/blender_manifest.toml"
 else
+command -v patchelf >/dev/null || { echo "make_blender_addon: patchelf is needed (apt-get install patchelf)" >&2; exit 1; }
 cmake --install "$BUILD" --prefix "$STAGE/prefix" >/dev/null
 LIBDIR=$(dirname "$(ls "$STAGE"/prefix/lib*/libsilk.so.* | head -1)")
 # One file per library, under its soname (zip has no symlinks); libsilk without debug info.
@@ -64,7 +65,9 @@ cp -L "$LIBDIR/$ORT_SONAME" "$BINDING/lib/$ORT_SONAME"
 for dep in $(ldd "$LIBDIR/libsilk.so" | awk '/=> \// {print $3}'); do
   case "$(basename "$dep")" in
     libc.so*|libm.so*|libstdc++.so*|libgcc_s.so*|libpthread.so*|libdl.so*|librt.so*|libz.so*|libonnxruntime*) ;;
-    *) cp -L "$dep" "$BINDING/lib/" ;;
+    *) cp -L "$dep" "$BINDING/lib/"
+       # It may need another bundled library (libtinygltf needs libstb): search its own folder.
+       patchelf --set-rpath '$ORIGIN' "$BINDING/lib/$(basename "$dep")" ;;
   esac
 done
 fi

@@ -30,6 +30,7 @@ TEST_APT=(
                              # numpy for Blender's own glTF importer
   xvfb xauth                 # the add-on's modal test: a real Blender window on a private X server
   python3-venv               # the bpy venvs below
+  patchelf                   # scripts/make_blender_addon.sh: bundled libraries find each other ($ORIGIN)
 )
 # pip requirement files installed into python3 (Debian's is "externally managed": PEP 668).
 TEST_PIP_REQUIREMENTS=(

@@ -21,16 +21,19 @@ else
   (cd build && SILK_TEST_WHEEL=1 ctest --output-on-failure -R '^wheel_fresh_venv$')
 fi
 
-# Windows x64 (MinGW-w64 cross-build, run under Wine): only where scripts/setup_windows.sh has
-# installed MinGW-w64 and Wine (SILK_WINDOWS_TESTS=1 requires it, =0 turns it off).
+# Windows x64 (MinGW-w64 cross-build, run under Wine): where scripts/setup_windows.sh (part of
+# `setup.sh --test`) has installed MinGW-w64 and Wine; required in CI (CI=true) and with
+# SILK_WINDOWS_TESTS=1, skipped with SILK_WINDOWS_TESTS=0.
 echo "=== Windows x64 build under Wine (scripts/build_windows.sh, scripts/test_windows.sh) ==="
-if [ "${SILK_WINDOWS_TESTS:-auto}" = 0 ]; then
+WINDOWS_TESTS=${SILK_WINDOWS_TESTS:-auto}
+[ "$WINDOWS_TESTS" = auto ] && [ "${CI:-}" = true ] && WINDOWS_TESTS=1
+if [ "$WINDOWS_TESTS" = 0 ]; then
   echo "skipped (SILK_WINDOWS_TESTS=0)"
 elif command -v x86_64-w64-mingw32-g++-posix >/dev/null && { command -v wine64 || [ -x /usr/lib/wine/wine64 ]; } >/dev/null &&
      [ -f .deps/onnxruntime-windows/onnxruntime.dll ]; then
   bash scripts/build_windows.sh && bash scripts/test_windows.sh
-elif [ "${SILK_WINDOWS_TESTS:-auto}" = 1 ]; then
-  echo "SILK_WINDOWS_TESTS=1 but MinGW-w64 / Wine / onnxruntime.dll are missing: run scripts/setup_windows.sh" >&2
+elif [ "$WINDOWS_TESTS" = 1 ]; then
+  echo "Windows tests required (CI=true or SILK_WINDOWS_TESTS=1) but MinGW-w64 / Wine / onnxruntime.dll are missing: run scripts/setup_windows.sh" >&2
   exit 1
 else
   echo "skipped (MinGW-w64, Wine or .deps/onnxruntime-windows missing here: scripts/setup_windows.sh installs them)"
