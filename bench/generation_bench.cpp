@@ -210,7 +210,7 @@ bool OpenSession(const Args& a, const std::string& name, DecoderPrecision p, Ses
   s->cross_value = std::move(*cross);
   s->cross = s->cross_value.GetTensorMutableData<float>();
   s->tok = std::uniform_int_distribution<int32_t>(0, s->c->eos_id - 1);
-  return s->cache.Reserve(DeepDepth(d) + a.steps + 1, silk::ModelKvShape(d)).ok();
+  return s->cache.Reserve(DeepDepth(d) + a.steps + 1, silk::ModelKvShape(s->model->impl())).ok();
 }
 
 // Single random-token steps until n are done, the cache reaches stop_depth or budget_s (> 0)
@@ -368,7 +368,7 @@ void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
   auto cross = silk::RunEncoder(model.impl(), pts.data(), c.dims.n_points);
   if (!cross.ok()) return;
   silk::KvCache cache;
-  if (!cache.Reserve(600, silk::ModelKvShape(c.dims)).ok()) return;
+  if (!cache.Reserve(600, silk::ModelKvShape(model.impl())).ok()) return;
   silk::GrammarOptions go;
   go.max_length = 599;
   silk::SamplingParams sp;

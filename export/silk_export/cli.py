@@ -187,6 +187,26 @@ def _cmd_import_official(a) -> int:
     return 0
 
 
+def _add_kv16(sub) -> None:
+    k = sub.add_parser("kv16", help="add the fp16 self-K/V cache variant of every decoder to a model folder "
+                       "(docs/model_contract.md, KV precision)")
+    k.add_argument("folder", help="model folder (model.json + decoder*.onnx)")
+    k.add_argument("--default", choices=["fp32", "fp16"], help="also set files.default_kv_precision")
+    k.set_defaults(fn=_cmd_kv16)
+
+
+def _cmd_kv16(a) -> int:
+    from .onnx.kv_precision import KV_FILES_KEY, add_kv16_to_folder
+    try:
+        files = add_kv16_to_folder(Path(a.folder), a.default)
+    except (OSError, ValueError) as e:
+        print(f"silk-export kv16: error: {e}", file=sys.stderr)
+        return 2
+    print(json.dumps({KV_FILES_KEY: files[KV_FILES_KEY],
+                      "default_kv_precision": files.get("default_kv_precision", "fp32")}, indent=2))
+    return 0
+
+
 def _report(res, out) -> int:
     """Prints a command's JSON result (non-finite numbers as null) and writes it to --out too."""
     text = dumps(res, "null", indent=2)
@@ -318,7 +338,7 @@ def _cmd_generate(a) -> int:
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="silk-export", description=__doc__)
     sub = p.add_subparsers(dest="cmd", required=True)
-    for add in (_add_dataset, _add_train, _add_pack_checkpoint, _add_export, _add_import_official, _add_eval,
+    for add in (_add_dataset, _add_train, _add_pack_checkpoint, _add_export, _add_import_official, _add_kv16, _add_eval,
                 _add_loss, _add_card, _add_bench, _add_generate):
         add(sub)
     return p

@@ -27,6 +27,7 @@ from silk_export.json_io import dumps, write_json  # noqa: E402
 from silk_export.models.configs import ModelConfig  # noqa: E402
 from silk_export.models.silk_model import SilkModel  # noqa: E402
 from silk_export.onnx.export import export_model  # noqa: E402
+from silk_export.onnx.kv_precision import add_kv16_variants  # noqa: E402
 from silk_export.vocab import load_vocab  # noqa: E402
 
 SEED = 20240611
@@ -91,6 +92,7 @@ def make(out: Path) -> dict:
     meta = export_model(model, out, {"steps": 0, "data": None, "seed": SEED}, int8=False)
     for f in ("encoder.onnx", "decoder.onnx"):
         shrink(out / f)
+    add_kv16_variants(out, meta["files"])  # decoder.kv16.onnx: the fp16 KV cache path's tests
     # Keep the committed sidecar independent of which libsilk build happened to be around.
     meta.get("versions", {}).pop("libsilk", None)
     write_json(out / "model.json", meta)
