@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """kv_fidelity: how far the fp16 self-K/V cache (model.json files.kv_fp16) moves a decoder from the
-fp32 cache, teacher-forced over long real token sequences: top-1 agreement and KL(fp32 || fp16)
-of the next-id distributions at every position, overall and by depth, for each decoder asked.
+fp32 cache, teacher-forced over long real token sequences: top-1 agreement (all positions, and
+those where the fp32 top id leads by >= 0.05 logits) and KL(fp32 || fp16) of the next-id
+distributions at every position, overall and by depth, for each decoder asked.
 The same decoder weights run with both caches, so only the cache precision differs; the sequences
 (the shared golden-dev token files, truncated to the model's positions) are fed in chunks (in a
 fp16-cache graph the chunk's own keys/values are float16 as well, so the numbers equal step-wise
@@ -55,21 +56,31 @@ def logits(decoder_path: Path, cross: np.ndarray, ids: list[int], chunk: int, th
     return np.concatenate([state.run(ids[i:i + chunk]) for i in range(0, len(ids), chunk)])
 
 
-def compare(ref: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per position: top-1 equal, KL(ref || half) in nats (PAD excluded like the sampler does)."""
+# A position is "decided" when the fp32 cache's top id leads the runner-up by at least this many
+# logits: below it the top-1 is a near-tie (random weights give nearly flat logits), and a flip
+# there changes the sampled distribution by almost nothing (see KL).
+DECIDED_GAP = 0.05
+
+
+def compare(ref: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per position: top-1 equal, KL(ref || half) in nats (PAD excluded like the sampler does),
+    and whether the fp32 top-1 is decided (leads by DECIDED_GAP)."""
     ref, half = ref[:, :-1], half[:, :-1]  # the last column is PAD, never sampled
     agree = ref.argmax(-1) == half.argmax(-1)
+    top2 = np.partition(ref, -2, axis=-1)[:, -2:]
+    decided = (top2[:, 1] - top2[:, 0]) >= DECIDED_GAP
     kls = []
     for lo in range(0, len(ref), 512):  # float64 rows in blocks: bounded memory
         lp, lq = log_softmax(ref[lo:lo + 512]), log_softmax(half[lo:lo + 512])
         kls.append((np.exp(lp) * (lp - lq)).sum(-1))
-    return agree, np.concatenate(kls)
+    return agree, np.concatenate(kls), decided
 
 
-def summary(agree: list[np.ndarray], kl: list[np.ndarray]) -> dict:
+def summary(agree: list[np.ndarray], kl: list[np.ndarray], decided: list[np.ndarray]) -> dict:
     """Overall figures, and by depth bucket pooling the sequences position by position."""
-    a, k = np.concatenate(agree), np.concatenate(kl)
+    a, k, d = np.concatenate(agree), np.concatenate(kl), np.concatenate(decided)
     out = {"positions": int(a.size), "top1_agreement": round(float(a.mean()), 5),
+           "decided_positions": int(d.sum()), "top1_agreement_decided": round(float(a[d].mean()), 5) if d.any() else None,
            "kl_mean": float(f"{k.mean():.3g}"), "kl_max": float(f"{k.max():.3g}"), "by_depth": {}}
     for lo, hi in zip(DEPTH_BUCKETS, DEPTH_BUCKETS[1:]):
         ab = np.concatenate([x[lo:hi] for x in agree])
@@ -93,15 +104,17 @@ def measure(model: Path, decoders: list[str], sequences: dict[str, list[int]], p
         half_file = files.get("kv_fp16", {}).get(key)
         if key not in files or not half_file:
             raise SystemExit(f"{model}: no {key} with an fp16 KV variant (run `silk-export kv16 {model}`)")
-        agree, kl, t0 = [], [], time.time()
+        agree, kl, decided, t0 = [], [], [], time.time()
         for name, ids in sequences.items():
             seq = [bos] + ids[:dims["max_seq_len"] - 1]
-            a, k = compare(logits(model / files[key], cross, seq, chunk, threads),
-                           logits(model / half_file, cross, seq, chunk, threads))
+            a, k, d = compare(logits(model / files[key], cross, seq, chunk, threads),
+                              logits(model / half_file, cross, seq, chunk, threads))
             agree.append(a)
             kl.append(k)
-            print(f"  {key} {name}: {len(seq)} positions, top-1 {a.mean():.4f}, KL mean {k.mean():.3g}", flush=True)
-        fig = summary(agree, kl)
+            decided.append(d)
+            print(f"  {key} {name}: {len(seq)} positions, top-1 {a.mean():.4f} (decided: {a[d].mean():.4f} of "
+                  f"{d.sum()}), KL mean {k.mean():.3g}", flush=True)
+        fig = summary(agree, kl, decided)
         fig["seconds"] = round(time.time() - t0, 1)
         result["decoders"][key] = fig
     return result

@@ -22,6 +22,8 @@ silk_model_params silk_model_default_params(void) {
   return o;
 }
 
+SILK_CAPI_MODEL_PARAMS_1_0
+
 silk_status silk_model_load(const char* dir, const silk_model_params* params, silk_model** out) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(out, "silk_model_load: out is NULL");

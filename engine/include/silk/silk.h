@@ -19,7 +19,7 @@
  * PATCH fixes. silk_version() is the library's own string (compare it with SILK_VERSION_STRING
  * to detect a header/library mismatch). */
 #define SILK_VERSION_MAJOR 1
-#define SILK_VERSION_MINOR 0
+#define SILK_VERSION_MINOR 1
 #define SILK_VERSION_PATCH 0
 #define SILK_STR_(x) #x
 #define SILK_STR(x) SILK_STR_(x)
