@@ -171,6 +171,8 @@ def _add_import_official(sub) -> None:
     i.add_argument("--int4-block-size", type=int, default=32)
     i.add_argument("--int4-accuracy-level", type=int, default=4)
     i.add_argument("--fidelity-tokens", type=int, default=32, help="greedy tokens per probe cloud")
+    i.add_argument("--kv-precision", default="fp16", choices=["fp32", "fp16"],
+                   help="the model's self-K/V cache precision (files.default_kv_precision; both are written)")
     i.add_argument("--no-progress", action="store_true")
     i.set_defaults(fn=_cmd_import_official)
 
@@ -180,7 +182,8 @@ def _cmd_import_official(a) -> int:
     from .official.state_dict_file import StateDictError
     try:
         import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,
-                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens)
+                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens,
+                        kv_precision=a.kv_precision)
     except (StateDictError, ValueError) as e:
         print(f"silk-export import-official: error: {e}", file=sys.stderr)
         return 2
