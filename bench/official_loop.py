@@ -11,6 +11,9 @@ self K/V cache grown by torch.cat per call, as the official `generate` does (x-t
 cache, `cache_kv=True`, one id per call). The official code runs the model in half precision on
 CUDA; on a CPU float32 is what runs (half matmuls there are far slower), as in the figures the
 issue quotes. Sampling (top-k on 10,269 logits) is left out: it is not the model's cost.
+Two untimed calls per depth come first. Needs an idle machine: with other processes on the cores
+PyTorch's OpenMP threads spin against them and a call takes several times longer (measured
+2026-12-04 at load 10 on 2 cores: 4.1 s per call, against 0.17-0.32 s with 1 thread minutes later).
 
     python3 bench/official_loop.py [--depths 0 1024] [--steps 24] [--threads 2]   # prints JSON
 """
@@ -57,6 +60,9 @@ def main() -> int:
                 ids[0, 0] = model.bos_id
                 _, past = model.step(ids, torch.arange(depth).unsqueeze(0), past, cross)
             pos = depth
+            for _ in range(2):  # untimed warm-up calls (first-call allocations); their K/V are dropped
+                ids = torch.tensor([[model.bos_id if pos == 0 else 5]])
+                model.step(ids, torch.tensor([[pos]]), past, cross)
             t0 = time.perf_counter()
             for _ in range(a.steps):
                 ids = torch.randint(0, model.eos_id, (1, 1), generator=gen) if pos else torch.tensor([[model.bos_id]])

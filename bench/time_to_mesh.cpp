@@ -9,7 +9,9 @@
 //
 // One pass of max(calls) calls per config; the figures for a smaller N are that pass's first N
 // calls (the same thing: N calls from depth 0). Each config runs in a forked child (its own peak
-// RSS). Random ids: the decoder's cost does not depend on which ids it is fed.
+// RSS); the KV precisions of one decoder are loaded side by side and fed in turns of 100 calls,
+// so load from other processes hits them alike (decoders run one after the other: memory).
+// Random ids: the decoder's cost does not depend on which ids it is fed.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -54,8 +56,18 @@ struct Pass {
   double ok = 0;
 };
 
-Pass RunPass(const Args& a, DecoderPrecision p, KvPrecision kv) {
-  Pass r;
+// A loaded model with its encoder output and cache, fed `block` calls at a time when its parent
+// says so, so that the KV precisions of one decoder share the machine's load equally.
+struct Worker {
+  std::unique_ptr<silk::Model> model;
+  Ort::Value cross{nullptr};
+  silk::KvCache cache;
+  std::unique_ptr<silk::DecoderRunner> runner;
+  std::mt19937 rng{1};
+  std::vector<double> at{0.0};  // decoder seconds after call i
+};
+
+bool OpenWorker(const Args& a, DecoderPrecision p, KvPrecision kv, Worker* w, Pass* r) {
   silk::ModelLoadOptions lo;
   lo.threads = a.threads;
   lo.decoder = p;
@@ -64,57 +76,114 @@ Pass RunPass(const Args& a, DecoderPrecision p, KvPrecision kv) {
   auto model = silk::Model::Load(a.model, lo);
   if (!model.ok()) {
     std::fprintf(stderr, "  %s\n", model.status().ToString().c_str());
-    return r;
+    return false;
   }
-  r.load_s = Since(t0);
-  const silk::ModelConfig& c = (*model)->config();
-  std::mt19937 rng(1);
+  r->load_s = Since(t0);
+  w->model = std::move(*model);
+  const silk::ModelConfig& c = w->model->config();
   std::uniform_real_distribution<float> u(-0.9f, 0.9f);
   std::vector<float> pts(static_cast<size_t>(c.dims.n_points) * 6);
-  for (float& v : pts) v = u(rng);
+  for (float& v : pts) v = u(w->rng);
   t0 = Clock::now();
-  auto cross = silk::RunEncoder((*model)->impl(), pts.data(), c.dims.n_points);
-  if (!cross.ok()) return r;
-  r.encoder_s = Since(t0);
-  const int n = a.calls.back();
-  silk::KvCache cache;
-  if (!cache.Reserve(n + 1, silk::ModelKvShape((*model)->impl())).ok()) return r;
-  silk::DecoderRunner runner((*model)->impl(), &cache, cross->GetTensorMutableData<float>());
-  std::uniform_int_distribution<int32_t> tok(0, c.eos_id - 1);
-  std::vector<double> at(static_cast<size_t>(n) + 1, 0.0);  // seconds after call i
-  t0 = Clock::now();
-  for (int i = 0; i < n; ++i) {
-    const int32_t id = i == 0 ? c.bos_id : tok(rng);
-    if (!runner.Feed(&id, 1).ok()) return r;
-    at[i + 1] = Since(t0);
-  }
-  for (size_t k = 0; k < a.calls.size() && k < 8; ++k) {
-    const int m = a.calls[k], w = std::min(50, m);
-    r.seconds[k] = at[m];
-    r.ms_at_end[k] = (at[m] - at[m - w]) / w * 1e3;
-  }
-  r.rss_mib = silk::bench::PeakRssMiB();
-  r.ok = 1;
-  return r;
+  auto cross = silk::RunEncoder(w->model->impl(), pts.data(), c.dims.n_points);
+  if (!cross.ok()) return false;
+  r->encoder_s = Since(t0);
+  w->cross = std::move(*cross);
+  if (!w->cache.Reserve(a.calls.back() + 1, silk::ModelKvShape(w->model->impl())).ok()) return false;
+  w->runner = std::make_unique<silk::DecoderRunner>(w->model->impl(), &w->cache,
+                                                    w->cross.GetTensorMutableData<float>());
+  return true;
 }
 
-Pass RunInChild(const Args& a, DecoderPrecision p, KvPrecision kv) {
-  int fd[2];
-  Pass r;
-  if (pipe(fd) != 0) return r;
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fd[0]);
-    const Pass got = RunPass(a, p, kv);
-    const ssize_t w = write(fd[1], &got, sizeof got);
-    _exit(w == static_cast<ssize_t>(sizeof got) ? 0 : 1);
+// `n` more calls (the first feeds BOS at depth 0, the others random ids).
+bool Feed(Worker& w, int n) {
+  const silk::ModelConfig& c = w.model->config();
+  std::uniform_int_distribution<int32_t> tok(0, c.eos_id - 1);
+  for (int i = 0; i < n; ++i) {
+    const int32_t id = w.cache.length() == 0 ? c.bos_id : tok(w.rng);
+    const auto t0 = Clock::now();
+    if (!w.runner->Feed(&id, 1).ok()) return false;
+    w.at.push_back(w.at.back() + Since(t0));
   }
-  close(fd[1]);
-  if (read(fd[0], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) r = Pass{};
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return r;
+  return true;
+}
+
+void Summarise(const Args& a, const Worker& w, Pass* r) {
+  for (size_t k = 0; k < a.calls.size() && k < 8; ++k) {
+    const int m = a.calls[k], win = std::min(50, m);
+    r->seconds[k] = w.at[m];
+    r->ms_at_end[k] = (w.at[m] - w.at[m - win]) / win * 1e3;
+  }
+  r->rss_mib = silk::bench::PeakRssMiB();
+  r->ok = 1;
+}
+
+// A forked worker: loads, then reads block sizes from `cmd` (0 = done) and answers each with one
+// byte on `out` (1 = fed, 0 = failed), and finally the Pass.
+[[noreturn]] void WorkerMain(const Args& a, DecoderPrecision p, KvPrecision kv, int cmd, int out) {
+  Worker w;
+  Pass r;
+  char ok = OpenWorker(a, p, kv, &w, &r) ? 1 : 0;
+  if (write(out, &ok, 1) != 1 || !ok) _exit(1);
+  for (int n = 0; read(cmd, &n, sizeof n) == static_cast<ssize_t>(sizeof n) && n > 0;) {
+    ok = Feed(w, n) ? 1 : 0;
+    if (write(out, &ok, 1) != 1 || !ok) _exit(1);
+  }
+  Summarise(a, w, &r);
+  _exit(write(out, &r, sizeof r) == static_cast<ssize_t>(sizeof r) ? 0 : 1);
+}
+
+struct Child {
+  pid_t pid = -1;
+  int cmd = -1, out = -1;
+  bool alive = false;
+};
+
+Child Spawn(const Args& a, DecoderPrecision p, KvPrecision kv) {
+  int c[2], o[2];
+  Child ch;
+  if (pipe(c) != 0 || pipe(o) != 0) return ch;
+  ch.pid = fork();
+  if (ch.pid == 0) {
+    close(c[1]);
+    close(o[0]);
+    WorkerMain(a, p, kv, c[0], o[1]);
+  }
+  close(c[0]);
+  close(o[1]);
+  ch.cmd = c[1];
+  ch.out = o[0];
+  char ok = 0;
+  ch.alive = read(ch.out, &ok, 1) == 1 && ok == 1;
+  return ch;
+}
+
+// All KV precisions of one decoder, loaded side by side and fed in turns of `kBlock` calls, so a
+// change of the machine's load during the run hits each of them alike.
+constexpr int kBlock = 100;
+
+std::vector<Pass> RunInterleaved(const Args& a, DecoderPrecision p, const std::vector<KvPrecision>& kvs) {
+  std::vector<Child> kids;
+  for (KvPrecision kv : kvs) kids.push_back(Spawn(a, p, kv));
+  for (int done = 0; done < a.calls.back(); done += kBlock) {
+    const int n = std::min(kBlock, a.calls.back() - done);
+    for (Child& ch : kids) {
+      char ok = 0;
+      if (ch.alive) ch.alive = write(ch.cmd, &n, sizeof n) == static_cast<ssize_t>(sizeof n) &&
+                               read(ch.out, &ok, 1) == 1 && ok == 1;
+    }
+  }
+  std::vector<Pass> passes(kids.size());
+  for (size_t i = 0; i < kids.size(); ++i) {
+    const int zero = 0;
+    if (kids[i].alive && write(kids[i].cmd, &zero, sizeof zero) == static_cast<ssize_t>(sizeof zero) &&
+        read(kids[i].out, &passes[i], sizeof(Pass)) != static_cast<ssize_t>(sizeof(Pass)))
+      passes[i] = Pass{};
+    if (kids[i].cmd >= 0) close(kids[i].cmd);
+    if (kids[i].out >= 0) close(kids[i].out);
+    if (kids[i].pid > 0) waitpid(kids[i].pid, nullptr, 0);
+  }
+  return passes;
 }
 
 // Bytes the N calls from depth 0 read: per call the weights as stored (less the two fp32
@@ -225,6 +294,7 @@ void PrintConfig(const Args& a, const silk::ModelConfig& c, DecoderPrecision p, 
       std::printf(" %8.0f %6.1fx", os, os / r.seconds[k]);
     }
     std::printf("   [load %s]\n", LoadAverage().c_str());
+    std::fflush(stdout);
   }
 }
 
@@ -265,21 +335,21 @@ int main(int argc, char** argv) {
   }
   std::printf("\ndec   kv      N  | load s  enc s  calls s  total s | ms/call ms@end | bound s  %%bnd  GB/s | peak MiB |"
               " official s  speed-up\n");
-  for (DecoderPrecision p : a.decoders)
+  for (DecoderPrecision p : a.decoders) {
+    std::vector<KvPrecision> kvs;
     for (KvPrecision kv : a.kvs) {
-      if (cfg->DecoderFile(p, kv).empty()) {
-        std::printf("%-5s %-5s: not in this model folder (skipped)\n", silk::DecoderPrecisionName(p),
-                    silk::KvPrecisionName(kv));
-        continue;
-      }
-      std::fflush(stdout);
-      const Pass r = RunInChild(a, p, kv);
-      if (!r.ok) {
-        std::printf("%-5s %-5s: failed\n", silk::DecoderPrecisionName(p), silk::KvPrecisionName(kv));
-        continue;
-      }
-      PrintConfig(a, *cfg, p, kv, r, official);
+      if (!cfg->DecoderFile(p, kv).empty()) kvs.push_back(kv);
+      else std::printf("%-5s %-5s: not in this model folder (skipped)\n", silk::DecoderPrecisionName(p),
+                       silk::KvPrecisionName(kv));
     }
+    std::fflush(stdout);
+    const std::vector<Pass> passes = RunInterleaved(a, p, kvs);
+    for (size_t i = 0; i < kvs.size(); ++i) {
+      if (!passes[i].ok) std::printf("%-5s %-5s: failed\n", silk::DecoderPrecisionName(p), silk::KvPrecisionName(kvs[i]));
+      else PrintConfig(a, *cfg, p, kvs[i], passes[i], official);
+      std::fflush(stdout);
+    }
+  }
   std::printf("\n(calls s: decoder time of the first N calls from depth 0; ms@end: per call over calls N-50..N; "
               "bound: bytes of those N calls / read bandwidth of a working set of one call at depth N/2; "
               "official: its fitted cost summed over the same N calls)\n");

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Makes tests/models/tiny/: a deterministic random-weight model in the exact format of
-docs/model_contract.md, small enough to commit (~860 KB), for the runtime's golden and
+docs/model_contract.md, small enough to commit (~1.6 MB with decoder.kv16.onnx, the fp16 KV cache variant), for the runtime's golden and
 determinism tests. Uses export/'s model code (silk_export) with a toy configuration and
 weights drawn N(0, 0.5) from a fixed seed (larger than training init, so logits have an O(1)
 spread and any runtime mistake changes the sampled ids), plus output biases toward U and E.
