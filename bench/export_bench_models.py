@@ -11,6 +11,7 @@ decoder.int8.onnx; "official" also gets decoder.int4.onnx and the importer's fid
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import time
 from pathlib import Path

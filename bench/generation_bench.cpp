@@ -38,12 +38,17 @@
 #include "runtime/generator.h"
 #include "runtime/model/model.h"
 #include "runtime/model/model_config.h"
+#include "bench_memory.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using silk::bench::Clock;
+using silk::bench::DecoderFileBytes;
+using silk::bench::LastLevelCacheBytes;
+using silk::bench::PeakRssMiB;
+using silk::bench::ReadBandwidth;
+using silk::bench::Since;
 using silk::DecoderPrecision;
-double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Args {
   std::string models;
@@ -61,63 +66,6 @@ struct Args {
 const std::map<std::string, std::pair<double, double>> kOfficial = {
     {"tiny", {32.7, 20.4}}, {"small", {5.7, 3.3}}, {"paper", {2.4, 1.5}}, {"official", {2.4, 1.5}}};
 
-// Read bandwidth (GB/s) for a working set of `bytes`: `threads` threads scanning disjoint parts
-// of one buffer of that size with memchr for a byte that is not there (glibc's vectorised scan
-// is the fastest plain read loop available: 19 GB/s vs 15 GB/s for a scalar XOR reduction on
-// the development VM at 2 GiB, 43 vs 15 GB/s at 82 MiB), read again and again like a decoder
-// re-reads its weights and cache every step; best pass of at least 3 and at least 0.5 s. A
-// working set that fits in the last-level cache is read at cache speed, one larger than it at
-// DRAM speed, so the bound for each model and depth uses a buffer of the bytes that step reads.
-double ReadBandwidth(int threads, int64_t bytes) {
-  const size_t n = static_cast<size_t>(std::max<int64_t>(bytes, 1 << 20));
-  std::vector<unsigned char> buf(n, 0x5a);
-  double best = 0;
-  std::atomic<uintptr_t> sink{0};
-  const auto start = Clock::now();
-  for (int rep = 0; rep < 3 || (Since(start) < 0.5 && rep < 1000); ++rep) {
-    auto t0 = Clock::now();
-    std::vector<std::thread> ts;
-    for (int t = 0; t < threads; ++t)
-      ts.emplace_back([&, t] {
-        const size_t lo = n * t / threads, hi = n * (t + 1) / threads;
-        sink.fetch_xor(reinterpret_cast<uintptr_t>(std::memchr(buf.data() + lo, 0x17, hi - lo)));
-      });
-    for (auto& t : ts) t.join();
-    best = std::max(best, n / Since(t0) / 1e9);
-  }
-  if (sink.load() == 42) std::printf(" ");
-  return best;
-}
-
-// Last-level cache size in bytes (0 when the system does not say).
-int64_t LastLevelCacheBytes() {
-  for (int index = 4; index >= 0; --index) {
-    FILE* f = std::fopen(("/sys/devices/system/cpu/cpu0/cache/index" + std::to_string(index) + "/size").c_str(), "r");
-    if (!f) continue;
-    long long v = 0;
-    char unit = 0;
-    const int got = std::fscanf(f, "%lld%c", &v, &unit);
-    std::fclose(f);
-    if (got >= 1) return v * (unit == 'K' ? 1024LL : unit == 'M' ? 1048576LL : 1LL);
-  }
-  return 0;
-}
-
-double PeakRssMiB() {
-  rusage ru{};
-  getrusage(RUSAGE_SELF, &ru);
-  return ru.ru_maxrss / 1024.0;
-}
-
-int64_t FileSize(const std::string& path) {
-  FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return 0;
-  std::fseek(f, 0, SEEK_END);
-  const long s = std::ftell(f);
-  std::fclose(f);
-  return s;
-}
-
 struct Result {
   double load_s = 0, encoder_s = 0;
   double tps_shallow = 0;
@@ -131,16 +79,6 @@ struct Result {
 // Depth of the deep window: 4,096, or less where the model's positions end sooner.
 int64_t DeepDepth(const silk::ModelDims& d) { return std::min<int64_t>(4096, d.max_seq_len - 16); }
 constexpr double kShallowDepth = 256;  // mid-window depth for the depth 0-512 bound
-
-// Bytes of a decoder graph as stored: the .onnx file plus the external data files model.json
-// lists for it ("decoder.onnx.data" beside "decoder.onnx").
-double DecoderFileBytes(const silk::ModelConfig& c, DecoderPrecision p) {
-  const std::string& file = c.DecoderFile(p);
-  double bytes = static_cast<double>(FileSize(c.dir + "/" + file));
-  for (const std::string& data : c.external_data)
-    if (data.rfind(file + ".", 0) == 0) bytes += static_cast<double>(FileSize(c.dir + "/" + data));
-  return bytes;
-}
 
 // Bytes one generated token reads at `depth`: the decoder's weights as stored for that precision
 // (INT8: int8 MatMul weights + scales; INT4: 4-bit blocks + scales, logits head fp32), less the
@@ -210,7 +148,7 @@ bool OpenSession(const Args& a, const std::string& name, DecoderPrecision p, Ses
   s->cross_value = std::move(*cross);
   s->cross = s->cross_value.GetTensorMutableData<float>();
   s->tok = std::uniform_int_distribution<int32_t>(0, s->c->eos_id - 1);
-  return s->cache.Reserve(DeepDepth(d) + a.steps + 1, silk::ModelKvShape(d)).ok();
+  return s->cache.Reserve(DeepDepth(d) + a.steps + 1, silk::ModelKvShape(s->model->impl())).ok();
 }
 
 // Single random-token steps until n are done, the cache reaches stop_depth or budget_s (> 0)
@@ -368,7 +306,7 @@ void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
   auto cross = silk::RunEncoder(model.impl(), pts.data(), c.dims.n_points);
   if (!cross.ok()) return;
   silk::KvCache cache;
-  if (!cache.Reserve(600, silk::ModelKvShape(c.dims)).ok()) return;
+  if (!cache.Reserve(600, silk::ModelKvShape(model.impl())).ok()) return;
   silk::GrammarOptions go;
   go.max_length = 599;
   silk::SamplingParams sp;

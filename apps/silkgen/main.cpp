@@ -71,7 +71,7 @@ struct Args {
   double temperature = SILK_MODEL_VALUE, top_p = SILK_MODEL_VALUE, top_p_temperature = SILK_MODEL_VALUE;
   int top_k = SILK_MODEL_VALUE;
   int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
-  std::string decoder, preprocessing, orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
+  std::string decoder, kv_precision, preprocessing, orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
   bool unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
   silkgen::BatchArgs batch;
@@ -125,6 +125,8 @@ void AddOptions(CLI::App& app, Args& a) {
   app.add_option("--decoder", a.decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
       ->check(CLI::IsMember({"fp32", "int8", "int4"}));
   app.add_flag("--int8", a.int8, "Same as --decoder int8");
+  app.add_option("--kv-precision", a.kv_precision, "Self-attention K/V cache: fp32 or fp16; default: the model's "
+                 "(model.json files.default_kv_precision)")->check(CLI::IsMember({"fp32", "fp16"}));
   app.add_option("--preprocessing", a.preprocessing, "Point pre-processing: silk or official; default: model.json's")
       ->check(CLI::IsMember({"silk", "official"}));
   app.add_flag("--raw-points", a.raw_points,
@@ -186,6 +188,7 @@ silk_model_params ToModelParams(const Args& a) {
   const std::string decoder = a.int8 ? "int8" : a.decoder;
   mo.decoder = decoder == "int8" ? SILK_DECODER_INT8 : decoder == "int4" ? SILK_DECODER_INT4
                : decoder == "fp32" ? SILK_DECODER_FP32 : SILK_DECODER_DEFAULT;
+  mo.kv_precision = a.kv_precision == "fp16" ? SILK_KV_FP16 : a.kv_precision == "fp32" ? SILK_KV_FP32 : SILK_KV_DEFAULT;
   return mo;
 }
 
@@ -205,12 +208,13 @@ int Run(const Args& a, uint64_t seed) {
     auto given = [](double v) { return v >= 0 ? std::to_string(v).substr(0, 6) : std::string("model"); };
     std::fprintf(stderr,
                  "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
-                 "%s decoder)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
+                 "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
                  "  points  %s\n  surface tolerance %d  candidates %s  orient %s\n",
                  silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
                  input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
                  info.config, info.threads,
                  info.decoder == SILK_DECODER_INT8 ? "INT8" : info.decoder == SILK_DECODER_INT4 ? "INT4" : "fp32",
+                 info.kv_precision == SILK_KV_FP16 ? "fp16" : "fp32",
                  static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
                  a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens,
                  a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",

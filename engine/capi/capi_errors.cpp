@@ -76,14 +76,15 @@ bool BeginCopy(const char* function, const void* out, size_t capacity, size_t ne
 }
 
 silk_status CheckStructSize(const char* function, const char* type, uint32_t given, size_t expected,
-                            const std::string& how) {
-  // Every size this library has shipped for the type (1.0: one). A later release that appends
-  // fields accepts the old sizes here too (docs/c_api.md "Struct growth").
-  if (given == expected) return SILK_OK;
-  return SetError(SILK_ERR_INVALID_ARGUMENT, std::string(function) + ": " + type + ".struct_size " +
-                                                 std::to_string(given) + " is not a size of " + type +
-                                                 " this library knows (expected " + std::to_string(expected) +
-                                                 "): " + how);
+                            const std::string& how, size_t older) {
+  // Every size this library has shipped for the type: today's, and libsilk 1.0's for a struct
+  // that has grown since (docs/c_api.md "Struct growth").
+  if (given == expected || (older != 0 && given == older)) return SILK_OK;
+  return SetError(SILK_ERR_INVALID_ARGUMENT,
+                  std::string(function) + ": " + type + ".struct_size " + std::to_string(given) + " is not a size of " +
+                      type + " this library knows (expected " + std::to_string(expected) +
+                      (older ? ", or " + std::to_string(older) + " as libsilk 1.0 shipped it" : std::string()) +
+                      "): " + how);
 }
 
 void Log(silk_log_level level, const std::string& message) {

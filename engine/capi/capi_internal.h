@@ -2,6 +2,7 @@
 // which turns Status and any C++ exception into a silk_status so nothing crosses the ABI.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -78,21 +79,51 @@ bool BeginCopy(const char* function, const void* out, size_t capacity, size_t ne
                silk_status* answer);
 
 // The one struct_size rule (docs/c_api.md "Struct growth"): `given` must be a size this library
-// has shipped for `type` (1.0: sizeof); otherwise SILK_ERR_INVALID_ARGUMENT naming the struct, the
-// size given and the size expected, and `how` (the way to initialise it).
+// has shipped for `type`: sizeof, or `older` (the size an earlier release shipped, 0: none);
+// otherwise SILK_ERR_INVALID_ARGUMENT naming the struct, the size given and the size expected,
+// and `how` (the way to initialise it).
 silk_status CheckStructSize(const char* function, const char* type, uint32_t given, size_t expected,
-                            const std::string& how);
+                            const std::string& how, size_t older = 0);
+// The size libsilk 1.0 shipped for a struct that has grown since (0: it has not grown). Its
+// fields are only appended, so the 1.0 size is the offset of the first field added after 1.0.
+template <typename T>
+inline constexpr size_t kSize10 = 0;
+template <>
+inline constexpr size_t kSize10<silk_model_params> = offsetof(silk_model_params, kv_precision);
+template <>
+inline constexpr size_t kSize10<silk_model_info> = offsetof(silk_model_info, kv_precision);
+
+// silk_model_default_params as libsilk 1.0 exported it (its struct ended before kv_precision): a
+// caller built against 1.0 receives the 1.0 size by value, so it must keep getting that layout.
+// On ELF it stays bound as silk_model_default_params@SILK_1.0 (engine/libsilk.map), the current
+// one is @@SILK_1.1; elsewhere (no symbol versions) only the current one exists. Expanded inside
+// extern "C" once per build (capi_model.cpp, or capi_no_runtime.cpp without onnxruntime).
+struct ModelParams10 {
+  uint32_t struct_size;
+  int32_t threads, decoder;
+};
+#if defined(__ELF__)
+#define SILK_CAPI_MODEL_PARAMS_1_0                                                                   \
+  __attribute__((visibility("default"))) silk::capi::ModelParams10 capi_model_default_params_1_0(void) { \
+    return {sizeof(silk::capi::ModelParams10), 0, SILK_DECODER_DEFAULT};                            \
+  }                                                                                                  \
+  __asm__(".symver capi_model_default_params_1_0,silk_model_default_params@SILK_1.0");
+#else
+#define SILK_CAPI_MODEL_PARAMS_1_0
+#endif
+static_assert(sizeof(ModelParams10) == kSize10<silk_model_params>, "the 1.0 layout of silk_model_params");
 // A params struct (NULL: fine, the defaults apply) and a struct the library fills (NULL: fine
 // where optional; the caller checks required ones).
 template <typename T>
 silk_status CheckParamsSize(const char* function, const char* type, const T* p, const char* defaults) {
-  return p ? CheckStructSize(function, type, p->struct_size, sizeof(T), std::string("initialise it with ") + defaults)
+  return p ? CheckStructSize(function, type, p->struct_size, sizeof(T), std::string("initialise it with ") + defaults,
+                             kSize10<T>)
            : SILK_OK;
 }
 template <typename T>
 silk_status CheckOutSize(const char* function, const char* type, const T* p) {
   return p ? CheckStructSize(function, type, p->struct_size, sizeof(T),
-                             std::string("set struct_size = sizeof(") + type + ") before the call")
+                             std::string("set struct_size = sizeof(") + type + ") before the call", kSize10<T>)
            : SILK_OK;
 }
 // The caller's params over the defaults: only the caller's struct_size bytes are read.

@@ -18,8 +18,11 @@ silk_model_params silk_model_default_params(void) {
   o.struct_size = sizeof(o);
   o.threads = 0;
   o.decoder = SILK_DECODER_DEFAULT;
+  o.kv_precision = SILK_KV_DEFAULT;
   return o;
 }
+
+SILK_CAPI_MODEL_PARAMS_1_0
 
 silk_status silk_model_load(const char* dir, const silk_model_params* params, silk_model** out) {
   return Guard([&] {
@@ -31,11 +34,15 @@ silk_status silk_model_load(const char* dir, const silk_model_params* params, si
     const silk_model_params o = silk::capi::ReadParams(params, silk_model_default_params());
     SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("decoder", o.decoder, SILK_DECODER_DEFAULT, SILK_DECODER_INT4,
                                                              "silk_decoder_precision"));
+    SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("kv_precision", o.kv_precision, SILK_KV_DEFAULT,
+                                                             SILK_KV_FP16, "silk_kv_precision"));
     silk::ModelLoadOptions lo;
     lo.threads = o.threads;
     if (o.decoder == SILK_DECODER_INT8) lo.decoder = silk::DecoderPrecision::kInt8;
     if (o.decoder == SILK_DECODER_FP32) lo.decoder = silk::DecoderPrecision::kFp32;
     if (o.decoder == SILK_DECODER_INT4) lo.decoder = silk::DecoderPrecision::kInt4;
+    if (o.kv_precision == SILK_KV_FP32) lo.kv = silk::KvPrecision::kFp32;
+    if (o.kv_precision == SILK_KV_FP16) lo.kv = silk::KvPrecision::kFp16;
     auto m = silk::Model::Load(dir, lo);
     if (!m.ok()) return SetError(m.status());
     auto h = std::make_unique<silk_model>();
@@ -46,7 +53,8 @@ silk_status silk_model_load(const char* dir, const silk_model_params* params, si
                                          " ignored: the process's shared pool has " + std::to_string(pool));
     silk::capi::Log(SILK_LOG_INFO, std::string("loaded model ") + dir + " (" + h->model->config().config_name + ", " +
                                        std::to_string(pool) + " threads, " +
-                                       silk::DecoderPrecisionName(h->model->precision()) + " decoder)");
+                                       silk::DecoderPrecisionName(h->model->precision()) + " decoder, " +
+                                       silk::KvPrecisionName(h->model->kv_precision()) + " KV cache)");
     *out = h.release();
     return Ok();
   });
@@ -76,6 +84,7 @@ silk_status silk_model_get_info(const silk_model* model, silk_model_info* out) {
                    : d == silk::DecoderPrecision::kInt4 ? SILK_DECODER_INT4 : SILK_DECODER_FP32;
     o->arch = c.arch == silk::ModelArch::kOfficial ? 1 : 0;
     o->encoder_points = static_cast<int32_t>(model->model->encoder_points());
+    o->kv_precision = model->model->kv_precision() == silk::KvPrecision::kFp16 ? SILK_KV_FP16 : SILK_KV_FP32;
     silk::capi::StoreOut(out, info);
     return Ok();
   });

@@ -14,8 +14,9 @@ extern "C" {
 
 int32_t silk_generation_available(void) { return 0; }
 silk_model_params silk_model_default_params(void) {
-  return silk_model_params{sizeof(silk_model_params), 0, SILK_DECODER_DEFAULT};
+  return silk_model_params{sizeof(silk_model_params), 0, SILK_DECODER_DEFAULT, SILK_KV_DEFAULT};
 }
+SILK_CAPI_MODEL_PARAMS_1_0
 silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));

@@ -65,6 +65,7 @@ Json StatsJson(const silk_generator& g) {
   j["threads"] = st.threads;
   j["int8"] = st.int8;
   j["decoder"] = st.decoder;
+  j["kv_precision"] = st.kv_precision;
   j["kv_cache_bytes"] = st.kv_cache_bytes;
   j["seconds"] = {{"load_input", st.seconds.load_input}, {"encoder", st.seconds.encoder},
                   {"decoder", st.seconds.decoder},       {"grammar", st.seconds.grammar},

@@ -8,7 +8,10 @@
 
 namespace silk {
 
-KvShape ModelKvShape(const ModelDims& dims) { return KvShape{dims.n_layers, dims.n_heads, dims.head_dim}; }
+KvShape ModelKvShape(const Model::Impl& model) {
+  const ModelDims& d = model.config.dims;
+  return KvShape{d.n_layers, d.n_heads, d.head_dim, model.kv_precision == KvPrecision::kFp16 ? 2 : 4};
+}
 
 DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, float* cross_kv, KvMode mode,
                              int64_t max_chunk)
@@ -24,7 +27,8 @@ Status DecoderRunner::Feed(const int32_t* ids, int64_t n) {
   if (n <= 0) return InvalidArgument("decoder: nothing to feed");
   const ModelDims& d = model_.config.dims;
   const KvShape& s = cache_->shape();
-  if (s.layers != d.n_layers || s.heads != d.n_heads || s.head_dim != d.head_dim)
+  const int64_t elem_bytes = model_.kv_precision == KvPrecision::kFp16 ? 2 : 4;
+  if (s.layers != d.n_layers || s.heads != d.n_heads || s.head_dim != d.head_dim || s.elem_bytes != elem_bytes)
     return InvalidArgument("decoder: the KV cache was not reserved for this model's shape");
   if (cache_->length() + n > cache_->capacity())
     return LimitExceeded("decoder: " + std::to_string(cache_->length() + n) + " positions exceed the cache of " +
@@ -86,17 +90,19 @@ void DecoderRunner::MakeViews() {
   for (int i = 0; i < 4; ++i) in_values_.emplace_back(nullptr);
   out_values_.emplace_back(nullptr);
   compact_.clear();  // kCopy: fresh prefix copies, [H, P, D] each
+  const int64_t eb = cache_->shape().elem_bytes;
+  const auto type = eb == 2 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
   for (int64_t l = 0; l < L; ++l)
     for (int kv = 0; kv < 2; ++kv) {
-      float* past = cache_->block(l, kv);
-      size_t count = static_cast<size_t>(H * C * D);
+      void* past = cache_->block(l, kv);
+      size_t bytes = static_cast<size_t>(H * C * D * eb);
       if (!in_place) {
         past = CompactPrefix(past);
-        count = static_cast<size_t>(H * P * D);
+        bytes = static_cast<size_t>(H * P * D * eb);
       } else {
-        out_values_.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
+        out_values_.push_back(Ort::Value::CreateTensor(mem, past, bytes, cache_shape.data(), 4, type));
       }
-      in_values_.push_back(Ort::Value::CreateTensor<float>(mem, past, count, cache_shape.data(), 4));
+      in_values_.push_back(Ort::Value::CreateTensor(mem, past, bytes, cache_shape.data(), 4, type));
     }
   for (int64_t l = 0; l < L; ++l)
     for (int kv = 0; kv < 2; ++kv)
@@ -105,12 +111,14 @@ void DecoderRunner::MakeViews() {
 }
 
 // kCopy: a fresh compact [H, P, D] copy of the cached prefix of one [H, C, D] block.
-float* DecoderRunner::CompactPrefix(const float* block) {
+void* DecoderRunner::CompactPrefix(const void* block) {
   const ModelDims& d = model_.config.dims;
   const int64_t P = cache_->length(), C = cache_->capacity(), H = d.n_heads, D = d.head_dim;
-  compact_.emplace_back(static_cast<size_t>(std::max<int64_t>(1, H * P * D)));
+  const int64_t row = D * cache_->shape().elem_bytes;  // bytes of one position of one head
+  compact_.emplace_back(static_cast<size_t>(std::max<int64_t>(1, H * P * row)));
   for (int64_t h = 0; h < H; ++h)
-    std::memcpy(compact_.back().data() + h * P * D, block + h * C * D, static_cast<size_t>(P * D) * sizeof(float));
+    std::memcpy(compact_.back().data() + h * P * row, static_cast<const unsigned char*>(block) + h * C * row,
+                static_cast<size_t>(P * row));
   return compact_.back().data();
 }
 
@@ -149,10 +157,11 @@ Status DecoderRunner::RunCopying(int64_t n) {
       const std::vector<int64_t> shape = present.GetTensorTypeAndShapeInfo().GetShape();
       if (shape != std::vector<int64_t>{1, H, P + n, D})
         return InternalError("decoder: " + out_names_[1 + l * 2 + kv] + " has an unexpected shape");
-      const float* src = present.GetTensorData<float>();
+      const int64_t row = D * cache_->shape().elem_bytes;
+      const unsigned char* src = static_cast<const unsigned char*>(present.GetTensorRawData());
       for (int64_t h = 0; h < H; ++h)
-        std::memcpy(cache_->block(l, kv) + (h * C + P) * D, src + (h * (P + n) + P) * D,
-                    static_cast<size_t>(n * D) * sizeof(float));
+        std::memcpy(static_cast<unsigned char*>(cache_->block(l, kv)) + (h * C + P) * row, src + (h * (P + n) + P) * row,
+                    static_cast<size_t>(n * row));
     }
   std::memcpy(logits_.data(), outs[0].GetTensorData<float>() + (n - 1) * vocab_,
               static_cast<size_t>(vocab_) * sizeof(float));

@@ -36,7 +36,7 @@ class DecoderRunner {
   // run (in place, or copying the outputs back).
   void StageInputs(const int32_t* ids, int64_t n);
   void MakeViews();
-  float* CompactPrefix(const float* block);
+  void* CompactPrefix(const void* block);
   void BindChunkInputs(int64_t n);
   void RunInPlace(int64_t n);
   Status RunCopying(int64_t n);
@@ -56,15 +56,15 @@ class DecoderRunner {
   // kInPlace builds the views once (again if the cache is re-reserved); the cross buffer must
   // stay where it is for the runner's life.
   std::vector<Ort::Value> in_values_, out_values_;
-  const float* views_of_ = nullptr;
+  const void* views_of_ = nullptr;
   int64_t views_capacity_ = 0;
-  std::vector<std::vector<float>> compact_;  // kCopy only
+  std::vector<std::vector<unsigned char>> compact_;  // kCopy only
   std::vector<float> logits_;     // [max_chunk, V] (kInPlace: the bound output)
   const float* last_logits_ = nullptr;
   int64_t calls_ = 0;
 };
 
-// The model's cache shape (layers, heads, head width).
-KvShape ModelKvShape(const ModelDims& dims);
+// The loaded model's cache shape (layers, heads, head width, element size of its KV precision).
+KvShape ModelKvShape(const Model::Impl& model);
 
 }  // namespace silk

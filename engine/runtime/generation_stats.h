@@ -56,6 +56,7 @@ struct GenerationStats {
   int32_t threads = 0;
   bool int8 = false;
   std::string decoder = "fp32";  // decoder precision in use: fp32, int8, int4
+  std::string kv_precision = "fp32";  // self-K/V cache element type: fp32, fp16
   // Surface guidance: vertex ids sampled under it, and vertex ids (sampled or forced) taken
   // outside the tolerance because no legal id was within it.
   int64_t guided_tokens = 0, guidance_fallbacks = 0;

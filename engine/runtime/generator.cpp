@@ -172,7 +172,7 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   SILK_ASSIGN_OR_RETURN(Ort::Value cross, std::move(encoded));
   const double encoder_seconds = Since(t0);
   // Cache: BOS + every id but the last (EOS is never fed).
-  SILK_RETURN_IF_ERROR(cache_.Reserve(cap, ModelKvShape(cfg.dims)));
+  SILK_RETURN_IF_ERROR(cache_.Reserve(cap, ModelKvShape(m)));
   session_ = std::make_unique<Session>(m, &cache_, std::move(cross), options, callbacks, cap);
   Session& s = *session_;
   GenerationStats& st = s.res.stats;
@@ -180,7 +180,8 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   st.int8 = m.precision == DecoderPrecision::kInt8;
   st.decoder = DecoderPrecisionName(m.precision);
   st.seconds.encoder = encoder_seconds;
-  st.kv_cache_bytes = cap * cfg.dims.kv_row_floats() * static_cast<int64_t>(sizeof(float));
+  st.kv_precision = KvPrecisionName(m.kv_precision);
+  st.kv_cache_bytes = cap * ModelKvShape(m).position_bytes();
   CacheInput(points);
   if (options.surface_tolerance > 0 && !options.unconstrained) {
     t0 = Clock::now();

@@ -6,26 +6,28 @@
 #include <new>
 #include <string>
 
+#include "runtime/model/ort_support.h"
+
 namespace silk {
 
 Status KvCache::Reserve(int64_t capacity, const KvShape& shape) {
   if (capacity <= 0 || shape.layers <= 0 || shape.heads <= 0 || shape.head_dim <= 0)
     return InvalidArgument("kv cache: empty shape");
-  if (shape.position_floats() > (int64_t{1} << 26) || capacity > (int64_t{1} << 24))
+  if (shape.elem_bytes != 4 && shape.elem_bytes != 2) return InvalidArgument("kv cache: elements must be 2 or 4 bytes");
+  if (shape.position_elems() > (int64_t{1} << 26) || capacity > (int64_t{1} << 24))
     return LimitExceeded("kv cache: implausible shape");
-  const int64_t floats = capacity * shape.position_floats();
-  if (floats > (int64_t{1} << 34))
-    return LimitExceeded("kv cache: " + std::to_string(floats * 4 >> 20) + " MiB is too large");
+  const int64_t bytes = capacity * shape.position_bytes();
+  if (bytes > (int64_t{1} << 36))
+    return LimitExceeded("kv cache: " + std::to_string(bytes >> 20) + " MiB is too large");
   capacity_ = capacity;
   shape_ = shape;
   length_ = 0;
-  if (allocated_ < floats) {
+  if (allocated_ < bytes) {
     data_.reset();
     allocated_ = 0;
-    data_.reset(new (std::nothrow) float[static_cast<size_t>(floats)]);
-    if (!data_)
-      return LimitExceeded("kv cache: cannot allocate " + std::to_string(floats * 4 >> 20) + " MiB");
-    allocated_ = floats;
+    data_.reset(new (std::nothrow) unsigned char[static_cast<size_t>(bytes)]);
+    if (!data_) return LimitExceeded("kv cache: cannot allocate " + std::to_string(bytes >> 20) + " MiB");
+    allocated_ = bytes;
   }
   return Status::Ok();
 }
@@ -35,8 +37,15 @@ void KvCache::CopyTimeMajor(float* out) const {
   for (int64_t t = 0; t < length_; ++t)
     for (int64_t l = 0; l < shape_.layers; ++l)
       for (int kv = 0; kv < 2; ++kv)
-        for (int64_t h = 0; h < H; ++h, out += D)
-          std::memcpy(out, block(l, kv) + (h * capacity_ + t) * D, static_cast<size_t>(D) * sizeof(float));
+        for (int64_t h = 0; h < H; ++h, out += D) {
+          const int64_t row = (h * capacity_ + t) * D;
+          if (shape_.elem_bytes == 4) {
+            std::memcpy(out, static_cast<const float*>(block(l, kv)) + row, static_cast<size_t>(D) * sizeof(float));
+            continue;
+          }
+          const uint16_t* half = static_cast<const uint16_t*>(block(l, kv)) + row;
+          for (int64_t i = 0; i < D; ++i) out[i] = Ort::Float16_t::FromBits(half[i]).ToFloat();
+        }
 }
 
 }  // namespace silk

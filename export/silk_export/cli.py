@@ -171,6 +171,8 @@ def _add_import_official(sub) -> None:
     i.add_argument("--int4-block-size", type=int, default=32)
     i.add_argument("--int4-accuracy-level", type=int, default=4)
     i.add_argument("--fidelity-tokens", type=int, default=32, help="greedy tokens per probe cloud")
+    i.add_argument("--kv-precision", default="fp16", choices=["fp32", "fp16"],
+                   help="the model's self-K/V cache precision (files.default_kv_precision; both are written)")
     i.add_argument("--no-progress", action="store_true")
     i.set_defaults(fn=_cmd_import_official)
 
@@ -180,10 +182,31 @@ def _cmd_import_official(a) -> int:
     from .official.state_dict_file import StateDictError
     try:
         import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,
-                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens)
+                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens,
+                        kv_precision=a.kv_precision)
     except (StateDictError, ValueError) as e:
         print(f"silk-export import-official: error: {e}", file=sys.stderr)
         return 2
+    return 0
+
+
+def _add_kv16(sub) -> None:
+    k = sub.add_parser("kv16", help="add the fp16 self-K/V cache variant of every decoder to a model folder "
+                       "(docs/model_contract.md, KV precision)")
+    k.add_argument("folder", help="model folder (model.json + decoder*.onnx)")
+    k.add_argument("--default", choices=["fp32", "fp16"], help="also set files.default_kv_precision")
+    k.set_defaults(fn=_cmd_kv16)
+
+
+def _cmd_kv16(a) -> int:
+    from .onnx.kv_precision import KV_FILES_KEY, add_kv16_to_folder
+    try:
+        files = add_kv16_to_folder(Path(a.folder), a.default)
+    except (OSError, ValueError) as e:
+        print(f"silk-export kv16: error: {e}", file=sys.stderr)
+        return 2
+    print(json.dumps({KV_FILES_KEY: files[KV_FILES_KEY],
+                      "default_kv_precision": files.get("default_kv_precision", "fp32")}, indent=2))
     return 0
 
 
@@ -318,7 +341,7 @@ def _cmd_generate(a) -> int:
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="silk-export", description=__doc__)
     sub = p.add_subparsers(dest="cmd", required=True)
-    for add in (_add_dataset, _add_train, _add_pack_checkpoint, _add_export, _add_import_official, _add_eval,
+    for add in (_add_dataset, _add_train, _add_pack_checkpoint, _add_export, _add_import_official, _add_kv16, _add_eval,
                 _add_loss, _add_card, _add_bench, _add_generate):
         add(sub)
     return p

@@ -28,6 +28,11 @@ if(Python3_FOUND AND TARGET silkgen)
                      $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR} ${SILK_SHARED_DIR})
     set_tests_properties(official_fixture_greedy PROPERTIES SKIP_RETURN_CODE 77 LABELS slow
                          ENVIRONMENT "SILK_LIBRARY=$<TARGET_FILE:silk>")
+    if(CMAKE_SYSTEM_NAME STREQUAL "Linux")  # ELF symbol versions: the 1.0 ABI still served
+      add_test(NAME capi_abi_1_0
+               COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/capi_abi_check.py $<TARGET_FILE:silk>
+                       ${PROJECT_SOURCE_DIR}/tests/models/tiny)
+    endif()
     add_test(NAME capi_generate_ctypes
              COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/examples/generate_ctypes.py
                      --library $<TARGET_FILE:silk> --model ${PROJECT_SOURCE_DIR}/tests/models/tiny

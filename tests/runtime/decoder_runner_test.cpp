@@ -21,7 +21,7 @@ Fed FeedAll(const Model& model, const std::vector<int32_t>& ids, int64_t chunk, 
   auto cross = RunEncoder(model.impl(), testing::SamplePoints(model).data(), model.config().dims.n_points);
   EXPECT_TRUE(cross.ok());
   KvCache cache;
-  EXPECT_TRUE(cache.Reserve(64, ModelKvShape(model.config().dims)).ok());
+  EXPECT_TRUE(cache.Reserve(64, ModelKvShape(model.impl())).ok());
   DecoderRunner runner(model.impl(), &cache, cross->GetTensorMutableData<float>(), mode);
   for (size_t i = 0; i < ids.size(); i += chunk) {
     const int64_t n = std::min<int64_t>(chunk, ids.size() - i);
@@ -30,7 +30,7 @@ Fed FeedAll(const Model& model, const std::vector<int32_t>& ids, int64_t chunk, 
   }
   Fed f;
   f.logits.assign(runner.last_logits(), runner.last_logits() + model.config().model_vocab_size);
-  f.cache.resize(static_cast<size_t>(cache.length() * cache.shape().position_floats()));
+  f.cache.resize(static_cast<size_t>(cache.length() * cache.shape().position_elems()));
   cache.CopyTimeMajor(f.cache.data());
   f.calls = runner.calls();
   return f;
@@ -66,13 +66,43 @@ TEST(DecoderRunner, ChunkedEqualsStepwiseEqualsCopying) {
   EXPECT_GT(MaxDiff(step.logits, FeedAll(*model, other, 1, KvMode::kInPlace).logits), 1e-3);
 }
 
+// The fp16 self-K/V cache (decoder.kv16.onnx): chunked = stepwise = copying as for fp32, the
+// cache holds the fp32 run's keys/values to float16 precision, the logits stay close.
+TEST(DecoderRunner, Fp16CacheMatchesFp32) {
+  auto model = testing::LoadTinyModel(1, KvPrecision::kFp16);
+  auto ref = testing::LoadTinyModel(1);
+  ASSERT_TRUE(model && ref);
+  EXPECT_EQ(ModelKvShape(model->impl()).elem_bytes, 2);
+  const std::vector<int32_t> ids = {10269, 0, 5835, 8758, 1, 6112, 9420, 220, 460, 5803, 8381, 352};
+  const Fed step = FeedAll(*model, ids, 1, KvMode::kInPlace);
+  const Fed whole = FeedAll(*model, ids, 12, KvMode::kInPlace);
+  const Fed copy = FeedAll(*model, ids, 1, KvMode::kCopy);
+  const Fed fp32 = FeedAll(*ref, ids, 1, KvMode::kInPlace);
+  EXPECT_EQ(MaxDiff(step.logits, copy.logits), 0.0);
+  EXPECT_EQ(MaxDiff(step.cache, copy.cache), 0.0);
+  EXPECT_LT(MaxDiff(step.logits, whole.logits), 1e-2);
+  double scale = 0;
+  for (float v : fp32.cache) scale = std::max(scale, double(std::fabs(v)));
+  const double cache_diff = MaxDiff(step.cache, fp32.cache);
+  EXPECT_GT(cache_diff, 0.0);  // it really is float16
+  EXPECT_LT(cache_diff, scale * 2e-3);
+  EXPECT_LT(MaxDiff(step.logits, fp32.logits), 0.05);
+  // A cache reserved for the other element type is refused, not misread.
+  auto cross = RunEncoder(model->impl(), testing::SamplePoints(*model).data(), model->config().dims.n_points);
+  ASSERT_TRUE(cross.ok());
+  KvCache wrong;
+  ASSERT_TRUE(wrong.Reserve(4, ModelKvShape(ref->impl())).ok());
+  DecoderRunner runner(model->impl(), &wrong, cross->GetTensorMutableData<float>());
+  EXPECT_EQ(runner.Feed(ids.data(), 1).code(), StatusCode::kInvalidArgument);
+}
+
 TEST(DecoderRunner, RefusesOverflow) {
   auto model = testing::LoadTinyModel();
   ASSERT_TRUE(model);
   auto cross = RunEncoder(model->impl(), testing::SamplePoints(*model).data(), model->config().dims.n_points);
   ASSERT_TRUE(cross.ok());
   KvCache cache;
-  ASSERT_TRUE(cache.Reserve(2, ModelKvShape(model->config().dims)).ok());
+  ASSERT_TRUE(cache.Reserve(2, ModelKvShape(model->impl())).ok());
   DecoderRunner runner(model->impl(), &cache, cross->GetTensorMutableData<float>());
   const int32_t ids[3] = {10269, 0, 1};
   Status s = runner.Feed(ids, 3);

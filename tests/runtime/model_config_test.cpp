@@ -2,6 +2,9 @@
 // names (format, versions, vocabulary, file names, dimensions) is refused with a message.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "io/files/file_bytes.h"
@@ -219,6 +222,84 @@ TEST(ModelLoad, MissingFolderAndPrecisionsAreClearErrors) {
   auto fp = testing::LoadTinyModel(1);
   ASSERT_TRUE(fp);
   EXPECT_EQ(fp->precision(), DecoderPrecision::kFp32);
+}
+
+// files.kv_fp16 / files.default_kv_precision: the fp16-cache variant of a decoder, the model's
+// default, and the refusals (a variant without its decoder, an unknown precision, a default
+// the default decoder cannot honour).
+TEST(ModelConfig, KvPrecisionFiles) {
+  auto c = LoadModelConfig(testing::TinyModelDir());
+  ASSERT_TRUE(c.ok()) << c.status().ToString();
+  EXPECT_EQ(c->DecoderFile(DecoderPrecision::kFp32, KvPrecision::kFp16), "decoder.kv16.onnx");
+  EXPECT_EQ(c->DecoderFile(DecoderPrecision::kFp32, KvPrecision::kFp32), "decoder.onnx");
+  EXPECT_TRUE(c->DecoderFile(DecoderPrecision::kInt8, KvPrecision::kFp16).empty());
+  EXPECT_EQ(c->default_kv, KvPrecision::kFp32);  // absent: fp32
+  auto fp16 = ParseModelConfig([] {
+    nlohmann::json j = TinyJson();
+    j["files"]["default_kv_precision"] = "fp16";
+    return j.dump();
+  }(), "model.json");
+  ASSERT_TRUE(fp16.ok()) << fp16.status().ToString();
+  EXPECT_EQ(fp16->DefaultKv(DecoderPrecision::kFp32), KvPrecision::kFp16);
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, const char*>> bad = {
+      {[](auto& j) { j["files"]["kv_fp16"]["decoder_int8"] = "d.int8.kv16.onnx"; }, "files.decoder_int8 is not"},
+      {[](auto& j) { j["files"]["kv_fp16"]["decoder"] = "../x.onnx"; }, "plain names"},
+      {[](auto& j) { j["files"]["kv_fp16"] = "decoder.kv16.onnx"; }, "not an object"},
+      {[](auto& j) { j["files"]["default_kv_precision"] = "int8"; }, "neither \"fp32\" nor \"fp16\""},
+      {[](auto& j) {
+         j["files"].erase("kv_fp16");
+         j["files"]["default_kv_precision"] = "fp16";
+       },
+       "no files.kv_fp16 variant"},
+  };
+  for (const auto& [edit, needle] : bad) {
+    Status s = ParseWith(edit);
+    ASSERT_FALSE(s.ok()) << needle;
+    EXPECT_NE(s.message().find(needle), std::string::npos) << s.message();
+  }
+}
+
+TEST(ModelLoad, KvPrecisionChoosesTheGraph) {
+  auto fp16 = testing::LoadTinyModel(1, KvPrecision::kFp16);
+  ASSERT_TRUE(fp16);
+  EXPECT_EQ(fp16->kv_precision(), KvPrecision::kFp16);
+  auto fp32 = testing::LoadTinyModel(1);
+  ASSERT_TRUE(fp32);
+  EXPECT_EQ(fp32->kv_precision(), KvPrecision::kFp32);
+  ModelLoadOptions o;  // the model's: fp32 here (no default_kv_precision)
+  auto dflt = Model::Load(testing::TinyModelDir(), o);
+  ASSERT_TRUE(dflt.ok());
+  EXPECT_EQ((*dflt)->kv_precision(), KvPrecision::kFp32);
+}
+
+TEST(ModelLoad, MissingKvVariantNamesPrecisionAndFolder) {
+  const std::string dir = ::testing::TempDir() + "/kv_missing";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  for (const char* f : {"model.json", "encoder.onnx", "decoder.onnx"})
+    std::filesystem::copy_file(testing::TinyModelDir() + "/" + f, dir + "/" + f);
+  ModelLoadOptions o;
+  o.kv = KvPrecision::kFp16;
+  // model.json names decoder.kv16.onnx, which this folder lacks: the file is named.
+  auto gone = Model::Load(dir, o);
+  ASSERT_FALSE(gone.ok());
+  EXPECT_NE(gone.status().message().find("decoder.kv16.onnx"), std::string::npos) << gone.status().message();
+  // A model without the variant: the precision and the folder are named.
+  nlohmann::json j = TinyJson();
+  j["files"].erase("kv_fp16");
+  std::ofstream(dir + "/model.json") << j.dump();
+  auto none = Model::Load(dir, o);
+  ASSERT_FALSE(none.ok());
+  EXPECT_EQ(none.status().code(), StatusCode::kUnsupported);
+  EXPECT_NE(none.status().message().find("fp16 KV cache"), std::string::npos) << none.status().message();
+  EXPECT_NE(none.status().message().find(dir), std::string::npos) << none.status().message();
+  // A variant whose caches are float32 (a wrong file) is refused by the type check.
+  j["files"]["kv_fp16"] = {{"decoder", "decoder.onnx"}};
+  std::ofstream(dir + "/model.json") << j.dump();
+  auto wrong = Model::Load(dir, o);
+  ASSERT_FALSE(wrong.ok());
+  EXPECT_NE(wrong.status().message().find("float32, the contract needs float16"), std::string::npos)
+      << wrong.status().message();
 }
 
 TEST(ModelLoad, ThreadsResolve) {

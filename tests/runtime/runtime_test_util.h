@@ -14,9 +14,10 @@ namespace silk::testing {
 
 inline std::string TinyModelDir() { return SourcePath("tests/models/tiny"); }
 
-inline std::unique_ptr<Model> LoadTinyModel(int threads = 1) {
+inline std::unique_ptr<Model> LoadTinyModel(int threads = 1, KvPrecision kv = KvPrecision::kFp32) {
   ModelLoadOptions o;
   o.threads = threads;
+  o.kv = kv;
   auto m = Model::Load(TinyModelDir(), o);
   if (!m.ok()) return nullptr;
   return std::move(*m);

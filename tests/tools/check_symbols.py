@@ -21,7 +21,7 @@ def exported(lib):
     names = set()
     for line in out.splitlines():
         parts = line.split()
-        if len(parts) >= 3:
+        if len(parts) >= 3 and parts[1] != "A":  # "A": a version node (SILK_1.0), not a symbol
             names.add(parts[2].split("@")[0])
     return names
 

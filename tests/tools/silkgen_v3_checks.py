@@ -106,6 +106,13 @@ def check_defaults(silkgen, repo, tmp):
     got, st, err = tokens_of(silkgen, int4, sample, tmp, "v3_fp32", [*base, "--decoder", "fp32"])
     if got is None or st.get("decoder") != "fp32":
         failures.append(f"--decoder fp32 did not override: {err}")
+    kv16 = v3_model(repo, tmp / "v3_kv16", files={"default_kv_precision": "fp16"})
+    got, st, err = tokens_of(silkgen, kv16, sample, tmp, "v3_kv16", base)
+    if got is None or st.get("kv_precision") != "fp16":
+        failures.append(f"default_kv_precision fp16 not used: {err} {st and st.get('kv_precision')}")
+    elif st.get("kv_cache_bytes") * 2 != tokens_of(silkgen, kv16, sample, tmp, "v3_kv32",
+                                                    [*base, "--kv-precision", "fp32"])[1].get("kv_cache_bytes"):
+        failures.append("--kv-precision fp32 did not override the model's fp16 (or the cache is not half the size)")
     return failures
 
 
@@ -122,6 +129,10 @@ def check_errors(silkgen, repo, tmp):
     expect_fail(failures, "--decoder int8 without file",
                 run([silkgen, sample, "--model", repo / "tests/models/tiny", "--decoder", "int8", "--tokens",
                      tmp / "t", "-q"]), ["INT8"])
+    nokv = v3_model(repo, tmp / "v3_nokv", files={"kv_fp16": {}})
+    expect_fail(failures, "--kv-precision fp16 without a variant",
+                run([silkgen, sample, "--model", nokv, "--kv-precision", "fp16", "--tokens", tmp / "t", "-q"]),
+                ["fp16", str(nokv)])
     try:
         import onnx
     except ImportError:

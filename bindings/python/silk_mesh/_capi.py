@@ -119,16 +119,18 @@ class PreprocessParams(_Sized):
 
 PREPROCESS_KINDS = {"silk": 0, "official": 1}
 DECODERS = {"default": 0, "int8": 1, "fp32": 2, "int4": 3}  # silk_decoder_precision
+KV_PRECISIONS = {"default": 0, "fp32": 1, "fp16": 2}  # silk_kv_precision
 
 
 class ModelParams(_Sized):
-    _fields_ = _SIZE + [("threads", ctypes.c_int32), ("decoder", ctypes.c_int32)]  # silk_decoder_precision
+    _fields_ = _SIZE + [("threads", ctypes.c_int32), ("decoder", ctypes.c_int32),  # silk_decoder_precision
+                        ("kv_precision", ctypes.c_int32)]  # silk_kv_precision
 
 
 class ModelInfo(_Sized):
     _fields_ = _SIZE + [("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in (
         "d_model", "n_layers", "n_heads", "head_dim", "n_latents", "default_points", "max_seq_len", "threads", "int8",
-        "decoder", "arch", "encoder_points")]
+        "decoder", "arch", "encoder_points", "kv_precision")]
 
 
 class GenerateProgress(_Sized):

@@ -19,7 +19,7 @@
  * PATCH fixes. silk_version() is the library's own string (compare it with SILK_VERSION_STRING
  * to detect a header/library mismatch). */
 #define SILK_VERSION_MAJOR 1
-#define SILK_VERSION_MINOR 0
+#define SILK_VERSION_MINOR 1
 #define SILK_VERSION_PATCH 0
 #define SILK_STR_(x) #x
 #define SILK_STR(x) SILK_STR_(x)
@@ -358,11 +358,21 @@ typedef enum silk_decoder_precision {
   SILK_DECODER_INT4 = 3
 } silk_decoder_precision;
 
+/* Element type of the self-attention K/V cache (docs/runtime.md, "KV cache precision"). */
+typedef enum silk_kv_precision {
+  SILK_KV_DEFAULT = 0, /* the model's: model.json files.default_kv_precision when the chosen decoder has
+                          that variant, else fp32 */
+  SILK_KV_FP32 = 1,
+  SILK_KV_FP16 = 2
+} silk_kv_precision;
+
 typedef struct silk_model_params {
   uint32_t struct_size; /* set by silk_model_default_params() */
   int32_t threads; /* threads of the process's shared pool (first load decides); 0 = physical
                       cores (default); at most max(64, hardware threads) */
   int32_t decoder; /* silk_decoder_precision (error if the model lacks that file); default SILK_DECODER_DEFAULT */
+  int32_t kv_precision; /* silk_kv_precision (SILK_ERR_UNSUPPORTED naming the precision and folder if the
+                           chosen decoder has no such variant); default SILK_KV_DEFAULT */
 } silk_model_params;
 SILK_API silk_model_params silk_model_default_params(void);
 /* dir holds model.json, encoder.onnx, decoder.onnx (docs/model_contract.md). A model of another
@@ -383,6 +393,7 @@ typedef struct silk_model_info {
   int32_t decoder;      /* silk_decoder_precision in use (never DEFAULT) */
   int32_t arch;         /* 0 = "silk", 1 = "official" */
   int32_t encoder_points; /* the encoder graph's fixed point count; -1 = any */
+  int32_t kv_precision;   /* silk_kv_precision in use (never DEFAULT) */
 } silk_model_info;
 /* The model's pre-processing (model.json "preprocessing"); out->struct_size as for an out struct. */
 SILK_API silk_status silk_model_get_preprocess_params(const silk_model* model, silk_preprocess_params* out);

@@ -28,6 +28,16 @@ std::string DimsText(const std::vector<int64_t>& d) {
   return s + "]";
 }
 
+std::string TypeName(ONNXTensorElementDataType t) {
+  switch (t) {
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT: return "float32";
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16: return "float16";
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64: return "int64";
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32: return "int32";
+    default: return "ONNX type " + std::to_string(static_cast<int>(t));
+  }
+}
+
 // Checks one side (inputs or outputs) of a session against the contract.
 Status CheckIo(Ort::Session& s, bool inputs, const std::vector<IoSpec>& want, const std::string& file) {
   const size_t n = inputs ? s.GetInputCount() : s.GetOutputCount();
@@ -45,7 +55,9 @@ Status CheckIo(Ort::Session& s, bool inputs, const std::vector<IoSpec>& want, co
     Ort::TypeInfo ti = inputs ? s.GetInputTypeInfo(i) : s.GetOutputTypeInfo(i);
     auto t = ti.GetTensorTypeAndShapeInfo();
     if (t.GetElementType() != spec->type)
-      return Status(StatusCode::kUnsupported, file + ": '" + name + "' has the wrong element type");
+      return Status(StatusCode::kUnsupported, file + ": '" + name + "' has element type " +
+                                                  TypeName(t.GetElementType()) + ", the contract needs " +
+                                                  TypeName(spec->type));
     std::vector<int64_t> dims = t.GetShape();
     bool ok = dims.size() == spec->dims.size();
     for (size_t k = 0; ok && k < dims.size(); ++k) ok = spec->dims[k] < 0 || dims[k] < 0 || dims[k] == spec->dims[k];
@@ -65,6 +77,26 @@ StatusOr<int64_t> EncoderPoints(Ort::Session& s, int32_t n_points, const std::st
     return Unsupported(file + ": the encoder takes " + std::to_string(n) + " points, model.json dims.n_points is " +
                        std::to_string(n_points));
   return n < 0 ? int64_t{-1} : n;
+}
+
+std::string Upper(const std::string& s) {
+  std::string u;
+  for (char ch : s) u += static_cast<char>(ch >= 'a' && ch <= 'z' ? ch - 'a' + 'A' : ch);
+  return u;
+}
+
+// The decoder file of a weight precision and KV precision, or an error naming both and the folder.
+StatusOr<std::string> ChooseDecoderFile(const std::string& dir, const ModelConfig& config, DecoderPrecision p,
+                                        KvPrecision kv) {
+  const std::string name = DecoderPrecisionName(p);
+  const std::string key = p == DecoderPrecision::kFp32 ? "decoder" : "decoder_" + name;
+  if (config.DecoderFile(p).empty())
+    return Unsupported(dir + "/model.json: no " + Upper(name) + " decoder (files." + key + ") in this model");
+  if (config.DecoderFile(p, kv).empty())
+    return Unsupported(dir + ": no " + KvPrecisionName(kv) + " KV cache variant of the " + Upper(name) +
+                       " decoder in this model folder (files.kv_fp16." + key +
+                       " in model.json; add one with `silk-export kv16`)");
+  return config.DecoderFile(p, kv);
 }
 
 }  // namespace
@@ -89,6 +121,7 @@ Model::~Model() = default;
 const ModelConfig& Model::config() const { return impl_->config; }
 int Model::threads() const { return impl_->threads; }
 DecoderPrecision Model::precision() const { return impl_->precision; }
+KvPrecision Model::kv_precision() const { return impl_->kv_precision; }
 int64_t Model::encoder_points() const { return impl_->encoder_points; }
 
 StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const ModelLoadOptions& options) {
@@ -102,13 +135,8 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
 #endif
   auto impl = std::make_unique<Impl>();
   impl->precision = options.decoder.value_or(config.default_decoder);
-  const std::string decoder_file = config.DecoderFile(impl->precision);
-  if (decoder_file.empty()) {
-    const std::string p = DecoderPrecisionName(impl->precision);
-    std::string upper;
-    for (char ch : p) upper += static_cast<char>(ch >= 'a' && ch <= 'z' ? ch - 'a' + 'A' : ch);
-    return Unsupported(dir + "/model.json: no " + upper + " decoder (files.decoder_" + p + ") in this model");
-  }
+  impl->kv_precision = options.kv.value_or(config.DefaultKv(impl->precision));
+  SILK_ASSIGN_OR_RETURN(const std::string decoder_file, ChooseDecoderFile(dir, config, impl->precision, impl->kv_precision));
   const std::string enc_path = dir + "/" + config.encoder_file, dec_path = dir + "/" + decoder_file;
   for (const std::string& p : {enc_path, dec_path})
     if (!IsRegularFile(p)) return IoError(p + ": missing (named in model.json)");
@@ -120,17 +148,18 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   constexpr auto kF = ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
   constexpr auto kI = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64;
   constexpr auto kI32 = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;
+  const auto kKv = impl->kv_precision == KvPrecision::kFp16 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 : kF;
   std::vector<IoSpec> dec_in = {{"input_ids", kI, {1, -1}},
                                 {"positions", kI, {1, -1}},
                                 {"seqlens_k", kI32, {1}},
                                 {"total_sequence_length", kI32, {}}};
   std::vector<IoSpec> dec_out = {{"logits", kF, {1, -1, V}}};
   for (const std::string& name : DecoderInputNames(d.n_layers))
-    if (name.rfind("past_", 0) == 0) dec_in.push_back({name, kF, {1, d.n_heads, -1, d.head_dim}});
+    if (name.rfind("past_", 0) == 0) dec_in.push_back({name, kKv, {1, d.n_heads, -1, d.head_dim}});
   for (const std::string& name : DecoderInputNames(d.n_layers))
     if (name.rfind("cross_", 0) == 0) dec_in.push_back({name, kF, {1, d.n_heads, d.n_latents, d.head_dim}});
   for (const std::string& name : DecoderOutputNames(d.n_layers))
-    if (name != "logits") dec_out.push_back({name, kF, {1, d.n_heads, -1, d.head_dim}});
+    if (name != "logits") dec_out.push_back({name, kKv, {1, d.n_heads, -1, d.head_dim}});
   Status s = OrtGuard("loading " + dir, [&]() -> Status {
     Ort::Env& env = OrtEnvironment(options.threads, options.allow_spinning);
     impl->threads = SharedPoolThreads();

@@ -16,6 +16,9 @@ struct ModelLoadOptions {
                                // model loaded); 0 = physical cores; at most MaxThreads()
   // Decoder precision; unset = model.json's files.default_decoder. Error if the file is absent.
   std::optional<DecoderPrecision> decoder;
+  // Self-K/V cache precision; unset = the model's (files.default_kv_precision when the chosen
+  // decoder has that variant, else fp32). Error if the decoder has no variant of that precision.
+  std::optional<KvPrecision> kv;
   bool allow_spinning = true;  // worker threads spin between ops (faster, burns CPU while idle)
 };
 
@@ -30,6 +33,7 @@ class Model {
   const ModelConfig& config() const;
   int threads() const;       // threads of the shared pool
   DecoderPrecision precision() const;  // the decoder in use
+  KvPrecision kv_precision() const;    // its self-K/V cache's element type
   // The encoder graph's fixed point count (input "points" dimension 1); -1 when dynamic.
   int64_t encoder_points() const;
   Impl& impl() const { return *impl_; }

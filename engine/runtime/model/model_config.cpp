@@ -217,6 +217,33 @@ Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp,
   return Status::Ok();
 }
 
+// files.kv_fp16 {"decoder": ..., "decoder_int8": ..., "decoder_int4": ...} (each the fp16-cache
+// variant of the decoder of the same key, which must be given) and files.default_kv_precision.
+Status ParseKvFiles(const Json& f, const std::string& name, ModelConfig* c) {
+  const Json* kv = nullptr;
+  SILK_RETURN_IF_ERROR(GetObject(f, "kv_fp16", name + " files", &kv));
+  const char* keys[3] = {"decoder", "decoder_int8", "decoder_int4"};
+  const DecoderPrecision precisions[3] = {DecoderPrecision::kFp32, DecoderPrecision::kInt8, DecoderPrecision::kInt4};
+  for (int i = 0; kv && i < 3; ++i) {
+    std::string& file = c->kv16_files[static_cast<int>(precisions[i])];
+    SILK_RETURN_IF_ERROR(GetString(*kv, keys[i], name + " files.kv_fp16", "", &file));
+    if (file.empty()) continue;
+    if (!PlainName(file))
+      return Status(StatusCode::kParseError, name + ": file names must be plain names inside the model folder ('" +
+                                                 file + "')");
+    if (c->DecoderFile(precisions[i]).empty())
+      return Bad(name, std::string("files.kv_fp16.") + keys[i] + " is given, but files." + keys[i] + " is not");
+  }
+  std::string def;
+  SILK_RETURN_IF_ERROR(GetString(f, "default_kv_precision", name + " files", "fp32", &def));
+  if (def == "fp32") c->default_kv = KvPrecision::kFp32;
+  else if (def == "fp16") c->default_kv = KvPrecision::kFp16;
+  else return Bad(name, "files.default_kv_precision \"" + def + "\" is neither \"fp32\" nor \"fp16\"");
+  if (c->default_kv == KvPrecision::kFp16 && c->DecoderFile(c->default_decoder, KvPrecision::kFp16).empty())
+    return Bad(name, "files.default_kv_precision is \"fp16\", but the default decoder has no files.kv_fp16 variant");
+  return Status::Ok();
+}
+
 Status ParseFiles(const Json& j, const std::string& name, ModelConfig* c) {
   const Json* f = nullptr;
   SILK_RETURN_IF_ERROR(GetObject(j, "files", name, &f));
@@ -253,7 +280,7 @@ Status ParseFiles(const Json& j, const std::string& name, ModelConfig* c) {
   else return Bad(name, "files.default_decoder \"" + def + "\" is not decoder, decoder_int8 or decoder_int4");
   if (c->DecoderFile(c->default_decoder).empty())
     return Bad(name, "files.default_decoder is \"" + def + "\", but files." + def + " is not given");
-  return Status::Ok();
+  return ParseKvFiles(*f, name, c);
 }
 
 Status ParseSource(const Json& j, const std::string& name, ModelConfig* c) {
@@ -274,6 +301,16 @@ const char* DecoderPrecisionName(DecoderPrecision p) {
 
 const std::string& ModelConfig::DecoderFile(DecoderPrecision p) const {
   return p == DecoderPrecision::kInt8 ? decoder_int8_file : p == DecoderPrecision::kInt4 ? decoder_int4_file : decoder_file;
+}
+
+const char* KvPrecisionName(KvPrecision p) { return p == KvPrecision::kFp16 ? "fp16" : "fp32"; }
+
+const std::string& ModelConfig::DecoderFile(DecoderPrecision p, KvPrecision kv) const {
+  return kv == KvPrecision::kFp16 ? kv16_files[static_cast<int>(p)] : DecoderFile(p);
+}
+
+KvPrecision ModelConfig::DefaultKv(DecoderPrecision p) const {
+  return DecoderFile(p, default_kv).empty() ? KvPrecision::kFp32 : default_kv;
 }
 
 SamplingParams DefaultSamplingParams() {

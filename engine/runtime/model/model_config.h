@@ -22,6 +22,10 @@ inline constexpr int32_t kSupportedModelVersion = 3;
 enum class ModelArch { kSilk, kOfficial };
 enum class DecoderPrecision { kFp32, kInt8, kInt4 };
 const char* DecoderPrecisionName(DecoderPrecision p);  // "fp32", "int8", "int4"
+// Element type of the self-attention K/V cache (the decoder graph's past_*/present_*): each
+// decoder file may have an fp16-cache variant (model.json files.kv_fp16).
+enum class KvPrecision { kFp32, kFp16 };
+const char* KvPrecisionName(KvPrecision p);  // "fp32", "fp16"
 
 // The fewest ids a complete mesh takes (one triangle with its layer ends and EOS); a smaller
 // max_tokens or max_seq_len - 1 can only end in an empty mesh and is refused up front.
@@ -54,10 +58,18 @@ struct ModelConfig {
   // Relative to dir; int8/int4 may be "". external_data: files the ONNX graphs reference.
   std::string encoder_file, decoder_file, decoder_int8_file, decoder_int4_file;
   DecoderPrecision default_decoder = DecoderPrecision::kFp32;
+  // files.kv_fp16: the fp16-cache variant of each decoder ("" when absent), indexed like
+  // DecoderPrecision; files.default_kv_precision (absent: fp32).
+  std::string kv16_files[3];
+  KvPrecision default_kv = KvPrecision::kFp32;
   std::vector<std::string> external_data;
   std::string source_file, source_sha256, source_licence;  // "source" (optional)
   // The decoder file of a precision ("" when the model has none).
   const std::string& DecoderFile(DecoderPrecision p) const;
+  // The decoder file of a precision with a cache precision ("" when the model has none).
+  const std::string& DecoderFile(DecoderPrecision p, KvPrecision kv) const;
+  // The model's KV precision for decoder p: default_kv when p has that variant, else fp32.
+  KvPrecision DefaultKv(DecoderPrecision p) const;
 };
 
 // silkgen's sampling defaults before model.json carried them (v2 models keep them).

@@ -14,6 +14,7 @@ struct Model::Impl {
   ModelConfig config;
   int threads = 1;
   DecoderPrecision precision = DecoderPrecision::kFp32;
+  KvPrecision kv_precision = KvPrecision::kFp32;
   int64_t encoder_points = -1;  // fixed N of encoder.onnx, -1: dynamic
   std::unique_ptr<Ort::Session> encoder, decoder;
   Ort::MemoryInfo cpu_memory = Ort::MemoryInfo::CreateCpu(OrtArenaAllocator, OrtMemTypeDefault);

@@ -14,6 +14,7 @@ from pathlib import Path
 
 from ..json_io import write_json
 from ..onnx import fidelity
+from ..onnx.kv_precision import KV_PRECISIONS, add_kv16_variants
 from ..onnx.export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
                            transpose_linears)
 from ..vocab import load_vocab
@@ -26,6 +27,9 @@ SOURCE_LICENCE = ("The official Mesh Silksong code (gaochao-s/Mesh-Silksong) is 
 # Chosen by measurement on the release-size architecture (README "Run the released Mesh Silksong model").
 INT4_BLOCK_SIZE = 32
 INT4_ACCURACY_LEVEL = 4
+# The imported model's KV cache precision (files.default_kv_precision), chosen by measurement:
+# docs/runtime.md "KV cache precision" (bench/kv_fidelity.py and bench/time_to_mesh).
+DEFAULT_KV_PRECISION = "fp16"
 
 
 def sha256_of(path: Path) -> str:
@@ -55,9 +59,11 @@ def _variants(folder: Path, precision: str, int4_block: int, int4_accuracy: int)
 
 
 def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: int = INT4_BLOCK_SIZE,
-                   int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32) -> dict:
+                   int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32,
+                   kv_precision: str = DEFAULT_KV_PRECISION) -> dict:
     """After export_graphs (drop the PyTorch model first: quantization loads the fp32 graph): the
-    quantized decoders `precision` asks for, their fidelity/speed figures and the default decoder.
+    quantized decoders `precision` asks for, their fidelity/speed figures and the default decoder,
+    then the fp16-cache variant of every decoder and the default KV precision.
     Updates `files` (model.json "files"); returns the figures."""
     files.update(_variants(folder, precision, int4_block, int4_accuracy))
     for name in ("decoder.int8.onnx", "decoder.int4.onnx"):
@@ -69,13 +75,18 @@ def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: i
     figures = fidelity.measure(folder, variants, vocab.bos_id, vocab.eos_id, cfg.n_points, fidelity_tokens)
     files["default_decoder"] = fidelity.choose(figures) if precision == "auto" else \
         {"fp32": "decoder", "int8": "decoder_int8", "int4": "decoder_int4"}[precision]
+    if kv_precision not in KV_PRECISIONS:
+        raise ValueError(f"KV precision '{kv_precision}': expected one of {', '.join(KV_PRECISIONS)}")
+    _say("fp16 self-K/V cache variants of every decoder (silk-export kv16)")
+    add_kv16_variants(folder, files)
+    files["default_kv_precision"] = kv_precision
     return figures
 
 
 def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", config_path: Path | None = None,
                     force: bool = False, progress: bool = True, int4_block: int = INT4_BLOCK_SIZE,
                     int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32,
-                    licence: str = SOURCE_LICENCE) -> dict:
+                    licence: str = SOURCE_LICENCE, kv_precision: str = DEFAULT_KV_PRECISION) -> dict:
     """Returns the model.json written. Raises StateDictError / ValueError with a message naming
     the problem (a key missing, misshaped or holding NaN / Inf; a non-finite model.json figure);
     the destination is then untouched."""
@@ -96,7 +107,7 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
         files = export_graphs(transpose_linears(model), tmp)
         del model
         gc.collect()
-        figures = write_variants(tmp, files, cfg, precision, int4_block, int4_accuracy, fidelity_tokens)
+        figures = write_variants(tmp, files, cfg, precision, int4_block, int4_accuracy, fidelity_tokens, kv_precision)
         source = {"file": checkpoint.name, "sha256": sha256_of(checkpoint), "bytes": checkpoint.stat().st_size,
                   "licence": licence}
         chosen = files["default_decoder"]

@@ -24,7 +24,10 @@ class DecoderState:
         for l in range(self.n_layers):
             self.cross[f"cross_key_{l}"] = np.ascontiguousarray(cross_kv[l, 0][None])
             self.cross[f"cross_value_{l}"] = np.ascontiguousarray(cross_kv[l, 1][None])
-        self.past = [np.zeros((1, h, 0, d), np.float32) for _ in range(2 * self.n_layers)]
+        # The cache's element type is the graph's (float16 for a files.kv_fp16 variant).
+        dtype = np.float16 if any(i.name == "past_key_0" and i.type == "tensor(float16)"
+                                  for i in decoder.get_inputs()) else np.float32
+        self.past = [np.zeros((1, h, 0, d), dtype) for _ in range(2 * self.n_layers)]
         self.length = 0
 
     def run(self, ids, positions=None) -> np.ndarray:

@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""kv_fidelity: how far the fp16 self-K/V cache (model.json files.kv_fp16) moves a decoder from the
+fp32 cache, teacher-forced over long real token sequences: top-1 agreement (all positions, and
+those where the fp32 top id leads by >= 0.05 logits) and KL(fp32 || fp16) of the next-id
+distributions at every position, overall and by depth, for each decoder asked.
+The same decoder weights run with both caches, so only the cache precision differs; the sequences
+(the shared golden-dev token files, truncated to the model's positions) are fed in chunks (in a
+fp16-cache graph the chunk's own keys/values are float16 as well, so the numbers equal step-wise
+feeding).
+
+    python3 bench/kv_fidelity.py MODEL_DIR [--decoders decoder decoder_int4] [--tokens A.tokens.txt ...]
+        [--max-len 4096] [--points points.npy] [--chunk 256] [--threads 2] [--json OUT.json]
+
+Defaults: the model's default decoder; two long dev sequences; the official fixture's point cloud
+(shared/official-fixture/points.npy, 4,096 rows; resampled with replacement for another count).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO / "export"))
+
+import numpy as np  # noqa: E402
+
+from silk_export.onnx.decode import DecoderState, session  # noqa: E402
+
+SHARED = REPO.parent / "shared"
+DEFAULT_TOKENS = ["structural__hele_theater_struct", "skeletal__bear_polar"]
+DEPTH_BUCKETS = (0, 512, 1024, 2048, 4096, 8192, 1 << 30)
+
+
+def read_tokens(path: Path) -> list[int]:
+    return [int(x) for x in Path(path).read_text().split()]
+
+
+def cloud(path: Path, n: int) -> np.ndarray:
+    pts = np.load(path).astype(np.float32)
+    if len(pts) != n:
+        pts = pts[np.random.default_rng(0).integers(0, len(pts), n)]
+    return pts[None]
+
+
+def log_softmax(x: np.ndarray) -> np.ndarray:
+    x = x.astype(np.float64)
+    x = x - x.max(axis=-1, keepdims=True)
+    return x - np.log(np.exp(x).sum(axis=-1, keepdims=True))
+
+
+def logits(decoder_path: Path, cross: np.ndarray, ids: list[int], chunk: int, threads: int) -> np.ndarray:
+    state = DecoderState(session(decoder_path, threads), cross)
+    return np.concatenate([state.run(ids[i:i + chunk]) for i in range(0, len(ids), chunk)])
+
+
+# A position is "decided" when the fp32 cache's top id leads the runner-up by at least this many
+# logits: below it the top-1 is a near-tie (random weights give nearly flat logits), and a flip
+# there changes the sampled distribution by almost nothing (see KL).
+DECIDED_GAP = 0.05
+
+
+def compare(ref: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per position: top-1 equal, KL(ref || half) in nats (PAD excluded like the sampler does),
+    and whether the fp32 top-1 is decided (leads by DECIDED_GAP)."""
+    ref, half = ref[:, :-1], half[:, :-1]  # the last column is PAD, never sampled
+    agree = ref.argmax(-1) == half.argmax(-1)
+    top2 = np.partition(ref, -2, axis=-1)[:, -2:]
+    decided = (top2[:, 1] - top2[:, 0]) >= DECIDED_GAP
+    kls = []
+    for lo in range(0, len(ref), 512):  # float64 rows in blocks: bounded memory
+        lp, lq = log_softmax(ref[lo:lo + 512]), log_softmax(half[lo:lo + 512])
+        kls.append((np.exp(lp) * (lp - lq)).sum(-1))
+    return agree, np.concatenate(kls), decided
+
+
+def summary(agree: list[np.ndarray], kl: list[np.ndarray], decided: list[np.ndarray]) -> dict:
+    """Overall figures, and by depth bucket pooling the sequences position by position."""
+    a, k, d = np.concatenate(agree), np.concatenate(kl), np.concatenate(decided)
+    out = {"positions": int(a.size), "top1_agreement": round(float(a.mean()), 5),
+           "decided_positions": int(d.sum()), "top1_agreement_decided": round(float(a[d].mean()), 5) if d.any() else None,
+           "kl_mean": float(f"{k.mean():.3g}"), "kl_max": float(f"{k.max():.3g}"), "by_depth": {}}
+    for lo, hi in zip(DEPTH_BUCKETS, DEPTH_BUCKETS[1:]):
+        ab = np.concatenate([x[lo:hi] for x in agree])
+        if ab.size:
+            kb = np.concatenate([x[lo:hi] for x in kl])
+            top = max(min(hi, len(x)) for x in agree) - 1
+            out["by_depth"][f"{lo}-{top}"] = {"positions": int(ab.size), "top1_agreement": round(float(ab.mean()), 5),
+                                              "kl_mean": float(f"{kb.mean():.3g}")}
+    return out
+
+
+def measure(model: Path, decoders: list[str], sequences: dict[str, list[int]], points: Path, chunk: int,
+            threads: int) -> dict:
+    meta = json.loads((model / "model.json").read_text())
+    files, dims, bos = meta["files"], meta["dims"], meta["vocab"]["bos_id"]
+    cross = session(model / files.get("encoder", "encoder.onnx"), threads).run(
+        None, {"points": cloud(points, dims["n_points"])})[0]
+    result = {"model": str(model), "config": meta.get("config"), "points": str(points), "chunk": chunk,
+              "sequences": {k: len(v) for k, v in sequences.items()}, "decoders": {}}
+    for key in decoders:
+        half_file = files.get("kv_fp16", {}).get(key)
+        if key not in files or not half_file:
+            raise SystemExit(f"{model}: no {key} with an fp16 KV variant (run `silk-export kv16 {model}`)")
+        agree, kl, decided, t0 = [], [], [], time.time()
+        for name, ids in sequences.items():
+            seq = [bos] + ids[:dims["max_seq_len"] - 1]
+            a, k, d = compare(logits(model / files[key], cross, seq, chunk, threads),
+                              logits(model / half_file, cross, seq, chunk, threads))
+            agree.append(a)
+            kl.append(k)
+            decided.append(d)
+            print(f"  {key} {name}: {len(seq)} positions, top-1 {a.mean():.4f} (decided: {a[d].mean():.4f} of "
+                  f"{d.sum()}), KL mean {k.mean():.3g}", flush=True)
+        fig = summary(agree, kl, decided)
+        fig["seconds"] = round(time.time() - t0, 1)
+        result["decoders"][key] = fig
+    return result
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("model", type=Path)
+    ap.add_argument("--decoders", nargs="+", help="model.json files keys (default: the model's default decoder)")
+    ap.add_argument("--tokens", nargs="+", type=Path, help="token files (one id per line)")
+    ap.add_argument("--max-len", type=int, default=4096, help="positions per sequence, BOS included")
+    ap.add_argument("--points", type=Path, default=SHARED / "official-fixture" / "points.npy")
+    ap.add_argument("--chunk", type=int, default=256)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--json", type=Path)
+    a = ap.parse_args()
+    meta = json.loads((a.model / "model.json").read_text())
+    decoders = a.decoders or [meta["files"].get("default_decoder", "decoder")]
+    paths = a.tokens or [SHARED / "spec" / "golden-dev" / f"{n}.tokens.txt" for n in DEFAULT_TOKENS]
+    sequences = {p.name.split(".")[0]: read_tokens(p)[:a.max_len - 1] for p in paths}
+    res = measure(a.model, decoders, sequences, a.points, a.chunk, a.threads)
+    text = json.dumps(res, indent=1)
+    if a.json:
+        a.json.write_text(text + "\n")
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,86 @@
+"""The fp16 self-K/V cache variant (silk_export.onnx.kv_precision, `silk-export kv16`): made by
+rewriting a decoder graph, it keeps the weights (sharing external data), takes float16 caches and
+gives the fp32 graph's logits to float16 precision."""
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+onnx = pytest.importorskip("onnx")
+pytest.importorskip("onnxruntime")
+
+from silk_export.onnx.decode import DecoderState, session  # noqa: E402
+from silk_export.onnx.kv_precision import add_kv16_to_folder, make_kv16_decoder  # noqa: E402
+
+REPO = Path(__file__).resolve().parents[2]
+TINY = REPO / "tests" / "models" / "tiny"
+IDS = [10269, 0, 5835, 8758, 1, 6112, 9420, 220, 460, 5803, 8381, 352]
+
+
+def _cross(folder: Path) -> np.ndarray:
+    pts = np.random.default_rng(0).normal(size=(1, 256, 6)).astype(np.float32)
+    return session(folder / "encoder.onnx").run(None, {"points": pts})[0]
+
+
+def _logits(decoder_path: Path, cross: np.ndarray, chunk: int) -> np.ndarray:
+    state = DecoderState(session(decoder_path), cross)
+    rows = [state.run(IDS[i:i + chunk]) for i in range(0, len(IDS), chunk)]
+    return np.concatenate(rows)
+
+
+def test_variant_takes_float16_caches_and_matches_fp32(tmp_path):
+    shutil.copytree(TINY, tmp_path / "m")
+    m = tmp_path / "m"
+    assert make_kv16_decoder(m / "decoder.onnx", m / "variant.onnx") == []
+    types = {i.name: i.type for i in session(m / "variant.onnx").get_inputs()}
+    assert types["past_key_0"] == types["past_value_1"] == "tensor(float16)"
+    assert types["cross_key_0"] == "tensor(float)"
+    cross = _cross(m)
+    ref, half = _logits(m / "decoder.onnx", cross, 1), _logits(m / "variant.onnx", cross, 1)
+    assert 0 < np.abs(ref - half).max() < 0.05  # float16 rounding, and only that
+    assert (ref.argmax(-1) == half.argmax(-1)).all()
+    np.testing.assert_allclose(_logits(m / "variant.onnx", cross, 5), half, atol=1e-2)
+
+
+def test_variant_shares_external_data(tmp_path):
+    m = tmp_path / "m"
+    shutil.copytree(TINY, m)
+    g = onnx.load(str(m / "decoder.onnx"))
+    onnx.save_model(g, str(m / "decoder.onnx"), save_as_external_data=True, all_tensors_to_one_file=True,
+                    location="decoder.onnx.data", size_threshold=0)
+    assert make_kv16_decoder(m / "decoder.onnx", m / "decoder.kv16.onnx") == ["decoder.onnx.data"]
+    assert (m / "decoder.kv16.onnx").stat().st_size < 100_000  # no copy of the weights
+    assert not (m / "decoder.kv16.onnx.data").exists()
+    cross = _cross(m)
+    assert (_logits(m / "decoder.kv16.onnx", cross, 1).argmax(-1) == _logits(m / "decoder.onnx", cross, 1).argmax(-1)).all()
+
+
+def test_refuses_a_graph_without_group_query_attention(tmp_path):
+    shutil.copy(TINY / "encoder.onnx", tmp_path / "encoder.onnx")
+    with pytest.raises(ValueError, match="no com.microsoft GroupQueryAttention"):
+        make_kv16_decoder(tmp_path / "encoder.onnx", tmp_path / "x.onnx")
+    with pytest.raises(ValueError, match="must sit beside"):
+        make_kv16_decoder(TINY / "decoder.onnx", tmp_path / "x.onnx")
+
+
+def test_cli_adds_variants_and_default(tmp_path):
+    m = tmp_path / "m"
+    shutil.copytree(TINY, m)
+    (m / "decoder.kv16.onnx").unlink()
+    meta = json.loads((m / "model.json").read_text())
+    del meta["files"]["kv_fp16"]
+    (m / "model.json").write_text(json.dumps(meta))
+    p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "fp16"],
+                       capture_output=True, text=True, cwd=REPO / "export")
+    assert p.returncode == 0, p.stderr
+    files = json.loads((m / "model.json").read_text())["files"]
+    assert files["kv_fp16"] == {"decoder": "decoder.kv16.onnx"} and files["default_kv_precision"] == "fp16"
+    assert (m / "decoder.kv16.onnx").exists()
+    with pytest.raises(ValueError, match="expected one of"):
+        add_kv16_to_folder(m, "int8")
