@@ -135,6 +135,32 @@ LC_ALL=C.UTF-8 "$WINE" "$DIST/silkgen.exe" "$UW/knoten 结.obj" --model "$UW/mod
   [ -z "$(ls "$U" | grep '\.tmp')" ]
 rc=$?; echo "  silkgen_replaces_outputs: $([ $rc = 0 ] && echo "an existing --stats file replaced, no temporary left" || echo FAILED)"
 result silkgen_replaces_outputs $rc
+# silkgen.exe --batch over a CRLF list (a relative non-ASCII path, a backslashed drive-letter one and
+# a broken file) into a non-ASCII folder: the broken one fails (exit 1), the others equal the single
+# greedy run of step 3; --overwrite replaces the outputs (MoveFileExW), a plain rerun skips them.
+B="$U/批量 out"; rm -rf "$B"
+printf '# batch list, CRLF\r\nknoten 结.obj\r\n%s\r\n%s\r\n' "$UW_BACK\\würfel 立方体.obj" \
+  "Z:$SHARED/corpus/bad/truncated_body.ply" > "$U/liste.txt"
+batch() { LC_ALL=C.UTF-8 "$WINE" "$DIST/silkgen.exe" --batch "$UW/liste.txt" -o "$UW/批量 out" --format obj \
+  --model tests/models/tiny --temperature 0 "$@" > "$T/batch.log" 2>&1; }
+batch; b1=$?
+batch --overwrite; b2=$?
+batch; b3=$?
+python3 - "$B/silkgen_batch.jsonl" <<'PY' > "$T/batch_check.log" 2>&1
+import json, sys
+runs = [json.loads(l) for l in open(sys.argv[1], encoding="utf-8")]
+status = [[r["status"] for r in runs[i:i + 3]] for i in (0, 3, 6)]
+assert len(runs) == 9, len(runs)
+assert status == [["failed", "ok", "ok"], ["failed", "ok", "ok"], ["failed", "skipped", "skipped"]], status
+assert "truncated" in runs[0]["error"], runs[0]["error"]
+print("3 runs x 3 inputs:", status)
+PY
+rc=$?
+[ $rc = 0 ] && [ $b1 = 1 ] && [ $b2 = 1 ] && [ $b3 = 1 ] && cmp -s "$B/knoten 结.obj" "$T/gen_windows.obj" &&
+  [ -s "$B/würfel 立方体.obj" ] && [ -z "$(ls -A "$B" | grep -v '\.obj$\|\.jsonl$')" ]
+rc=$?; echo "  silkgen_batch: $([ $rc = 0 ] && echo "$(tail -1 "$T/batch_check.log"), exit 1 (the broken file), outputs equal the single run, no temporary left" || echo FAILED)"
+[ $rc = 0 ] || { tail -3 "$T/batch.log" "$T/batch_check.log" >&2; ls -A "$B" >&2; }
+result silkgen_batch $rc
 
 # 6. The Blender add-on's windows-x64 zip (scripts/make_blender_addon.sh --windows): libsilk.dll and
 #    onnxruntime.dll in silk_mesh/lib as PE x86-64 files silk_mesh's loader accepts on Windows, the

@@ -113,7 +113,7 @@ BatchResult OneInput(silk_cpp::Generator& generator, const BatchSettings& s, con
                      const BatchInput& in) {
   const auto t0 = std::chrono::steady_clock::now();
   BatchResult r;
-  r.output = silkapp::Utf8(silkapp::FsPath(s.output_dir) / (in.stem + "." + args.format));
+  r.output = silkapp::Utf8(silkapp::FsPath(s.output_dir) / silkapp::FsPath(in.stem + "." + args.format));
   std::error_code ec;
   if (!args.overwrite && fs::exists(silkapp::FsPath(r.output), ec)) {
     r.status = "skipped";
