@@ -71,6 +71,31 @@ def test_generate_with_the_tiny_model_gives_silkgens_ids(silkgen, generation, tm
         assert result.stats["faces"] == m.triangle_count == json.loads((tmp_path / "s.json").read_text())["faces"]
 
 
+def test_kv_precision_picks_the_cache_as_silkgen_does(silkgen, generation, tmp_path):
+    """Model(kv_precision=...) is silk_model_params.kv_precision: the same ids as silkgen's
+    --kv-precision, the cache in use in info(), and a precision the folder lacks named."""
+    for kv in ("fp32", "fp16"):
+        subprocess.run([str(silkgen), str(KNOT), "--model", str(TINY), "--seed", "3", "--max-tokens", "200",
+                        "--threads", "1", "--kv-precision", kv, "--tokens", str(tmp_path / f"{kv}.txt"), "-q"],
+                       check=True)
+        with silk_mesh.Model(TINY, threads=1, kv_precision=kv) as model:
+            assert model.info()["kv_precision"] == silk_mesh._capi.KV_PRECISIONS[kv]
+            ids = silk_mesh.generate(KNOT, model=model, seed=3, max_tokens=200).ids
+        assert ids == silk_mesh.read_ids(tmp_path / f"{kv}.txt") and len(ids) > 14
+    with pytest.raises(ValueError, match="kv_precision must be one of"):
+        silk_mesh.Model(TINY, kv_precision="int8")
+    lacking = tmp_path / "no_variant"
+    lacking.mkdir()
+    meta = json.loads((TINY / "model.json").read_text())
+    meta["files"].pop("kv_fp16")
+    (lacking / "model.json").write_text(json.dumps(meta))
+    for f in ("encoder.onnx", "decoder.onnx"):
+        (lacking / f).write_bytes((TINY / f).read_bytes())
+    with pytest.raises(silk_mesh.SilkError) as e:
+        silk_mesh.Model(lacking, kv_precision="fp16")
+    assert str(lacking) in e.value.message and "fp16" in e.value.message
+
+
 def test_step_wise_equals_one_call_and_reports_progress(generation):
     with silk_mesh.Generator(str(TINY)) as gen:  # a folder path: the generator loads (and owns) the model
         whole = gen.run(KNOT, seed=3, max_tokens=200, surface_tolerance=0)

@@ -162,10 +162,10 @@ def prepare_points(mesh, cloud, n_cloud: int, params: _capi.PreprocessParams, se
 
 
 # -- models and generators -------------------------------------------------------------------
-def model_load(path: bytes, threads: int, decoder: int) -> c_void_p:
+def model_load(path: bytes, threads: int, decoder: int, kv_precision: int = 0) -> c_void_p:
     L = lib()
     opts = L.silk_model_default_params()
-    opts.threads, opts.decoder = threads, decoder
+    opts.threads, opts.decoder, opts.kv_precision = threads, decoder, kv_precision
     return _out(L.silk_model_load, path, byref(opts))
 
 

@@ -24,12 +24,14 @@ def bundled_model_dir() -> str:
 class Model(_Owned):
     """A loaded model folder (model.json, encoder.onnx, decoder.onnx). dir None: the bundled model
     (bundled_model_dir()), else SilkError naming where it looked. threads: the process's shared
-    pool (0 = physical cores; the first load decides); decoder: "default", "int8", "fp32", "int4".
+    pool (0 = physical cores; the first load decides); decoder: "default", "int8", "fp32", "int4";
+    kv_precision: "default" (the model's), "fp32", "fp16" (the self-attention cache; docs/runtime.md).
     Generators keep the model alive: close() may come first."""
 
     _h = None
 
-    def __init__(self, dir: str | os.PathLike | None = None, threads: int = 0, decoder: str = "default"):
+    def __init__(self, dir: str | os.PathLike | None = None, threads: int = 0, decoder: str = "default",
+                 kv_precision: str = "default"):
         if dir is None:
             dir = bundled_model_dir()
             if not os.path.isfile(os.path.join(dir, "model.json")):
@@ -37,9 +39,12 @@ class Model(_Owned):
                                 f"'{library_path()}') has no model.json; pass Model(dir)", "model")
         if decoder not in _capi.DECODERS:
             raise ValueError(f"Model: decoder must be one of {sorted(_capi.DECODERS)}, not {decoder!r}")
+        if kv_precision not in _capi.KV_PRECISIONS:
+            raise ValueError(f"Model: kv_precision must be one of {sorted(_capi.KV_PRECISIONS)}, not {kv_precision!r}")
         self.dir = os.fspath(dir)
         preload_onnxruntime()  # the pip wheel's libsilk: the onnxruntime package's library
-        self._h = _native.model_load(os.fsencode(self.dir), int(threads), _capi.DECODERS[decoder])
+        self._h = _native.model_load(os.fsencode(self.dir), int(threads), _capi.DECODERS[decoder],
+                                     _capi.KV_PRECISIONS[kv_precision])
 
     def info(self) -> dict:
         """model.json figures and the options in use (d_model, default_points, decoder, ...)."""
