@@ -195,13 +195,17 @@ def _add_kv16(sub) -> None:
                        "(docs/model_contract.md, KV precision)")
     k.add_argument("folder", help="model folder (model.json + decoder*.onnx)")
     k.add_argument("--default", choices=["fp32", "fp16"], help="also set files.default_kv_precision")
+    k.add_argument("--attention", choices=["silk", "ort"], default="silk",
+                   help="silk (default): libsilk's ai.silk CachedAttention reads the float16 cache (fast; "
+                        "plain onnxruntime needs libsilk registered); ort: float16 casts around "
+                        "GroupQueryAttention (any onnxruntime, slower)")
     k.set_defaults(fn=_cmd_kv16)
 
 
 def _cmd_kv16(a) -> int:
     from .onnx.kv_precision import KV_FILES_KEY, add_kv16_to_folder
     try:
-        files = add_kv16_to_folder(Path(a.folder), a.default)
+        files = add_kv16_to_folder(Path(a.folder), a.default, a.attention)
     except (OSError, ValueError) as e:
         print(f"silk-export kv16: error: {e}", file=sys.stderr)
         return 2

@@ -34,10 +34,16 @@ def _logits(decoder_path: Path, cross: np.ndarray, chunk: int) -> np.ndarray:
     return np.concatenate(rows)
 
 
-def test_variant_takes_float16_caches_and_matches_fp32(tmp_path):
+@pytest.mark.parametrize("attention", ["silk", "ort"])
+def test_variant_takes_float16_caches_and_matches_fp32(tmp_path, attention):
     shutil.copytree(TINY, tmp_path / "m")
     m = tmp_path / "m"
-    assert make_kv16_decoder(m / "decoder.onnx", m / "variant.onnx") == []
+    assert make_kv16_decoder(m / "decoder.onnx", m / "variant.onnx", attention) == []
+    nodes = onnx.load(str(m / "variant.onnx")).graph.node
+    layers = json.loads((m / "model.json").read_text())["dims"]["n_layers"]
+    want = "CachedAttention" if attention == "silk" else "GroupQueryAttention"
+    assert [n.op_type for n in nodes].count(want) == layers
+    assert sum("_kv16_" in n.name for n in nodes) == (0 if attention == "silk" else 4 * layers)
     types = {i.name: i.type for i in session(m / "variant.onnx").get_inputs()}
     assert types["past_key_0"] == types["past_value_1"] == "tensor(float16)"
     assert types["cross_key_0"] == "tensor(float)"

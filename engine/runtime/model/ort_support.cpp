@@ -7,6 +7,7 @@
 #include <string>
 #include <thread>
 
+#include "runtime/attention/cached_attention_op.h"
 #include "runtime/cpu_info.h"
 
 namespace silk {
@@ -50,6 +51,7 @@ Ort::SessionOptions MakeOrtSessionOptions() {
   so.DisablePerSessionThreads();
   so.SetExecutionMode(ExecutionMode::ORT_SEQUENTIAL);
   so.SetGraphOptimizationLevel(GraphOptimizationLevel::ORT_ENABLE_ALL);
+  Ort::ThrowOnError(AddSilkOps(so, &Ort::GetApi()));  // ai.silk ops (fp16-cache decoders)
   return so;
 }
 

@@ -26,7 +26,7 @@ int MaxThreads();
 // `severity` is onnxruntime's OrtLoggingLevel. Process-wide, thread-safe.
 using OrtLogSink = void (*)(int severity, const char* message, void* user_data);
 void SetOrtLogSink(OrtLogSink sink, void* user_data);
-// Session options for the shared pool (no per-session threads).
+// Session options for the shared pool (no per-session threads), with libsilk's ai.silk ops.
 Ort::SessionOptions MakeOrtSessionOptions();
 
 template <typename F>

@@ -6,12 +6,36 @@ from __future__ import annotations
 import numpy as np
 
 
+def silk_ops_library() -> str:
+    """libsilk, which is also onnxruntime's custom-op library for the ai.silk ops of fp16-cache
+    decoders (onnx/kv_precision.py); found as silk_mesh finds it ($SILK_LIBRARY, ...)."""
+    from silk_mesh._library import library_path
+    return library_path()
+
+
 def session(path, threads: int = 1):
+    """An onnxruntime session on the CPU; a graph with ai.silk ops gets libsilk registered."""
     import onnxruntime as ort
-    so = ort.SessionOptions()
-    so.intra_op_num_threads = threads
-    so.log_severity_level = 3
-    return ort.InferenceSession(str(path), so, providers=["CPUExecutionProvider"])
+
+    def make(silk_ops: bool):
+        so = ort.SessionOptions()
+        so.intra_op_num_threads = threads
+        so.log_severity_level = 3
+        if silk_ops:
+            lib = silk_ops_library()
+            try:
+                so.register_custom_ops_library(lib)
+            except Exception as e:
+                raise RuntimeError(f"{path}: uses libsilk's ai.silk ops, and libsilk ('{lib}') cannot be "
+                                   f"registered with onnxruntime: {e} (set SILK_LIBRARY to a built libsilk)") from e
+        return ort.InferenceSession(str(path), so, providers=["CPUExecutionProvider"])
+
+    try:
+        return make(False)
+    except Exception as e:
+        if "ai.silk" not in str(e):
+            raise
+    return make(True)
 
 
 class DecoderState:

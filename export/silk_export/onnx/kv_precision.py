@@ -1,9 +1,16 @@
 """The fp16 self-K/V variant of a decoder graph (docs/model_contract.md, "KV precision"): the same
-weights and computation, except that each layer's GroupQueryAttention runs in float16, so its
-past_*/present_* caches are float16 and a step reads half the cache bytes. Made by rewriting an
-exported decoder (fp32, INT8 or INT4 alike) instead of re-tracing it: q, k, v are cast to float16
-before each GroupQueryAttention and its output back to float32. A graph with external data keeps
-pointing at the same `.data` file, so the variant of the 1.94 GB release decoder adds 0.6 MB."""
+weights and computation, except that each layer's self-attention keeps its past_*/present_* caches
+in float16, so a step reads half the cache bytes. Made by rewriting an exported decoder (fp32, INT8
+or INT4 alike) instead of re-tracing it. Two forms:
+- "silk" (the default): each GroupQueryAttention becomes libsilk's ai.silk CachedAttention (same
+  inputs, outputs and attributes; q, k, v stay float32 and only the cache is float16). onnxruntime
+  1.22's CPU GroupQueryAttention widens the whole float16 prefix to float32 on every call, which
+  costs more than the halved reads save; CachedAttention reads each cached row once. The graph
+  runs in libsilk, or in Python's onnxruntime with libsilk registered as its custom-op library.
+- "ort": q, k, v are cast to float16 around an unchanged GroupQueryAttention: plain onnxruntime
+  runs it, slower (kept for comparison and for runtimes without libsilk).
+A graph with external data keeps pointing at the same `.data` file, so the variant of the 1.94 GB
+release decoder adds under 1 MB."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -12,6 +19,12 @@ KV_PRECISIONS = ("fp32", "fp16")
 # model.json: files.<KV_FILES_KEY>[<decoder key>] = the fp16 variant of files.<decoder key>.
 KV_FILES_KEY = "kv_fp16"
 DECODER_KEYS = ("decoder", "decoder_int8", "decoder_int4")
+ATTENTION_FORMS = ("silk", "ort")
+SILK_DOMAIN, SILK_ATTENTION = "ai.silk", "CachedAttention"
+# GroupQueryAttention attributes CachedAttention implements; any other must be absent or default.
+_GQA_KEPT = {"num_heads", "kv_num_heads", "scale"}
+_GQA_DEFAULTS = {"do_rotary": 0, "rotary_interleaved": 0, "local_window_size": -1, "softcap": 0.0,
+                 "smooth_softmax": 0}
 
 
 def kv16_name(decoder_file: str) -> str:
@@ -20,13 +33,48 @@ def kv16_name(decoder_file: str) -> str:
     return stem + ".kv16.onnx"
 
 
-def make_kv16_decoder(src: Path, dst: Path) -> list[str]:
-    """Writes the fp16-cache variant of decoder graph `src` to `dst` (same folder). Returns the
-    external data files it references (those of `src`; none are copied). Raises ValueError when
-    `src` has no GroupQueryAttention over past_*/present_* (not a contract decoder)."""
+def _to_cached_attention(node, src: Path) -> None:
+    """Turns one GroupQueryAttention node into ai.silk CachedAttention in place."""
+    from onnx import helper
+    for a in node.attribute:
+        if a.name not in _GQA_KEPT and helper.get_attribute_value(a) != _GQA_DEFAULTS.get(a.name, object()):
+            raise ValueError(f"{src}: GroupQueryAttention '{node.name}' has attribute {a.name}="
+                             f"{helper.get_attribute_value(a)}, which CachedAttention does not implement "
+                             f"(use --attention ort)")
+    if len(node.input) != 7 or any(not n for n in node.input):
+        raise ValueError(f"{src}: GroupQueryAttention '{node.name}' has inputs {list(node.input)}; CachedAttention "
+                         "takes exactly q, k, v, past_key, past_value, seqlens_k, total_sequence_length")
+    kept = [a for a in node.attribute if a.name in _GQA_KEPT]
+    del node.attribute[:]
+    node.attribute.extend(kept)
+    node.op_type, node.domain = SILK_ATTENTION, SILK_DOMAIN
+
+
+def _cast_around(node, rewritten: int) -> list:
+    """The "ort" form: float16 casts of q, k, v before the node and of its output after it."""
+    from onnx import TensorProto, helper
+    before = []
+    for i in range(3):  # q, k, v
+        half = f"{node.input[i]}__kv16_{rewritten}"
+        before.append(helper.make_node("Cast", [node.input[i]], [half], to=TensorProto.FLOAT16,
+                                       name=f"{node.name}_kv16_in{i}"))
+        node.input[i] = half
+    out = node.output[0]
+    node.output[0] = f"{out}__kv16"
+    after = helper.make_node("Cast", [node.output[0]], [out], to=TensorProto.FLOAT, name=f"{node.name}_kv16_out")
+    return before + [node, after]
+
+
+def make_kv16_decoder(src: Path, dst: Path, attention: str = "silk") -> list[str]:
+    """Writes the fp16-cache variant of decoder graph `src` to `dst` (same folder), in the given
+    attention form ("silk" or "ort", see above). Returns the external data files it references
+    (those of `src`; none are copied). Raises ValueError when `src` has no GroupQueryAttention over
+    past_*/present_* (not a contract decoder)."""
     import onnx
     from onnx import TensorProto, helper
     from onnx.external_data_helper import _get_all_tensors
+    if attention not in ATTENTION_FORMS:
+        raise ValueError(f"attention form '{attention}': expected one of {', '.join(ATTENTION_FORMS)}")
     src, dst = Path(src), Path(dst)
     if src.parent.resolve() != dst.parent.resolve():
         raise ValueError(f"{dst}: the fp16-cache variant must sit beside {src.name} (it shares its external data)")
@@ -41,26 +89,23 @@ def make_kv16_decoder(src: Path, dst: Path) -> list[str]:
             continue
         if not (node.input[3] in cache_names and node.input[4] in cache_names):
             raise ValueError(f"{src}: GroupQueryAttention '{node.name}' does not read past_* inputs")
-        for i in range(3):  # q, k, v
-            half = f"{node.input[i]}__kv16_{rewritten}"
-            nodes.append(helper.make_node("Cast", [node.input[i]], [half], to=TensorProto.FLOAT16,
-                                          name=f"{node.name}_kv16_in{i}"))
-            node.input[i] = half
-        out = node.output[0]
-        node.output[0] = f"{out}__kv16"
-        nodes.append(node)
-        nodes.append(helper.make_node("Cast", [node.output[0]], [out], to=TensorProto.FLOAT,
-                                      name=f"{node.name}_kv16_out"))
+        if attention == "silk":
+            _to_cached_attention(node, src)
+            nodes.append(node)
+        else:
+            nodes.extend(_cast_around(node, rewritten))
         rewritten += 1
     if not rewritten:
         raise ValueError(f"{src}: no com.microsoft GroupQueryAttention node (not a contract decoder graph)")
     del g.node[:]
     g.node.extend(nodes)
+    if attention == "silk" and not any(o.domain == SILK_DOMAIN for o in m.opset_import):
+        m.opset_import.append(helper.make_opsetid(SILK_DOMAIN, 1))
     for vi in list(g.input) + list(g.output):
         if vi.name in cache_names:
             vi.type.tensor_type.elem_type = TensorProto.FLOAT16
     # Intermediate type annotations of the rewritten values would now be wrong: drop them.
-    stale = {n for n in cache_names} | {n.output[0] for n in g.node if n.op_type == "GroupQueryAttention"}
+    stale = set(cache_names) | {n.output[0] for n in g.node if n.op_type in ("GroupQueryAttention", SILK_ATTENTION)}
     kept = [vi for vi in g.value_info if vi.name not in stale]
     del g.value_info[:]
     g.value_info.extend(kept)
@@ -70,20 +115,20 @@ def make_kv16_decoder(src: Path, dst: Path) -> list[str]:
     return data
 
 
-def add_kv16_variants(folder: Path, files: dict) -> dict:
-    """For every decoder named in model.json `files`: writes its fp16-cache variant beside it and
-    records it under files["kv_fp16"]. Returns that mapping."""
+def add_kv16_variants(folder: Path, files: dict, attention: str = "silk") -> dict:
+    """For every decoder named in model.json `files`: writes its fp16-cache variant (in the given
+    attention form) beside it and records it under files["kv_fp16"]. Returns that mapping."""
     variants = {}
     for key in DECODER_KEYS:
         if key in files:
             name = kv16_name(files[key])
-            make_kv16_decoder(Path(folder) / files[key], Path(folder) / name)
+            make_kv16_decoder(Path(folder) / files[key], Path(folder) / name, attention)
             variants[key] = name
     files[KV_FILES_KEY] = variants
     return variants
 
 
-def add_kv16_to_folder(folder: Path, default: str | None = None) -> dict:
+def add_kv16_to_folder(folder: Path, default: str | None = None, attention: str = "silk") -> dict:
     """`silk-export kv16`: the fp16-cache variant of every decoder of an exported model folder,
     recorded in its model.json (files.kv_fp16; files.default_kv_precision when `default` is given,
     and external data the variants share is already listed). Returns the new "files"."""
@@ -98,7 +143,7 @@ def add_kv16_to_folder(folder: Path, default: str | None = None) -> dict:
     except (OSError, json.JSONDecodeError) as e:
         raise ValueError(f"{path}: {e}") from None
     files = meta.setdefault("files", {"encoder": "encoder.onnx", "decoder": "decoder.onnx"})
-    add_kv16_variants(folder, files)
+    add_kv16_variants(folder, files, attention)
     if default is not None:
         files["default_kv_precision"] = default
     tmp = path.with_name(f".model.json.{os.getpid()}")

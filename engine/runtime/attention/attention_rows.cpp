@@ -1,0 +1,211 @@
+// Scalar and AVX2 row primitives for CachedAttention; the vectorized ones are compiled for
+// AVX2+FMA+F16C with a target attribute and used only when the CPU reports those features.
+#include "runtime/attention/attention_rows.h"
+
+#include <cmath>
+#include <cstring>
+#include <initializer_list>
+
+#if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
+#define SILK_ATTENTION_AVX2 1
+#include <immintrin.h>
+#endif
+
+namespace silk {
+
+namespace {
+
+// IEEE binary16 <-> binary32, exact widening and round-to-nearest-even narrowing (what F16C does).
+float HalfToFloat(uint16_t h) {
+  const uint32_t sign = static_cast<uint32_t>(h & 0x8000u) << 16, exp = (h >> 10) & 0x1fu, man = h & 0x3ffu;
+  uint32_t bits;
+  if (exp == 0x1f) {
+    bits = sign | 0x7f800000u | (man << 13);
+  } else if (exp != 0) {
+    bits = sign | ((exp + 112) << 23) | (man << 13);
+  } else if (man == 0) {
+    bits = sign;
+  } else {  // subnormal half: a normal float
+    int e = -1;
+    uint32_t m = man;
+    do { ++e; m <<= 1; } while (!(m & 0x400u));
+    bits = sign | static_cast<uint32_t>(112 - e) << 23 | ((m & 0x3ffu) << 13);
+  }
+  float f;
+  std::memcpy(&f, &bits, 4);
+  return f;
+}
+
+uint16_t FloatToHalf(float f) {
+  uint32_t x;
+  std::memcpy(&x, &f, 4);
+  const uint16_t sign = static_cast<uint16_t>((x >> 16) & 0x8000u);
+  const uint32_t ax = x & 0x7fffffffu;
+  if (ax >= 0x7f800000u) return sign | 0x7c00u | (ax > 0x7f800000u ? 0x200u : 0u);  // inf, nan
+  if (ax >= 0x477ff000u) return sign | 0x7c00u;                                      // rounds past 65504
+  if (ax < 0x38800000u) {  // below the smallest normal half: round onto the subnormal grid
+    float scaled;
+    const float a = std::fabs(f);
+    scaled = a * 16777216.0f;  // 2^24: one subnormal step becomes 1
+    return sign | static_cast<uint16_t>(std::nearbyint(scaled));
+  }
+  const uint32_t rounded = ax + 0xfffu + ((ax >> 13) & 1u);  // nearest, ties to even
+  return sign | static_cast<uint16_t>((rounded - 0x38000000u) >> 13);
+}
+
+inline float Widen(float x) { return x; }
+inline float Widen(uint16_t h) { return HalfToFloat(h); }
+
+template <typename E>
+void StoreScalar(const float* src, void* row, int64_t d) {
+  E* r = static_cast<E*>(row);
+  for (int64_t i = 0; i < d; ++i) {
+    if constexpr (sizeof(E) == 4) r[i] = src[i];
+    else r[i] = FloatToHalf(src[i]);
+  }
+}
+
+template <typename E>
+void DotsScalar(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
+  const E* r = static_cast<const E*>(rows);
+  for (int64_t j = 0; j < n; ++j, r += d) {
+    float acc = 0.0f;
+    for (int64_t i = 0; i < d; ++i) acc += q[i] * Widen(r[i]);
+    out[j] = scale * acc;
+  }
+}
+
+float ExpShiftedScalar(float* x, int64_t n, float top) {
+  float sum = 0.0f;
+  for (int64_t j = 0; j < n; ++j) sum += (x[j] = std::exp(x[j] - top));
+  return sum;
+}
+
+template <typename E>
+void WeightedSumScalar(const float* w, const void* rows, int64_t n, int64_t d, float factor, float* out) {
+  const E* r = static_cast<const E*>(rows);
+  for (int64_t j = 0; j < n; ++j, r += d)
+    for (int64_t i = 0; i < d; ++i) out[i] += factor * w[j] * Widen(r[i]);
+}
+
+#ifdef SILK_ATTENTION_AVX2
+#define SILK_AVX2 __attribute__((target("avx2,fma,f16c")))
+
+SILK_AVX2 inline __m256 Load8(const float* p) { return _mm256_loadu_ps(p); }
+SILK_AVX2 inline __m256 Load8(const uint16_t* p) {
+  return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+
+SILK_AVX2 inline float Sum8(__m256 v) {
+  __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+  s = _mm_add_ps(s, _mm_movehl_ps(s, s));
+  s = _mm_add_ss(s, _mm_movehdup_ps(s));
+  return _mm_cvtss_f32(s);
+}
+
+template <typename E>
+SILK_AVX2 void StoreAvx2(const float* src, void* row, int64_t d) {
+  if constexpr (sizeof(E) == 4) {
+    std::memcpy(row, src, static_cast<size_t>(d) * sizeof(float));
+  } else {
+    uint16_t* r = static_cast<uint16_t*>(row);
+    for (int64_t i = 0; i < d; i += 8)
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(r + i), _mm256_cvtps_ph(_mm256_loadu_ps(src + i), _MM_FROUND_TO_NEAREST_INT));
+  }
+}
+
+// Two rows per iteration, so two independent accumulator chains hide the FMA latency.
+template <typename E>
+SILK_AVX2 void DotsAvx2(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
+  const E* r = static_cast<const E*>(rows);
+  int64_t j = 0;
+  for (; j + 1 < n; j += 2, r += 2 * d) {
+    __m256 a = _mm256_setzero_ps(), b = _mm256_setzero_ps();
+    for (int64_t i = 0; i < d; i += 8) {
+      const __m256 qi = _mm256_loadu_ps(q + i);
+      a = _mm256_fmadd_ps(qi, Load8(r + i), a);
+      b = _mm256_fmadd_ps(qi, Load8(r + d + i), b);
+    }
+    out[j] = scale * Sum8(a);
+    out[j + 1] = scale * Sum8(b);
+  }
+  for (; j < n; ++j, r += d) {
+    __m256 a = _mm256_setzero_ps();
+    for (int64_t i = 0; i < d; i += 8) a = _mm256_fmadd_ps(_mm256_loadu_ps(q + i), Load8(r + i), a);
+    out[j] = scale * Sum8(a);
+  }
+}
+
+// exp(x) for x in [-87, 0]: x = n ln2 + r, |r| <= ln2 / 2, e^r by its degree-6 Taylor polynomial
+// (relative error < 2e-7), 2^n put into the exponent bits.
+SILK_AVX2 inline __m256 ExpNonPositive(__m256 x) {
+  x = _mm256_max_ps(x, _mm256_set1_ps(-87.0f));
+  const __m256 n = _mm256_round_ps(_mm256_mul_ps(x, _mm256_set1_ps(1.44269504088896341f)),
+                                   _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+  __m256 r = _mm256_fnmadd_ps(n, _mm256_set1_ps(0.693145751953125f), x);
+  r = _mm256_fnmadd_ps(n, _mm256_set1_ps(1.428606765330187e-06f), r);
+  __m256 p = _mm256_set1_ps(1.0f / 720);
+  for (float c : {1.0f / 120, 1.0f / 24, 1.0f / 6, 0.5f, 1.0f, 1.0f}) p = _mm256_fmadd_ps(p, r, _mm256_set1_ps(c));
+  const __m256i e = _mm256_slli_epi32(_mm256_add_epi32(_mm256_cvtps_epi32(n), _mm256_set1_epi32(127)), 23);
+  return _mm256_mul_ps(p, _mm256_castsi256_ps(e));
+}
+
+SILK_AVX2 float ExpShiftedAvx2(float* x, int64_t n, float top) {
+  const __m256 t = _mm256_set1_ps(top);
+  __m256 sum = _mm256_setzero_ps();
+  int64_t j = 0;
+  for (; j + 8 <= n; j += 8) {
+    const __m256 e = ExpNonPositive(_mm256_sub_ps(_mm256_loadu_ps(x + j), t));
+    _mm256_storeu_ps(x + j, e);
+    sum = _mm256_add_ps(sum, e);
+  }
+  float total = Sum8(sum);
+  for (; j < n; ++j) total += (x[j] = std::exp(x[j] - top));
+  return total;
+}
+
+// Accumulates in registers for head_dim <= 64 (eight lanes of eight), else in out directly.
+template <typename E>
+SILK_AVX2 void WeightedSumAvx2(const float* w, const void* rows, int64_t n, int64_t d, float factor, float* out) {
+  const E* r = static_cast<const E*>(rows);
+  for (int64_t i0 = 0; i0 < d; i0 += 64) {
+    const int64_t lanes = (d - i0 < 64 ? d - i0 : 64) / 8;
+    __m256 acc[8];
+    for (int64_t k = 0; k < lanes; ++k) acc[k] = _mm256_setzero_ps();
+    const E* row = r + i0;
+    for (int64_t j = 0; j < n; ++j, row += d) {
+      const __m256 wj = _mm256_set1_ps(w[j]);
+      for (int64_t k = 0; k < lanes; ++k) acc[k] = _mm256_fmadd_ps(wj, Load8(row + 8 * k), acc[k]);
+    }
+    const __m256 f = _mm256_set1_ps(factor);
+    for (int64_t k = 0; k < lanes; ++k) {
+      float* o = out + i0 + 8 * k;
+      _mm256_storeu_ps(o, _mm256_fmadd_ps(f, acc[k], _mm256_loadu_ps(o)));
+    }
+  }
+}
+
+bool CpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
+  return has;
+}
+#endif
+
+template <typename E>
+AttentionRows RowsOf(int64_t head_dim, RowKernels kernels) {
+#ifdef SILK_ATTENTION_AVX2
+  if (kernels == RowKernels::kBest && head_dim % 8 == 0 && CpuHasAvx2())
+    return AttentionRows{true, StoreAvx2<E>, DotsAvx2<E>, ExpShiftedAvx2, WeightedSumAvx2<E>};
+#endif
+  (void)head_dim;
+  (void)kernels;
+  return AttentionRows{false, StoreScalar<E>, DotsScalar<E>, ExpShiftedScalar, WeightedSumScalar<E>};
+}
+
+}  // namespace
+
+AttentionRows AttentionRowsFor(CacheElement element, int64_t head_dim, RowKernels kernels) {
+  return element == CacheElement::kFloat16 ? RowsOf<uint16_t>(head_dim, kernels) : RowsOf<float>(head_dim, kernels);
+}
+
+}  // namespace silk

@@ -1,0 +1,25 @@
+// The row primitives of CachedAttention (dot products with cached keys, the softmax's
+// exponentials, the weighted sum of cached values, storing new rows) for one cache element type:
+// AVX2/FMA/F16C versions where the CPU has them, plain C++ otherwise, chosen once per call.
+#pragma once
+#include <cstdint>
+
+#include "runtime/attention/cached_attention.h"
+
+namespace silk {
+
+struct AttentionRows {
+  bool vectorized = false;
+  // Row of `d` floats into the cache's element type (float16: round to nearest even).
+  void (*store)(const float* src, void* row, int64_t d) = nullptr;
+  // out[j] = scale * q . rows[j] for the n consecutive rows of d elements.
+  void (*dots)(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) = nullptr;
+  // x[j] = exp(x[j] - top) (every x[j] <= top); returns their sum.
+  float (*exp_shifted)(float* x, int64_t n, float top) = nullptr;
+  // out[i] += factor * sum_j w[j] * rows[j][i].
+  void (*weighted_sum)(const float* w, const void* rows, int64_t n, int64_t d, float factor, float* out) = nullptr;
+};
+
+AttentionRows AttentionRowsFor(CacheElement element, int64_t head_dim, RowKernels kernels);
+
+}  // namespace silk

@@ -1,0 +1,243 @@
+// onnxruntime custom-op glue for CachedAttention, written against the plain C API with the
+// OrtApi it was registered with, so the same code serves libsilk's own onnxruntime and the one
+// inside Python's onnxruntime package. Bad shapes give a status naming the node, never a crash.
+#include "runtime/attention/cached_attention_op.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "runtime/attention/cached_attention.h"
+
+namespace silk {
+
+namespace {
+
+struct OpWithApi : OrtCustomOp {
+  const OrtApi* api = nullptr;
+};
+
+struct Kernel {
+  const OrtApi* api = nullptr;
+  int64_t heads = 0, kv_heads = 0;
+  float scale = 0.0f;  // 0: GroupQueryAttention's default, 1 / sqrt(head_dim)
+  std::string node;
+  OrtStatus* Fail(const std::string& what) const {
+    return api->CreateStatus(ORT_INVALID_ARGUMENT, ("CachedAttention '" + node + "': " + what).c_str());
+  }
+};
+
+struct Tensor {
+  void* data = nullptr;
+  std::vector<int64_t> dims;
+  ONNXTensorElementDataType type = ONNX_TENSOR_ELEMENT_DATA_TYPE_UNDEFINED;
+};
+
+#define SILK_ORT_TRY(expr)                  \
+  do {                                      \
+    if (OrtStatus* st_ = (expr)) return st_; \
+  } while (0)
+
+OrtStatus* Describe(const OrtApi* api, OrtValue* value, Tensor* t) {
+  OrtTensorTypeAndShapeInfo* info = nullptr;
+  SILK_ORT_TRY(api->GetTensorTypeAndShape(value, &info));
+  size_t rank = 0;
+  OrtStatus* st = api->GetDimensionsCount(info, &rank);
+  if (!st) {
+    t->dims.assign(rank, 0);
+    st = api->GetDimensions(info, t->dims.data(), rank);
+  }
+  if (!st) st = api->GetTensorElementType(info, &t->type);
+  api->ReleaseTensorTypeAndShapeInfo(info);
+  if (!st) st = api->GetTensorMutableData(value, &t->data);
+  return st;
+}
+
+std::string DimsText(const std::vector<int64_t>& d) {
+  std::string s = "[";
+  for (size_t i = 0; i < d.size(); ++i) s += (i ? ", " : "") + std::to_string(d[i]);
+  return s + "]";
+}
+
+// Inputs q, k, v, past_key, past_value, seqlens_k, total_sequence_length, checked against each
+// other; fills the shape (capacity = past's) and returns nullptr, or a status naming the input.
+OrtStatus* ReadInputs(const Kernel& k, OrtKernelContext* ctx, Tensor in[7], AttentionShape* s) {
+  for (size_t i = 0; i < 7; ++i) {
+    const OrtValue* v = nullptr;
+    SILK_ORT_TRY(k.api->KernelContext_GetInput(ctx, i, &v));
+    if (!v) return k.Fail("input " + std::to_string(i) + " is missing");
+    SILK_ORT_TRY(Describe(k.api, const_cast<OrtValue*>(v), &in[i]));
+  }
+  const std::vector<int64_t>& q = in[0].dims;
+  if (q.size() != 3 || q[0] != 1 || q[2] % k.heads != 0)
+    return k.Fail("query has shape " + DimsText(q) + ", expected [1, T, heads * head_dim] with batch 1");
+  s->heads = k.heads, s->kv_heads = k.kv_heads, s->head_dim = q[2] / k.heads, s->chunk = q[1];
+  s->scale = k.scale != 0.0f ? k.scale : 1.0f / std::sqrt(static_cast<float>(s->head_dim));
+  const std::vector<int64_t> kv = {1, s->chunk, s->kv_heads * s->head_dim};
+  if (in[1].dims != kv || in[2].dims != kv)
+    return k.Fail("key/value have shapes " + DimsText(in[1].dims) + ", " + DimsText(in[2].dims) + ", expected " + DimsText(kv));
+  const std::vector<int64_t>& past = in[3].dims;
+  if (past.size() != 4 || past[0] != 1 || past[1] != s->kv_heads || past[3] != s->head_dim || in[4].dims != past)
+    return k.Fail("past_key/past_value have shapes " + DimsText(past) + ", " + DimsText(in[4].dims) +
+                  ", expected [1, kv_heads, capacity, head_dim] = [1, " + std::to_string(s->kv_heads) + ", C, " +
+                  std::to_string(s->head_dim) + "]");
+  if (in[5].dims != std::vector<int64_t>{1} || in[6].dims.size() > 1 || (in[6].dims.size() == 1 && in[6].dims[0] != 1))
+    return k.Fail("seqlens_k must have shape [1] and total_sequence_length one element");
+  const int64_t total = static_cast<const int32_t*>(in[6].data)[0], seqlen = static_cast<const int32_t*>(in[5].data)[0];
+  s->capacity = past[2];
+  s->past = total - s->chunk;
+  if (seqlen + 1 != total || s->chunk < 1 || s->past < 0 || s->past > s->capacity)
+    return k.Fail("seqlens_k " + std::to_string(seqlen) + ", total_sequence_length " + std::to_string(total) +
+                  ", " + std::to_string(s->chunk) + " new positions and a cache of " + std::to_string(s->capacity) +
+                  " do not fit together");
+  return nullptr;
+}
+
+// Outputs: attention [1, T, hidden] and the two present blocks, each the past block itself when
+// the caller bound them to the same memory (in place), else a longer copy of it.
+OrtStatus* MakeOutputs(const Kernel& k, OrtKernelContext* ctx, const Tensor in[7], AttentionShape* s,
+                       AttentionBuffers* b) {
+  OrtValue* out = nullptr;
+  const int64_t out_dims[3] = {1, s->chunk, s->heads * s->head_dim};
+  SILK_ORT_TRY(k.api->KernelContext_GetOutput(ctx, 0, out_dims, 3, &out));
+  SILK_ORT_TRY(k.api->GetTensorMutableData(out, reinterpret_cast<void**>(&b->out)));
+  const int64_t present = std::max(s->capacity, s->past + s->chunk);
+  const int64_t present_dims[4] = {1, s->kv_heads, present, s->head_dim};
+  void* blocks[2] = {nullptr, nullptr};
+  for (int kv = 0; kv < 2; ++kv) {
+    OrtValue* v = nullptr;
+    SILK_ORT_TRY(k.api->KernelContext_GetOutput(ctx, 1 + kv, present_dims, 4, &v));
+    SILK_ORT_TRY(k.api->GetTensorMutableData(v, &blocks[kv]));
+    if (blocks[kv] == in[3 + kv].data) continue;  // in place
+    const size_t row = static_cast<size_t>(s->head_dim) * 2;
+    for (int64_t h = 0; h < s->kv_heads; ++h)
+      std::memcpy(static_cast<unsigned char*>(blocks[kv]) + h * present * row,
+                  static_cast<const unsigned char*>(in[3 + kv].data) + h * s->capacity * row,
+                  static_cast<size_t>(s->past) * row);
+  }
+  s->capacity = present;
+  b->key_cache = blocks[0];
+  b->value_cache = blocks[1];
+  return nullptr;
+}
+
+struct Pool {
+  const OrtApi* api;
+  const OrtKernelContext* ctx;
+};
+
+void PoolFor(void* context, void (*work)(void*, size_t), void* state, size_t count) {
+  const Pool* p = static_cast<const Pool*>(context);
+  if (OrtStatus* st = p->api->KernelContext_ParallelFor(p->ctx, work, count, 0, state)) {
+    p->api->ReleaseStatus(st);  // no pool: the same work on this thread
+    for (size_t i = 0; i < count; ++i) work(state, i);
+  }
+}
+
+OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
+  const Kernel& k = *static_cast<const Kernel*>(kernel);
+  Tensor in[7];
+  AttentionShape s;
+  SILK_ORT_TRY(ReadInputs(k, ctx, in, &s));
+  AttentionBuffers b;
+  b.q = static_cast<const float*>(in[0].data);
+  b.k = static_cast<const float*>(in[1].data);
+  b.v = static_cast<const float*>(in[2].data);
+  SILK_ORT_TRY(MakeOutputs(k, ctx, in, &s, &b));
+  Pool pool{k.api, ctx};
+  CachedAttention(s, CacheElement::kFloat16, b, PoolFor, &pool);
+  return nullptr;
+}
+
+OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, const OrtKernelInfo* info,
+                                     void** kernel) {
+  auto k = std::make_unique<Kernel>();
+  k->api = static_cast<const OpWithApi*>(op)->api;
+  size_t size = 0;
+  if (!api->KernelInfo_GetNodeName(info, nullptr, &size) && size > 0) {
+    std::string name(size, '\0');
+    if (!api->KernelInfo_GetNodeName(info, name.data(), &size)) k->node = name.c_str();
+  }
+  SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "num_heads", &k->heads));
+  SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "kv_num_heads", &k->kv_heads));
+  if (OrtStatus* st = api->KernelInfoGetAttribute_float(info, "scale", &k->scale)) api->ReleaseStatus(st);  // optional
+  if (k->heads < 1 || k->kv_heads < 1 || k->heads % k->kv_heads != 0 || k->heads > 4096)
+    return k->Fail("num_heads " + std::to_string(k->heads) + " must be a positive multiple of kv_num_heads " +
+                   std::to_string(k->kv_heads));
+  *kernel = k.release();
+  return nullptr;
+}
+
+ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp*, size_t i) {
+  return i < 3 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT
+               : i < 5 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 : ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;
+}
+ONNXTensorElementDataType ORT_API_CALL OutputType(const OrtCustomOp*, size_t i) {
+  return i == 0 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
+}
+
+void FillOp(OpWithApi* op, const OrtApi* api) {
+  std::memset(static_cast<OrtCustomOp*>(op), 0, sizeof(OrtCustomOp));
+  op->api = api;
+  op->version = ORT_API_VERSION;
+  op->GetName = [](const OrtCustomOp*) { return kCachedAttentionOp; };
+  op->GetExecutionProviderType = [](const OrtCustomOp*) -> const char* { return nullptr; };
+  op->GetInputTypeCount = [](const OrtCustomOp*) -> size_t { return 7; };
+  op->GetInputType = InputType;
+  op->GetOutputTypeCount = [](const OrtCustomOp*) -> size_t { return 3; };
+  op->GetOutputType = OutputType;
+  op->KernelDestroy = [](void* kernel) { delete static_cast<Kernel*>(kernel); };
+  op->GetInputCharacteristic = [](const OrtCustomOp*, size_t) { return INPUT_OUTPUT_REQUIRED; };
+  op->GetOutputCharacteristic = [](const OrtCustomOp*, size_t) { return INPUT_OUTPUT_REQUIRED; };
+  op->GetInputMemoryType = [](const OrtCustomOp*, size_t) { return OrtMemTypeDefault; };
+  op->GetVariadicInputMinArity = [](const OrtCustomOp*) { return 1; };
+  op->GetVariadicInputHomogeneity = [](const OrtCustomOp*) { return 1; };
+  op->GetVariadicOutputMinArity = [](const OrtCustomOp*) { return 1; };
+  op->GetVariadicOutputHomogeneity = [](const OrtCustomOp*) { return 1; };
+  op->CreateKernelV2 = CreateKernel;
+  op->KernelComputeV2 = Compute;
+  op->GetStartVersion = [](const OrtCustomOp*) { return 1; };
+  op->GetEndVersion = [](const OrtCustomOp*) { return 1 << 30; };
+}
+
+// One op and domain per onnxruntime API table, made once and kept for the process: sessions
+// refer to them for as long as they live.
+struct Registration {
+  OpWithApi op;
+  OrtCustomOpDomain* domain = nullptr;
+};
+
+}  // namespace
+
+OrtStatus* AddSilkOps(OrtSessionOptions* options, const OrtApi* api) {
+  static std::mutex mutex;
+  static std::vector<std::pair<const OrtApi*, Registration*>> made;
+  std::lock_guard<std::mutex> lock(mutex);
+  Registration* r = nullptr;
+  for (auto& m : made)
+    if (m.first == api) r = m.second;
+  if (!r) {
+    auto fresh = std::make_unique<Registration>();
+    FillOp(&fresh->op, api);
+    SILK_ORT_TRY(api->CreateCustomOpDomain(kSilkOpDomain, &fresh->domain));
+    if (OrtStatus* st = api->CustomOpDomain_Add(fresh->domain, &fresh->op)) {
+      api->ReleaseCustomOpDomain(fresh->domain);
+      return st;
+    }
+    r = fresh.release();
+    made.emplace_back(api, r);
+  }
+  return api->AddCustomOpDomain(options, r->domain);
+}
+
+}  // namespace silk
+
+extern "C" OrtStatus* ORT_API_CALL RegisterCustomOps(OrtSessionOptions* options, const OrtApiBase* api_base) {
+  const OrtApi* api = api_base ? api_base->GetApi(ORT_API_VERSION) : nullptr;
+  if (!api) return nullptr;  // an onnxruntime older than the headers: nothing can be reported through it
+  return silk::AddSilkOps(options, api);
+}

@@ -1,0 +1,139 @@
+"""libsilk's ai.silk CachedAttention op (the attention of fp16-cache decoders), run by Python's
+onnxruntime with libsilk registered as its custom-op library: against a numpy reference, in place
+(present bound to past's buffer, as libsilk runs it) and copying, against GroupQueryAttention with
+float16 casts, and its errors for inputs that do not fit together."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+onnx = pytest.importorskip("onnx")
+ort = pytest.importorskip("onnxruntime")
+
+from onnx import TensorProto, helper  # noqa: E402
+
+from silk_export.onnx.decode import session  # noqa: E402
+
+H, KVH, D = 4, 2, 16
+
+
+def _graph(path, op="CachedAttention", domain="ai.silk", cache=TensorProto.FLOAT16, **attrs):
+    # Symbolic dims, so onnxruntime passes shapes that do not fit through to the op's own checks.
+    io = [("q", TensorProto.FLOAT, ["B", "T", "QD"]), ("k", TensorProto.FLOAT, ["B", "T", "KD"]),
+          ("v", TensorProto.FLOAT, ["B", "T", "KD"]), ("past_key", cache, ["B", "KV", "C", "D"]),
+          ("past_value", cache, ["B", "KV", "C", "D"]), ("seqlens_k", TensorProto.INT32, [1]),
+          ("total_sequence_length", TensorProto.INT32, [])]
+    outs = [("out", TensorProto.FLOAT, [1, "T", H * D]), ("present_key", cache, [1, KVH, "P", D]),
+            ("present_value", cache, [1, KVH, "P", D])]
+    node = helper.make_node(op, [n for n, _, _ in io], [n for n, _, _ in outs], name="attn", domain=domain,
+                            num_heads=H, kv_num_heads=KVH, **attrs)
+    g = helper.make_graph([node], "g", [helper.make_tensor_value_info(*x) for x in io],
+                          [helper.make_tensor_value_info(*x) for x in outs])
+    m = helper.make_model(g, opset_imports=[helper.make_opsetid("", 17), helper.make_opsetid(domain, 1)], ir_version=8)
+    onnx.save(m, str(path))
+    return path
+
+
+def _inputs(T, P, C, seed=0):
+    r = np.random.default_rng(seed)
+    past = [np.zeros((1, KVH, C, D), np.float16) for _ in range(2)]
+    for p in past:
+        p[:, :, :P] = r.normal(size=(1, KVH, P, D)).astype(np.float16)
+    return {"q": r.normal(size=(1, T, H * D)).astype(np.float32) * 0.5,
+            "k": r.normal(size=(1, T, KVH * D)).astype(np.float32),
+            "v": r.normal(size=(1, T, KVH * D)).astype(np.float32),
+            "past_key": past[0], "past_value": past[1],
+            "seqlens_k": np.array([P + T - 1], np.int32), "total_sequence_length": np.array(P + T, np.int32)}
+
+
+def _reference(x, scale):
+    T, P = x["q"].shape[1], int(x["total_sequence_length"]) - x["q"].shape[1]
+    keys = np.concatenate([x["past_key"][0, :, :P], x["k"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1)
+    vals = np.concatenate([x["past_value"][0, :, :P], x["v"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1)
+    keys, vals = keys.astype(np.float64), vals.astype(np.float64)
+    out = np.zeros((T, H, D))
+    for t in range(T):
+        for h in range(H):
+            s = scale * keys[h // (H // KVH), :P + t + 1] @ x["q"][0, t, h * D:(h + 1) * D].astype(np.float64)
+            w = np.exp(s - s.max())
+            out[t, h] = w @ vals[h // (H // KVH), :P + t + 1] / w.sum()
+    return out.reshape(1, T, H * D), keys, vals
+
+
+@pytest.mark.parametrize("T,P", [(1, 0), (1, 9), (4, 0), (3, 20)])
+def test_copying_matches_reference(tmp_path, T, P):
+    s = session(_graph(tmp_path / "a.onnx", scale=0.7))
+    x = _inputs(T, P, P)
+    out, pk, pv = s.run(None, x)
+    ref, keys, vals = _reference(x, 0.7)
+    np.testing.assert_allclose(out, ref, atol=2e-5)
+    assert pk.shape == (1, KVH, P + T, D) and pk.dtype == np.float16
+    np.testing.assert_array_equal(pk[0].astype(np.float64), keys)
+    np.testing.assert_array_equal(pv[0].astype(np.float64), vals)
+
+
+def test_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
+    """present_* bound to past_*'s own memory (libsilk's in-place cache): the new rows land there."""
+    s = session(_graph(tmp_path / "a.onnx"))  # no scale: 1 / sqrt(head_dim), as GroupQueryAttention
+    x = _inputs(2, 7, 12)
+    copy = s.run(None, {**x, "past_key": x["past_key"][:, :, :7].copy(), "past_value": x["past_value"][:, :, :7].copy()})
+    b = s.io_binding()
+    vals = {n: ort.OrtValue.ortvalue_from_numpy(a) for n, a in x.items()}
+    for n, v in vals.items():
+        b.bind_ortvalue_input(n, v)
+    b.bind_output("out")
+    b.bind_ortvalue_output("present_key", vals["past_key"])
+    b.bind_ortvalue_output("present_value", vals["past_value"])
+    s.run_with_iobinding(b)
+    np.testing.assert_array_equal(b.copy_outputs_to_cpu()[0], copy[0])
+    in_place_keys = vals["past_key"].numpy()
+    np.testing.assert_array_equal(in_place_keys[:, :, :9], copy[1])
+    np.testing.assert_allclose(copy[0], _reference(x, 1 / np.sqrt(D))[0], atol=2e-5)
+
+
+def test_close_to_group_query_attention_with_float16_casts(tmp_path):
+    """The "ort" form of the fp16 variant computes the same attention (q, k, v and the output
+    rounded to float16 there, so agreement is to float16 precision)."""
+    s = session(_graph(tmp_path / "a.onnx", scale=0.5))
+    gqa_path = tmp_path / "gqa.onnx"
+    _graph(gqa_path, op="GroupQueryAttention", domain="com.microsoft", cache=TensorProto.FLOAT16, scale=0.5)
+    m = onnx.load(str(gqa_path))  # float16 q, k, v and output for GroupQueryAttention
+    for vi in list(m.graph.input)[:3] + [m.graph.output[0]]:
+        vi.type.tensor_type.elem_type = TensorProto.FLOAT16
+    onnx.save(m, str(gqa_path))
+    x = _inputs(3, 30, 30, seed=4)
+    half = {**x, **{n: x[n].astype(np.float16) for n in ("q", "k", "v")}}
+    ours, theirs = s.run(None, x), session(gqa_path).run(None, half)
+    np.testing.assert_allclose(ours[0], theirs[0].astype(np.float32), atol=3e-3)
+    np.testing.assert_array_equal(ours[1], theirs[1])
+
+
+@pytest.mark.parametrize("change,message", [
+    (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),
+    (lambda x: x.update(total_sequence_length=np.array(99, np.int32), seqlens_k=np.array([98], np.int32)),
+     "do not fit together"),
+    (lambda x: x.update(past_key=np.zeros((1, KVH + 1, 8, D), np.float16)), "past_key/past_value have shapes"),
+    (lambda x: x.update(q=np.zeros((2, 1, H * D), np.float32)), "batch 1"),
+    (lambda x: x.update(k=np.zeros((1, 2, KVH * D), np.float32)), "key/value have shapes"),
+])
+def test_inputs_that_do_not_fit_are_refused_naming_the_node(tmp_path, change, message):
+    s = session(_graph(tmp_path / "a.onnx"))
+    x = _inputs(1, 8, 8)
+    change(x)
+    with pytest.raises(Exception, match=message) as e:
+        s.run(None, x)
+    assert "CachedAttention 'attn'" in str(e.value)
+
+
+def test_attributes_it_does_not_implement_are_refused(tmp_path):
+    from silk_export.onnx.kv_precision import make_kv16_decoder
+    path = _graph(tmp_path / "decoder.onnx", op="GroupQueryAttention", domain="com.microsoft",
+                  cache=TensorProto.FLOAT, do_rotary=1)
+    m = onnx.load(str(path))
+    for vi in m.graph.input[3:5]:
+        vi.name = vi.name.replace("past_key", "past_key_0").replace("past_value", "past_value_0")
+    m.graph.node[0].input[3], m.graph.node[0].input[4] = "past_key_0", "past_value_0"
+    onnx.save(m, str(path))
+    with pytest.raises(ValueError, match="do_rotary=1, which CachedAttention does not implement"):
+        make_kv16_decoder(path, tmp_path / "x.onnx")
+    make_kv16_decoder(path, tmp_path / "x.onnx", attention="ort")  # the cast form keeps any attribute
