@@ -125,8 +125,8 @@ void AddOptions(CLI::App& app, Args& a) {
   app.add_option("--decoder", a.decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
       ->check(CLI::IsMember({"fp32", "int8", "int4"}));
   app.add_flag("--int8", a.int8, "Same as --decoder int8");
-  app.add_option("--kv-precision", a.kv_precision, "Self-attention K/V cache: fp32 or fp16; default: the model's "
-                 "(model.json files.default_kv_precision)")->check(CLI::IsMember({"fp32", "fp16"}));
+  app.add_option("--kv-precision", a.kv_precision, "Self-attention K/V cache: fp32, fp16 or int8; default: the model's "
+                 "(model.json files.default_kv_precision)")->check(CLI::IsMember({"fp32", "fp16", "int8"}));
   app.add_option("--preprocessing", a.preprocessing, "Point pre-processing: silk or official; default: model.json's")
       ->check(CLI::IsMember({"silk", "official"}));
   app.add_flag("--raw-points", a.raw_points,
@@ -188,7 +188,10 @@ silk_model_params ToModelParams(const Args& a) {
   const std::string decoder = a.int8 ? "int8" : a.decoder;
   mo.decoder = decoder == "int8" ? SILK_DECODER_INT8 : decoder == "int4" ? SILK_DECODER_INT4
                : decoder == "fp32" ? SILK_DECODER_FP32 : SILK_DECODER_DEFAULT;
-  mo.kv_precision = a.kv_precision == "fp16" ? SILK_KV_FP16 : a.kv_precision == "fp32" ? SILK_KV_FP32 : SILK_KV_DEFAULT;
+  mo.kv_precision = a.kv_precision == "fp16"   ? SILK_KV_FP16
+                    : a.kv_precision == "int8" ? SILK_KV_INT8
+                    : a.kv_precision == "fp32" ? SILK_KV_FP32
+                                               : SILK_KV_DEFAULT;
   return mo;
 }
 
@@ -214,7 +217,7 @@ int Run(const Args& a, uint64_t seed) {
                  input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
                  info.config, info.threads,
                  info.decoder == SILK_DECODER_INT8 ? "INT8" : info.decoder == SILK_DECODER_INT4 ? "INT4" : "fp32",
-                 info.kv_precision == SILK_KV_FP16 ? "fp16" : "fp32",
+                 info.kv_precision == SILK_KV_FP16 ? "fp16" : info.kv_precision == SILK_KV_INT8 ? "int8" : "fp32",
                  static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
                  a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens,
                  a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",

@@ -35,7 +35,7 @@ silk_status silk_model_load(const char* dir, const silk_model_params* params, si
     SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("decoder", o.decoder, SILK_DECODER_DEFAULT, SILK_DECODER_INT4,
                                                              "silk_decoder_precision"));
     SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("kv_precision", o.kv_precision, SILK_KV_DEFAULT,
-                                                             SILK_KV_FP16, "silk_kv_precision"));
+                                                             SILK_KV_INT8, "silk_kv_precision"));
     silk::ModelLoadOptions lo;
     lo.threads = o.threads;
     if (o.decoder == SILK_DECODER_INT8) lo.decoder = silk::DecoderPrecision::kInt8;
@@ -43,6 +43,7 @@ silk_status silk_model_load(const char* dir, const silk_model_params* params, si
     if (o.decoder == SILK_DECODER_INT4) lo.decoder = silk::DecoderPrecision::kInt4;
     if (o.kv_precision == SILK_KV_FP32) lo.kv = silk::KvPrecision::kFp32;
     if (o.kv_precision == SILK_KV_FP16) lo.kv = silk::KvPrecision::kFp16;
+    if (o.kv_precision == SILK_KV_INT8) lo.kv = silk::KvPrecision::kInt8;
     auto m = silk::Model::Load(dir, lo);
     if (!m.ok()) return SetError(m.status());
     auto h = std::make_unique<silk_model>();
@@ -84,7 +85,8 @@ silk_status silk_model_get_info(const silk_model* model, silk_model_info* out) {
                    : d == silk::DecoderPrecision::kInt4 ? SILK_DECODER_INT4 : SILK_DECODER_FP32;
     o->arch = c.arch == silk::ModelArch::kOfficial ? 1 : 0;
     o->encoder_points = static_cast<int32_t>(model->model->encoder_points());
-    o->kv_precision = model->model->kv_precision() == silk::KvPrecision::kFp16 ? SILK_KV_FP16 : SILK_KV_FP32;
+    const silk::KvPrecision kv = model->model->kv_precision();
+    o->kv_precision = kv == silk::KvPrecision::kFp16 ? SILK_KV_FP16 : kv == silk::KvPrecision::kInt8 ? SILK_KV_INT8 : SILK_KV_FP32;
     silk::capi::StoreOut(out, info);
     return Ok();
   });

@@ -8,10 +8,7 @@
 
 namespace silk {
 
-KvShape ModelKvShape(const Model::Impl& model) {
-  const ModelDims& d = model.config.dims;
-  return KvShape{d.n_layers, d.n_heads, d.head_dim, model.kv_precision == KvPrecision::kFp16 ? 2 : 4};
-}
+KvShape ModelKvShape(const Model::Impl& model) { return KvShapeOf(model.config.dims, model.kv_precision); }
 
 DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, float* cross_kv, KvMode mode,
                              int64_t max_chunk)
@@ -27,8 +24,7 @@ Status DecoderRunner::Feed(const int32_t* ids, int64_t n) {
   if (n <= 0) return InvalidArgument("decoder: nothing to feed");
   const ModelDims& d = model_.config.dims;
   const KvShape& s = cache_->shape();
-  const int64_t elem_bytes = model_.kv_precision == KvPrecision::kFp16 ? 2 : 4;
-  if (s.layers != d.n_layers || s.heads != d.n_heads || s.head_dim != d.head_dim || s.elem_bytes != elem_bytes)
+  if (s.layers != d.n_layers || s.heads != d.n_heads || s.head_dim != d.head_dim || s.precision != model_.kv_precision)
     return InvalidArgument("decoder: the KV cache was not reserved for this model's shape");
   if (cache_->length() + n > cache_->capacity())
     return LimitExceeded("decoder: " + std::to_string(cache_->length() + n) + " positions exceed the cache of " +
@@ -81,7 +77,8 @@ void DecoderRunner::MakeViews() {
   const int64_t P = cache_->length(), C = cache_->capacity();
   const int64_t L = d.n_layers, H = d.n_heads, D = d.head_dim, M = d.n_latents;
   const bool in_place = mode_ == KvMode::kInPlace;
-  const std::array<int64_t, 4> cache_shape = {1, H, in_place ? C : P, D};
+  const KvShape& ks = cache_->shape();
+  const std::array<int64_t, 4> cache_shape = {1, H, in_place ? C : P, ks.row_dims()};
   const std::array<int64_t, 4> cross_shape = {1, H, M, D};
   views_of_ = cache_->block(0, 0);  // a re-reserved cache gets fresh views
   views_capacity_ = C;
@@ -90,15 +87,17 @@ void DecoderRunner::MakeViews() {
   for (int i = 0; i < 4; ++i) in_values_.emplace_back(nullptr);
   out_values_.emplace_back(nullptr);
   compact_.clear();  // kCopy: fresh prefix copies, [H, P, D] each
-  const int64_t eb = cache_->shape().elem_bytes;
-  const auto type = eb == 2 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
+  const int64_t row = ks.row_bytes();
+  const auto type = ks.precision == KvPrecision::kFp16   ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16
+                    : ks.precision == KvPrecision::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
+                                                         : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
   for (int64_t l = 0; l < L; ++l)
     for (int kv = 0; kv < 2; ++kv) {
       void* past = cache_->block(l, kv);
-      size_t bytes = static_cast<size_t>(H * C * D * eb);
+      size_t bytes = static_cast<size_t>(H * C * row);
       if (!in_place) {
         past = CompactPrefix(past);
-        bytes = static_cast<size_t>(H * P * D * eb);
+        bytes = static_cast<size_t>(H * P * row);
       } else {
         out_values_.push_back(Ort::Value::CreateTensor(mem, past, bytes, cache_shape.data(), 4, type));
       }
@@ -110,11 +109,11 @@ void DecoderRunner::MakeViews() {
                                                            static_cast<size_t>(H * M * D), cross_shape.data(), 4));
 }
 
-// kCopy: a fresh compact [H, P, D] copy of the cached prefix of one [H, C, D] block.
+// kCopy: a fresh compact [H, P, row] copy of the cached prefix of one [H, C, row] block.
 void* DecoderRunner::CompactPrefix(const void* block) {
   const ModelDims& d = model_.config.dims;
-  const int64_t P = cache_->length(), C = cache_->capacity(), H = d.n_heads, D = d.head_dim;
-  const int64_t row = D * cache_->shape().elem_bytes;  // bytes of one position of one head
+  const int64_t P = cache_->length(), C = cache_->capacity(), H = d.n_heads;
+  const int64_t row = cache_->shape().row_bytes();  // bytes of one position of one head
   compact_.emplace_back(static_cast<size_t>(std::max<int64_t>(1, H * P * row)));
   for (int64_t h = 0; h < H; ++h)
     std::memcpy(compact_.back().data() + h * P * row, static_cast<const unsigned char*>(block) + h * C * row,
@@ -148,16 +147,16 @@ void DecoderRunner::RunInPlace(int64_t n) {
 Status DecoderRunner::RunCopying(int64_t n) {
   const ModelDims& d = model_.config.dims;
   const int64_t P = cache_->length(), C = cache_->capacity();
-  const int64_t L = d.n_layers, H = d.n_heads, D = d.head_dim;
+  const int64_t L = d.n_layers, H = d.n_heads;
   auto outs = model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
                                   out_ptrs_.data(), out_ptrs_.size());
   for (int64_t l = 0; l < L; ++l)
     for (int kv = 0; kv < 2; ++kv) {
       const Ort::Value& present = outs[1 + l * 2 + kv];
       const std::vector<int64_t> shape = present.GetTensorTypeAndShapeInfo().GetShape();
-      if (shape != std::vector<int64_t>{1, H, P + n, D})
+      if (shape != std::vector<int64_t>{1, H, P + n, cache_->shape().row_dims()})
         return InternalError("decoder: " + out_names_[1 + l * 2 + kv] + " has an unexpected shape");
-      const int64_t row = D * cache_->shape().elem_bytes;
+      const int64_t row = cache_->shape().row_bytes();
       const unsigned char* src = static_cast<const unsigned char*>(present.GetTensorRawData());
       for (int64_t h = 0; h < H; ++h)
         std::memcpy(static_cast<unsigned char*>(cache_->block(l, kv)) + (h * C + P) * row, src + (h * (P + n) + P) * row,

@@ -13,8 +13,7 @@ namespace silk {
 Status KvCache::Reserve(int64_t capacity, const KvShape& shape) {
   if (capacity <= 0 || shape.layers <= 0 || shape.heads <= 0 || shape.head_dim <= 0)
     return InvalidArgument("kv cache: empty shape");
-  if (shape.elem_bytes != 4 && shape.elem_bytes != 2) return InvalidArgument("kv cache: elements must be 2 or 4 bytes");
-  if (shape.position_elems() > (int64_t{1} << 26) || capacity > (int64_t{1} << 24))
+  if (shape.position_values() > (int64_t{1} << 26) || capacity > (int64_t{1} << 24))
     return LimitExceeded("kv cache: implausible shape");
   const int64_t bytes = capacity * shape.position_bytes();
   if (bytes > (int64_t{1} << 36))
@@ -32,20 +31,35 @@ Status KvCache::Reserve(int64_t capacity, const KvShape& shape) {
   return Status::Ok();
 }
 
+namespace {
+
+// One row of D values as floats.
+void RowToFloats(const unsigned char* row, const KvShape& s, float* out) {
+  const int64_t D = s.head_dim;
+  if (s.precision == KvPrecision::kFp32) {
+    std::memcpy(out, row, static_cast<size_t>(D) * sizeof(float));
+  } else if (s.precision == KvPrecision::kFp16) {
+    uint16_t half[1];
+    for (int64_t i = 0; i < D; ++i) {
+      std::memcpy(half, row + 2 * i, 2);
+      out[i] = Ort::Float16_t::FromBits(half[0]).ToFloat();
+    }
+  } else {
+    float scale;
+    std::memcpy(&scale, row + D, sizeof(float));
+    for (int64_t i = 0; i < D; ++i) out[i] = static_cast<float>(static_cast<int8_t>(row[i])) * scale;
+  }
+}
+
+}  // namespace
+
 void KvCache::CopyTimeMajor(float* out) const {
-  const int64_t H = shape_.heads, D = shape_.head_dim;
+  const int64_t H = shape_.heads, D = shape_.head_dim, row = shape_.row_bytes();
   for (int64_t t = 0; t < length_; ++t)
     for (int64_t l = 0; l < shape_.layers; ++l)
       for (int kv = 0; kv < 2; ++kv)
-        for (int64_t h = 0; h < H; ++h, out += D) {
-          const int64_t row = (h * capacity_ + t) * D;
-          if (shape_.elem_bytes == 4) {
-            std::memcpy(out, static_cast<const float*>(block(l, kv)) + row, static_cast<size_t>(D) * sizeof(float));
-            continue;
-          }
-          const uint16_t* half = static_cast<const uint16_t*>(block(l, kv)) + row;
-          for (int64_t i = 0; i < D; ++i) out[i] = Ort::Float16_t::FromBits(half[i]).ToFloat();
-        }
+        for (int64_t h = 0; h < H; ++h, out += D)
+          RowToFloats(static_cast<const unsigned char*>(block(l, kv)) + (h * capacity_ + t) * row, shape_, out);
 }
 
 }  // namespace silk

@@ -83,7 +83,7 @@ def test_kv_precision_picks_the_cache_as_silkgen_does(silkgen, generation, tmp_p
             ids = silk_mesh.generate(KNOT, model=model, seed=3, max_tokens=200).ids
         assert ids == silk_mesh.read_ids(tmp_path / f"{kv}.txt") and len(ids) > 14
     with pytest.raises(ValueError, match="kv_precision must be one of"):
-        silk_mesh.Model(TINY, kv_precision="int8")
+        silk_mesh.Model(TINY, kv_precision="bf16")
     lacking = tmp_path / "no_variant"
     lacking.mkdir()
     meta = json.loads((TINY / "model.json").read_text())

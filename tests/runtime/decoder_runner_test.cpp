@@ -30,7 +30,7 @@ Fed FeedAll(const Model& model, const std::vector<int32_t>& ids, int64_t chunk, 
   }
   Fed f;
   f.logits.assign(runner.last_logits(), runner.last_logits() + model.config().model_vocab_size);
-  f.cache.resize(static_cast<size_t>(cache.length() * cache.shape().position_elems()));
+  f.cache.resize(static_cast<size_t>(cache.length() * cache.shape().position_values()));
   cache.CopyTimeMajor(f.cache.data());
   f.calls = runner.calls();
   return f;
@@ -72,7 +72,7 @@ TEST(DecoderRunner, Fp16CacheMatchesFp32) {
   auto model = testing::LoadTinyModel(1, KvPrecision::kFp16);
   auto ref = testing::LoadTinyModel(1);
   ASSERT_TRUE(model && ref);
-  EXPECT_EQ(ModelKvShape(model->impl()).elem_bytes, 2);
+  EXPECT_EQ(ModelKvShape(model->impl()).row_bytes(), 2 * model->config().dims.head_dim);
   const std::vector<int32_t> ids = {10269, 0, 5835, 8758, 1, 6112, 9420, 220, 460, 5803, 8381, 352};
   const Fed step = FeedAll(*model, ids, 1, KvMode::kInPlace);
   const Fed whole = FeedAll(*model, ids, 12, KvMode::kInPlace);

@@ -245,7 +245,9 @@ TEST(ModelConfig, KvPrecisionFiles) {
       {[](auto& j) { j["files"]["kv_fp16"]["decoder_int8"] = "d.int8.kv16.onnx"; }, "files.decoder_int8 is not"},
       {[](auto& j) { j["files"]["kv_fp16"]["decoder"] = "../x.onnx"; }, "plain names"},
       {[](auto& j) { j["files"]["kv_fp16"] = "decoder.kv16.onnx"; }, "not an object"},
-      {[](auto& j) { j["files"]["default_kv_precision"] = "int8"; }, "neither \"fp32\" nor \"fp16\""},
+      {[](auto& j) { j["files"]["default_kv_precision"] = "bf16"; }, "not one of \"fp32\", \"fp16\", \"int8\""},
+      {[](auto& j) { j["files"]["default_kv_precision"] = "int8"; }, "no files.kv_int8 variant"},
+      {[](auto& j) { j["files"]["kv_int8"]["decoder_int4"] = "d.int4.kv8.onnx"; }, "files.kv_int8.decoder_int4 is given"},
       {[](auto& j) {
          j["files"].erase("kv_fp16");
          j["files"]["default_kv_precision"] = "fp16";

@@ -119,7 +119,7 @@ class PreprocessParams(_Sized):
 
 PREPROCESS_KINDS = {"silk": 0, "official": 1}
 DECODERS = {"default": 0, "int8": 1, "fp32": 2, "int4": 3}  # silk_decoder_precision
-KV_PRECISIONS = {"default": 0, "fp32": 1, "fp16": 2}  # silk_kv_precision
+KV_PRECISIONS = {"default": 0, "fp32": 1, "fp16": 2, "int8": 3}  # silk_kv_precision
 
 
 class ModelParams(_Sized):

@@ -25,7 +25,7 @@ class Model(_Owned):
     """A loaded model folder (model.json, encoder.onnx, decoder.onnx). dir None: the bundled model
     (bundled_model_dir()), else SilkError naming where it looked. threads: the process's shared
     pool (0 = physical cores; the first load decides); decoder: "default", "int8", "fp32", "int4";
-    kv_precision: "default" (the model's), "fp32", "fp16" (the self-attention cache; docs/runtime.md).
+    kv_precision: "default" (the model's), "fp32", "fp16", "int8" (the self-attention cache; docs/runtime.md).
     Generators keep the model alive: close() may come first."""
 
     _h = None

@@ -19,7 +19,7 @@
  * PATCH fixes. silk_version() is the library's own string (compare it with SILK_VERSION_STRING
  * to detect a header/library mismatch). */
 #define SILK_VERSION_MAJOR 1
-#define SILK_VERSION_MINOR 1
+#define SILK_VERSION_MINOR 2
 #define SILK_VERSION_PATCH 0
 #define SILK_STR_(x) #x
 #define SILK_STR(x) SILK_STR_(x)
@@ -363,7 +363,8 @@ typedef enum silk_kv_precision {
   SILK_KV_DEFAULT = 0, /* the model's: model.json files.default_kv_precision when the chosen decoder has
                           that variant, else fp32 */
   SILK_KV_FP32 = 1,
-  SILK_KV_FP16 = 2
+  SILK_KV_FP16 = 2,
+  SILK_KV_INT8 = 3 /* int8 values + one float32 scale per row (C API 1.2) */
 } silk_kv_precision;
 
 typedef struct silk_model_params {

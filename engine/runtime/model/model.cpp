@@ -7,6 +7,7 @@
 #include "io/files/file_system.h"
 #include "io/files/native_path.h"
 #include "runtime/cpu_info.h"
+#include "runtime/kv_cache.h"
 #include "runtime/model/model_files.h"
 #ifdef SILK_ORT_RUNTIME_LOAD
 #include "runtime/model/ort_dll_load.h"
@@ -34,6 +35,7 @@ std::string TypeName(ONNXTensorElementDataType t) {
     case ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16: return "float16";
     case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64: return "int64";
     case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32: return "int32";
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8: return "int8";
     default: return "ONNX type " + std::to_string(static_cast<int>(t));
   }
 }
@@ -94,8 +96,9 @@ StatusOr<std::string> ChooseDecoderFile(const std::string& dir, const ModelConfi
     return Unsupported(dir + "/model.json: no " + Upper(name) + " decoder (files." + key + ") in this model");
   if (config.DecoderFile(p, kv).empty())
     return Unsupported(dir + ": no " + KvPrecisionName(kv) + " KV cache variant of the " + Upper(name) +
-                       " decoder in this model folder (files.kv_fp16." + key +
-                       " in model.json; add one with `silk-export kv16`)");
+                       " decoder in this model folder (files." + KvFilesKey(kv) + "." + key +
+                       " in model.json; add one with `silk-export " + (kv == KvPrecision::kInt8 ? "kv8" : "kv16") +
+                       "`)");
   return config.DecoderFile(p, kv);
 }
 
@@ -148,18 +151,21 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   constexpr auto kF = ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
   constexpr auto kI = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64;
   constexpr auto kI32 = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;
-  const auto kKv = impl->kv_precision == KvPrecision::kFp16 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 : kF;
+  const KvShape kv_shape = KvShapeOf(config.dims, impl->kv_precision);
+  const ONNXTensorElementDataType kKv = impl->kv_precision == KvPrecision::kFp16   ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16
+                                        : impl->kv_precision == KvPrecision::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
+                                                                                   : kF;
   std::vector<IoSpec> dec_in = {{"input_ids", kI, {1, -1}},
                                 {"positions", kI, {1, -1}},
                                 {"seqlens_k", kI32, {1}},
                                 {"total_sequence_length", kI32, {}}};
   std::vector<IoSpec> dec_out = {{"logits", kF, {1, -1, V}}};
   for (const std::string& name : DecoderInputNames(d.n_layers))
-    if (name.rfind("past_", 0) == 0) dec_in.push_back({name, kKv, {1, d.n_heads, -1, d.head_dim}});
+    if (name.rfind("past_", 0) == 0) dec_in.push_back({name, kKv, {1, d.n_heads, -1, kv_shape.row_dims()}});
   for (const std::string& name : DecoderInputNames(d.n_layers))
     if (name.rfind("cross_", 0) == 0) dec_in.push_back({name, kF, {1, d.n_heads, d.n_latents, d.head_dim}});
   for (const std::string& name : DecoderOutputNames(d.n_layers))
-    if (name != "logits") dec_out.push_back({name, kKv, {1, d.n_heads, -1, d.head_dim}});
+    if (name != "logits") dec_out.push_back({name, kKv, {1, d.n_heads, -1, kv_shape.row_dims()}});
   Status s = OrtGuard("loading " + dir, [&]() -> Status {
     Ort::Env& env = OrtEnvironment(options.threads, options.allow_spinning);
     impl->threads = SharedPoolThreads();

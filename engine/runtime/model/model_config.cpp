@@ -217,30 +217,37 @@ Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp,
   return Status::Ok();
 }
 
-// files.kv_fp16 {"decoder": ..., "decoder_int8": ..., "decoder_int4": ...} (each the fp16-cache
-// variant of the decoder of the same key, which must be given) and files.default_kv_precision.
-Status ParseKvFiles(const Json& f, const std::string& name, ModelConfig* c) {
-  const Json* kv = nullptr;
-  SILK_RETURN_IF_ERROR(GetObject(f, "kv_fp16", name + " files", &kv));
+// files.kv_fp16 / files.kv_int8 {"decoder": ..., "decoder_int8": ..., "decoder_int4": ...}: each
+// the variant of the decoder of the same key, which must be given.
+Status ParseKvVariant(const Json& f, const std::string& name, KvPrecision kv, ModelConfig* c) {
+  const Json* obj = nullptr;
+  const std::string key = KvFilesKey(kv);
+  SILK_RETURN_IF_ERROR(GetObject(f, key.c_str(), name + " files", &obj));
   const char* keys[3] = {"decoder", "decoder_int8", "decoder_int4"};
   const DecoderPrecision precisions[3] = {DecoderPrecision::kFp32, DecoderPrecision::kInt8, DecoderPrecision::kInt4};
-  for (int i = 0; kv && i < 3; ++i) {
-    std::string& file = c->kv16_files[static_cast<int>(precisions[i])];
-    SILK_RETURN_IF_ERROR(GetString(*kv, keys[i], name + " files.kv_fp16", "", &file));
+  for (int i = 0; obj && i < 3; ++i) {
+    std::string& file = c->kv_files[static_cast<int>(kv)][static_cast<int>(precisions[i])];
+    SILK_RETURN_IF_ERROR(GetString(*obj, keys[i], name + " files." + key, "", &file));
     if (file.empty()) continue;
     if (!PlainName(file))
       return Status(StatusCode::kParseError, name + ": file names must be plain names inside the model folder ('" +
                                                  file + "')");
     if (c->DecoderFile(precisions[i]).empty())
-      return Bad(name, std::string("files.kv_fp16.") + keys[i] + " is given, but files." + keys[i] + " is not");
+      return Bad(name, "files." + key + "." + keys[i] + " is given, but files." + keys[i] + " is not");
   }
+  return Status::Ok();
+}
+
+// The variants, then files.default_kv_precision, which needs a variant of the default decoder.
+Status ParseKvFiles(const Json& f, const std::string& name, ModelConfig* c) {
+  for (KvPrecision kv : {KvPrecision::kFp16, KvPrecision::kInt8}) SILK_RETURN_IF_ERROR(ParseKvVariant(f, name, kv, c));
   std::string def;
   SILK_RETURN_IF_ERROR(GetString(f, "default_kv_precision", name + " files", "fp32", &def));
-  if (def == "fp32") c->default_kv = KvPrecision::kFp32;
-  else if (def == "fp16") c->default_kv = KvPrecision::kFp16;
-  else return Bad(name, "files.default_kv_precision \"" + def + "\" is neither \"fp32\" nor \"fp16\"");
-  if (c->default_kv == KvPrecision::kFp16 && c->DecoderFile(c->default_decoder, KvPrecision::kFp16).empty())
-    return Bad(name, "files.default_kv_precision is \"fp16\", but the default decoder has no files.kv_fp16 variant");
+  if (!ParseKvPrecision(def, &c->default_kv))
+    return Bad(name, "files.default_kv_precision \"" + def + "\" is not one of \"fp32\", \"fp16\", \"int8\"");
+  if (c->default_kv != KvPrecision::kFp32 && c->DecoderFile(c->default_decoder, c->default_kv).empty())
+    return Bad(name, "files.default_kv_precision is \"" + def + "\", but the default decoder has no files." +
+                         KvFilesKey(c->default_kv) + " variant");
   return Status::Ok();
 }
 
@@ -303,10 +310,25 @@ const std::string& ModelConfig::DecoderFile(DecoderPrecision p) const {
   return p == DecoderPrecision::kInt8 ? decoder_int8_file : p == DecoderPrecision::kInt4 ? decoder_int4_file : decoder_file;
 }
 
-const char* KvPrecisionName(KvPrecision p) { return p == KvPrecision::kFp16 ? "fp16" : "fp32"; }
+const char* KvPrecisionName(KvPrecision p) {
+  return p == KvPrecision::kFp16 ? "fp16" : p == KvPrecision::kInt8 ? "int8" : "fp32";
+}
+
+const char* KvFilesKey(KvPrecision p) {
+  return p == KvPrecision::kFp16 ? "kv_fp16" : p == KvPrecision::kInt8 ? "kv_int8" : "";
+}
+
+bool ParseKvPrecision(const std::string& name, KvPrecision* out) {
+  for (KvPrecision p : {KvPrecision::kFp32, KvPrecision::kFp16, KvPrecision::kInt8})
+    if (name == KvPrecisionName(p)) {
+      *out = p;
+      return true;
+    }
+  return false;
+}
 
 const std::string& ModelConfig::DecoderFile(DecoderPrecision p, KvPrecision kv) const {
-  return kv == KvPrecision::kFp16 ? kv16_files[static_cast<int>(p)] : DecoderFile(p);
+  return kv == KvPrecision::kFp32 ? DecoderFile(p) : kv_files[static_cast<int>(kv)][static_cast<int>(p)];
 }
 
 KvPrecision ModelConfig::DefaultKv(DecoderPrecision p) const {

@@ -23,9 +23,14 @@ enum class ModelArch { kSilk, kOfficial };
 enum class DecoderPrecision { kFp32, kInt8, kInt4 };
 const char* DecoderPrecisionName(DecoderPrecision p);  // "fp32", "int8", "int4"
 // Element type of the self-attention K/V cache (the decoder graph's past_*/present_*): each
-// decoder file may have an fp16-cache variant (model.json files.kv_fp16).
-enum class KvPrecision { kFp32, kFp16 };
-const char* KvPrecisionName(KvPrecision p);  // "fp32", "fp16"
+// decoder file may have an fp16-cache and an int8-cache variant (model.json files.kv_fp16,
+// files.kv_int8).
+enum class KvPrecision { kFp32, kFp16, kInt8 };
+const char* KvPrecisionName(KvPrecision p);  // "fp32", "fp16", "int8"
+// Its model.json key, "kv_fp16" / "kv_int8" ("" for fp32, which is the decoder file itself).
+const char* KvFilesKey(KvPrecision p);
+// "fp32" / "fp16" / "int8" to the precision; false for anything else.
+bool ParseKvPrecision(const std::string& name, KvPrecision* out);
 
 // The fewest ids a complete mesh takes (one triangle with its layer ends and EOS); a smaller
 // max_tokens or max_seq_len - 1 can only end in an empty mesh and is refused up front.
@@ -58,9 +63,10 @@ struct ModelConfig {
   // Relative to dir; int8/int4 may be "". external_data: files the ONNX graphs reference.
   std::string encoder_file, decoder_file, decoder_int8_file, decoder_int4_file;
   DecoderPrecision default_decoder = DecoderPrecision::kFp32;
-  // files.kv_fp16: the fp16-cache variant of each decoder ("" when absent), indexed like
-  // DecoderPrecision; files.default_kv_precision (absent: fp32).
-  std::string kv16_files[3];
+  // files.kv_fp16 / files.kv_int8: the variant of each decoder with that cache ("" when absent),
+  // indexed [KvPrecision][DecoderPrecision] (the fp32 row stays empty: that is the decoder file);
+  // files.default_kv_precision (absent: fp32).
+  std::string kv_files[3][3];
   KvPrecision default_kv = KvPrecision::kFp32;
   std::vector<std::string> external_data;
   std::string source_file, source_sha256, source_licence;  // "source" (optional)
