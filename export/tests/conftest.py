@@ -1,53 +1,34 @@
 """Shared fixtures: libsilk is found as the package finds it ($SILK_LIBRARY, else build/ in the
-checkout); silktok is taken from the same build folder; spec files from the shared folder."""
+checkout); silkgen and silktok from the same build folder; spec files from the shared folder.
+Those four come from tests/python/silk_test_fixtures.py, shared with the silk_mesh tests."""
 from __future__ import annotations
 
-import os
 import shutil
 import sys
 from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # works without `pip install -e export`
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "export"))  # works without `pip install -e export`
+sys.path.insert(0, str(ROOT / "tests" / "python"))  # the fixtures shared with tests/python
 
 import torch  # noqa: E402
 
 import silk_export  # noqa: E402,F401  (puts the checkout's silk_mesh on the path when not installed)
-import silk_mesh  # noqa: E402
 
 torch.set_num_threads(1)  # deterministic, and fast on a shared machine (no thread oversubscription)
-from silk_export.paths import shared_dir  # noqa: E402
+from silk_test_fixtures import lib_path, shared, silkgen, silktok  # noqa: E402,F401  (fixtures, registered here)
 
 
 @pytest.fixture(scope="session")
-def lib_path() -> Path:
-    silk_mesh.load_library()  # fails loudly, naming the file, when no library can be loaded
-    return Path(silk_mesh.library_path())
+def golden_dir(shared) -> Path:
+    return shared / "spec" / "golden"
 
 
 @pytest.fixture(scope="session")
-def silktok(lib_path) -> Path:
-    env = os.environ.get("SILKTOK")
-    exe = Path(env) if env else lib_path.resolve().parents[1] / "apps" / "silktok"
-    if not exe.is_file():
-        pytest.skip(f"silktok not built beside {lib_path} (set SILKTOK)")
-    return exe
-
-
-@pytest.fixture(scope="session")
-def golden_dir() -> Path:
-    return shared_dir() / "spec" / "golden"
-
-
-@pytest.fixture(scope="session")
-def dev_dir() -> Path:
-    return shared_dir() / "corpus" / "dev"
-
-
-@pytest.fixture(scope="session")
-def shared() -> Path:
-    return shared_dir()
+def dev_dir(shared) -> Path:
+    return shared / "corpus" / "dev"
 
 
 @pytest.fixture(scope="session")

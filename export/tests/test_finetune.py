@@ -58,11 +58,8 @@ def test_ten_steps_lower_the_loss_of_the_released_network(run, fixture_dir):
     assert after < before - 0.005, (before, after)
 
 
-def test_export_of_the_fine_tuned_model_runs_in_silkgen(run, lib_path, dev_dir, tmp_path):
+def test_export_of_the_fine_tuned_model_runs_in_silkgen(run, silkgen, dev_dir, tmp_path):
     data, out = run
-    silkgen = lib_path.resolve().parents[1] / "apps" / "silkgen"
-    if not silkgen.is_file():
-        pytest.skip(f"silkgen not built beside {lib_path} (needs onnxruntime)")
     assert main(["export", "--checkpoint", str(out / "checkpoint.pt"), "--out", str(tmp_path / "model"),
                  "--no-int8"]) == 0
     meta = json.loads((tmp_path / "model" / "model.json").read_text())

@@ -173,13 +173,10 @@ def write_cloud_ply(path, points: np.ndarray) -> None:
     path.write_bytes(head.encode() + np.ascontiguousarray(points, dtype="<f4").tobytes())
 
 
-def test_silkgen_generates_64_tokens_like_the_python_loop(imported, lib_path, tmp_path):
+def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp_path):
     """The C++ runtime on the imported release-layout model: 64 greedy ids from raw points, equal
     to the Python onnxruntime loop over the same fp32 graphs."""
     import subprocess
-    silkgen = lib_path.resolve().parents[1] / "apps" / "silkgen"
-    if not silkgen.is_file():
-        pytest.skip(f"silkgen not built beside {lib_path}")
     points = np.random.default_rng(2).uniform(-0.9, 0.9, (4096, 6)).astype(np.float32)
     write_cloud_ply(tmp_path / "points.ply", points)
     out = tmp_path / "ids.txt"

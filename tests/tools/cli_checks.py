@@ -13,6 +13,8 @@
 """
 import csv, gzip, json, os, pathlib, shutil, subprocess, sys, tempfile, time
 
+from check_report import finish
+
 # A hang guard, not a speed target (those live in bench/): each bad file must be refused within
 # this many seconds; the sanitizer build raises it (tests/cli/silktok.cmake).
 TIME_LIMIT_S = int(os.environ.get("SILK_HANG_GUARD_S", "20"))
@@ -147,10 +149,7 @@ def main():
     mode, silktok, shared = sys.argv[1:4]
     failures = {"bad": check_bad, "golden": check_golden, "roundtrip": check_roundtrip,
                 "decode": check_decode}[mode](silktok, shared)
-    for f in failures:
-        print("FAIL:", f)
-    print(f"{mode}: {len(failures)} failure(s)")
-    sys.exit(1 if failures else 0)
+    sys.exit(finish(f"silktok {mode}", failures))
 
 
 if __name__ == "__main__":

@@ -13,6 +13,8 @@ Usage: official_fixture_check.py SILKGEN REPO SHARED_DIR. Exit 77 (ctest SKIP) w
 the Python packages the importer needs (numpy, torch, onnx, onnxruntime) are missing."""
 import importlib.util, os, pathlib, subprocess, sys, tempfile
 
+from check_report import finish
+
 
 def skip(why):
     print(f"official_fixture_check: SKIPPED: {why}")
@@ -64,10 +66,7 @@ def main():
             if got != want:
                 first = next((i for i, (a, b) in enumerate(zip(got, want)) if a != b), min(len(got), len(want)))
                 failures.append(f"{label}: differs from greedy.txt at line {first + 1}")
-    for f in failures:
-        print("FAIL:", f)
-    print(f"official fixture greedy: {'OK' if not failures else f'{len(failures)} failure(s)'}")
-    return 1 if failures else 0
+    return finish("official fixture greedy", failures)
 
 
 if __name__ == "__main__":

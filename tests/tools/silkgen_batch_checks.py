@@ -18,6 +18,8 @@ ctest (tests/cli/silkgen_batch.cmake). Each mode builds its own list in a tempor
 """
 import json, os, pathlib, subprocess, sys, tempfile
 
+from check_report import finish
+
 DEV = ["gaia__fern_tropical_a.obj", "gaia__maple_a.obj", "gaia__mushrooms__small_red_01.obj",
        "props__helmet__rome_coolus_c.obj"]
 # Small and fast: the tiny model, 120 ids, best of 2 (so the candidate fields are exercised).
@@ -219,10 +221,7 @@ def main():
         return 2
     with tempfile.TemporaryDirectory() as tmp:
         failures = checks[mode](silkgen, repo, shared, pathlib.Path(tmp))
-    for f in failures:
-        print("FAIL:", f)
-    print(f"silkgen --batch {mode}: {'OK' if not failures else f'{len(failures)} failure(s)'}")
-    return 1 if failures else 0
+    return finish(f"silkgen --batch {mode}", failures)
 
 
 if __name__ == "__main__":

@@ -22,6 +22,8 @@
 """
 import json, os, pathlib, shutil, struct, subprocess, sys, tempfile
 
+from check_report import finish
+
 CASES = [  # name, input (repo-relative), seed
     ("torus_knot_s7", "samples/torus_knot.obj", 7),
     ("points_s3", "tests/models/golden/torus_knot_points.ply", 3),
@@ -350,10 +352,7 @@ def main():
     else:
         print(__doc__)
         return 2
-    for f in failures:
-        print("FAIL:", f)
-    print(f"silkgen {mode}: {'OK' if not failures else f'{len(failures)} failure(s)'}")
-    return 1 if failures else 0
+    return finish(f"silkgen {mode}", failures)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,8 @@ import pathlib, struct, subprocess, sys, tempfile
 
 import numpy as np
 
+from check_report import finish
+
 MESH = "corpus/dev/skeletal__horse_breed.obj"  # closed, one component
 N = 5000
 MIN_ABS_COS, MIN_OUTWARD = 0.90, 0.90  # measured 0.95 / 0.99 (docs/normals.md "CLI check")
@@ -106,10 +108,7 @@ def main():
             d2 = ((rows[:, None, :3] - pts[None, :, :]) ** 2).sum(-1)
             if (rows[:, 3:] * nrm[d2.argmin(1)]).sum(1).min() < 0.9999:
                 failures.append("xyz_normals: the file's normals were not kept")
-    for msg in failures:
-        print("FAIL:", msg)
-    print(f"silkgen points: {'OK' if not failures else f'{len(failures)} failure(s)'}")
-    return 1 if failures else 0
+    return finish("silkgen points", failures)
 
 
 if __name__ == "__main__":

@@ -14,6 +14,8 @@ on COPIES of the committed tiny model made at test time:
 Usage: silkgen_v3_checks.py SILKGEN REPO"""
 import json, pathlib, shutil, struct, subprocess, sys, tempfile
 
+from check_report import finish
+
 COMMON = ["--max-tokens", "120", "--threads", "1", "-q"]
 
 
@@ -206,10 +208,7 @@ def main():
         return 2
     with tempfile.TemporaryDirectory() as tmp:
         failures = checks[mode](silkgen, repo, pathlib.Path(tmp))
-    for f in failures:
-        print("FAIL:", f)
-    print(f"silkgen v3 {mode}: {'OK' if not failures else f'{len(failures)} failure(s)'}")
-    return 1 if failures else 0
+    return finish(f"silkgen v3 {mode}", failures)
 
 
 if __name__ == "__main__":

@@ -2,12 +2,12 @@
 #if defined(_WIN32) && defined(SILK_ORT_RUNTIME_LOAD)
 #include "runtime/model/ort_dll_load.h"
 
-#include <onnxruntime_cxx_api.h>
+#include <onnxruntime_c_api.h>
 
-#include <mutex>
 #include <string>
 
 #include "core/windows_text.h"
+#include "runtime/model/ort_runtime_load.h"
 
 namespace silk {
 
@@ -25,7 +25,9 @@ std::wstring OwnFolder() {
   return slash == std::wstring::npos ? L"." : p.substr(0, slash);
 }
 
-Status LoadOnce() {
+}  // namespace
+
+Status LoadOnnxRuntimeForPlatform() {
   const std::wstring path = OwnFolder() + L"\\onnxruntime.dll";
   const std::string name = Utf8FromWide(path);
   HMODULE dll = LoadLibraryExW(path.c_str(), nullptr, LOAD_WITH_ALTERED_SEARCH_PATH);
@@ -35,22 +37,7 @@ Status LoadOnce() {
   using GetApiBase = const OrtApiBase*(ORT_API_CALL*)();
   auto get_base = reinterpret_cast<GetApiBase>(reinterpret_cast<void*>(GetProcAddress(dll, "OrtGetApiBase")));
   if (!get_base) return IoError(name + ": not an onnxruntime library (no OrtGetApiBase)");
-  const OrtApiBase* base = get_base();
-  const OrtApi* api = base ? base->GetApi(ORT_API_VERSION) : nullptr;
-  if (!api)
-    return Unsupported(name + ": onnxruntime " + (base ? base->GetVersionString() : "?") +
-                       " does not offer C API version " + std::to_string(ORT_API_VERSION));
-  Ort::InitApi(api);
-  return Status::Ok();
-}
-
-}  // namespace
-
-Status LoadOnnxRuntimeLibrary() {
-  static std::once_flag once;
-  static Status result = Status::Ok();
-  std::call_once(once, [] { result = LoadOnce(); });
-  return result;
+  return InitOrtApi(get_base(), name);
 }
 
 }  // namespace silk

@@ -2,14 +2,13 @@
 // (or one already loaded, RTLD_NOLOAD) + dlsym("OrtGetApiBase").
 #if defined(SILK_ORT_RUNTIME_LOAD) && !defined(_WIN32)
 #include <dlfcn.h>
-#include <onnxruntime_cxx_api.h>
+#include <onnxruntime_c_api.h>
 
 #include <climits>
 #include <cstdlib>
-#include <mutex>
 #include <string>
 
-#include "runtime/model/ort_dll_load.h"
+#include "runtime/model/ort_runtime_load.h"
 
 #ifndef SILK_ORT_SONAME
 #error "SILK_ORT_SONAME (onnxruntime's soname, e.g. libonnxruntime.so.1) is set by cmake/SilkOnnxRuntime.cmake"
@@ -52,16 +51,12 @@ Status InitFrom(void* lib, const std::string& fallback_name) {
   auto get_base = reinterpret_cast<GetApiBase>(dlsym(lib, "OrtGetApiBase"));
   if (!get_base) return IoError(fallback_name + ": not an onnxruntime library (no OrtGetApiBase)");
   const std::string name = FileOf(reinterpret_cast<void*>(get_base), fallback_name);
-  const OrtApiBase* base = get_base();
-  const OrtApi* api = base ? base->GetApi(ORT_API_VERSION) : nullptr;
-  if (!api)
-    return Unsupported(name + ": onnxruntime " + (base ? base->GetVersionString() : "?") +
-                       " does not offer C API version " + std::to_string(ORT_API_VERSION));
-  Ort::InitApi(api);
-  return Status::Ok();
+  return InitOrtApi(get_base(), name);
 }
 
-Status LoadOnce() {
+}  // namespace
+
+Status LoadOnnxRuntimeForPlatform() {
   // Already in the process (RTLD_NOLOAD never searches a path): silk_mesh's preload.
   if (void* lib = dlopen(SILK_ORT_SONAME, RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD))
     return InitFrom(lib, SILK_ORT_SONAME);
@@ -75,15 +70,6 @@ Status LoadOnce() {
                    "belongs beside silk_mesh): " + why);
   }
   return InitFrom(lib, path);
-}
-
-}  // namespace
-
-Status LoadOnnxRuntimeLibrary() {
-  static std::once_flag once;
-  static Status result = Status::Ok();
-  std::call_once(once, [] { result = LoadOnce(); });
-  return result;
 }
 
 }  // namespace silk
