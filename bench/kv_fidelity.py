@@ -1,15 +1,16 @@
 #!/usr/bin/env python3
-"""kv_fidelity: how far the fp16 self-K/V cache (model.json files.kv_fp16) moves a decoder from the
-fp32 cache, teacher-forced over long real token sequences: top-1 agreement (all positions, and
-those where the fp32 top id leads by >= 0.05 logits) and KL(fp32 || fp16) of the next-id
-distributions at every position, overall and by depth, for each decoder asked.
+"""kv_fidelity: how far the fp16 and int8 self-K/V caches (model.json files.kv_fp16, files.kv_int8)
+move a decoder from the fp32 cache, teacher-forced over long real token sequences: top-1 agreement
+(all positions, and those where the fp32 top id leads by >= 0.05 logits) and KL(fp32 || variant)
+of the next-id distributions at every position, overall and by depth, for each decoder asked.
 The same decoder weights run with both caches, so only the cache precision differs; the sequences
 (the shared golden-dev token files, truncated to the model's positions) are fed in chunks (in a
-fp16-cache graph the chunk's own keys/values are float16 as well, so the numbers equal step-wise
-feeding).
+variant graph the chunk's own keys/values are stored at the cache's precision before attention, so
+the numbers equal step-wise feeding).
 
-    python3 bench/kv_fidelity.py MODEL_DIR [--decoders decoder decoder_int4] [--tokens A.tokens.txt ...]
-        [--max-len 4096] [--points points.npy] [--chunk 256] [--threads 2] [--json OUT.json]
+    python3 bench/kv_fidelity.py MODEL_DIR [--decoders decoder decoder_int4] [--kv fp16 int8]
+        [--tokens A.tokens.txt ...] [--max-len 4096] [--points points.npy] [--chunk 256] [--threads 2]
+        [--json OUT.json]
 
 Defaults: the model's default decoder; two long dev sequences; the official fixture's point cloud
 (shared/official-fixture/points.npy, 4,096 rows; resampled with replacement for another count).
@@ -92,8 +93,16 @@ def summary(agree: list[np.ndarray], kl: list[np.ndarray], decided: list[np.ndar
     return out
 
 
-def measure(model: Path, decoders: list[str], sequences: dict[str, list[int]], points: Path, chunk: int,
-            threads: int) -> dict:
+def variant_file(model: Path, files: dict, key: str, kv: str) -> str:
+    name = files.get(f"kv_{kv}", {}).get(key)
+    if key not in files or not name:
+        tool = "kv16" if kv == "fp16" else "kv8"
+        raise SystemExit(f"{model}: no {key} with an {kv} KV variant (run `silk-export {tool} {model}`)")
+    return name
+
+
+def measure(model: Path, decoders: list[str], kvs: list[str], sequences: dict[str, list[int]], points: Path,
+            chunk: int, threads: int) -> dict:
     meta = json.loads((model / "model.json").read_text())
     files, dims, bos = meta["files"], meta["dims"], meta["vocab"]["bos_id"]
     cross = session(model / files.get("encoder", "encoder.onnx"), threads).run(
@@ -101,22 +110,20 @@ def measure(model: Path, decoders: list[str], sequences: dict[str, list[int]], p
     result = {"model": str(model), "config": meta.get("config"), "points": str(points), "chunk": chunk,
               "sequences": {k: len(v) for k, v in sequences.items()}, "decoders": {}}
     for key in decoders:
-        half_file = files.get("kv_fp16", {}).get(key)
-        if key not in files or not half_file:
-            raise SystemExit(f"{model}: no {key} with an fp16 KV variant (run `silk-export kv16 {model}`)")
-        agree, kl, decided, t0 = [], [], [], time.time()
+        variants = {kv: variant_file(model, files, key, kv) for kv in kvs}
+        figs = {kv: ([], [], []) for kv in kvs}
+        t0 = time.time()
         for name, ids in sequences.items():
             seq = [bos] + ids[:dims["max_seq_len"] - 1]
-            a, k, d = compare(logits(model / files[key], cross, seq, chunk, threads),
-                              logits(model / half_file, cross, seq, chunk, threads))
-            agree.append(a)
-            kl.append(k)
-            decided.append(d)
-            print(f"  {key} {name}: {len(seq)} positions, top-1 {a.mean():.4f} (decided: {a[d].mean():.4f} of "
-                  f"{d.sum()}), KL mean {k.mean():.3g}", flush=True)
-        fig = summary(agree, kl, decided)
-        fig["seconds"] = round(time.time() - t0, 1)
-        result["decoders"][key] = fig
+            ref = logits(model / files[key], cross, seq, chunk, threads)
+            for kv, file in variants.items():
+                a, k, d = compare(ref, logits(model / file, cross, seq, chunk, threads))
+                for acc, x in zip(figs[kv], (a, k, d)):
+                    acc.append(x)
+                print(f"  {key} {kv} {name}: {len(seq)} positions, top-1 {a.mean():.4f} (decided: {a[d].mean():.4f} "
+                      f"of {d.sum()}), KL mean {k.mean():.3g}", flush=True)
+        result["decoders"][key] = {kv: summary(*figs[kv]) for kv in kvs}
+        result["decoders"][key]["seconds"] = round(time.time() - t0, 1)
     return result
 
 
@@ -124,6 +131,8 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("model", type=Path)
     ap.add_argument("--decoders", nargs="+", help="model.json files keys (default: the model's default decoder)")
+    ap.add_argument("--kv", nargs="+", default=["fp16"], choices=["fp16", "int8"],
+                    help="cache variants to compare with the fp32 cache (default: fp16)")
     ap.add_argument("--tokens", nargs="+", type=Path, help="token files (one id per line)")
     ap.add_argument("--max-len", type=int, default=4096, help="positions per sequence, BOS included")
     ap.add_argument("--points", type=Path, default=SHARED / "official-fixture" / "points.npy")
@@ -135,7 +144,7 @@ def main() -> int:
     decoders = a.decoders or [meta["files"].get("default_decoder", "decoder")]
     paths = a.tokens or [SHARED / "spec" / "golden-dev" / f"{n}.tokens.txt" for n in DEFAULT_TOKENS]
     sequences = {p.name.split(".")[0]: read_tokens(p)[:a.max_len - 1] for p in paths}
-    res = measure(a.model, decoders, sequences, a.points, a.chunk, a.threads)
+    res = measure(a.model, decoders, a.kv, sequences, a.points, a.chunk, a.threads)
     text = json.dumps(res, indent=1)
     if a.json:
         a.json.write_text(text + "\n")

@@ -4,8 +4,11 @@
 // measured in the same run) and the official PyTorch loop (bench/official_loop.py, run in the
 // same run at a few depths and extrapolated to N calls by its measured cost per depth).
 //
-//   time_to_mesh --model DIR [--calls 1000,4000] [--decoders int4,int8,fp32] [--kv fp32,fp16]
+//   time_to_mesh --model DIR [--calls 1000,4000] [--decoders int4,int8,fp32] [--kv fp32,fp16,int8]
 //                [--threads 2] [--official-depths 0,1024] [--official-steps 24] [--no-official]
+//
+// A --kv item PRECISION@FOLDER takes that precision's variant from another model folder (e.g. one
+// whose fp16 variants are `silk-export kv16 --attention ort`), printed as PRECISION@<folder name>.
 //
 // One pass of max(calls) calls per config; the figures for a smaller N are that pass's first N
 // calls (the same thing: N calls from depth 0). Each config runs in a forked child (its own peak
@@ -37,11 +40,18 @@ using silk::KvPrecision;
 using silk::bench::Clock;
 using silk::bench::Since;
 
+// One KV configuration: a precision, from --model or from another folder.
+struct KvConfig {
+  KvPrecision precision = KvPrecision::kFp32;
+  std::string folder;  // "" = --model
+  std::string label;
+};
+
 struct Args {
   std::string model;
   std::vector<int> calls = {1000, 4000};
   std::vector<DecoderPrecision> decoders = {DecoderPrecision::kInt4};
-  std::vector<KvPrecision> kvs = {KvPrecision::kFp32, KvPrecision::kFp16};
+  std::vector<KvConfig> kvs = {{KvPrecision::kFp32, "", "fp32"}, {KvPrecision::kFp16, "", "fp16"}};
   int threads = 2;
   std::vector<int> official_depths = {0, 1024};
   int official_steps = 24;
@@ -67,13 +77,13 @@ struct Worker {
   std::vector<double> at{0.0};  // decoder seconds after call i
 };
 
-bool OpenWorker(const Args& a, DecoderPrecision p, KvPrecision kv, Worker* w, Pass* r) {
+bool OpenWorker(const Args& a, DecoderPrecision p, const KvConfig& kv, Worker* w, Pass* r) {
   silk::ModelLoadOptions lo;
   lo.threads = a.threads;
   lo.decoder = p;
-  lo.kv = kv;
+  lo.kv = kv.precision;
   auto t0 = Clock::now();
-  auto model = silk::Model::Load(a.model, lo);
+  auto model = silk::Model::Load(kv.folder.empty() ? a.model : kv.folder, lo);
   if (!model.ok()) {
     std::fprintf(stderr, "  %s\n", model.status().ToString().c_str());
     return false;
@@ -120,7 +130,7 @@ void Summarise(const Args& a, const Worker& w, Pass* r) {
 
 // A forked worker: loads, then reads block sizes from `cmd` (0 = done) and answers each with one
 // byte on `out` (1 = fed, 0 = failed), and finally the Pass.
-[[noreturn]] void WorkerMain(const Args& a, DecoderPrecision p, KvPrecision kv, int cmd, int out) {
+[[noreturn]] void WorkerMain(const Args& a, DecoderPrecision p, const KvConfig& kv, int cmd, int out) {
   Worker w;
   Pass r;
   char ok = OpenWorker(a, p, kv, &w, &r) ? 1 : 0;
@@ -139,7 +149,7 @@ struct Child {
   bool alive = false;
 };
 
-Child Spawn(const Args& a, DecoderPrecision p, KvPrecision kv) {
+Child Spawn(const Args& a, DecoderPrecision p, const KvConfig& kv) {
   int c[2], o[2];
   Child ch;
   if (pipe(c) != 0 || pipe(o) != 0) return ch;
@@ -162,9 +172,9 @@ Child Spawn(const Args& a, DecoderPrecision p, KvPrecision kv) {
 // change of the machine's load during the run hits each of them alike.
 constexpr int kBlock = 100;
 
-std::vector<Pass> RunInterleaved(const Args& a, DecoderPrecision p, const std::vector<KvPrecision>& kvs) {
+std::vector<Pass> RunInterleaved(const Args& a, DecoderPrecision p, const std::vector<KvConfig>& kvs) {
   std::vector<Child> kids;
-  for (KvPrecision kv : kvs) kids.push_back(Spawn(a, p, kv));
+  for (const KvConfig& kv : kvs) kids.push_back(Spawn(a, p, kv));
   for (int done = 0; done < a.calls.back(); done += kBlock) {
     const int n = std::min(kBlock, a.calls.back() - done);
     for (Child& ch : kids) {
@@ -200,7 +210,7 @@ Bytes CallBytes(const silk::ModelConfig& c, DecoderPrecision p, KvPrecision kv) 
   Bytes b;
   b.weights = silk::bench::DecoderFileBytes(c, p) - double(c.embedding_rows + d.max_seq_len) * d.d_model * 4;
   b.cross = d.cross_kv_floats() * 4.0;
-  b.row = d.kv_row_floats() * (kv == KvPrecision::kFp16 ? 2.0 : 4.0);
+  b.row = static_cast<double>(silk::KvShapeOf(d, kv).position_bytes());
   return b;
 }
 
@@ -260,8 +270,15 @@ bool ParseArgs(int argc, char** argv, Args* a) {
     } else if (k == "--kv") {
       a->kvs.clear();
       std::stringstream ss(next());
-      for (std::string x; std::getline(ss, x, ',');)
-        a->kvs.push_back(x == "fp16" ? KvPrecision::kFp16 : KvPrecision::kFp32);
+      for (std::string x; std::getline(ss, x, ',');) {
+        KvConfig c;
+        const size_t at = x.find('@');
+        if (at != std::string::npos) c.folder = x.substr(at + 1);
+        if (!silk::ParseKvPrecision(x.substr(0, at), &c.precision)) return false;
+        c.label = silk::KvPrecisionName(c.precision);
+        if (!c.folder.empty()) c.label += "@" + c.folder.substr(c.folder.find_last_of('/') + 1);
+        a->kvs.push_back(c);
+      }
     } else return false;
   }
   std::sort(a->calls.begin(), a->calls.end());
@@ -276,16 +293,16 @@ std::string LoadAverage() {
   return buf;
 }
 
-void PrintConfig(const Args& a, const silk::ModelConfig& c, DecoderPrecision p, KvPrecision kv, const Pass& r,
+void PrintConfig(const Args& a, const silk::ModelConfig& c, DecoderPrecision p, const KvConfig& kv, const Pass& r,
                  const nlohmann::json& official) {
-  const Bytes b = CallBytes(c, p, kv);
+  const Bytes b = CallBytes(c, p, kv.precision);
   for (size_t k = 0; k < a.calls.size(); ++k) {
     const int n = a.calls[k];
     const double avg_bytes = b.AtDepth(n / 2);
     const double gbps = silk::bench::ReadBandwidth(a.threads, static_cast<int64_t>(std::min(avg_bytes, 4e9)));
     const double bound_s = b.Total(n) / (gbps * 1e9);
     std::printf("%-5s %-5s %6d | %7.1f %6.1f %8.1f %8.1f | %7.1f %7.1f | %8.1f %4.0f%% %5.1f | %8.0f |", 
-                silk::DecoderPrecisionName(p), silk::KvPrecisionName(kv), n, r.load_s, r.encoder_s, r.seconds[k],
+                silk::DecoderPrecisionName(p), kv.label.c_str(), n, r.load_s, r.encoder_s, r.seconds[k],
                 r.load_s + r.encoder_s + r.seconds[k], r.seconds[k] / n * 1e3, r.ms_at_end[k], bound_s,
                 100 * bound_s / r.seconds[k], gbps, r.rss_mib);
     if (official.is_object()) {
@@ -304,10 +321,11 @@ int main(int argc, char** argv) {
   Args a;
   if (!ParseArgs(argc, argv, &a)) {
     std::fprintf(stderr,
-                 "usage: time_to_mesh --model DIR [--calls 1000,4000] [--decoders int4,int8,fp32] [--kv fp32,fp16]\n"
+                 "usage: time_to_mesh --model DIR [--calls 1000,4000] [--decoders int4,int8,fp32] [--kv fp32,fp16,int8]\n"
                  "                    [--threads 2] [--official-depths 0,1024] [--official-steps 24] [--no-official]\n"
                  "  (DIR: a release-size model folder, e.g. python3 bench/export_bench_models.py --configs official\n"
-                 "   --out OUT, then python3 -m silk_export kv16 OUT/official)\n");
+                 "   --out OUT, then python3 -m silk_export kv16 OUT/official; a --kv item PRECISION@FOLDER takes\n"
+                 "   that variant from another folder)\n");
     return 2;
   }
   auto cfg = silk::LoadModelConfig(a.model);
@@ -336,16 +354,16 @@ int main(int argc, char** argv) {
   std::printf("\ndec   kv      N  | load s  enc s  calls s  total s | ms/call ms@end | bound s  %%bnd  GB/s | peak MiB |"
               " official s  speed-up\n");
   for (DecoderPrecision p : a.decoders) {
-    std::vector<KvPrecision> kvs;
-    for (KvPrecision kv : a.kvs) {
-      if (!cfg->DecoderFile(p, kv).empty()) kvs.push_back(kv);
-      else std::printf("%-5s %-5s: not in this model folder (skipped)\n", silk::DecoderPrecisionName(p),
-                       silk::KvPrecisionName(kv));
+    std::vector<KvConfig> kvs;
+    for (const KvConfig& kv : a.kvs) {
+      auto other = kv.folder.empty() ? cfg : silk::LoadModelConfig(kv.folder);
+      if (other.ok() && !other->DecoderFile(p, kv.precision).empty()) kvs.push_back(kv);
+      else std::printf("%-5s %-5s: not in that model folder (skipped)\n", silk::DecoderPrecisionName(p), kv.label.c_str());
     }
     std::fflush(stdout);
     const std::vector<Pass> passes = RunInterleaved(a, p, kvs);
     for (size_t i = 0; i < kvs.size(); ++i) {
-      if (!passes[i].ok) std::printf("%-5s %-5s: failed\n", silk::DecoderPrecisionName(p), silk::KvPrecisionName(kvs[i]));
+      if (!passes[i].ok) std::printf("%-5s %-5s: failed\n", silk::DecoderPrecisionName(p), kvs[i].label.c_str());
       else PrintConfig(a, *cfg, p, kvs[i], passes[i], official);
       std::fflush(stdout);
     }
