@@ -165,6 +165,28 @@ TEST(CapiModel, ThreadsAreBoundedAndOnePoolIsShared) {
   silk_model_destroy(b);
 }
 
+// silk_model_params.kv_precision: every precision the tiny model carries loads and is reported;
+// a value past the enum is refused naming the field.
+TEST(CapiModel, KvPrecisionIsChosenAndReported) {
+  if (!silk_generation_available()) GTEST_SKIP();
+  for (silk_kv_precision kv : {SILK_KV_FP32, SILK_KV_FP16, SILK_KV_INT8}) {
+    silk_model_params o = silk_model_default_params();
+    o.kv_precision = kv;
+    silk_model* m = nullptr;
+    ASSERT_EQ(silk_model_load(TinyModel().c_str(), &o, &m), SILK_OK) << silk_last_error();
+    silk_model_info info = silk_cpp::Sized<silk_model_info>();
+    ASSERT_EQ(silk_model_get_info(m, &info), SILK_OK);
+    EXPECT_EQ(info.kv_precision, kv);
+    silk_model_destroy(m);
+  }
+  silk_model_params o = silk_model_default_params();
+  o.kv_precision = SILK_KV_INT8 + 1;
+  silk_model* m = nullptr;
+  EXPECT_EQ(silk_model_load(TinyModel().c_str(), &o, &m), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(std::string(silk_last_error()).find("kv_precision"), std::string::npos) << silk_last_error();
+  EXPECT_EQ(m, nullptr);
+}
+
 struct CancelProbe {
   int polls = 0, cancel_at = 0, progress_calls = 0;
   silk_generate_progress last{};

@@ -74,7 +74,7 @@ def test_generate_with_the_tiny_model_gives_silkgens_ids(silkgen, generation, tm
 def test_kv_precision_picks_the_cache_as_silkgen_does(silkgen, generation, tmp_path):
     """Model(kv_precision=...) is silk_model_params.kv_precision: the same ids as silkgen's
     --kv-precision, the cache in use in info(), and a precision the folder lacks named."""
-    for kv in ("fp32", "fp16"):
+    for kv in ("fp32", "fp16", "int8"):
         subprocess.run([str(silkgen), str(KNOT), "--model", str(TINY), "--seed", "3", "--max-tokens", "200",
                         "--threads", "1", "--kv-precision", kv, "--tokens", str(tmp_path / f"{kv}.txt"), "-q"],
                        check=True)

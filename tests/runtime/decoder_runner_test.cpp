@@ -96,6 +96,34 @@ TEST(DecoderRunner, Fp16CacheMatchesFp32) {
   EXPECT_EQ(runner.Feed(ids.data(), 1).code(), StatusCode::kInvalidArgument);
 }
 
+// The int8 self-K/V cache (decoder.kv8.onnx, rows of int8 + a float32 scale): stepwise = copying
+// exactly, chunked close, the dequantized cache within int8 rounding of the fp32 run's (half a
+// step, max|row| / 254, plus the fp32-vs-int8 drift of earlier layers), the logits close.
+TEST(DecoderRunner, Int8CacheMatchesFp32) {
+  auto model = testing::LoadTinyModel(1, KvPrecision::kInt8);
+  auto ref = testing::LoadTinyModel(1);
+  ASSERT_TRUE(model && ref);
+  const KvShape shape = ModelKvShape(model->impl());
+  EXPECT_EQ(shape.row_bytes(), model->config().dims.head_dim + 4);
+  const std::vector<int32_t> ids = {10269, 0, 5835, 8758, 1, 6112, 9420, 220, 460, 5803, 8381, 352};
+  const Fed step = FeedAll(*model, ids, 1, KvMode::kInPlace);
+  const Fed whole = FeedAll(*model, ids, 12, KvMode::kInPlace);
+  const Fed copy = FeedAll(*model, ids, 1, KvMode::kCopy);
+  const Fed fp32 = FeedAll(*ref, ids, 1, KvMode::kInPlace);
+  EXPECT_EQ(MaxDiff(step.logits, copy.logits), 0.0);
+  EXPECT_EQ(MaxDiff(step.cache, copy.cache), 0.0);
+  EXPECT_LT(MaxDiff(step.logits, whole.logits), 0.05);
+  double scale = 0;
+  for (float v : fp32.cache) scale = std::max(scale, double(std::fabs(v)));
+  const double cache_diff = MaxDiff(step.cache, fp32.cache);
+  EXPECT_GT(cache_diff, 0.0);  // it really is quantized
+  EXPECT_LT(cache_diff, scale * 0.02);
+  EXPECT_LT(MaxDiff(step.logits, fp32.logits), 0.25);
+  // Greedy choices agree with the fp32 cache on this sequence.
+  const auto top = [](const std::vector<float>& v) { return std::max_element(v.begin(), v.end()) - v.begin(); };
+  EXPECT_EQ(top(step.logits), top(fp32.logits));
+}
+
 TEST(DecoderRunner, RefusesOverflow) {
   auto model = testing::LoadTinyModel();
   ASSERT_TRUE(model);
