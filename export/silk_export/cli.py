@@ -171,8 +171,8 @@ def _add_import_official(sub) -> None:
     i.add_argument("--int4-block-size", type=int, default=32)
     i.add_argument("--int4-accuracy-level", type=int, default=4)
     i.add_argument("--fidelity-tokens", type=int, default=32, help="greedy tokens per probe cloud")
-    i.add_argument("--kv-precision", default="fp16", choices=["fp32", "fp16"],
-                   help="the model's self-K/V cache precision (files.default_kv_precision; both are written)")
+    i.add_argument("--kv-precision", default="fp16", choices=["fp32", "fp16", "int8"],
+                   help="the model's self-K/V cache precision (files.default_kv_precision; all are written)")
     i.add_argument("--no-progress", action="store_true")
     i.set_defaults(fn=_cmd_import_official)
 
@@ -194,23 +194,32 @@ def _add_kv16(sub) -> None:
     k = sub.add_parser("kv16", help="add the fp16 self-K/V cache variant of every decoder to a model folder "
                        "(docs/model_contract.md, KV precision)")
     k.add_argument("folder", help="model folder (model.json + decoder*.onnx)")
-    k.add_argument("--default", choices=["fp32", "fp16"], help="also set files.default_kv_precision")
+    k.add_argument("--default", choices=["fp32", "fp16", "int8"], help="also set files.default_kv_precision "
+                   "(int8 needs the kv8 variants)")
     k.add_argument("--attention", choices=["silk", "ort"], default="silk",
                    help="silk (default): libsilk's ai.silk CachedAttention reads the float16 cache (fast; "
                         "plain onnxruntime needs libsilk registered); ort: float16 casts around "
                         "GroupQueryAttention (any onnxruntime, slower)")
-    k.set_defaults(fn=_cmd_kv16)
+    k.set_defaults(fn=_cmd_kv16, precision="fp16")
+    k8 = sub.add_parser("kv8", help="add the int8 self-K/V cache variant (rows of D int8 + a float32 scale; "
+                        "libsilk's ai.silk CachedAttention) of every decoder to a model folder "
+                        "(docs/model_contract.md, KV precision)")
+    k8.add_argument("folder", help="model folder (model.json + decoder*.onnx)")
+    k8.add_argument("--default", choices=["fp32", "fp16", "int8"], help="also set files.default_kv_precision "
+                    "(fp16 needs the kv16 variants)")
+    k8.set_defaults(fn=_cmd_kv16, precision="int8", attention="silk")
 
 
 def _cmd_kv16(a) -> int:
-    from .onnx.kv_precision import KV_FILES_KEY, add_kv16_to_folder
+    """`kv16` and `kv8`: the variants of a.precision."""
+    from .onnx.kv_precision import KV_FILES, KV_SUFFIXES, add_kv_to_folder
     try:
-        files = add_kv16_to_folder(Path(a.folder), a.default, a.attention)
+        files = add_kv_to_folder(Path(a.folder), a.precision, a.default, a.attention)
     except (OSError, ValueError) as e:
-        print(f"silk-export kv16: error: {e}", file=sys.stderr)
+        print(f"silk-export {KV_SUFFIXES[a.precision]}: error: {e}", file=sys.stderr)
         return 2
-    print(json.dumps({KV_FILES_KEY: files[KV_FILES_KEY],
-                      "default_kv_precision": files.get("default_kv_precision", "fp32")}, indent=2))
+    key = KV_FILES[a.precision]
+    print(json.dumps({key: files[key], "default_kv_precision": files.get("default_kv_precision", "fp32")}, indent=2))
     return 0
 
 

@@ -1,7 +1,7 @@
-"""libsilk's ai.silk CachedAttention op (the attention of fp16-cache decoders), run by Python's
-onnxruntime with libsilk registered as its custom-op library: against a numpy reference, in place
-(present bound to past's buffer, as libsilk runs it) and copying, against GroupQueryAttention with
-float16 casts, and its errors for inputs that do not fit together."""
+"""libsilk's ai.silk CachedAttention op (the attention of fp16- and int8-cache decoders), run by
+Python's onnxruntime with libsilk registered as its custom-op library: against a numpy reference,
+in place (present bound to past's buffer, as libsilk runs it) and copying, against
+GroupQueryAttention with float16 casts, and its errors for inputs that do not fit together."""
 from __future__ import annotations
 
 import numpy as np
@@ -19,12 +19,13 @@ H, KVH, D = 4, 2, 16
 
 def _graph(path, op="CachedAttention", domain="ai.silk", cache=TensorProto.FLOAT16, **attrs):
     # Symbolic dims, so onnxruntime passes shapes that do not fit through to the op's own checks.
+    row = D + 4 if cache == TensorProto.INT8 else D
     io = [("q", TensorProto.FLOAT, ["B", "T", "QD"]), ("k", TensorProto.FLOAT, ["B", "T", "KD"]),
           ("v", TensorProto.FLOAT, ["B", "T", "KD"]), ("past_key", cache, ["B", "KV", "C", "D"]),
           ("past_value", cache, ["B", "KV", "C", "D"]), ("seqlens_k", TensorProto.INT32, [1]),
           ("total_sequence_length", TensorProto.INT32, [])]
-    outs = [("out", TensorProto.FLOAT, [1, "T", H * D]), ("present_key", cache, [1, KVH, "P", D]),
-            ("present_value", cache, [1, KVH, "P", D])]
+    outs = [("out", TensorProto.FLOAT, [1, "T", H * D]), ("present_key", cache, [1, KVH, "P", row]),
+            ("present_value", cache, [1, KVH, "P", row])]
     node = helper.make_node(op, [n for n, _, _ in io], [n for n, _, _ in outs], name="attn", domain=domain,
                             num_heads=H, kv_num_heads=KVH, **attrs)
     g = helper.make_graph([node], "g", [helper.make_tensor_value_info(*x) for x in io],
@@ -137,3 +138,101 @@ def test_attributes_it_does_not_implement_are_refused(tmp_path):
     with pytest.raises(ValueError, match="do_rotary=1, which CachedAttention does not implement"):
         make_kv16_decoder(path, tmp_path / "x.onnx")
     make_kv16_decoder(path, tmp_path / "x.onnx", attention="ort")  # the cast form keeps any attribute
+
+
+# --- int8 caches: rows of D int8 values + the row's float32 scale (docs/model_contract.md) ---
+
+def _quantize(x):
+    """Rows [..., D] float32 -> [..., D + 4] int8 by the contract: scale = max|x| / 127,
+    q = round half to even (x / scale) (all zeros for a zero row), then the scale's 4 bytes."""
+    x = np.asarray(x, np.float32)
+    scale = (np.abs(x).max(-1, keepdims=True) / np.float32(127)).astype(np.float32)
+    safe = np.where(scale > 0, scale, np.float32(1))
+    q = np.where(scale > 0, np.clip(np.rint(x / safe), -127, 127), 0).astype(np.int8)
+    return np.concatenate([q, scale.astype("<f4").view(np.int8)], -1)
+
+
+def _dequantize(rows):
+    scale = np.ascontiguousarray(rows[..., D:]).view("<f4").astype(np.float64)
+    return rows[..., :D].astype(np.float64) * scale
+
+
+def _inputs8(T, P, C, seed=0):
+    r = np.random.default_rng(seed)
+    x = _inputs(T, P, C, seed)
+    for name in ("past_key", "past_value"):
+        past = np.zeros((1, KVH, C, D + 4), np.int8)
+        past[:, :, :P] = _quantize(r.normal(size=(1, KVH, P, D)))
+        x[name] = past
+    return x
+
+
+def _reference8(x, scale):
+    T, P = x["q"].shape[1], int(x["total_sequence_length"]) - x["q"].shape[1]
+    new = {n: _quantize(x[n][0].reshape(T, KVH, D).transpose(1, 0, 2)) for n in ("k", "v")}
+    rows = {n: np.concatenate([x[f"past_{w}"][0, :, :P], new[n]], 1) for n, w in (("k", "key"), ("v", "value"))}
+    keys, vals = _dequantize(rows["k"]), _dequantize(rows["v"])
+    out = np.zeros((T, H, D))
+    for t in range(T):
+        for h in range(H):
+            s = scale * keys[h // (H // KVH), :P + t + 1] @ x["q"][0, t, h * D:(h + 1) * D].astype(np.float64)
+            w = np.exp(s - s.max())
+            out[t, h] = w @ vals[h // (H // KVH), :P + t + 1] / w.sum()
+    return out.reshape(1, T, H * D), rows["k"], rows["v"]
+
+
+@pytest.mark.parametrize("T,P", [(1, 0), (1, 9), (4, 0), (3, 20)])
+def test_int8_copying_matches_reference(tmp_path, T, P):
+    s = session(_graph(tmp_path / "a.onnx", cache=TensorProto.INT8, scale=0.7))
+    x = _inputs8(T, P, P)
+    out, pk, pv = s.run(None, x)
+    ref, keys, vals = _reference8(x, 0.7)
+    np.testing.assert_allclose(out, ref, atol=2e-5)
+    assert pk.shape == (1, KVH, P + T, D + 4) and pk.dtype == np.int8
+    np.testing.assert_array_equal(pk[0], keys)  # the new rows quantized exactly as the contract says
+    np.testing.assert_array_equal(pv[0], vals)
+
+
+def test_int8_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
+    s = session(_graph(tmp_path / "a.onnx", cache=TensorProto.INT8))
+    x = _inputs8(2, 7, 12)
+    x["k"][0, 1, :D] = 0  # a zero row: scale 0
+    copy = s.run(None, {**x, "past_key": x["past_key"][:, :, :7].copy(), "past_value": x["past_value"][:, :, :7].copy()})
+    b = s.io_binding()
+    vals = {n: ort.OrtValue.ortvalue_from_numpy(a) for n, a in x.items()}
+    for n, v in vals.items():
+        b.bind_ortvalue_input(n, v)
+    b.bind_output("out")
+    b.bind_ortvalue_output("present_key", vals["past_key"])
+    b.bind_ortvalue_output("present_value", vals["past_value"])
+    s.run_with_iobinding(b)
+    np.testing.assert_array_equal(b.copy_outputs_to_cpu()[0], copy[0])
+    in_place = vals["past_key"].numpy()
+    np.testing.assert_array_equal(in_place[:, :, :9], copy[1])
+    assert not in_place[0, 0, 8].any()  # the zero row: int8 zeros and a scale of +0.0
+    assert (in_place[:, :, 9:] == 0).all()  # rows past P + T untouched
+    np.testing.assert_allclose(copy[0], _reference8(x, 1 / np.sqrt(D))[0], atol=2e-5)
+
+
+@pytest.mark.parametrize("change,message", [
+    (lambda x: x.update(past_key=np.zeros((1, KVH, 8, D), np.int8), past_value=np.zeros((1, KVH, 8, D), np.int8)),
+     rf"expected \[1, kv_heads, capacity, head_dim \+ 4\] = \[1, {KVH}, C, {D + 4}\]"),
+    (lambda x: x.update(past_key=np.zeros((1, KVH, 8, D + 4), np.int8)), "past_key/past_value have shapes"),
+    (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),
+])
+def test_int8_inputs_that_do_not_fit_are_refused_naming_the_node(tmp_path, change, message):
+    s = session(_graph(tmp_path / "a.onnx", cache=TensorProto.INT8))
+    x = _inputs8(1, 8, 9)
+    change(x)
+    with pytest.raises(Exception, match=message) as e:
+        s.run(None, x)
+    assert "CachedAttention 'attn'" in str(e.value)
+
+
+def test_one_op_name_serves_both_cache_types(tmp_path):
+    """float16 and int8 caches are two kernels of the one ai.silk CachedAttention; a float32 cache
+    is neither and onnxruntime refuses the graph."""
+    assert session(_graph(tmp_path / "h.onnx")).get_inputs()[3].type == "tensor(float16)"
+    assert session(_graph(tmp_path / "i.onnx", cache=TensorProto.INT8)).get_inputs()[3].type == "tensor(int8)"
+    with pytest.raises(Exception, match="past_key"):
+        session(_graph(tmp_path / "f.onnx", cache=TensorProto.FLOAT))

@@ -1,6 +1,6 @@
-"""The fp16 self-K/V cache variant (silk_export.onnx.kv_precision, `silk-export kv16`): made by
-rewriting a decoder graph, it keeps the weights (sharing external data), takes float16 caches and
-gives the fp32 graph's logits to float16 precision."""
+"""The fp16 and int8 self-K/V cache variants (silk_export.onnx.kv_precision, `silk-export kv16`,
+`kv8`): made by rewriting a decoder graph, they keep the weights (sharing external data), take
+float16 caches / int8 rows [1, H, C, D + 4] and give the fp32 graph's logits to that precision."""
 from __future__ import annotations
 
 import json
@@ -16,7 +16,7 @@ onnx = pytest.importorskip("onnx")
 pytest.importorskip("onnxruntime")
 
 from silk_export.onnx.decode import DecoderState, session  # noqa: E402
-from silk_export.onnx.kv_precision import add_kv16_to_folder, make_kv16_decoder  # noqa: E402
+from silk_export.onnx.kv_precision import add_kv16_to_folder, make_kv16_decoder, make_kv_decoder  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
 TINY = REPO / "tests" / "models" / "tiny"
@@ -81,6 +81,7 @@ def test_cli_adds_variants_and_default(tmp_path):
     (m / "decoder.kv16.onnx").unlink()
     meta = json.loads((m / "model.json").read_text())
     del meta["files"]["kv_fp16"]
+    del meta["files"]["kv_int8"]
     (m / "model.json").write_text(json.dumps(meta))
     p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "fp16"],
                        capture_output=True, text=True, cwd=REPO / "export")
@@ -89,4 +90,57 @@ def test_cli_adds_variants_and_default(tmp_path):
     assert files["kv_fp16"] == {"decoder": "decoder.kv16.onnx"} and files["default_kv_precision"] == "fp16"
     assert (m / "decoder.kv16.onnx").exists()
     with pytest.raises(ValueError, match="expected one of"):
+        add_kv16_to_folder(m, "bf16")
+    with pytest.raises(ValueError, match="needs files.kv_int8.decoder"):  # no kv8 variant yet
         add_kv16_to_folder(m, "int8")
+
+
+def test_int8_variant_takes_int8_row_caches_and_matches_fp32(tmp_path):
+    m = tmp_path / "m"
+    shutil.copytree(TINY, m)
+    assert make_kv_decoder(m / "decoder.onnx", m / "v8.onnx", "int8") == []
+    meta = json.loads((m / "model.json").read_text())
+    layers, heads, d = (meta["dims"][k] for k in ("n_layers", "n_heads", "head_dim"))
+    assert [n.op_type for n in onnx.load(str(m / "v8.onnx")).graph.node].count("CachedAttention") == layers
+    s = session(m / "v8.onnx")
+    types = {i.name: (i.type, i.shape) for i in s.get_inputs()}
+    assert types["past_key_0"][0] == types["past_value_1"][0] == "tensor(int8)"
+    assert types["past_key_0"][1][1] == heads and types["past_key_0"][1][3] == d + 4
+    assert {o.name: o.shape for o in s.get_outputs()}["present_value_1"][3] == d + 4
+    assert types["cross_key_0"][0] == "tensor(float)"
+    cross = _cross(m)
+    state = DecoderState(s, cross)
+    q8 = np.concatenate([state.run([i]) for i in IDS])
+    assert state.past[0].shape == (1, heads, len(IDS), d + 4) and state.past[0].dtype == np.int8
+    ref = _logits(m / "decoder.onnx", cross, 1)
+    assert 0 < np.abs(ref - q8).max() < 0.1  # int8 rounding of the cache (tiny model: 0.013)
+    assert (ref.argmax(-1) == q8.argmax(-1)).all()
+    np.testing.assert_allclose(_logits(m / "v8.onnx", cross, 5), q8, atol=1e-4)  # chunked = step-wise
+    np.testing.assert_array_equal(_logits(TINY / "decoder.kv8.onnx", cross, 1), q8)  # the committed variant
+    with pytest.raises(ValueError, match="only in the silk attention form"):
+        make_kv_decoder(m / "decoder.onnx", m / "x.onnx", "int8", "ort")
+
+
+def test_cli_kv8_adds_int8_variants_and_default(tmp_path):
+    m = tmp_path / "m"
+    shutil.copytree(TINY, m)
+    (m / "decoder.kv8.onnx").unlink()
+    meta = json.loads((m / "model.json").read_text())
+    del meta["files"]["kv_int8"]
+    (m / "model.json").write_text(json.dumps(meta))
+    p = subprocess.run([sys.executable, "-m", "silk_export", "kv8", str(m), "--default", "int8"],
+                       capture_output=True, text=True, cwd=REPO / "export")
+    assert p.returncode == 0, p.stderr
+    assert json.loads(p.stdout) == {"kv_int8": {"decoder": "decoder.kv8.onnx"}, "default_kv_precision": "int8"}
+    files = json.loads((m / "model.json").read_text())["files"]
+    assert files["kv_int8"] == {"decoder": "decoder.kv8.onnx"} and files["default_kv_precision"] == "int8"
+    assert files["kv_fp16"] == {"decoder": "decoder.kv16.onnx"}  # the fp16 variant stays
+    assert (m / "decoder.kv8.onnx").read_bytes() == (TINY / "decoder.kv8.onnx").read_bytes()
+    p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "int8"],
+                       capture_output=True, text=True, cwd=REPO / "export")  # kv8 variants now exist
+    assert p.returncode == 0, p.stderr
+    del files["kv_int8"]
+    (m / "model.json").write_text(json.dumps({**meta, "files": files}))
+    p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "int8"],
+                       capture_output=True, text=True, cwd=REPO / "export")
+    assert p.returncode == 2 and "silk-export kv16: error" in p.stderr and "silk-export kv8 first" in p.stderr

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Makes tests/models/tiny/: a deterministic random-weight model in the exact format of
-docs/model_contract.md, small enough to commit (~1.6 MB with decoder.kv16.onnx, the fp16 KV cache variant), for the runtime's golden and
+docs/model_contract.md, small enough to commit (~2.4 MB with decoder.kv16.onnx and decoder.kv8.onnx, the fp16 and int8 KV cache variants), for the runtime's golden and
 determinism tests. Uses export/'s model code (silk_export) with a toy configuration and
 weights drawn N(0, 0.5) from a fixed seed (larger than training init, so logits have an O(1)
 spread and any runtime mistake changes the sampled ids), plus output biases toward U and E.
@@ -27,7 +27,7 @@ from silk_export.json_io import dumps, write_json  # noqa: E402
 from silk_export.models.configs import ModelConfig  # noqa: E402
 from silk_export.models.silk_model import SilkModel  # noqa: E402
 from silk_export.onnx.export import export_model  # noqa: E402
-from silk_export.onnx.kv_precision import add_kv16_variants  # noqa: E402
+from silk_export.onnx.kv_precision import add_kv_variants  # noqa: E402
 from silk_export.vocab import load_vocab  # noqa: E402
 
 SEED = 20240611
@@ -92,7 +92,8 @@ def make(out: Path) -> dict:
     meta = export_model(model, out, {"steps": 0, "data": None, "seed": SEED}, int8=False)
     for f in ("encoder.onnx", "decoder.onnx"):
         shrink(out / f)
-    add_kv16_variants(out, meta["files"])  # decoder.kv16.onnx: the fp16 KV cache path's tests
+    add_kv_variants(out, meta["files"], "fp16")  # decoder.kv16.onnx: the fp16 KV cache path's tests
+    add_kv_variants(out, meta["files"], "int8")  # decoder.kv8.onnx: the int8 KV cache path's tests
     # Keep the committed sidecar independent of which libsilk build happened to be around.
     meta.get("versions", {}).pop("libsilk", None)
     write_json(out / "model.json", meta)

@@ -1,6 +1,7 @@
-// CachedAttention (runtime/attention), the kernel behind the ai.silk op of fp16-cache decoders:
-// against a plain double-precision reference, vectorized rows against scalar ones, and float16
-// rounding against onnxruntime's own conversion (an independent implementation).
+// CachedAttention (runtime/attention), the kernel behind the ai.silk op of fp16/int8-cache decoders:
+// against a plain double-precision reference, vectorized rows against scalar ones, float16
+// rounding against onnxruntime's own conversion and int8 rows against the contract's formula
+// computed here (both independent implementations).
 #include "runtime/attention/cached_attention.h"
 
 #include <gtest/gtest.h>
@@ -18,9 +19,47 @@
 namespace silk {
 namespace {
 
-float Widen(const void* cache, CacheElement e, size_t i) {
-  if (e == CacheElement::kFloat32) return static_cast<const float*>(cache)[i];
-  return Ort::Float16_t::FromBits(static_cast<const uint16_t*>(cache)[i]).ToFloat();
+// Value d of cache row `row` (= kv_head * capacity + position), as the contract defines it.
+float Widen(const std::vector<unsigned char>& cache, CacheElement e, int64_t head_dim, int64_t row, int64_t d) {
+  const unsigned char* r = cache.data() + static_cast<size_t>(row) * CacheRowBytes(e, head_dim);
+  if (e == CacheElement::kFloat32) {
+    float x;
+    std::memcpy(&x, r + 4 * d, 4);
+    return x;
+  }
+  if (e == CacheElement::kFloat16) {
+    uint16_t bits;
+    std::memcpy(&bits, r + 2 * d, 2);
+    return Ort::Float16_t::FromBits(bits).ToFloat();
+  }
+  float scale;
+  std::memcpy(&scale, r + head_dim, 4);
+  return static_cast<float>(static_cast<int8_t>(r[d])) * scale;
+}
+
+// The contract's int8 row, computed independently: scale = max|x| / 127, q = nearbyint(x / scale).
+std::vector<unsigned char> Int8Row(const float* x, int64_t d) {
+  float top = 0.0f;
+  for (int64_t i = 0; i < d; ++i) top = std::fabs(x[i]) > top ? std::fabs(x[i]) : top;
+  const float scale = top / 127.0f;
+  std::vector<unsigned char> row(static_cast<size_t>(d) + 4, 0);
+  for (int64_t i = 0; i < d && scale > 0.0f; ++i) {
+    const long q = std::lround(std::nearbyint(x[i] / scale));
+    row[i] = static_cast<unsigned char>(static_cast<int8_t>(q < -127 ? -127 : q > 127 ? 127 : q));
+  }
+  std::memcpy(row.data() + d, &scale, 4);
+  return row;
+}
+
+// Cache row bytes of the element type for the float values x[0..d).
+std::vector<unsigned char> RowOf(const float* x, int64_t d, CacheElement e) {
+  if (e == CacheElement::kInt8) return Int8Row(x, d);
+  std::vector<unsigned char> row(CacheRowBytes(e, d));
+  for (int64_t i = 0; i < d; ++i) {
+    if (e == CacheElement::kFloat32) std::memcpy(row.data() + 4 * i, &x[i], 4);
+    else { const uint16_t bits = Ort::Float16_t(x[i]).val; std::memcpy(row.data() + 2 * i, &bits, 2); }
+  }
+  return row;
 }
 
 struct Case {
@@ -46,17 +85,16 @@ Case MakeCase(AttentionShape s, CacheElement e, uint32_t seed) {
   for (auto* vec : {&c.q}) for (int64_t i = 0; i < qn; ++i) vec->push_back(n(rng) * 0.3f);
   for (auto* vec : {&c.k, &c.v}) for (int64_t i = 0; i < kn; ++i) vec->push_back(n(rng));
   c.out.assign(static_cast<size_t>(qn), std::nanf(""));
-  const size_t eb = e == CacheElement::kFloat16 ? 2 : 4, elems = s.kv_heads * s.capacity * s.head_dim;
+  const size_t rb = CacheRowBytes(e, s.head_dim);
+  std::vector<float> x(static_cast<size_t>(s.head_dim));
   for (auto* cache : {&c.key_cache, &c.value_cache}) {
-    cache->assign(elems * eb, 0xA5);
+    cache->assign(static_cast<size_t>(s.kv_heads * s.capacity) * rb, 0xA5);
     for (int64_t h = 0; h < s.kv_heads; ++h)
-      for (int64_t p = 0; p < s.past; ++p)
-        for (int64_t d = 0; d < s.head_dim; ++d) {
-          const size_t i = static_cast<size_t>((h * s.capacity + p) * s.head_dim + d);
-          const float x = n(rng);
-          if (eb == 4) std::memcpy(cache->data() + i * 4, &x, 4);
-          else { const uint16_t bits = Ort::Float16_t(x).val; std::memcpy(cache->data() + i * 2, &bits, 2); }
-        }
+      for (int64_t p = 0; p < s.past; ++p) {
+        for (float& xi : x) xi = n(rng);
+        const std::vector<unsigned char> row = RowOf(x.data(), s.head_dim, e);
+        std::memcpy(cache->data() + static_cast<size_t>(h * s.capacity + p) * rb, row.data(), rb);
+      }
   }
   return c;
 }
@@ -73,8 +111,7 @@ std::vector<double> Reference(const Case& c, CacheElement e) {
       for (int64_t j = 0; j < len; ++j) {
         double dot = 0;
         for (int64_t d = 0; d < s.head_dim; ++d)
-          dot += double(c.q[(t * s.heads + h) * s.head_dim + d]) *
-                 Widen(c.key_cache.data(), e, (kvh * s.capacity + j) * s.head_dim + d);
+          dot += double(c.q[(t * s.heads + h) * s.head_dim + d]) * Widen(c.key_cache, e, s.head_dim, kvh * s.capacity + j, d);
         w[j] = s.scale * dot;
         top = std::max(top, w[j]);
       }
@@ -82,7 +119,7 @@ std::vector<double> Reference(const Case& c, CacheElement e) {
       for (int64_t d = 0; d < s.head_dim; ++d) {
         double acc = 0;
         for (int64_t j = 0; j < len; ++j)
-          acc += w[j] * Widen(c.value_cache.data(), e, (kvh * s.capacity + j) * s.head_dim + d);
+          acc += w[j] * Widen(c.value_cache, e, s.head_dim, kvh * s.capacity + j, d);
         out[(t * s.heads + h) * s.head_dim + d] = acc / sum;
       }
     }
@@ -101,22 +138,26 @@ void ExpectMatchesReference(AttentionShape s, CacheElement e, RowKernels kernels
   double worst = 0;
   for (size_t i = 0; i < ref.size(); ++i) worst = std::max(worst, std::fabs(ref[i] - c.out[i]));
   EXPECT_LT(worst, 2e-5) << "heads " << s.heads << "/" << s.kv_heads << " dim " << s.head_dim << " chunk " << s.chunk
-                         << " past " << s.past;
-  // The chunk's keys landed in rows [past, past + chunk), rounded as onnxruntime rounds; nothing else moved.
-  const size_t eb = e == CacheElement::kFloat16 ? 2 : 4;
+                         << " past " << s.past << " element " << static_cast<int>(e);
+  // The chunk's keys and values landed in rows [past, past + chunk), rounded as onnxruntime rounds
+  // (float16) or quantized by the contract's formula (int8); nothing else moved.
+  const size_t rb = CacheRowBytes(e, s.head_dim);
   for (int64_t h = 0; h < s.kv_heads; ++h)
-    for (int64_t p = 0; p < s.capacity; ++p)
-      for (int64_t d = 0; d < s.head_dim; ++d) {
-        const size_t i = static_cast<size_t>((h * s.capacity + p) * s.head_dim + d);
-        if (p < s.past || p >= s.past + s.chunk) {
-          ASSERT_EQ(std::memcmp(c.key_cache.data() + i * eb, before.data() + i * eb, eb), 0) << "row " << p;
-          continue;
-        }
-        const float src = c.k[((p - s.past) * s.kv_heads + h) * s.head_dim + d];
-        const float want = e == CacheElement::kFloat16 ? Ort::Float16_t(src).ToFloat() : src;
-        ASSERT_EQ(Widen(c.key_cache.data(), e, i), want) << "row " << p << " dim " << d;
+    for (int64_t p = 0; p < s.capacity; ++p) {
+      const size_t at = static_cast<size_t>(h * s.capacity + p) * rb;
+      const bool fresh = p >= s.past && p < s.past + s.chunk;
+      const std::vector<unsigned char> want =
+          fresh ? RowOf(&c.k[((p - s.past) * s.kv_heads + h) * s.head_dim], s.head_dim, e)
+                : std::vector<unsigned char>(before.begin() + at, before.begin() + at + rb);
+      ASSERT_EQ(std::memcmp(c.key_cache.data() + at, want.data(), rb), 0) << "head " << h << " row " << p;
+      if (fresh) {
+        const std::vector<unsigned char> v = RowOf(&c.v[((p - s.past) * s.kv_heads + h) * s.head_dim], s.head_dim, e);
+        ASSERT_EQ(std::memcmp(c.value_cache.data() + at, v.data(), rb), 0) << "value row " << p;
       }
+    }
 }
+
+constexpr CacheElement kElements[] = {CacheElement::kFloat32, CacheElement::kFloat16, CacheElement::kInt8};
 
 const AttentionShape kShapes[] = {
     {4, 2, 64, 3, 37, 50, 0.125f},    // grouped heads, a chunk after a prefix
@@ -127,13 +168,13 @@ const AttentionShape kShapes[] = {
 
 TEST(CachedAttention, MatchesReferenceWithEveryRowKernel) {
   for (const AttentionShape& s : kShapes)
-    for (CacheElement e : {CacheElement::kFloat32, CacheElement::kFloat16})
+    for (CacheElement e : kElements)
       for (RowKernels k : {RowKernels::kBest, RowKernels::kScalar}) ExpectMatchesReference(s, e, k);
 }
 
 TEST(CachedAttention, VectorizedRowsAgreeWithScalarRows) {
   if (!CachedAttentionVectorized()) GTEST_SKIP() << "this CPU has no AVX2/FMA/F16C";
-  for (CacheElement e : {CacheElement::kFloat32, CacheElement::kFloat16}) {
+  for (CacheElement e : kElements) {
     Case a = MakeCase(kShapes[2], e, 3), b = MakeCase(kShapes[2], e, 3);
     CachedAttention(a.shape, e, a.buffers(e), Serial, nullptr, RowKernels::kBest);
     CachedAttention(b.shape, e, b.buffers(e), Serial, nullptr, RowKernels::kScalar);
@@ -177,6 +218,60 @@ TEST(CachedAttention, Float16RowsRoundLikeOnnxRuntime) {
       else ASSERT_EQ(got[i], want) << "x = " << xs[i] << (k == RowKernels::kBest ? " (vectorized)" : " (scalar)");
     }
   }
+}
+
+// int8 rows: ties to even, clamping, a zero row (scale 0), against the contract's formula.
+TEST(CachedAttention, Int8RowsQuantizeByTheContract) {
+  const int64_t d = 16;
+  std::vector<std::vector<float>> rows = {
+      std::vector<float>(d, 0.0f),                                          // all zeros: scale 0
+      {127, 2.5f, -3.5f, 0.5f, -0.5f, 1.5f, 126.5f, -127, 0, 64, -64, 3, 4, 5, 6, 7},  // scale 1: exact ties
+      {1e-30f, -2e-30f, 5e-31f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1e-31f},  // tiny scale
+  };
+  std::mt19937 rng(9);
+  std::normal_distribution<float> n(0.0f, 3.0f);
+  for (int r = 0; r < 200; ++r) {
+    rows.emplace_back(d);
+    for (float& x : rows.back()) x = n(rng);
+  }
+  for (RowKernels k : {RowKernels::kBest, RowKernels::kScalar}) {
+    const AttentionRows prim = AttentionRowsFor(CacheElement::kInt8, d, k);
+    for (const std::vector<float>& x : rows) {
+      std::vector<unsigned char> got(d + 4, 0xA5);
+      prim.store(x.data(), got.data(), d);
+      ASSERT_EQ(got, Int8Row(x.data(), d)) << "x[1] = " << x[1] << (k == RowKernels::kBest ? " (vectorized)" : "");
+    }
+  }
+  std::vector<unsigned char> ties(d + 4);
+  AttentionRowsFor(CacheElement::kInt8, d, RowKernels::kBest).store(rows[1].data(), ties.data(), d);
+  const int8_t want[] = {127, 2, -4, 0, 0, 2, 126, -127};
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(static_cast<int8_t>(ties[i]), want[i]) << "index " << i;
+}
+
+// A zero key and value row (scale 0) attends like any other row: finite, weight of score 0.
+TEST(CachedAttention, Int8ZeroRowsAttendFinitely) {
+  AttentionShape s{2, 1, 8, 1, 3, 4, 1.0f};
+  for (RowKernels k : {RowKernels::kBest, RowKernels::kScalar}) {
+    Case c = MakeCase(s, CacheElement::kInt8, 13);
+    std::fill(c.k.begin(), c.k.end(), 0.0f);
+    std::fill(c.v.begin(), c.v.end(), 0.0f);
+    CachedAttention(s, CacheElement::kInt8, c.buffers(CacheElement::kInt8), Serial, nullptr, k);
+    const size_t rb = CacheRowBytes(CacheElement::kInt8, 8);
+    EXPECT_EQ(std::vector<unsigned char>(c.key_cache.begin() + 3 * rb, c.key_cache.begin() + 4 * rb),
+              std::vector<unsigned char>(rb, 0));
+    const std::vector<double> ref = Reference(c, CacheElement::kInt8);
+    for (size_t i = 0; i < ref.size(); ++i) {
+      ASSERT_TRUE(std::isfinite(c.out[i]));
+      EXPECT_NEAR(c.out[i], ref[i], 2e-5);
+    }
+  }
+}
+
+TEST(CachedAttention, RowBytes) {
+  EXPECT_EQ(CacheRowBytes(CacheElement::kFloat32, 64), 256u);
+  EXPECT_EQ(CacheRowBytes(CacheElement::kFloat16, 64), 128u);
+  EXPECT_EQ(CacheRowBytes(CacheElement::kInt8, 64), 68u);
+  EXPECT_EQ(CacheRowElements(CacheElement::kInt8, 64), 68);
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
-// Scalar and AVX2 row primitives for CachedAttention; the vectorized ones are compiled for
-// AVX2+FMA+F16C with a target attribute and used only when the CPU reports those features.
+// Scalar and AVX2 row primitives for CachedAttention (float32, float16 and int8 + scale rows); the
+// vectorized ones are compiled for AVX2+FMA+F16C with a target attribute and used only when the
+// CPU reports those features.
 #include "runtime/attention/attention_rows.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <initializer_list>
+#include <type_traits>
 
 #if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
 #define SILK_ATTENTION_AVX2 1
@@ -55,23 +58,60 @@ uint16_t FloatToHalf(float f) {
 
 inline float Widen(float x) { return x; }
 inline float Widen(uint16_t h) { return HalfToFloat(h); }
+inline float Widen(int8_t q) { return static_cast<float>(q); }
+
+// A row of d values of E: elements to the next row, and the factor its values are multiplied by
+// (int8: the float32 scale stored after the d values; 1 otherwise, an exact no-op).
+template <typename E>
+inline int64_t Stride(int64_t d) { return std::is_same<E, int8_t>::value ? d + 4 : d; }
+template <typename E>
+inline float RowScale(const E* row, int64_t d) {
+  if constexpr (!std::is_same<E, int8_t>::value) {
+    (void)row, (void)d;
+    return 1.0f;
+  } else {
+    float s;
+    std::memcpy(&s, row + d, 4);
+    return s;
+  }
+}
+
+// x / scale rounded to nearest even and clamped to [-127, 127] (NaN -> -127: never UB).
+inline int8_t QuantizeOne(float x, float scale) {
+  float v = std::nearbyint(x / scale);
+  v = v > -127.0f ? v : -127.0f;
+  v = v < 127.0f ? v : 127.0f;
+  return static_cast<int8_t>(v);
+}
+
+void StoreInt8Scalar(const float* src, int8_t* row, int64_t d) {
+  float top = 0.0f;
+  for (int64_t i = 0; i < d; ++i) top = std::max(top, std::fabs(src[i]));
+  const float scale = top / 127.0f;
+  for (int64_t i = 0; i < d; ++i) row[i] = scale > 0.0f ? QuantizeOne(src[i], scale) : 0;
+  std::memcpy(row + d, &scale, 4);
+}
 
 template <typename E>
 void StoreScalar(const float* src, void* row, int64_t d) {
   E* r = static_cast<E*>(row);
-  for (int64_t i = 0; i < d; ++i) {
-    if constexpr (sizeof(E) == 4) r[i] = src[i];
-    else r[i] = FloatToHalf(src[i]);
+  if constexpr (std::is_same<E, int8_t>::value) {
+    StoreInt8Scalar(src, r, d);
+  } else {
+    for (int64_t i = 0; i < d; ++i) {
+      if constexpr (sizeof(E) == 4) r[i] = src[i];
+      else r[i] = FloatToHalf(src[i]);
+    }
   }
 }
 
 template <typename E>
 void DotsScalar(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
   const E* r = static_cast<const E*>(rows);
-  for (int64_t j = 0; j < n; ++j, r += d) {
+  for (int64_t j = 0; j < n; ++j, r += Stride<E>(d)) {
     float acc = 0.0f;
     for (int64_t i = 0; i < d; ++i) acc += q[i] * Widen(r[i]);
-    out[j] = scale * acc;
+    out[j] = scale * (RowScale(r, d) * acc);
   }
 }
 
@@ -84,8 +124,10 @@ float ExpShiftedScalar(float* x, int64_t n, float top) {
 template <typename E>
 void WeightedSumScalar(const float* w, const void* rows, int64_t n, int64_t d, float factor, float* out) {
   const E* r = static_cast<const E*>(rows);
-  for (int64_t j = 0; j < n; ++j, r += d)
-    for (int64_t i = 0; i < d; ++i) out[i] += factor * w[j] * Widen(r[i]);
+  for (int64_t j = 0; j < n; ++j, r += Stride<E>(d)) {
+    const float wj = w[j] * RowScale(r, d);
+    for (int64_t i = 0; i < d; ++i) out[i] += factor * wj * Widen(r[i]);
+  }
 }
 
 #ifdef SILK_ATTENTION_AVX2
@@ -95,6 +137,9 @@ SILK_AVX2 inline __m256 Load8(const float* p) { return _mm256_loadu_ps(p); }
 SILK_AVX2 inline __m256 Load8(const uint16_t* p) {
   return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
 }
+SILK_AVX2 inline __m256 Load8(const int8_t* p) {
+  return _mm256_cvtepi32_ps(_mm256_cvtepi8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))));
+}
 
 SILK_AVX2 inline float Sum8(__m256 v) {
   __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
@@ -103,9 +148,36 @@ SILK_AVX2 inline float Sum8(__m256 v) {
   return _mm_cvtss_f32(s);
 }
 
+// Eight int8 of x / scale (nearest even: the default MXCSR rounding), clamped as QuantizeOne.
+SILK_AVX2 inline void Quantize8(const float* x, __m256 scale, int8_t* out) {
+  __m256 v = _mm256_round_ps(_mm256_div_ps(_mm256_loadu_ps(x), scale), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+  v = _mm256_min_ps(_mm256_max_ps(v, _mm256_set1_ps(-127.0f)), _mm256_set1_ps(127.0f));
+  const __m256i i32 = _mm256_cvtps_epi32(v);
+  const __m128i i16 = _mm_packs_epi32(_mm256_castsi256_si128(i32), _mm256_extracti128_si256(i32, 1));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(out), _mm_packs_epi16(i16, i16));
+}
+
+SILK_AVX2 void StoreInt8Avx2(const float* src, int8_t* row, int64_t d) {
+  const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  __m256 top = _mm256_setzero_ps();
+  for (int64_t i = 0; i < d; i += 8) top = _mm256_max_ps(_mm256_and_ps(_mm256_loadu_ps(src + i), abs_mask), top);
+  __m128 t = _mm_max_ps(_mm256_castps256_ps128(top), _mm256_extractf128_ps(top, 1));
+  t = _mm_max_ps(t, _mm_movehl_ps(t, t));
+  t = _mm_max_ss(t, _mm_movehdup_ps(t));
+  const float scale = _mm_cvtss_f32(t) / 127.0f;
+  if (scale > 0.0f) {
+    for (int64_t i = 0; i < d; i += 8) Quantize8(src + i, _mm256_set1_ps(scale), row + i);
+  } else {
+    std::memset(row, 0, static_cast<size_t>(d));
+  }
+  std::memcpy(row + d, &scale, 4);
+}
+
 template <typename E>
 SILK_AVX2 void StoreAvx2(const float* src, void* row, int64_t d) {
-  if constexpr (sizeof(E) == 4) {
+  if constexpr (std::is_same<E, int8_t>::value) {
+    StoreInt8Avx2(src, static_cast<int8_t*>(row), d);
+  } else if constexpr (sizeof(E) == 4) {
     std::memcpy(row, src, static_cast<size_t>(d) * sizeof(float));
   } else {
     uint16_t* r = static_cast<uint16_t*>(row);
@@ -118,21 +190,22 @@ SILK_AVX2 void StoreAvx2(const float* src, void* row, int64_t d) {
 template <typename E>
 SILK_AVX2 void DotsAvx2(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
   const E* r = static_cast<const E*>(rows);
+  const int64_t stride = Stride<E>(d);
   int64_t j = 0;
-  for (; j + 1 < n; j += 2, r += 2 * d) {
+  for (; j + 1 < n; j += 2, r += 2 * stride) {
     __m256 a = _mm256_setzero_ps(), b = _mm256_setzero_ps();
     for (int64_t i = 0; i < d; i += 8) {
       const __m256 qi = _mm256_loadu_ps(q + i);
       a = _mm256_fmadd_ps(qi, Load8(r + i), a);
-      b = _mm256_fmadd_ps(qi, Load8(r + d + i), b);
+      b = _mm256_fmadd_ps(qi, Load8(r + stride + i), b);
     }
-    out[j] = scale * Sum8(a);
-    out[j + 1] = scale * Sum8(b);
+    out[j] = scale * (RowScale(r, d) * Sum8(a));
+    out[j + 1] = scale * (RowScale(r + stride, d) * Sum8(b));
   }
-  for (; j < n; ++j, r += d) {
+  for (; j < n; ++j, r += stride) {
     __m256 a = _mm256_setzero_ps();
     for (int64_t i = 0; i < d; i += 8) a = _mm256_fmadd_ps(_mm256_loadu_ps(q + i), Load8(r + i), a);
-    out[j] = scale * Sum8(a);
+    out[j] = scale * (RowScale(r, d) * Sum8(a));
   }
 }
 
@@ -173,8 +246,8 @@ SILK_AVX2 void WeightedSumAvx2(const float* w, const void* rows, int64_t n, int6
     __m256 acc[8];
     for (int64_t k = 0; k < lanes; ++k) acc[k] = _mm256_setzero_ps();
     const E* row = r + i0;
-    for (int64_t j = 0; j < n; ++j, row += d) {
-      const __m256 wj = _mm256_set1_ps(w[j]);
+    for (int64_t j = 0; j < n; ++j, row += Stride<E>(d)) {
+      const __m256 wj = _mm256_set1_ps(w[j] * RowScale(row - i0, d));
       for (int64_t k = 0; k < lanes; ++k) acc[k] = _mm256_fmadd_ps(wj, Load8(row + 8 * k), acc[k]);
     }
     const __m256 f = _mm256_set1_ps(factor);
@@ -205,7 +278,11 @@ AttentionRows RowsOf(int64_t head_dim, RowKernels kernels) {
 }  // namespace
 
 AttentionRows AttentionRowsFor(CacheElement element, int64_t head_dim, RowKernels kernels) {
-  return element == CacheElement::kFloat16 ? RowsOf<uint16_t>(head_dim, kernels) : RowsOf<float>(head_dim, kernels);
+  switch (element) {
+    case CacheElement::kFloat16: return RowsOf<uint16_t>(head_dim, kernels);
+    case CacheElement::kInt8: return RowsOf<int8_t>(head_dim, kernels);
+    default: return RowsOf<float>(head_dim, kernels);
+  }
 }
 
 }  // namespace silk

@@ -1,6 +1,7 @@
 // The row primitives of CachedAttention (dot products with cached keys, the softmax's
 // exponentials, the weighted sum of cached values, storing new rows) for one cache element type:
 // AVX2/FMA/F16C versions where the CPU has them, plain C++ otherwise, chosen once per call.
+// `rows` are consecutive cache rows of CacheRowBytes(element, d) bytes each.
 #pragma once
 #include <cstdint>
 
@@ -10,9 +11,10 @@ namespace silk {
 
 struct AttentionRows {
   bool vectorized = false;
-  // Row of `d` floats into the cache's element type (float16: round to nearest even).
+  // Row of `d` floats into the cache's element type (float16: round to nearest even; int8:
+  // scale = max|x| / 127, int8[i] = x[i] / scale rounded to nearest even, in [-127, 127]).
   void (*store)(const float* src, void* row, int64_t d) = nullptr;
-  // out[j] = scale * q . rows[j] for the n consecutive rows of d elements.
+  // out[j] = scale * q . rows[j] for the n consecutive rows of d values.
   void (*dots)(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) = nullptr;
   // x[j] = exp(x[j] - top) (every x[j] <= top); returns their sum.
   float (*exp_shifted)(float* x, int64_t n, float top) = nullptr;

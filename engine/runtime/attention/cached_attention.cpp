@@ -1,5 +1,5 @@
 // CachedAttention: two passes over the cache per (position, head), keys then values, each row
-// read once; float16 rows are widened in registers (F16C) instead of in a float32 copy.
+// read once; float16 and int8 rows are widened in registers instead of in a float32 copy.
 #include "runtime/attention/cached_attention.h"
 
 #include <algorithm>
@@ -20,11 +20,9 @@ struct Job {
   const AttentionRows* rows;
 };
 
-size_t ElementBytes(CacheElement e) { return e == CacheElement::kFloat16 ? 2 : 4; }
-
-// Row `pos` of kv head `h` of a [kv_heads, capacity, head_dim] block.
+// Row `pos` of kv head `h` of a [kv_heads, capacity] block of rows.
 const void* CacheRow(const void* block, const AttentionShape& s, CacheElement e, int64_t h, int64_t pos) {
-  return static_cast<const unsigned char*>(block) + ((h * s.capacity + pos) * s.head_dim) * ElementBytes(e);
+  return static_cast<const unsigned char*>(block) + static_cast<size_t>(h * s.capacity + pos) * CacheRowBytes(e, s.head_dim);
 }
 
 // The chunk's keys and values into rows [past, past + chunk) of the two blocks.
@@ -60,6 +58,15 @@ void AttendOne(void* state, size_t index) {
 }
 
 }  // namespace
+
+int64_t CacheRowElements(CacheElement element, int64_t head_dim) {
+  return element == CacheElement::kInt8 ? head_dim + 4 : head_dim;
+}
+
+size_t CacheRowBytes(CacheElement element, int64_t head_dim) {
+  const size_t element_bytes = element == CacheElement::kFloat32 ? 4 : element == CacheElement::kFloat16 ? 2 : 1;
+  return static_cast<size_t>(CacheRowElements(element, head_dim)) * element_bytes;
+}
 
 bool CachedAttentionVectorized() { return AttentionRowsFor(CacheElement::kFloat32, 64, RowKernels::kBest).vectorized; }
 

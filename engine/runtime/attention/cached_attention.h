@@ -3,13 +3,20 @@
 // apart from onnxruntime so it can be tested against a plain reference and timed on its own.
 // onnxruntime 1.22's GroupQueryAttention reads a float16 cache at a fraction of the memory
 // bandwidth (it widens the whole prefix to float32 first); this reads each cached row once.
+// An int8 cache holds each row as head_dim int8 values and the row's float32 scale.
 #pragma once
 #include <cstddef>
 #include <cstdint>
 
 namespace silk {
 
-enum class CacheElement { kFloat32, kFloat16 };
+enum class CacheElement { kFloat32, kFloat16, kInt8 };
+// Bytes of one cached row (one position of one kv head): head_dim floats or float16s, or for
+// kInt8 head_dim int8 values followed by the row's float32 scale (value i = int8[i] * scale;
+// the 4 bytes are the float's own, as memcpy writes them: little-endian on every target).
+size_t CacheRowBytes(CacheElement element, int64_t head_dim);
+// Elements of the cache tensor's last dimension: head_dim, or head_dim + 4 for kInt8.
+int64_t CacheRowElements(CacheElement element, int64_t head_dim);
 // kBest: the vectorized rows where the CPU has them; kScalar: plain C++ (tests compare the two).
 enum class RowKernels { kBest, kScalar };
 
@@ -19,7 +26,7 @@ struct AttentionShape {
   int64_t head_dim = 0;
   int64_t chunk = 0;     // new positions this call (T)
   int64_t past = 0;      // positions already in the cache before this call
-  int64_t capacity = 0;  // positions each [kv_heads, capacity, head_dim] cache block has room for
+  int64_t capacity = 0;  // positions each [kv_heads, capacity, row] cache block has room for
   float scale = 1.0f;    // score = scale * q.k
 };
 
@@ -30,7 +37,7 @@ struct AttentionBuffers {
   const float* q = nullptr;  // [chunk, heads * head_dim]
   const float* k = nullptr;  // [chunk, kv_heads * head_dim], the new positions' keys
   const float* v = nullptr;  // [chunk, kv_heads * head_dim]
-  void* key_cache = nullptr;    // [kv_heads, capacity, head_dim]: rows [0, past) are read,
+  void* key_cache = nullptr;    // [kv_heads, capacity] rows of CacheRowBytes: [0, past) are read,
   void* value_cache = nullptr;  // rows [past, past + chunk) are written
   float* out = nullptr;         // [chunk, heads * head_dim]
 };

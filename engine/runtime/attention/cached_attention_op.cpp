@@ -17,12 +17,16 @@ namespace silk {
 
 namespace {
 
+// One registration per cache element type, all named CachedAttention: onnxruntime picks the one
+// whose input types match the node's (past_*/present_* float16 or int8).
 struct OpWithApi : OrtCustomOp {
   const OrtApi* api = nullptr;
+  CacheElement element = CacheElement::kFloat16;
 };
 
 struct Kernel {
   const OrtApi* api = nullptr;
+  CacheElement element = CacheElement::kFloat16;
   int64_t heads = 0, kv_heads = 0;
   float scale = 0.0f;  // 0: GroupQueryAttention's default, 1 / sqrt(head_dim)
   std::string node;
@@ -81,10 +85,12 @@ OrtStatus* ReadInputs(const Kernel& k, OrtKernelContext* ctx, Tensor in[7], Atte
   if (in[1].dims != kv || in[2].dims != kv)
     return k.Fail("key/value have shapes " + DimsText(in[1].dims) + ", " + DimsText(in[2].dims) + ", expected " + DimsText(kv));
   const std::vector<int64_t>& past = in[3].dims;
-  if (past.size() != 4 || past[0] != 1 || past[1] != s->kv_heads || past[3] != s->head_dim || in[4].dims != past)
-    return k.Fail("past_key/past_value have shapes " + DimsText(past) + ", " + DimsText(in[4].dims) +
-                  ", expected [1, kv_heads, capacity, head_dim] = [1, " + std::to_string(s->kv_heads) + ", C, " +
-                  std::to_string(s->head_dim) + "]");
+  const int64_t row = CacheRowElements(k.element, s->head_dim);
+  if (past.size() != 4 || past[0] != 1 || past[1] != s->kv_heads || past[3] != row || in[4].dims != past)
+    return k.Fail("past_key/past_value have shapes " + DimsText(past) + ", " + DimsText(in[4].dims) + ", expected " +
+                  (k.element == CacheElement::kInt8 ? "[1, kv_heads, capacity, head_dim + 4] = [1, "
+                                                    : "[1, kv_heads, capacity, head_dim] = [1, ") +
+                  std::to_string(s->kv_heads) + ", C, " + std::to_string(row) + "]");
   if (in[5].dims != std::vector<int64_t>{1} || in[6].dims.size() > 1 || (in[6].dims.size() == 1 && in[6].dims[0] != 1))
     return k.Fail("seqlens_k must have shape [1] and total_sequence_length one element");
   const int64_t total = static_cast<const int32_t*>(in[6].data)[0], seqlen = static_cast<const int32_t*>(in[5].data)[0];
@@ -106,14 +112,14 @@ OrtStatus* MakeOutputs(const Kernel& k, OrtKernelContext* ctx, const Tensor in[7
   SILK_ORT_TRY(k.api->KernelContext_GetOutput(ctx, 0, out_dims, 3, &out));
   SILK_ORT_TRY(k.api->GetTensorMutableData(out, reinterpret_cast<void**>(&b->out)));
   const int64_t present = std::max(s->capacity, s->past + s->chunk);
-  const int64_t present_dims[4] = {1, s->kv_heads, present, s->head_dim};
+  const int64_t present_dims[4] = {1, s->kv_heads, present, CacheRowElements(k.element, s->head_dim)};
   void* blocks[2] = {nullptr, nullptr};
   for (int kv = 0; kv < 2; ++kv) {
     OrtValue* v = nullptr;
     SILK_ORT_TRY(k.api->KernelContext_GetOutput(ctx, 1 + kv, present_dims, 4, &v));
     SILK_ORT_TRY(k.api->GetTensorMutableData(v, &blocks[kv]));
     if (blocks[kv] == in[3 + kv].data) continue;  // in place
-    const size_t row = static_cast<size_t>(s->head_dim) * 2;
+    const size_t row = CacheRowBytes(k.element, s->head_dim);
     for (int64_t h = 0; h < s->kv_heads; ++h)
       std::memcpy(static_cast<unsigned char*>(blocks[kv]) + h * present * row,
                   static_cast<const unsigned char*>(in[3 + kv].data) + h * s->capacity * row,
@@ -149,7 +155,7 @@ OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
   b.v = static_cast<const float*>(in[2].data);
   SILK_ORT_TRY(MakeOutputs(k, ctx, in, &s, &b));
   Pool pool{k.api, ctx};
-  CachedAttention(s, CacheElement::kFloat16, b, PoolFor, &pool);
+  CachedAttention(s, k.element, b, PoolFor, &pool);
   return nullptr;
 }
 
@@ -157,6 +163,7 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
                                      void** kernel) {
   auto k = std::make_unique<Kernel>();
   k->api = static_cast<const OpWithApi*>(op)->api;
+  k->element = static_cast<const OpWithApi*>(op)->element;
   size_t size = 0;
   if (!api->KernelInfo_GetNodeName(info, nullptr, &size) && size > 0) {
     std::string name(size, '\0');
@@ -172,17 +179,21 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
   return nullptr;
 }
 
-ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp*, size_t i) {
-  return i < 3 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT
-               : i < 5 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 : ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;
+ONNXTensorElementDataType CacheType(const OrtCustomOp* op) {
+  return static_cast<const OpWithApi*>(op)->element == CacheElement::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
+                                                                          : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
 }
-ONNXTensorElementDataType ORT_API_CALL OutputType(const OrtCustomOp*, size_t i) {
-  return i == 0 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
+ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp* op, size_t i) {
+  return i < 3 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT : i < 5 ? CacheType(op) : ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;
+}
+ONNXTensorElementDataType ORT_API_CALL OutputType(const OrtCustomOp* op, size_t i) {
+  return i == 0 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT : CacheType(op);
 }
 
-void FillOp(OpWithApi* op, const OrtApi* api) {
+void FillOp(OpWithApi* op, const OrtApi* api, CacheElement element) {
   std::memset(static_cast<OrtCustomOp*>(op), 0, sizeof(OrtCustomOp));
   op->api = api;
+  op->element = element;
   op->version = ORT_API_VERSION;
   op->GetName = [](const OrtCustomOp*) { return kCachedAttentionOp; };
   op->GetExecutionProviderType = [](const OrtCustomOp*) -> const char* { return nullptr; };
@@ -207,9 +218,22 @@ void FillOp(OpWithApi* op, const OrtApi* api) {
 // One op and domain per onnxruntime API table, made once and kept for the process: sessions
 // refer to them for as long as they live.
 struct Registration {
-  OpWithApi op;
+  OpWithApi ops[2];  // float16 and int8 caches
   OrtCustomOpDomain* domain = nullptr;
 };
+
+OrtStatus* MakeDomain(Registration* r, const OrtApi* api) {
+  const CacheElement elements[2] = {CacheElement::kFloat16, CacheElement::kInt8};
+  SILK_ORT_TRY(api->CreateCustomOpDomain(kSilkOpDomain, &r->domain));
+  for (int i = 0; i < 2; ++i) {
+    FillOp(&r->ops[i], api, elements[i]);
+    if (OrtStatus* st = api->CustomOpDomain_Add(r->domain, &r->ops[i])) {
+      api->ReleaseCustomOpDomain(r->domain);
+      return st;
+    }
+  }
+  return nullptr;
+}
 
 }  // namespace
 
@@ -222,12 +246,7 @@ OrtStatus* AddSilkOps(OrtSessionOptions* options, const OrtApi* api) {
     if (m.first == api) r = m.second;
   if (!r) {
     auto fresh = std::make_unique<Registration>();
-    FillOp(&fresh->op, api);
-    SILK_ORT_TRY(api->CreateCustomOpDomain(kSilkOpDomain, &fresh->domain));
-    if (OrtStatus* st = api->CustomOpDomain_Add(fresh->domain, &fresh->op)) {
-      api->ReleaseCustomOpDomain(fresh->domain);
-      return st;
-    }
+    SILK_ORT_TRY(MakeDomain(fresh.get(), api));
     r = fresh.release();
     made.emplace_back(api, r);
   }

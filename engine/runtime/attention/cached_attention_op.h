@@ -1,6 +1,6 @@
 // The ai.silk CachedAttention operator for onnxruntime (docs/model_contract.md, "KV precision"):
-// GroupQueryAttention's inputs, outputs and in-place cache, with a float16 cache read at memory
-// speed. libsilk adds it to every session it makes; RegisterCustomOps lets Python's onnxruntime
+// GroupQueryAttention's inputs, outputs and in-place cache, with a float16 or int8 (+ row scale)
+// cache read at memory speed. libsilk adds it to every session it makes; RegisterCustomOps lets Python's onnxruntime
 // run the same graphs (SessionOptions.register_custom_ops_library(<libsilk>)).
 #pragma once
 #include <onnxruntime_c_api.h>

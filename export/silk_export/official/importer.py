@@ -14,7 +14,7 @@ from pathlib import Path
 
 from ..json_io import write_json
 from ..onnx import fidelity
-from ..onnx.kv_precision import KV_PRECISIONS, add_kv16_variants
+from ..onnx.kv_precision import KV_PRECISIONS, add_kv_variants
 from ..onnx.export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
                            transpose_linears)
 from ..vocab import load_vocab
@@ -63,7 +63,7 @@ def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: i
                    kv_precision: str = DEFAULT_KV_PRECISION) -> dict:
     """After export_graphs (drop the PyTorch model first: quantization loads the fp32 graph): the
     quantized decoders `precision` asks for, their fidelity/speed figures and the default decoder,
-    then the fp16-cache variant of every decoder and the default KV precision.
+    then the fp16- and int8-cache variants of every decoder and the default KV precision.
     Updates `files` (model.json "files"); returns the figures."""
     files.update(_variants(folder, precision, int4_block, int4_accuracy))
     for name in ("decoder.int8.onnx", "decoder.int4.onnx"):
@@ -77,8 +77,9 @@ def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: i
         {"fp32": "decoder", "int8": "decoder_int8", "int4": "decoder_int4"}[precision]
     if kv_precision not in KV_PRECISIONS:
         raise ValueError(f"KV precision '{kv_precision}': expected one of {', '.join(KV_PRECISIONS)}")
-    _say("fp16 self-K/V cache variants of every decoder (silk-export kv16)")
-    add_kv16_variants(folder, files)
+    _say("fp16 and int8 self-K/V cache variants of every decoder (silk-export kv16, kv8)")
+    add_kv_variants(folder, files, "fp16")
+    add_kv_variants(folder, files, "int8")
     files["default_kv_precision"] = kv_precision
     return figures
 

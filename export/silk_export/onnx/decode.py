@@ -48,10 +48,12 @@ class DecoderState:
         for l in range(self.n_layers):
             self.cross[f"cross_key_{l}"] = np.ascontiguousarray(cross_kv[l, 0][None])
             self.cross[f"cross_value_{l}"] = np.ascontiguousarray(cross_kv[l, 1][None])
-        # The cache's element type is the graph's (float16 for a files.kv_fp16 variant).
-        dtype = np.float16 if any(i.name == "past_key_0" and i.type == "tensor(float16)"
-                                  for i in decoder.get_inputs()) else np.float32
-        self.past = [np.zeros((1, h, 0, d), dtype) for _ in range(2 * self.n_layers)]
+        # The cache's element type is the graph's (float16 for a files.kv_fp16 variant; int8 rows
+        # of d values + a float32 scale for a files.kv_int8 one).
+        cache = next((i.type for i in decoder.get_inputs() if i.name == "past_key_0"), "tensor(float)")
+        dtype = {"tensor(float16)": np.float16, "tensor(int8)": np.int8}.get(cache, np.float32)
+        row = d + 4 if dtype == np.int8 else d
+        self.past = [np.zeros((1, h, 0, row), dtype) for _ in range(2 * self.n_layers)]
         self.length = 0
 
     def run(self, ids, positions=None) -> np.ndarray:

@@ -1,7 +1,9 @@
-"""The fp16 self-K/V variant of a decoder graph (docs/model_contract.md, "KV precision"): the same
-weights and computation, except that each layer's self-attention keeps its past_*/present_* caches
-in float16, so a step reads half the cache bytes. Made by rewriting an exported decoder (fp32, INT8
-or INT4 alike) instead of re-tracing it. Two forms:
+"""The fp16 and int8 self-K/V variants of a decoder graph (docs/model_contract.md, "KV precision"):
+the same weights and computation, except that each layer's self-attention keeps its
+past_*/present_* caches in float16 (a step reads half the cache bytes) or in int8 rows
+[1, H, C, D + 4] (D int8 values + the row's float32 scale: about a quarter). Made by rewriting an
+exported decoder (fp32, INT8 or INT4 alike) instead of re-tracing it. The int8 variant has only
+the "silk" form below (onnxruntime's GroupQueryAttention takes no int8 cache). fp16, two forms:
 - "silk" (the default): each GroupQueryAttention becomes libsilk's ai.silk CachedAttention (same
   inputs, outputs and attributes; q, k, v stay float32 and only the cache is float16). onnxruntime
   1.22's CPU GroupQueryAttention widens the whole float16 prefix to float32 on every call, which
@@ -15,9 +17,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-KV_PRECISIONS = ("fp32", "fp16")
-# model.json: files.<KV_FILES_KEY>[<decoder key>] = the fp16 variant of files.<decoder key>.
-KV_FILES_KEY = "kv_fp16"
+KV_PRECISIONS = ("fp32", "fp16", "int8")
+# model.json: files.<KV_FILES[p]>[<decoder key>] = the precision-p variant of files.<decoder key>.
+KV_FILES = {"fp16": "kv_fp16", "int8": "kv_int8"}
+KV_FILES_KEY = KV_FILES["fp16"]
+# The variant's file name: decoder.int4.onnx -> decoder.int4.<suffix>.onnx
+KV_SUFFIXES = {"fp16": "kv16", "int8": "kv8"}
 DECODER_KEYS = ("decoder", "decoder_int8", "decoder_int4")
 ATTENTION_FORMS = ("silk", "ort")
 SILK_DOMAIN, SILK_ATTENTION = "ai.silk", "CachedAttention"
@@ -27,10 +32,33 @@ _GQA_DEFAULTS = {"do_rotary": 0, "rotary_interleaved": 0, "local_window_size": -
                  "smooth_softmax": 0}
 
 
+def kv_name(decoder_file: str, precision: str) -> str:
+    """decoder.int4.onnx -> decoder.int4.kv16.onnx (fp16), decoder.int4.kv8.onnx (int8)"""
+    stem = decoder_file[:-len(".onnx")] if decoder_file.endswith(".onnx") else decoder_file
+    return f"{stem}.{KV_SUFFIXES[precision]}.onnx"
+
+
 def kv16_name(decoder_file: str) -> str:
     """decoder.int4.onnx -> decoder.int4.kv16.onnx"""
-    stem = decoder_file[:-len(".onnx")] if decoder_file.endswith(".onnx") else decoder_file
-    return stem + ".kv16.onnx"
+    return kv_name(decoder_file, "fp16")
+
+
+def _check_precision(precision: str) -> None:
+    if precision not in KV_FILES:
+        raise ValueError(f"cache variant precision '{precision}': expected one of {', '.join(KV_FILES)}")
+
+
+def _set_cache_type(vi, precision: str) -> None:
+    """A past_*/present_* input or output to the variant's element type (int8: last dim D + 4)."""
+    from onnx import TensorProto
+    t = vi.type.tensor_type
+    t.elem_type = TensorProto.FLOAT16 if precision == "fp16" else TensorProto.INT8
+    if precision == "int8" and len(t.shape.dim) == 4:
+        last = t.shape.dim[3]
+        if last.HasField("dim_value"):
+            last.dim_value += 4
+        else:
+            last.dim_param = "row_bytes"  # D + 4
 
 
 def _to_cached_attention(node, src: Path) -> None:
@@ -66,18 +94,27 @@ def _cast_around(node, rewritten: int) -> list:
 
 
 def make_kv16_decoder(src: Path, dst: Path, attention: str = "silk") -> list[str]:
-    """Writes the fp16-cache variant of decoder graph `src` to `dst` (same folder), in the given
-    attention form ("silk" or "ort", see above). Returns the external data files it references
-    (those of `src`; none are copied). Raises ValueError when `src` has no GroupQueryAttention over
-    past_*/present_* (not a contract decoder)."""
+    """The fp16-cache variant (make_kv_decoder with precision "fp16")."""
+    return make_kv_decoder(src, dst, "fp16", attention)
+
+
+def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: str = "silk") -> list[str]:
+    """Writes the `precision` ("fp16" or "int8") cache variant of decoder graph `src` to `dst`
+    (same folder), in the given attention form ("silk" or "ort", see above; int8: "silk" only).
+    Returns the external data files it references (those of `src`; none are copied). Raises
+    ValueError when `src` has no GroupQueryAttention over past_*/present_* (not a contract decoder)."""
     import onnx
     from onnx import TensorProto, helper
     from onnx.external_data_helper import _get_all_tensors
+    _check_precision(precision)
     if attention not in ATTENTION_FORMS:
         raise ValueError(f"attention form '{attention}': expected one of {', '.join(ATTENTION_FORMS)}")
+    if precision == "int8" and attention != "silk":
+        raise ValueError("the int8-cache variant exists only in the silk attention form "
+                         "(onnxruntime's GroupQueryAttention takes no int8 cache)")
     src, dst = Path(src), Path(dst)
     if src.parent.resolve() != dst.parent.resolve():
-        raise ValueError(f"{dst}: the fp16-cache variant must sit beside {src.name} (it shares its external data)")
+        raise ValueError(f"{dst}: the {precision}-cache variant must sit beside {src.name} (it shares its external data)")
     m = onnx.load(str(src), load_external_data=False)
     g = m.graph
     cache_names = {i.name for i in g.input if i.name.startswith("past_")}
@@ -103,7 +140,7 @@ def make_kv16_decoder(src: Path, dst: Path, attention: str = "silk") -> list[str
         m.opset_import.append(helper.make_opsetid(SILK_DOMAIN, 1))
     for vi in list(g.input) + list(g.output):
         if vi.name in cache_names:
-            vi.type.tensor_type.elem_type = TensorProto.FLOAT16
+            _set_cache_type(vi, precision)
     # Intermediate type annotations of the rewritten values would now be wrong: drop them.
     stale = set(cache_names) | {n.output[0] for n in g.node if n.op_type in ("GroupQueryAttention", SILK_ATTENTION)}
     kept = [vi for vi in g.value_info if vi.name not in stale]
@@ -116,34 +153,60 @@ def make_kv16_decoder(src: Path, dst: Path, attention: str = "silk") -> list[str
 
 
 def add_kv16_variants(folder: Path, files: dict, attention: str = "silk") -> dict:
-    """For every decoder named in model.json `files`: writes its fp16-cache variant (in the given
-    attention form) beside it and records it under files["kv_fp16"]. Returns that mapping."""
+    """The fp16 variants (add_kv_variants with precision "fp16")."""
+    return add_kv_variants(folder, files, "fp16", attention)
+
+
+def add_kv_variants(folder: Path, files: dict, precision: str, attention: str = "silk") -> dict:
+    """For every decoder named in model.json `files`: writes its `precision`-cache variant (in the
+    given attention form) beside it and records it under files["kv_fp16"] / files["kv_int8"].
+    Returns that mapping."""
+    _check_precision(precision)
     variants = {}
     for key in DECODER_KEYS:
         if key in files:
-            name = kv16_name(files[key])
-            make_kv16_decoder(Path(folder) / files[key], Path(folder) / name, attention)
+            name = kv_name(files[key], precision)
+            make_kv_decoder(Path(folder) / files[key], Path(folder) / name, precision, attention)
             variants[key] = name
-    files[KV_FILES_KEY] = variants
+    files[KV_FILES[precision]] = variants
     return variants
 
 
 def add_kv16_to_folder(folder: Path, default: str | None = None, attention: str = "silk") -> dict:
-    """`silk-export kv16`: the fp16-cache variant of every decoder of an exported model folder,
-    recorded in its model.json (files.kv_fp16; files.default_kv_precision when `default` is given,
-    and external data the variants share is already listed). Returns the new "files"."""
+    """`silk-export kv16` (add_kv_to_folder with precision "fp16")."""
+    return add_kv_to_folder(folder, "fp16", default, attention)
+
+
+def _check_default(files: dict, default: str, adding: str) -> None:
+    """files.default_kv_precision = `default` needs that variant of the default decoder: already
+    in `files`, or about to be written (`adding` is the precision whose variants are)."""
+    if default not in KV_PRECISIONS:
+        raise ValueError(f"default KV precision '{default}': expected one of {', '.join(KV_PRECISIONS)}")
+    decoder = files.get("default_decoder", "decoder")
+    has = decoder in files if default == adding else decoder in files.get(KV_FILES.get(default, ""), {})
+    if default != "fp32" and not has:
+        raise ValueError(f"default KV precision '{default}' needs files.{KV_FILES[default]}.{decoder} (the default "
+                         f"decoder's {default}-cache variant: run silk-export {KV_SUFFIXES[default]} first)")
+
+
+def add_kv_to_folder(folder: Path, precision: str, default: str | None = None, attention: str = "silk") -> dict:
+    """`silk-export kv16` / `kv8`: the `precision`-cache variant of every decoder of an exported
+    model folder, recorded in its model.json (files.kv_fp16 / files.kv_int8;
+    files.default_kv_precision when `default` is given, and external data the variants share is
+    already listed). Returns the new "files"."""
     import json
     import os
     folder = Path(folder)
-    if default is not None and default not in KV_PRECISIONS:
-        raise ValueError(f"default KV precision '{default}': expected one of {', '.join(KV_PRECISIONS)}")
+    _check_precision(precision)
     path = folder / "model.json"
     try:
         meta = json.loads(path.read_text())
     except (OSError, json.JSONDecodeError) as e:
         raise ValueError(f"{path}: {e}") from None
     files = meta.setdefault("files", {"encoder": "encoder.onnx", "decoder": "decoder.onnx"})
-    add_kv16_variants(folder, files, attention)
+    if default is not None:
+        _check_default(files, default, precision)
+    add_kv_variants(folder, files, precision, attention)
     if default is not None:
         files["default_kv_precision"] = default
     tmp = path.with_name(f".model.json.{os.getpid()}")
