@@ -173,20 +173,26 @@ def write_cloud_ply(path, points: np.ndarray) -> None:
     path.write_bytes(head.encode() + np.ascontiguousarray(points, dtype="<f4").tobytes())
 
 
-def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp_path):
+@pytest.mark.parametrize("kv", ["fp32", "fp16", "int8"])
+def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp_path, kv):
     """The C++ runtime on the imported release-layout model: 64 greedy ids from raw points, equal
-    to the Python onnxruntime loop over the same fp32 graphs."""
+    to the Python onnxruntime loop over the same graph (the fp32 decoder, or its fp16/int8-cache
+    variant, whose ai.silk op Python's onnxruntime runs from libsilk)."""
+    import json
     import subprocess
     points = np.random.default_rng(2).uniform(-0.9, 0.9, (4096, 6)).astype(np.float32)
     write_cloud_ply(tmp_path / "points.ply", points)
     out = tmp_path / "ids.txt"
     r = subprocess.run([str(silkgen), str(tmp_path / "points.ply"), "--model", str(imported), "--raw-points",
                         "--unconstrained", "--temperature", "0", "--max-tokens", "64", "--decoder", "fp32",
-                        "--threads", "1", "--tokens", str(out), "-q"], capture_output=True, text=True, timeout=300)
+                        "--kv-precision", kv, "--threads", "1", "--tokens", str(out), "-q"],
+                       capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     got = [int(x) for x in out.read_text().split()]
+    files = json.loads((imported / "model.json").read_text())["files"]
+    graph = files["decoder"] if kv == "fp32" else files[f"kv_{kv}"]["decoder"]
     cross = onnx_decode.session(imported / "encoder.onnx").run(None, {"points": points[None]})[0]
-    want = onnx_decode.greedy(onnx_decode.session(imported / "decoder.onnx"), cross, 10269, 10267, 64)
+    want = onnx_decode.greedy(onnx_decode.session(imported / graph), cross, 10269, 10267, 64)
     assert got == want and len(got) == 64
 
 

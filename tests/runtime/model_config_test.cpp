@@ -224,15 +224,17 @@ TEST(ModelLoad, MissingFolderAndPrecisionsAreClearErrors) {
   EXPECT_EQ(fp->precision(), DecoderPrecision::kFp32);
 }
 
-// files.kv_fp16 / files.default_kv_precision: the fp16-cache variant of a decoder, the model's
-// default, and the refusals (a variant without its decoder, an unknown precision, a default
+// files.kv_fp16 / files.kv_int8 / files.default_kv_precision: the fp16- and int8-cache variants of
+// a decoder, the model's default, and the refusals (a variant without its decoder, an unknown precision, a default
 // the default decoder cannot honour).
 TEST(ModelConfig, KvPrecisionFiles) {
   auto c = LoadModelConfig(testing::TinyModelDir());
   ASSERT_TRUE(c.ok()) << c.status().ToString();
   EXPECT_EQ(c->DecoderFile(DecoderPrecision::kFp32, KvPrecision::kFp16), "decoder.kv16.onnx");
   EXPECT_EQ(c->DecoderFile(DecoderPrecision::kFp32, KvPrecision::kFp32), "decoder.onnx");
+  EXPECT_EQ(c->DecoderFile(DecoderPrecision::kFp32, KvPrecision::kInt8), "decoder.kv8.onnx");
   EXPECT_TRUE(c->DecoderFile(DecoderPrecision::kInt8, KvPrecision::kFp16).empty());
+  EXPECT_TRUE(c->DecoderFile(DecoderPrecision::kInt8, KvPrecision::kInt8).empty());
   EXPECT_EQ(c->default_kv, KvPrecision::kFp32);  // absent: fp32
   auto fp16 = ParseModelConfig([] {
     nlohmann::json j = TinyJson();
@@ -246,7 +248,11 @@ TEST(ModelConfig, KvPrecisionFiles) {
       {[](auto& j) { j["files"]["kv_fp16"]["decoder"] = "../x.onnx"; }, "plain names"},
       {[](auto& j) { j["files"]["kv_fp16"] = "decoder.kv16.onnx"; }, "not an object"},
       {[](auto& j) { j["files"]["default_kv_precision"] = "bf16"; }, "not one of \"fp32\", \"fp16\", \"int8\""},
-      {[](auto& j) { j["files"]["default_kv_precision"] = "int8"; }, "no files.kv_int8 variant"},
+      {[](auto& j) {
+         j["files"].erase("kv_int8");
+         j["files"]["default_kv_precision"] = "int8";
+       },
+       "no files.kv_int8 variant"},
       {[](auto& j) { j["files"]["kv_int8"]["decoder_int4"] = "d.int4.kv8.onnx"; }, "files.kv_int8.decoder_int4 is given"},
       {[](auto& j) {
          j["files"].erase("kv_fp16");

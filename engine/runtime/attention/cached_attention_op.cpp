@@ -239,16 +239,17 @@ OrtStatus* MakeDomain(Registration* r, const OrtApi* api) {
 
 OrtStatus* AddSilkOps(OrtSessionOptions* options, const OrtApi* api) {
   static std::mutex mutex;
-  static std::vector<std::pair<const OrtApi*, Registration*>> made;
+  // Never destroyed: sessions may outlive static destruction; reachable, so not a leak to LSan.
+  static auto* made = new std::vector<std::pair<const OrtApi*, Registration*>>();
   std::lock_guard<std::mutex> lock(mutex);
   Registration* r = nullptr;
-  for (auto& m : made)
+  for (auto& m : *made)
     if (m.first == api) r = m.second;
   if (!r) {
     auto fresh = std::make_unique<Registration>();
     SILK_ORT_TRY(MakeDomain(fresh.get(), api));
     r = fresh.release();
-    made.emplace_back(api, r);
+    made->emplace_back(api, r);
   }
   return api->AddCustomOpDomain(options, r->domain);
 }
