@@ -81,11 +81,13 @@ files = {"model.json", meta.get("files", {}).get("encoder", "encoder.onnx"), met
 int8 = meta.get("files", {}).get("decoder_int8")
 if int8:
     files.add(int8)
-# The fp16-cache variants of those decoders (files.kv_fp16), when the model has them.
-for key in ("decoder", "decoder_int8"):
-    variant = meta.get("files", {}).get("kv_fp16", {}).get(key)
-    if variant:
-        files.add(variant)
+# The fp16- and int8-cache variants of those decoders (files.kv_fp16, files.kv_int8), when the
+# model has them.
+for kv in ("kv_fp16", "kv_int8"):
+    for key in ("decoder", "decoder_int8"):
+        variant = meta.get("files", {}).get(kv, {}).get(key)
+        if variant:
+            files.add(variant)
 for f in sorted(files) + ["MODEL_CARD.md"]:
     try:
         shutil.copy(f"{src}/{f}", f"{dst}/{f}")

@@ -40,6 +40,15 @@ def v3_model(repo, dest, **changes):
     return dest
 
 
+def nokv_int8(repo, tmp):
+    """The tiny model without its int8-cache variant."""
+    dest = v3_model(repo, tmp / "v3_nokv8")
+    meta = json.loads((dest / "model.json").read_text())
+    meta["files"].pop("kv_int8", None)
+    (dest / "model.json").write_text(json.dumps(meta, indent=1))
+    return dest
+
+
 def write_cloud_ply(path, rows, double=False):
     t, fmt = ("double", "<6d") if double else ("float", "<6f")
     head = "ply\nformat binary_little_endian 1.0\nelement vertex %d\n" % len(rows)
@@ -115,6 +124,14 @@ def check_defaults(silkgen, repo, tmp):
     elif st.get("kv_cache_bytes") * 2 != tokens_of(silkgen, kv16, sample, tmp, "v3_kv32",
                                                     [*base, "--kv-precision", "fp32"])[1].get("kv_cache_bytes"):
         failures.append("--kv-precision fp32 did not override the model's fp16 (or the cache is not half the size)")
+    kv8 = v3_model(repo, tmp / "v3_kv8", files={"default_kv_precision": "int8"})
+    got, st, err = tokens_of(silkgen, kv8, sample, tmp, "v3_kv8", base)
+    d = json.loads((kv8 / "model.json").read_text())["dims"]["head_dim"]
+    if got is None or st.get("kv_precision") != "int8":
+        failures.append(f"default_kv_precision int8 not used: {err} {st and st.get('kv_precision')}")
+    elif st.get("kv_cache_bytes") * 4 * d != tokens_of(silkgen, kv8, sample, tmp, "v3_kv8_32",
+                                                        [*base, "--kv-precision", "fp32"])[1].get("kv_cache_bytes") * (d + 4):
+        failures.append("the int8 cache is not (head_dim + 4) / (4 head_dim) of the fp32 cache's bytes")
     return failures
 
 
@@ -135,6 +152,9 @@ def check_errors(silkgen, repo, tmp):
     expect_fail(failures, "--kv-precision fp16 without a variant",
                 run([silkgen, sample, "--model", nokv, "--kv-precision", "fp16", "--tokens", tmp / "t", "-q"]),
                 ["fp16", str(nokv)])
+    expect_fail(failures, "--kv-precision int8 without a variant",
+                run([silkgen, sample, "--model", nokv_int8(repo, tmp), "--kv-precision", "int8", "--tokens", tmp / "t",
+                     "-q"]), ["int8", "files.kv_int8", "silk-export kv8"])
     try:
         import onnx
     except ImportError:
