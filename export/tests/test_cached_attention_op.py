@@ -73,11 +73,12 @@ def test_copying_matches_reference(tmp_path, T, P):
     np.testing.assert_array_equal(pv[0].astype(np.float64), vals)
 
 
-def test_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
-    """present_* bound to past_*'s own memory (libsilk's in-place cache): the new rows land there."""
-    s = session(_graph(tmp_path / "a.onnx"))  # no scale: 1 / sqrt(head_dim), as GroupQueryAttention
-    x = _inputs(2, 7, 12)
-    copy = s.run(None, {**x, "past_key": x["past_key"][:, :, :7].copy(), "past_value": x["past_value"][:, :, :7].copy()})
+def _in_place_and_copying(s, x, past: int):
+    """Runs `x` once copying (past_* cut to `past` rows) and once in place (present_* bound to
+    past_*'s own buffers, libsilk's cache); asserts equal outputs and that the in-place buffer
+    holds the copying run's present rows. Returns (copying outputs, the in-place key buffer)."""
+    copy = s.run(None, {**x, "past_key": x["past_key"][:, :, :past].copy(),
+                        "past_value": x["past_value"][:, :, :past].copy()})
     b = s.io_binding()
     vals = {n: ort.OrtValue.ortvalue_from_numpy(a) for n, a in x.items()}
     for n, v in vals.items():
@@ -87,8 +88,16 @@ def test_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
     b.bind_ortvalue_output("present_value", vals["past_value"])
     s.run_with_iobinding(b)
     np.testing.assert_array_equal(b.copy_outputs_to_cpu()[0], copy[0])
-    in_place_keys = vals["past_key"].numpy()
-    np.testing.assert_array_equal(in_place_keys[:, :, :9], copy[1])
+    in_place = vals["past_key"].numpy()
+    np.testing.assert_array_equal(in_place[:, :, :copy[1].shape[2]], copy[1])
+    return copy, in_place
+
+
+def test_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
+    """present_* bound to past_*'s own memory (libsilk's in-place cache): the new rows land there."""
+    s = session(_graph(tmp_path / "a.onnx"))  # no scale: 1 / sqrt(head_dim), as GroupQueryAttention
+    x = _inputs(2, 7, 12)
+    copy, _ = _in_place_and_copying(s, x, 7)
     np.testing.assert_allclose(copy[0], _reference(x, 1 / np.sqrt(D))[0], atol=2e-5)
 
 
@@ -197,18 +206,7 @@ def test_int8_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
     s = session(_graph(tmp_path / "a.onnx", cache=TensorProto.INT8))
     x = _inputs8(2, 7, 12)
     x["k"][0, 1, :D] = 0  # a zero row: scale 0
-    copy = s.run(None, {**x, "past_key": x["past_key"][:, :, :7].copy(), "past_value": x["past_value"][:, :, :7].copy()})
-    b = s.io_binding()
-    vals = {n: ort.OrtValue.ortvalue_from_numpy(a) for n, a in x.items()}
-    for n, v in vals.items():
-        b.bind_ortvalue_input(n, v)
-    b.bind_output("out")
-    b.bind_ortvalue_output("present_key", vals["past_key"])
-    b.bind_ortvalue_output("present_value", vals["past_value"])
-    s.run_with_iobinding(b)
-    np.testing.assert_array_equal(b.copy_outputs_to_cpu()[0], copy[0])
-    in_place = vals["past_key"].numpy()
-    np.testing.assert_array_equal(in_place[:, :, :9], copy[1])
+    copy, in_place = _in_place_and_copying(s, x, 7)
     assert not in_place[0, 0, 8].any()  # the zero row: int8 zeros and a scale of +0.0
     assert (in_place[:, :, 9:] == 0).all()  # rows past P + T untouched
     np.testing.assert_allclose(copy[0], _reference8(x, 1 / np.sqrt(D))[0], atol=2e-5)

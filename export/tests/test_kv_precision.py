@@ -75,14 +75,21 @@ def test_refuses_a_graph_without_group_query_attention(tmp_path):
         make_kv16_decoder(TINY / "decoder.onnx", tmp_path / "x.onnx")
 
 
-def test_cli_adds_variants_and_default(tmp_path):
+def _tiny_without(tmp_path, graphs: list[str], keys: list[str]):
+    """A copy of the tiny model without the given variant graphs and model.json files keys."""
     m = tmp_path / "m"
     shutil.copytree(TINY, m)
-    (m / "decoder.kv16.onnx").unlink()
+    for g in graphs:
+        (m / g).unlink()
     meta = json.loads((m / "model.json").read_text())
-    del meta["files"]["kv_fp16"]
-    del meta["files"]["kv_int8"]
+    for k in keys:
+        del meta["files"][k]
     (m / "model.json").write_text(json.dumps(meta))
+    return m
+
+
+def test_cli_adds_variants_and_default(tmp_path):
+    m = _tiny_without(tmp_path, ["decoder.kv16.onnx"], ["kv_fp16", "kv_int8"])
     p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "fp16"],
                        capture_output=True, text=True, cwd=REPO / "export")
     assert p.returncode == 0, p.stderr
@@ -122,12 +129,7 @@ def test_int8_variant_takes_int8_row_caches_and_matches_fp32(tmp_path):
 
 
 def test_cli_kv8_adds_int8_variants_and_default(tmp_path):
-    m = tmp_path / "m"
-    shutil.copytree(TINY, m)
-    (m / "decoder.kv8.onnx").unlink()
-    meta = json.loads((m / "model.json").read_text())
-    del meta["files"]["kv_int8"]
-    (m / "model.json").write_text(json.dumps(meta))
+    m = _tiny_without(tmp_path, ["decoder.kv8.onnx"], ["kv_int8"])
     p = subprocess.run([sys.executable, "-m", "silk_export", "kv8", str(m), "--default", "int8"],
                        capture_output=True, text=True, cwd=REPO / "export")
     assert p.returncode == 0, p.stderr
@@ -139,8 +141,9 @@ def test_cli_kv8_adds_int8_variants_and_default(tmp_path):
     p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "int8"],
                        capture_output=True, text=True, cwd=REPO / "export")  # kv8 variants now exist
     assert p.returncode == 0, p.stderr
-    del files["kv_int8"]
-    (m / "model.json").write_text(json.dumps({**meta, "files": files}))
+    meta = json.loads((m / "model.json").read_text())
+    del meta["files"]["kv_int8"]
+    (m / "model.json").write_text(json.dumps(meta))
     p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "int8"],
                        capture_output=True, text=True, cwd=REPO / "export")
     assert p.returncode == 2 and "silk-export kv16: error" in p.stderr and "silk-export kv8 first" in p.stderr
