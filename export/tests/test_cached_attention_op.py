@@ -47,18 +47,24 @@ def _inputs(T, P, C, seed=0):
             "seqlens_k": np.array([P + T - 1], np.int32), "total_sequence_length": np.array(P + T, np.int32)}
 
 
-def _reference(x, scale):
+def _attend(x, keys, vals, scale):
+    """softmax(scale q.k) v in float64 over the cache rows [kv head, position, D], causally."""
     T, P = x["q"].shape[1], int(x["total_sequence_length"]) - x["q"].shape[1]
-    keys = np.concatenate([x["past_key"][0, :, :P], x["k"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1)
-    vals = np.concatenate([x["past_value"][0, :, :P], x["v"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1)
-    keys, vals = keys.astype(np.float64), vals.astype(np.float64)
     out = np.zeros((T, H, D))
     for t in range(T):
         for h in range(H):
             s = scale * keys[h // (H // KVH), :P + t + 1] @ x["q"][0, t, h * D:(h + 1) * D].astype(np.float64)
             w = np.exp(s - s.max())
             out[t, h] = w @ vals[h // (H // KVH), :P + t + 1] / w.sum()
-    return out.reshape(1, T, H * D), keys, vals
+    return out.reshape(1, T, H * D)
+
+
+def _reference(x, scale):
+    T, P = x["q"].shape[1], int(x["total_sequence_length"]) - x["q"].shape[1]
+    keys = np.concatenate([x["past_key"][0, :, :P], x["k"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1)
+    vals = np.concatenate([x["past_value"][0, :, :P], x["v"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1)
+    keys, vals = keys.astype(np.float64), vals.astype(np.float64)
+    return _attend(x, keys, vals, scale), keys, vals
 
 
 @pytest.mark.parametrize("T,P", [(1, 0), (1, 9), (4, 0), (3, 20)])
@@ -118,6 +124,14 @@ def test_close_to_group_query_attention_with_float16_casts(tmp_path):
     np.testing.assert_array_equal(ours[1], theirs[1])
 
 
+def _expect_refused(s, x, change, message):
+    """`change` applied to the inputs `x` makes session `s` fail with `message`, naming the node."""
+    change(x)
+    with pytest.raises(Exception, match=message) as e:
+        s.run(None, x)
+    assert "CachedAttention 'attn'" in str(e.value)
+
+
 @pytest.mark.parametrize("change,message", [
     (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),
     (lambda x: x.update(total_sequence_length=np.array(99, np.int32), seqlens_k=np.array([98], np.int32)),
@@ -127,12 +141,7 @@ def test_close_to_group_query_attention_with_float16_casts(tmp_path):
     (lambda x: x.update(k=np.zeros((1, 2, KVH * D), np.float32)), "key/value have shapes"),
 ])
 def test_inputs_that_do_not_fit_are_refused_naming_the_node(tmp_path, change, message):
-    s = session(_graph(tmp_path / "a.onnx"))
-    x = _inputs(1, 8, 8)
-    change(x)
-    with pytest.raises(Exception, match=message) as e:
-        s.run(None, x)
-    assert "CachedAttention 'attn'" in str(e.value)
+    _expect_refused(session(_graph(tmp_path / "a.onnx")), _inputs(1, 8, 8), change, message)
 
 
 def test_attributes_it_does_not_implement_are_refused(tmp_path):
@@ -181,13 +190,7 @@ def _reference8(x, scale):
     new = {n: _quantize(x[n][0].reshape(T, KVH, D).transpose(1, 0, 2)) for n in ("k", "v")}
     rows = {n: np.concatenate([x[f"past_{w}"][0, :, :P], new[n]], 1) for n, w in (("k", "key"), ("v", "value"))}
     keys, vals = _dequantize(rows["k"]), _dequantize(rows["v"])
-    out = np.zeros((T, H, D))
-    for t in range(T):
-        for h in range(H):
-            s = scale * keys[h // (H // KVH), :P + t + 1] @ x["q"][0, t, h * D:(h + 1) * D].astype(np.float64)
-            w = np.exp(s - s.max())
-            out[t, h] = w @ vals[h // (H // KVH), :P + t + 1] / w.sum()
-    return out.reshape(1, T, H * D), rows["k"], rows["v"]
+    return _attend(x, keys, vals, scale), rows["k"], rows["v"]
 
 
 @pytest.mark.parametrize("T,P", [(1, 0), (1, 9), (4, 0), (3, 20)])
@@ -219,12 +222,7 @@ def test_int8_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
     (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),
 ])
 def test_int8_inputs_that_do_not_fit_are_refused_naming_the_node(tmp_path, change, message):
-    s = session(_graph(tmp_path / "a.onnx", cache=TensorProto.INT8))
-    x = _inputs8(1, 8, 9)
-    change(x)
-    with pytest.raises(Exception, match=message) as e:
-        s.run(None, x)
-    assert "CachedAttention 'attn'" in str(e.value)
+    _expect_refused(session(_graph(tmp_path / "a.onnx", cache=TensorProto.INT8)), _inputs8(1, 8, 9), change, message)
 
 
 def test_one_op_name_serves_both_cache_types(tmp_path):
