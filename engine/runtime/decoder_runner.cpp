@@ -88,9 +88,7 @@ void DecoderRunner::MakeViews() {
   out_values_.emplace_back(nullptr);
   compact_.clear();  // kCopy: fresh prefix copies, [H, P, D] each
   const int64_t row = ks.row_bytes();
-  const auto type = ks.precision == KvPrecision::kFp16   ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16
-                    : ks.precision == KvPrecision::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
-                                                         : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
+  const auto type = KvOnnxType(ks.precision);
   for (int64_t l = 0; l < L; ++l)
     for (int kv = 0; kv < 2; ++kv) {
       void* past = cache_->block(l, kv);

@@ -152,9 +152,7 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   constexpr auto kI = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64;
   constexpr auto kI32 = ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;
   const KvShape kv_shape = KvShapeOf(config.dims, impl->kv_precision);
-  const ONNXTensorElementDataType kKv = impl->kv_precision == KvPrecision::kFp16   ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16
-                                        : impl->kv_precision == KvPrecision::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
-                                                                                   : kF;
+  const ONNXTensorElementDataType kKv = KvOnnxType(impl->kv_precision);
   std::vector<IoSpec> dec_in = {{"input_ids", kI, {1, -1}},
                                 {"positions", kI, {1, -1}},
                                 {"seqlens_k", kI32, {1}},

@@ -20,6 +20,13 @@ struct Model::Impl {
   Ort::MemoryInfo cpu_memory = Ort::MemoryInfo::CreateCpu(OrtArenaAllocator, OrtMemTypeDefault);
 };
 
+// The element type of the decoder's past_*/present_* tensors for a KV precision.
+inline ONNXTensorElementDataType KvOnnxType(KvPrecision p) {
+  return p == KvPrecision::kFp16   ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16
+         : p == KvPrecision::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
+                                   : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
+}
+
 // decoder.onnx's input and output names in contract order (docs/model_contract.md):
 // input_ids, positions, seqlens_k, total_sequence_length, past_{key,value}_l, cross_{key,value}_l;
 // logits, present_{key,value}_l.
