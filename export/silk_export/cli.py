@@ -200,6 +200,8 @@ def _add_kv16(sub) -> None:
                    help="silk (default): libsilk's ai.silk CachedAttention reads the float16 cache (fast; "
                         "plain onnxruntime needs libsilk registered); ort: float16 casts around "
                         "GroupQueryAttention (any onnxruntime, slower)")
+    k.add_argument("--int4", choices=["silk", "ort"], help="INT4 decoders: silk (default with --attention silk): libsilk's ai.silk Int4MatMul on the same "
+                        "weights (reads them at memory speed); ort: keep onnxruntime's MatMulNBits")
     k.set_defaults(fn=_cmd_kv16, precision="fp16")
     k8 = sub.add_parser("kv8", help="add the int8 self-K/V cache variant (rows of D int8 + a float32 scale; "
                         "libsilk's ai.silk CachedAttention) of every decoder to a model folder "
@@ -207,6 +209,8 @@ def _add_kv16(sub) -> None:
     k8.add_argument("folder", help="model folder (model.json + decoder*.onnx)")
     k8.add_argument("--default", choices=["fp32", "fp16", "int8"], help="also set files.default_kv_precision "
                     "(fp16 needs the kv16 variants)")
+    k8.add_argument("--int4", choices=["silk", "ort"], help="INT4 decoders: silk (default with --attention silk): libsilk's ai.silk Int4MatMul on the same "
+                        "weights (reads them at memory speed); ort: keep onnxruntime's MatMulNBits")
     k8.set_defaults(fn=_cmd_kv16, precision="int8", attention="silk")
 
 
@@ -214,7 +218,7 @@ def _cmd_kv16(a) -> int:
     """`kv16` and `kv8`: the variants of a.precision."""
     from .onnx.kv_precision import KV_FILES, KV_SUFFIXES, add_kv_to_folder
     try:
-        files = add_kv_to_folder(Path(a.folder), a.precision, a.default, a.attention)
+        files = add_kv_to_folder(Path(a.folder), a.precision, a.default, a.attention, a.int4)
     except (OSError, ValueError) as e:
         print(f"silk-export {KV_SUFFIXES[a.precision]}: error: {e}", file=sys.stderr)
         return 2

@@ -10,6 +10,7 @@ import json
 import struct
 
 import numpy as np
+import onnx
 import pytest
 import torch
 
@@ -173,24 +174,30 @@ def write_cloud_ply(path, points: np.ndarray) -> None:
     path.write_bytes(head.encode() + np.ascontiguousarray(points, dtype="<f4").tobytes())
 
 
-@pytest.mark.parametrize("kv", ["fp32", "fp16", "int8"])
-def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp_path, kv):
+@pytest.mark.parametrize("decoder,kv", [("fp32", "fp32"), ("fp32", "fp16"), ("fp32", "int8"), ("int4", "fp32"),
+                                        ("int4", "int8")])
+def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp_path, decoder, kv):
     """The C++ runtime on the imported release-layout model: 64 greedy ids from raw points, equal
-    to the Python onnxruntime loop over the same graph (the fp32 decoder, or its fp16/int8-cache
-    variant, whose ai.silk op Python's onnxruntime runs from libsilk)."""
+    to the Python onnxruntime loop over the same graph (the fp32 or INT4 decoder, or its
+    fp16/int8-cache variant, whose ai.silk ops Python's onnxruntime runs from libsilk; the INT4
+    variant's weights go through Int4MatMul)."""
     import json
     import subprocess
     points = np.random.default_rng(2).uniform(-0.9, 0.9, (4096, 6)).astype(np.float32)
     write_cloud_ply(tmp_path / "points.ply", points)
     out = tmp_path / "ids.txt"
     r = subprocess.run([str(silkgen), str(tmp_path / "points.ply"), "--model", str(imported), "--raw-points",
-                        "--unconstrained", "--temperature", "0", "--max-tokens", "64", "--decoder", "fp32",
+                        "--unconstrained", "--temperature", "0", "--max-tokens", "64", "--decoder", decoder,
                         "--kv-precision", kv, "--threads", "1", "--tokens", str(out), "-q"],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     got = [int(x) for x in out.read_text().split()]
     files = json.loads((imported / "model.json").read_text())["files"]
-    graph = files["decoder"] if kv == "fp32" else files[f"kv_{kv}"]["decoder"]
+    key = "decoder" if decoder == "fp32" else f"decoder_{decoder}"
+    graph = files[key] if kv == "fp32" else files[f"kv_{kv}"][key]
+    ops = {n.op_type for n in onnx.load(str(imported / graph), load_external_data=False).graph.node}
+    if decoder == "int4":
+        assert ("Int4MatMul" in ops) == (kv != "fp32") and ("MatMulNBits" in ops) == (kv == "fp32")
     cross = onnx_decode.session(imported / "encoder.onnx").run(None, {"points": points[None]})[0]
     want = onnx_decode.greedy(onnx_decode.session(imported / graph), cross, 10269, 10267, 64)
     assert got == want and len(got) == 64

@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "runtime/cpu_kernels.h"
+
 namespace silk {
 
 enum class CacheElement { kFloat32, kFloat16, kInt8 };
@@ -17,8 +19,6 @@ enum class CacheElement { kFloat32, kFloat16, kInt8 };
 size_t CacheRowBytes(CacheElement element, int64_t head_dim);
 // Elements of the cache tensor's last dimension: head_dim, or head_dim + 4 for kInt8.
 int64_t CacheRowElements(CacheElement element, int64_t head_dim);
-// kBest: the vectorized rows where the CPU has them; kScalar: plain C++ (tests compare the two).
-enum class RowKernels { kBest, kScalar };
 
 struct AttentionShape {
   int64_t heads = 0;     // query heads
@@ -29,9 +29,6 @@ struct AttentionShape {
   int64_t capacity = 0;  // positions each [kv_heads, capacity, row] cache block has room for
   float scale = 1.0f;    // score = scale * q.k
 };
-
-// Runs work(begin_index) for index in [0, count), possibly in parallel (onnxruntime's pool).
-using ParallelForFn = void (*)(void* context, void (*work)(void* state, size_t index), void* state, size_t count);
 
 struct AttentionBuffers {
   const float* q = nullptr;  // [chunk, heads * head_dim]

@@ -1,13 +1,12 @@
-// onnxruntime custom-op glue for CachedAttention, written against the plain C API with the
-// OrtApi it was registered with, so the same code serves libsilk's own onnxruntime and the one
-// inside Python's onnxruntime package. Bad shapes give a status naming the node, never a crash.
+// onnxruntime custom-op glue for CachedAttention (runtime/ops/ort_op_glue.h: the plain C API,
+// so the same code serves libsilk's onnxruntime and Python's). Bad shapes give a status naming
+// the node, never a crash.
 #include "runtime/attention/cached_attention_op.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -16,13 +15,6 @@
 namespace silk {
 
 namespace {
-
-// One registration per cache element type, all named CachedAttention: onnxruntime picks the one
-// whose input types match the node's (past_*/present_* float16 or int8).
-struct OpWithApi : OrtCustomOp {
-  const OrtApi* api = nullptr;
-  CacheElement element = CacheElement::kFloat16;
-};
 
 struct Kernel {
   const OrtApi* api = nullptr;
@@ -35,47 +27,12 @@ struct Kernel {
   }
 };
 
-struct Tensor {
-  void* data = nullptr;
-  std::vector<int64_t> dims;
-  ONNXTensorElementDataType type = ONNX_TENSOR_ELEMENT_DATA_TYPE_UNDEFINED;
-};
-
-#define SILK_ORT_TRY(expr)                  \
-  do {                                      \
-    if (OrtStatus* st_ = (expr)) return st_; \
-  } while (0)
-
-OrtStatus* Describe(const OrtApi* api, OrtValue* value, Tensor* t) {
-  OrtTensorTypeAndShapeInfo* info = nullptr;
-  SILK_ORT_TRY(api->GetTensorTypeAndShape(value, &info));
-  size_t rank = 0;
-  OrtStatus* st = api->GetDimensionsCount(info, &rank);
-  if (!st) {
-    t->dims.assign(rank, 0);
-    st = api->GetDimensions(info, t->dims.data(), rank);
-  }
-  if (!st) st = api->GetTensorElementType(info, &t->type);
-  api->ReleaseTensorTypeAndShapeInfo(info);
-  if (!st) st = api->GetTensorMutableData(value, &t->data);
-  return st;
-}
-
-std::string DimsText(const std::vector<int64_t>& d) {
-  std::string s = "[";
-  for (size_t i = 0; i < d.size(); ++i) s += (i ? ", " : "") + std::to_string(d[i]);
-  return s + "]";
-}
+using Tensor = OrtTensorView;
 
 // Inputs q, k, v, past_key, past_value, seqlens_k, total_sequence_length, checked against each
 // other; fills the shape (capacity = past's) and returns nullptr, or a status naming the input.
 OrtStatus* ReadInputs(const Kernel& k, OrtKernelContext* ctx, Tensor in[7], AttentionShape* s) {
-  for (size_t i = 0; i < 7; ++i) {
-    const OrtValue* v = nullptr;
-    SILK_ORT_TRY(k.api->KernelContext_GetInput(ctx, i, &v));
-    if (!v) return k.Fail("input " + std::to_string(i) + " is missing");
-    SILK_ORT_TRY(Describe(k.api, const_cast<OrtValue*>(v), &in[i]));
-  }
+  for (size_t i = 0; i < 7; ++i) SILK_ORT_TRY(ReadInput(k.api, ctx, i, &in[i]));
   const std::vector<int64_t>& q = in[0].dims;
   if (q.size() != 3 || q[0] != 1 || q[2] % k.heads != 0)
     return k.Fail("query has shape " + DimsText(q) + ", expected [1, T, heads * head_dim] with batch 1");
@@ -131,19 +88,6 @@ OrtStatus* MakeOutputs(const Kernel& k, OrtKernelContext* ctx, const Tensor in[7
   return nullptr;
 }
 
-struct Pool {
-  const OrtApi* api;
-  const OrtKernelContext* ctx;
-};
-
-void PoolFor(void* context, void (*work)(void*, size_t), void* state, size_t count) {
-  const Pool* p = static_cast<const Pool*>(context);
-  if (OrtStatus* st = p->api->KernelContext_ParallelFor(p->ctx, work, count, 0, state)) {
-    p->api->ReleaseStatus(st);  // no pool: the same work on this thread
-    for (size_t i = 0; i < count; ++i) work(state, i);
-  }
-}
-
 OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
   const Kernel& k = *static_cast<const Kernel*>(kernel);
   Tensor in[7];
@@ -154,21 +98,17 @@ OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
   b.k = static_cast<const float*>(in[1].data);
   b.v = static_cast<const float*>(in[2].data);
   SILK_ORT_TRY(MakeOutputs(k, ctx, in, &s, &b));
-  Pool pool{k.api, ctx};
-  CachedAttention(s, k.element, b, PoolFor, &pool);
+  OrtPool pool{k.api, ctx};
+  CachedAttention(s, k.element, b, OrtPoolFor, &pool);
   return nullptr;
 }
 
 OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, const OrtKernelInfo* info,
                                      void** kernel) {
   auto k = std::make_unique<Kernel>();
-  k->api = static_cast<const OpWithApi*>(op)->api;
-  k->element = static_cast<const OpWithApi*>(op)->element;
-  size_t size = 0;
-  if (!api->KernelInfo_GetNodeName(info, nullptr, &size) && size > 0) {
-    std::string name(size, '\0');
-    if (!api->KernelInfo_GetNodeName(info, name.data(), &size)) k->node = name.c_str();
-  }
+  k->api = static_cast<const CachedAttentionOp*>(op)->api;
+  k->element = static_cast<const CachedAttentionOp*>(op)->element;
+  k->node = NodeName(api, info);
   SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "num_heads", &k->heads));
   SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "kv_num_heads", &k->kv_heads));
   if (OrtStatus* st = api->KernelInfoGetAttribute_float(info, "scale", &k->scale)) api->ReleaseStatus(st);  // optional
@@ -180,7 +120,7 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
 }
 
 ONNXTensorElementDataType CacheType(const OrtCustomOp* op) {
-  return static_cast<const OpWithApi*>(op)->element == CacheElement::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
+  return static_cast<const CachedAttentionOp*>(op)->element == CacheElement::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
                                                                           : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
 }
 ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp* op, size_t i) {
@@ -190,74 +130,19 @@ ONNXTensorElementDataType ORT_API_CALL OutputType(const OrtCustomOp* op, size_t 
   return i == 0 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT : CacheType(op);
 }
 
-void FillOp(OpWithApi* op, const OrtApi* api, CacheElement element) {
-  std::memset(static_cast<OrtCustomOp*>(op), 0, sizeof(OrtCustomOp));
-  op->api = api;
+}  // namespace
+
+void InitCachedAttentionOp(CachedAttentionOp* op, const OrtApi* api, CacheElement element) {
+  FillCommonOpEntries(op, api);
   op->element = element;
-  op->version = ORT_API_VERSION;
   op->GetName = [](const OrtCustomOp*) { return kCachedAttentionOp; };
-  op->GetExecutionProviderType = [](const OrtCustomOp*) -> const char* { return nullptr; };
   op->GetInputTypeCount = [](const OrtCustomOp*) -> size_t { return 7; };
   op->GetInputType = InputType;
   op->GetOutputTypeCount = [](const OrtCustomOp*) -> size_t { return 3; };
   op->GetOutputType = OutputType;
   op->KernelDestroy = [](void* kernel) { delete static_cast<Kernel*>(kernel); };
-  op->GetInputCharacteristic = [](const OrtCustomOp*, size_t) { return INPUT_OUTPUT_REQUIRED; };
-  op->GetOutputCharacteristic = [](const OrtCustomOp*, size_t) { return INPUT_OUTPUT_REQUIRED; };
-  op->GetInputMemoryType = [](const OrtCustomOp*, size_t) { return OrtMemTypeDefault; };
-  op->GetVariadicInputMinArity = [](const OrtCustomOp*) { return 1; };
-  op->GetVariadicInputHomogeneity = [](const OrtCustomOp*) { return 1; };
-  op->GetVariadicOutputMinArity = [](const OrtCustomOp*) { return 1; };
-  op->GetVariadicOutputHomogeneity = [](const OrtCustomOp*) { return 1; };
   op->CreateKernelV2 = CreateKernel;
   op->KernelComputeV2 = Compute;
-  op->GetStartVersion = [](const OrtCustomOp*) { return 1; };
-  op->GetEndVersion = [](const OrtCustomOp*) { return 1 << 30; };
-}
-
-// One op and domain per onnxruntime API table, made once and kept for the process: sessions
-// refer to them for as long as they live.
-struct Registration {
-  OpWithApi ops[2];  // float16 and int8 caches
-  OrtCustomOpDomain* domain = nullptr;
-};
-
-OrtStatus* MakeDomain(Registration* r, const OrtApi* api) {
-  const CacheElement elements[2] = {CacheElement::kFloat16, CacheElement::kInt8};
-  SILK_ORT_TRY(api->CreateCustomOpDomain(kSilkOpDomain, &r->domain));
-  for (int i = 0; i < 2; ++i) {
-    FillOp(&r->ops[i], api, elements[i]);
-    if (OrtStatus* st = api->CustomOpDomain_Add(r->domain, &r->ops[i])) {
-      api->ReleaseCustomOpDomain(r->domain);
-      return st;
-    }
-  }
-  return nullptr;
-}
-
-}  // namespace
-
-OrtStatus* AddSilkOps(OrtSessionOptions* options, const OrtApi* api) {
-  static std::mutex mutex;
-  // Never destroyed: sessions may outlive static destruction; reachable, so not a leak to LSan.
-  static auto* made = new std::vector<std::pair<const OrtApi*, Registration*>>();
-  std::lock_guard<std::mutex> lock(mutex);
-  Registration* r = nullptr;
-  for (auto& m : *made)
-    if (m.first == api) r = m.second;
-  if (!r) {
-    auto fresh = std::make_unique<Registration>();
-    SILK_ORT_TRY(MakeDomain(fresh.get(), api));
-    r = fresh.release();
-    made->emplace_back(api, r);
-  }
-  return api->AddCustomOpDomain(options, r->domain);
 }
 
 }  // namespace silk
-
-extern "C" OrtStatus* ORT_API_CALL RegisterCustomOps(OrtSessionOptions* options, const OrtApiBase* api_base) {
-  const OrtApi* api = api_base ? api_base->GetApi(ORT_API_VERSION) : nullptr;
-  if (!api) return nullptr;  // an onnxruntime older than the headers: nothing can be reported through it
-  return silk::AddSilkOps(options, api);
-}

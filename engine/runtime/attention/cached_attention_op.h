@@ -1,27 +1,19 @@
 // The ai.silk CachedAttention operator for onnxruntime (docs/model_contract.md, "KV precision"):
 // GroupQueryAttention's inputs, outputs and in-place cache, with a float16 or int8 (+ row scale)
-// cache read at memory speed. libsilk adds it to every session it makes; RegisterCustomOps lets Python's onnxruntime
-// run the same graphs (SessionOptions.register_custom_ops_library(<libsilk>)).
+// cache read at memory speed. Registered with the rest of the domain by runtime/ops/silk_ops.
 #pragma once
-#include <onnxruntime_c_api.h>
+#include "runtime/attention/cached_attention.h"
+#include "runtime/ops/ort_op_glue.h"
 
 namespace silk {
 
-constexpr const char* kSilkOpDomain = "ai.silk";
 constexpr const char* kCachedAttentionOp = "CachedAttention";
 
-// Adds the ai.silk domain to `options`, for the onnxruntime whose API is `api`. Returns nullptr
-// or an onnxruntime status naming the problem (the caller releases it).
-OrtStatus* AddSilkOps(OrtSessionOptions* options, const OrtApi* api);
+// One table per cache element type, all named CachedAttention: onnxruntime picks the one whose
+// input types match the node's (past_*/present_* float16 or int8).
+struct CachedAttentionOp : SilkCustomOp {
+  CacheElement element = CacheElement::kFloat16;
+};
+void InitCachedAttentionOp(CachedAttentionOp* op, const OrtApi* api, CacheElement element);
 
 }  // namespace silk
-
-#if defined(_WIN32)
-#define SILK_ORT_OPS_EXPORT __declspec(dllexport)
-#else
-#define SILK_ORT_OPS_EXPORT __attribute__((visibility("default")))
-#endif
-
-// onnxruntime's custom-op library entry (the name it looks up in a library it is given).
-extern "C" SILK_ORT_OPS_EXPORT OrtStatus* ORT_API_CALL RegisterCustomOps(OrtSessionOptions* options,
-                                                                          const OrtApiBase* api_base);

@@ -7,7 +7,7 @@
 #include <string>
 #include <thread>
 
-#include "runtime/attention/cached_attention_op.h"
+#include "runtime/ops/silk_ops.h"
 #include "runtime/cpu_info.h"
 
 namespace silk {

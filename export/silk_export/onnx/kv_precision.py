@@ -11,11 +11,15 @@ the "silk" form below (onnxruntime's GroupQueryAttention takes no int8 cache). f
   runs in libsilk, or in Python's onnxruntime with libsilk registered as its custom-op library.
 - "ort": q, k, v are cast to float16 around an unchanged GroupQueryAttention: plain onnxruntime
   runs it, slower (kept for comparison and for runtimes without libsilk).
+In the "silk" form the INT4 decoder's MatMulNBits nodes also become libsilk's Int4MatMul (same
+weights, read at memory speed; int4_matmul.py), unless `int4="ort"` keeps them.
 A graph with external data keeps pointing at the same `.data` file, so the variant of the 1.94 GB
 release decoder adds under 1 MB."""
 from __future__ import annotations
 
 from pathlib import Path
+
+from .int4_matmul import INT4_FORMS, to_int4_matmul
 
 KV_PRECISIONS = ("fp32", "fp16", "int8")
 # model.json: files.<KV_FILES[p]>[<decoder key>] = the precision-p variant of files.<decoder key>.
@@ -98,20 +102,31 @@ def make_kv16_decoder(src: Path, dst: Path, attention: str = "silk") -> list[str
     return make_kv_decoder(src, dst, "fp16", attention)
 
 
-def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: str = "silk") -> list[str]:
+def _check_forms(precision: str, attention: str, int4: str) -> None:
+    if attention not in ATTENTION_FORMS:
+        raise ValueError(f"attention form '{attention}': expected one of {', '.join(ATTENTION_FORMS)}")
+    if int4 not in INT4_FORMS:
+        raise ValueError(f"INT4 form '{int4}': expected one of {', '.join(INT4_FORMS)}")
+    if precision == "int8" and attention != "silk":
+        raise ValueError("the int8-cache variant exists only in the silk attention form "
+                         "(onnxruntime's GroupQueryAttention takes no int8 cache)")
+    if attention == "ort" and int4 == "silk":
+        raise ValueError("the ort attention form runs without libsilk: it keeps MatMulNBits (--int4 ort)")
+
+
+def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: str = "silk",
+                    int4: str | None = None) -> list[str]:
     """Writes the `precision` ("fp16" or "int8") cache variant of decoder graph `src` to `dst`
-    (same folder), in the given attention form ("silk" or "ort", see above; int8: "silk" only).
+    (same folder), in the given attention form ("silk" or "ort", see above; int8: "silk" only) and
+    INT4 form ("silk": Int4MatMul, "ort": MatMulNBits; default: the attention form's).
     Returns the external data files it references (those of `src`; none are copied). Raises
     ValueError when `src` has no GroupQueryAttention over past_*/present_* (not a contract decoder)."""
     import onnx
     from onnx import TensorProto, helper
     from onnx.external_data_helper import _get_all_tensors
     _check_precision(precision)
-    if attention not in ATTENTION_FORMS:
-        raise ValueError(f"attention form '{attention}': expected one of {', '.join(ATTENTION_FORMS)}")
-    if precision == "int8" and attention != "silk":
-        raise ValueError("the int8-cache variant exists only in the silk attention form "
-                         "(onnxruntime's GroupQueryAttention takes no int8 cache)")
+    int4 = attention if int4 is None else int4
+    _check_forms(precision, attention, int4)
     src, dst = Path(src), Path(dst)
     if src.parent.resolve() != dst.parent.resolve():
         raise ValueError(f"{dst}: the {precision}-cache variant must sit beside {src.name} (it shares its external data)")
@@ -136,6 +151,8 @@ def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: st
         raise ValueError(f"{src}: no com.microsoft GroupQueryAttention node (not a contract decoder graph)")
     del g.node[:]
     g.node.extend(nodes)
+    if int4 == "silk":
+        to_int4_matmul(g)  # nodes it does not compute stay MatMulNBits
     if attention == "silk" and not any(o.domain == SILK_DOMAIN for o in m.opset_import):
         m.opset_import.append(helper.make_opsetid(SILK_DOMAIN, 1))
     for vi in list(g.input) + list(g.output):
@@ -157,16 +174,17 @@ def add_kv16_variants(folder: Path, files: dict, attention: str = "silk") -> dic
     return add_kv_variants(folder, files, "fp16", attention)
 
 
-def add_kv_variants(folder: Path, files: dict, precision: str, attention: str = "silk") -> dict:
+def add_kv_variants(folder: Path, files: dict, precision: str, attention: str = "silk",
+                    int4: str | None = None) -> dict:
     """For every decoder named in model.json `files`: writes its `precision`-cache variant (in the
-    given attention form) beside it and records it under files["kv_fp16"] / files["kv_int8"].
-    Returns that mapping."""
+    given attention and INT4 forms) beside it and records it under files["kv_fp16"] /
+    files["kv_int8"]. Returns that mapping."""
     _check_precision(precision)
     variants = {}
     for key in DECODER_KEYS:
         if key in files:
             name = kv_name(files[key], precision)
-            make_kv_decoder(Path(folder) / files[key], Path(folder) / name, precision, attention)
+            make_kv_decoder(Path(folder) / files[key], Path(folder) / name, precision, attention, int4)
             variants[key] = name
     files[KV_FILES[precision]] = variants
     return variants
@@ -189,7 +207,8 @@ def _check_default(files: dict, default: str, adding: str) -> None:
                          f"decoder's {default}-cache variant: run silk-export {KV_SUFFIXES[default]} first)")
 
 
-def add_kv_to_folder(folder: Path, precision: str, default: str | None = None, attention: str = "silk") -> dict:
+def add_kv_to_folder(folder: Path, precision: str, default: str | None = None, attention: str = "silk",
+                     int4: str | None = None) -> dict:
     """`silk-export kv16` / `kv8`: the `precision`-cache variant of every decoder of an exported
     model folder, recorded in its model.json (files.kv_fp16 / files.kv_int8;
     files.default_kv_precision when `default` is given, and external data the variants share is
@@ -206,7 +225,7 @@ def add_kv_to_folder(folder: Path, precision: str, default: str | None = None, a
     files = meta.setdefault("files", {"encoder": "encoder.onnx", "decoder": "decoder.onnx"})
     if default is not None:
         _check_default(files, default, precision)
-    add_kv_variants(folder, files, precision, attention)
+    add_kv_variants(folder, files, precision, attention, int4)
     if default is not None:
         files["default_kv_precision"] = default
     tmp = path.with_name(f".model.json.{os.getpid()}")

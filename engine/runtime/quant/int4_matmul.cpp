@@ -1,0 +1,191 @@
+// Int4MatMul: each activation row is quantized once to int8 groups of 32 (scale max|a| / 127),
+// then every weight row is one pass of integer dot products over its packed nibbles, scaled per
+// group, with the weight stream prefetched ahead; rows are spread over the caller's pool.
+#include "runtime/quant/int4_matmul.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
+#define SILK_INT4_AVX2 1
+#include <immintrin.h>
+#endif
+
+namespace silk {
+
+namespace {
+
+constexpr int64_t kGroup = kInt4ActivationGroup;
+constexpr int64_t kRowsPerTask = 256;  // weight rows per unit of parallel work (measured: 256-512 best)
+
+// One activation row in int8 groups, laid out for the nibble order of the weights: the even
+// elements of each group (which meet low nibbles) apart from the odd ones (high nibbles).
+struct QuantizedRow {
+  std::vector<int8_t> even, odd;  // [groups * 16]
+  std::vector<float> scale;       // [groups]: a ~= q * scale
+  std::vector<float> lane_scale;  // [groups * 4]: the scale repeated per int32 lane of a group
+  std::vector<int32_t> offset;    // [groups * 4]: lane 0 = -8 * sum(q) (the weights' zero point), others 0
+};
+
+void QuantizeRow(const float* a, int64_t k, QuantizedRow* q) {
+  const int64_t groups = k / kGroup;
+  q->even.resize(groups * 16), q->odd.resize(groups * 16), q->scale.resize(groups);
+  q->lane_scale.resize(groups * 4), q->offset.assign(groups * 4, 0);
+  for (int64_t g = 0; g < groups; ++g) {
+    const float* x = a + g * kGroup;
+    float top = 0.0f;
+    for (int64_t i = 0; i < kGroup; ++i) top = std::max(top, std::fabs(x[i]));  // NaN: ignored by max
+    const float scale = top / 127.0f, inverse = top > 0.0f && std::isfinite(top) ? 127.0f / top : 0.0f;
+    int32_t sum = 0;
+    for (int64_t i = 0; i < kGroup; ++i) {
+      const float r = std::nearbyint(x[i] * inverse);
+      const int8_t v = static_cast<int8_t>(r >= 127.0f ? 127 : r <= -127.0f ? -127 : r == r ? static_cast<int>(r) : 0);
+      (i % 2 ? q->odd : q->even)[g * 16 + i / 2] = v;
+      sum += v;
+    }
+    q->scale[g] = scale;
+    for (int j = 0; j < 4; ++j) q->lane_scale[g * 4 + j] = scale;
+    q->offset[g * 4] = -8 * sum;
+  }
+}
+
+// Scale of weight row `row`'s block holding group g.
+inline float WeightScale(const float* scales, int64_t blocks, int64_t row, int64_t g, int64_t block) {
+  return scales[row * blocks + g * kGroup / block];
+}
+
+// Group g of weight row r against the activation row: the integer dot product (zero point
+// included) times both scales.
+inline float GroupScalar(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* w, const float* scales,
+                         int64_t r, int64_t g) {
+  int32_t dot = q.offset[g * 4];
+  for (int64_t i = 0; i < 16; ++i) {
+    const uint8_t byte = w[g * 16 + i];
+    dot += (byte & 0x0f) * q.even[g * 16 + i] + (byte >> 4) * q.odd[g * 16 + i];
+  }
+  return static_cast<float>(dot) * (WeightScale(scales, s.k / s.block, r, g, s.block) * q.scale[g]);
+}
+
+void RowsScalar(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* packed, const float* scales,
+                int64_t r0, int64_t r1, float* out) {
+  const int64_t groups = s.k / kGroup;
+  for (int64_t r = r0; r < r1; ++r) {
+    const uint8_t* w = packed + r * (s.k / 2);
+    float acc = 0.0f;
+    for (int64_t g = 0; g < groups; ++g) acc += GroupScalar(s, q, w, scales, r, g);
+    out[r] = acc;
+  }
+}
+
+#if SILK_INT4_AVX2
+#define SILK_AVX2 __attribute__((target("avx2,fma")))
+
+constexpr int64_t kPrefetchBytes = 4096;  // ahead in the weight stream (measured: 2-4 KB best here)
+
+// Two groups per step: 32 packed bytes against 32 even and 32 odd activations; maddubs + madd
+// give one int32 per 4 bytes (lanes 0-3 group 2p, 4-7 group 2p + 1), scaled per lane. An odd
+// last group (K = 32 modulo 64) is added in plain C++.
+template <bool kScalePerGroup>
+SILK_AVX2 void RowsAvx2(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* packed, const float* scales,
+                        int64_t r0, int64_t r1, float* out) {
+  const int64_t pairs = s.k / (2 * kGroup), blocks = s.k / s.block, groups_per_block = s.block / kGroup;
+  const __m256i low4 = _mm256_set1_epi8(0x0f), ones = _mm256_set1_epi16(1);
+  const __m256i pick = _mm256_set_epi32(1, 1, 1, 1, 0, 0, 0, 0);
+  for (int64_t r = r0; r < r1; ++r) {
+    const uint8_t* w = packed + r * (s.k / 2);
+    const float* ws = scales + r * blocks;
+    __m256 acc = _mm256_setzero_ps();
+    for (int64_t p = 0; p < pairs; ++p) {
+      _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
+      const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32));
+      const __m256i lo = _mm256_and_si256(x, low4), hi = _mm256_and_si256(_mm256_srli_epi16(x, 4), low4);
+      const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.even.data() + p * 32));
+      const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.odd.data() + p * 32));
+      const __m256i pairs16 = _mm256_add_epi16(_mm256_maddubs_epi16(lo, e), _mm256_maddubs_epi16(hi, o));
+      const __m256i dot = _mm256_add_epi32(_mm256_madd_epi16(pairs16, ones),
+                                           _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.offset.data() + p * 8)));
+      __m256 wscale;
+      if constexpr (kScalePerGroup) {
+        double two;  // the two groups' weight scales
+        std::memcpy(&two, ws + 2 * p, 8);
+        wscale = _mm256_permutevar8x32_ps(_mm256_castps128_ps256(_mm_castpd_ps(_mm_set_sd(two))), pick);
+      } else {
+        wscale = _mm256_set1_ps(ws[2 * p / groups_per_block]);
+      }
+      const __m256 lane = _mm256_mul_ps(wscale, _mm256_loadu_ps(q.lane_scale.data() + p * 8));
+      acc = _mm256_fmadd_ps(_mm256_cvtepi32_ps(dot), lane, acc);
+    }
+    __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc), _mm256_extractf128_ps(acc, 1));
+    h = _mm_add_ps(h, _mm_movehl_ps(h, h));
+    float sum = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
+    if (s.k % (2 * kGroup)) sum += GroupScalar(s, q, w, scales, r, 2 * pairs);
+    out[r] = sum;
+  }
+}
+
+bool CpuHasAvx2() {
+  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return has;
+}
+#endif
+
+using RowsFn = void (*)(const Int4MatMulShape&, const QuantizedRow&, const uint8_t*, const float*, int64_t, int64_t,
+                        float*);
+
+RowsFn PickRows(const Int4MatMulShape& s, RowKernels kernels) {
+#if SILK_INT4_AVX2
+  if (kernels == RowKernels::kBest && CpuHasAvx2()) return s.block == kGroup ? RowsAvx2<true> : RowsAvx2<false>;
+#endif
+  (void)s, (void)kernels;
+  return RowsScalar;
+}
+
+struct Job {
+  const Int4MatMulShape* shape;
+  const std::vector<QuantizedRow>* rows;
+  const uint8_t* packed;
+  const float* scales;
+  float* out;
+  RowsFn fn;
+};
+
+// Weight rows [i * kRowsPerTask, ...) against every activation row: the rows' bytes are read
+// from memory once and stay in cache for the other activation rows.
+void RunTask(void* state, size_t index) {
+  const Job& job = *static_cast<const Job*>(state);
+  const Int4MatMulShape& s = *job.shape;
+  const int64_t r0 = static_cast<int64_t>(index) * kRowsPerTask, r1 = std::min(s.n, r0 + kRowsPerTask);
+  for (int64_t m = 0; m < s.m; ++m) job.fn(s, (*job.rows)[m], job.packed, job.scales, r0, r1, job.out + m * s.n);
+}
+
+}  // namespace
+
+bool Int4ShapeSupported(const Int4MatMulShape& s, const char** why) {
+  const char* problem = nullptr;
+  if (s.m < 0 || s.k <= 0 || s.n <= 0) problem = "K and N must be positive";
+  else if (s.block != kGroup && (s.block <= 0 || s.block % (2 * kGroup) != 0)) problem = "block_size must be 32 or a multiple of 64";
+  else if (s.k % s.block != 0) problem = "K must be a multiple of block_size";
+  if (why) *why = problem;
+  return problem == nullptr;
+}
+
+void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed, const float* scales, float* out,
+                ParallelForFn parallel_for, void* parallel_context, RowKernels kernels) {
+  if (s.m == 0) return;
+  std::vector<QuantizedRow> rows(static_cast<size_t>(s.m));
+  for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, &rows[m]);
+  Job job{&s, &rows, packed, scales, out, PickRows(s, kernels)};
+  parallel_for(parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
+}
+
+bool Int4MatMulVectorized() {
+#if SILK_INT4_AVX2
+  return CpuHasAvx2();
+#else
+  return false;
+#endif
+}
+
+}  // namespace silk
