@@ -6,6 +6,7 @@
 #include <new>
 #include <string>
 
+#include "runtime/float16.h"
 #include "runtime/model/ort_support.h"
 
 namespace silk {
@@ -42,7 +43,7 @@ void RowToFloats(const unsigned char* row, const KvShape& s, float* out) {
     uint16_t half[1];
     for (int64_t i = 0; i < D; ++i) {
       std::memcpy(half, row + 2 * i, 2);
-      out[i] = Ort::Float16_t::FromBits(half[0]).ToFloat();
+      out[i] = HalfToFloat(half[0]);
     }
   } else {
     float scale;
