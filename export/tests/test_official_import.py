@@ -196,6 +196,7 @@ def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp
     key = "decoder" if decoder == "fp32" else f"decoder_{decoder}"
     graph = files[key] if kv == "fp32" else files[f"kv_{kv}"][key]
     ops = {n.op_type for n in onnx.load(str(imported / graph), load_external_data=False).graph.node}
+    assert ("CrossAttention" in ops) == (kv != "fp32")
     if decoder == "int4":
         assert ("Int4MatMul" in ops) == (kv != "fp32") and ("MatMulNBits" in ops) == (kv == "fp32")
     cross = onnx_decode.session(imported / "encoder.onnx").run(None, {"points": points[None]})[0]

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "runtime/attention/cached_attention_op.h"
+#include "runtime/attention/cross_attention_op.h"
 #include "runtime/quant/int4_matmul_op.h"
 
 namespace silk {
@@ -16,6 +17,7 @@ namespace {
 
 struct Registration {
   CachedAttentionOp attention[2];  // float16 and int8 caches, one op name
+  CrossAttentionOp cross;
   Int4MatMulOp int4;
   OrtCustomOpDomain* domain = nullptr;
 };
@@ -23,9 +25,10 @@ struct Registration {
 OrtStatus* MakeDomain(Registration* r, const OrtApi* api) {
   InitCachedAttentionOp(&r->attention[0], api, CacheElement::kFloat16);
   InitCachedAttentionOp(&r->attention[1], api, CacheElement::kInt8);
+  InitCrossAttentionOp(&r->cross, api);
   InitInt4MatMulOp(&r->int4, api);
   SILK_ORT_TRY(api->CreateCustomOpDomain(kSilkOpDomain, &r->domain));
-  OrtCustomOp* ops[3] = {&r->attention[0], &r->attention[1], &r->int4};
+  OrtCustomOp* ops[4] = {&r->attention[0], &r->attention[1], &r->cross, &r->int4};
   for (OrtCustomOp* op : ops)
     if (OrtStatus* st = api->CustomOpDomain_Add(r->domain, op)) {
       api->ReleaseCustomOpDomain(r->domain);

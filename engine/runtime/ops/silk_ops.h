@@ -1,5 +1,5 @@
 // The ai.silk operator domain (docs/model_contract.md): CachedAttention (float16 and int8 KV
-// caches) and Int4MatMul (4-bit weights). libsilk adds it to every session it makes;
+// caches), CrossAttention (over the point cloud's K/V) and Int4MatMul (4-bit weights). libsilk adds it to every session it makes;
 // RegisterCustomOps lets Python's onnxruntime run the same graphs
 // (SessionOptions.register_custom_ops_library(<libsilk>)).
 #pragma once

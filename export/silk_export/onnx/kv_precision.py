@@ -11,14 +11,16 @@ the "silk" form below (onnxruntime's GroupQueryAttention takes no int8 cache). f
   runs in libsilk, or in Python's onnxruntime with libsilk registered as its custom-op library.
 - "ort": q, k, v are cast to float16 around an unchanged GroupQueryAttention: plain onnxruntime
   runs it, slower (kept for comparison and for runtimes without libsilk).
-In the "silk" form the INT4 decoder's MatMulNBits nodes also become libsilk's Int4MatMul (same
-weights, read at memory speed; int4_matmul.py), unless `int4="ort"` keeps them.
+In the "silk" form each layer's attention over the point cloud also becomes libsilk's
+CrossAttention (cross_attention.py), and the INT4 decoder's MatMulNBits nodes libsilk's
+Int4MatMul (same weights, read at memory speed; int4_matmul.py) unless `int4="ort"` keeps them.
 A graph with external data keeps pointing at the same `.data` file, so the variant of the 1.94 GB
 release decoder adds under 1 MB."""
 from __future__ import annotations
 
 from pathlib import Path
 
+from .cross_attention import to_cross_attention
 from .int4_matmul import INT4_FORMS, to_int4_matmul
 
 KV_PRECISIONS = ("fp32", "fp16", "int8")
@@ -151,6 +153,8 @@ def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: st
         raise ValueError(f"{src}: no com.microsoft GroupQueryAttention node (not a contract decoder graph)")
     del g.node[:]
     g.node.extend(nodes)
+    if attention == "silk":
+        to_cross_attention(g)
     if int4 == "silk":
         to_int4_matmul(g)  # nodes it does not compute stay MatMulNBits
     if attention == "silk" and not any(o.domain == SILK_DOMAIN for o in m.opset_import):
@@ -160,7 +164,8 @@ def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: st
             _set_cache_type(vi, precision)
     # Intermediate type annotations of the rewritten values would now be wrong: drop them.
     stale = set(cache_names) | {n.output[0] for n in g.node if n.op_type in ("GroupQueryAttention", SILK_ATTENTION)}
-    kept = [vi for vi in g.value_info if vi.name not in stale]
+    produced = {o for n in g.node for o in n.output}  # the rewrites remove some intermediate values
+    kept = [vi for vi in g.value_info if vi.name not in stale and vi.name in produced]
     del g.value_info[:]
     g.value_info.extend(kept)
     data = sorted({e.value for t in _get_all_tensors(m) if t.data_location == TensorProto.EXTERNAL

@@ -1,0 +1,77 @@
+// onnxruntime custom-op glue for CrossAttention: inputs query [B, H, T, D], key and value
+// [B, H, M, D] (float32), attribute scale; output [B, H, T, D]. Shapes that do not fit give a
+// status naming the node, never a crash.
+#include "runtime/attention/cross_attention_op.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/attention/cross_attention.h"
+
+namespace silk {
+
+namespace {
+
+struct Kernel {
+  const OrtApi* api = nullptr;
+  float scale = 1.0f;
+  std::string node;
+  OrtStatus* Fail(const std::string& what) const {
+    return api->CreateStatus(ORT_INVALID_ARGUMENT, ("CrossAttention '" + node + "': " + what).c_str());
+  }
+};
+
+OrtStatus* CheckShapes(const Kernel& k, const OrtTensorView in[3], CrossAttentionShape* s) {
+  const std::vector<int64_t>& q = in[0].dims;
+  const std::vector<int64_t>& key = in[1].dims;
+  if (q.size() != 4 || key.size() != 4 || in[2].dims != key || key[0] != q[0] || key[1] != q[1] || key[3] != q[3] ||
+      key[2] < 1 || q[3] < 1)
+    return k.Fail("query " + DimsText(q) + ", key " + DimsText(key) + " and value " + DimsText(in[2].dims) +
+                  " do not fit: expected [B, H, T, D] and [B, H, M, D] with M >= 1");
+  s->heads = q[0] * q[1], s->positions = q[2], s->rows = key[2], s->head_dim = q[3], s->scale = k.scale;
+  return nullptr;
+}
+
+OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
+  const Kernel& k = *static_cast<const Kernel*>(kernel);
+  OrtTensorView in[3];
+  for (size_t i = 0; i < 3; ++i) SILK_ORT_TRY(ReadInput(k.api, ctx, i, &in[i]));
+  CrossAttentionShape s;
+  SILK_ORT_TRY(CheckShapes(k, in, &s));
+  OrtValue* out = nullptr;
+  SILK_ORT_TRY(k.api->KernelContext_GetOutput(ctx, 0, in[0].dims.data(), in[0].dims.size(), &out));
+  float* y = nullptr;
+  SILK_ORT_TRY(k.api->GetTensorMutableData(out, reinterpret_cast<void**>(&y)));
+  OrtPool pool{k.api, ctx};
+  CrossAttention(s, static_cast<const float*>(in[0].data), static_cast<const float*>(in[1].data),
+                 static_cast<const float*>(in[2].data), y, OrtPoolFor, &pool);
+  return nullptr;
+}
+
+OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, const OrtKernelInfo* info,
+                                     void** kernel) {
+  auto k = std::make_unique<Kernel>();
+  k->api = static_cast<const CrossAttentionOp*>(op)->api;
+  k->node = NodeName(api, info);
+  SILK_ORT_TRY(api->KernelInfoGetAttribute_float(info, "scale", &k->scale));
+  if (!(k->scale == k->scale) || k->scale == 0.0f) return k->Fail("scale must be a non-zero number");
+  *kernel = k.release();
+  return nullptr;
+}
+
+}  // namespace
+
+void InitCrossAttentionOp(CrossAttentionOp* op, const OrtApi* api) {
+  FillCommonOpEntries(op, api);
+  op->GetName = [](const OrtCustomOp*) { return kCrossAttentionOp; };
+  op->GetInputTypeCount = [](const OrtCustomOp*) -> size_t { return 3; };
+  op->GetInputType = [](const OrtCustomOp*, size_t) { return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT; };
+  op->GetOutputTypeCount = [](const OrtCustomOp*) -> size_t { return 1; };
+  op->GetOutputType = [](const OrtCustomOp*, size_t) { return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT; };
+  op->KernelDestroy = [](void* kernel) { delete static_cast<Kernel*>(kernel); };
+  op->CreateKernelV2 = CreateKernel;
+  op->KernelComputeV2 = Compute;
+}
+
+}  // namespace silk
