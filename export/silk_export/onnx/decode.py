@@ -7,8 +7,8 @@ import numpy as np
 
 
 def silk_ops_library() -> str:
-    """libsilk, which is also onnxruntime's custom-op library for the ai.silk ops of fp16-cache
-    decoders (onnx/kv_precision.py); found as silk_mesh finds it ($SILK_LIBRARY, ...)."""
+    """libsilk, which is also onnxruntime's custom-op library for the ai.silk ops of the fp16- and
+    int8-cache decoders (onnx/kv_precision.py); found as silk_mesh finds it ($SILK_LIBRARY, ...)."""
     from silk_mesh._library import library_path
     return library_path()
 
