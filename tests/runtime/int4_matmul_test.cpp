@@ -150,7 +150,9 @@ TEST(Int4MatMul, ShapesItDoesNotComputeAreNamed) {
   EXPECT_FALSE(Int4ShapeSupported({1, 96, 8, 64}, &why));
   EXPECT_STREQ(why, "K must be a multiple of block_size");
   EXPECT_FALSE(Int4ShapeSupported({1, 0, 8, 32}, &why));
-  EXPECT_STREQ(why, "K and N must be positive");
+  EXPECT_STREQ(why, "K and N must be in [1, 2^31)");
+  EXPECT_FALSE(Int4ShapeSupported({1, 64, int64_t{1} << 40, 32}, &why));
+  EXPECT_STREQ(why, "K and N must be in [1, 2^31)");
   EXPECT_FALSE(Int4ShapeSupported({1, 64, 8, 16}, &why));
 }
 

@@ -164,7 +164,8 @@ void RunTask(void* state, size_t index) {
 
 bool Int4ShapeSupported(const Int4MatMulShape& s, const char** why) {
   const char* problem = nullptr;
-  if (s.m < 0 || s.k <= 0 || s.n <= 0) problem = "K and N must be positive";
+  constexpr int64_t kLimit = int64_t{1} << 31;  // keeps every index product in range
+  if (s.m < 0 || s.k <= 0 || s.n <= 0 || s.k >= kLimit || s.n >= kLimit) problem = "K and N must be in [1, 2^31)";
   else if (s.block != kGroup && (s.block <= 0 || s.block % (2 * kGroup) != 0)) problem = "block_size must be 32 or a multiple of 64";
   else if (s.k % s.block != 0) problem = "K must be a multiple of block_size";
   if (why) *why = problem;
