@@ -9,6 +9,17 @@ namespace silk {
 // Runs work(state, index) for index in [0, count), possibly in parallel.
 using ParallelForFn = void (*)(void* context, void (*work)(void* state, size_t index), void* state, size_t count);
 
+// work(state, i) for i in [0, count): through parallel_for when there is one and more than one
+// task, else in order on this thread.
+inline void RunTasks(ParallelForFn parallel_for, void* context, void (*work)(void*, size_t), void* state,
+                     size_t count) {
+  if (parallel_for && count > 1) {
+    parallel_for(context, work, state, count);
+  } else {
+    for (size_t i = 0; i < count; ++i) work(state, i);
+  }
+}
+
 // kBest: the vectorized rows where the CPU has them; kScalar: plain C++.
 enum class RowKernels { kBest, kScalar };
 

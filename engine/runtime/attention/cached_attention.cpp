@@ -75,12 +75,7 @@ void CachedAttention(const AttentionShape& s, CacheElement element, const Attent
   const AttentionRows rows = AttentionRowsFor(element, s.head_dim, kernels);
   WriteNewRows(s, element, b, rows);
   Job job{&s, element, &b, &rows};
-  const size_t tasks = static_cast<size_t>(s.chunk * s.heads);
-  if (parallel_for && tasks > 1) {
-    parallel_for(parallel_context, AttendOne, &job, tasks);
-  } else {
-    for (size_t i = 0; i < tasks; ++i) AttendOne(&job, i);
-  }
+  RunTasks(parallel_for, parallel_context, AttendOne, &job, static_cast<size_t>(s.chunk * s.heads));
 }
 
 }  // namespace silk

@@ -16,15 +16,10 @@ namespace silk {
 
 namespace {
 
-struct Kernel {
-  const OrtApi* api = nullptr;
+struct Kernel : OpKernelBase {
   CacheElement element = CacheElement::kFloat16;
   int64_t heads = 0, kv_heads = 0;
   float scale = 0.0f;  // 0: GroupQueryAttention's default, 1 / sqrt(head_dim)
-  std::string node;
-  OrtStatus* Fail(const std::string& what) const {
-    return api->CreateStatus(ORT_INVALID_ARGUMENT, ("CachedAttention '" + node + "': " + what).c_str());
-  }
 };
 
 using Tensor = OrtTensorView;
@@ -64,10 +59,7 @@ OrtStatus* ReadInputs(const Kernel& k, OrtKernelContext* ctx, Tensor in[7], Atte
 // the caller bound them to the same memory (in place), else a longer copy of it.
 OrtStatus* MakeOutputs(const Kernel& k, OrtKernelContext* ctx, const Tensor in[7], AttentionShape* s,
                        AttentionBuffers* b) {
-  OrtValue* out = nullptr;
-  const int64_t out_dims[3] = {1, s->chunk, s->heads * s->head_dim};
-  SILK_ORT_TRY(k.api->KernelContext_GetOutput(ctx, 0, out_dims, 3, &out));
-  SILK_ORT_TRY(k.api->GetTensorMutableData(out, reinterpret_cast<void**>(&b->out)));
+  SILK_ORT_TRY(FloatOutput(k.api, ctx, 0, {1, s->chunk, s->heads * s->head_dim}, &b->out));
   const int64_t present = std::max(s->capacity, s->past + s->chunk);
   const int64_t present_dims[4] = {1, s->kv_heads, present, CacheRowElements(k.element, s->head_dim)};
   void* blocks[2] = {nullptr, nullptr};
@@ -107,6 +99,7 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
                                      void** kernel) {
   auto k = std::make_unique<Kernel>();
   k->api = static_cast<const CachedAttentionOp*>(op)->api;
+  k->op = kCachedAttentionOp;
   k->element = static_cast<const CachedAttentionOp*>(op)->element;
   k->node = NodeName(api, info);
   SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "num_heads", &k->heads));

@@ -40,12 +40,7 @@ void CrossAttention(const CrossAttentionShape& s, const float* q, const float* k
   if (s.heads <= 0 || s.positions <= 0) return;
   const AttentionRows rows = AttentionRowsFor(CacheElement::kFloat32, s.head_dim, kernels);
   Job job{&s, q, key, value, out, &rows};
-  const size_t tasks = static_cast<size_t>(s.heads * s.positions);
-  if (parallel_for && tasks > 1) {
-    parallel_for(parallel_context, AttendOne, &job, tasks);
-  } else {
-    for (size_t i = 0; i < tasks; ++i) AttendOne(&job, i);
-  }
+  RunTasks(parallel_for, parallel_context, AttendOne, &job, static_cast<size_t>(s.heads * s.positions));
 }
 
 }  // namespace silk

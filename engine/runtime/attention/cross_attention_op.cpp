@@ -13,13 +13,8 @@ namespace silk {
 
 namespace {
 
-struct Kernel {
-  const OrtApi* api = nullptr;
+struct Kernel : OpKernelBase {
   float scale = 1.0f;
-  std::string node;
-  OrtStatus* Fail(const std::string& what) const {
-    return api->CreateStatus(ORT_INVALID_ARGUMENT, ("CrossAttention '" + node + "': " + what).c_str());
-  }
 };
 
 OrtStatus* CheckShapes(const Kernel& k, const OrtTensorView in[3], CrossAttentionShape* s) {
@@ -39,10 +34,8 @@ OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
   for (size_t i = 0; i < 3; ++i) SILK_ORT_TRY(ReadInput(k.api, ctx, i, &in[i]));
   CrossAttentionShape s;
   SILK_ORT_TRY(CheckShapes(k, in, &s));
-  OrtValue* out = nullptr;
-  SILK_ORT_TRY(k.api->KernelContext_GetOutput(ctx, 0, in[0].dims.data(), in[0].dims.size(), &out));
   float* y = nullptr;
-  SILK_ORT_TRY(k.api->GetTensorMutableData(out, reinterpret_cast<void**>(&y)));
+  SILK_ORT_TRY(FloatOutput(k.api, ctx, 0, in[0].dims, &y));
   OrtPool pool{k.api, ctx};
   CrossAttention(s, static_cast<const float*>(in[0].data), static_cast<const float*>(in[1].data),
                  static_cast<const float*>(in[2].data), y, OrtPoolFor, &pool);
@@ -53,6 +46,7 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
                                      void** kernel) {
   auto k = std::make_unique<Kernel>();
   k->api = static_cast<const CrossAttentionOp*>(op)->api;
+  k->op = kCrossAttentionOp;
   k->node = NodeName(api, info);
   SILK_ORT_TRY(api->KernelInfoGetAttribute_float(info, "scale", &k->scale));
   if (!(k->scale == k->scale) || k->scale == 0.0f) return k->Fail("scale must be a non-zero number");

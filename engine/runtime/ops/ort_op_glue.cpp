@@ -27,6 +27,17 @@ OrtStatus* ReadInput(const OrtApi* api, OrtKernelContext* ctx, size_t index, Ort
   return DescribeValue(api, const_cast<OrtValue*>(v), t);
 }
 
+OrtStatus* OpKernelBase::Fail(const std::string& what) const {
+  return api->CreateStatus(ORT_INVALID_ARGUMENT, (std::string(op) + " '" + node + "': " + what).c_str());
+}
+
+OrtStatus* FloatOutput(const OrtApi* api, OrtKernelContext* ctx, size_t index, const std::vector<int64_t>& dims,
+                       float** data) {
+  OrtValue* out = nullptr;
+  SILK_ORT_TRY(api->KernelContext_GetOutput(ctx, index, dims.data(), dims.size(), &out));
+  return api->GetTensorMutableData(out, reinterpret_cast<void**>(data));
+}
+
 std::string DimsText(const std::vector<int64_t>& d) {
   std::string s = "[";
   for (size_t i = 0; i < d.size(); ++i) s += (i ? ", " : "") + std::to_string(d[i]);

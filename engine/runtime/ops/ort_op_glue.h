@@ -30,6 +30,19 @@ struct OrtTensorView {
 OrtStatus* ReadInput(const OrtApi* api, OrtKernelContext* ctx, size_t index, OrtTensorView* t);
 OrtStatus* DescribeValue(const OrtApi* api, OrtValue* value, OrtTensorView* t);
 
+// What every op's kernel keeps: the API, its op and node names for messages.
+struct OpKernelBase {
+  const OrtApi* api = nullptr;
+  const char* op = "";
+  std::string node;
+  // An INVALID_ARGUMENT status "<op> '<node>': <what>".
+  OrtStatus* Fail(const std::string& what) const;
+};
+
+// Output `index` as a float32 tensor of `dims`, and its data.
+OrtStatus* FloatOutput(const OrtApi* api, OrtKernelContext* ctx, size_t index, const std::vector<int64_t>& dims,
+                       float** data);
+
 // "[1, 2, 3]"
 std::string DimsText(const std::vector<int64_t>& dims);
 int64_t ElementCount(const std::vector<int64_t>& dims);

@@ -178,7 +178,7 @@ void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed,
   std::vector<QuantizedRow> rows(static_cast<size_t>(s.m));
   for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, &rows[m]);
   Job job{&s, &rows, packed, scales, out, PickRows(s, kernels)};
-  parallel_for(parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
+  RunTasks(parallel_for, parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
 }
 
 bool Int4MatMulVectorized() {

@@ -14,13 +14,8 @@ namespace silk {
 
 namespace {
 
-struct Kernel {
-  const OrtApi* api = nullptr;
+struct Kernel : OpKernelBase {
   Int4MatMulShape shape;  // m set per call
-  std::string node;
-  OrtStatus* Fail(const std::string& what) const {
-    return api->CreateStatus(ORT_INVALID_ARGUMENT, ("Int4MatMul '" + node + "': " + what).c_str());
-  }
 };
 
 OrtStatus* CheckInputs(const Kernel& k, const OrtTensorView in[3], int64_t* rows) {
@@ -45,10 +40,8 @@ OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
   SILK_ORT_TRY(CheckInputs(k, in, &s.m));
   std::vector<int64_t> out_dims = in[0].dims;
   out_dims.back() = s.n;
-  OrtValue* out = nullptr;
-  SILK_ORT_TRY(k.api->KernelContext_GetOutput(ctx, 0, out_dims.data(), out_dims.size(), &out));
   float* y = nullptr;
-  SILK_ORT_TRY(k.api->GetTensorMutableData(out, reinterpret_cast<void**>(&y)));
+  SILK_ORT_TRY(FloatOutput(k.api, ctx, 0, out_dims, &y));
   OrtPool pool{k.api, ctx};
   Int4MatMul(s, static_cast<const float*>(in[0].data), static_cast<const uint8_t*>(in[1].data),
              static_cast<const float*>(in[2].data), y, OrtPoolFor, &pool);
@@ -59,6 +52,7 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
                                      void** kernel) {
   auto k = std::make_unique<Kernel>();
   k->api = static_cast<const SilkCustomOp*>(op)->api;
+  k->op = kInt4MatMulOp;
   k->node = NodeName(api, info);
   int64_t bits = 4;
   SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "K", &k->shape.k));

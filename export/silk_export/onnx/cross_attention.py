@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import collections
 
-SILK_DOMAIN, SILK_CROSS = "ai.silk", "CrossAttention"
+from .silk_ops import SILK_CROSS, SILK_DOMAIN
 
 
 def _scalar(graph, name: str, producers: dict):

@@ -7,7 +7,8 @@ run in libsilk (or in Python's onnxruntime with libsilk registered), use it; the
 decoder files keep MatMulNBits and run in any onnxruntime."""
 from __future__ import annotations
 
-SILK_DOMAIN, SILK_INT4 = "ai.silk", "Int4MatMul"
+from .silk_ops import SILK_DOMAIN, SILK_INT4
+
 INT4_FORMS = ("silk", "ort")
 _KEPT = {"K", "N", "bits", "block_size"}
 

@@ -22,6 +22,7 @@ from pathlib import Path
 
 from .cross_attention import to_cross_attention
 from .int4_matmul import INT4_FORMS, to_int4_matmul
+from .silk_ops import SILK_ATTENTION, SILK_DOMAIN
 
 KV_PRECISIONS = ("fp32", "fp16", "int8")
 # model.json: files.<KV_FILES[p]>[<decoder key>] = the precision-p variant of files.<decoder key>.
@@ -31,7 +32,6 @@ KV_FILES_KEY = KV_FILES["fp16"]
 KV_SUFFIXES = {"fp16": "kv16", "int8": "kv8"}
 DECODER_KEYS = ("decoder", "decoder_int8", "decoder_int4")
 ATTENTION_FORMS = ("silk", "ort")
-SILK_DOMAIN, SILK_ATTENTION = "ai.silk", "CachedAttention"
 # GroupQueryAttention attributes CachedAttention implements; any other must be absent or default.
 _GQA_KEPT = {"num_heads", "kv_num_heads", "scale"}
 _GQA_DEFAULTS = {"do_rotary": 0, "rotary_interleaved": 0, "local_window_size": -1, "softcap": 0.0,

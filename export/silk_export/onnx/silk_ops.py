@@ -1,0 +1,4 @@
+"""libsilk's onnxruntime operator domain and its operators' names (docs/model_contract.md), for the
+graph rewrites that target them (kv_precision.py, cross_attention.py, int4_matmul.py)."""
+SILK_DOMAIN = "ai.silk"
+SILK_ATTENTION, SILK_CROSS, SILK_INT4 = "CachedAttention", "CrossAttention", "Int4MatMul"
