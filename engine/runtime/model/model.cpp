@@ -97,7 +97,7 @@ StatusOr<std::string> ChooseDecoderFile(const std::string& dir, const ModelConfi
   if (config.DecoderFile(p, kv).empty())
     return Unsupported(dir + ": no " + KvPrecisionName(kv) + " KV cache variant of the " + Upper(name) +
                        " decoder in this model folder (files." + KvFilesKey(kv) + "." + key +
-                       " in model.json; add one with `silk-export " + (kv == KvPrecision::kInt8 ? "kv8" : "kv16") +
+                       " in model.json; add one with `silk-export " + KvExportCommand(kv) +
                        "`)");
   return config.DecoderFile(p, kv);
 }

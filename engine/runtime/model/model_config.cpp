@@ -318,6 +318,10 @@ const char* KvFilesKey(KvPrecision p) {
   return p == KvPrecision::kFp16 ? "kv_fp16" : p == KvPrecision::kInt8 ? "kv_int8" : "";
 }
 
+const char* KvExportCommand(KvPrecision p) {
+  return p == KvPrecision::kFp16 ? "kv16" : p == KvPrecision::kInt8 ? "kv8" : "";
+}
+
 bool ParseKvPrecision(const std::string& name, KvPrecision* out) {
   for (KvPrecision p : {KvPrecision::kFp32, KvPrecision::kFp16, KvPrecision::kInt8})
     if (name == KvPrecisionName(p)) {

@@ -29,6 +29,9 @@ enum class KvPrecision { kFp32, kFp16, kInt8 };
 const char* KvPrecisionName(KvPrecision p);  // "fp32", "fp16", "int8"
 // Its model.json key, "kv_fp16" / "kv_int8" ("" for fp32, which is the decoder file itself).
 const char* KvFilesKey(KvPrecision p);
+// The silk-export command that adds that variant to a model folder, "kv16" / "kv8" ("" for fp32;
+// export/silk_export/onnx/kv_precision.py KV_SUFFIXES, also the variant files' suffix).
+const char* KvExportCommand(KvPrecision p);
 // "fp32" / "fp16" / "int8" to the precision; false for anything else.
 bool ParseKvPrecision(const std::string& name, KvPrecision* out);
 

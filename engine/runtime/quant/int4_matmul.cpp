@@ -21,18 +21,43 @@ constexpr int64_t kGroup = kInt4ActivationGroup;
 constexpr int64_t kRowsPerTask = 256;  // weight rows per unit of parallel work (measured: 256-512 best)
 
 // One activation row in int8 groups, laid out for the nibble order of the weights: the even
-// elements of each group (which meet low nibbles) apart from the odd ones (high nibbles).
+// elements of each group (which meet low nibbles) apart from the odd ones (high nibbles). A view
+// into QuantizedRows' storage.
 struct QuantizedRow {
-  std::vector<int8_t> even, odd;  // [groups * 16]
-  std::vector<float> scale;       // [groups]: a ~= q * scale
-  std::vector<float> lane_scale;  // [groups * 4]: the scale repeated per int32 lane of a group
-  std::vector<int32_t> offset;    // [groups * 4]: lane 0 = -8 * sum(q) (the weights' zero point), others 0
+  int8_t* even;        // [groups * 16]
+  int8_t* odd;         // [groups * 16]
+  float* scale;        // [groups]: a ~= q * scale
+  float* lane_scale;   // [groups * 4]: the scale repeated per int32 lane of a group
+  int32_t* offset;     // [groups * 4]: lane 0 = -8 * sum(q) (the weights' zero point), others 0
+};
+
+// The activation rows of one call, each kind of value in one allocation (the generation loop
+// makes thousands of calls with one row each).
+class QuantizedRows {
+ public:
+  QuantizedRows(int64_t m, int64_t k)
+      : groups_(k / kGroup), bytes_(Size(m, 32)), floats_(Size(m, 5)), offsets_(Size(m, 4)) {  // offsets: 0
+    rows_.reserve(static_cast<size_t>(m));
+    for (int64_t r = 0; r < m; ++r) {
+      int8_t* b = bytes_.data() + r * groups_ * 32;
+      float* f = floats_.data() + r * groups_ * 5;
+      rows_.push_back({b, b + groups_ * 16, f, f + groups_, offsets_.data() + r * groups_ * 4});
+    }
+  }
+  const QuantizedRow& operator[](int64_t r) const { return rows_[static_cast<size_t>(r)]; }
+  QuantizedRow* row(int64_t r) { return &rows_[static_cast<size_t>(r)]; }
+
+ private:
+  size_t Size(int64_t m, int64_t per_group) const { return static_cast<size_t>(m * groups_ * per_group); }
+  int64_t groups_;
+  std::vector<int8_t> bytes_;     // per row: even, odd
+  std::vector<float> floats_;     // per row: scale, lane_scale
+  std::vector<int32_t> offsets_;  // per row: offset
+  std::vector<QuantizedRow> rows_;
 };
 
 void QuantizeRow(const float* a, int64_t k, QuantizedRow* q) {
   const int64_t groups = k / kGroup;
-  q->even.resize(groups * 16), q->odd.resize(groups * 16), q->scale.resize(groups);
-  q->lane_scale.resize(groups * 4), q->offset.assign(groups * 4, 0);
   for (int64_t g = 0; g < groups; ++g) {
     const float* x = a + g * kGroup;
     float top = 0.0f;
@@ -101,11 +126,11 @@ SILK_AVX2 void RowsAvx2(const Int4MatMulShape& s, const QuantizedRow& q, const u
       _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
       const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32));
       const __m256i lo = _mm256_and_si256(x, low4), hi = _mm256_and_si256(_mm256_srli_epi16(x, 4), low4);
-      const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.even.data() + p * 32));
-      const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.odd.data() + p * 32));
+      const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.even + p * 32));
+      const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.odd + p * 32));
       const __m256i pairs16 = _mm256_add_epi16(_mm256_maddubs_epi16(lo, e), _mm256_maddubs_epi16(hi, o));
       const __m256i dot = _mm256_add_epi32(_mm256_madd_epi16(pairs16, ones),
-                                           _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.offset.data() + p * 8)));
+                                           _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.offset + p * 8)));
       __m256 wscale;
       if constexpr (kScalePerGroup) {
         double two;  // the two groups' weight scales
@@ -114,7 +139,7 @@ SILK_AVX2 void RowsAvx2(const Int4MatMulShape& s, const QuantizedRow& q, const u
       } else {
         wscale = _mm256_set1_ps(ws[2 * p / groups_per_block]);
       }
-      const __m256 lane = _mm256_mul_ps(wscale, _mm256_loadu_ps(q.lane_scale.data() + p * 8));
+      const __m256 lane = _mm256_mul_ps(wscale, _mm256_loadu_ps(q.lane_scale + p * 8));
       acc = _mm256_fmadd_ps(_mm256_cvtepi32_ps(dot), lane, acc);
     }
     __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc), _mm256_extractf128_ps(acc, 1));
@@ -144,7 +169,7 @@ RowsFn PickRows(const Int4MatMulShape& s, RowKernels kernels) {
 
 struct Job {
   const Int4MatMulShape* shape;
-  const std::vector<QuantizedRow>* rows;
+  const QuantizedRows* rows;
   const uint8_t* packed;
   const float* scales;
   float* out;
@@ -175,8 +200,8 @@ bool Int4ShapeSupported(const Int4MatMulShape& s, const char** why) {
 void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed, const float* scales, float* out,
                 ParallelForFn parallel_for, void* parallel_context, RowKernels kernels) {
   if (s.m == 0) return;
-  std::vector<QuantizedRow> rows(static_cast<size_t>(s.m));
-  for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, &rows[m]);
+  QuantizedRows rows(s.m, s.k);
+  for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, rows.row(m));
   Job job{&s, &rows, packed, scales, out, PickRows(s, kernels)};
   RunTasks(parallel_for, parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
 }

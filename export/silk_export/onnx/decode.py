@@ -13,29 +13,32 @@ def silk_ops_library() -> str:
     return library_path()
 
 
+def uses_silk_ops(path) -> bool:
+    """Whether graph `path` imports libsilk's ai.silk operator domain (read without its external
+    data). False for a file onnx cannot read: onnxruntime then names the problem."""
+    import onnx
+    from .silk_ops import SILK_DOMAIN
+    try:
+        model = onnx.load(str(path), load_external_data=False)
+    except Exception:
+        return False
+    return any(o.domain == SILK_DOMAIN for o in model.opset_import)
+
+
 def session(path, threads: int = 1):
     """An onnxruntime session on the CPU; a graph with ai.silk ops gets libsilk registered."""
     import onnxruntime as ort
-
-    def make(silk_ops: bool):
-        so = ort.SessionOptions()
-        so.intra_op_num_threads = threads
-        so.log_severity_level = 3
-        if silk_ops:
-            lib = silk_ops_library()
-            try:
-                so.register_custom_ops_library(lib)
-            except Exception as e:
-                raise RuntimeError(f"{path}: uses libsilk's ai.silk ops, and libsilk ('{lib}') cannot be "
-                                   f"registered with onnxruntime: {e} (set SILK_LIBRARY to a built libsilk)") from e
-        return ort.InferenceSession(str(path), so, providers=["CPUExecutionProvider"])
-
-    try:
-        return make(False)
-    except Exception as e:
-        if "ai.silk" not in str(e):
-            raise
-    return make(True)
+    so = ort.SessionOptions()
+    so.intra_op_num_threads = threads
+    so.log_severity_level = 3
+    if uses_silk_ops(path):
+        lib = silk_ops_library()
+        try:
+            so.register_custom_ops_library(lib)
+        except Exception as e:
+            raise RuntimeError(f"{path}: uses libsilk's ai.silk ops, and libsilk ('{lib}') cannot be "
+                               f"registered with onnxruntime: {e} (set SILK_LIBRARY to a built libsilk)") from e
+    return ort.InferenceSession(str(path), so, providers=["CPUExecutionProvider"])
 
 
 class DecoderState:

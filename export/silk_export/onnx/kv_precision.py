@@ -13,7 +13,9 @@ the "silk" form below (onnxruntime's GroupQueryAttention takes no int8 cache). f
   runs it, slower (kept for comparison and for runtimes without libsilk).
 In the "silk" form each layer's attention over the point cloud also becomes libsilk's
 CrossAttention (cross_attention.py), and the INT4 decoder's MatMulNBits nodes libsilk's
-Int4MatMul (same weights, read at memory speed; int4_matmul.py) unless `int4="ort"` keeps them.
+Int4MatMul (same weights, read at memory speed; int4_matmul.py) unless `int4="ort"` keeps them,
+and the graph's shape arithmetic is folded into constants first (shape_folding.py: a few thousand
+tiny nodes fewer per call in the release decoder, the same results bit for bit).
 A graph with external data keeps pointing at the same `.data` file, so the variant of the 1.94 GB
 release decoder adds under 1 MB."""
 from __future__ import annotations
@@ -22,6 +24,7 @@ from pathlib import Path
 
 from .cross_attention import to_cross_attention
 from .int4_matmul import INT4_FORMS, to_int4_matmul
+from .shape_folding import fold_shapes
 from .silk_ops import SILK_ATTENTION, SILK_DOMAIN
 
 KV_PRECISIONS = ("fp32", "fp16", "int8")
@@ -134,6 +137,8 @@ def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: st
         raise ValueError(f"{dst}: the {precision}-cache variant must sit beside {src.name} (it shares its external data)")
     m = onnx.load(str(src), load_external_data=False)
     g = m.graph
+    if attention == "silk":
+        fold_shapes(g, src.parent)
     cache_names = {i.name for i in g.input if i.name.startswith("past_")}
     cache_names |= {o.name for o in g.output if o.name.startswith("present_")}
     nodes, rewritten = [], 0
