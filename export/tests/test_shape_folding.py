@@ -161,3 +161,24 @@ def test_constants_in_external_data_are_read_from_the_graphs_folder(decoder, tmp
     assert fold_shapes(external.graph, tmp_path) == want
     unread = onnx.load(str(tmp_path / "d.onnx"), load_external_data=False)
     assert fold_shapes(unread.graph)["constants"] < want["constants"]  # no folder: those stay computed
+
+
+def test_a_graph_that_does_not_fit_its_shapes_is_left_as_it_is():
+    # Transpose with a perm of the wrong length, Concat without its axis: not followed, no exception.
+    nodes = [helper.make_node("Transpose", ["x"], ["t"], perm=[1, 0, 2])]
+    nodes += _shape_dims("target", "t", [0, 1])
+    nodes.append(helper.make_node("Reshape", ["t", "target"], ["y"]))
+    nodes.append(helper.make_node("Concat", ["x", "x"], ["c"]))
+    m = _model(nodes, [_float("x", ["A", "B"])], [_float("y", None), _float("c", None)])
+    before = m.SerializeToString()
+    assert fold_shapes(m.graph) == {"constants": 0, "expands": 0, "removed": 0}
+    assert m.SerializeToString() == before
+
+
+def test_an_initializer_that_is_also_an_input_is_no_constant():
+    # IR < 4 style: "shape" is an initializer and a graph input, so a feed may replace it.
+    nodes = [helper.make_node("Add", ["shape", "zero"], ["s2"]), helper.make_node("Reshape", ["x", "s2"], ["y"])]
+    inits = [helper.make_tensor("shape", TensorProto.INT64, [2], [1, -1]), helper.make_tensor("zero", TensorProto.INT64, [1], [0])]
+    m = _model(nodes, [_float("x", ["A", "B"]), helper.make_tensor_value_info("shape", TensorProto.INT64, [2])],
+               [_float("y", None)], inits)
+    assert fold_shapes(m.graph)["constants"] == 0

@@ -15,7 +15,7 @@ In the "silk" form each layer's attention over the point cloud also becomes libs
 CrossAttention (cross_attention.py), and the INT4 decoder's MatMulNBits nodes libsilk's
 Int4MatMul (same weights, read at memory speed; int4_matmul.py) unless `int4="ort"` keeps them,
 and the graph's shape arithmetic is folded into constants first (shape_folding.py: a few thousand
-tiny nodes fewer per call in the release decoder, the same results bit for bit).
+tiny nodes fewer per call in the release decoder (3,487 of 4,901), the same results bit for bit).
 A graph with external data keeps pointing at the same `.data` file, so the variant of the 1.94 GB
 release decoder adds under 1 MB."""
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Shape arithmetic of an exported graph folded into constants. torch's exporter computes every
 view()/reshape() target, F.normalize's expand and chunk()'s slice bounds at run time (Shape ->
-Gather -> Unsqueeze -> Concat -> Reshape): in the release-size official decoder about 3,000 tiny
-nodes that onnxruntime runs on every call, each for a few microseconds. Here each tensor's shape is
+Gather -> Unsqueeze -> Concat -> Reshape): 3,487 of the release-size INT4 decoder's 4,901 nodes,
+tiny ones that onnxruntime runs on every call. Here each tensor's shape is
 followed symbolically from the graph's inputs (a dim the inputs name, such as T, stays a symbol),
 and each input a shape computation feeds becomes a constant where that is proven for every size the
 inputs allow: a Reshape target keeps the input's dim with 0 and infers at most one with -1, slice
@@ -21,7 +21,7 @@ _UNARY = {"Cast", "Clip", "Erf", "Sqrt", "Neg", "Relu", "Sigmoid", "Tanh", "Soft
 _BROADCAST = {"Add", "Sub", "Mul", "Div", "Pow", "Max", "Min", "Equal", "Greater", "Less", "And", "Or", "Where",
               "GreaterOrEqual", "LessOrEqual", "Mod"}
 _ARITH = {"Add": lambda a, b: a + b, "Sub": lambda a, b: a - b, "Mul": lambda a, b: a * b,
-          "Div": lambda a, b: int(a / b) if b else None}  # ONNX integer Div truncates
+          "Div": lambda a, b: (abs(a) // abs(b)) * (1 if (a < 0) == (b < 0) else -1) if b else None}  # truncating
 _REDUCE = {"ReduceL2", "ReduceSum", "ReduceMean", "ReduceMax", "ReduceMin", "ReduceProd", "ReduceL1"}
 _BIG = 1 << 62
 
@@ -229,18 +229,23 @@ def follow(graph, base_dir=None) -> tuple[dict, dict]:
     shapes = {vi.name: _dims(vi) for vi in graph.input}
     values = {}
     for t in graph.initializer:
+        if t.name in shapes:  # also a graph input: a feed may replace it, so it is no constant
+            continue
         shapes[t.name] = _dims(t)
         value = _small_ints(t, base_dir)
         if value is not None:
             values[t.name] = value
     for node in graph.node:
         at = {a.name: helper.get_attribute_value(a) for a in node.attribute}
-        value = _out_value(node, at, values, shapes, base_dir)
+        try:
+            value = _out_value(node, at, values, shapes, base_dir)
+            out = _out_shapes(node, at, shapes, values)
+            if node.op_type == "Constant" and "value" in at:
+                out = [[int(d) for d in at["value"].dims]]
+        except (IndexError, KeyError, TypeError, ValueError, ZeroDivisionError):
+            value, out = None, []  # a node that does not fit its inputs: not followed (onnxruntime says why)
         if value is not None:
             values[node.output[0]] = value
-        out = _out_shapes(node, at, shapes, values)
-        if node.op_type == "Constant" and "value" in at:
-            out = [[int(d) for d in at["value"].dims]]
         for name, shape in zip(node.output, out):
             shapes[name] = shape
     return shapes, values
