@@ -97,11 +97,8 @@ OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
 
 OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, const OrtKernelInfo* info,
                                      void** kernel) {
-  auto k = std::make_unique<Kernel>();
-  k->api = static_cast<const CachedAttentionOp*>(op)->api;
-  k->op = kCachedAttentionOp;
+  auto k = NewKernel<Kernel>(op, api, info);
   k->element = static_cast<const CachedAttentionOp*>(op)->element;
-  k->node = NodeName(api, info);
   SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "num_heads", &k->heads));
   SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "kv_num_heads", &k->kv_heads));
   if (OrtStatus* st = api->KernelInfoGetAttribute_float(info, "scale", &k->scale)) api->ReleaseStatus(st);  // optional
@@ -126,16 +123,11 @@ ONNXTensorElementDataType ORT_API_CALL OutputType(const OrtCustomOp* op, size_t 
 }  // namespace
 
 void InitCachedAttentionOp(CachedAttentionOp* op, const OrtApi* api, CacheElement element) {
-  FillCommonOpEntries(op, api);
+  FillOpTable(op, api, kCachedAttentionOp, 7, 3);
   op->element = element;
-  op->GetName = [](const OrtCustomOp*) { return kCachedAttentionOp; };
-  op->GetInputTypeCount = [](const OrtCustomOp*) -> size_t { return 7; };
   op->GetInputType = InputType;
-  op->GetOutputTypeCount = [](const OrtCustomOp*) -> size_t { return 3; };
   op->GetOutputType = OutputType;
-  op->KernelDestroy = [](void* kernel) { delete static_cast<Kernel*>(kernel); };
-  op->CreateKernelV2 = CreateKernel;
-  op->KernelComputeV2 = Compute;
+  SetKernel<Kernel>(op, CreateKernel, Compute);
 }
 
 }  // namespace silk

@@ -44,10 +44,7 @@ OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
 
 OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, const OrtKernelInfo* info,
                                      void** kernel) {
-  auto k = std::make_unique<Kernel>();
-  k->api = static_cast<const CrossAttentionOp*>(op)->api;
-  k->op = kCrossAttentionOp;
-  k->node = NodeName(api, info);
+  auto k = NewKernel<Kernel>(op, api, info);
   SILK_ORT_TRY(api->KernelInfoGetAttribute_float(info, "scale", &k->scale));
   if (!(k->scale == k->scale) || k->scale == 0.0f) return k->Fail("scale must be a non-zero number");
   *kernel = k.release();
@@ -57,15 +54,10 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
 }  // namespace
 
 void InitCrossAttentionOp(CrossAttentionOp* op, const OrtApi* api) {
-  FillCommonOpEntries(op, api);
-  op->GetName = [](const OrtCustomOp*) { return kCrossAttentionOp; };
-  op->GetInputTypeCount = [](const OrtCustomOp*) -> size_t { return 3; };
+  FillOpTable(op, api, kCrossAttentionOp, 3, 1);
   op->GetInputType = [](const OrtCustomOp*, size_t) { return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT; };
-  op->GetOutputTypeCount = [](const OrtCustomOp*) -> size_t { return 1; };
   op->GetOutputType = [](const OrtCustomOp*, size_t) { return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT; };
-  op->KernelDestroy = [](void* kernel) { delete static_cast<Kernel*>(kernel); };
-  op->CreateKernelV2 = CreateKernel;
-  op->KernelComputeV2 = Compute;
+  SetKernel<Kernel>(op, CreateKernel, Compute);
 }
 
 }  // namespace silk

@@ -73,10 +73,16 @@ void OrtPoolFor(void* context, void (*work)(void*, size_t), void* state, size_t 
   }
 }
 
-void FillCommonOpEntries(SilkCustomOp* op, const OrtApi* api) {
+void FillOpTable(SilkCustomOp* op, const OrtApi* api, const char* name, size_t inputs, size_t outputs) {
   std::memset(static_cast<OrtCustomOp*>(op), 0, sizeof(OrtCustomOp));
   op->api = api;
+  op->name = name;
+  op->inputs = inputs;
+  op->outputs = outputs;
   op->version = ORT_API_VERSION;
+  op->GetName = [](const OrtCustomOp* self) { return static_cast<const SilkCustomOp*>(self)->name; };
+  op->GetInputTypeCount = [](const OrtCustomOp* self) { return static_cast<const SilkCustomOp*>(self)->inputs; };
+  op->GetOutputTypeCount = [](const OrtCustomOp* self) { return static_cast<const SilkCustomOp*>(self)->outputs; };
   op->GetExecutionProviderType = [](const OrtCustomOp*) -> const char* { return nullptr; };
   op->GetInputCharacteristic = [](const OrtCustomOp*, size_t) { return INPUT_OUTPUT_REQUIRED; };
   op->GetOutputCharacteristic = [](const OrtCustomOp*, size_t) { return INPUT_OUTPUT_REQUIRED; };

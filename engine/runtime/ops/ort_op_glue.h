@@ -5,6 +5,7 @@
 #include <onnxruntime_c_api.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,9 +16,11 @@ namespace silk {
     if (OrtStatus* st_ = (expr)) return st_; \
   } while (0)
 
-// An op table entry that remembers the API it was made for.
+// An op table entry that remembers the API it was made for, its name and input/output counts.
 struct SilkCustomOp : OrtCustomOp {
   const OrtApi* api = nullptr;
+  const char* name = "";
+  size_t inputs = 0, outputs = 0;
 };
 
 struct OrtTensorView {
@@ -59,7 +62,27 @@ struct OrtPool {
 void OrtPoolFor(void* pool, void (*work)(void*, size_t), void* state, size_t count);
 
 // Zeroes the table and sets the entries every ai.silk op shares (API version, CPU, all inputs
-// and outputs required, start version 1); the op sets its name, types, kernel and compute.
-void FillCommonOpEntries(SilkCustomOp* op, const OrtApi* api);
+// and outputs required, start version 1) and those its fields answer (name, input and output
+// counts); the op sets its input/output types and, with SetKernel, its kernel.
+void FillOpTable(SilkCustomOp* op, const OrtApi* api, const char* name, size_t inputs, size_t outputs);
+
+// A new kernel of type K (an OpKernelBase) for node `info`: the op's API and name, the node's name.
+template <typename K>
+std::unique_ptr<K> NewKernel(const OrtCustomOp* op, const OrtApi* api, const OrtKernelInfo* info) {
+  auto k = std::make_unique<K>();
+  k->api = static_cast<const SilkCustomOp*>(op)->api;
+  k->op = static_cast<const SilkCustomOp*>(op)->name;
+  k->node = NodeName(api, info);
+  return k;
+}
+
+// The table's kernel entries: `create` makes a K, `compute` runs it, and it is deleted as a K.
+template <typename K>
+void SetKernel(SilkCustomOp* op, decltype(OrtCustomOp::CreateKernelV2) create,
+               decltype(OrtCustomOp::KernelComputeV2) compute) {
+  op->KernelDestroy = [](void* kernel) { delete static_cast<K*>(kernel); };
+  op->CreateKernelV2 = create;
+  op->KernelComputeV2 = compute;
+}
 
 }  // namespace silk

@@ -50,10 +50,7 @@ OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
 
 OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, const OrtKernelInfo* info,
                                      void** kernel) {
-  auto k = std::make_unique<Kernel>();
-  k->api = static_cast<const SilkCustomOp*>(op)->api;
-  k->op = kInt4MatMulOp;
-  k->node = NodeName(api, info);
+  auto k = NewKernel<Kernel>(op, api, info);
   int64_t bits = 4;
   SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "K", &k->shape.k));
   SILK_ORT_TRY(api->KernelInfoGetAttribute_int64(info, "N", &k->shape.n));
@@ -75,15 +72,10 @@ ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp*, size_t i) {
 }  // namespace
 
 void InitInt4MatMulOp(Int4MatMulOp* op, const OrtApi* api) {
-  FillCommonOpEntries(op, api);
-  op->GetName = [](const OrtCustomOp*) { return kInt4MatMulOp; };
-  op->GetInputTypeCount = [](const OrtCustomOp*) -> size_t { return 3; };
+  FillOpTable(op, api, kInt4MatMulOp, 3, 1);
   op->GetInputType = InputType;
-  op->GetOutputTypeCount = [](const OrtCustomOp*) -> size_t { return 1; };
   op->GetOutputType = [](const OrtCustomOp*, size_t) { return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT; };
-  op->KernelDestroy = [](void* kernel) { delete static_cast<Kernel*>(kernel); };
-  op->CreateKernelV2 = CreateKernel;
-  op->KernelComputeV2 = Compute;
+  SetKernel<Kernel>(op, CreateKernel, Compute);
 }
 
 }  // namespace silk
