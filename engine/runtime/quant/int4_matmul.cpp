@@ -67,7 +67,8 @@ void QuantizeRow(const float* a, int64_t k, QuantizedRow* q) {
     for (int64_t i = 0; i < kGroup; ++i) {
       const float r = std::nearbyint(x[i] * inverse);
       const int8_t v = static_cast<int8_t>(r >= 127.0f ? 127 : r <= -127.0f ? -127 : r == r ? static_cast<int>(r) : 0);
-      (i % 2 ? q->odd : q->even)[g * 16 + i / 2] = v;
+      int8_t* half = i % 2 ? q->odd : q->even;  // (as an lvalue, GCC 12's -O0 UBSan build computed a wild address)
+      half[g * 16 + i / 2] = v;
       sum += v;
     }
     q->scale[g] = scale;
