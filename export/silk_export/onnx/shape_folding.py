@@ -11,6 +11,7 @@ graph computes exactly what it did (export/tests/test_shape_folding.py compares 
 from __future__ import annotations
 
 import itertools
+import math
 
 # A dim is an int or a symbol: ("in", name) for a dim the graph's inputs name, ("new", k) for one
 # the pass cannot relate to others (equal only to itself), or (op, a, b) for arithmetic on dims.
@@ -78,8 +79,7 @@ def _reshaped(data, target):
                 den.remove(d)
         rest = None
         if all(isinstance(d, int) for d in num + den):
-            prod = lambda ds: __import__("math").prod(ds)  # noqa: E731
-            rest = prod(num) // prod(den) if prod(den) else None
+            rest = math.prod(num) // math.prod(den) if math.prod(den) else None
         elif len(num) == 1 and not den:
             rest = num[0]
         out[out.index(-1)] = rest if rest is not None else _new()
@@ -87,9 +87,10 @@ def _reshaped(data, target):
 
 
 def _slice_dim(dim, start: int, end: int, step: int):
+    """A sliced dim: computed for an int, kept for a symbol sliced whole ([0, >= 2^62) step 1), else new."""
     if isinstance(dim, int):
         return len(range(*slice(start, end, step).indices(dim)))
-    return dim if (start, end, step) == (0, _BIG, 1) or (start == 0 and end >= _BIG and step == 1) else _new()
+    return dim if start == 0 and end >= _BIG and step == 1 else _new()
 
 
 def _out_shapes(node, at: dict, shapes: dict, values: dict) -> list:
@@ -161,8 +162,6 @@ def _out_shapes(node, at: dict, shapes: dict, values: dict) -> list:
 def _small_ints(t, base_dir):
     """(elements, dtype, scalar) of an int tensor of at most _SMALL elements and rank <= 1, else None.
     One stored in an external file is read from `base_dir` (None, or unreadable: not followed)."""
-    import math
-
     from onnx import TensorProto, numpy_helper
     if t.data_type not in (TensorProto.INT64, TensorProto.INT32) or len(t.dims) > 1 or math.prod(t.dims) > _SMALL:
         return None
