@@ -78,11 +78,15 @@ inline int64_t FileSize(const std::string& path) {
   return s;
 }
 
-// Bytes of a decoder graph as stored: the .onnx file plus the external data files model.json
-// lists for it ("decoder.onnx.data" beside "decoder.onnx").
-inline double DecoderFileBytes(const silk::ModelConfig& c, silk::DecoderPrecision p) {
+// Bytes of a decoder graph as stored: the .onnx file (that of the KV variant `kv` when the model
+// has one) plus the external data files model.json lists for the decoder ("decoder.onnx.data"
+// beside "decoder.onnx", which a variant shares; a silk-form variant of such a decoder no longer
+// reads the float32 logits head there, so this counts it once too often).
+inline double DecoderFileBytes(const silk::ModelConfig& c, silk::DecoderPrecision p,
+                               silk::KvPrecision kv = silk::KvPrecision::kFp32) {
   const std::string& file = c.DecoderFile(p);
-  double bytes = static_cast<double>(FileSize(c.dir + "/" + file));
+  const std::string& variant = c.DecoderFile(p, kv).empty() ? file : c.DecoderFile(p, kv);
+  double bytes = static_cast<double>(FileSize(c.dir + "/" + variant));
   for (const std::string& data : c.external_data)
     if (data.rfind(file + ".", 0) == 0) bytes += static_cast<double>(FileSize(c.dir + "/" + data));
   return bytes;

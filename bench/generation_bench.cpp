@@ -319,7 +319,7 @@ void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
   int64_t mask_calls = 0;
   for (int sequence = 0; sequence < 20 && logits.size() < 400; ++sequence) {  // until 400 sampled steps
     cache.Clear();
-    silk::DecoderRunner runner(model.impl(), &cache, cross->GetTensorMutableData<float>());
+    silk::DecoderRunner runner(model.impl(), &cache, cross->GetTensorMutableData<void>());
     silk::Grammar grammar(go);
     std::vector<int32_t> pending = {c.bos_id};
     while (!grammar.Ended() && logits.size() < 400) {

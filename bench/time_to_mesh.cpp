@@ -61,6 +61,7 @@ struct Args {
 // One config's pass, written by the child to a pipe as plain doubles.
 struct Pass {
   double load_s = 0, encoder_s = 0, rss_mib = 0;
+  double cross_bytes = 0;      // of the cross K/V each call reads (float32 or float16, as loaded)
   double seconds[8] = {};      // decoder seconds for the first calls[i] calls
   double ms_at_end[8] = {};    // ms per call over the last 50 calls before calls[i]
   double ok = 0;
@@ -99,9 +100,12 @@ bool OpenWorker(const Args& a, DecoderPrecision p, const KvConfig& kv, Worker* w
   if (!cross.ok()) return false;
   r->encoder_s = Since(t0);
   w->cross = std::move(*cross);
+  const auto info = w->cross.GetTensorTypeAndShapeInfo();
+  r->cross_bytes = static_cast<double>(info.GetElementCount()) *
+                   (info.GetElementType() == ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 ? 2 : 4);
   if (!w->cache.Reserve(a.calls.back() + 1, silk::ModelKvShape(w->model->impl())).ok()) return false;
   w->runner = std::make_unique<silk::DecoderRunner>(w->model->impl(), &w->cache,
-                                                    w->cross.GetTensorMutableData<float>());
+                                                    w->cross.GetTensorMutableData<void>());
   return true;
 }
 
@@ -196,8 +200,9 @@ std::vector<Pass> RunInterleaved(const Args& a, DecoderPrecision p, const std::v
   return passes;
 }
 
-// Bytes the N calls from depth 0 read: per call the weights as stored (less the two fp32
-// tables, of which one row each is read) and the cross K/V, plus the self K/V of the prefix
+// Bytes the N calls from depth 0 read: per call the weights as stored in the KV variant's file
+// (less the two fp32 tables, of which one row each is read) and the cross K/V as loaded (float32,
+// or float16 in the silk form of the cache variants), plus the self K/V of the prefix
 // (call i reads i positions): N (W + X) + R N (N - 1) / 2.
 struct Bytes {
   double weights = 0, cross = 0, row = 0;
@@ -205,11 +210,11 @@ struct Bytes {
   double AtDepth(int depth) const { return weights + cross + row * depth; }
 };
 
-Bytes CallBytes(const silk::ModelConfig& c, DecoderPrecision p, KvPrecision kv) {
+Bytes CallBytes(const silk::ModelConfig& c, DecoderPrecision p, KvPrecision kv, double cross_bytes) {
   const silk::ModelDims& d = c.dims;
   Bytes b;
-  b.weights = silk::bench::DecoderFileBytes(c, p) - double(c.embedding_rows + d.max_seq_len) * d.d_model * 4;
-  b.cross = d.cross_kv_floats() * 4.0;
+  b.weights = silk::bench::DecoderFileBytes(c, p, kv) - double(c.embedding_rows + d.max_seq_len) * d.d_model * 4;
+  b.cross = cross_bytes;
   b.row = static_cast<double>(silk::KvShapeOf(d, kv).position_bytes());
   return b;
 }
@@ -295,7 +300,7 @@ std::string LoadAverage() {
 
 void PrintConfig(const Args& a, const silk::ModelConfig& c, DecoderPrecision p, const KvConfig& kv, const Pass& r,
                  const nlohmann::json& official) {
-  const Bytes b = CallBytes(c, p, kv.precision);
+  const Bytes b = CallBytes(c, p, kv.precision, r.cross_bytes);
   for (size_t k = 0; k < a.calls.size(); ++k) {
     const int n = a.calls[k];
     const double avg_bytes = b.AtDepth(n / 2);

@@ -10,7 +10,7 @@ namespace silk {
 
 KvShape ModelKvShape(const Model::Impl& model) { return KvShapeOf(model.config.dims, model.kv_precision); }
 
-DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, float* cross_kv, KvMode mode,
+DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, KvMode mode,
                              int64_t max_chunk)
     : model_(model), cache_(cache), cross_kv_(cross_kv), mode_(mode), max_chunk_(std::max<int64_t>(1, max_chunk)),
       vocab_(model.config.model_vocab_size),
@@ -101,10 +101,13 @@ void DecoderRunner::MakeViews() {
       }
       in_values_.push_back(Ort::Value::CreateTensor(mem, past, bytes, cache_shape.data(), 4, type));
     }
+  const bool half = model_.cross_type == ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
+  const size_t cross_bytes = static_cast<size_t>(H * M * D) * (half ? 2 : 4);  // one layer's keys or values
+  unsigned char* cross = static_cast<unsigned char*>(cross_kv_);
   for (int64_t l = 0; l < L; ++l)
     for (int kv = 0; kv < 2; ++kv)
-      in_values_.push_back(Ort::Value::CreateTensor<float>(mem, cross_kv_ + (l * 2 + kv) * H * M * D,
-                                                           static_cast<size_t>(H * M * D), cross_shape.data(), 4));
+      in_values_.push_back(Ort::Value::CreateTensor(mem, cross + (l * 2 + kv) * cross_bytes, cross_bytes,
+                                                    cross_shape.data(), 4, model_.cross_type));
 }
 
 // kCopy: a fresh compact [H, P, row] copy of the cached prefix of one [H, C, row] block.

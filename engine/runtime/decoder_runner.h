@@ -17,11 +17,11 @@ enum class KvMode { kInPlace, kCopy };
 
 class DecoderRunner {
  public:
-  // `cross_kv` ([L, 2, H, M, D] floats from the encoder) must outlive the runner; each layer's
-  // cross_key/cross_value input is a view into it. The cache must have been reserved with the
+  // `cross_kv` ([L, 2, H, M, D] of the model's cross_type, from RunEncoder) must outlive the
+  // runner; each layer's cross_key/cross_value input is a view into it. The cache must have been reserved with the
   // model's KvShape. `max_chunk` bounds the tokens per decoder call (the logits buffer holds
   // max_chunk rows).
-  DecoderRunner(const Model::Impl& model, KvCache* cache, float* cross_kv, KvMode mode = KvMode::kInPlace,
+  DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, KvMode mode = KvMode::kInPlace,
                 int64_t max_chunk = 256);
 
   // Feeds n ids at positions cache.length() .. +n-1 (BOS first, at position 0), in chunks.
@@ -43,7 +43,7 @@ class DecoderRunner {
 
   const Model::Impl& model_;
   KvCache* cache_;
-  float* cross_kv_;
+  void* cross_kv_;
   KvMode mode_;
   int64_t max_chunk_;
   int64_t vocab_;

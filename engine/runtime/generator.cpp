@@ -93,7 +93,7 @@ struct Generator::Session {
         callbacks(cb),
         cap(cap),
         cross(std::move(cross_kv)),
-        runner(m, cache, cross.GetTensorMutableData<float>(), o.kv_in_place ? KvMode::kInPlace : KvMode::kCopy),
+        runner(m, cache, cross.GetTensorMutableData<void>(), o.kv_in_place ? KvMode::kInPlace : KvMode::kCopy),
         grammar(MakeGrammarOptions(cap)) {}
   static GrammarOptions MakeGrammarOptions(int32_t cap) {
     GrammarOptions g;

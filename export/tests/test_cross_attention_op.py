@@ -1,8 +1,9 @@
 """libsilk's ai.silk CrossAttention op (a decoder layer's attention over the point cloud's K/V in
 the fp16/int8-cache variants), run by Python's onnxruntime with libsilk registered: the rewrite
 of the exported pattern (MatMul with the transposed key, Mul, Softmax, MatMul) gives what plain
-onnxruntime computes from the original graph, patterns that differ are left alone, and shapes
-that do not fit are errors naming the node."""
+onnxruntime computes from the original graph, with float16 cross inputs it gives the original's
+result on the float16-rounded K/V, patterns that differ are left alone, and shapes that do not fit
+are errors naming the node."""
 from __future__ import annotations
 
 import numpy as np
@@ -13,7 +14,7 @@ ort = pytest.importorskip("onnxruntime")
 
 from onnx import TensorProto, helper, numpy_helper  # noqa: E402
 
-from silk_export.onnx.cross_attention import to_cross_attention  # noqa: E402
+from silk_export.onnx.cross_attention import half_cross_inputs, to_cross_attention  # noqa: E402
 from silk_export.onnx.decode import session  # noqa: E402
 
 H, M, D = 4, 9, 16
@@ -65,6 +66,30 @@ def test_rewrite_computes_what_onnxruntime_computes(tmp_path, T, scale):
     got = session(tmp_path / "b.onnx").run(None, x)[0]
     assert got.shape == want.shape == (1, H, T, D)
     np.testing.assert_allclose(got, want, rtol=1e-5, atol=1e-5 * scale)
+
+
+@pytest.mark.parametrize("T,scale", [(1, 10.0), (4, 0.25)])
+def test_float16_cross_inputs_give_the_original_on_rounded_rows(tmp_path, T, scale):
+    src = _pattern(tmp_path / "a.onnx", scale)
+    m = onnx.load(str(src))
+    to_cross_attention(m.graph)
+    assert half_cross_inputs(m.graph) == 2
+    assert [i.type.tensor_type.elem_type for i in m.graph.input] == [TensorProto.FLOAT, TensorProto.FLOAT16, TensorProto.FLOAT16]
+    m.opset_import.append(helper.make_opsetid("ai.silk", 1))
+    onnx.save(m, str(tmp_path / "h.onnx"))
+    x = _inputs(T)
+    rounded = {k: (v.astype(np.float16).astype(np.float32) if k.startswith("cross") else v) for k, v in x.items()}
+    want = session(src).run(None, rounded)[0]
+    got = session(tmp_path / "h.onnx").run(None, {k: (v.astype(np.float16) if k.startswith("cross") else v)
+                                                  for k, v in x.items()})[0]
+    np.testing.assert_allclose(got, want, rtol=1e-5, atol=1e-5 * scale)
+
+
+def test_cross_inputs_read_by_anything_else_stay_float32(tmp_path):
+    m = onnx.load(str(_pattern(tmp_path / "a.onnx", extra_user=True)))  # the pattern stays: MatMul reads them
+    to_cross_attention(m.graph)
+    assert half_cross_inputs(m.graph) == 0
+    assert all(i.type.tensor_type.elem_type == TensorProto.FLOAT for i in m.graph.input)
 
 
 @pytest.mark.parametrize("change", [dict(axis=2), dict(perm=(0, 1, 2, 3)), dict(extra_user=True)])

@@ -1,13 +1,17 @@
 // CrossAttention (runtime/attention), the kernel behind the ai.silk op that attends over the
-// point cloud's K/V: against a plain double-precision softmax attention, vectorized rows against
-// scalar ones, head sizes with and without the vectorized rows, any order of the parallel work.
+// point cloud's K/V: against a plain double-precision softmax attention over the rows as stored
+// (float32, or float16 widened by onnxruntime's own conversion), vectorized rows against scalar
+// ones, head sizes with and without the vectorized rows, any order of the parallel work.
 #include "runtime/attention/cross_attention.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <tuple>
 #include <vector>
+
+#include <onnxruntime_cxx_api.h>
 
 namespace silk {
 namespace {
@@ -31,18 +35,39 @@ std::vector<float> Random(size_t n, std::mt19937& rng) {
   return v;
 }
 
-class CrossAttentionTest : public ::testing::TestWithParam<Case> {};
+// Rows as the op receives them: float32 as they are, or float16 bits; `values` gets what they hold.
+struct Rows {
+  std::vector<float> f32;
+  std::vector<uint16_t> f16;
+  const void* data(CacheElement e) const { return e == CacheElement::kFloat16 ? static_cast<const void*>(f16.data()) : f32.data(); }
+};
+Rows Store(const std::vector<float>& x, CacheElement e, std::vector<float>* values) {
+  Rows r;
+  r.f32 = x;
+  *values = x;
+  if (e == CacheElement::kFloat16)
+    for (size_t i = 0; i < x.size(); ++i) {
+      r.f16.push_back(Ort::Float16_t(x[i]).val);
+      (*values)[i] = Ort::Float16_t::FromBits(r.f16.back()).ToFloat();
+    }
+  return r;
+}
+
+class CrossAttentionTest : public ::testing::TestWithParam<std::tuple<Case, CacheElement>> {};
 
 TEST_P(CrossAttentionTest, MatchesADoublePrecisionSoftmaxAttention) {
-  const Case c = GetParam();
+  const Case c = std::get<0>(GetParam());
+  const CacheElement e = std::get<1>(GetParam());
   std::mt19937 rng(static_cast<unsigned>(c.heads * 100 + c.rows + c.head_dim));
   const auto q = Random(c.heads * c.positions * c.head_dim, rng);
-  const auto k = Random(c.heads * c.rows * c.head_dim, rng), v = Random(c.heads * c.rows * c.head_dim, rng);
+  std::vector<float> k, v;
+  const Rows key = Store(Random(c.heads * c.rows * c.head_dim, rng), e, &k);
+  const Rows value = Store(Random(c.heads * c.rows * c.head_dim, rng), e, &v);
   const CrossAttentionShape s{c.heads, c.positions, c.rows, c.head_dim, c.scale};
   std::vector<float> best(q.size(), NAN), scalar(q.size(), NAN), backwards(q.size(), NAN);
-  CrossAttention(s, q.data(), k.data(), v.data(), best.data(), Serial, nullptr, RowKernels::kBest);
-  CrossAttention(s, q.data(), k.data(), v.data(), scalar.data(), Serial, nullptr, RowKernels::kScalar);
-  CrossAttention(s, q.data(), k.data(), v.data(), backwards.data(), Backwards, nullptr, RowKernels::kBest);
+  CrossAttention(s, e, q.data(), key.data(e), value.data(e), best.data(), Serial, nullptr, RowKernels::kBest);
+  CrossAttention(s, e, q.data(), key.data(e), value.data(e), scalar.data(), Serial, nullptr, RowKernels::kScalar);
+  CrossAttention(s, e, q.data(), key.data(e), value.data(e), backwards.data(), Backwards, nullptr, RowKernels::kBest);
   EXPECT_EQ(best, backwards);
   for (int64_t h = 0; h < c.heads; ++h)
     for (int64_t t = 0; t < c.positions; ++t) {
@@ -70,15 +95,16 @@ TEST_P(CrossAttentionTest, MatchesADoublePrecisionSoftmaxAttention) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, CrossAttentionTest,
-                         ::testing::Values(Case{16, 1, 261, 64, 10.0f}, Case{3, 4, 7, 16, 0.25f},
-                                           Case{2, 2, 1, 8, 1.0f}, Case{4, 1, 33, 12, 0.3f},
-                                           Case{1, 3, 300, 48, 0.144f}));
+                         ::testing::Combine(::testing::Values(Case{16, 1, 261, 64, 10.0f}, Case{3, 4, 7, 16, 0.25f},
+                                                              Case{2, 2, 1, 8, 1.0f}, Case{4, 1, 33, 12, 0.3f},
+                                                              Case{1, 3, 300, 48, 0.144f}),
+                                            ::testing::Values(CacheElement::kFloat32, CacheElement::kFloat16)));
 
 TEST(CrossAttention, ASharpSoftmaxStaysFinite) {
   const CrossAttentionShape s{1, 1, 3, 8, 1e4f};
   std::vector<float> q(8, 1.0f), k(24, 0.0f), v(24, 0.0f), out(8, NAN);
   for (int d = 0; d < 8; ++d) k[8 + d] = 1.0f, v[8 + d] = 2.0f;  // row 1 wins by 8e4
-  CrossAttention(s, q.data(), k.data(), v.data(), out.data(), Serial, nullptr);
+  CrossAttention(s, CacheElement::kFloat32, q.data(), k.data(), v.data(), out.data(), Serial, nullptr);
   for (float x : out) EXPECT_FLOAT_EQ(x, 2.0f);
 }
 

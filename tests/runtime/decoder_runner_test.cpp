@@ -22,7 +22,7 @@ Fed FeedAll(const Model& model, const std::vector<int32_t>& ids, int64_t chunk, 
   EXPECT_TRUE(cross.ok());
   KvCache cache;
   EXPECT_TRUE(cache.Reserve(64, ModelKvShape(model.impl())).ok());
-  DecoderRunner runner(model.impl(), &cache, cross->GetTensorMutableData<float>(), mode);
+  DecoderRunner runner(model.impl(), &cache, cross->GetTensorMutableData<void>(), mode);
   for (size_t i = 0; i < ids.size(); i += chunk) {
     const int64_t n = std::min<int64_t>(chunk, ids.size() - i);
     Status s = runner.Feed(ids.data() + i, n);
@@ -101,7 +101,7 @@ void ExpectVariantMatchesFp32(KvPrecision kv, int64_t row_bytes, const VariantBo
   ASSERT_TRUE(cross.ok());
   KvCache wrong;
   ASSERT_TRUE(wrong.Reserve(4, ModelKvShape(ref->impl())).ok());
-  DecoderRunner runner(model->impl(), &wrong, cross->GetTensorMutableData<float>());
+  DecoderRunner runner(model->impl(), &wrong, cross->GetTensorMutableData<void>());
   EXPECT_EQ(runner.Feed(ids.data(), 1).code(), StatusCode::kInvalidArgument);
 }
 
@@ -125,11 +125,37 @@ TEST(DecoderRunner, RefusesOverflow) {
   ASSERT_TRUE(cross.ok());
   KvCache cache;
   ASSERT_TRUE(cache.Reserve(2, ModelKvShape(model->impl())).ok());
-  DecoderRunner runner(model->impl(), &cache, cross->GetTensorMutableData<float>());
+  DecoderRunner runner(model->impl(), &cache, cross->GetTensorMutableData<void>());
   const int32_t ids[3] = {10269, 0, 1};
   Status s = runner.Feed(ids, 3);
   EXPECT_EQ(s.code(), StatusCode::kLimitExceeded);
   EXPECT_EQ(cache.length(), 0);
+}
+
+// The silk-form cache variants take float16 cross K/V: RunEncoder gives the float32 encoder's
+// output rounded to float16 (as onnxruntime rounds), in the contract's shape; fp32 stays float32.
+TEST(Encoder, GivesFloat16CrossKvForTheSilkFormVariants) {
+  auto ref = testing::LoadTinyModel(1);
+  ASSERT_TRUE(ref);
+  EXPECT_EQ(ref->impl().cross_type, ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT);
+  const auto pts = testing::SamplePoints(*ref);
+  auto full = RunEncoder(ref->impl(), pts.data(), ref->config().dims.n_points);
+  ASSERT_TRUE(full.ok());
+  for (KvPrecision kv : {KvPrecision::kFp16, KvPrecision::kInt8}) {
+    auto model = testing::LoadTinyModel(1, kv);
+    ASSERT_TRUE(model);
+    EXPECT_EQ(model->impl().cross_type, ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16);
+    auto half = RunEncoder(model->impl(), pts.data(), model->config().dims.n_points);
+    ASSERT_TRUE(half.ok()) << half.status().ToString();
+    const auto info = half->GetTensorTypeAndShapeInfo();
+    ASSERT_EQ(info.GetElementType(), ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16);
+    ASSERT_EQ(info.GetShape(), full->GetTensorTypeAndShapeInfo().GetShape());
+    const float* f = full->GetTensorData<float>();
+    const uint16_t* h = half->GetTensorData<uint16_t>();
+    size_t differ = 0;
+    for (size_t i = 0; i < info.GetElementCount(); ++i) differ += h[i] != Ort::Float16_t(f[i]).val;
+    EXPECT_EQ(differ, 0u);
+  }
 }
 
 TEST(Encoder, RejectsEmptyInputAndGivesContractShape) {

@@ -1,5 +1,5 @@
 // CrossAttention: per (head, position), one pass of dot products over the head's key rows, the
-// softmax, one weighted pass over its value rows (the float32 rows of CachedAttention).
+// softmax, one weighted pass over its value rows (the float32 or float16 rows of CachedAttention).
 #include "runtime/attention/cross_attention.h"
 
 #include <algorithm>
@@ -13,7 +13,9 @@ namespace {
 
 struct Job {
   const CrossAttentionShape* shape;
-  const float *q, *key, *value;
+  const float* q;
+  const unsigned char *key, *value;  // [heads, rows] rows of row_bytes
+  size_t row_bytes;
   float* out;
   const AttentionRows* rows;
 };
@@ -25,21 +27,23 @@ void AttendOne(void* state, size_t index) {
   const int64_t D = s.head_dim, M = s.rows;
   const float* q = job.q + (h * s.positions + t) * D;
   std::vector<float> scores(static_cast<size_t>(M));
-  job.rows->dots(q, job.key + h * M * D, M, D, s.scale, scores.data());
+  job.rows->dots(q, job.key + h * M * job.row_bytes, M, D, s.scale, scores.data());
   const float top = *std::max_element(scores.begin(), scores.end());
   const float sum = job.rows->exp_shifted(scores.data(), M, top);
   float* out = job.out + (h * s.positions + t) * D;
   std::fill(out, out + D, 0.0f);
-  job.rows->weighted_sum(scores.data(), job.value + h * M * D, M, D, 1.0f / sum, out);
+  job.rows->weighted_sum(scores.data(), job.value + h * M * job.row_bytes, M, D, 1.0f / sum, out);
 }
 
 }  // namespace
 
-void CrossAttention(const CrossAttentionShape& s, const float* q, const float* key, const float* value, float* out,
-                    ParallelForFn parallel_for, void* parallel_context, RowKernels kernels) {
+void CrossAttention(const CrossAttentionShape& s, CacheElement element, const float* q, const void* key,
+                    const void* value, float* out, ParallelForFn parallel_for, void* parallel_context,
+                    RowKernels kernels) {
   if (s.heads <= 0 || s.positions <= 0) return;
-  const AttentionRows rows = AttentionRowsFor(CacheElement::kFloat32, s.head_dim, kernels);
-  Job job{&s, q, key, value, out, &rows};
+  const AttentionRows rows = AttentionRowsFor(element, s.head_dim, kernels);
+  Job job{&s, q, static_cast<const unsigned char*>(key), static_cast<const unsigned char*>(value),
+          CacheRowBytes(element, s.head_dim), out, &rows};
   RunTasks(parallel_for, parallel_context, AttendOne, &job, static_cast<size_t>(s.heads * s.positions));
 }
 

@@ -2,10 +2,12 @@
 // for the release network): the computation of the decoder's ai.silk CrossAttention op
 // (docs/model_contract.md). onnxruntime runs it as MatMul with a transposed key, Mul, Softmax and
 // MatMul, its batched small products reading the keys at a third of memory speed; this reads each
-// key and value row once per position and head.
+// key and value row once per position and head. The rows are float32, or float16 in the silk form
+// of the cache variants (half the bytes of each call's cross reads; docs/model_contract.md).
 #pragma once
 #include <cstdint>
 
+#include "runtime/attention/cached_attention.h"
 #include "runtime/cpu_kernels.h"
 
 namespace silk {
@@ -18,9 +20,11 @@ struct CrossAttentionShape {
   float scale = 1.0f;     // score = scale * q.k
 };
 
-// out[0, h, t] = softmax_j(scale * q[0, h, t] . key[0, h, j]) . value[0, h, j], all float32 and
-// [1, heads, positions or rows, head_dim]. The caller has checked the shapes.
-void CrossAttention(const CrossAttentionShape& shape, const float* q, const float* key, const float* value, float* out,
-                    ParallelForFn parallel_for, void* parallel_context, RowKernels kernels = RowKernels::kBest);
+// out[0, h, t] = softmax_j(scale * q[0, h, t] . key[0, h, j]) . value[0, h, j], all
+// [1, heads, positions or rows, head_dim]: q and out float32, key and value rows of `element`
+// (kFloat32 or kFloat16; arithmetic in float32). The caller has checked the shapes.
+void CrossAttention(const CrossAttentionShape& shape, CacheElement element, const float* q, const void* key,
+                    const void* value, float* out, ParallelForFn parallel_for, void* parallel_context,
+                    RowKernels kernels = RowKernels::kBest);
 
 }  // namespace silk

@@ -1,6 +1,6 @@
-// onnxruntime custom-op glue for CrossAttention: inputs query [B, H, T, D], key and value
-// [B, H, M, D] (float32), attribute scale; output [B, H, T, D]. Shapes that do not fit give a
-// status naming the node, never a crash.
+// onnxruntime custom-op glue for CrossAttention: inputs query [B, H, T, D] float32, key and value
+// [B, H, M, D] (float32 or float16: the op table's element), attribute scale; output [B, H, T, D]
+// float32. Shapes that do not fit give a status naming the node, never a crash.
 #include "runtime/attention/cross_attention_op.h"
 
 #include <memory>
@@ -14,6 +14,7 @@ namespace silk {
 namespace {
 
 struct Kernel : OpKernelBase {
+  CacheElement element = CacheElement::kFloat32;
   float scale = 1.0f;
 };
 
@@ -37,25 +38,32 @@ OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
   float* y = nullptr;
   SILK_ORT_TRY(FloatOutput(k.api, ctx, 0, in[0].dims, &y));
   OrtPool pool{k.api, ctx};
-  CrossAttention(s, static_cast<const float*>(in[0].data), static_cast<const float*>(in[1].data),
-                 static_cast<const float*>(in[2].data), y, OrtPoolFor, &pool);
+  CrossAttention(s, k.element, static_cast<const float*>(in[0].data), in[1].data, in[2].data, y, OrtPoolFor, &pool);
   return nullptr;
 }
 
 OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, const OrtKernelInfo* info,
                                      void** kernel) {
   auto k = NewKernel<Kernel>(op, api, info);
+  k->element = static_cast<const CrossAttentionOp*>(op)->element;
   SILK_ORT_TRY(api->KernelInfoGetAttribute_float(info, "scale", &k->scale));
   if (!(k->scale == k->scale) || k->scale == 0.0f) return k->Fail("scale must be a non-zero number");
   *kernel = k.release();
   return nullptr;
 }
 
+ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp* op, size_t i) {
+  return i > 0 && static_cast<const CrossAttentionOp*>(op)->element == CacheElement::kFloat16
+             ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16
+             : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
+}
+
 }  // namespace
 
-void InitCrossAttentionOp(CrossAttentionOp* op, const OrtApi* api) {
+void InitCrossAttentionOp(CrossAttentionOp* op, const OrtApi* api, CacheElement element) {
   FillOpTable(op, api, kCrossAttentionOp, 3, 1);
-  op->GetInputType = [](const OrtCustomOp*, size_t) { return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT; };
+  op->element = element;
+  op->GetInputType = InputType;
   op->GetOutputType = [](const OrtCustomOp*, size_t) { return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT; };
   SetKernel<Kernel>(op, CreateKernel, Compute);
 }

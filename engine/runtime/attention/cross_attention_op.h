@@ -1,14 +1,18 @@
 // The ai.silk CrossAttention operator for onnxruntime (docs/model_contract.md): a decoder
 // layer's attention over the point cloud's cross K/V in one node, in place of MatMul (transposed
-// key), Mul, Softmax and MatMul. Registered with the domain by runtime/ops/silk_ops.
+// key), Mul, Softmax and MatMul. One op name, two kernels: float32 or float16 key/value rows
+// (onnxruntime picks by the node's input type). Registered with the domain by runtime/ops/silk_ops.
 #pragma once
+#include "runtime/attention/cached_attention.h"
 #include "runtime/ops/ort_op_glue.h"
 
 namespace silk {
 
 constexpr const char* kCrossAttentionOp = "CrossAttention";
 
-struct CrossAttentionOp : SilkCustomOp {};
-void InitCrossAttentionOp(CrossAttentionOp* op, const OrtApi* api);
+struct CrossAttentionOp : SilkCustomOp {
+  CacheElement element = CacheElement::kFloat32;  // of key and value: kFloat32 or kFloat16
+};
+void InitCrossAttentionOp(CrossAttentionOp* op, const OrtApi* api, CacheElement element);
 
 }  // namespace silk

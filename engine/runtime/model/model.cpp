@@ -7,6 +7,7 @@
 #include "io/files/file_system.h"
 #include "io/files/native_path.h"
 #include "runtime/cpu_info.h"
+#include "runtime/float16.h"
 #include "runtime/kv_cache.h"
 #include "runtime/model/model_files.h"
 #ifdef SILK_ORT_RUNTIME_LOAD
@@ -68,6 +69,29 @@ Status CheckIo(Ort::Session& s, bool inputs, const std::vector<IoSpec>& want, co
                                                   ", model.json implies " + DimsText(spec->dims));
   }
   return Status::Ok();
+}
+
+// The element type of the decoder's cross_key_0 when it is float16 (the silk form of the cache
+// variants), else float32; CheckIo then holds every cross_* input to it, naming any other.
+ONNXTensorElementDataType CrossType(Ort::Session& s) {
+  Ort::AllocatorWithDefaultOptions alloc;
+  for (size_t i = 0; i < s.GetInputCount(); ++i)
+    if (std::string(s.GetInputNameAllocated(i, alloc).get()) == "cross_key_0" &&
+        s.GetInputTypeInfo(i).GetTensorTypeAndShapeInfo().GetElementType() == ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16)
+      return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
+  return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
+}
+
+// The float32 cross_kv as a float16 tensor of the same shape (rounded to nearest even).
+Ort::Value HalfCopy(Ort::Value& cross) {
+  const std::vector<int64_t> shape = cross.GetTensorTypeAndShapeInfo().GetShape();
+  Ort::AllocatorWithDefaultOptions alloc;
+  Ort::Value half = Ort::Value::CreateTensor(alloc, shape.data(), shape.size(), ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16);
+  const float* from = cross.GetTensorData<float>();
+  uint16_t* to = half.GetTensorMutableData<uint16_t>();
+  const size_t n = cross.GetTensorTypeAndShapeInfo().GetElementCount();
+  for (size_t i = 0; i < n; ++i) to[i] = FloatToHalf(from[i]);
+  return half;
 }
 
 // The encoder's fixed point count from its input shape, which must match dims.n_points.
@@ -171,6 +195,9 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
     // ORTCHAR_T is the native path character (wchar_t on Windows): NativePath's UTF-16 there.
     impl->encoder = std::make_unique<Ort::Session>(env, NativePath(enc_path).c_str(), so);
     impl->decoder = std::make_unique<Ort::Session>(env, NativePath(dec_path).c_str(), so);
+    impl->cross_type = CrossType(*impl->decoder);
+    for (IoSpec& spec : dec_in)
+      if (spec.name.rfind("cross_", 0) == 0) spec.type = impl->cross_type;
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, true, {{"points", kF, {1, -1, 6}}}, enc_path));
     SILK_ASSIGN_OR_RETURN(impl->encoder_points, EncoderPoints(*impl->encoder, config.dims.n_points, enc_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, false, {{"cross_kv", kF, cross}}, enc_path));
@@ -202,7 +229,7 @@ StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, i
     const std::vector<int64_t> want = {d.n_layers, 2, d.n_heads, d.n_latents, d.head_dim};
     if (shape_out != want)
       return InternalError("encoder: cross_kv has shape " + DimsText(shape_out) + ", expected " + DimsText(want));
-    out = std::move(outs[0]);
+    out = model.cross_type == ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 ? HalfCopy(outs[0]) : std::move(outs[0]);
     return Status::Ok();
   });
   SILK_RETURN_IF_ERROR(s);

@@ -16,6 +16,9 @@ struct Model::Impl {
   DecoderPrecision precision = DecoderPrecision::kFp32;
   KvPrecision kv_precision = KvPrecision::kFp32;
   int64_t encoder_points = -1;  // fixed N of encoder.onnx, -1: dynamic
+  // The decoder's cross_* inputs: float32, or float16 in the silk form of the cache variants
+  // (RunEncoder then converts the encoder's float32 cross_kv once).
+  ONNXTensorElementDataType cross_type = ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
   std::unique_ptr<Ort::Session> encoder, decoder;
   Ort::MemoryInfo cpu_memory = Ort::MemoryInfo::CreateCpu(OrtArenaAllocator, OrtMemTypeDefault);
 };
@@ -34,7 +37,8 @@ std::vector<std::string> DecoderInputNames(int64_t n_layers);
 std::vector<std::string> DecoderOutputNames(int64_t n_layers);
 
 // Runs encoder.onnx on `n_points` rows of 6 floats (normalised xyz, unit normal); the result
-// is the cross_kv tensor [L, 2, H, M, D] that every decoder call then reads unchanged.
+// is the cross_kv tensor [L, 2, H, M, D] of the decoder's cross_type that every decoder call
+// then reads unchanged.
 // run_options: SetTerminate on it from another thread stops the run (an error status).
 StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points,
                                 const Ort::RunOptions& run_options = Ort::RunOptions{nullptr});

@@ -9,6 +9,7 @@
 
 #include "runtime/attention/cached_attention_op.h"
 #include "runtime/attention/cross_attention_op.h"
+#include "runtime/quant/half_matmul_op.h"
 #include "runtime/quant/int4_matmul_op.h"
 
 namespace silk {
@@ -17,18 +18,21 @@ namespace {
 
 struct Registration {
   CachedAttentionOp attention[2];  // float16 and int8 caches, one op name
-  CrossAttentionOp cross;
+  CrossAttentionOp cross[2];       // float32 and float16 key/value rows, one op name
   Int4MatMulOp int4;
+  HalfMatMulOp half;
   OrtCustomOpDomain* domain = nullptr;
 };
 
 OrtStatus* MakeDomain(Registration* r, const OrtApi* api) {
   InitCachedAttentionOp(&r->attention[0], api, CacheElement::kFloat16);
   InitCachedAttentionOp(&r->attention[1], api, CacheElement::kInt8);
-  InitCrossAttentionOp(&r->cross, api);
+  InitCrossAttentionOp(&r->cross[0], api, CacheElement::kFloat32);
+  InitCrossAttentionOp(&r->cross[1], api, CacheElement::kFloat16);
   InitInt4MatMulOp(&r->int4, api);
+  InitHalfMatMulOp(&r->half, api);
   SILK_ORT_TRY(api->CreateCustomOpDomain(kSilkOpDomain, &r->domain));
-  OrtCustomOp* ops[4] = {&r->attention[0], &r->attention[1], &r->cross, &r->int4};
+  OrtCustomOp* ops[] = {&r->attention[0], &r->attention[1], &r->cross[0], &r->cross[1], &r->int4, &r->half};
   for (OrtCustomOp* op : ops)
     if (OrtStatus* st = api->CustomOpDomain_Add(r->domain, op)) {
       api->ReleaseCustomOpDomain(r->domain);

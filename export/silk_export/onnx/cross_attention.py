@@ -4,7 +4,10 @@ MatMul(q, Transpose(cross_key_l)) -> Mul(scale) -> Softmax -> MatMul(., cross_va
 onnxruntime 1.22 runs the first product as a batch of tiny matrix products that read the 51 MB of
 the release network's cross keys and values at about a third of memory speed on every call.
 libsilk's CrossAttention computes the same in one node, reading each row once. The fp16 and int8
-cache variants ("silk" form) use it; the fp32-cache decoder files keep the plain operators."""
+cache variants ("silk" form) use it, with the cross_* inputs float16 when CrossAttention is all
+that reads them (half_cross_inputs: the cross K/V is a seventh of a call's reads at depth 2,000;
+the runtime converts the encoder's output once per mesh); the fp32-cache decoder files keep the
+plain operators and float32 inputs."""
 from __future__ import annotations
 
 import collections
@@ -76,3 +79,21 @@ def to_cross_attention(graph) -> int:
     del graph.node[:]
     graph.node.extend(nodes)
     return len(replace)
+
+
+def half_cross_inputs(graph) -> int:
+    """Makes each graph input cross_key_l / cross_value_l float16 when every node that reads it is
+    ai.silk CrossAttention (which reads float16 rows as well as float32); an input anything else
+    reads stays float32. Returns how many became float16."""
+    from onnx import TensorProto
+    readers = collections.defaultdict(list)
+    for n in graph.node:
+        for i in n.input:
+            readers[i].append(n)
+    count = 0
+    for vi in graph.input:
+        users = readers.get(vi.name, [])
+        if vi.name.startswith("cross_") and users and all(u.op_type == SILK_CROSS and u.domain == SILK_DOMAIN for u in users):
+            vi.type.tensor_type.elem_type = TensorProto.FLOAT16
+            count += 1
+    return count

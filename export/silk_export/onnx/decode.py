@@ -47,13 +47,16 @@ class DecoderState:
     def __init__(self, decoder, cross_kv: np.ndarray):
         self.decoder = decoder
         self.n_layers, _, h, _, d = cross_kv.shape
+        # cross_* are float16 in the silk form of the cache variants (converted once, as libsilk does).
+        types = {i.name: i.type for i in decoder.get_inputs()}
+        cross_dtype = np.float16 if types.get("cross_key_0") == "tensor(float16)" else np.float32
         self.cross = {}
         for l in range(self.n_layers):
-            self.cross[f"cross_key_{l}"] = np.ascontiguousarray(cross_kv[l, 0][None])
-            self.cross[f"cross_value_{l}"] = np.ascontiguousarray(cross_kv[l, 1][None])
+            self.cross[f"cross_key_{l}"] = np.ascontiguousarray(cross_kv[l, 0][None], cross_dtype)
+            self.cross[f"cross_value_{l}"] = np.ascontiguousarray(cross_kv[l, 1][None], cross_dtype)
         # The cache's element type is the graph's (float16 for a files.kv_fp16 variant; int8 rows
         # of d values + a float32 scale for a files.kv_int8 one).
-        cache = next((i.type for i in decoder.get_inputs() if i.name == "past_key_0"), "tensor(float)")
+        cache = types.get("past_key_0", "tensor(float)")
         dtype = {"tensor(float16)": np.float16, "tensor(int8)": np.int8}.get(cache, np.float32)
         row = d + 4 if dtype == np.int8 else d
         self.past = [np.zeros((1, h, 0, row), dtype) for _ in range(2 * self.n_layers)]

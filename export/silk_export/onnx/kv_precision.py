@@ -12,17 +12,20 @@ the "silk" form below (onnxruntime's GroupQueryAttention takes no int8 cache). f
 - "ort": q, k, v are cast to float16 around an unchanged GroupQueryAttention: plain onnxruntime
   runs it, slower (kept for comparison and for runtimes without libsilk).
 In the "silk" form each layer's attention over the point cloud also becomes libsilk's
-CrossAttention (cross_attention.py), and the INT4 decoder's MatMulNBits nodes libsilk's
-Int4MatMul (same weights, read at memory speed; int4_matmul.py) unless `int4="ort"` keeps them,
-and the graph's shape arithmetic is folded into constants first (shape_folding.py: a few thousand
-tiny nodes fewer per call in the release decoder (3,487 of 4,901), the same results bit for bit).
-A graph with external data keeps pointing at the same `.data` file, so the variant of the 1.94 GB
-release decoder adds under 1 MB."""
+CrossAttention (cross_attention.py; its cross_* inputs float16), the INT4 decoder's MatMulNBits
+nodes libsilk's Int4MatMul (same weights, read at memory speed; int4_matmul.py) unless
+`int4="ort"` keeps them, the logits head float16 weights in libsilk's HalfMatMul
+(half_logits.py), and the graph's shape arithmetic is folded into constants first
+(shape_folding.py: a few thousand tiny nodes fewer per call in the release decoder (3,487 of
+4,901), the same results bit for bit). A graph with external data keeps pointing at the same
+`.data` file, so the variant of the 1.94 GB release decoder adds about 1 MB, plus its float16
+logits head (21 MB) in the silk form."""
 from __future__ import annotations
 
 from pathlib import Path
 
-from .cross_attention import to_cross_attention
+from .cross_attention import half_cross_inputs, to_cross_attention
+from .half_logits import to_half_logits
 from .int4_matmul import INT4_FORMS, to_int4_matmul
 from .shape_folding import fold_shapes
 from .silk_ops import SILK_ATTENTION, SILK_DOMAIN
@@ -160,8 +163,11 @@ def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: st
     g.node.extend(nodes)
     if attention == "silk":
         to_cross_attention(g)
+        half_cross_inputs(g)
     if int4 == "silk":
         to_int4_matmul(g)  # nodes it does not compute stay MatMulNBits
+    if attention == "silk":
+        to_half_logits(g, src.parent)
     if attention == "silk" and not any(o.domain == SILK_DOMAIN for o in m.opset_import):
         m.opset_import.append(helper.make_opsetid(SILK_DOMAIN, 1))
     for vi in list(g.input) + list(g.output):
