@@ -99,19 +99,33 @@ Case MakeCase(AttentionShape s, CacheElement e, uint32_t seed) {
   return c;
 }
 
-// softmax(scale q.k) v over the cache as the kernel left it, in double.
+// The query as the contract's int8-row scores use it: rounded to int16 steps of max|q| / 32767
+// (nearest even), computed here independently.
+std::vector<double> Int16Query(const float* q, int64_t d) {
+  float top = 0.0f;
+  for (int64_t i = 0; i < d; ++i) top = std::max(top, std::fabs(q[i]));
+  std::vector<double> r(static_cast<size_t>(d), 0.0);
+  for (int64_t i = 0; i < d && top > 0.0f; ++i) r[i] = std::nearbyint(q[i] * (32767.0f / top)) * double(top / 32767.0f);
+  return r;
+}
+
+// softmax(scale q.k) v over the cache as the kernel left it, in double (int8 rows: with the
+// query rounded as above).
 std::vector<double> Reference(const Case& c, CacheElement e) {
   const AttentionShape& s = c.shape;
   std::vector<double> out(c.out.size());
   for (int64_t t = 0; t < s.chunk; ++t)
     for (int64_t h = 0; h < s.heads; ++h) {
       const int64_t kvh = h / (s.heads / s.kv_heads), len = s.past + t + 1;
+      const float* qh = &c.q[(t * s.heads + h) * s.head_dim];
+      std::vector<double> q(qh, qh + s.head_dim);
+      if (e == CacheElement::kInt8) q = Int16Query(qh, s.head_dim);
       std::vector<double> w(static_cast<size_t>(len));
       double top = -1e300, sum = 0;
       for (int64_t j = 0; j < len; ++j) {
         double dot = 0;
         for (int64_t d = 0; d < s.head_dim; ++d)
-          dot += double(c.q[(t * s.heads + h) * s.head_dim + d]) * Widen(c.key_cache, e, s.head_dim, kvh * s.capacity + j, d);
+          dot += q[d] * Widen(c.key_cache, e, s.head_dim, kvh * s.capacity + j, d);
         w[j] = s.scale * dot;
         top = std::max(top, w[j]);
       }
@@ -182,6 +196,36 @@ TEST(CachedAttention, VectorizedRowsAgreeWithScalarRows) {
     double worst = 0;
     for (size_t i = 0; i < a.out.size(); ++i) worst = std::max(worst, double(std::fabs(a.out[i] - b.out[i])));
     EXPECT_LT(worst, 5e-5);  // float sums in another order (each is within 2e-5 of the reference)
+  }
+}
+
+// int8 rows: the scores are exact integer dot products times float scales in one order, so the
+// vectorized rows give the scalar rows' scores bit for bit (head sizes with and without AVX2's
+// integer path); a query with a NaN gives NaN scores, a zero query zero scores.
+TEST(CachedAttention, Int8ScoresAreTheSameOnEveryPath) {
+  std::mt19937 rng(21);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  for (int64_t d : {64, 16, 48, 8, 12, 528}) {
+    const int64_t rows = 37, rb = static_cast<int64_t>(CacheRowBytes(CacheElement::kInt8, d));
+    std::vector<unsigned char> cache(static_cast<size_t>(rows * rb));
+    std::vector<float> x(static_cast<size_t>(d)), q(static_cast<size_t>(d));
+    const AttentionRows best = AttentionRowsFor(CacheElement::kInt8, d, RowKernels::kBest);
+    const AttentionRows scalar = AttentionRowsFor(CacheElement::kInt8, d, RowKernels::kScalar);
+    for (int64_t j = 0; j < rows; ++j) {
+      for (float& v : x) v = n(rng) * 100.0f;
+      scalar.store(x.data(), cache.data() + j * rb, d);
+    }
+    for (float& v : q) v = n(rng);
+    std::vector<float> a(rows), b(rows);
+    best.dots(q.data(), cache.data(), rows, d, 0.3f, a.data());
+    scalar.dots(q.data(), cache.data(), rows, d, 0.3f, b.data());
+    EXPECT_EQ(a, b) << "head_dim " << d;
+    q[1] = std::nanf("");
+    best.dots(q.data(), cache.data(), rows, d, 0.3f, a.data());
+    for (float v : a) EXPECT_TRUE(std::isnan(v));
+    std::fill(q.begin(), q.end(), 0.0f);
+    best.dots(q.data(), cache.data(), rows, d, 0.3f, a.data());
+    for (float v : a) EXPECT_EQ(v, 0.0f);
   }
 }
 

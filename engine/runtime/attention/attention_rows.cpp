@@ -8,6 +8,7 @@
 #include <cstring>
 #include <initializer_list>
 #include <type_traits>
+#include <vector>
 
 #include "runtime/float16.h"
 
@@ -69,8 +70,44 @@ void StoreScalar(const float* src, void* row, int64_t d) {
   }
 }
 
+// The query of an int8-row dot product: rounded once to int16 (scale = max|q| / 32767, nearest
+// even), so that each row's dot is exact in integers; factor = scale * the query's scale (NaN when
+// the query is not finite, so its scores are NaN as the float path's would be).
+struct Query16 {
+  std::vector<int16_t> q;
+  float factor = 0.0f;
+};
+
+Query16 QuantizeQuery16(const float* q, int64_t d, float scale) {
+  float top = 0.0f;
+  bool finite = true;
+  for (int64_t i = 0; i < d; ++i) {
+    finite = finite && std::isfinite(q[i]);
+    top = std::max(top, std::fabs(q[i]));
+  }
+  Query16 r;
+  r.q.assign(static_cast<size_t>(d), 0);
+  const float inverse = finite && top > 0.0f ? 32767.0f / top : 0.0f;
+  for (int64_t i = 0; i < d; ++i) r.q[static_cast<size_t>(i)] = static_cast<int16_t>(std::nearbyint(q[i] * inverse));
+  r.factor = finite ? scale * (top / 32767.0f) : std::nanf("");
+  return r;
+}
+
+// out[j] = (sum of int16 q * int8 k, exact) * row scale * factor: the int8 rows' scores, the
+// same value from every path.
+void DotsInt8Scalar(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
+  const Query16 q16 = QuantizeQuery16(q, d, scale);
+  const int8_t* r = static_cast<const int8_t*>(rows);
+  for (int64_t j = 0; j < n; ++j, r += Stride<int8_t>(d)) {
+    int64_t acc = 0;
+    for (int64_t i = 0; i < d; ++i) acc += int64_t{q16.q[static_cast<size_t>(i)]} * r[i];
+    out[j] = (static_cast<float>(acc) * RowScale(r, d)) * q16.factor;
+  }
+}
+
 template <typename E>
 void DotsScalar(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
+  if constexpr (std::is_same<E, int8_t>::value) return DotsInt8Scalar(q, rows, n, d, scale, out);
   const E* r = static_cast<const E*>(rows);
   for (int64_t j = 0; j < n; ++j, r += Stride<E>(d)) {
     float acc = 0.0f;
@@ -194,9 +231,48 @@ SILK_AVX2 void Dots64(const float* q, const E* r, int64_t n, float scale, float*
   if (j < n) out[j] = scale * RowDot(q, r, d);
 }
 
+// One int8 row against the int16 query: 16 products per pmaddwd, eight int32 partial sums.
+SILK_AVX2 inline __m256i RowDot16(const int8_t* r, const int16_t* q, int64_t d) {
+  __m256i s = _mm256_setzero_si256();
+  for (int64_t i = 0; i < d; i += 16) {
+    const __m256i k = _mm256_cvtepi8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(r + i)));
+    s = _mm256_add_epi32(s, _mm256_madd_epi16(k, _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q + i))));
+  }
+  return s;
+}
+
+// DotsInt8Scalar's values, four rows per step (their eight-lane sums reduced together); the int32
+// sums cannot overflow for d <= 512 (d * 32767 * 127 < 2^31), the caller's condition.
+SILK_AVX2 void DotsInt8Avx2(const float* q, const int8_t* r, int64_t n, int64_t d, float scale, float* out) {
+  const Query16 q16 = QuantizeQuery16(q, d, scale);
+  const int64_t stride = Stride<int8_t>(d);
+  const int16_t* qi = q16.q.data();
+  int64_t j = 0;
+  for (; j + 3 < n; j += 4, r += 4 * stride) {
+    PrefetchAhead(r, 4 * stride);
+    const __m256i h = _mm256_hadd_epi32(_mm256_hadd_epi32(RowDot16(r, qi, d), RowDot16(r + stride, qi, d)),
+                                        _mm256_hadd_epi32(RowDot16(r + 2 * stride, qi, d), RowDot16(r + 3 * stride, qi, d)));
+    const __m128i sums = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256(h, 1));
+    const __m128 scales = _mm_setr_ps(RowScale(r, d), RowScale(r + stride, d), RowScale(r + 2 * stride, d),
+                                      RowScale(r + 3 * stride, d));
+    _mm_storeu_ps(out + j, _mm_mul_ps(_mm_mul_ps(_mm_cvtepi32_ps(sums), scales), _mm_set1_ps(q16.factor)));
+  }
+  for (; j < n; ++j, r += stride) {
+    const __m256i s = RowDot16(r, qi, d);
+    __m128i t = _mm_add_epi32(_mm256_castsi256_si128(s), _mm256_extracti128_si256(s, 1));
+    t = _mm_add_epi32(t, _mm_shuffle_epi32(t, 0x4e));
+    t = _mm_add_epi32(t, _mm_shuffle_epi32(t, 0xb1));
+    out[j] = (static_cast<float>(_mm_cvtsi128_si32(t)) * RowScale(r, d)) * q16.factor;
+  }
+}
+
 template <typename E>
 SILK_AVX2 void DotsAvx2(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
   const E* r = static_cast<const E*>(rows);
+  if constexpr (std::is_same<E, int8_t>::value) {
+    if (d % 16 == 0 && d <= 512) return DotsInt8Avx2(q, r, n, d, scale, out);
+    return DotsInt8Scalar(q, rows, n, d, scale, out);
+  }
   if (d == 64) return Dots64(q, r, n, scale, out);
   for (int64_t j = 0; j < n; ++j, r += Stride<E>(d)) {
     PrefetchAhead(r, Stride<E>(d));
