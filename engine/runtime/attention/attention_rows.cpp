@@ -107,12 +107,15 @@ void DotsInt8Scalar(const float* q, const void* rows, int64_t n, int64_t d, floa
 
 template <typename E>
 void DotsScalar(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
-  if constexpr (std::is_same<E, int8_t>::value) return DotsInt8Scalar(q, rows, n, d, scale, out);
-  const E* r = static_cast<const E*>(rows);
-  for (int64_t j = 0; j < n; ++j, r += Stride<E>(d)) {
-    float acc = 0.0f;
-    for (int64_t i = 0; i < d; ++i) acc += q[i] * Widen(r[i]);
-    out[j] = scale * (RowScale(r, d) * acc);
+  if constexpr (std::is_same<E, int8_t>::value) {
+    DotsInt8Scalar(q, rows, n, d, scale, out);
+  } else {
+    const E* r = static_cast<const E*>(rows);
+    for (int64_t j = 0; j < n; ++j, r += d) {
+      float acc = 0.0f;
+      for (int64_t i = 0; i < d; ++i) acc += q[i] * Widen(r[i]);
+      out[j] = scale * acc;
+    }
   }
 }
 
@@ -203,14 +206,15 @@ template <typename E>
 SILK_AVX2 inline float RowDot(const float* q, const E* r, int64_t d) {
   __m256 a = _mm256_setzero_ps();
   for (int64_t i = 0; i < d; i += 8) a = _mm256_fmadd_ps(_mm256_loadu_ps(q + i), Load8(r + i), a);
-  return RowScale(r, d) * Sum8(a);
+  return Sum8(a);
 }
 
+// float32 and float16 rows (int8 rows: DotsInt8Avx2 below).
 // head_dim 64 (every registered architecture): the query held in registers, two rows per
 // iteration with two accumulators each, so four independent chains hide the FMA latency.
 template <typename E>
 SILK_AVX2 void Dots64(const float* q, const E* r, int64_t n, float scale, float* out) {
-  constexpr int64_t d = 64, stride = Stride<E>(d);
+  constexpr int64_t d = 64, stride = d;
   __m256 qv[8];
   for (int k = 0; k < 8; ++k) qv[k] = _mm256_loadu_ps(q + 8 * k);
   int64_t j = 0;
@@ -225,8 +229,8 @@ SILK_AVX2 void Dots64(const float* q, const E* r, int64_t n, float scale, float*
       b0 = _mm256_fmadd_ps(qv[k], Load8(r1 + 8 * k), b0);
       b1 = _mm256_fmadd_ps(qv[k + 1], Load8(r1 + 8 * k + 8), b1);
     }
-    out[j] = scale * (RowScale(r, d) * Sum8(_mm256_add_ps(a0, a1)));
-    out[j + 1] = scale * (RowScale(r1, d) * Sum8(_mm256_add_ps(b0, b1)));
+    out[j] = scale * Sum8(_mm256_add_ps(a0, a1));
+    out[j + 1] = scale * Sum8(_mm256_add_ps(b0, b1));
   }
   if (j < n) out[j] = scale * RowDot(q, r, d);
 }
@@ -270,13 +274,15 @@ template <typename E>
 SILK_AVX2 void DotsAvx2(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
   const E* r = static_cast<const E*>(rows);
   if constexpr (std::is_same<E, int8_t>::value) {
-    if (d % 16 == 0 && d <= 512) return DotsInt8Avx2(q, r, n, d, scale, out);
-    return DotsInt8Scalar(q, rows, n, d, scale, out);
-  }
-  if (d == 64) return Dots64(q, r, n, scale, out);
-  for (int64_t j = 0; j < n; ++j, r += Stride<E>(d)) {
-    PrefetchAhead(r, Stride<E>(d));
-    out[j] = scale * RowDot(q, r, d);
+    if (d % 16 == 0 && d <= 512) DotsInt8Avx2(q, r, n, d, scale, out);
+    else DotsInt8Scalar(q, rows, n, d, scale, out);
+  } else if (d == 64) {
+    Dots64(q, r, n, scale, out);
+  } else {
+    for (int64_t j = 0; j < n; ++j, r += d) {
+      PrefetchAhead(r, d);
+      out[j] = scale * RowDot(q, r, d);
+    }
   }
 }
 

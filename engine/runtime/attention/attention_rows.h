@@ -14,7 +14,8 @@ struct AttentionRows {
   // Row of `d` floats into the cache's element type (float16: round to nearest even; int8:
   // scale = max|x| / 127, int8[i] = x[i] / scale rounded to nearest even, in [-127, 127]).
   void (*store)(const float* src, void* row, int64_t d) = nullptr;
-  // out[j] = scale * q . rows[j] for the n consecutive rows of d values.
+  // out[j] = scale * q . rows[j] for the n consecutive rows of d values (int8 rows: with q
+  // rounded to int16 steps of max|q| / 32767 and the sum exact in integers; docs/model_contract.md).
   void (*dots)(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) = nullptr;
   // x[j] = exp(x[j] - top) (every x[j] <= top); returns their sum.
   float (*exp_shifted)(float* x, int64_t n, float top) = nullptr;
