@@ -10,7 +10,12 @@ the numbers equal step-wise feeding).
 
     python3 bench/kv_fidelity.py MODEL_DIR [--decoders decoder decoder_int4] [--kv fp16 int8]
         [--tokens A.tokens.txt ...] [--max-len 4096] [--points points.npy] [--chunk 256] [--threads 2]
-        [--json OUT.json]
+        [--json OUT.json] [--reference FILE]
+
+--reference FILE (a decoder file in MODEL_DIR, one decoder key) compares the variants against that
+file instead of the fp32-cache decoder: e.g. the same fp16 variant written with onnxruntime's
+MatMulNBits instead of libsilk's Int4MatMul (`silk-export kv16 --int4 ort`), two graphs equal but
+for float32 summation order, gives the floor that rounding noise alone puts under top-1 agreement.
 
 Defaults: the model's default decoder; two long dev sequences; the official fixture's point cloud
 (shared/official-fixture/points.npy, 4,096 rows; resampled with replacement for another count).
@@ -102,20 +107,22 @@ def variant_file(model: Path, files: dict, key: str, kv: str) -> str:
 
 
 def measure(model: Path, decoders: list[str], kvs: list[str], sequences: dict[str, list[int]], points: Path,
-            chunk: int, threads: int) -> dict:
+            chunk: int, threads: int, reference: str | None = None) -> dict:
     meta = json.loads((model / "model.json").read_text())
     files, dims, bos = meta["files"], meta["dims"], meta["vocab"]["bos_id"]
     cross = session(model / files.get("encoder", "encoder.onnx"), threads).run(
         None, {"points": cloud(points, dims["n_points"])})[0]
     result = {"model": str(model), "config": meta.get("config"), "points": str(points), "chunk": chunk,
               "sequences": {k: len(v) for k, v in sequences.items()}, "decoders": {}}
+    if reference:
+        result["reference"] = reference
     for key in decoders:
         variants = {kv: variant_file(model, files, key, kv) for kv in kvs}
         figs = {kv: ([], [], []) for kv in kvs}
         t0 = time.time()
         for name, ids in sequences.items():
             seq = [bos] + ids[:dims["max_seq_len"] - 1]
-            ref = logits(model / files[key], cross, seq, chunk, threads)
+            ref = logits(model / (reference or files[key]), cross, seq, chunk, threads)
             for kv, file in variants.items():
                 a, k, d = compare(ref, logits(model / file, cross, seq, chunk, threads))
                 for acc, x in zip(figs[kv], (a, k, d)):
@@ -139,12 +146,15 @@ def main() -> int:
     ap.add_argument("--chunk", type=int, default=256)
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--json", type=Path)
+    ap.add_argument("--reference", help="decoder file in MODEL to compare against instead of the fp32-cache decoder")
     a = ap.parse_args()
     meta = json.loads((a.model / "model.json").read_text())
     decoders = a.decoders or [meta["files"].get("default_decoder", "decoder")]
+    if a.reference and (len(decoders) != 1 or not (a.model / a.reference).is_file()):
+        raise SystemExit(f"--reference {a.reference}: needs one decoder key and a file in {a.model}")
     paths = a.tokens or [SHARED / "spec" / "golden-dev" / f"{n}.tokens.txt" for n in DEFAULT_TOKENS]
     sequences = {p.name.split(".")[0]: read_tokens(p)[:a.max_len - 1] for p in paths}
-    res = measure(a.model, decoders, a.kv, sequences, a.points, a.chunk, a.threads)
+    res = measure(a.model, decoders, a.kv, sequences, a.points, a.chunk, a.threads, a.reference)
     text = json.dumps(res, indent=1)
     if a.json:
         a.json.write_text(text + "\n")
