@@ -72,36 +72,45 @@ void StoreScalar(const float* src, void* row, int64_t d) {
 
 // The query of an int8-row dot product: rounded once to int16 (scale = max|q| / 32767, nearest
 // even), so that each row's dot is exact in integers; factor = scale * the query's scale (NaN when
-// the query is not finite, so its scores are NaN as the float path's would be).
-struct Query16 {
-  std::vector<int16_t> q;
-  float factor = 0.0f;
-};
-
-Query16 QuantizeQuery16(const float* q, int64_t d, float scale) {
-  float top = 0.0f;
-  bool finite = true;
-  for (int64_t i = 0; i < d; ++i) {
-    finite = finite && std::isfinite(q[i]);
-    top = std::max(top, std::fabs(q[i]));
+// the query is not finite, so its scores are NaN as the float path's would be). Built once per
+// (position, head) pair, so head sizes up to kInline stay on the stack.
+class Query16 {
+ public:
+  Query16(const float* q, int64_t d, float scale) {
+    float top = 0.0f;
+    bool finite = true;
+    for (int64_t i = 0; i < d; ++i) {
+      finite = finite && std::isfinite(q[i]);
+      top = std::max(top, std::fabs(q[i]));
+    }
+    if (d > kInline) heap_.resize(static_cast<size_t>(d));
+    int16_t* out = heap_.empty() ? inline_ : heap_.data();
+    const float inverse = finite && top > 0.0f ? 32767.0f / top : 0.0f;
+    for (int64_t i = 0; i < d; ++i) out[i] = static_cast<int16_t>(std::nearbyint(q[i] * inverse));
+    factor_ = finite ? scale * (top / 32767.0f) : std::nanf("");
   }
-  Query16 r;
-  r.q.assign(static_cast<size_t>(d), 0);
-  const float inverse = finite && top > 0.0f ? 32767.0f / top : 0.0f;
-  for (int64_t i = 0; i < d; ++i) r.q[static_cast<size_t>(i)] = static_cast<int16_t>(std::nearbyint(q[i] * inverse));
-  r.factor = finite ? scale * (top / 32767.0f) : std::nanf("");
-  return r;
-}
+  Query16(const Query16&) = delete;
+  Query16& operator=(const Query16&) = delete;
+  const int16_t* data() const { return heap_.empty() ? inline_ : heap_.data(); }
+  float factor() const { return factor_; }
+
+ private:
+  static constexpr int64_t kInline = 512;
+  int16_t inline_[kInline];
+  std::vector<int16_t> heap_;
+  float factor_ = 0.0f;
+};
 
 // out[j] = (sum of int16 q * int8 k, exact) * row scale * factor: the int8 rows' scores, the
 // same value from every path.
 void DotsInt8Scalar(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
-  const Query16 q16 = QuantizeQuery16(q, d, scale);
+  const Query16 q16(q, d, scale);
+  const int16_t* qi = q16.data();
   const int8_t* r = static_cast<const int8_t*>(rows);
   for (int64_t j = 0; j < n; ++j, r += Stride<int8_t>(d)) {
     int64_t acc = 0;
-    for (int64_t i = 0; i < d; ++i) acc += int64_t{q16.q[static_cast<size_t>(i)]} * r[i];
-    out[j] = (static_cast<float>(acc) * RowScale(r, d)) * q16.factor;
+    for (int64_t i = 0; i < d; ++i) acc += int64_t{qi[i]} * r[i];
+    out[j] = (static_cast<float>(acc) * RowScale(r, d)) * q16.factor();
   }
 }
 
@@ -214,13 +223,13 @@ SILK_AVX2 inline float RowDot(const float* q, const E* r, int64_t d) {
 // iteration with two accumulators each, so four independent chains hide the FMA latency.
 template <typename E>
 SILK_AVX2 void Dots64(const float* q, const E* r, int64_t n, float scale, float* out) {
-  constexpr int64_t d = 64, stride = d;
+  constexpr int64_t d = 64;
   __m256 qv[8];
   for (int k = 0; k < 8; ++k) qv[k] = _mm256_loadu_ps(q + 8 * k);
   int64_t j = 0;
-  for (; j + 1 < n; j += 2, r += 2 * stride) {
-    PrefetchAhead(r, 2 * stride);
-    const E* r1 = r + stride;
+  for (; j + 1 < n; j += 2, r += 2 * d) {
+    PrefetchAhead(r, 2 * d);
+    const E* r1 = r + d;
     __m256 a0 = _mm256_mul_ps(qv[0], Load8(r)), a1 = _mm256_mul_ps(qv[1], Load8(r + 8));
     __m256 b0 = _mm256_mul_ps(qv[0], Load8(r1)), b1 = _mm256_mul_ps(qv[1], Load8(r1 + 8));
     for (int k = 2; k < 8; k += 2) {
@@ -248,9 +257,9 @@ SILK_AVX2 inline __m256i RowDot16(const int8_t* r, const int16_t* q, int64_t d) 
 // DotsInt8Scalar's values, four rows per step (their eight-lane sums reduced together); the int32
 // sums cannot overflow for d <= 512 (d * 32767 * 127 < 2^31), the caller's condition.
 SILK_AVX2 void DotsInt8Avx2(const float* q, const int8_t* r, int64_t n, int64_t d, float scale, float* out) {
-  const Query16 q16 = QuantizeQuery16(q, d, scale);
+  const Query16 q16(q, d, scale);
   const int64_t stride = Stride<int8_t>(d);
-  const int16_t* qi = q16.q.data();
+  const int16_t* qi = q16.data();
   int64_t j = 0;
   for (; j + 3 < n; j += 4, r += 4 * stride) {
     PrefetchAhead(r, 4 * stride);
@@ -259,14 +268,14 @@ SILK_AVX2 void DotsInt8Avx2(const float* q, const int8_t* r, int64_t n, int64_t 
     const __m128i sums = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256(h, 1));
     const __m128 scales = _mm_setr_ps(RowScale(r, d), RowScale(r + stride, d), RowScale(r + 2 * stride, d),
                                       RowScale(r + 3 * stride, d));
-    _mm_storeu_ps(out + j, _mm_mul_ps(_mm_mul_ps(_mm_cvtepi32_ps(sums), scales), _mm_set1_ps(q16.factor)));
+    _mm_storeu_ps(out + j, _mm_mul_ps(_mm_mul_ps(_mm_cvtepi32_ps(sums), scales), _mm_set1_ps(q16.factor())));
   }
   for (; j < n; ++j, r += stride) {
     const __m256i s = RowDot16(r, qi, d);
     __m128i t = _mm_add_epi32(_mm256_castsi256_si128(s), _mm256_extracti128_si256(s, 1));
     t = _mm_add_epi32(t, _mm_shuffle_epi32(t, 0x4e));
     t = _mm_add_epi32(t, _mm_shuffle_epi32(t, 0xb1));
-    out[j] = (static_cast<float>(_mm_cvtsi128_si32(t)) * RowScale(r, d)) * q16.factor;
+    out[j] = (static_cast<float>(_mm_cvtsi128_si32(t)) * RowScale(r, d)) * q16.factor();
   }
 }
 
