@@ -5,7 +5,21 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS=${JOBS:-$(nproc)}
 
-bash scripts/build.sh -DSILK_BUILD_TESTS=ON  # fails where GoogleTest/OpenMesh are missing (setup.sh --test)
+# The shared material (spec/, corpus/) every stage reads: $SILK_SHARED_DIR, else ../shared beside
+# this checkout, else beside the checkout it was cloned from (`git clone . /tmp/x` leaves it behind).
+if [ -z "${SILK_SHARED_DIR:-}" ]; then
+  for candidate in ../shared "$(git config --get remote.origin.url 2>/dev/null || true)/../shared"; do
+    if [ -d "$candidate/spec/golden" ]; then SILK_SHARED_DIR=$(cd "$candidate" && pwd); break; fi
+  done
+fi
+if [ ! -d "${SILK_SHARED_DIR:-../shared}/spec/golden" ] || [ ! -d "${SILK_SHARED_DIR:-../shared}/corpus/dev" ]; then
+  echo "test: no shared material (spec/golden, corpus/dev) in ${SILK_SHARED_DIR:-../shared}: set SILK_SHARED_DIR to the folder that holds it" >&2
+  exit 2
+fi
+export SILK_SHARED_DIR
+echo "test: shared material from $SILK_SHARED_DIR"
+
+bash scripts/build.sh -DSILK_BUILD_TESTS=ON -DSILK_SHARED_DIR="$SILK_SHARED_DIR"  # fails where GoogleTest/OpenMesh are missing (setup.sh --test)
 (cd build && ctest --output-on-failure -j "$JOBS")
 
 echo "=== export/ (pytest, through build/engine/libsilk.so) ==="
@@ -40,7 +54,8 @@ else
 fi
 
 echo "=== sanitizer build (ASan + UBSan) ==="
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSILK_SANITIZE=ON -DSILK_BUILD_BENCH=OFF -DSILK_BUILD_TESTS=ON >/dev/null
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSILK_SANITIZE=ON -DSILK_BUILD_BENCH=OFF -DSILK_BUILD_TESTS=ON \
+  -DSILK_SHARED_DIR="$SILK_SHARED_DIR" >/dev/null
 cmake --build build-asan -j "$JOBS"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --output-on-failure -j "$JOBS" -E 'Slow')
