@@ -13,7 +13,7 @@ if [ -z "${SILK_SHARED_DIR:-}" ]; then
   done
 fi
 if [ ! -d "${SILK_SHARED_DIR:-../shared}/spec/golden" ] || [ ! -d "${SILK_SHARED_DIR:-../shared}/corpus/dev" ]; then
-  echo "test: no shared material (spec/golden, corpus/dev) in ${SILK_SHARED_DIR:-../shared}: set SILK_SHARED_DIR to the folder that holds it" >&2
+  echo "test: no shared material (spec/golden, corpus/dev) in ${SILK_SHARED_DIR:-../shared, nor beside the origin checkout}: set SILK_SHARED_DIR to the folder that holds it" >&2
   exit 2
 fi
 export SILK_SHARED_DIR
