@@ -3,7 +3,7 @@
 # machine cannot run them). Test files that use POSIX-only calls are listed with the reason.
 set(SILK_WINDOWS_TEST_LAYERS io mesh tokenizer decoder capi)
 if(SILK_HAVE_ONNXRUNTIME)
-  list(APPEND SILK_WINDOWS_TEST_LAYERS runtime)
+  list(APPEND SILK_WINDOWS_TEST_LAYERS kernels runtime)
 endif()
 set(SILK_WINDOWS_POSIX_ONLY_TESTS
   io/mesh_reader_test.cpp   # setrlimit (sys/resource.h)

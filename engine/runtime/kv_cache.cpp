@@ -6,7 +6,7 @@
 #include <new>
 #include <string>
 
-#include "runtime/float16.h"
+#include "kernels/cpu/float16.h"
 #include "runtime/model/ort_support.h"
 
 namespace silk {

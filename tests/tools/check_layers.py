@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Enforces the engine's layering: a lower layer never includes a higher one.
-Order: core -> io -> mesh -> tokenizer -> decoder -> runtime -> capi (the C API sees all).
+Order: core -> io -> mesh -> tokenizer -> decoder -> kernels -> runtime -> capi (the C API sees all).
 
   check_layers.py ENGINE_DIR            the layer order inside engine/
   check_layers.py --apps APPS_DIR       silkgen, silktok and common/ (sources both build in)
@@ -17,7 +17,7 @@ Headers in PRIVATE belong to their layer alone (docs/mesh_types.md): no other la
 """
 import pathlib, re, sys, tempfile
 
-ORDER = ["core", "io", "mesh", "tokenizer", "decoder", "runtime", "capi"]
+ORDER = ["core", "io", "mesh", "tokenizer", "decoder", "kernels", "runtime", "capi"]
 APPS = ["silkgen", "silktok", "common"]  # common/: sources both tools build in
 PUBLIC = {"silk/silk.h", "silk/silk.hpp"}
 SOURCES = (".h", ".hpp", ".cpp", ".cc")

@@ -15,7 +15,7 @@ import sys
 
 DECL = re.compile(r"^SILK_API\s+[^;(]*?\b(silk_\w+)\s*\(", re.M)
 # Entries other programs look up by a fixed name: onnxruntime's for a custom-op library
-# (engine/runtime/ops/silk_ops.h).
+# (engine/kernels/silk_ops.h).
 PLUGIN_ENTRIES = {"RegisterCustomOps"}
 
 

@@ -6,8 +6,8 @@
 
 #include "io/files/file_system.h"
 #include "io/files/native_path.h"
-#include "runtime/cpu_info.h"
-#include "runtime/float16.h"
+#include "kernels/cpu/cpu_info.h"
+#include "kernels/cpu/float16.h"
 #include "runtime/kv_cache.h"
 #include "runtime/model/model_files.h"
 #ifdef SILK_ORT_RUNTIME_LOAD

@@ -7,8 +7,8 @@
 #include <string>
 #include <thread>
 
-#include "runtime/ops/silk_ops.h"
-#include "runtime/cpu_info.h"
+#include "kernels/silk_ops.h"
+#include "kernels/cpu/cpu_info.h"
 
 namespace silk {
 

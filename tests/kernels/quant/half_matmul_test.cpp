@@ -1,8 +1,8 @@
-// HalfMatMul (runtime/quant), the kernel behind the ai.silk op of the fp16/int8-cache decoders'
+// HalfMatMul (kernels/quant), the kernel behind the ai.silk op of the fp16/int8-cache decoders'
 // logits head: against the product of the float16 weights (widened by onnxruntime's own
 // conversion) in double precision, vectorized rows against scalar ones, every row-block split
 // and tail length, non-finite inputs propagated.
-#include "runtime/quant/half_matmul.h"
+#include "kernels/quant/half_matmul.h"
 
 #include <gtest/gtest.h>
 

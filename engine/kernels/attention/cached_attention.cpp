@@ -1,13 +1,13 @@
 // CachedAttention: two passes over the cache per (position, head), keys then values, each row
 // read once; float16 and int8 rows are widened in registers instead of in a float32 copy.
-#include "runtime/attention/cached_attention.h"
+#include "kernels/attention/cached_attention.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
 
-#include "runtime/attention/attention_rows.h"
+#include "kernels/attention/attention_rows.h"
 
 namespace silk {
 

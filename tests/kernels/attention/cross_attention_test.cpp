@@ -1,8 +1,8 @@
-// CrossAttention (runtime/attention), the kernel behind the ai.silk op that attends over the
+// CrossAttention (kernels/attention), the kernel behind the ai.silk op that attends over the
 // point cloud's K/V: against a plain double-precision softmax attention over the rows as stored
 // (float32, or float16 widened by onnxruntime's own conversion), vectorized rows against scalar
 // ones, head sizes with and without the vectorized rows, any order of the parallel work.
-#include "runtime/attention/cross_attention.h"
+#include "kernels/attention/cross_attention.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // The ai.silk CachedAttention operator for onnxruntime (docs/model_contract.md, "KV precision"):
 // GroupQueryAttention's inputs, outputs and in-place cache, with a float16 or int8 (+ row scale)
-// cache read at memory speed. Registered with the rest of the domain by runtime/ops/silk_ops.
+// cache read at memory speed. Registered with the rest of the domain by kernels/silk_ops.
 #pragma once
-#include "runtime/attention/cached_attention.h"
-#include "runtime/ops/ort_op_glue.h"
+#include "kernels/attention/cached_attention.h"
+#include "kernels/ort/ort_op_glue.h"
 
 namespace silk {
 

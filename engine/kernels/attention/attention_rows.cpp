@@ -1,7 +1,7 @@
 // Scalar and AVX2 row primitives for CachedAttention (float32, float16 and int8 + scale rows); the
 // vectorized ones are compiled for AVX2+FMA+F16C with a target attribute and used only when the
 // CPU reports those features.
-#include "runtime/attention/attention_rows.h"
+#include "kernels/attention/attention_rows.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "runtime/float16.h"
+#include "kernels/cpu/float16.h"
 
 #if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
 #define SILK_ATTENTION_AVX2 1

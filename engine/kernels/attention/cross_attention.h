@@ -7,8 +7,8 @@
 #pragma once
 #include <cstdint>
 
-#include "runtime/attention/cached_attention.h"
-#include "runtime/cpu_kernels.h"
+#include "kernels/attention/cached_attention.h"
+#include "kernels/cpu/cpu_kernels.h"
 
 namespace silk {
 

@@ -1,6 +1,6 @@
 // Linux topology from /sys/devices/system/cpu/cpuN/topology, restricted to the affinity mask
 // (Windows: the processor-core records of GetLogicalProcessorInformationEx, all groups).
-#include "runtime/cpu_info.h"
+#include "kernels/cpu/cpu_info.h"
 
 #ifdef _WIN32
 #include <algorithm>

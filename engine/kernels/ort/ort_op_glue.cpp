@@ -1,5 +1,5 @@
 // Shared onnxruntime custom-op plumbing for the ai.silk ops (see ort_op_glue.h).
-#include "runtime/ops/ort_op_glue.h"
+#include "kernels/ort/ort_op_glue.h"
 
 #include <cstring>
 

@@ -1,8 +1,8 @@
 // The ai.silk HalfMatMul operator for onnxruntime (docs/model_contract.md, "Logits head"): A
 // float32 [..., K] times the transpose of B float16 [N, K], float32 out, computed by
-// runtime/quant/half_matmul. Registered with the domain by runtime/ops/silk_ops.
+// kernels/quant/half_matmul. Registered with the domain by kernels/silk_ops.
 #pragma once
-#include "runtime/ops/ort_op_glue.h"
+#include "kernels/ort/ort_op_glue.h"
 
 namespace silk {
 

@@ -5,7 +5,7 @@
 #pragma once
 #include <cstdint>
 
-#include "runtime/attention/cached_attention.h"
+#include "kernels/attention/cached_attention.h"
 
 namespace silk {
 

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "runtime/cpu_kernels.h"
+#include "kernels/cpu/cpu_kernels.h"
 
 namespace silk {
 

@@ -1,11 +1,11 @@
 // HalfMatMul: each float16 weight row is read once per call and dotted with every activation row
 // (AVX2 + F16C: four accumulators, the stream prefetched ahead; plain C++ otherwise), rows spread
 // over the caller's pool in blocks.
-#include "runtime/quant/half_matmul.h"
+#include "kernels/quant/half_matmul.h"
 
 #include <algorithm>
 
-#include "runtime/float16.h"
+#include "kernels/cpu/float16.h"
 
 #if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
 #define SILK_HALF_AVX2 1

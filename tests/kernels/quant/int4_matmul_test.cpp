@@ -1,8 +1,8 @@
-// Int4MatMul (runtime/quant), the kernel behind the ai.silk op of INT4 decoders: against the exact
+// Int4MatMul (kernels/quant), the kernel behind the ai.silk op of INT4 decoders: against the exact
 // product of the dequantized weights in double precision (within the bound that int8 activations
 // allow, derived here), against the same int8 activations computed independently (to float
 // rounding), vectorized rows against scalar ones, any block size and shape it accepts.
-#include "runtime/quant/int4_matmul.h"
+#include "kernels/quant/int4_matmul.h"
 
 #include <gtest/gtest.h>
 

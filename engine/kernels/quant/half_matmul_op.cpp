@@ -1,12 +1,12 @@
 // onnxruntime custom-op glue for HalfMatMul: inputs A [..., K] float32 and B [N, K] float16,
 // output [..., N] float32; no attributes (K and N are B's dims). Shapes that do not fit give a
 // status naming the node, never a crash.
-#include "runtime/quant/half_matmul_op.h"
+#include "kernels/quant/half_matmul_op.h"
 
 #include <string>
 #include <vector>
 
-#include "runtime/quant/half_matmul.h"
+#include "kernels/quant/half_matmul.h"
 
 namespace silk {
 

@@ -1,7 +1,7 @@
-// onnxruntime custom-op glue for CachedAttention (runtime/ops/ort_op_glue.h: the plain C API,
+// onnxruntime custom-op glue for CachedAttention (kernels/ort/ort_op_glue.h: the plain C API,
 // so the same code serves libsilk's onnxruntime and Python's). Bad shapes give a status naming
 // the node, never a crash.
-#include "runtime/attention/cached_attention_op.h"
+#include "kernels/attention/cached_attention_op.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/attention/cached_attention.h"
+#include "kernels/attention/cached_attention.h"
 
 namespace silk {
 

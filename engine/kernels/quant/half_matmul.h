@@ -5,7 +5,7 @@
 #pragma once
 #include <cstdint>
 
-#include "runtime/cpu_kernels.h"
+#include "kernels/cpu/cpu_kernels.h"
 
 namespace silk {
 

@@ -1,6 +1,6 @@
 // IEEE binary16 <-> binary32 in plain C++: exact widening and round-to-nearest-even narrowing
 // (what F16C does), for the ai.silk kernels' scalar rows and for CPUs without F16C.
-#include "runtime/float16.h"
+#include "kernels/cpu/float16.h"
 
 #include <cmath>
 #include <cstring>

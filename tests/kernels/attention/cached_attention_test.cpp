@@ -1,8 +1,8 @@
-// CachedAttention (runtime/attention), the kernel behind the ai.silk op of fp16/int8-cache decoders:
+// CachedAttention (kernels/attention), the kernel behind the ai.silk op of fp16/int8-cache decoders:
 // against a plain double-precision reference, vectorized rows against scalar ones, float16
 // rounding against onnxruntime's own conversion and int8 rows against the contract's formula
 // computed here (both independent implementations).
-#include "runtime/attention/cached_attention.h"
+#include "kernels/attention/cached_attention.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 
 #include <onnxruntime_cxx_api.h>
 
-#include "runtime/attention/attention_rows.h"
+#include "kernels/attention/attention_rows.h"
 
 namespace silk {
 namespace {

@@ -1,16 +1,16 @@
 // One ai.silk domain per onnxruntime API table, made once and kept for the process: sessions
 // refer to its op tables for as long as they live.
-#include "runtime/ops/silk_ops.h"
+#include "kernels/silk_ops.h"
 
 #include <memory>
 #include <mutex>
 #include <utility>
 #include <vector>
 
-#include "runtime/attention/cached_attention_op.h"
-#include "runtime/attention/cross_attention_op.h"
-#include "runtime/quant/half_matmul_op.h"
-#include "runtime/quant/int4_matmul_op.h"
+#include "kernels/attention/cached_attention_op.h"
+#include "kernels/attention/cross_attention_op.h"
+#include "kernels/quant/half_matmul_op.h"
+#include "kernels/quant/int4_matmul_op.h"
 
 namespace silk {
 

@@ -1,13 +1,13 @@
 // onnxruntime custom-op glue for CrossAttention: inputs query [B, H, T, D] float32, key and value
 // [B, H, M, D] (float32 or float16: the op table's element), attribute scale; output [B, H, T, D]
 // float32. Shapes that do not fit give a status naming the node, never a crash.
-#include "runtime/attention/cross_attention_op.h"
+#include "kernels/attention/cross_attention_op.h"
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "runtime/attention/cross_attention.h"
+#include "kernels/attention/cross_attention.h"
 
 namespace silk {
 

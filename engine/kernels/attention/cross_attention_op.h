@@ -1,10 +1,10 @@
 // The ai.silk CrossAttention operator for onnxruntime (docs/model_contract.md): a decoder
 // layer's attention over the point cloud's cross K/V in one node, in place of MatMul (transposed
 // key), Mul, Softmax and MatMul. One op name, two kernels: float32 or float16 key/value rows
-// (onnxruntime picks by the node's input type). Registered with the domain by runtime/ops/silk_ops.
+// (onnxruntime picks by the node's input type). Registered with the domain by kernels/silk_ops.
 #pragma once
-#include "runtime/attention/cached_attention.h"
-#include "runtime/ops/ort_op_glue.h"
+#include "kernels/attention/cached_attention.h"
+#include "kernels/ort/ort_op_glue.h"
 
 namespace silk {
 

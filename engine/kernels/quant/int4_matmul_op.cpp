@@ -2,13 +2,13 @@
 // block_size / 2] uint8 and scales [N * K / block_size] float32 (MatMulNBits' own tensors, so
 // the rewrite moves no weights); attributes K, N, block_size (and bits, which must be 4).
 // Shapes that do not fit give a status naming the node, never a crash.
-#include "runtime/quant/int4_matmul_op.h"
+#include "kernels/quant/int4_matmul_op.h"
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "runtime/quant/int4_matmul.h"
+#include "kernels/quant/int4_matmul.h"
 
 namespace silk {
 

@@ -1,11 +1,11 @@
 // CrossAttention: per (head, position), one pass of dot products over the head's key rows, the
 // softmax, one weighted pass over its value rows (the float32 or float16 rows of CachedAttention).
-#include "runtime/attention/cross_attention.h"
+#include "kernels/attention/cross_attention.h"
 
 #include <algorithm>
 #include <vector>
 
-#include "runtime/attention/attention_rows.h"
+#include "kernels/attention/attention_rows.h"
 
 namespace silk {
 

@@ -1,8 +1,8 @@
 // The ai.silk Int4MatMul operator for onnxruntime (docs/model_contract.md, "INT4 weights"):
 // com.microsoft MatMulNBits' inputs and attributes for bits 4 without zero points, computed by
-// runtime/quant/int4_matmul at memory speed. Registered with the domain by runtime/ops/silk_ops.
+// kernels/quant/int4_matmul at memory speed. Registered with the domain by kernels/silk_ops.
 #pragma once
-#include "runtime/ops/ort_op_glue.h"
+#include "kernels/ort/ort_op_glue.h"
 
 namespace silk {
 
