@@ -10,7 +10,8 @@ Beside the table: the wall time per call without the profiler, and the bytes one
     python3 bench/decoder_profile.py MODEL_DIR [--decoder decoder_int4] [--kv fp32 fp16 int8]
         [--depths 0 4096] [--calls 12] [--threads 2] [--top 10]
 
-libsilk is registered with onnxruntime for the ai.silk ops ($SILK_LIBRARY or the build tree).
+libsilk_ops is registered with onnxruntime for the ai.silk ops (beside $SILK_LIBRARY or the build tree's
+libsilk; $SILK_OPS_LIBRARY).
 """
 from __future__ import annotations
 

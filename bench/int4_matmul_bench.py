@@ -7,7 +7,8 @@ turns, plus the largest relative difference of their outputs.
 
     python3 bench/int4_matmul_bench.py [--layers 24] [--calls 30] [--rounds 3] [--threads 2]
 
-libsilk is registered with onnxruntime for the ai.silk op ($SILK_LIBRARY or the build tree).
+libsilk_ops is registered with onnxruntime for the ai.silk op (beside $SILK_LIBRARY or the build tree's
+libsilk; $SILK_OPS_LIBRARY).
 """
 from __future__ import annotations
 

@@ -6,6 +6,7 @@
 # from Debian bookworm they reference glibc 2.35/2.36 (_dl_find_object, arc4random), which would
 # raise the tag to manylinux_2_36 (docs/wheel.md). Layout inside site-packages:
 #   silk_mesh/lib/libsilk.so.<major>   (onnxruntime: the onnxruntime package, loaded at run time)
+#   silk_mesh/lib/libsilk_ops.so       (the ai.silk kernels for Python's onnxruntime; engine/kernels)
 #   silk_mesh/bin/silkgen, silktok     (RPATH $ORIGIN/../lib; run through the console scripts)
 #   silk_mesh/model/                   (the bundled model, where silk_mesh and silkgen look first)
 # The Python packages silk_mesh and silk_export come from pyproject.toml's wheel.packages.
@@ -19,6 +20,8 @@ function(silk_wheel_install)
   # One file under the soname (a wheel has no symbolic links).
   set_target_properties(silk PROPERTIES VERSION ${PROJECT_VERSION_MAJOR})
   install(TARGETS silk LIBRARY DESTINATION silk_mesh/lib NAMELINK_SKIP COMPONENT silk_wheel)
+  # libsilk_ops beside it: silk_export's onnxruntime sessions register the ai.silk kernels from it.
+  install(TARGETS silk_ops LIBRARY DESTINATION silk_mesh/lib COMPONENT silk_wheel)
   foreach(app silkgen silktok)
     if(TARGET ${app})
       set_target_properties(${app} PROPERTIES INSTALL_RPATH "$ORIGIN/../lib")

@@ -61,9 +61,3 @@ OrtStatus* AddSilkOps(OrtSessionOptions* options, const OrtApi* api) {
 }
 
 }  // namespace silk
-
-extern "C" OrtStatus* ORT_API_CALL RegisterCustomOps(OrtSessionOptions* options, const OrtApiBase* api_base) {
-  const OrtApi* api = api_base ? api_base->GetApi(ORT_API_VERSION) : nullptr;
-  if (!api) return nullptr;  // an onnxruntime older than the headers: nothing can be reported through it
-  return silk::AddSilkOps(options, api);
-}

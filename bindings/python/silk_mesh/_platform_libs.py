@@ -46,6 +46,16 @@ def library_name(plat: str | None = None) -> str:
     return _PLATFORMS[_key(plat)][3]
 
 
+# libsilk_ops, onnxruntime's custom-op library of the ai.silk kernels (engine/kernels), as CMake
+# names it on each platform; it lies beside libsilk.
+_OPS_NAMES = {"win32": "libsilk_ops.dll", "linux": "libsilk_ops.so", "darwin": "libsilk_ops.dylib"}
+
+
+def ops_library_name(plat: str | None = None) -> str:
+    """libsilk_ops' file name on `plat` (default: this one)."""
+    return _OPS_NAMES[_key(plat)]
+
+
 def dependency_patterns(plat: str | None = None) -> tuple[str, ...]:
     """onnxruntime's file names (glob patterns), loaded first from libsilk's folder."""
     return _PLATFORMS[_key(plat)][1]

@@ -7,10 +7,16 @@ import numpy as np
 
 
 def silk_ops_library() -> str:
-    """libsilk, which is also onnxruntime's custom-op library for the ai.silk ops of the fp16- and
-    int8-cache decoders (onnx/kv_precision.py); found as silk_mesh finds it ($SILK_LIBRARY, ...)."""
+    """libsilk_ops, onnxruntime's custom-op library for the ai.silk ops of the fp16- and int8-cache
+    decoders (onnx/kv_precision.py): $SILK_OPS_LIBRARY, else the file beside the libsilk that
+    silk_mesh finds ($SILK_LIBRARY, the package's lib/, the build tree, ...)."""
+    import os
+    from silk_mesh import _platform_libs
     from silk_mesh._library import library_path
-    return library_path()
+    env = os.environ.get("SILK_OPS_LIBRARY")
+    if env:
+        return env
+    return os.path.join(os.path.dirname(library_path()), _platform_libs.ops_library_name())
 
 
 def uses_silk_ops(path) -> bool:
@@ -26,7 +32,7 @@ def uses_silk_ops(path) -> bool:
 
 
 def session(path, threads: int = 1):
-    """An onnxruntime session on the CPU; a graph with ai.silk ops gets libsilk registered."""
+    """An onnxruntime session on the CPU; a graph with ai.silk ops gets libsilk_ops registered."""
     import onnxruntime as ort
     so = ort.SessionOptions()
     so.intra_op_num_threads = threads
@@ -36,8 +42,9 @@ def session(path, threads: int = 1):
         try:
             so.register_custom_ops_library(lib)
         except Exception as e:
-            raise RuntimeError(f"{path}: uses libsilk's ai.silk ops, and libsilk ('{lib}') cannot be "
-                               f"registered with onnxruntime: {e} (set SILK_LIBRARY to a built libsilk)") from e
+            raise RuntimeError(f"{path}: uses libsilk's ai.silk ops, and libsilk_ops ('{lib}') cannot be "
+                               f"registered with onnxruntime: {e} (set SILK_LIBRARY to a built libsilk with "
+                               f"libsilk_ops beside it, or SILK_OPS_LIBRARY)") from e
     return ort.InferenceSession(str(path), so, providers=["CPUExecutionProvider"])
 
 
