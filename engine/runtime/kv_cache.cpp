@@ -2,11 +2,9 @@
 // message instead of std::bad_alloc.
 #include "runtime/kv_cache.h"
 
-#include <cstring>
 #include <new>
 #include <string>
 
-#include "kernels/cpu/float16.h"
 #include "runtime/model/ort_support.h"
 
 namespace silk {
@@ -32,35 +30,15 @@ Status KvCache::Reserve(int64_t capacity, const KvShape& shape) {
   return Status::Ok();
 }
 
-namespace {
-
-// One row of D values as floats.
-void RowToFloats(const unsigned char* row, const KvShape& s, float* out) {
-  const int64_t D = s.head_dim;
-  if (s.precision == KvPrecision::kFp32) {
-    std::memcpy(out, row, static_cast<size_t>(D) * sizeof(float));
-  } else if (s.precision == KvPrecision::kFp16) {
-    uint16_t half[1];
-    for (int64_t i = 0; i < D; ++i) {
-      std::memcpy(half, row + 2 * i, 2);
-      out[i] = HalfToFloat(half[0]);
-    }
-  } else {
-    float scale;
-    std::memcpy(&scale, row + D, sizeof(float));
-    for (int64_t i = 0; i < D; ++i) out[i] = static_cast<float>(static_cast<int8_t>(row[i])) * scale;
-  }
-}
-
-}  // namespace
-
 void KvCache::CopyTimeMajor(float* out) const {
   const int64_t H = shape_.heads, D = shape_.head_dim, row = shape_.row_bytes();
   for (int64_t t = 0; t < length_; ++t)
     for (int64_t l = 0; l < shape_.layers; ++l)
       for (int kv = 0; kv < 2; ++kv)
-        for (int64_t h = 0; h < H; ++h, out += D)
-          RowToFloats(static_cast<const unsigned char*>(block(l, kv)) + (h * capacity_ + t) * row, shape_, out);
+        for (int64_t h = 0; h < H; ++h, out += D) {
+          const auto* base = static_cast<const unsigned char*>(block(l, kv));
+          CacheRowToFloats(shape_.element(), base + (h * capacity_ + t) * row, D, out);
+        }
 }
 
 }  // namespace silk

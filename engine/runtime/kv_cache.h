@@ -8,16 +8,26 @@
 #include <memory>
 
 #include "core/status.h"
+#include "kernels/attention/cache_row.h"
 #include "runtime/model/model_config.h"
 
 namespace silk {
 
+// The kernels' element type of a KV precision's cache rows.
+inline CacheElement CacheElementOf(KvPrecision precision) {
+  return precision == KvPrecision::kInt8   ? CacheElement::kInt8
+         : precision == KvPrecision::kFp16 ? CacheElement::kFloat16
+                                           : CacheElement::kFloat32;
+}
+
 struct KvShape {
   int64_t layers = 0, heads = 0, head_dim = 0;
   KvPrecision precision = KvPrecision::kFp32;
-  // The cache tensors' last dimension: D, or D + 4 for int8 rows (D values, then the scale's bytes).
-  int64_t row_dims() const { return precision == KvPrecision::kInt8 ? head_dim + 4 : head_dim; }
-  int64_t row_bytes() const { return row_dims() * (precision == KvPrecision::kFp32 ? 4 : precision == KvPrecision::kFp16 ? 2 : 1); }
+  // The kernels' row layout (kernels/attention/cache_row.h): the cache tensors' last dimension
+  // (D, or D + 4 for int8 rows: D values, then the scale's bytes) and a row's bytes.
+  CacheElement element() const { return CacheElementOf(precision); }
+  int64_t row_dims() const { return CacheRowElements(element(), head_dim); }
+  int64_t row_bytes() const { return static_cast<int64_t>(CacheRowBytes(element(), head_dim)); }
   int64_t position_bytes() const { return layers * 2 * heads * row_bytes(); }  // K+V of one position
   int64_t position_values() const { return layers * 2 * heads * head_dim; }    // as floats (CopyTimeMajor)
 };

@@ -59,15 +59,6 @@ void AttendOne(void* state, size_t index) {
 
 }  // namespace
 
-int64_t CacheRowElements(CacheElement element, int64_t head_dim) {
-  return element == CacheElement::kInt8 ? head_dim + 4 : head_dim;
-}
-
-size_t CacheRowBytes(CacheElement element, int64_t head_dim) {
-  const size_t element_bytes = element == CacheElement::kFloat32 ? 4 : element == CacheElement::kFloat16 ? 2 : 1;
-  return static_cast<size_t>(CacheRowElements(element, head_dim)) * element_bytes;
-}
-
 bool CachedAttentionVectorized() { return AttentionRowsFor(CacheElement::kFloat32, 64, RowKernels::kBest).vectorized; }
 
 void CachedAttention(const AttentionShape& s, CacheElement element, const AttentionBuffers& b,

@@ -8,17 +8,10 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "kernels/attention/cache_row.h"
 #include "kernels/cpu/cpu_kernels.h"
 
 namespace silk {
-
-enum class CacheElement { kFloat32, kFloat16, kInt8 };
-// Bytes of one cached row (one position of one kv head): head_dim floats or float16s, or for
-// kInt8 head_dim int8 values followed by the row's float32 scale (value i = int8[i] * scale;
-// the 4 bytes are the float's own, as memcpy writes them: little-endian on every target).
-size_t CacheRowBytes(CacheElement element, int64_t head_dim);
-// Elements of the cache tensor's last dimension: head_dim, or head_dim + 4 for kInt8.
-int64_t CacheRowElements(CacheElement element, int64_t head_dim);
 
 struct AttentionShape {
   int64_t heads = 0;     // query heads
