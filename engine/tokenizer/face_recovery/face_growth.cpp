@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <deque>
 
-#include "tokenizer/layering/layering_hints.h"
+#include "tokenizer/face_recovery/layering_hints.h"
 
 namespace silk {
 namespace {

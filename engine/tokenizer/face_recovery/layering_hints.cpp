@@ -1,6 +1,6 @@
 // Derives the introducer of every vertex (its first neighbour in the previous layer) and
 // turns runs of equal introducers into oriented hint faces.
-#include "tokenizer/layering/layering_hints.h"
+#include "tokenizer/face_recovery/layering_hints.h"
 
 namespace silk {
 
