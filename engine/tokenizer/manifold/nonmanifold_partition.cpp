@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "tokenizer/layering/reference_order_emulation.h"
+#include "tokenizer/manifold/reference_order_emulation.h"
 #include "tokenizer/refusal.h"
 #include "tokenizer/manifold/vertex_edge_graph.h"
 

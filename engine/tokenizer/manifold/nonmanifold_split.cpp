@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "tokenizer/manifold/nonmanifold_partition.h"
-#include "tokenizer/layering/reference_order_emulation.h"
+#include "tokenizer/manifold/reference_order_emulation.h"
 #include "tokenizer/refusal.h"
 #include "tokenizer/manifold/union_find.h"
 #include "tokenizer/manifold/vertex_edge_graph.h"

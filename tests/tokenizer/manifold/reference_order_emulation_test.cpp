@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "tokenizer/layering/reference_order_emulation.h"
+#include "tokenizer/manifold/reference_order_emulation.h"
 
 namespace silk {
 namespace {

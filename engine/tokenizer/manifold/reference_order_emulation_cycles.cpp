@@ -2,7 +2,7 @@
 // Tarjan's strongly connected components plus Johnson's search, in the reference's order.
 #include <algorithm>
 
-#include "tokenizer/layering/reference_order_emulation.h"
+#include "tokenizer/manifold/reference_order_emulation.h"
 
 namespace silk {
 namespace refemu {
