@@ -32,7 +32,7 @@
 #include "decoder/grammar_rules.h"
 #include "decoder/layer_size_set.h"
 #include "decoder/token_mask.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 
 namespace silk {
 

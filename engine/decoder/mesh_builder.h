@@ -11,7 +11,7 @@
 #include "core/status.h"
 #include "decoder/grammar.h"
 #include "tokenizer/component_mesh.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 #include "tokenizer/tokenizer.h"
 
 namespace silk {

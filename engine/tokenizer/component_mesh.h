@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 #include "tokenizer/tokenizer.h"
 
 namespace silk {

@@ -3,7 +3,7 @@
 // and its tests (tests/tools/check_layers.py).
 #pragma once
 #include "core/status.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 #include "tokenizer/processed_mesh.h"
 
 namespace silk {

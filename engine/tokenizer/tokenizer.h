@@ -9,7 +9,7 @@
 #include "core/status.h"
 #include "io/io_mesh.h"
 #include "tokenizer/cleanup/quantize.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 
 namespace silk {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "face_compare.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 
 namespace silk::testing {
 

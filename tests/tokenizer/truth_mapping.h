@@ -8,7 +8,7 @@
 
 #include "face_compare.h"
 #include "tokenizer/face_recovery/component_graph.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 
 namespace silk::testing {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "core/status.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 
 namespace silk {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/status.h"
-#include "tokenizer/packing/layered_stream.h"
+#include "tokenizer/layering/layered_stream.h"
 
 namespace silk {
 
