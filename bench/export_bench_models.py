@@ -22,7 +22,7 @@ sys.path.insert(0, str(REPO / "export"))
 import torch  # noqa: E402
 
 from silk_export.json_io import dumps, write_json  # noqa: E402
-from silk_export.models.registry import get_architecture  # noqa: E402
+from silk_export.registry import get_architecture  # noqa: E402
 from silk_export.models.configs import get_config  # noqa: E402
 from silk_export.models.silk_model import SilkModel  # noqa: E402
 from silk_export.onnx.export import export_graphs, export_model, sidecar, transpose_linears  # noqa: E402

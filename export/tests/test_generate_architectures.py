@@ -15,7 +15,7 @@ from silk_export.evaluation.generate import generate_paths, sample_tokens
 from silk_export.models.architecture import Architecture
 from silk_export.models.checkpoint import model_from_checkpoint, save_state
 from silk_export.models.configs import ModelConfig
-from silk_export.models.registry import ARCHITECTURES, get_architecture
+from silk_export.registry import ARCHITECTURES, get_architecture
 from silk_export.official.checkpoint import load_official
 
 # One tiny configuration per registered architecture (a new architecture needs its entry here).

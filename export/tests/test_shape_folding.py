@@ -13,7 +13,7 @@ onnx = pytest.importorskip("onnx")
 ort = pytest.importorskip("onnxruntime")
 from onnx import TensorProto, helper  # noqa: E402
 
-from silk_export.models.registry import ARCHITECTURES  # noqa: E402
+from silk_export.registry import ARCHITECTURES  # noqa: E402
 from silk_export.onnx.export import export_graphs, quantize_decoder, quantize_decoder_int4, transpose_linears  # noqa: E402
 from silk_export.onnx.shape_folding import fold_shapes  # noqa: E402
 from test_generate_architectures import tiny_model  # noqa: E402  (one tiny configuration per architecture)

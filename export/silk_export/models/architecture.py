@@ -1,6 +1,6 @@
 """The interface every network family behind the model contract (docs/model_contract.md)
 implements, so training, the ONNX graphs, the exporter, PyTorch generation and the model card
-reach a model only through it. The registered families are in registry.py.
+reach a model only through it. The registered families are in silk_export/registry.py.
 
 An architecture is an nn.Module subclass of `Architecture` that provides
 

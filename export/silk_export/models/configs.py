@@ -1,6 +1,6 @@
 """Model sizes. `micro` is the CPU-trainable default bundled model; tiny/small/paper follow the
 issue (paper = the Mesh Silksong scale: 1024 wide, 24 layers, 16 heads). `arch` picks the network
-(models/registry.py): "silk" (ours) or "official" (the released Mesh Silksong network,
+(silk_export/registry.py): "silk" (ours) or "official" (the released Mesh Silksong network,
 whose extra sizes are the fields after `arch`; 0 = not used by the architecture)."""
 from __future__ import annotations
 

@@ -14,7 +14,7 @@ from .. import __version__
 from ..json_io import dumps, write_json
 from ..models.configs import ModelConfig
 from ..models.finite import check_finite
-from ..models.registry import get_architecture
+from ..registry import get_architecture
 from ..vocab import load_vocab
 from .graphs import DecoderGraph, EncoderGraph, decoder_input_names, decoder_output_names
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..json_io import dumps
-from ..models.registry import get_architecture
+from ..registry import get_architecture
 from .losslog import read_log
 
 

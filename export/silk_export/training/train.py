@@ -24,8 +24,8 @@ from ..data.sharded_dataset import ShardedSource, dataset_rows, is_dataset
 from ..json_io import write_json
 from ..models.checkpoint import load_checkpoint, save_state
 from ..models.configs import ModelConfig, config_from_dict, get_config
-from ..models.registry import build_model as architecture_model
-from ..models.registry import get_architecture
+from ..registry import build_model as architecture_model
+from ..registry import get_architecture
 from .distributed import DistEnv, full_state, gradient_sync, init_distributed, load_full_state, wrap_model
 from .losslog import LossLog, plot_losses
 from .schedule import cosine_lr

@@ -1,12 +1,12 @@
 """The architecture registry: one entry per network family that can sit behind the model contract
-(docs/model_contract.md), each an implementation of the Architecture interface (architecture.py).
+(docs/model_contract.md), each an implementation of the Architecture interface (models/architecture.py).
 A ModelConfig's `arch` names its entry; checkpoints, training and the exporter build models here."""
 from __future__ import annotations
 
-from ..official.model import OfficialModel
-from .architecture import Architecture
-from .configs import ModelConfig
-from .silk_model import SilkModel
+from .models.architecture import Architecture
+from .models.configs import ModelConfig
+from .models.silk_model import SilkModel
+from .official.model import OfficialModel
 
 ARCHITECTURES: dict[str, type[Architecture]] = {cls.name: cls for cls in (SilkModel, OfficialModel)}
 
