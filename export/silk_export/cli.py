@@ -115,7 +115,7 @@ def _add_pack_checkpoint(sub) -> None:
 
 
 def _cmd_pack_checkpoint(a) -> int:
-    from .models.checkpoint import pack_checkpoint
+    from .checkpoint import pack_checkpoint
     try:
         print(dumps(pack_checkpoint(Path(a.checkpoint), Path(a.out), a.max_bytes), "null"))
     except (OSError, ValueError, RuntimeError, KeyError) as e:  # unreadable or not a checkpoint, too big
@@ -140,7 +140,7 @@ def _add_export(sub) -> None:
 
 
 def _cmd_export(a) -> int:
-    from .models.checkpoint import model_from_checkpoint
+    from .checkpoint import model_from_checkpoint
     from .models.finite import check_finite
     from .onnx.export import export_model
     model, ck = model_from_checkpoint(Path(a.checkpoint))

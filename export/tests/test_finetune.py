@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import torch
 
-from silk_export.models.checkpoint import model_from_checkpoint
+from silk_export.checkpoint import model_from_checkpoint
 from silk_export.cli import main
 from silk_export.official.checkpoint import load_official
 from silk_export.data.sharded_dataset import ShardedSource, dataset_rows

@@ -13,7 +13,7 @@ import torch
 
 from silk_export.evaluation.generate import generate_paths, sample_tokens
 from silk_export.models.architecture import Architecture
-from silk_export.models.checkpoint import model_from_checkpoint, save_state
+from silk_export.checkpoint import model_from_checkpoint, save_state
 from silk_export.models.configs import ModelConfig
 from silk_export.registry import ARCHITECTURES, get_architecture
 from silk_export.official.checkpoint import load_official

@@ -14,7 +14,7 @@ import torch
 import silk_mesh
 from silk_export.cli import main
 from silk_export.json_io import NonFiniteJSONError, dumps, jsonl_line, write_json
-from silk_export.models.checkpoint import save_state
+from silk_export.checkpoint import save_state
 from silk_export.models.configs import ModelConfig
 from silk_export.registry import get_architecture
 from silk_export.paths import REPO_ROOT

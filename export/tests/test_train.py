@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import torch
 
-from silk_export.models.checkpoint import model_from_checkpoint
+from silk_export.checkpoint import model_from_checkpoint
 from silk_export.models.configs import ModelConfig
 from silk_export.data.dataset_index import build_index
 from silk_export.models.silk_model import SilkModel
@@ -83,7 +83,7 @@ def test_resume_reproduces_the_uninterrupted_run(data, tmp_path):
 def test_packed_checkpoint_is_smaller_and_resumes_the_run(data, tmp_path):
     """The repository's resumable checkpoint: bf16 optimizer moments, same weights and step; a run
     resumed from it continues the same schedule and lands close to the uninterrupted run."""
-    from silk_export.models.checkpoint import pack_checkpoint
+    from silk_export.checkpoint import pack_checkpoint
 
     torch.set_num_threads(1)
     train(args(data, tmp_path / "full", 6))

@@ -17,7 +17,7 @@ from ..data.geometry import normalize_vertices
 from ..data.pointcloud import point_cloud
 from ..json_io import write_json
 from ..models.architecture import Architecture
-from ..models.checkpoint import model_from_checkpoint
+from ..checkpoint import model_from_checkpoint
 
 
 @torch.no_grad()

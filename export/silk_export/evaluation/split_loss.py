@@ -16,7 +16,7 @@ import torch
 
 import silk_mesh
 from ..data.dataset_index import read_index
-from ..models.checkpoint import model_from_checkpoint
+from ..checkpoint import model_from_checkpoint
 from ..training.train import fixed_val_samples, evaluate_loss, select_rows
 
 

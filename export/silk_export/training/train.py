@@ -22,7 +22,7 @@ from ..data.resample import ProgressiveBalancedSampler
 from ..data.samples import MeshCache, TooLong, collate
 from ..data.sharded_dataset import ShardedSource, dataset_rows, is_dataset
 from ..json_io import write_json
-from ..models.checkpoint import load_checkpoint, save_state
+from ..checkpoint import load_checkpoint, save_state
 from ..models.configs import ModelConfig, config_from_dict, get_config
 from ..registry import build_model as architecture_model
 from ..registry import get_architecture

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import torch
 
-from .configs import config_from_dict
-from ..registry import build_model
+from .models.configs import config_from_dict
+from .registry import build_model
 
 
 def save_state(path: Path, config: dict, model_state: dict, optim_state: dict | None, step: int,
