@@ -33,7 +33,7 @@ RANDOM = {"steps": 0, "data": "random weights (benchmark)"}
 def export_official(out: Path, seed: int, int4_block: int, int4_accuracy: int) -> int:
     """Release-size official network, random weights; all three decoders + fidelity figures."""
     from silk_export.official.checkpoint import RELEASE_SIZES, official_config
-    from silk_export.official.importer import write_variants
+    from silk_export.import_official import write_variants
     from silk_export.official.model import OfficialModel
     model = OfficialModel(official_config(RELEASE_SIZES, {})).init_random(seed=seed)
     cfg, params = model.cfg, model.num_parameters()

@@ -30,7 +30,7 @@ import onnxruntime as ort  # noqa: E402
 
 from silk_export.binding import libsilk  # noqa: E402
 from silk_export.data.geometry import normalize_vertices  # noqa: E402
-from silk_export.official.importer import INT4_ACCURACY_LEVEL, INT4_BLOCK_SIZE  # noqa: E402
+from silk_export.import_official import INT4_ACCURACY_LEVEL, INT4_BLOCK_SIZE  # noqa: E402
 from silk_export.onnx.export import quantize_decoder_int4  # noqa: E402
 from silk_export.data.pointcloud import point_cloud  # noqa: E402
 

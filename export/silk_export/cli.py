@@ -178,7 +178,7 @@ def _add_import_official(sub) -> None:
 
 
 def _cmd_import_official(a) -> int:
-    from .official.importer import import_official
+    from .import_official import import_official
     from .official.state_dict_file import StateDictError
     try:
         import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,

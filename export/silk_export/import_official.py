@@ -12,14 +12,14 @@ import time
 from dataclasses import asdict
 from pathlib import Path
 
-from ..json_io import write_json
-from ..onnx import fidelity
-from ..onnx.kv_precision import KV_PRECISIONS, add_kv_variants
-from ..onnx.export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
-                           transpose_linears)
-from ..vocab import load_vocab
-from .card import write_official_card
-from .checkpoint import load_official
+from .json_io import write_json
+from .official.card import write_official_card
+from .official.checkpoint import load_official
+from .onnx import fidelity
+from .onnx.export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
+                          transpose_linears)
+from .onnx.kv_precision import KV_PRECISIONS, add_kv_variants
+from .vocab import load_vocab
 
 PRECISIONS = ("fp32", "int8", "int4", "auto")
 SOURCE_LICENCE = ("The official Mesh Silksong code (gaochao-s/Mesh-Silksong) is MIT-licensed; the weights "
