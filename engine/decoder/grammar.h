@@ -24,7 +24,6 @@
 #pragma once
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "core/status.h"
@@ -47,12 +46,6 @@ struct GrammarOptions {
   int32_t max_length = 10240;  // tokens incl. EOS (token_format.md §9); 0 = unlimited (long corpus streams)
   WindowRule window_rule = WindowRule::kCanonical;
   bool geometric_rules = true;  // zero-length edges refused
-};
-
-// One closed layer, reported to the progress callback.
-struct LayerProgress {
-  int32_t component = 0, layer = 0, layer_size = 0;
-  int64_t vertices_total = 0;  // all vertices read so far (closed layers)
 };
 
 // A disagreement of two rows about one in-layer pair, under WindowRule::kUnion.
@@ -101,8 +94,6 @@ class Grammar {
   int32_t closed_layers() const { return closed_layers_; }
   const std::vector<WindowFinding>& window_findings() const { return findings_; }
   const GrammarOptions& options() const { return options_; }
-  // Called at every U/E (not copied by Clone, not replayed by Rewind).
-  void SetProgressCallback(std::function<void(const LayerProgress&)> cb) { progress_ = std::move(cb); }
 
  private:
   struct Checkpoint {
@@ -217,7 +208,6 @@ class Grammar {
   TokenMask mask_;
   bool mask_valid_ = false;
   bool messages_ = true;  // Check(id, false) turns refusal texts off for one call
-  std::function<void(const LayerProgress&)> progress_;
 };
 
 // Checks a whole id array; returns the first rejection with its position in `*position`.

@@ -1,4 +1,4 @@
-// Closing a layer: the progress report, the explanation of a refused U/E (which deferred rule
+// Closing a layer: the vertex count, the explanation of a refused U/E (which deferred rule
 // of token_format.md §11.2 fails at this size) and the findings of WindowRule::kUnion.
 #include <algorithm>
 #include <string>
@@ -16,14 +16,6 @@ void Grammar::CloseLayer() {
   ++closed_layers_;
   vertices_total_ += n;
   if (layer_ > 0 && options_.window_rule == WindowRule::kUnion) RecordFindings();
-  if (progress_) {
-    LayerProgress lp;
-    lp.component = static_cast<int32_t>(stream_.components.size()) - 1;
-    lp.layer = layer_;
-    lp.layer_size = n;
-    lp.vertices_total = vertices_total_;
-    progress_(lp);
-  }
 }
 
 namespace {

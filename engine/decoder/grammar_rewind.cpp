@@ -11,8 +11,6 @@ Status Grammar::Rewind(size_t prefix) {
   if (prefix > history_.size()) return InvalidArgument("rewind past the end of the accepted tokens");
   if (prefix == history_.size()) return Status::Ok();
   const std::vector<int32_t> saved = history_;
-  auto cb = std::move(progress_);
-  progress_ = nullptr;
   size_t idx = checkpoints_.size();
   while (idx > 0 && checkpoints_[idx - 1].token_index > prefix) --idx;
   size_t from = 0;
@@ -44,7 +42,6 @@ Status Grammar::Rewind(size_t prefix) {
       break;
     }
   }
-  progress_ = std::move(cb);
   return st;
 }
 

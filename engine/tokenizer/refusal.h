@@ -12,9 +12,9 @@ enum class Refusal {
   kEdgeGraphLimit,          // [NM] edge graph edges exceed limit (incident list > 50)
   kStillDisconnectedFan,    // [NM] still meet 1v2cc situation
   kTooManyNonManifoldVerts, // [NM] NM_verts exceed limit (> 300)
-  kNonManifoldWrong,        // PARTITION groups do not cover the faces
+  kNonManifoldWrong,        // non-manifold wrong: PARTITION groups do not cover the faces
   kPostNotManifold,         // [NM] post not manifold
-  kMeetNonManifold,         // an edge with >= 3 faces after splitting
+  kMeetNonManifold,         // meet non-manifold: an edge with >= 3 faces after splitting
   kMobius,                  // mobius cycle topology (non-orientable)
   kVertexSharedByComponents,// pre process non-manifold wrong
   kTooManyFaces,            // too many faces_p (> 12000)
@@ -27,8 +27,6 @@ enum class Refusal {
 
 // Stable machine-readable name, e.g. "mobius".
 const char* RefusalName(Refusal r);
-// The reference's message fragment, e.g. "mobius cycle topology".
-const char* RefusalReferenceMessage(Refusal r);
 // Status{kRefused, "<name>: <detail>"}.
 Status Refuse(Refusal r, const std::string& detail = {});
 // Parses the name back out of a refusal Status; false if s is not a refusal.
