@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Cross-builds Silk for Windows x64 with MinGW-w64 into build-windows/ and assembles
 # build-windows/dist/silk-windows-x64/ (+ .zip): silkgen.exe, silktok.exe, libsilk.dll,
-# onnxruntime.dll, the bundled model, README.txt. Installs nothing: scripts/setup_windows.sh does.
+# onnxruntime.dll, the bundled model, README.txt, LICENSE.txt. Installs nothing: scripts/setup_windows.sh does.
 # Usage: scripts/build_windows.sh [extra cmake args]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,6 +27,7 @@ cp "$B/apps/silktok.exe" "$B/engine/libsilk.dll" "$DIST/"
 [ -f models/default/model.json ] && cp -r models/default "$DIST/models/default"
 x86_64-w64-mingw32-strip "$DIST"/*.exe "$DIST/libsilk.dll"
 cp engine/include/silk/silk.h engine/include/silk/silk.hpp "$DIST/"
+cp LICENSE "$DIST/LICENSE.txt"  # MIT; the bundled model's data licence is models/default/LICENSE.md
 cp "$B/engine/libsilk.dll.a" "$DIST/"
 sed "s/@ORT_VERSION@/$(cat "$ORT_DLL_DIR/VERSION" 2>/dev/null || echo ?)/" scripts/windows_readme.txt > "$DIST/README.txt"
 

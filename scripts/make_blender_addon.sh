@@ -32,8 +32,12 @@ rm -rf "$STAGE"
 ADDON="$STAGE/silk_blender"
 BINDING="$ADDON/silk_mesh"  # vendored byte for byte (ctest blender_addon_vendored_binding checks the zip)
 mkdir -p "$BINDING/lib"
-cp "$ROOT"/apps/blender/silk_blender/*.py "$ROOT/apps/blender/silk_blender/blender_manifest.toml" "$ADDON/"
+# The add-on is GPL-3.0-or-later (its LICENSE, as Blender requires); the vendored binding keeps
+# the repository's MIT licence beside it.
+cp "$ROOT"/apps/blender/silk_blender/*.py "$ROOT/apps/blender/silk_blender/blender_manifest.toml" \
+   "$ROOT/apps/blender/silk_blender/LICENSE" "$ADDON/"
 cp "$ROOT"/bindings/python/silk_mesh/*.py "$ROOT/bindings/python/silk_mesh/README.md" "$BINDING/"
+cp "$ROOT/LICENSE" "$BINDING/LICENSE"
 # The add-on's version is Silk's (silk.h, the one version source): stamped into the manifest and bl_info.
 python3 - "$ROOT/engine/include/silk/silk.h" "$ADDON" <<'PY'
 import re, sys
@@ -88,7 +92,7 @@ for kv in ("kv_fp16", "kv_int8"):
         variant = meta.get("files", {}).get(kv, {}).get(key)
         if variant:
             files.add(variant)
-for f in sorted(files) + ["MODEL_CARD.md"]:
+for f in sorted(files) + ["MODEL_CARD.md", "LICENSE.md"]:  # LICENSE.md: the training data's licence
     try:
         shutil.copy(f"{src}/{f}", f"{dst}/{f}")
     except FileNotFoundError:
