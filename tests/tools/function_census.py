@@ -55,7 +55,8 @@ def strip_cpp(text):
 
 def cpp_functions(text):
     """Yields (name, first line, line count, exempt) for each function body in C++ source."""
-    code = re.sub(r"(?m)^[ \t]*#.*$", lambda m: " " * len(m.group(0)), strip_cpp(text))
+    # Preprocessor lines blanked, a macro continued with a backslash over all its lines.
+    code = re.sub(r"(?m)^[ \t]*#(?:.*\\\n)*.*$", lambda m: re.sub(r"[^\n]", " ", m.group(0)), strip_cpp(text))
     stack = []            # (kind, name, first line, exempt) per open brace
     header_start = 0      # offset where the current statement/header began
     for pos, ch in enumerate(code):
@@ -116,11 +117,12 @@ def census(paths):
 
 
 def selftest():
-    cpp = ("namespace a {\nstruct S {\n  int f(int x) const {\n    if (x) {\n      return 1;\n    }\n"
+    cpp = ("#define TWO(x) \\\n  F(x) \"(\" F(x)\n"
+           "namespace a {\nstruct S {\n  int f(int x) const {\n    if (x) {\n      return 1;\n    }\n"
            "    return 2;\n  }\n};\nint g() {\n  auto l = [] { return \"}\"; };\n  return l()[0];\n}\n"
            "// census: data table\nconst int* Table() {\n  static const int t[] = {1, 2};\n  return t;\n}\n}\n")
     got = [(name, line, n, ex) for name, line, n, ex in cpp_functions(cpp)]
-    want = [("f", 3, 6, False), ("g", 10, 4, False), ("Table", 15, 4, True)]
+    want = [("f", 5, 6, False), ("g", 12, 4, False), ("Table", 17, 4, True)]
     py = "def a():\n    def b():\n        return 1\n    return b\n"
     got_py = sorted((name, line, n) for name, line, n, _ in py_functions(py))
     ok = got == want and got_py == [("a", 1, 4), ("b", 2, 2)]
