@@ -31,10 +31,12 @@ TEST_APT=(
   xvfb xauth                 # the add-on's modal test: a real Blender window on a private X server
   python3-venv               # the bpy venvs below
   patchelf                   # scripts/make_blender_addon.sh: bundled libraries find each other ($ORIGIN)
+  clang-format-14            # scripts/format.sh (.clang-format): the pinned C/C++ formatter
 )
 # pip requirement files installed into python3 (Debian's is "externally managed": PEP 668).
 TEST_PIP_REQUIREMENTS=(
   export/requirements.txt    # export/: dataset through libsilk, training (torch), ONNX export, pytest
+  scripts/format-requirements.txt  # scripts/format.sh: ruff, pinned
 )
 # Editable installs into python3 (the command line tools they define land on the PATH).
 TEST_PIP_EDITABLE=(

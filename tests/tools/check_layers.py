@@ -128,7 +128,9 @@ def read_stage_order(readme):
 def stage_findings(deps, order, layer):
     """Back includes among the stages of one layer. deps: {file: [(line, included file)]}, paths
     relative to the layer ("packing/token_reader.cpp", "tokenizer.h"); order: {stage: rank}."""
-    stage = lambda f: f.split("/")[0] if "/" in f else None
+    def stage(f):
+        return f.split("/")[0] if "/" in f else None
+
     reach_memo = {}
 
     def reach(f, seen):  # the stages a top-level file reaches through its includes
