@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Meshes per hour of `silkgen --batch` (docs/batch.md) over a fixed subset of the dev corpus
 (every STRIDE-th file of the sorted list), each figure beside the baseline measured in the same
 run: one `silkgen FILE` process per mesh (the model loaded each time), 2 threads.

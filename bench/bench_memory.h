@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the benchmarks that set speed against the memory-bandwidth bound share
 // (generation_bench, time_to_mesh): the read bandwidth of a working set of a given size, the
 // last-level cache size, peak RSS, and the bytes of a decoder graph as stored.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """decoder_profile: where one decoder call's time goes at a given depth, per operator type, for
 each KV variant of a model folder (fp32 cache = the decoder itself; fp16 / int8 = files.kv_fp16 /
 files.kv_int8; PRECISION@FOLDER = that variant of another folder, e.g. one rewritten with

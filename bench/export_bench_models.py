@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Exports random-weight models of the tiny / small / paper shapes (export/silk_export/models/configs.py)
 and of the released official network ("official": arch official at the release size, 601 M
 parameters) for bench/generation_bench.cpp, at bench time (never committed: paper is ~2 GB in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // generation_bench: decoder throughput of exported models (bench/export_bench_models.py makes
 // random-weight tiny/small/paper models and "official", the released Mesh Silksong network at the
 // release size) through the runtime's KV cache, at depth 0-512 and around 4,096 (prefill, then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Grammar cost per token over the official dev streams: Accept alone, and LegalMask + Accept
 // (what a constrained sampler pays per step), beside a baseline that only sums the ids.
 #include <chrono>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Surface guidance and best-of-N scoring costs: building the guide (distance field) once per
 // generation, restricting one K and one O mask per vertex, beside a baseline that only copies
 // the mask (what any extra sampler stage pays); Chamfer scoring with the grid index beside

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """int4_matmul_bench: the release decoder's INT4 weight stream for one new position (24 layers x
 six 1024x1024, one 1024->8192 and one 4096->1024 product; 283 MB at block 32, random weights),
 as onnxruntime's com.microsoft MatMulNBits (accuracy level 4) and as libsilk's ai.silk

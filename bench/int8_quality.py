@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Quality loss of the quantized decoders (INT8: dynamic quantization of the weight MatMuls; INT4:
 MatMulNBits) against fp32, teacher-forced on real token sequences: for each model folder, the
 official tokens of dev-corpus meshes (../shared/spec/golden-dev) with points sampled from the

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """kv_fidelity: how far the fp16 and int8 self-K/V caches (model.json files.kv_fp16, files.kv_int8)
 move a decoder from the fp32 cache, teacher-forced over long real token sequences: top-1 agreement
 (all positions, and those where the fp32 top id leads by >= 0.05 logits) and KL(fp32 || variant)

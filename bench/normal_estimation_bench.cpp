@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Estimated normals against true ones (docs/normals.md): N area-weighted samples of each dev
 // mesh with the sampled face's normal, the normals dropped, EstimateNormals for each k, then
 // mean |cos| (the normal line) on every mesh, and on the closed meshes (watertight and

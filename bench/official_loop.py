@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """official_loop: the official PyTorch generation loop's cost per model call at given depths, for
 bench/time_to_mesh (which runs it in the same run and extrapolates by the measured cost per depth).
 

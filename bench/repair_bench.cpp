@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Repair measured (token_format.md §12.2): single 1-bits cleared in the self-layer (S window bit, X value)
 // or between-layer (B window bit, row re-encoded) tokens of closed meshes — the closed goldens
 // and generated UV spheres, tori and capped cylinders of several sizes; share of corrupted

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // time_to_mesh: what a mesh of N model calls costs from depth 0 with a release-size network, for
 // each decoder precision x KV cache precision: wall time (load, encoder, the N calls), peak RSS,
 // ms per call at the end, beside the memory-bandwidth bound for the same bytes (read bandwidth

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tokenizer throughput on real mesh sets: read + normalise (the I/O baseline), encode and
 // decode, each timed as its own parallel pass so every figure sits beside the baseline.
 //

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Finds onnxruntime for engine/runtime and silkgen: an installed CMake package first
 # (find_package(onnxruntime CONFIG)), else a plain include/ + lib/ tree at ONNXRUNTIME_ROOT
 # (default: <source>/.deps/onnxruntime, filled by scripts/fetch_onnxruntime.sh).

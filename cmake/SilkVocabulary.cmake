@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Turns engine/tokenizer/vocabulary_layout.json (the single source of truth for token ids)
 # into a C++ header of constexpr constants at configure time.
 function(silk_generate_vocabulary json_in header_out)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The pip wheel (pyproject.toml, scikit-build-core; scripts/build_wheel.sh): with -DSILK_WHEEL=ON
 # libsilk loads onnxruntime at run time (cmake/SilkOnnxRuntime.cmake), zlib is linked statically, and
 # silk_wheel_install() adds install rules in the component `silk_wheel` alone, the one the wheel

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Generate a mesh through libsilk's C API from Python with nothing but ctypes.
 
     python3 examples/generate_ctypes.py --library build/engine/libsilk.so \\

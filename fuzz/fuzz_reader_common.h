@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared body of the reader fuzzers: read the bytes as one format through the public
 // ReadMeshFromMemory and check what a successful read promises (indices in range, finite).
 #pragma once

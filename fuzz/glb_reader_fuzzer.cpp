@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: arbitrary bytes through the GLB reader (ReadMeshFromMemory, no files).
 #include <cstddef>
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: arbitrary token arrays through the grammar. Checks that Accept agrees with
 // the legal mask, that rejected tokens leave the state unchanged, that Rewind reproduces the
 // mask, and that accepted prefixes build a mesh meeting the guarantees. Input bounded to 4096

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes fuzz/corpus/onnx_external_data_fuzzer/: small ONNX models (needs the onnx package)
 whose tensors use external data in every place the walker looks (initializer, sparse
 initializer, Constant attribute, If subgraph, function), plus bad locations and a truncation.

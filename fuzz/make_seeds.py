@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes the reader fuzzers' seed corpora under fuzz/corpus/<target>/: small valid meshes
 in every encoding (generated here) plus the project's own small golden and bad inputs; also
 point-cloud PLYs and model.json files. Only the folders of the targets below are replaced.

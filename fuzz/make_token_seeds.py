@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes seed inputs for the token fuzzers from official golden token files, in each
 fuzzer's byte encoding: token_decoder_fuzzer (0xF0 + little-endian int32 per id) and
 grammar_fuzzer (one flag byte, then a little-endian uint16 per id).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: arbitrary bytes as a model.json sidecar (ParseModelConfig). A model folder
 // comes from users, so a parsed config must be one the runtime can size buffers from: every
 // dimension positive and plausible, plain file names, valid pre-processing and sampling

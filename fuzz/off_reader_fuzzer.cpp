@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: arbitrary bytes through the OFF reader (ReadMeshFromMemory, no files).
 #include <cstddef>
 #include <cstdint>

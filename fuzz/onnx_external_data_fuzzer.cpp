@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: arbitrary bytes as an ONNX model whose external-data locations the runtime
 // checks before onnxruntime opens them (ForEachExternalDataLocation, a protobuf walker over
 // untrusted bytes). It must never read out of bounds, recurse without limit, or hand over a

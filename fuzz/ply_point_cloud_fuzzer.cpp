@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: arbitrary bytes through ReadPlyPointCloud, silkgen's point-cloud input path
 // (faces optional, normals read when present); a successful read promises finite positions and
 // normals, one normal per point or none, and face indices in range.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target for the PMD reader: arbitrary bytes through the io entry point must give a
 // mesh with in-range indices or a Status, never a crash, hang or huge allocation.
 #include <cstddef>

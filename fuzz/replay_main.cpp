@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Plain main() that feeds every file of the given files/folders to LLVMFuzzerTestOneInput,
 // so fuzz corpora are replayed in ordinary (gcc, no libFuzzer) builds and in ctest.
 #include <algorithm>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Corpus replay: each fuzz/*_fuzzer.cpp also builds as <name>_replay with replay_main.cpp
 # (any compiler, no libFuzzer), registered as a ctest test over fuzz/corpus/<name>/ and the
 # shared bad corpus. Included from tests/CMakeLists.txt so it runs in every test build.

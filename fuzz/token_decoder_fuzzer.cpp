@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target for the tokens -> mesh direction: arbitrary id arrays must never crash,
 // hang or allocate without bound in ReadTokenStream / DecodeTokens.
 #include <cstddef>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: arbitrary bytes through ReadXyz, the plain-text point-cloud reader (.xyz,
 // .pts); a successful read promises at least one finite point, no faces, and either no normals
 // or one finite, unit-length (within 10 %) normal per point.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Sourced by the setup scripts (scripts/setup.sh, scripts/setup_windows.sh): installs
 # those of the given Debian packages that are not installed yet, and runs no apt at all (no
 # update, no network) when every one is present. Usage: apt_install_missing <who> <package>...

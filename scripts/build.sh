@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Configures and builds Silk into build/ (Release + debug info). Usage: scripts/build.sh [extra cmake args]
 set -euo pipefail
 cd "$(dirname "$0")/.."

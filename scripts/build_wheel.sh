@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds the pip wheel dist/silk_mesh-<version>-py3-none-manylinux_<glibc>_x86_64.whl: the root CMake
 # project through scikit-build-core (pyproject.toml, -DSILK_WHEEL=ON: Release, static libstdc++,
 # install component silk_wheel), then `auditwheel repair` to the manylinux tag the binaries allow,

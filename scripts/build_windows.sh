@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Cross-builds Silk for Windows x64 with MinGW-w64 into build-windows/ and assembles
 # build-windows/dist/silk-windows-x64/ (+ .zip): silkgen.exe, silktok.exe, libsilk.dll,
 # onnxruntime.dll, the bundled model, README.txt, LICENSE.txt. Installs nothing: scripts/setup_windows.sh does.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The main job on bundled data: builds Silk, generates a mesh from the bundled sample input with
 # the bundled default model (silkgen, CPU, no Python), then tokenizes the sample and prints its
 # statistics and round-trip check (silktok).

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Generates from every dev-corpus mesh with the bundled model, grammar on vs --unconstrained
 # (same weights, seed 0, 1 thread, 512-token cap), summarises silkgen's verdicts and runs
 # `silk-export eval` (CD/HD/NC/|NC| + structure) on the grammar outputs.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Measures the sampling defaults of a model folder (MODEL, default models/default): surface
 # guidance, best of N and temperature (the defaults of silk_generate_params.surface_tolerance /
 # .candidates and the bundled model's model.json "sampling" were chosen from its tables,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Quality of what silkgen writes, on meshes the model never trained on: a fixed sample of the
 # 0 A.D. test split (40 meshes evenly spaced by token count, from the dataset index) and the 160
 # dev meshes. Prints one table row per set: mean CD, HD, NC, |NC| (`silk-export eval`), the share

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Fetches the 0 A.D. art meshes (PMD) used by the benchmark and the PMD cross-check test:
 # Debian's 0ad-data package -> public.zip -> art/meshes/**.pmd. Idempotent; data stays out of the repo.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Puts onnxruntime's C library and C/C++ headers into .deps/onnxruntime/{lib,include} (gitignored),
 # because Debian bookworm has no onnxruntime package. Idempotent: does nothing when already there.
 #   library: onnxruntime/capi/libonnxruntime.so.<ver> from the PyPI wheel (same version as the

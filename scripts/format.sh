@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Formats the tree: C/C++ with clang-format 14 (.clang-format), Python with ruff (ruff.toml: the
 # formatter, then the lint set's safe fixes). Only files git tracks; nothing else is touched.
 #   scripts/format.sh           rewrite the files in place

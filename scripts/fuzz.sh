@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the libFuzzer targets (default: all of fuzz/*_fuzzer.cpp) one after another (one core), each for the given time, with a
 # fresh scratch corpus per target seeded from fuzz/corpus/<target> (+ matching bad inputs).
 # Usage: scripts/fuzz.sh [-b] [seconds_per_target=600] [target...]

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Makes the installable Blender add-on zip: apps/blender/silk_blender + the Python binding
 # bindings/python/silk_mesh, copied unchanged into silk_blender/silk_mesh/, with libsilk (installed
 # copy, $ORIGIN RPATH), onnxruntime and the other non-system libraries it needs in silk_mesh/lib/

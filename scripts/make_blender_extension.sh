@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Packages the add-on as Blender extensions (Blender 4.2+), one zip per platform, each carrying only
 # that platform's libraries, laid out as Blender's own `extension build --split-platforms` does
 # (blender_manifest.toml at the zip's root, `platforms` = that one platform, `version` = silk.h's):

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes samples/torus_knot.obj, the bundled sample mesh (our own procedural (2,3) torus
 knot tube; no third-party data). Usage: python3 scripts/make_sample.py [out.obj]"""
 import math, sys

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Renders input meshes beside what Silk generated from them, headless in Blender (Workbench), so
 the README and docs can show real outputs and anyone can re-render them after a model change.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Renders Silk's inputs beside its outputs headless in Blender (scripts/render_pairs.py), so the
 # pictures in the README and docs can be made again by anyone after a model or sampling change.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs what Silk needs on a fresh Debian bookworm machine (idempotent; network only through
 # the package managers). Two levels:
 #   bash scripts/setup.sh          what scripts/demo.sh runs: the compiler and libraries for libsilk,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs what the Windows x64 cross-build and its Wine tests need (scripts/build_windows.sh,
 # scripts/test_windows.sh) on Debian bookworm, on top of scripts/setup.sh (run it first: the
 # header-only libraries, GoogleTest's sources and onnxruntime's headers come from there):

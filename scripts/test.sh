@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds and runs every test: the normal build (unit, golden, dev-corpus, CLI and bad-input
 # tests), then an ASan + UBSan build of the same tests (the slow dev-corpus suites excluded).
 set -euo pipefail

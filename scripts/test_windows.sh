@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the Windows x64 build (scripts/build_windows.sh) under Wine: the cross-built GoogleTest
 # executables (slow suites left out, as in the sanitizer run; tests/capi/file_paths_test.cpp holds
 # the Unicode / backslash / CRLF / open-file cases), silktok.exe on the official golden meshes,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Trains the bundled model (models/default) on CPU on the 0 A.D. train split and exports it to
 # ONNX with its model card: the configuration the sweep chose (CONFIG, nano: the model in
 # models/default, 60.2 M tokens, finished 2026-12-03). Each stage can be rerun alone:

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Windows cross-build (scripts/build_windows.sh): the GoogleTest executables of the layers whose
 # tests need no POSIX API, run under Wine by scripts/test_windows.sh (not by ctest: the build
 # machine cannot run them). Test files that use POSIX-only calls are listed with the reason.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The apps' own file-system calls (libsilk opens the meshes, models and token files itself):
 // folder checks, the input-exists check of the command line, and silkgen's text outputs, all on
 // UTF-8 paths (std::filesystem::u8path: Windows reads a plain narrow path in the ANSI code page).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GetCommandLineW + CommandLineToArgvW -> UTF-8 (Windows only).
 #include "utf8_args.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silkgen's and silktok's command lines as UTF-8 on every platform: Windows hands main() its
 // arguments in the ANSI code page (a "形状" folder arrives as "??"), so there main() reads them
 // again from GetCommandLineW. Chosen over an activeCodePage=UTF-8 manifest, which needs

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Listing, sorting, stem check and sharding of silkgen --batch inputs (batch_inputs.h).
 #include "../common/app_files.h"
 #include "batch_inputs.h"

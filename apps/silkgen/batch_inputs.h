@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silkgen --batch: which inputs a process takes. The list (a text file of paths or a folder's
 // supported files), its sorted order, the stem check and the shard (--shard I/N or Slurm's array
 // variables) are decided here, identically in every process of a farm.

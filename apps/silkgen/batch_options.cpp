@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Registers --batch, --format, --shard, --report and --overwrite (batch_options.h).
 #include "batch_options.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silkgen --batch's own options (the generation options are silkgen's usual ones, applied to
 // every input); their help text is the one description of the batch mode on the command line.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The JSON Lines report of silkgen --batch (batch_report.h).
 #include "../common/app_files.h"
 #include "batch_report.h"

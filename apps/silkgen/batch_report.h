@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silkgen --batch's report: JSON Lines, one object per input, appended and flushed as each input
 // ends, so a killed run leaves every finished input on record (docs/batch.md "Report").
 #pragma once

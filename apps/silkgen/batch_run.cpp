@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The --batch loop (batch_run.h): shard and list first, then the model once, then each input.
 #include "../common/app_files.h"
 #include "batch_run.h"

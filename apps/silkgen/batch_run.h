@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silkgen --batch: one model, one generator, every input of this process's shard in turn, each
 // output written atomically and each result reported as it ends (docs/batch.md).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silkgen's exit statuses, shared by the single-input and --batch modes.
 #pragma once
 

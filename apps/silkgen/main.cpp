@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silkgen: point cloud or mesh in, generated Mesh Silksong mesh out (GLB/OBJ/PLY), with the
 // grammar-constrained runtime. A client of the public API alone (silk.hpp over silk.h): the
 // same generation, output and JSON report every binding gets. Exit codes: 0 ok, 1 failure, 2 usage.

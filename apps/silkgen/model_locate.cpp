@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The binary's own folder comes from /proc/self/exe (Windows: GetModuleFileNameW), so the
 // lookup works from any cwd.
 #include "model_locate.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Finding the bundled model when --model is not given: next to the installed binary
 // (<bin>/../share/silk/models/default; the pip wheel: silk_mesh/bin/../model; the Windows zip:
 // models/default beside silkgen.exe), then the source tree's models/default (build tree only).

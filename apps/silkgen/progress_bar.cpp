@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Carriage-return redraw; nothing is printed when stderr is redirected (logs stay clean).
 #include "progress_bar.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A one-line progress bar on stderr (only when stderr is a terminal), redrawn at most ten
 // times a second: the candidate (best of N), tokens so far / cap, components, tokens per second.
 #pragma once

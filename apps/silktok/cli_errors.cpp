@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silktok's error messages: the library's status name, then the message with its context.
 #include "cli_errors.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silktok's one error format, "silktok: <kind>: <file>: <problem>", over the library's errors
 // (silk_cpp::Error; the kind names are silk_status_name's) and the few the tool finds itself.
 #pragma once

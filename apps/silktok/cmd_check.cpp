@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `silktok check`: run a token file through the grammar state machine; report the first
 // illegal token (position, id, reason) or accept. Replays files the grammar tests dump.
 #include <cstdio>

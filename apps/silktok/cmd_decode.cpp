@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `silktok decode`: token file -> OBJ mesh, every face the tokens carry, oriented.
 #include <cstdio>
 #include <string>

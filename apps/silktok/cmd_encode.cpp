@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `silktok encode`: mesh -> token file; one input to a file, or many inputs to a folder in
 // parallel (dataset form), where a failing input is reported and the rest go on.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `silktok repair`: decode a token file through the grammar with hole detection and repair
 // (token_format.md §12.2) and write the mesh; report every repair, as text or JSON.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `silktok roundtrip`: encode, decode, and compare with the processed mesh; fails if a
 // representable face is missing or reversed.
 #include <cstdio>

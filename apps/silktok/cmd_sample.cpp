@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `silktok sample --random N`: N random legal sequences drawn from the grammar's masks (biased
 // toward closing layers), each written as DIR/NNNN.tokens.txt and its mesh DIR/NNNN.obj.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `silktok stats`: encode a mesh and report what the tokenizer did — counts, layers,
 // tokens per face, bits per face, structure limits, time per phase.
 #include <chrono>

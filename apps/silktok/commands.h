@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silktok subcommands: each lives in its own cmd_*.cpp and registers itself on the app.
 #pragma once
 #include <CLI/CLI.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silktok: tokenize, decode, check, inspect and repair Mesh Silksong token streams.
 #include <cstdio>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reading + encoding one mesh file for silktok (silk_mesh_load, silk_mesh_encode).
 #include "mesh_input.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reading and encoding one mesh file for silktok through the public API, with errors that name
 // the file.
 #pragma once

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # CMake toolchain: Windows x64 cross-build with Debian's MinGW-w64 (posix thread model, for
 # std::thread/std::mutex), used by scripts/build_windows.sh. Header-only third-party libraries
 # come from the build machine's Debian -dev packages through cmake/windows/deps/*Config.cmake.

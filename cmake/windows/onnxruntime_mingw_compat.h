@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* onnxruntime's headers under MinGW-w64 (force-included by cmake/SilkOnnxRuntime.cmake in the
  * Windows build only): they use MSVC's SAL annotations and _stdcall, which MinGW's g++ lacks.
  * All annotations expand to nothing; on x64 the calling convention is the one ABI anyway. */

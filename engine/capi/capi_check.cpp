@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: a token stream checked against the grammar (token_format.md §9, §11): the first rejected id, its
 // stable reason code and the rule it breaks.
 #include <algorithm>

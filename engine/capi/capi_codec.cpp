@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: token sequences, encode (mesh -> tokens) and decode (tokens -> mesh).
 #include <algorithm>
 #include <chrono>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: per-thread error messages, status and stop-reason names, version, the log callback,
 // vocabulary, and the two boundary rules every call shares: the size query of copies and the
 // struct_size check.

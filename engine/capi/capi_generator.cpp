@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: the step-wise generator (start / advance / query / cancel / finish) and the one-call
 // silk_generator_run (start + advance to the end + finish), both over the runtime's GenerationSession:
 // here only the C structs <-> runtime types, argument checks, errors and the call state.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The generation handles behind silk.h: silk_model shares its Model with every generator made
 // from it (destroy order is free), and silk_generator carries one GenerationSession (the runtime's
 // generation, runtime/generation_session.h), the settings as the caller gave them, the last

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: the encoder's points of a generation, put back into the input's frame (silkgen
 // --save-points), so a caller can see what the model saw, estimated normals included.
 #if defined(SILK_HAVE_RUNTIME)

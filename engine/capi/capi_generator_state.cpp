@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: a generator's call state (issue 20): who is inside, which run a cancel belongs to, and a
 // destroy that comes during a call, deferred to that call's end instead of freeing it under it.
 #if defined(SILK_HAVE_RUNTIME)

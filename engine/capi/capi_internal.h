@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared plumbing of the C API: handle structs, the per-thread error slot, and Guard(),
 // which turns Status and any C++ exception into a silk_status so nothing crosses the ABI.
 #pragma once

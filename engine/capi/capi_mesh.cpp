@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: mesh handles (create from arrays, load, save, query-then-copy).
 #include <algorithm>
 #include <cctype>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: model loading and information. The handle shares the Model with its generators.
 #if defined(SILK_HAVE_RUNTIME)
 #include <cstring>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API generation entry points of a libsilk built without onnxruntime: they exist (the ABI is
 // the same) and answer SILK_ERR_UNSUPPORTED.
 #if !defined(SILK_HAVE_RUNTIME)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: the encoder's point pre-processing (engine/mesh/point_preprocessing), available in
 // every libsilk (no onnxruntime needed), so training code samples exactly like generation.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: seeded random legal token streams drawn from the grammar's masks, and their meshes
 // (property tests, fuzzing seeds, demos of what the grammar allows).
 #include <memory>

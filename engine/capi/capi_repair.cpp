@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: hole repair of a token stream (token_format.md §12.2): the grammar reads the ids with the official
 // decoder's window rule, the accepted prefix becomes a mesh under the hole policy, and every
 // finding comes back as figures and as a JSON report.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: silk_report, the JSON document a call hands back (variable-length findings such as the
 // holes of a repair), owned by the caller until silk_report_destroy.
 #include "capi/capi_internal.h"

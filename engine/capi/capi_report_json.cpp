@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one JSON report of a generation (silkgen --stats/--trace, silk_generator_report) and
 // the one mapping of GenerationStats onto silk_generate_stats. nlohmann::ordered_json keeps the
 // keys in a readable order; trace floats have 9 significant digits so float32 reads back exactly.

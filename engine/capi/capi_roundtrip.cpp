@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: the round-trip check (encode, decode, compare faces with the encoder's processed mesh),
 // the tokenizer's exactness measure as one call.
 #include <cstring>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A stop request that long loops in the lower layers (point sampling, pre-processing) poll without
 // knowing who asks: the runtime hands its generator's cancel flag and callback down as this.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // See json_number.h: one place that turns a number into JSON text.
 #include "core/json_number.h"
 

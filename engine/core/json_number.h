@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Numbers in hand-written JSON text: printf's "nan" / "inf" are not JSON (every reader then
 // refuses the whole document), so a non-finite value is written as null, which is also what
 // nlohmann::json's dump() writes for NaN and Infinity.

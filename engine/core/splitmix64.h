@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SplitMix64: the one seeded random generator of generation (surface sampling, token
 // sampling). Chosen because it is tiny and fully specified, so the Python reference loop in
 // tests/models/ reproduces it bit for bit (std:: distributions are not portable).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Names and formatting for Status codes.
 #include "core/status.h"
 

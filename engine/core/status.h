@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Status / StatusOr: how every engine function reports failure without exceptions
 // (Draco-style). Codes are stable; messages name the file/element and the problem.
 #pragma once

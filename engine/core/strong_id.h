@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strong index types: a vertex id, a face id and a layer-local position cannot be mixed up
 // by accident where they meet (non-manifold splitting, layering, decoding).
 #pragma once

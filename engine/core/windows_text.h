@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Windows only: Silk's paths and messages are UTF-8 everywhere, Windows' file APIs take UTF-16
 // and report errors as codes; these convert at that boundary (io/files, runtime's DLL loading).
 #pragma once

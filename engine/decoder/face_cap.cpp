@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The face cap on a built mesh (face_cap.h): a valid subset of at most max_faces faces.
 #include "decoder/face_cap.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The face cap (max_faces) on a built mesh: faces arrive a layer at a time, so the layer that
 // reaches the cap can overshoot it; this keeps at most the cap's count while the mesh stays valid.
 #pragma once

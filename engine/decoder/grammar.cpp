@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The grammar state machine (token_format.md §11): its state, Step (the one driver of Accept and Check
 // over the rule table of grammar_rules.cpp) and what each admitted token does to the state.
 // Rule comments name the spec section they implement; see grammar.h for the guarantees.

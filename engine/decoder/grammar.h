@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Grammar: the state machine of legal Mesh Silksong sequences over the full model vocabulary
 // (token_format.md §9, §11), for constrained sampling and for checking streams token by token.
 //

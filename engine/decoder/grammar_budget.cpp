@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The length budget (token_format.md §9, max_length): the fewest tokens that still finish the sequence from
 // the current state, and the one bound beyond which no completion can hit the cap. Read by the
 // budget predicates of the rule table (grammar_gates.cpp, grammar_predicates.cpp).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Closing a layer: the vertex count, the explanation of a refused U/E (which deferred rule
 // of token_format.md §11.2 fails at this size) and the findings of WindowRule::kUnion.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The gates of the rule table: predicates that hold for every id of a class or for none (the
 // length cap, a closable layer, room for one more vertex...). Step calls them to judge one id,
 // the legal mask calls the same functions to decide whether a whole class is open.

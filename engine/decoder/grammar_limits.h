@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The grammar's limits and window widths, all read from the vocabulary layout (generated from
 // tokenizer/vocabulary_layout.json), so Accept, the legal mask and the close checks share them.
 // (B window width and cases: tokenizer/adjacency/between_layer_cases.h, from the same layout.)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The legal-token mask: the rule table (grammar_rules.cpp) read in bulk. For the current phase's
 // row, every class whose gates pass adds the ids its test admits (its bulk form), so the mask
 // holds exactly the ids Grammar::Step would accept.

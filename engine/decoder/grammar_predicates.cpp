@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The id-dependent predicates of the rule table, each as a pair over one shared description:
 // `Test*` judges one id for Step, `Add*` adds every id of the class it admits to the legal mask.
 // The descriptions: the positions the vertex is linked to (O), the sizes a window keeps open

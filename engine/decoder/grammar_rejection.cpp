@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Names of grammar rejection reasons, for messages, replay files and JSON reports.
 #include "decoder/grammar_rejection.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Why the grammar refused a token: a stable enum (for tests and tools) plus a message naming
 // the position, the id and the rule (spec section) that it breaks.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rewinding the grammar to a prefix (restore the last layer-start checkpoint, replay the rest
 // of that layer), and CheckTokens, the whole-array check behind `silktok check`.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The rule table itself: for each phase of the grammar (token_format.md §11.1 packing order), the classes
 // of ids it may take (ranges of the vocabulary layout), each class's id-dependent test with its
 // bulk form, its gates and what accepting it does. Read by Grammar::Step and Grammar::ComputeMask.

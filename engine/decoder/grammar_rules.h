@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The grammar's rule table: each phase described once, as the classes of ids it may take and
 // the predicates an id of each class must pass. Accept/Check (Grammar::Step) and the legal mask
 // (Grammar::ComputeMask) both walk this table, so they cannot disagree by construction.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // LayerSizeSet: a set of candidate layer sizes N in [0, 255]. The grammar keeps the sizes at
 // which the current layer could still be closed canonically (token_format.md §11.2 deferred rules).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Mesh assembly from accepted layers, hole detection and repair by loop triangulation
 // (token_format.md §12.2: a hole shows up as missing matrix 1s; a loop of open edges between two
 // adjacent layers is closed by the chords a consistent matrix would have had).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Turns what the grammar accepted into a mesh: per component, the tokenizer's assembly
 // (component_mesh: adjacency -> oriented faces, token_format.md §10.6), then hole detection / repair (spec
 // §12.2) and the vertex-fan rule (vertex_fan_rules.h). Also the incremental view: faces of the

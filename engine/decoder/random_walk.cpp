@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Random legal walks over the grammar (see random_walk.h): uniform within the legal ids of the
 // chosen token class, the class picked to reach a per-layer target size and then close.
 #include "decoder/random_walk.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Seeded random legal sequences: ids drawn uniformly from the grammar's legal masks, with a
 // bias toward closing layers (a target size per layer) so walks end. For property tests,
 // `silktok sample` and benchmarks.

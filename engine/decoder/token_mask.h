@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // TokenMask: the set of legal ids over the whole model vocabulary (format ids, EOS, PAD) as a
 // bitset, so a sampler can mask logits with one pass and the grammar can OR class ranges.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Gap faces between the fans of a bowtie vertex, then splitting what remains (rules in
 // vertex_fan_rules.h and docs/grammar.md).
 #include "decoder/vertex_fan_rules.h"

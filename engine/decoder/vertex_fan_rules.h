@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The vertex-manifold rule of decoded meshes (docs/grammar.md "Vertex fans"). Faces are only
 // known once a component's layers are closed (face recovery, token_format.md §10.6), so whether a vertex
 // ends with one fan cannot be decided by the legal mask; it is resolved when the component's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // IoMesh: the io layer's mesh (docs/mesh_types.md). What every reader produces and every writer
 // takes; mesh/ and EncodeMesh work on it too. Plain arrays, nothing welded or cleaned, so that
 // non-manifold and duplicate faces survive to the tokenizer (token_format.md §2.3-§2.4 need them as-is).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // IoPointCloud: what the point-cloud readers produce (a PLY without faces, an XYZ file): the
 // points in an IoMesh without triangles and, when the file carries them, one normal per point.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Extension and magic-byte detection of mesh formats, kept apart from the readers so the
 // dispatcher and the tools agree on one mapping.
 #include "io/mesh_format.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MeshFormat: the input formats the io layer reads, and how a format is chosen from a file
 // name (extension) and, when the extension says nothing, from the first bytes.
 #pragma once

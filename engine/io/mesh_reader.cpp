@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Format dispatch for files and memory buffers; gzip unwrapping; content sniffing.
 #include "io/mesh_reader.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Entry point of the io layer: read a mesh file of any supported format (by extension, with
 // a ".gz" wrapper allowed, and content sniffing) into an IoMesh, or explain why not.
 #pragma once

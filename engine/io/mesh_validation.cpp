@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Output-mesh consistency check shared by the OBJ and PLY writers.
 #include "io/mesh_validation.h"
 

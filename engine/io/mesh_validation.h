@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks a mesh is writable: finite coordinates and every triangle index in range. Writers
 // call it so that no file is produced from an inconsistent mesh.
 #pragma once

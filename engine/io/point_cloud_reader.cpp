@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Dispatch of the files that may hold a point cloud (PLY, XYZ/PTS); the rest is ReadMeshFile.
 #include "io/point_cloud_reader.h"
 

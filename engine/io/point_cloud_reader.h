@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reading a file that may be a point cloud (a PLY without faces, an XYZ/PTS file) as well as a
 // mesh: what a generation input is loaded with (silk_mesh_load), as against ReadMeshFile, the
 // tokenizer's view, for which a file without faces is an error.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fan triangulation of a polygon given as vertex indices: (v0, vi, vi+1) for i = 1..n-2.
 // Documented reader behaviour for faces with more than 3 corners (OBJ, OFF, PLY, STL loops).
 #pragma once

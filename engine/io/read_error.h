@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Error-message helpers shared by the readers: every message starts with the file name and,
 // when known, the line ("bad.obj:3: face index 5 out of range (4 vertices)").
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ReadOptions: resource limits every reader checks against header counts before it
 // allocates, so a lying header fails fast instead of exhausting memory.
 #pragma once

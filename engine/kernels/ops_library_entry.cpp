@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // onnxruntime's custom-op library entry, built into libsilk_ops alone (never into libsilk, which
 // exports only silk_*): SessionOptions.register_custom_ops_library("libsilk_ops.so") in Python's
 // onnxruntime looks this name up and gets the ai.silk domain of kernels/silk_ops.h.

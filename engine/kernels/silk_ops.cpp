@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One ai.silk domain per onnxruntime API table, made once and kept for the process: sessions
 // refer to its op tables for as long as they live.
 #include "kernels/silk_ops.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ai.silk operator domain (docs/model_contract.md): CachedAttention (float16 and int8 KV
 // caches), CrossAttention (over the point cloud's K/V), Int4MatMul (4-bit weights) and HalfMatMul
 // (float16 weights). The one registry of the kernels layer: libsilk adds the domain to every

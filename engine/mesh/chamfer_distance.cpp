@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Chamfer distance: mean nearest-point distances both ways, and the mesh side sampled.
 #include "mesh/chamfer_distance.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Chamfer distance between a mesh's surface and a point set: the score that picks the best of
 // several generated candidates (closest to the input), computed without Python.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Leader clustering on a hash grid, then face filtering and vertex compaction.
 #include "mesh/close_vertex_merge.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The official pre-processing's mesh cleaning (official_network.md §4 step 3): unreferenced
 // vertices removed, vertices closer than a distance merged, then duplicate and zero-area faces
 // dropped, so that surface samples come from the same surface the network was trained on.

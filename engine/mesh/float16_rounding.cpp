@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Nearest float16 by scaling into the half's integer grid: every half in a binade [2^e, 2^(e+1))
 // is a multiple of 2^(e-10) (subnormals: of 2^-24), so rounding x / step to an integer with
 // std::nearbyint (ties to even in the default rounding mode) and scaling back is exact.

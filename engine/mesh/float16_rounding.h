@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rounding doubles to the nearest IEEE half-precision value: the official pre-processing casts
 // its sampled points and normals to float16 (official_network.md §4), and the network was trained
 // on such values, so Silk reproduces the cast exactly (round to nearest, ties to even).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Parts keep the order of their component index; each is named part_NNN.
 #include "mesh/glb_parts.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A generated mesh as GLB parts: triangles grouped by their component, vertices re-indexed per
 // part, smooth normals per part (parts do not smooth across each other), optional distinct
 // colours. Shared by silk_mesh_save (.glb) and so by silkgen and every binding.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reading a generation input file and estimating a point cloud's missing normals.
 #include "mesh/input_file.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A file as a generation input (what silk_mesh_load gives silkgen, the Python module and the
 // add-on): a mesh, or a point cloud with one normal per point, its own or, for a cloud exported
 // without normals, estimated here (mesh/normal_estimation). The one place that decides it.

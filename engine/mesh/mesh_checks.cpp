@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Edge incidence by sorting directed edges once (no hash maps, deterministic).
 #include "mesh/mesh_checks.h"
 

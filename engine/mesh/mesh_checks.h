@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Structural verdicts on an output mesh (silkgen --stats): edge-manifold, vertex-manifold,
 // watertight, consistently oriented. Counted on vertex indices, independent of how the mesh was made.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // k-d tree construction (nth_element medians, a total order on (coordinate, index)), the
 // nearest-point and bounded-heap k-nearest searches with plane pruning.
 #include "mesh/nearest_points.h"

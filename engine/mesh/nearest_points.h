@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Nearest points of a fixed point set (one k-d tree of our own): the Chamfer score's nearest
 // point, the input normal a generated vertex borrows, and the neighbourhoods normal estimation
 // fits its planes to and propagates orientation along.

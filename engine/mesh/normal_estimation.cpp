@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The estimation pipeline: checks, kNN graph, one plane fit per neighbourhood, orientation.
 #include "mesh/normal_estimation.h"
 

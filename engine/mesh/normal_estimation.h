@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Normals for a point cloud that has none (a scan exported without them): a plane fitted to
 // each point's k nearest neighbours (PCA, mesh/plane_fit) gives the normal line, and Hoppe's
 // minimum-spanning-tree propagation (mesh/normal_orientation) gives consistent, outward signs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Minimum spanning forest over the kNN graph (Kruskal with a union-find) and the sign
 // propagation from each tree's outward seed.
 #include "mesh/normal_orientation.h"

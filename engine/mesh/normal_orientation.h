@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Consistent orientation of unoriented normals (Hoppe et al. 1992, "Surface reconstruction from
 // unorganized points"): a plane fit gives each point a normal line, not a side; the sign is
 // propagated along a minimum spanning tree of the neighbour graph, so that it crosses between

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bounding-box normalisation (token_format.md §2.1), written operation by operation as the spec gives it.
 #include "mesh/normalize.h"
 

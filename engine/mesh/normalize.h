@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bounding-box normalisation into [-bound, bound] (token_format.md §2.1), done by the caller before
 // tokenizing; kept exact (one IEEE operation per step, no FMA) so tokens match the reference.
 #pragma once

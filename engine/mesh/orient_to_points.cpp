@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Part orientation by area-weighted normal votes against the nearest reference point.
 #include "mesh/orient_to_points.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Which side of each generated part faces outward, decided by the input's normals: the grammar
 // makes every part consistently oriented, but the sign of that orientation is the model's
 // choice (a coin toss for a weak one), and renderers (back-face culling), slicers and booleans

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Covariance of a neighbourhood and its Jacobi eigen-decomposition.
 #include "mesh/plane_fit.h"
 

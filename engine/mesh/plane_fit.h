@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Local plane fit by PCA: the normal of a point's neighbourhood is the eigenvector of the
 // smallest eigenvalue of its 3x3 covariance (the direction the points spread least along).
 #pragma once

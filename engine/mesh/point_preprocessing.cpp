@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The pre-processing steps in order (see the header), with the checks of its inputs.
 #include "mesh/point_preprocessing.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The encoder's input: the one implementation of the pre-processing a model was trained with,
 // described by model.json "preprocessing" (docs/runtime.md) and shared by silkgen, the C API
 // and the Python training code (through silk_points_prepare), so no second copy can drift.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Surface sampling by cumulative face areas (binary search per sample) and SplitMix64 draws.
 #include "mesh/surface_sampling.h"
 

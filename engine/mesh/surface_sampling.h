@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Area-weighted random surface samples with normals: the point cloud the encoder reads when
 // the input is a mesh (4,096 samples by default). Seeded and platform-independent.
 #pragma once

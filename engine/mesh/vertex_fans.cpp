@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fans by a per-vertex union-find over its incident faces, joined through the other corner they
 // share; sorting (other corner, face) pairs keeps it deterministic and free of hash maps.
 #include "mesh/vertex_fans.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex fans: the faces around a vertex grouped by edge-connectivity at that vertex. A vertex
 // is manifold (a disk or half-disk, what Blender's "Select Non-Manifold" and slicers expect)
 // when its faces form exactly one fan; a "bowtie" vertex has two or more fans touching only at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cross products are already area-weighted (|a x b| = 2 * area), so they are summed as is.
 #include "mesh/vertex_normals.h"
 

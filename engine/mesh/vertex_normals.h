@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Smooth per-vertex normals (area-weighted sum of incident face normals) for viewers: the
 // GLB output carries them so generated parts shade smoothly.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Best of N's parts: seed derivation, Chamfer scoring in the model frame, the running choice.
 #include "runtime/candidates.h"
 

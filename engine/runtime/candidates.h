@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Best of N's parts: the candidates' seeds, their score (symmetric Chamfer distance from a
 // candidate's surface samples to the encoder's points) and the running choice of the closest.
 // GenerationSession (runtime/generation_session.h) runs the candidates.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One decoder.onnx call per chunk of known tokens, with the per-layer cache blocks shared between
 // past_* and present_* (or copied, in the baseline mode).
 #include "runtime/decoder_runner.h"

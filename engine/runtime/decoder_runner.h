@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // DecoderRunner: feeds known tokens to decoder.onnx and keeps the KV cache. In kInPlace mode each
 // layer's past_key/past_value is a tensor over its whole cache block and present_* is bound to
 // the same memory, so onnxruntime's GroupQueryAttention reads the prefix in place and writes only

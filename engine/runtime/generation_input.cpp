@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks of a generation's input and its preparation into the encoder's points.
 #include "runtime/generation_input.h"
 

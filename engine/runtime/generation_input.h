@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The input of a generation and its way to the encoder: the caller's mesh or point cloud
 // (GenerationInput), its checks, and the model's pre-processing (or raw points as given) into
 // the encoder's points with the transform back to the input frame.

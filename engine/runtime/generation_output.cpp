@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The generated mesh into the input's frame, with its verdicts.
 #include "runtime/generation_output.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The generated mesh as the caller gets it: grid positions back into the input's frame, and the
 // output's verdicts (edge-/vertex-manifold, watertight, oriented, open edges) into the stats.
 #pragma once

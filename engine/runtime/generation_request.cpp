@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Resolution of a GenerationRequest against the model's config, with its range checks.
 #include "runtime/generation_request.h"
 

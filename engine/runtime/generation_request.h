@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a caller asks of one generation (silk_generate_params in the runtime's terms), with "the
 // model's value" left unset, and its one resolution against the model (model.json "sampling",
 // "preprocessing"): every unset value filled in, every value range-checked with a message that

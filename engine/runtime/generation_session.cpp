@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GenerationSession: request -> encoder points -> candidates one after another -> the chosen one
 // in the input frame. A candidate's end is handled lazily (scored as the next one starts), so a
 // caller stepping by layers sees each candidate's last layer before the next begins.

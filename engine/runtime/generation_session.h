@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GenerationSession: one generation as a caller runs it, step by step; the C API's step-wise
 // generator and silk_generator_run are both loops over it. Start resolves the request against the
 // model and prepares the input into the encoder's points; Advance generates ids, running best of

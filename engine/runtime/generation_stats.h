@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GenerationStats: what one generation did and how long each phase took (silkgen --stats,
 // silk_generate_stats). Plain data, filled by Generator and GenerationSession.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The generation loop: encoder once (Start), then per id (Step): grammar (forced? legal mask) ->
 // decoder for the pending known ids -> finite check of the logits -> sampling chain -> Accept.
 // Stops at EOS, at the token cap (the grammar's length budget makes constrained sequences end

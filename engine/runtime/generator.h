@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Generator: one constrained generation, encoder points -> token ids -> grid mesh, step-wise
 // (Start, Step until finished, MeshSoFar at any point, Finish; Run loops over them). Holds the
 // KV cache between runs (reuse one Generator per thread). Callers that start from an input and

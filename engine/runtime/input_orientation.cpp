@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Model-frame glue between generated grid meshes and the part-orientation vote.
 #include "runtime/input_orientation.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Generated parts turned to face the side the input's normals call outside (mesh/orient_to_points),
 // in the model frame, where the grid mesh and the encoder's points meet.
 #pragma once

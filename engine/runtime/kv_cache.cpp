@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Cache allocation with an explicit limit check, so a huge model/cap combination fails with a
 // message instead of std::bad_alloc.
 #include "runtime/kv_cache.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // KvCache: one pre-allocated self-attention cache for a whole generation, one head-major block
 // [H, capacity, row] per layer and K/V (docs/model_contract.md), with rows as the decoder graph's
 // past_*/present_* have them (KV precision): D float32, D float16, or D int8 + a float32 scale.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Why a generation stopped: the one enum the generator sets, the session, the report JSON,
 // silk_generate_stats (silk_stop_reason, same values) and silkgen read, with its one name per reason.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Layers -> decoded adjacency (self/between decoders) -> oriented faces (face recovery); zero-area
 // triangles are dropped (the grammar's "no degenerate face" guarantee; the official streams
 // give none, component_graph already leaves collinear 3-cycles out).

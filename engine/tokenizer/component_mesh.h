@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // TokenizerComponentMesh: one component assembled from its ids (layers -> adjacency -> faces), the
 // one assembly step shared by DecodeTokens (silktok decode, the C API) and the decoder's BuildMesh
 // (generation), so positions, vertex order and face recovery cannot drift apart between the two.

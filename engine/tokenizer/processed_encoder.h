@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Encoder stages after cleanup (token_format.md §3-§7) on an already quantized face set: lets a decoder
 // check prove that a candidate face set re-encodes to the very same tokens. Private to the tokenizer
 // and its tests (tests/tools/check_layers.py).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // TokenizerProcessedMesh: the mesh between the encoder's stages (token_format.md §2.3-§4): quantized
 // positions indexed by processed vertex id (input vertices + non-manifold copies), faces indexed by
 // processed face id, each with its current winding. Private to the tokenizer (docs/mesh_types.md;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Names of tokenizer refusals (token_format.md §14.A; the reference's messages are beside the enum).
 #include "tokenizer/refusal.h"
 

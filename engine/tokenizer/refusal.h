@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Named refusals of the tokenizer: every input the reference rejects (token_format.md §14.A) is
 // refused with one of these reasons, as a Status of code kRefused, never an exception.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Round-trip comparison by grid coordinates: faces are put in a canonical rotation (smallest
 // corner first) so equal windings compare equal.
 #include "tokenizer/roundtrip_check.h"

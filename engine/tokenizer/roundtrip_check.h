@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Compares a decoded mesh with the encoder's processed mesh (the exactness target):
 // representable faces recovered, reversed windings, missing and extra faces.
 #pragma once

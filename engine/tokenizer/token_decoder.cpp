@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // DecodeTokens: ids -> LayeredStream (token_reader) -> per component, the shared assembly
 // (component_mesh: adjacency, face recovery) -> one mesh in reading order. Faithful: nothing is
 // split or filled (the decoder's BuildMesh adds the hole and vertex-fan rules on the same path).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // EncodeMesh: the encoder pipeline of token_format.md §2-§8, stage by stage, with per-phase timing.
 // Mirror of token_decoder.
 #include <algorithm>

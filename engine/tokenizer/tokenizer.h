@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The tokenizer's public C++ entry points: mesh -> Mesh Silksong token ids (bit-exact with
 // the reference, docs/token_format.md) and ids -> mesh (every face the tokens can carry).
 #pragma once

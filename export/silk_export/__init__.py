@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """silk_export: the Python side of Silk — data through libsilk, training, ONNX export, evaluation.
 
 Everything that touches tokens goes through libsilk, by its Python binding silk_mesh

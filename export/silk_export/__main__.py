@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`python -m silk_export ...` (and `torchrun ... -m silk_export train ...`): the console script."""
 import sys
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Checkpoints: model + optimizer + step + RNG states, written atomically so an interrupted run
 resumes exactly where the last checkpoint left it."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export` console script: dataset | train | export | import-official | eval | card, plus
 bench | generate | loss."""
 from __future__ import annotations

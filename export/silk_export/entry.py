@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The pip wheel's `silk-export` console script: the training side ships inside the silk-mesh wheel,
 its dependencies in the extra silk-mesh[train]; without them this says which are missing and the pip
 command, instead of a traceback from deep inside a sub-command."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export import-official`: a released Mesh Silksong checkpoint -> a Silk model folder
 (docs/model_contract.md v3, arch "official"). Everything is written into a temporary folder
 beside the destination and renamed at the end, so a failed import leaves nothing behind."""

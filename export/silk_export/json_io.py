@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The one way silk_export writes JSON: always valid JSON (RFC 8259). Python's json module writes
 NaN / Infinity as the bare words `NaN` / `Infinity` by default, which no other JSON reader accepts
 (silkgen: "not a JSON object"). Each writer chooses what a non-finite float becomes, by what the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Where the package finds the repository's files (vocabulary layout, built libsilk, data folder).
 
 All locations are derived from this file's place in the checkout or from environment variables;

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The architecture registry: one entry per network family that can sit behind the model contract
 (docs/model_contract.md), each an implementation of the Architecture interface (models/architecture.py).
 A ModelConfig's `arch` names its entry; checkpoints, training and the exporter build models here."""

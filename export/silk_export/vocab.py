@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Token ids for the model, read from engine/tokenizer/vocabulary_layout.json (the single source).
 
 Adds the model-only BOS id and the type-embedding classes of token_format.md §9 / docs/model_contract.md."""

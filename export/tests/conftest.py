@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Shared fixtures: libsilk is found as the package finds it ($SILK_LIBRARY, else build/ in the
 checkout); silkgen and silktok from the same build folder; spec files from the shared folder.
 Those four come from tests/python/silk_test_fixtures.py, shared with the silk_mesh tests."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """libsilk's ai.silk CachedAttention op (the attention of fp16- and int8-cache decoders), run by
 Python's onnxruntime with libsilk registered as its custom-op library: against a numpy reference,
 in place (present bound to past's buffer, as libsilk runs it) and copying, against

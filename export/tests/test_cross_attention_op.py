@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """libsilk's ai.silk CrossAttention op (a decoder layer's attention over the point cloud's K/V in
 the fp16/int8-cache variants), run by Python's onnxruntime with libsilk registered: the rewrite
 of the exported pattern (MatMul with the transposed key, Mul, Softmax, MatMul) gives what plain

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export dataset` over a folder tree of mixed formats: a build in two shards (--shard 0/2,
 --shard 1/2, --merge) holds exactly the samples of one unsharded build; cached tokens are the
 official golden tokens; refused meshes are listed with their named reasons; the cache is read

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export train` under torchrun (2 ranks, CPU gloo) gives the per-step losses of a single
 process with the same global batch; checkpoints written by either resume to identical states;
 an FSDP run resumes a DDP checkpoint and continues with the same losses."""

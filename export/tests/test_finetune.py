@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Fine-tuning the released network: `train --init-from` loads a release-layout checkpoint (the
 official fixture: official architecture and key layout, random weights) through the importer,
 trains it with the fine-tuning defaults (lower LR, warm-up) on a few dev meshes and lowers their

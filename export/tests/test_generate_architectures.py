@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """PyTorch generation (evaluation/generate.py) for every registered architecture, through the
 Architecture interface only: Architecture.step's KV-cache decoding gives the teacher-forced
 forward pass's logits, sample_tokens and `silk-export generate` produce ids from a tiny random

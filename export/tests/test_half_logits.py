@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The float16 logits head of the silk-form cache variants (half_logits.py, libsilk's ai.silk
 HalfMatMul), run by Python's onnxruntime with libsilk registered: against the float16 weights'
 product in numpy, the rewrite of the head only (MatMul + bias Add into `logits`, weight stored

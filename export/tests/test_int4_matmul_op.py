@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """libsilk's ai.silk Int4MatMul op (the INT4 weights of fp16- and int8-cache decoders), run by
 Python's onnxruntime with libsilk registered: against onnxruntime's own MatMulNBits on the same
 initializers, against the dequantized product in numpy, the rewrite of a graph's MatMulNBits

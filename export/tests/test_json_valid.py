@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Every JSON file the project writes is valid JSON (issue 20, finding 7): Python's json module
 writes a bare NaN / Infinity unless told not to, and silkgen then reads "not a JSON object". Here:
 the one JSON writer (silk_export.json_io) refuses or nulls them, `silk-export export` refuses a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The fp16 and int8 self-K/V cache variants (silk_export.onnx.kv_precision, `silk-export kv16`,
 `kv8`): made by rewriting a decoder graph, they keep the weights (sharing external data), take
 float16 caches / int8 rows [1, H, C, D + 4] and give the fp32 graph's logits to that precision."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Generation through libsilk's C API from Python (no subprocess): the ids equal the committed
 silkgen golden, the step-wise API grows by layers and ends with the same ids, destroy order is
 free, a model with NaN weights fails with an error naming the model, cancel keeps stats, and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Evaluation on shapes with known answers: a mesh against itself, a cube against a larger
 concentric cube (analytic distances), reversed orientation (NC = -1, |NC| = 1), and the
 structural figures of closed, flipped, open and multi-part meshes."""

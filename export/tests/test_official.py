@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The "official" architecture against the official implementation's own outputs
 (official-fixture/: random weights in the release's key layout): `silk-export import-official`
 on the fixture, then the EXPORTED fp32 graphs run with onnxruntime must give the fixture's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export import-official` on a checkpoint built at test time from the release's key list
 (official-model/release_keys.tsv: all 804 keys, shapes scaled down consistently, random fp16
 values): it imports (safetensors and .pt, `module.` prefix stripped and reported, the 201

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """ONNX export per docs/model_contract.md: names, shapes, dynamic axes, standard ops plus exactly
 one com.microsoft GroupQueryAttention per layer, the model.json sidecar from the vocabulary
 layout, and onnxruntime logits equal to PyTorch's (max abs diff <= 1e-4, fp32) on a

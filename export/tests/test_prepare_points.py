@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """libsilk's pre-processing through the binding (silk_points_prepare): the training point
 clouds come from the same code as generation; the official kind is seeded, float16-valued and
 on the surface; bad arguments raise SilkError."""

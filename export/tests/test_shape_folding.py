@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Shape folding (silk_export.onnx.shape_folding): the decoder graph of every registered
 architecture, in each weight precision, folded, computes exactly what it did for every chunk length and past length tried,
 with its shape arithmetic gone; what the pass cannot prove (a Reshape with two unrelated dims, an

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A 20-step run on a handful of meshes lowers the loss, and an interrupted run resumed from its
 checkpoint ends with exactly the weights of an uninterrupted one."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """What both Blender add-on tests do first (imported by them inside Blender, or in PyPI's bpy module):
 install the zip into the scratch user folders the runner set up and enable it, either as a legacy
 add-on (the add-on zip; Blender 3.x and later) or as an extension (Blender 4.2+'s extensions API,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The add-on zip carries the Python binding unchanged: every file of bindings/python/silk_mesh
 (*.py and README.md) is in the zip under silk_blender/silk_mesh/ byte for byte, and the zip holds
 no other Python file there (lib/ and model/ are the bundled library and model). And every bundled

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # ctest blender_addon / blender_addon_modal / blender_addon_bpy_* / blender_extension_bpy_*: builds
 # the add-on zip (bundled model = the tiny test model) and runs a Blender test against it:
 # `headless` (Debian's blender -b, test_silk_addon.py), `modal` (a real window under Xvfb with event

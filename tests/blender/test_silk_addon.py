@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Headless check of the Blender add-on, run as
   blender -b --factory-startup --python-exit-code 1 --python tests/blender/test_silk_addon.py
 by tests/blender/run_blender_test.sh (ctest blender_addon), or in PyPI's bpy module after `import bpy`

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The add-on's interactive path in a real Blender window (Xvfb), run as
   xvfb-run blender --factory-startup --enable-event-simulate --python tests/blender/test_silk_addon_modal.py
 by tests/blender/run_blender_test.sh modal (ctest blender_addon_modal). `silk.generate_mesh` is

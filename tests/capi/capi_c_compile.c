@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Compiles silk.h as plain C (C99) and exercises it: encode a tetrahedron, decode it back,
  * the generation entry points' argument/availability errors, and the point pre-processing. */
 #include <stdio.h>

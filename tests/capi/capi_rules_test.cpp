@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The C API 1.0 boundary rules (docs/c_api.md) checked on every function they apply to: the one
 // size-query rule of the copy functions (including "too small writes nothing"), struct_size
 // refused naming the struct, the size given and the size expected, and the version.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Paths and files as each platform has them, through the public API: UTF-8 paths with non-ASCII
 // characters (a folder "Ünïcødé 形状" holding the mesh, the model and the outputs), CRLF text
 // files, outputs replacing existing files; on Windows (run under Wine by scripts/test_windows.sh)

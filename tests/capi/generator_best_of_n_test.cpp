@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Issue 20 (the runtime owns generation), silk.h only: the step-wise API honours best of N.
 // start / advance / finish with N = 3 returns exactly what silk_generator_run returns (ids, faces,
 // parts, chosen candidate), advancing by layers crosses the candidates (stats and progress name

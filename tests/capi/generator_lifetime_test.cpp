@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Issue 20, findings 1 and 4 (silk.h only): destroying a generator (or its model) while a call on
 // it runs is safe, and a silk_generator_cancel issued at any moment of a call is never lost.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The C API as a plug-in author uses it (silk.h only): destroy order, impossible limits,
 // concurrent misuse, thread bounds, cancel/progress contract, size queries, enum checks,
 // the log callback, parallel == sequential, and a soak that keeps the RSS flat.

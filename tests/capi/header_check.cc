@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The public headers under the strictest flags a consumer may use: the capi_header_* ctests
 // compile this file (syntax only) as C++17 with -Wall -Wextra -Wpedantic -Werror, once with silk.h
 // alone and once with silk.hpp too (SILK_WITH_HPP); tests/capi/capi_c_compile.c is the C99 twin.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Point clouds through the C API (silk.h only): silk_mesh_load gives a cloud without normals
 // estimated ones (radial and outward on a sphere), keeps a cloud's own normals as read, reads
 // XYZ, refuses what it cannot estimate from; silk_generator_copy_points returns the encoder's points

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Every JSON text libsilk writes is valid JSON, also for non-finite figures (issue 20, finding 7):
 // the reports are nlohmann::json dumps (NaN / Inf become null: checked here, since the reports
 // rely on it) plus the trace's hand-written point list (core/json_number.h: null, never nan/inf).

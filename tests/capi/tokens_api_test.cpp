@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The tokenizer side of the C API as silktok and plug-ins use it: load as a mesh, encode
 // statistics, decode with vertex splitting, round trip, grammar check, hole repair, random walks,
 // save formats. Expected values come from the shared goldens (official tokenizer outputs), from

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # silkgen end-to-end checks with the committed tiny model (tests/tools/silkgen_checks.py):
 # goldens (ids; meshes separately, they follow the decoder's face recovery) + determinism, the
 # Python onnxruntime reference loop (skipped without it), bad

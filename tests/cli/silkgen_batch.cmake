@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # silkgen --batch end to end with the committed tiny model (tests/tools/silkgen_batch_checks.py):
 # shards cover the list once with 1/1-identical outputs (also from Slurm's variables), each output
 # equals a single run's and passes mesh_check.py; broken inputs fail alone, reruns skip,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # silktok end-to-end checks (tests/tools/cli_checks.py): bad inputs, goldens, round trips, decode.
 if(Python3_FOUND AND TARGET silktok)
   foreach(mode bad golden roundtrip decode)

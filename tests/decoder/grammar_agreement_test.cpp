@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Exhaustive agreement of the legal mask with Accept: at every prefix of the 154 official
 // streams and of 2,000 seeded random walks (default options, tight length caps, both window
 // rules; the Slow label holds the 140 dev streams and the 2,000 walks, the normal run the 14

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Every official token stream (spec/golden, spec/golden-dev) is accepted token by token, each
 // token is in the legal mask before it is accepted, EOS is legal exactly at the end, and the
 // machine's faithful mesh (VertexFanPolicy::kKeep) equals the tokenizer's DecodeTokens on the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Liveness under a length cap (GrammarOptions::max_length): from every state reachable by
 // accepting legal ids the legal mask is non-empty until EOS, and every walk ends with EOS at
 // or before the cap. Seeded random legal walks under small caps (17..400), with the token

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Seeded property test: random legal walks (ids drawn from the legal masks) always end with
 // EOS, CheckTokens accepts them, and their meshes satisfy the guarantees of grammar.h, the
 // vertex-manifold one included (checked by CheckMeshGuarantees and by an independent flood fill

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Table-driven legal/illegal sequences: each row is a base stream, an edit, and the expected
 // outcome (accepted, or the reason and position of the first refusal). A failing row writes
 // its ids to $TMPDIR/silk_grammar_<name>.tokens.txt, which `silktok check` replays.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hole detection and repair (token_format.md §12.2): a between-layer 1 cleared in a closed golden leaves
 // a hole that policy "report" finds and policy "repair" closes (watertight again).
 #include <gtest/gtest.h>

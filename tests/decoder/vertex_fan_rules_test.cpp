@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The decoder's vertex-fan rule: a bowtie of two open fans is closed by one gap face when
 // gaps may be closed (new edge, adjacent layers, non-zero area) and split otherwise; a gap whose
 // chord already exists, or whose face would be flat, is split instead.

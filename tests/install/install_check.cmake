@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # ctest install_consumer: installs the build into a scratch prefix, then checks that
 #  * a tiny consumer project configures with find_package(silk), builds and runs;
 #  * libonnxruntime sits next to libsilk and the installed binaries find it through their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Every file of corpus/bad: a clear error naming the file and the problem (read times printed;
 // a hang fails by the ctest timeout). The two cases whose problem is only visible after
 // cleaning (degenerate / duplicate faces) must read raw here; the mesh layer rejects them later.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The 160 dev OBJ meshes: vertex and face counts must match corpus/dev/MANIFEST.tsv (the read
 // time is printed; speed targets live in bench/).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The generated valid fuzz seeds (fuzz/corpus/*_reader_fuzzer/cube*) must read as cubes through
 // the file dispatcher, so the reader fuzzers start from inputs that reach deep into every reader.
 // (The token fuzzers' seeds are token arrays, not meshes.)

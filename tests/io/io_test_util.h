@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Helpers for the io tests: a temporary folder removed at the end of the test, writing test
 // inputs (text or bytes) into it, and gzip-compressing them.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ReadMeshFile dispatch: extensions, ".gz" wrapping, content sniffing, file errors.
 #include "io/mesh_reader.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OBJ/PLY writers round-trip through the readers; atomic writes leave no partial output.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Chamfer distance: the grid nearest-neighbour index against brute force on random sets (some
 // clustered, some queries far outside), the symmetric mean, empty/degenerate meshes, and the
 // cancel polled in chunks while scoring (issue 20).

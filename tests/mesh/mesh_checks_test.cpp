@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Output verdicts: a closed tetrahedron is watertight and oriented; removing a face opens it;
 // flipping one face breaks orientation; a fin edge breaks manifoldness. Smooth normals point out.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Normal estimation (mesh/nearest_points, plane_fit, normal_orientation, normal_estimation) on clouds
 // whose true normals are known exactly: a sphere (radial, outward), a plane (+-z, one sign), a
 // cube's faces (the face normals, outward, away from the edges); the k-d tree against brute

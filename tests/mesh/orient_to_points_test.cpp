@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Part orientation from reference normals: outward parts are kept, inward ones reversed, each
 // part decided on its own, reversed reference normals reverse the verdict, zero-area parts and
 // faces with bad indices are left alone. The check of the result is independent of the vote:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pre-processing (mesh/point_preprocessing): the official kind is seeded, rounds to float16,
 // keeps face normals, draws n_points distinct samples that lie on the surface, and merges
 // near-duplicate vertices; Silk's kind is unchanged from plain surface sampling; float16

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Surface sampling: points lie on the faces, normals are the faces' unit normals, draws are
 // area-proportional and seeded; point-cloud subsets are seeded and without repeats.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex fans: a closed tetrahedron and an open fan have one fan per vertex; two triangles
 // touching at one vertex (a bowtie) have two there, the verdict says so, and the split gives
 // that vertex one copy, after which every vertex has one fan and edges are unchanged.

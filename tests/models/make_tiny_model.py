@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Makes tests/models/tiny/: a deterministic random-weight model in the exact format of
 docs/model_contract.md, small enough to commit (~2.4 MB with decoder.kv16.onnx and decoder.kv8.onnx, the fp16 and int8 KV cache variants), for the runtime's golden and
 determinism tests. Uses export/'s model code (silk_export) with a toy configuration and

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Independent check of the C++ generation loop (engine/runtime) against onnxruntime's Python
 API: given a trace written by `silkgen --trace` (the encoder points, every generated id, whether
 the grammar forced it, and the legal set it was sampled from), this script

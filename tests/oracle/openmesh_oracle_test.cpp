@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // An independent check of mesh/mesh_checks (the verdicts silkgen --stats and the C API report):
 // OpenMesh's half-edge mesh is built from the same faces and its answers are compared with
 // CheckFaces / CheckMesh. OpenMesh is linked into this test only, never into libsilk.

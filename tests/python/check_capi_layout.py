@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The silk_mesh binding's ctypes declarations (bindings/python/silk_mesh/_capi.py) against the C
 compiler's view of silk.h: for every ctypes Structure, a generated C file prints sizeof of the
 struct (silk_<snake_case of the class name>) and offsetof and sizeof of each field, named as in

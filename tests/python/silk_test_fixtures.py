@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The fixtures both pytest suites share (tests/python, and export/tests through its conftest):
 libsilk as silk_mesh loads it, the shared folder, and Silk's tools from the library's build folder.
 Each conftest imports them by name (pytest registers the fixtures it finds in a conftest); the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """silkgen --batch on a local Dask cluster (issue 21): a LocalCluster of 2 worker processes runs
 `silkgen --batch LIST --shard i/2` for i = 0, 1, and the union of their reports covers the list
 exactly once, every input ok. Skipped only when dask.distributed is not installed."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """silk_mesh's library loading per platform (_platform_libs, _library): onnxruntime loaded first,
 by full path from libsilk's folder, and a failed load that names the file and the reason. Windows
 Python is not available here, so the Windows cases run the same (pure Python) diagnosis on Linux

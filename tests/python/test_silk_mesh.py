@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The Pythonic API of silk_mesh (bindings/python): encode gives the official ids, decode gives a
 mesh the independent checker (shared/tools/mesh_check.py) accepts, generate gives silkgen's ids
 for the same seed, step-wise equals one call, callbacks work, errors name the file, and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Best of N's parts with the tiny model: seed derivation, the score, and the choice among scored
 // candidates (the session's runs of N: generation_session_test.cpp).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The KV cache path: chunked feeding, one-at-a-time feeding and the naive copying baseline
 // must give the same cache contents and next-token logits.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GenerationSession with the tiny model: N = 1 is the plain run; best of N equals N plain runs
 // with the derived seeds scored and chosen independently here; stepping by layers crosses the
 // candidates; a cancel in a later candidate leaves a usable Finish; request resolution.

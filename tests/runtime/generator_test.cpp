@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whole generations with the tiny model: determinism, grammar validity of every result,
 // equivalence of the optimised paths (forced-token skipping, in-place cache) with the plain
 // ones, caps, callbacks and unconstrained mode.

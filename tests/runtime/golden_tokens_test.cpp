@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The committed generation goldens (tests/models/golden/*.tokens.txt) checked without the
 // runtime: each is a complete legal sequence under the run's 300-id budget and decodes to a
 // mesh that keeps the grammar's structural guarantees (so a golden can only be updated to

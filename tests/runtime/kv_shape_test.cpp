@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The runtime's KV cache shape uses the kernels' row layout (kernels/attention/cache_row.h) for
 // every KV precision: the bytes the cache allocates are the bytes the ai.silk kernels read.
 #include "runtime/kv_cache.h"

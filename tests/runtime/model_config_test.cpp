@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // model.json parsing: the committed tiny model is accepted, and every mismatch the contract
 // names (format, versions, vocabulary, file names, dimensions) is refused with a message.
 #include <gtest/gtest.h>

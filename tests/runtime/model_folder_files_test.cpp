@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Issue 20, finding 2: a model folder may only make libsilk read files inside it. The tiny
 // model's decoder is rewritten with its weights in an ONNX external-data file (a small protobuf
 // rewrite below, no onnx package needed), whose location is legit, "../outside.bin", absolute, or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared fixtures of the runtime tests: the committed tiny model (tests/models/tiny) and
 // encoder points sampled from the repository's sample mesh.
 #pragma once

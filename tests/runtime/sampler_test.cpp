@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The sampling chain: only legal ids, greedy/top-k/top-p semantics, seeded determinism, draws
 // that follow the softmax of the logits, and the sample-then-check arrangement.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Surface guidance: the distance field against brute force, the K/O restriction against a
 // brute-force reference (exact when some legal id is within the tolerance, nearest legal ids
 // otherwise, never empty, other kinds untouched), and whole generations with the tiny model.

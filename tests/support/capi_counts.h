@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Counts, arrays and reports of C API handles through silk.h's size query and silk_report (the
 // *_count functions and the report copy are gone in C API 1.0), so the capi tests read them one way.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the C API generation tests share: the one-call generation from a silk_mesh or from rows
 // of points through silk_generator_run, and a fixture holding the tiny test model and the sample.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Readers for the official reference files in shared/spec.
 #include "support/golden_files.h"
 

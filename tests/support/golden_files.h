@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Readers for the official reference files in shared/spec: token lists, processed-face lists
 // (grid coordinates) and INDEX.tsv rows, plus the canonical face form used to compare them.
 #pragma once

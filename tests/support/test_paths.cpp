@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Where tests find the shared spec/corpus data.
 #include "support/test_paths.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Where tests find the shared spec/corpus data (../shared beside the repo, or $SILK_SHARED_DIR).
 #pragma once
 #include <string>

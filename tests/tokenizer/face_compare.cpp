@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Face comparison helper for the decoder tests (see face_compare.h).
 #include "face_compare.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper: compares decoded faces with the processed mesh of the goldens by grid
 // coordinates, the way spec/golden-dev/README.md defines it (same corners, same cyclic order).
 #pragma once

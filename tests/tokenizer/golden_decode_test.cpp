@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Decodes the 14 spec goldens. Where the official decoder is an exact inverse (golden
 // README table: face set equal, 0 reversed) its .decoded.txt faces are the exact target;
 // elsewhere the processed face count and manifold/orientation invariants are checked.

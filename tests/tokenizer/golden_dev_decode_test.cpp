@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Decodes every dev-corpus token file (spec/golden-dev) and compares the recovered faces
 // with the official processed mesh minus its unencodable faces: no representable face may
 // be missing or reversed unless proven undetermined by the tokens (its component's decoded

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The dev corpus against the official outputs (shared/spec/golden-dev): identical tokens for
 // the 140 meshes the reference encodes, the same refusal for the other 20, and the same
 // processed / unencodable face sets (with windings).

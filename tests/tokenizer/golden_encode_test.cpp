@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The 14 official goldens (shared/spec/golden): our encoder must reproduce the official
 // token ids exactly.
 #include <gtest/gtest.h>

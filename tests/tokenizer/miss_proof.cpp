@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Missed-face listing and token-equivalence proof per component; see miss_proof.h.
 #include "miss_proof.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper: lists the representable faces a decode misses or reverses, and proves which
 // of them the tokens cannot determine (their component's decoded faces re-encode to the
 // component's stream, token_equivalence.h), so tests exempt only what is computed here.

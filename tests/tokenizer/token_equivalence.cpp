@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Token-equivalence check for decoded face sets (see token_equivalence.h).
 #include "token_equivalence.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper: decides whether a candidate face set of one decoded component is
 // token-equivalent to the input, by running the real encoder stages on it
 // (EncodeProcessedMesh: non-manifold split, orientation, components, layering, codecs).

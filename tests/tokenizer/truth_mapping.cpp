@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Coordinate mapping of golden faces onto a decoded component graph (see truth_mapping.h).
 #include "truth_mapping.h"
 

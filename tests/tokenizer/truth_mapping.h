@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper: maps the official processed faces of a golden onto one decoded component's
 // graph by grid coordinates (faces with a coincident or absent corner, or an edge the graph
 // lacks, are left out), so face_verification can score the truth.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """A caller built against libsilk 1.0 keeps working (docs/c_api.md "Struct growth"): the 1.0 symbol
 silk_model_default_params@SILK_1.0 still returns the 1.0 layout of silk_model_params (12 bytes,
 no kv_precision), silk_model_load and silk_model_get_info accept the 1.0 sizes and write nothing

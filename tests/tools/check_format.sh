@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # ctest's format check: scripts/format.sh --check on the source tree ($1, default: this checkout),
 # skipped (77) where the pinned formatters are missing, so a machine without them is not failed.
 set -uo pipefail

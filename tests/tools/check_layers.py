@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Enforces the engine's layering: a lower layer never includes a higher one.
 Order: core -> io -> mesh -> tokenizer -> decoder -> kernels -> runtime -> capi (the C API sees all).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The end every tests/tools check script shares: its failures printed, a summary line, the exit status."""
 
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Every source file names its licence on an SPDX line, so a file copied out of the tree keeps it:
 GPL-3.0-or-later under apps/blender/silk_blender/ (Blender add-ons are GPL), MIT everywhere else
 (LICENSE). The line is the file's first, after a shebang and a Python coding line, in the file's

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """libsilk.so exports exactly the C API: the dynamic symbols of the built library, the functions
 silk.h declares and the committed list engine/libsilk.symbols are the same set, and every one is
 silk_* (docs/c_api.md "Exported symbols"). onnxruntime's custom-op library entry lives in

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """End-to-end checks of the silktok binary, run by ctest (tests/cli/silktok.cmake).
 
   bad SILKTOK SHARED      every corpus/bad file through `encode` and `stats`: non-zero exit,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Counts the lines of every function in the C++ and Python sources, so that the style rule
 "a function fits on a screen" is checked by a test rather than by memory.
 

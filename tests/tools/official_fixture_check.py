@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The released Mesh Silksong architecture end to end through silkgen (ctest official_fixture_greedy):
 imports ../shared/official-fixture/model.safetensors with `python3 -m silk_export import-official`
 (at test time, nothing committed), writes the fixture's conditioning points (points.npy, float32

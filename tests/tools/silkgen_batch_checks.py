@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """End-to-end checks of `silkgen --batch` with the committed tiny model and a small id cap, run by
 ctest (tests/cli/silkgen_batch.cmake). Each mode builds its own list in a temporary folder.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """End-to-end checks of the silkgen binary with the committed tiny model, run by ctest
 (tests/cli/silkgen.cmake).
 

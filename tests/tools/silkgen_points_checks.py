@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """silkgen on scan-like point clouds without normals (tests/cli/silkgen.cmake): a closed dev mesh
 sampled with numpy (area-weighted, true outward normals from the face winding and the sign of the
 volume) written as a binary PLY with x y z only and as an XYZ text file (comment, CRLF), then

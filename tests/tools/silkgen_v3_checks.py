@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """silkgen with model.json version 3 (docs/model_contract.md), run by ctest (tests/cli/silkgen.cmake)
 on COPIES of the committed tiny model made at test time:
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """ctest wheel_fresh_venv (tests/CMakeLists.txt; runs only with SILK_TEST_WHEEL=1, else skipped with 77,
 because it builds libsilk in Release and downloads onnxruntime and numpy from PyPI): the pip wheel as a
 user gets it. Builds it with scripts/build_wheel.sh (or takes --wheel), installs it into a fresh venv

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Silk for Blender: generate artist-style meshes (Mesh Silksong, grammar-constrained, CPU) from
 the active object, step by step inside Blender, through libsilk's C API (ctypes)."""
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Between Blender meshes and Silk's arrays: the active object's evaluated mesh as flat
 triangles (object frame), a face-less object's vertices + normals as a point cloud, and the
 generated mesh (silk_mesh rows: numpy arrays or lists of tuples) back as one object per part

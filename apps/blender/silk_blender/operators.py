@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The add-on's operators: silk.generate_mesh (modal with Esc cancel, status-bar progress and a
 preview that grows per completed layer; synchronous from scripts and in background mode, with the
 same result), silk.import_tokens and silk.export_tokens."""

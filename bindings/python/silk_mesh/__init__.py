@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """silk_mesh: Python binding of libsilk (Mesh Silksong mesh tokenization and generation) over its
 C API, engine/include/silk/silk.h, with ctypes only (no compiled extension; numpy optional).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """numpy is optional (Debian's Blender, a bare Python): the one rule for array values.
 
 Inputs: numpy arrays or any Python sequences, rows ([[x, y, z], ...]) or flat ([x, y, z, ...]).

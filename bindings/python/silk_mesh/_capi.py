@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The C declarations of libsilk's API (engine/include/silk/silk.h) for ctypes: status codes,
 structs and function signatures, in one place for every Python client (the silk_mesh package,
 which export/silk_export uses and the Blender add-on vendors). Pure ctypes, no numpy."""

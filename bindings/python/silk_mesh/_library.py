@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Finding and loading libsilk, and its one error type: SilkError(status, message) with the
 library's own message (silk_last_error), also raised when the library cannot be loaded.
 

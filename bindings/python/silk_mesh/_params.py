@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Keyword parameters onto a C params struct: each keyword names a field of the struct (as in
 silk.h); None keeps libsilk's default; an enum field takes its name ("repair", "input", ...) or
 its number. An unknown keyword or enum name raises TypeError / ValueError naming it."""

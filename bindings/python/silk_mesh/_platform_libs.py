@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Which native libraries this platform loads (libsilk and its onnxruntime dependency, by file
 name) and, when one will not load, why: the file is missing, is not a library of this system (an
 ELF library given to Windows, a DLL given to Linux), was built for another architecture (the ELF /

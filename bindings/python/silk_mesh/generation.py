@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Generation: silk_mesh.Model (a loaded model folder), silk_mesh.Generator (one generation at a
 time, in one call or step by step: start / advance / preview / finish / cancel, with a progress
 callback) and silk_mesh.generate (one call with a fresh generator). Results are Result(mesh, ids,

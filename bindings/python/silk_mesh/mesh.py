@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """silk_mesh.Mesh: a triangle mesh (or a point cloud with normals) held by libsilk, built from
 arrays or read from a file, with its arrays copied out on request and saved in libsilk's formats."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """silk_mesh.prepare_points: the encoder's input points by libsilk's pre-processing (the same code
 generation runs, and training uses), from a mesh or an oriented point cloud."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The pip wheel's console scripts `silkgen` and `silktok` (pyproject.toml [project.scripts]): each runs
 the binary the wheel carries in silk_mesh/bin/ with the same arguments (exec, so exit status, stdin
 and signals are the binary's own). Python entry points rather than binaries in the scripts folder:

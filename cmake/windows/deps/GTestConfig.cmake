@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Windows cross-build: GoogleTest compiled from Debian's googletest source package.
 if(NOT TARGET GTest::gtest)
   set(gtest_force_shared_crt ON CACHE BOOL "" FORCE)

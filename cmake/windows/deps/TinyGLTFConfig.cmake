@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Windows cross-build: tinygltf as a header (libsilk compiles its implementation itself).
 include(${CMAKE_CURRENT_LIST_DIR}/host_headers.cmake)
 silk_host_header_target(TinyGLTF::TinyGLTF tiny_gltf.h nlohmann)

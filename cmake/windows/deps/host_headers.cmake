@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Header-only libraries for the Windows cross-build, taken from the build machine's Debian -dev
 # packages. Only the named headers are exposed (a staging folder of links), never /usr/include
 # itself, which would shadow MinGW's C library headers with glibc's.

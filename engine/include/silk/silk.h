@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* silk.h — the one public C API of libsilk (Mesh Silksong engine), version 1.0.
  * Opaque handles, create/destroy pairs, one silk_<x>_default_params() per params struct, status
  * codes plus a per-thread error message, one size-query rule for every copy, one way to return

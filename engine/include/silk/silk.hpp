@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silk.hpp — thin header-only C++ layer over silk.h: RAII handles and exceptions on the
 // C++ side only (the C boundary itself never throws).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // mkstemp + write loop + fsync + rename, with cleanup on every failure path (Windows: a
 // CreateFileW temp file + WriteFile + FlushFileBuffers + MoveFileExW replacing the target).
 #include "io/files/atomic_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Atomic file output: a reader of `path` sees either the old file or the complete new one,
 // never a partial write (temp file in the same folder, fsync, rename).
 #pragma once

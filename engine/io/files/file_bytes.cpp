@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whole-file reading through POSIX read(2), size checked with fstat before allocating
 // (Windows: the same calls of MinGW's C runtime, the file opened by its UTF-16 path in binary mode).
 #include "io/files/file_bytes.h"

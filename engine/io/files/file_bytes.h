@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reads a whole file into memory with a size limit; errors name the path and the OS reason.
 #pragma once
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Small file-system helpers (std::filesystem on NativePath's UTF-8 paths, no exceptions escaping).
 #include "io/files/file_system.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Small file-system helpers for tools that write outputs (folders for batch outputs).
 #pragma once
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // zlib inflate (gzip wrapper, concatenated members accepted), bounded and streaming.
 #include "io/files/gzip_inflate.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // gzip decompression for "x.ply.gz"-style inputs, with an output size limit against
 // decompression bombs. Needs zlib (SILK_HAVE_ZLIB); without it every call is an error.
 #pragma once

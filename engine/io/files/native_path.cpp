@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // UTF-8 <-> native paths: on Windows through core/windows_text.h's conversions (CP_UTF8), so a
 // path with non-ASCII characters opens the same file whatever the process's code page is.
 #include "io/files/native_path.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Every path in Silk is UTF-8; Windows reads a narrow path in the ANSI code page, not UTF-8.
 // The one place where a UTF-8 path becomes the operating system's path (and back): every
 // engine file open, stat and folder walk goes through NativePath.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whole-token number parsing with strtod_l ("C" locale) and std::from_chars.
 #include "io/files/number_parse.h"
 

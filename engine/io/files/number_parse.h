@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strict number parsing for the text readers: a token must be a whole number, nothing else.
 // Doubles go through strtod in the "C" locale (correctly rounded, locale-independent) so the
 // golden meshes read to the exact same doubles as the reference.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // TextLines / LineTokens: line-by-line, whitespace-token scanning of an in-memory text file,
 // shared by the OBJ, OFF, PLY-ascii and STL-ascii readers. Tracks 1-based line numbers.
 #pragma once

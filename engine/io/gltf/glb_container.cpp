@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLB header and chunk parsing (little-endian u32 fields), all lengths bounds-checked.
 #include "io/gltf/glb_container.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLB container validation: the 12-byte header and the JSON/BIN chunk table, checked
 // completely before tinygltf sees the bytes (tinygltf 2.7 trusts the BIN chunk length).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLB layout: 12-byte header, JSON chunk (space-padded to 4), BIN chunk (zero-padded); one
 // buffer whose views are 4-byte aligned. Accessor min/max for POSITION as the spec requires.
 #include "io/gltf/glb_writer.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Binary glTF (GLB) output of generated meshes: one node + mesh per part ("part_000", ...),
 // each with POSITION, smooth NORMAL and optionally a per-part COLOR_0, 32-bit indices.
 // Written by hand (JSON chunk + BIN chunk); atomically.

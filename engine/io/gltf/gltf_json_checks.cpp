@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pre-validation of glTF JSON with a depth scan and nlohmann::json (exceptions caught here).
 #include "io/gltf/gltf_json_checks.h"
 

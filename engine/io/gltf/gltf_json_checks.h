@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks on the glTF JSON text that run before tinygltf parses it: nesting depth (tinygltf
 // recurses on "extras") and external buffer files (missing file = clean error naming it).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glTF accessor validation (bounds, types, strides) and primitive-to-triangle conversion.
 #include "io/gltf/gltf_primitives.h"
 

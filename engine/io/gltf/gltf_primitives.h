@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Appends one glTF mesh instance (all its triangle primitives, transformed) to an IoMesh,
 // validating accessors against their buffers before reading a single element.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glTF reading: pre-checks, tinygltf load with restricted file callbacks, scene walk,
 // primitive extraction. No exception thrown by tinygltf or nlohmann leaves this file.
 #include "io/gltf/gltf_reader.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glTF 2.0 reader (.gltf JSON and .glb) through tinygltf, with our own validation before
 // and after it: GLB container, JSON depth, external buffers, node graph, accessor bounds.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Node traversal with explicit stack, TRS/matrix composition in double precision.
 #include "io/gltf/gltf_scene_walk.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Walks the glTF node graph of the scene to read and returns each mesh reference with its
 // world transform. Iterative with a visited set: cycles (RecursiveNodes) and shared children
 // are errors, never an endless loop or a stack overflow.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one translation unit that compiles tinygltf's implementation into libsilk, so the
 // library (and the fuzzers, instrumented) use exactly this build. Images are never decoded:
 // no stb_image, no external image files (gltf_reader installs a no-op image loader).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OBJ parsing: one pass over lines, strict numbers, index validation with line numbers.
 #include "io/obj/obj_reader.h"
 

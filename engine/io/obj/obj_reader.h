@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strict Wavefront OBJ reader: positions ("v") and faces ("f", any of the v, v/vt, v//vn,
 // v/vt/vn forms, 1-based or negative relative indices). Everything else is ignored.
 #pragma once

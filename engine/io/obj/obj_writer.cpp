@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OBJ formatting with std::to_chars (shortest round-trip doubles) and atomic file output.
 #include "io/obj/obj_writer.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OBJ output: "v x y z" lines then 1-based "f a b c" lines. Doubles are written in the
 // shortest form that reads back to the same value.
 #pragma once

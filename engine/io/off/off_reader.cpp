@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OFF parsing: header keyword, counts line (may share the keyword's line), vertex lines,
 // face lines "n i0 i1 ... [color]".
 #include "io/off/off_reader.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strict OFF reader ("OFF", also the COFF/NOFF/CNOFF/STOFF variants whose extra per-vertex
 // values are ignored). One vertex or face record per line; '#' starts a comment.
 #pragma once

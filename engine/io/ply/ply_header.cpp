@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PLY header parsing: "ply", "format", "element", "property [list]", "comment", "obj_info",
 // "end_header". Type names include the int8/uint8/.../float64 aliases.
 #include "io/ply/ply_header.h"

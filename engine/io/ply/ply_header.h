@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PLY header model and parser: format, elements, scalar and list properties. Kept apart from
 // the body reader so the plausibility checks (counts vs. remaining bytes) see the whole header.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PLY body reading for the three encodings, driven by the parsed header.
 #include "io/ply/ply_reader.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strict PLY reader (ascii, binary_little_endian, binary_big_endian): x/y/z of the "vertex"
 // element and the "vertex_indices"/"vertex_index" list of the "face" element; all other
 // properties and elements are parsed and skipped (ReadPlyPointCloud also reads nx/ny/nz).

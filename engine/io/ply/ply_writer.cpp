@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PLY binary_little_endian formatting (explicit byte order) and atomic file output.
 #include "io/ply/ply_writer.h"
 

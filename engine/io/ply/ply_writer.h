@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Binary little-endian PLY output: double x/y/z vertices (exact), uchar/int face lists.
 #pragma once
 #include <string>

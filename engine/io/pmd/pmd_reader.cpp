@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PMD parsing: a bounds-checked little-endian cursor walks the file section by section; every
 // count is compared with the bytes left before use, so arbitrary input fails with a message.
 #include "io/pmd/pmd_reader.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // 0 A.D. PMD reader (binary "PSMD" model, versions 1-4): the game's art meshes are a large
 // real-world corpus for the tokenizer. Keeps positions and triangles only, raw (no welding).
 #pragma once

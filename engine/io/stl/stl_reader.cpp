@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // STL parsing: binary by exact size, otherwise strict ascii "solid/facet/outer loop/vertex".
 #include "io/stl/stl_reader.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // STL reader, ascii and binary. Binary is recognised by its size (84 + 50 * n bytes) even
 // when the 80-byte header starts with "solid". Every triangle adds 3 new vertices (raw).
 #pragma once

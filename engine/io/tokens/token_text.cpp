@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Token files: one decimal id per line.
 #include "io/tokens/token_text.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The token-file format shared by silktok, the dataset builder and the goldens: one decimal
 // token id per line, nothing else (shared/spec/golden/*.tokens.txt).
 #pragma once

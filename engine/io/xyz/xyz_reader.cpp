@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // XYZ/PTS parsing: comment stripping, value splitting (spaces, tabs, commas), the optional PTS
 // count line, and the per-line checks (same column count throughout, unit normals).
 #include "io/xyz/xyz_reader.h"

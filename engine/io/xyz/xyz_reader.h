@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strict reader of plain-text point clouds (.xyz, .pts): one point per line, "x y z" or
 // "x y z nx ny nz" (docs/io.md "Point clouds"); what a scan exported without faces looks like.
 #pragma once

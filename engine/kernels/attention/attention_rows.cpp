@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scalar and AVX2 row primitives for CachedAttention (float32, float16 and int8 + scale rows); the
 // vectorized ones are compiled for AVX2+FMA+F16C with a target attribute and used only when the
 // CPU reports those features.

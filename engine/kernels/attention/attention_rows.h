@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The row primitives of CachedAttention (dot products with cached keys, the softmax's
 // exponentials, the weighted sum of cached values, storing new rows) for one cache element type:
 // AVX2/FMA/F16C versions where the CPU has them, plain C++ otherwise, chosen once per call.

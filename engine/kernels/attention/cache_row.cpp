@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Row sizes and the row-to-float32 reading of cache_row.h (tests and diagnostics read a cache
 // through it; the kernels' fast paths read rows in attention_rows.cpp).
 #include "kernels/attention/cache_row.h"

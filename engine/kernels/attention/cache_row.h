@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one layout of a cached key/value row (one position of one kv head), shared by the ai.silk
 // attention kernels and by the runtime's KV cache (runtime/kv_cache.h), so that the bytes the
 // cache allocates and the bytes the kernels read can never disagree.

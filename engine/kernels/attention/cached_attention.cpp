@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CachedAttention: two passes over the cache per (position, head), keys then values, each row
 // read once; float16 and int8 rows are widened in registers instead of in a float32 copy.
 #include "kernels/attention/cached_attention.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Self-attention of a chunk of new positions over a cache that holds every earlier position:
 // the computation of the decoder's ai.silk CachedAttention op (docs/model_contract.md), kept
 // apart from onnxruntime so it can be tested against a plain reference and timed on its own.

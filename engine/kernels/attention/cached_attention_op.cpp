@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // onnxruntime custom-op glue for CachedAttention (kernels/ort/ort_op_glue.h: the plain C API,
 // so the same code serves libsilk's onnxruntime and Python's). Bad shapes give a status naming
 // the node, never a crash.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ai.silk CachedAttention operator for onnxruntime (docs/model_contract.md, "KV precision"):
 // GroupQueryAttention's inputs, outputs and in-place cache, with a float16 or int8 (+ row scale)
 // cache read at memory speed. Registered with the rest of the domain by kernels/silk_ops.

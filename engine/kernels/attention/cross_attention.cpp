@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CrossAttention: per (head, position), one pass of dot products over the head's key rows, the
 // softmax, one weighted pass over its value rows (the float32 or float16 rows of CachedAttention).
 #include "kernels/attention/cross_attention.h"

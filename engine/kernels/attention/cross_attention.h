@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Attention of new positions over a fixed set of rows (the point cloud's cross K/V, 261 per head
 // for the release network): the computation of the decoder's ai.silk CrossAttention op
 // (docs/model_contract.md). onnxruntime runs it as MatMul with a transposed key, Mul, Softmax and

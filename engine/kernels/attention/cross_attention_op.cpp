@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // onnxruntime custom-op glue for CrossAttention: inputs query [B, H, T, D] float32, key and value
 // [B, H, M, D] (float32 or float16: the op table's element), attribute scale; output [B, H, T, D]
 // float32. Shapes that do not fit give a status naming the node, never a crash.

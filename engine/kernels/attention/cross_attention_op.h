@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ai.silk CrossAttention operator for onnxruntime (docs/model_contract.md): a decoder
 // layer's attention over the point cloud's cross K/V in one node, in place of MatMul (transposed
 // key), Mul, Softmax and MatMul. One op name, two kernels: float32 or float16 key/value rows

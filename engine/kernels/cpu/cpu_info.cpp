@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Linux topology from /sys/devices/system/cpu/cpuN/topology, restricted to the affinity mask
 // (Windows: the processor-core records of GetLogicalProcessorInformationEx, all groups).
 #include "kernels/cpu/cpu_info.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Physical core count for the default thread count: onnxruntime's matrix kernels gain
 // nothing from SMT siblings, so threads default to cores, not logical CPUs.
 #pragma once

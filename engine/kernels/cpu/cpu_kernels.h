@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What libsilk's own CPU kernels (the ai.silk onnxruntime ops) share: work spread by a
 // parallel-for the caller supplies (onnxruntime's intra-op pool), and a switch between the
 // vectorized rows and plain C++ that tests use to compare the two.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // IEEE binary16 <-> binary32 in plain C++: exact widening and round-to-nearest-even narrowing
 // (what F16C does), for the ai.silk kernels' scalar rows and for CPUs without F16C.
 #include "kernels/cpu/float16.h"

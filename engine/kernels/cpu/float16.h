@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // IEEE binary16 (float16) conversions shared by libsilk's CPU kernels: float16 KV cache rows
 // and Int4MatMul's float16 block scales.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared onnxruntime custom-op plumbing for the ai.silk ops (see ort_op_glue.h).
 #include "kernels/ort/ort_op_glue.h"
 

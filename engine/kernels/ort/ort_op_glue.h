@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What every ai.silk onnxruntime op needs around its kernel, written against the plain C API and
 // the OrtApi the op was registered with (libsilk's own onnxruntime or Python's): reading tensors,
 // naming shapes in messages, onnxruntime's pool as a parallel-for, the op table's fixed entries.

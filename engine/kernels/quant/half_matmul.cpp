@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // HalfMatMul: each float16 weight row is read once per call and dotted with every activation row
 // (AVX2 + F16C: four accumulators, the stream prefetched ahead; plain C++ otherwise), rows spread
 // over the caller's pool in blocks.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Matrix product with float16 weights: the decoder's logits head (d_model x 10,269 in the release
 // network: 42 MB read in float32 on every call, the largest weight left unquantized because the
 // logits decide the sampled id). Stored as float16 it reads half the bytes; products and sums

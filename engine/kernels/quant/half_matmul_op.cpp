@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // onnxruntime custom-op glue for HalfMatMul: inputs A [..., K] float32 and B [N, K] float16,
 // output [..., N] float32; no attributes (K and N are B's dims). Shapes that do not fit give a
 // status naming the node, never a crash.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Int4MatMul: each activation row is quantized once to int8 groups of 32 (scale max|a| / 127),
 // then every weight row is one pass of integer dot products over its packed nibbles, scaled per
 // group, with the weight stream prefetched ahead; rows are spread over the caller's pool.

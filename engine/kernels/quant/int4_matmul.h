@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Matrix product with 4-bit weights, the decoder's largest cost per id: onnxruntime 1.22's
 // MatMulNBits streams the release network's INT4 weights at about two thirds of this machine's
 // read bandwidth for one row of activations; this kernel (the ai.silk Int4MatMul op,

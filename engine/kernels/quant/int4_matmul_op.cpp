@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // onnxruntime custom-op glue for Int4MatMul: inputs A [..., K] float32, B [N, K / block_size,
 // block_size / 2] uint8 and scales [N * K / block_size] float32 (MatMulNBits' own tensors, so
 // the rewrite moves no weights); attributes K, N, block_size (and bits, which must be 4).

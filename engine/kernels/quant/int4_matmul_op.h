@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ai.silk Int4MatMul operator for onnxruntime (docs/model_contract.md, "INT4 weights"):
 // com.microsoft MatMulNBits' inputs and attributes for bits 4 without zero points, computed by
 // kernels/quant/int4_matmul at memory speed. Registered with the domain by kernels/silk_ops.

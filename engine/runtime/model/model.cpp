@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Model loading: model.json, then the ONNX sessions, whose inputs/outputs are checked against
 // docs/model_contract.md (names, element types, ranks, and every fixed dimension).
 #include "runtime/model/model_impl.h"

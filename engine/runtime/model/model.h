@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Model: a loaded model folder (model.json + encoder/decoder ONNX sessions). Immutable after
 // Load and safe to share between threads; each concurrent generation needs its own Generator.
 // onnxruntime stays out of this header (Impl in runtime/model/model_impl.h).

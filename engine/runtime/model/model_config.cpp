@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // model.json parsing and the compatibility checks of docs/model_contract.md.
 #include "runtime/model/model_config.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ModelConfig: the model.json sidecar of a model folder (docs/model_contract.md), parsed and
 // checked against the vocabulary this engine was built with, so a mismatched model is refused
 // with a message instead of producing garbage.

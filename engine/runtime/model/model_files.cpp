@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Model-folder confinement: lexical checks (absolute paths, "..") first, then the resolved
 // path (std::filesystem::canonical, symlinks followed) must lie under the resolved folder.
 #include "runtime/model/model_files.h"

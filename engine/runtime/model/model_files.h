@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Keeps a model folder's reads inside the folder: every file it names (model.json's file
 // names and the ONNX graphs' external-data locations) must resolve, symlinks followed, to a
 // file under the folder, so a downloaded model cannot make libsilk read other files.

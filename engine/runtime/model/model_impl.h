@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Model::Impl: the onnxruntime sessions behind a Model, with input/output names checked
 // against the contract at load time. Internal to the runtime layer.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Protobuf wire-format walk of an ONNX ModelProto down to TensorProto.external_data entries.
 // Only the messages that can hold tensors are entered; every other field is skipped by length.
 #include "runtime/model/onnx_external_data.h"

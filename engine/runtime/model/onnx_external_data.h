@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Finds the external-data locations an ONNX model names (TensorProto.external_data entries
 // with key "location"), so the runtime can keep them inside the model folder before
 // onnxruntime opens them. A bounded protobuf wire-format walker over untrusted bytes: no

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Windows (see ort_dll_load.h): LoadLibraryExW + GetProcAddress("OrtGetApiBase").
 #if defined(_WIN32) && defined(SILK_ORT_RUNTIME_LOAD)
 #include "runtime/model/ort_dll_load.h"

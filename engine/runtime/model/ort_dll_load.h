@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Builds with SILK_ORT_RUNTIME_LOAD (Windows, and the Linux pip wheel): libsilk is not linked
 // against onnxruntime but loads it itself, by full path, when the first model is loaded. So a
 // missing or unusable library is an ordinary Silk error naming the file and the reason (not a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The shared half of ort_dll_load.h: ort_dll_load.cpp and ort_so_load.cpp keep only their own loading.
 #ifdef SILK_ORT_RUNTIME_LOAD
 #include "runtime/model/ort_runtime_load.h"

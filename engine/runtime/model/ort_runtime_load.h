@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What loading onnxruntime at run time (ort_dll_load.h) shares on Windows and Linux: once, and the API check.
 #pragma once
 #ifdef SILK_ORT_RUNTIME_LOAD

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Linux builds with SILK_ORT_RUNTIME_LOAD (the pip wheel; see ort_dll_load.h): dlopen by full path
 // (or one already loaded, RTLD_NOLOAD) + dlsym("OrtGetApiBase").
 #if defined(SILK_ORT_RUNTIME_LOAD) && !defined(_WIN32)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One Env per process (onnxruntime's logging/telemetry root) holding one intra-op thread pool
 // that all sessions of all models share, so loading several models does not multiply threads.
 #include "runtime/model/ort_support.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // onnxruntime plumbing shared by the runtime: the process-wide Env, session options from our
 // settings, and OrtGuard, which turns Ort::Exception (and any other) into a Status so no
 // exception leaves the runtime layer.

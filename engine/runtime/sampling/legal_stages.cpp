@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The grammar mask, surface guidance and sample-then-check stages (runtime/sampling/legal_stages.h).
 #include "runtime/sampling/legal_stages.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The legality stages of the sampling chain (runtime/sampling/sampler.h): which ids may be chosen. The
 // grammar mask and surface guidance narrow the mask before the decoder runs; sample-then-check
 // (a measurement order) draws over every id first and lets the masked chain redraw an illegal id.

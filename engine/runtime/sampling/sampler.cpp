@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The chain's runner and its one assembly from the resolved settings (runtime/sampling/sampler.h).
 #include "runtime/sampling/sampler.h"
 

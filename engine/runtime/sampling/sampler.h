@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The sampling chain, built as llama.cpp builds one: small stages behind one interface, each
 // narrowing the candidate ids of one step or choosing among them, assembled once per generation
 // by BuildSamplerChain from the resolved settings and run per step by Generator:

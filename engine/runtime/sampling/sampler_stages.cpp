@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The numeric stages. Order and arithmetic are part of the golden test's contract with the
 // Python reference loop: candidates in ascending id order; scores logit/temperature in double;
 // stable sort by score descending (ties: lower id first); top-k cut; softmax in double

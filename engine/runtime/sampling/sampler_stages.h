@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The numeric stages of the sampling chain (runtime/sampling/sampler.h), one small class each, and the
 // function that appends them in order for a set of SamplingParams.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Surface guidance: occupancy of the encoder's points on the 128^3 grid, its exact squared
 // Euclidean distance transform, and the K/O mask restriction with the nearest-cells fallback.
 #include "runtime/sampling/surface_guide.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SurfaceGuide: keeps generated vertices near the input surface by masking block (K) and offset
 // (O) ids whose grid cells are farther than a tolerance from every cell holding an input point.
 #pragma once

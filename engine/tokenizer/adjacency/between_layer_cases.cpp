@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The 26 between-layer window cases (token_format.md §7.2), built once from the situation rules.
 #include "tokenizer/adjacency/between_layer_cases.h"
 

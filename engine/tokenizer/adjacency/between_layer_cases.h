@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The 26 between-layer window cases (token_format.md §7.2, "stars and bars"): the one table both the
 // between-layer encoder and decoder (and the grammar) read, so they cannot disagree.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Between-layer decoder: expands every (start, case) token of a row into its columns using
 // the shared 26-case table; the encoder's segments never overlap, so this is its inverse.
 #include "tokenizer/adjacency/between_layer_decoder.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Between-layer matrix decoding (token_format.md §7.3): the B tokens of every vertex of layer L ->
 // the edges between layer L and layer L-1. Mirror of between_layer_encoder.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Between-layer matrix encoder (token_format.md §7.1): scan the zero-padded row; each 1 starts a token
 // whose 5-wide window is a case of §7.2, truncated before a window's extra run of ones.
 #include "tokenizer/adjacency/between_layer_encoder.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Between-layer matrix encoder (token_format.md §7.1): one row (a vertex's neighbours in the previous
 // layer) -> between-layer tokens. Mirror of between_layer_decoder.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Combines the self-layer and between-layer decoders into one LayerAdjacency.
 #include "tokenizer/adjacency/layer_adjacency.h"
 

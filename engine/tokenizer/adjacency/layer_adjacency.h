@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One call that turns a read layer into its LayerAdjacency (self + between edges), for the
 // decoder pipeline and for the grammar state machine, which decodes layer by layer.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Self-layer decoder: row i's window bit d-1 and extra value d-1 both mean "v_i is adjacent
 // to v_{(i+d) mod N}" (token_format.md §6); both rows' statements are OR-ed into one undirected set.
 #include "tokenizer/adjacency/self_layer_decoder.h"

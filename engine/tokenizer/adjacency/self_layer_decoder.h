@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Self-layer matrix decoding (token_format.md §6): S window + X extra tokens of every vertex of a
 // layer -> the layer's in-layer edges. Mirror of self_layer_encoder.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Self-layer matrix encoder (token_format.md §6): window bits for forward distances 1..8, extras for
 // 9..n-9; distances >= n-8 are stated by the partner row's window and never emitted.
 #include "tokenizer/adjacency/self_layer_encoder.h"

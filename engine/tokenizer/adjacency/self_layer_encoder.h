@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Self-layer matrix encoder (token_format.md §6): one row of a layer's adjacency -> window value + extra
 // tokens. Mirror of self_layer_decoder.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Zero-area test on grid positions (token_format.md §2.4 step 3): the integer cross product of two edge
 // vectors is the zero vector. Such a triangle is never a processed face, so it is never a
 // face to recover either.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Quantization, vertex merging and face cleanup (token_format.md §2.2-§2.4). Sort-based merging and
 // duplicate detection: O(n log n), no table sized by the grid.
 #include "tokenizer/cleanup/face_cleanup.h"

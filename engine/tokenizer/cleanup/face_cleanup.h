@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Quantization, vertex merging and face cleanup (token_format.md §2.2-§2.4): the first encoder stage,
 // turning a normalised IoMesh into the TokenizerProcessedMesh every later stage works on.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Quantization to the 128-bin grid and back (token_format.md §2.2).
 #include "tokenizer/cleanup/quantize.h"
 

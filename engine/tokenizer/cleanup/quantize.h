@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Quantization to the 128-bin grid and back (token_format.md §2.2). Bit-exact with the reference:
 // one double addition, exact scaling, truncation toward zero.
 #pragma once

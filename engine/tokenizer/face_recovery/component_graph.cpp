@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Builds the component's edge graph from per-layer adjacency and enumerates its 3-cycles by
 // sorted-neighbour intersection (each triangle once, corners ascending). Zero-area 3-cycles
 // (collinear corners) are left out: the encoder drops such faces (§2.4), so none is a face.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The decoded edge graph of one component and its 3-cycles: the raw material face
 // recovery chooses faces from (token_format.md §10.5: faces are implicit, only edges are encoded).
 #pragma once

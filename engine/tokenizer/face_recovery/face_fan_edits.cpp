@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whole-fan edits of the verification search; see face_fan_edits.h.
 #include "tokenizer/face_recovery/face_fan_edits.h"
 

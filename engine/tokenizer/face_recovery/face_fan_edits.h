@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whole-fan edits for the verification search: replace every face at the root by its fan
 // (fixed by layer 1 = R(root)), then regrow the rest.
 #pragma once

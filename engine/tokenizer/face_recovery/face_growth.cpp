@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Oriented growth: every accepted face keeps the surface manifold and consistently oriented
 // with its neighbours; forced (search) faces go first, then layer-order hints, then growth.
 #include "tokenizer/face_recovery/face_growth.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Oriented growth, the heuristic core of face recovery (token_format.md §10.6, improved): faces are
 // accepted one open edge at a time, forced choices first, layer-order hints next, a local rule last.
 #pragma once

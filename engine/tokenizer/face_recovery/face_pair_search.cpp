@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pairwise step of the verification search; see face_pair_search.h.
 #include "tokenizer/face_recovery/face_pair_search.h"
 

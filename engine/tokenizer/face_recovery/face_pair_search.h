@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Two simultaneous edits for the verification search: some defects need changes at two
 // vertices at once (each alone scores no better), e.g. both faces of one edge replaced.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Face recovery = growth (face_growth) + exact verification (face_verification) + a bounded
 // local search that repairs the growth's answer where the replayed layering disagrees.
 #include "tokenizer/face_recovery/face_recovery.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Face recovery: the tokens carry vertices and edges only (token_format.md §10.5); this rebuilds the
 // oriented faces of one component from its layers and decoded edges (token_format.md §10.6, improved).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Counters face recovery reports (growth and verification search), shared by their files.
 #pragma once
 #include <cstdint>

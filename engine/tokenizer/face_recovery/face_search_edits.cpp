@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Candidate evaluation and the single edits of the verification search; see face_search_edits.h.
 #include "tokenizer/face_recovery/face_search_edits.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The verification search's moves (face_recovery.cpp): a candidate face set with its
 // verification, and the elementary edits at one vertex that produce its neighbours.
 #pragma once

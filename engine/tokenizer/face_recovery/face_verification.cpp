@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Replays the encoder's layering on a candidate face set; see face_verification.h.
 #include "tokenizer/face_recovery/face_verification.h"
 

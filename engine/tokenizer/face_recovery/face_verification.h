@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Exact check of a candidate face set against the decoded layers: rebuilds the rotation
 // lists the encoder would derive from those faces (token_format.md §4.1, §4.4, §5.1) and replays the
 // first-run layering (§5.2-§5.3) layer by layer against the decoded layers.

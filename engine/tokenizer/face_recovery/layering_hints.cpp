@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Derives the introducer of every vertex (its first neighbour in the previous layer) and
 // turns runs of equal introducers into oriented hint faces.
 #include "tokenizer/face_recovery/layering_hints.h"

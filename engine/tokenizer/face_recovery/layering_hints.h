@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Faces the layer order itself reveals (token_format.md §5.2-5.3): a vertex u of layer L-1 appends its
 // next-layer run to layer L in rotation order, so two consecutive layer-L vertices that u
 // introduced are corners of the face (u, x_k, x_k+1) with exactly that winding.

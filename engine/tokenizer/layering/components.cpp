@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Face order and connected components (token_format.md §4.1-§4.3).
 #include "tokenizer/layering/components.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Face order, connected components, small-component removal and the face limit
 // (token_format.md §4.1-§4.3): decides which components are emitted and in which order.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // LayeredStream: the token sequence's structure, halfway between a mesh and ids.
 // Encoding is  mesh -> LayeredStream (layering + matrix codecs) -> ids (token_writer);
 // decoding is  ids -> LayeredStream (token_reader) -> adjacency -> faces (face_recovery).

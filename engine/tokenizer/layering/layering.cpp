@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // BFS layering with the first-run rule (token_format.md §5.2-§5.3, quirk §14.C.1: do not "fix" it).
 #include "tokenizer/layering/layering.h"
 

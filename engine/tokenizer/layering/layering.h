@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Root choice and BFS layering with the reference's first-run rule (token_format.md §4.4, §5.2-§5.3).
 // Also records each vertex's (layer, position) so the matrix codecs can index layers.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rotation lists R(v) (token_format.md §5.1), built from each vertex's (a_f, b_f) corner pairs taken
 // in the component's sorted face order.
 #include "tokenizer/layering/rotation_lists.h"

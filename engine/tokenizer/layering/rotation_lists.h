@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rotation lists R(v) (token_format.md §5.1): each vertex's neighbours in the rotational order its
 // faces' windings give. They drive the layering and both adjacency matrices.
 #pragma once

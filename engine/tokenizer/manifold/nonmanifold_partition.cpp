@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PARTITION(v) (token_format.md §3.4): cycles and chains are peeled off the edge graph of v in the
 // reference's order; leftover edges become single-face groups. Orders come from refemu.
 #include "tokenizer/manifold/nonmanifold_partition.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PARTITION(v) of token_format.md §3.4: splits the faces around one non-manifold vertex into fans
 // (cycles, chains and single faces) exactly as the reference's NM_process_one does.
 #pragma once

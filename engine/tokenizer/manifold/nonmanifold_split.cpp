@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Non-manifold processing (token_format.md §3.3-§3.6): passes A, B and C of the reference, splitting
 // vertices into copies. Plain fans take a fast path; only true non-manifold fans reach the
 // order emulation.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Non-manifold processing (token_format.md §3.2-§3.6): split vertices whose faces do not form a single
 // fan, reproducing the reference's partition exactly (order emulation in
 // reference_order_emulation).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Face adjacency and orientation repair (token_format.md §3.7-§3.8).
 #include "tokenizer/manifold/orientation_repair.h"
 

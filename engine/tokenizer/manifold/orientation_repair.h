@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Face adjacency across edges and orientation repair (token_format.md §3.7-§3.8): after non-manifold
 // splitting every edge has at most two faces; each edge-connected set is oriented like its seed.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CPython set order and networkx Graph orders (token_format.md §14.B.1-§14.B.3), reproduced from the
 // recipes of the spec so the non-manifold pass partitions faces exactly like the reference.
 #include "tokenizer/manifold/reference_order_emulation.h"

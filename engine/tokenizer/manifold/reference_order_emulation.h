@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Emulation of the reference's incidental iteration orders (token_format.md §14.B): CPython set order and
 // the networkx graph orders the non-manifold pass depends on. All such emulation lives here.
 #pragma once

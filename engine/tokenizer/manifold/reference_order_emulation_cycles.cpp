@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // networkx simple_cycles on the directed version of an undirected view (token_format.md §14.B.4):
 // Tarjan's strongly connected components plus Johnson's search, in the reference's order.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Union-find over face-component ids for the non-manifold pass (token_format.md §3.4 steps 3-4): only
 // the partition it induces matters, so plain union by rank with path compression.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Edge graph construction and structural summary (token_format.md §3.2); sizes are bounded by the
 // 50-face incident-list limit, so linear scans are used throughout.
 #include "tokenizer/manifold/vertex_edge_graph.h"

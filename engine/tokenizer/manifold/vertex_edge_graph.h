@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The edge graph G_v of a vertex (token_format.md §3.2): one keyed edge per incident face, in list
 // order, plus a cheap structural summary used to skip the order emulation for plain fans.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Token reader: mirrors token_writer. A small state machine over the grammar of token_format.md §11;
 // every rejection names the position and id of the offending token and the rule it breaks.
 #include "tokenizer/packing/token_reader.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ids -> LayeredStream: the strict inverse of token_writer. Only sequences the encoder can
 // produce (token_format.md §8.3, §11) are accepted; anything else is an error naming the token.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // LayeredStream -> token ids (token_format.md §8.2-§8.3).
 #include "tokenizer/packing/token_writer.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // LayeredStream -> token ids (token_format.md §8): the packing order C, root, U, layers, E.
 // Mirror of token_reader.
 #pragma once

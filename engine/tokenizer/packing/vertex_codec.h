@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex tokens (token_format.md §8.1): a grid position <-> block token K + offset token O.
 #pragma once
 #include <cstdint>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export dataset`: one pass over a mesh collection through libsilk. A build job encodes
 one shard of the sorted file list (`--shard I/N`: files I, I+N, I+2N, ...) into a compact
 cache (shard_store.py); merging the N shards writes dataset.json (the shard list), index.jsonl

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Numpy geometry shared by the data pipeline and evaluation: the token_format.md §2.1 bounding-box
 normalisation (surface sampling is libsilk's, see pointcloud.py)."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Finds mesh files: the 0 A.D. art set ($SILK_DATA_DIR/0ad/art/meshes, keyed by the path
 inside public.zip) or any folder of meshes libsilk reads (keyed by the path under that folder)."""
 from __future__ import annotations

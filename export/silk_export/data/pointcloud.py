@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The model's point-cloud condition [N, 6] (xyz then unit normal) through libsilk's
 pre-processing (silk_points_prepare: the code generation runs, no second copy in numpy), with
 optional Gaussian jitter as in training."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Progressive-balanced resampling (Mesh Silksong training recipe): one class per 100 faces;
 p_j(t) = (1 - t/T)·p_j^IB + (t/T)·p_j^CB, instance-balanced (class size / N) moving linearly to
 class-balanced (uniform over classes); within a class every mesh is equally likely."""

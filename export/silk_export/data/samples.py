@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Online per-sample pipeline: raw mesh -> (augment) -> tokens through libsilk (normalise +
 non-manifold processing) -> point cloud in the same normalised frame; plus batch collation
 (BOS + tokens as input, tokens + EOS as labels, PAD / ignored past the end)."""

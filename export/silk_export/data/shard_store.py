@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """One dataset shard on disk: a compact, memory-mappable cache of the meshes one build job
 encoded. Raw little-endian arrays, appended while the job runs (constant memory), plus offsets:
 

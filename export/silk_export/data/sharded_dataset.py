@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Training's view of a merged dataset folder (dataset.json + shards): the selected index rows,
 each mesh's arrays and cached tokens read from the memory-mapped shards (no mesh files, no
 per-mesh cache in memory), with the same `sample()` as samples.MeshCache."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Deterministic train/val/test split and the dev-corpus exclusion.
 
 Split by SHA-1 of a mesh's path inside public.zip (UTF-8): first hex digit 0–d train, e val,

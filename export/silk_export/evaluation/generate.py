@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export generate`: sample token sequences from a checkpoint (PyTorch, KV cache, top-k, no
 grammar mask) conditioned on the point cloud of each input mesh and decode them through libsilk,
 or run the C++ runtime (grammar-constrained, through libsilk's C API) on an exported model folder;

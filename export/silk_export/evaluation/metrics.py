@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Geometric metrics between two meshes (Mesh Silksong paper, Sec. 4): both meshes normalised to
 ±0.95 (token_format.md §2.1), n area-weighted surface samples each, then
   CD   = ½·(mean_a d(a,B) + mean_b d(b,A))      (Euclidean distance to the nearest sample)

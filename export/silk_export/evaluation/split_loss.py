@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export loss`: token-mean cross-entropy (nats/token, tokens + EOS) of a checkpoint on the
 meshes of one split, without augmentation and with fixed point samples — the held-out figure
 for the model card — next to a context-free baseline: the cross-entropy of the train split's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Structural figures of one mesh, measured after welding bit-identical positions (as the dev
 corpus manifest does): faces, connected components (faces sharing a vertex), edge-manifold,
 watertight, and whether the faces are consistently oriented across every 2-face edge."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The interface every network family behind the model contract (docs/model_contract.md)
 implements, so training, the ONNX graphs, the exporter, PyTorch generation and the model card
 reach a model only through it. The registered families are in silk_export/registry.py.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Model sizes. `micro` is the CPU-trainable default bundled model; tiny/small/paper follow the
 issue (paper = the Mesh Silksong scale: 1024 wide, 24 layers, 16 heads). `arch` picks the network
 (silk_export/registry.py): "silk" (ours) or "official" (the released Mesh Silksong network,

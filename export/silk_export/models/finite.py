@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Refuses weights holding NaN or Inf before they become a model folder: graphs computed from
 them are garbage, and figures derived from them (model.json fidelity, scores) are not even JSON.
 One check for both exporters (`silk-export export`, `silk-export import-official`)."""

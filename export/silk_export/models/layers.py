@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Transformer building blocks shared by the point encoder and the decoder: multi-head
 attention (fused SDPA for training, plain MatMul/Softmax for ONNX export) and the MLP."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Perceiver-style point-cloud encoder: learned latent queries cross-attend to Fourier-embedded
 points + normals, then self-attention over the latents. Trained jointly with the decoder."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The Mesh Silksong generator: point encoder + decoder-only transformer whose pre-norm layers
 do causal self-attention, cross-attention to the point latents, then an MLP. Embeddings are
 token + type (token_format.md §9) + learned absolute position (BOS at 0, mesh token t at t + 1)."""

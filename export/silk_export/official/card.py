@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """MODEL_CARD.md for an imported official checkpoint: where the weights came from (file name,
 SHA-256, licence), what the importer checked, and each decoder variant's measured fidelity."""
 from __future__ import annotations

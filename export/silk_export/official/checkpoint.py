@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Loads a release-layout Mesh Silksong checkpoint into OfficialModel, strictly: every used key
 present with the right shape, unknown keys are errors, wrapper prefixes stripped and reported,
 the training-only point-encoder parts skipped and counted. Tensors are read one at a time."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The release checkpoint's key layout (official_network.md §2, §5, §6): which keys are skipped, how a
 used key maps onto OfficialModel's parameter names, and the sizes its tensor shapes reveal."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The released Mesh Silksong network (official_network.md §3), written from that description: point
 encoder + conditioner projections, then a pre-norm decoder whose blocks run causal
 self-attention and cross-attention (both with L2 qk-norm and a fixed score scale of 10; the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Reads a state dict from disk one tensor at a time, so a multi-GB checkpoint never sits in memory
 twice: `.safetensors` (header parsed here; F32/F16/BF16) and PyTorch `.pt`/`.bin` (torch.load
 with weights_only=True, memory-mapped when the file is in the zip format)."""

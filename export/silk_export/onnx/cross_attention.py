@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The ai.silk CrossAttention form of a decoder's attention over the point cloud
 (docs/model_contract.md). The exported graph computes each layer's cross-attention as
 MatMul(q, Transpose(cross_key_l)) -> Mul(scale) -> Softmax -> MatMul(., cross_value_l);

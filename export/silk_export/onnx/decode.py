@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Runs an exported model folder's graphs with onnxruntime from Python (no libsilk): encoder,
 decoder chunks over a growing KV cache, greedy decoding. Used by the importer's fidelity check
 and by the tests; the C++ runtime is the production path."""

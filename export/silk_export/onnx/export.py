@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Writes a model folder per docs/model_contract.md for any registered architecture:
 encoder.onnx, decoder.onnx (dynamic T and cache length), optional INT8 (dynamic MatMul
 quantization) and INT4 (MatMulNBits) decoders, and the model.json sidecar. Graphs over the 2 GB

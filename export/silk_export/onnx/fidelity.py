@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """How far a quantized decoder moves from the fp32 one, and how fast each runs: teacher-forced
 top-1 agreement and KL(fp32 || variant) on sequences the fp32 model itself decodes greedily from
 fixed probe point clouds, plus milliseconds per generated token. The importer picks the fastest

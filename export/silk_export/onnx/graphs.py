@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The two graphs of docs/model_contract.md as thin nn.Modules over a model of any registered
 architecture (silk_export.models.architecture).
 The decoder's self-attention is onnxruntime's GroupQueryAttention over one head-major cache per

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The float16 logits head of a decoder's fp16/int8-cache variants (docs/model_contract.md, "Logits
 head"). The export keeps the head (d_model x vocabulary: 42 MB for the release network) float32 even
 in the INT4 decoder, because the logits decide every sampled id; at depth it is still a tenth of

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The ai.silk Int4MatMul form of a decoder's INT4 weights (docs/model_contract.md, "INT4 weights").
 onnxruntime 1.22's com.microsoft MatMulNBits (bits 4, accuracy level 4) streams the release
 decoder's 283 MB of 4-bit weights at about two thirds of a 2-core machine's read bandwidth for one

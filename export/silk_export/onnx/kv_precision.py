@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The fp16 and int8 self-K/V variants of a decoder graph (docs/model_contract.md, "KV precision"):
 the same weights and computation, except that each layer's self-attention keeps its
 past_*/present_* caches in float16 (a step reads half the cache bytes) or in int8 rows

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Shape arithmetic of an exported graph folded into constants. torch's exporter computes every
 view()/reshape() target, F.normalize's expand and chunk()'s slice bounds at run time (Shape ->
 Gather -> Unsqueeze -> Concat -> Reshape): 3,487 of the release-size INT4 decoder's 4,901 nodes,

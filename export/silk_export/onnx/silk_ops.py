@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """libsilk's onnxruntime operator domain and its operators' names (docs/model_contract.md), for the
 graph rewrites that target them (kv_precision.py, cross_attention.py, int4_matmul.py, half_logits.py)."""
 SILK_DOMAIN = "ai.silk"

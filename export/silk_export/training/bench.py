@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export bench`: training throughput (tokens/s, forward + backward + AdamW step) per model
 config on synthetic sequences of one length, to size training runs on a given machine."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export card`: writes MODEL_CARD.md into a model folder from the figures a training run
 left behind (run.json, log.jsonl, model.json, the index summary, optional eval and bench JSON)."""
 from __future__ import annotations

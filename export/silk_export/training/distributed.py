@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """torch.distributed for training: one process per device started by torchrun (single- or
 multi-node), DistributedDataParallel or FSDP (fully_shard) around the model, rank-0-only side
 effects, and full (unsharded) state dicts so checkpoints are the same file at every world size.

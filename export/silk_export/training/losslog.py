@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Training log: JSONL (every record) + CSV (step, kind, loss, lr, tokens/s, elapsed) and a PNG
 plot of train/val loss (matplotlib, Agg backend, no display needed)."""
 from __future__ import annotations

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """`silk-export train`: AdamW + cosine LR over a dataset (sharded cache, a folder of meshes, or an
 index of mesh files), online augmentation and tokenization through libsilk, progressive-balanced
 resampling, periodic validation, checkpoint/resume, loss log and plot. CPU or CUDA, one process

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """What each rank trains on. Sample `slot` of global step `step` is a pure function of
 (seed, step, slot): its own numpy generator picks the mesh (progressive-balanced), the
 augmentation and the point cloud, redrawing when libsilk refuses or the sequence is too long.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Consumer of an installed libsilk: encodes a tetrahedron, and (when the install can
 // generate) generates from it with the model folder given on the command line.
 #include <cstdio>

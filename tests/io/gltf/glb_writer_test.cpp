@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLB output read back by the project's own glTF reader, plus the container layout rules
 // (4-byte chunks, declared length).
 #include <gtest/gtest.h>

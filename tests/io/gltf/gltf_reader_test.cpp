@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // glTF reader: embedded-buffer .gltf and in-memory GLB built here, node transforms, strips,
 // non-indexed primitives, and the validation errors (cycles, bounds, missing buffers).
 #include "io/gltf/gltf_reader.h"

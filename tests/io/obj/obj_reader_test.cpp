@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OBJ reader: accepted statement forms, index rules, raw (unwelded) output, error messages.
 #include "io/obj/obj_reader.h"
 

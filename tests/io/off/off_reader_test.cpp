@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // OFF reader: header forms, polygons, comments, plausibility of header counts.
 #include "io/off/off_reader.h"
 

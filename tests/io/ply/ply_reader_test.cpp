@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PLY reader: the three encodings, property types and aliases, skipped properties and
 // elements, plausibility checks before allocation, truncation errors; point clouds with normals.
 #include "io/ply/ply_reader.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PMD reader: synthetic v1/v3/v4 files built here, every truncation and lying count refused
 // with a message, random bytes never crash; and (when the 0 A.D. meshes are extracted) the
 // 160 dev OBJ meshes equal their PMD sources.

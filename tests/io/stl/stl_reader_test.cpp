@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // STL reader: ascii, binary, binary whose header starts with "solid", raw vertices.
 #include "io/stl/stl_reader.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // XYZ/PTS reader: line forms (3 or 6 values, comments, CRLF, commas, the PTS count line), every
 // refusal with its file and line, the vertex limit, and the file-level dispatch
 // (ReadMeshOrPointCloudFile: .xyz/.pts/.ply clouds, gzip; ReadMeshFile: a cloud has no faces).

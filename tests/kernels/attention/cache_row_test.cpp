@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one KV row layout (kernels/attention/cache_row.h) as the model contract writes it: sizes per
 // element type, and rows read back as floats (float16 against onnxruntime's own conversion, int8
 // as value x the trailing scale).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CachedAttention (kernels/attention), the kernel behind the ai.silk op of fp16/int8-cache decoders:
 // against a plain double-precision reference, vectorized rows against scalar ones, float16
 // rounding against onnxruntime's own conversion and int8 rows against the contract's formula

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CrossAttention (kernels/attention), the kernel behind the ai.silk op that attends over the
 // point cloud's K/V: against a plain double-precision softmax attention over the rows as stored
 // (float32, or float16 widened by onnxruntime's own conversion), vectorized rows against scalar

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // HalfMatMul (kernels/quant), the kernel behind the ai.silk op of the fp16/int8-cache decoders'
 // logits head: against the product of the float16 weights (widened by onnxruntime's own
 // conversion) in double precision, vectorized rows against scalar ones, every row-block split

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Int4MatMul (kernels/quant), the kernel behind the ai.silk op of INT4 decoders: against the exact
 // product of the dequantized weights in double precision (within the bound that int8 activations
 // allow, derived here), against the same int8 activations computed independently (to float

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Self-layer and between-layer decoding against hand-derived cases of the spec's worked
 // examples (§13.1 cube, §13.2 torus_12x8 layer 4) plus the validation errors.
 #include <gtest/gtest.h>

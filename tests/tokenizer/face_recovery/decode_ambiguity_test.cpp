@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Classifies every representable face the decoder misses or reverses on the dev corpus:
 // proven token-equivalent (the decoded faces of its component, run through the real encoder
 // stages, give that component's stream: the tokens cannot tell them from the official faces),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Face verification on the dev corpus: the official processed faces (minus unencodable ones)
 // replay the encoder's layering per component; the recovered faces should score no worse.
 // Reports how many components verify exactly, for the truth and for the decoder. The truth

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Non-manifold splitting (token_format.md §3.2-§3.6) against the official passes: random face lists
 // whose expected output was produced by the reference code itself, the spec's worked
 // examples, and every refusal of the passes (50-face incident list, > 300 NM vertices).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks the CPython set / networkx order emulation (token_format.md §14.B) against vectors captured
 // from real CPython 3.11.7 and networkx 3.6.1 at development time.
 #include <gtest/gtest.h>

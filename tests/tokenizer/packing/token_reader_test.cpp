@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The token reader accepts exactly the encoder's grammar (token_format.md §8.3, §11): every golden
 // parses, and each malformed variant is rejected with the position and reason of the fault.
 #include <gtest/gtest.h>
