@@ -157,12 +157,15 @@ def case_report_write_fails(ctx):
     lst.write_text(f"{ctx.mesh}\n")
     ctx.expect("4. --report /dev/full", ctx.batch(lst, ctx.tmp / "o4", "--report", "/dev/full"), 1,
                ["/dev/full", "report"])
-    # A regular report that cannot grow (file size limit 1 KiB): the write fails, the run fails naming it.
+    # A regular report that cannot grow (a file size limit its earlier lines already reach; the
+    # output, a few KB, still fits): the write fails, the run fails naming it.
     rep = ctx.tmp / "o4b.jsonl"
+    limit = 256 * 1024
+    rep.write_text('{"earlier": "' + "x" * (limit - 40) + '"}\n')
 
     def small_files():
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-        resource.setrlimit(resource.RLIMIT_FSIZE, (1024, 1024))
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
     got = ctx.run([ctx.silkgen, "--batch", lst, "-o", ctx.tmp / "o4b", "--report", rep, "--model", ctx.model, *GEN],
                   preexec=small_files)
     ctx.expect("4. report write fails (RLIMIT_FSIZE)", got, 1, [str(rep), "cannot write the report"])
@@ -219,7 +222,9 @@ def case_fifo(ctx):
     rows = {pathlib.Path(r["input"]).name: r["status"] for r in report_lines(ctx.tmp / "o8/silkgen_batch.jsonl")}
     if rows != {"pipe.obj": "failed", ctx.mesh.name: "ok"}:
         ctx.failures.append(f"8. rows {rows}: the FIFO failed alone, the mesh ok")
-    ctx.expect("8. a FIFO as the list", ctx.run(["timeout", "15", ctx.silkgen, "--batch", fifo, "-o", ctx.tmp / "o8f",
+    fifo_list = ctx.tmp / "list.fifo"
+    os.mkfifo(fifo_list)
+    ctx.expect("8. a FIFO as the list", ctx.run(["timeout", "15", ctx.silkgen, "--batch", fifo_list, "-o", ctx.tmp / "o8f",
                                                  "--model", ctx.model, *GEN]), 1, ["FIFO"])
     ctx.expect("8. silktok stats on a FIFO", ctx.run(["timeout", "15", ctx.silktok, "stats", fifo]), 1,
                ["silktok: I/O error: ", "FIFO"])
