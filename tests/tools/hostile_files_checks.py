@@ -36,11 +36,11 @@ class Ctx:
         e.update(env or {})
         t0 = time.monotonic()
         p = subprocess.Popen([str(c) for c in cmd], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=e,
-                             preexec_fn=preexec)
+                             preexec_fn=preexec, start_new_session=True)
         try:
             _, err = p.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
-            p.kill()
+            os.killpg(p.pid, signal.SIGKILL)  # `timeout`'s child too (the old code ignored its SIGTERM)
             _, err = p.communicate()
             self.failures.append(f"{cmd[:3]}: still running after {timeout} s (killed)")
         return p.returncode, err.decode("utf-8", "replace"), time.monotonic() - t0
@@ -50,7 +50,8 @@ class Ctx:
         e = {k: v for k, v in os.environ.items() if not k.startswith("SLURM_")}
         e.update(env or {})
         t0 = time.monotonic()
-        p = subprocess.Popen([str(c) for c in cmd], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=e)
+        p = subprocess.Popen([str(c) for c in cmd], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=e,
+                             start_new_session=True)
         deadline = t0 + timeout
         err = b""
         while True:
@@ -58,7 +59,8 @@ class Ctx:
             if pid:
                 break
             if time.monotonic() > deadline:
-                p.kill()
+                os.killpg(p.pid, signal.SIGKILL)
+                deadline = float("inf")
                 self.failures.append(f"{cmd[:3]}: still running after {timeout} s (killed)")
             time.sleep(0.02)
         err = p.stderr.read()
@@ -217,7 +219,8 @@ def case_fifo(ctx):
     os.mkfifo(fifo)
     lst = ctx.tmp / "l8.txt"
     lst.write_text(f"{fifo}\n{ctx.mesh}\n")
-    got = ctx.run(["timeout", "15", ctx.silkgen, "--batch", lst, "-o", ctx.tmp / "o8", "--model", ctx.model, *GEN])
+    got = ctx.run(["timeout", "15", ctx.silkgen, "--batch", lst, "-o", ctx.tmp / "o8", "--model", ctx.model, *GEN],
+                  timeout=30)
     ctx.expect("8. a FIFO in the list", got, 1, ["pipe.obj", "FIFO"])
     rows = {pathlib.Path(r["input"]).name: r["status"] for r in report_lines(ctx.tmp / "o8/silkgen_batch.jsonl")}
     if rows != {"pipe.obj": "failed", ctx.mesh.name: "ok"}:
