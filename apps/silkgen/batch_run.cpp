@@ -155,9 +155,9 @@ void PrintLine(const BatchSettings& s, size_t k, size_t n, const BatchInput& in,
   else if (r.status == "skipped" && !s.quiet)
     std::fprintf(stderr, "silkgen: [%zu/%zu] %s: skipped, %s exists (--overwrite redoes it)\n", k, n, in.entry.c_str(),
                  r.output.c_str());
-  else if (r.status != "ok" && r.status != "skipped")  // failures are printed even with -q
-    std::fprintf(stderr, "silkgen: [%zu/%zu] %s: %s: %s\n", k, n, in.entry.c_str(), r.status.c_str(),
-                 r.error.c_str());
+  else if (r.status != "ok" && r.status != "skipped")  // failures are printed even with -q, in the error form
+    std::fprintf(stderr, "silkgen: %s (input %zu of %zu, %s: %s)\n", r.error.c_str(), k, n, in.entry.c_str(),
+                 r.status.c_str());
 }
 
 struct Tally {
