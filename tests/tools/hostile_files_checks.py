@@ -13,7 +13,7 @@ time (under 10 s) and, where the old code ran away, the peak memory (under 512 M
                                  a symlink to /dev/zero, a 64 MB one-line list; outputs that are
                                  inputs for single silkgen and silktok runs; the error-line format
   signals SILKGEN SILKTOK REPO   SIGTERM/SIGINT end a batch within a second (exit 143/130), leaving
-                                 no temporary; a second signal at once
+                                 no temporary; a second signal ends it at once, no temporary left
 """
 import hashlib, json, os, pathlib, re, resource, signal, stat, subprocess, sys, tempfile, time
 
@@ -310,6 +310,23 @@ def check_signals(ctx):
         left = [f.name for f in out.iterdir() if ".tmp" in f.name] if out.exists() else []
         if left:
             ctx.failures.append(f"{sig.name}: temporaries left: {left}")
+    # Two signals 20 ms apart: the second ends the process at once (as SIGTERM), after removing the
+    # temporary of a save in progress; repeated so some land during a save.
+    for attempt in range(5):
+        out = ctx.tmp / f"twice{attempt}"
+        p = subprocess.Popen([str(ctx.silkgen), "--batch", str(lst), "-o", str(out), "--model", str(ctx.model),
+                              "--max-tokens", "40", "--threads", "1", "-q"], stderr=subprocess.DEVNULL)
+        time.sleep(1.0 + 0.05 * attempt)
+        p.send_signal(signal.SIGTERM)
+        time.sleep(0.02)
+        if p.poll() is None:
+            p.send_signal(signal.SIGTERM)
+        p.wait(timeout=10)
+        if p.returncode not in (-signal.SIGTERM, 143):
+            ctx.failures.append(f"two SIGTERMs: exit {p.returncode}")
+        left = [f.name for f in out.iterdir() if ".tmp" in f.name] if out.exists() else []
+        if left:
+            ctx.failures.append(f"two SIGTERMs: temporaries left: {left}")
 
 
 def main():
