@@ -70,7 +70,7 @@ bool ReadFolder(const std::string& dir, std::vector<BatchInput>* out, std::strin
     const std::string name = silkapp::Utf8(it->path().filename());
     if (name.empty() || name[0] == '.' || !IsSupportedInput(name)) continue;  // hidden: temp files
     std::error_code ec2;
-    if (!it->is_regular_file(ec2)) continue;
+    if (it->is_directory(ec2)) continue;  // subfolders are not walked; a FIFO or device fails as a row (libsilk's reader)
     BatchInput in;
     in.problem = EntryProblem(name);
     in.entry = in.problem.empty() ? name : PrintableExcerpt(name, 200);

@@ -225,6 +225,13 @@ def case_fifo(ctx):
     rows = {pathlib.Path(r["input"]).name: r["status"] for r in report_lines(ctx.tmp / "o8/silkgen_batch.jsonl")}
     if rows != {"pipe.obj": "failed", ctx.mesh.name: "ok"}:
         ctx.failures.append(f"8. rows {rows}: the FIFO failed alone, the mesh ok")
+    folder = ctx.tmp / "f8"
+    folder.mkdir()
+    os.mkfifo(folder / "pipe.obj")
+    (folder / "knot.obj").write_bytes(ctx.mesh.read_bytes())
+    got = ctx.run(["timeout", "15", ctx.silkgen, "--batch", folder, "-o", ctx.tmp / "o8d", "--model", ctx.model, *GEN],
+                  timeout=30)
+    ctx.expect("8. a FIFO in a --batch folder", got, 1, ["pipe.obj", "FIFO"])
     fifo_list = ctx.tmp / "list.fifo"
     os.mkfifo(fifo_list)
     ctx.expect("8. a FIFO as the list", ctx.run(["timeout", "15", ctx.silkgen, "--batch", fifo_list, "-o", ctx.tmp / "o8f",
