@@ -162,6 +162,21 @@ rc=$?
 rc=$?; echo "  silkgen_batch: $([ $rc = 0 ] && echo "$(tail -1 "$T/batch_check.log"), exit 1 (the broken file), outputs equal the single run, no temporary left" || echo FAILED)"
 [ $rc = 0 ] || { tail -3 "$T/batch.log" "$T/batch_check.log" >&2; ls -A "$B" >&2; }
 result silkgen_batch $rc
+# Issue 35 on Windows' path rules: an input in OUTDIR named in another case (KNOTEN.OBJ is knoten.obj
+# on NTFS) refused before any work naming both, the input unchanged; an input whose output would be a
+# reserved device name (NUL.obj) is a failed row with the reason, the others still run.
+H="$U/hostile"; rm -rf "$H"; mkdir -p "$H"
+cp "$U/knoten 结.obj" "$H/Knoten.obj"; printf 'KNOTEN.OBJ\r\n' > "$H/liste.txt"; k0=$(sha256sum "$H/Knoten.obj")
+LC_ALL=C.UTF-8 "$WINE" "$DIST/silkgen.exe" --batch "$UW/hostile/liste.txt" -o "$UW/hostile" --format obj --overwrite \
+  --model tests/models/tiny --temperature 0 > "$T/hostile_case.log" 2>&1; h1=$?
+cp "$U/knoten 结.obj" "$H/nul.ply.obj"; printf 'nul.ply.obj\r\nKnoten.obj\r\n' > "$H/liste2.txt"
+LC_ALL=C.UTF-8 "$WINE" "$DIST/silkgen.exe" --batch "$UW/hostile/liste2.txt" -o "$UW/hostile/out" --format obj \
+  --model tests/models/tiny --temperature 0 > "$T/hostile_reserved.log" 2>&1; h2=$?
+[ $h1 = 1 ] && grep -q "never writes to a file it reads" "$T/hostile_case.log" && [ "$k0" = "$(sha256sum "$H/Knoten.obj")" ] &&
+  [ $h2 = 1 ] && grep -q "reserved device name" "$T/hostile_reserved.log" && [ -s "$H/out/Knoten.obj" ]
+rc=$?; echo "  silkgen_batch_windows_names: $([ $rc = 0 ] && echo "case-variant input in OUTDIR refused, NUL output refused alone" || echo FAILED)"
+[ $rc = 0 ] || tail -3 "$T/hostile_case.log" "$T/hostile_reserved.log" >&2
+result silkgen_batch_windows_names $rc
 
 # 6. The Blender add-on's windows-x64 zip (scripts/make_blender_addon.sh --windows): libsilk.dll and
 #    onnxruntime.dll in silk_mesh/lib as PE x86-64 files silk_mesh's loader accepts on Windows, the

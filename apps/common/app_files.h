@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The apps' own file-system calls (libsilk opens the meshes, models and token files itself):
-// folder checks, the input-exists check of the command line, and silkgen's text outputs, all on
+// folder checks and the input-exists check of the command line (libsilk writes every output,
+// silk_file_write), all on
 // UTF-8 paths (std::filesystem::u8path: Windows reads a plain narrow path in the ANSI code page).
 #pragma once
 #include <CLI/CLI.hpp>
@@ -25,9 +26,5 @@ bool IsDirectory(const std::string& path);
 std::string MakeDirectories(const std::string& path);
 // CLI::ExistingFile for UTF-8 paths (CLI11's own check reads the path in the ANSI code page).
 CLI::Validator ExistingFile();
-// Temporary file in the same folder, then a rename that replaces `path` (MoveFileExW on
-// Windows: std::rename does not replace there). "" when done, else the reason; on failure
-// `path` is untouched and the temporary file removed.
-std::string WriteFileAtomically(const std::string& path, const std::string& bytes);
 
 }  // namespace silkapp

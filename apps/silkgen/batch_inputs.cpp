@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
 // Listing, sorting, stem check and sharding of silkgen --batch inputs (batch_inputs.h).
+#include "../common/app_errors.h"
 #include "../common/app_files.h"
 #include "batch_inputs.h"
+#include "batch_list.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <system_error>
 
@@ -34,30 +35,32 @@ bool ParseCount(const std::string& text, int* value) {
   return true;
 }
 
-std::string Trim(const std::string& s) {
-  size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
-}
-
-// Lines of a list file: '#' starts a comment line, blank lines and CR before LF are ignored.
+// Entries of a list file (batch_list.h), read through libsilk (a regular file, size-limited);
+// relative paths from the list's folder. A refused line keeps no path: it becomes a failed row.
 bool ReadList(const std::string& list, std::vector<BatchInput>* out, std::string* error) {
-  std::ifstream f(silkapp::FsPath(list), std::ios::binary);
-  if (!f) {
-    *error = list + ": cannot read the input list";
+  std::string text;
+  try {
+    text = silk_cpp::ReadFile(list, kMaxListBytes);
+  } catch (const silk_cpp::Error& e) {
+    *error = silkapp::ErrorText(e.status(), e.message() + " (the input list)");
     return false;
   }
+  std::vector<ListEntry> entries;
+  if (!ParseList(text, &entries, error)) {
+    *error = silkapp::ErrorText(SILK_ERR_LIMIT, list + ": " + *error);
+    return false;
+  }
+  text = std::string();
   const fs::path folder = silkapp::FsPath(list).parent_path();
-  std::string line;
-  while (std::getline(f, line)) {
-    const std::string entry = Trim(line);
-    if (entry.empty() || entry[0] == '#') continue;
-    const fs::path p = silkapp::FsPath(entry);
+  for (ListEntry& e : entries) {
     BatchInput in;
-    in.entry = entry;
-    in.path = silkapp::Utf8((p.is_absolute() ? p : folder / p).lexically_normal());
-    out->push_back(in);
+    in.entry = std::move(e.entry);
+    in.problem = std::move(e.problem);
+    if (in.problem.empty()) {
+      const fs::path p = silkapp::FsPath(in.entry);
+      in.path = silkapp::Utf8((p.is_absolute() ? p : folder / p).lexically_normal());
+    }
+    out->push_back(std::move(in));
   }
   return true;
 }
@@ -68,13 +71,15 @@ bool ReadFolder(const std::string& dir, std::vector<BatchInput>* out, std::strin
     const std::string name = silkapp::Utf8(it->path().filename());
     if (name.empty() || name[0] == '.' || !IsSupportedInput(name)) continue;  // hidden: temp files
     std::error_code ec2;
-    if (!it->is_regular_file(ec2)) continue;
+    if (it->is_directory(ec2)) continue;  // subfolders are not walked; a FIFO or device fails as a row (libsilk's reader)
     BatchInput in;
-    in.entry = name;
-    in.path = silkapp::Utf8(it->path());
+    in.problem = EntryProblem(name);
+    in.entry = in.problem.empty() ? name : PrintableExcerpt(name, 200);
+    if (in.problem.empty()) in.path = silkapp::Utf8(it->path());
+    else in.problem = "file name " + in.problem + " (not taken as an input)";
     out->push_back(in);
   }
-  if (ec) *error = dir + ": cannot list the folder (" + ec.message() + ")";
+  if (ec) *error = silkapp::ErrorText(SILK_ERR_IO, dir + ": cannot list the folder (" + ec.message() + ")");
   return !ec;
 }
 
@@ -82,9 +87,10 @@ bool ReadFolder(const std::string& dir, std::vector<BatchInput>* out, std::strin
 bool CheckStems(const std::vector<BatchInput>& inputs, std::string* error) {
   std::map<std::string, const BatchInput*> seen;
   for (const BatchInput& in : inputs) {
+    if (!in.problem.empty()) continue;  // no output
     auto [it, fresh] = seen.emplace(Lower(in.stem), &in);
     if (!fresh) {
-      *error = "two inputs would write the same output '" + in.stem + "': " + it->second->path + " and " + in.path +
+      *error = "invalid argument: two inputs would write the same output '" + in.stem + "': " + it->second->path + " and " + in.path +
                " (rename one, or split the list)";
       return false;
     }
@@ -114,22 +120,27 @@ bool ParseShard(const std::string& text, Shard* shard, std::string* error) {
 bool ShardFromEnvironment(Shard* shard, std::string* error) {
   const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
   const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
-  if (!id) return true;  // no array job: one shard
   const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
   const char* step = std::getenv("SLURM_ARRAY_TASK_STEP");
+  auto shown = [](const char* v) { return v ? "'" + std::string(v) + "'" : std::string("unset"); };
+  const std::string all = "SLURM_ARRAY_TASK_ID=" + shown(id) + ", SLURM_ARRAY_TASK_COUNT=" + shown(count) +
+                          ", SLURM_ARRAY_TASK_MIN=" + shown(min) + ", SLURM_ARRAY_TASK_STEP=" + shown(step);
+  if (!id) {
+    if (!count && !min && !step) return true;  // no array job: one shard
+    *error = "Slurm array variables without SLURM_ARRAY_TASK_ID (" + all + "): give --shard I/N";
+    return false;
+  }
   int task = 0, n = 0, first = 0, stride = 1;
   if (!count || !ParseCount(id, &task) || !ParseCount(count, &n) || (min && !ParseCount(min, &first)) ||
       (step && (!ParseCount(step, &stride) || stride < 1))) {
-    *error = std::string("Slurm array variables unusable (SLURM_ARRAY_TASK_ID=") + id +
-             ", SLURM_ARRAY_TASK_COUNT=" + (count ? count : "unset") + ", SLURM_ARRAY_TASK_MIN=" + (min ? min : "unset") +
-             "): give --shard I/N";
+    *error = "Slurm array variables unusable (" + all + "; each a non-negative integer, COUNT and STEP >= 1): give --shard I/N";
     return false;
   }
   const int index = task >= first && (task - first) % stride == 0 ? (task - first) / stride : -1;
   if (n < 1 || index < 0 || index >= n) {
     *error = "SLURM_ARRAY_TASK_ID=" + std::string(id) + " is not one of the " + count +
              " tasks from SLURM_ARRAY_TASK_MIN=" + std::to_string(first) + " step " + std::to_string(stride) +
-             ": give --shard I/N";
+             " (" + all + "): give --shard I/N";
     return false;
   }
   shard->index = index;
@@ -158,22 +169,24 @@ bool ListInputs(const std::string& source, std::vector<BatchInput>* inputs, std:
   if (fs::is_directory(silkapp::FsPath(source), ec)) {
     if (!ReadFolder(source, &all, error)) return false;
   } else if (IsSupportedInput(source)) {
-    *error = source + ": a mesh file; --batch takes a list file (one path a line) or a folder";
+    *error = "invalid argument: " + source + ": a mesh file; --batch takes a list file (one path a line) or a folder";
     return false;
   } else if (!ReadList(source, &all, error)) {
     return false;
   }
   std::sort(all.begin(), all.end(), [](const BatchInput& a, const BatchInput& b) { return a.entry < b.entry; });
   all.erase(std::unique(all.begin(), all.end(),
-                        [](const BatchInput& a, const BatchInput& b) { return a.entry == b.entry; }),
+                        [](const BatchInput& a, const BatchInput& b) {
+                          return a.entry == b.entry && a.problem.empty() && b.problem.empty();
+                        }),
             all.end());
   if (all.empty()) {
-    *error = source + ": no inputs (a list needs one path a line; a folder, files the readers take)";
+    *error = "invalid argument: " + source + ": no inputs (a list needs one path a line; a folder, files the readers take)";
     return false;
   }
   for (size_t i = 0; i < all.size(); ++i) {
     all[i].index = i;
-    all[i].stem = InputStem(all[i].path);
+    if (all[i].problem.empty()) all[i].stem = InputStem(all[i].path);
   }
   if (!CheckStems(all, error)) return false;
   *inputs = std::move(all);

@@ -13,6 +13,7 @@ namespace silkgen {
 // `path` the file opened (a relative list line resolved against the list file's folder).
 struct BatchInput {
   std::string entry, path, stem;
+  std::string problem;  // "" or why the entry is refused (a failed row; path and stem stay empty)
   size_t index = 0;  // position in the sorted list (0-based), the same in every shard
 };
 

@@ -14,6 +14,7 @@ struct BatchArgs {
   std::string source;  // --batch LIST_OR_DIR; empty: a single-input run
   std::string format = "glb", shard, report;
   bool overwrite = false;
+  bool shard_given = false, report_given = false;  // the option was on the command line (even as "")
 };
 
 void AddBatchOptions(CLI::App& app, BatchArgs& b);

@@ -2,6 +2,7 @@
 // silkgen --batch's report: JSON Lines, one object per input, appended and flushed as each input
 // ends, so a killed run leaves every finished input on record (docs/batch.md "Report").
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -30,14 +31,21 @@ struct BatchRunInfo {
 
 class BatchReport {
  public:
+  // Longest line written (docs/batch.md): longer strings are cut to 2 KiB each.
+  static constexpr size_t kMaxLineBytes = 1 << 16;
   ~BatchReport();
-  // Opens `path` for appending (created if missing); false with a message.
+  // Opens `path` for appending (created if missing; only a regular file, a FIFO or device is
+  // refused); false with a message naming it.
   bool Open(const std::string& path, std::string* error);
-  // One line, written with one call and flushed.
-  void Write(const BatchRunInfo& run, const BatchInput& input, const BatchResult& result);
+  // One line, written with one call and flushed; false with a message naming the report when
+  // the write fails (disk full, quota, file size limit).
+  bool Write(const BatchRunInfo& run, const BatchInput& input, const BatchResult& result, std::string* error);
+  // Closes the file; false with a message when the last write-back failed.
+  bool Close(std::string* error);
 
  private:
   std::FILE* file_ = nullptr;
+  std::string path_;
 };
 
 }  // namespace silkgen

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // The --batch loop (batch_run.h): shard and list first, then the model once, then each input.
+#include "../common/app_errors.h"
 #include "../common/app_files.h"
+#include "../common/file_roles.h"
+#include "../common/interrupt.h"
 #include "batch_run.h"
 
 #include <unistd.h>
 
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -24,20 +26,13 @@ namespace fs = std::filesystem;
 namespace silkgen {
 namespace {
 
-// First SIGINT/SIGTERM: abandon the mesh in progress (polled before every id) and stop; the
-// second one kills at once (default action).
-volatile std::sig_atomic_t g_signal = 0;
-
-extern "C" void OnSignal(int sig) {
-  g_signal = sig;
-  std::signal(sig, SIG_DFL);
-}
-
 struct Callbacks {
   ProgressBar* bar;
 };
 
-int32_t PollCancel(void*) { return g_signal != 0 ? 1 : 0; }
+// First SIGINT/SIGTERM: the mesh in progress is abandoned (polled before every id) and the run
+// stops; a second one ends the process at once, its temporaries removed (common/interrupt.h).
+int32_t PollCancel(void*) { return silkapp::InterruptSignal() != 0 ? 1 : 0; }
 
 void OnProgress(const silk_generate_progress* g, void* user) { static_cast<Callbacks*>(user)->bar->Update(*g); }
 
@@ -56,7 +51,7 @@ std::string RunId() {
 
 // --shard, else Slurm's variables, else 0/1.
 bool ChooseShard(const BatchArgs& args, Shard* shard, std::string* error) {
-  if (!args.shard.empty()) return ParseShard(args.shard, shard, error);
+  if (args.shard_given) return ParseShard(args.shard, shard, error);  // "" included: refused
   return ShardFromEnvironment(shard, error);
 }
 
@@ -73,12 +68,13 @@ bool PrepareOutputDir(const BatchArgs& args, const std::string& outdir, std::str
   std::error_code ec;
   fs::create_directories(silkapp::FsPath(outdir), ec);
   if (!fs::is_directory(silkapp::FsPath(outdir))) {
-    *error = outdir + ": cannot create the output folder" + (ec ? " (" + ec.message() + ")" : "");
+    *error = silkapp::ErrorText(SILK_ERR_IO, outdir + ": cannot create the output folder" +
+                                                 (ec ? " (" + ec.message() + ")" : ""));
     return false;
   }
   if (fs::is_directory(silkapp::FsPath(args.source), ec) &&
       fs::equivalent(silkapp::FsPath(args.source), silkapp::FsPath(outdir), ec)) {
-    *error = outdir + ": the output folder is the input folder (its outputs would be inputs next time); use another -o";
+    *error = "invalid argument: " + outdir + ": the output folder is the input folder (its outputs would be inputs next time); use another -o";
     return false;
   }
   return true;
@@ -110,21 +106,32 @@ void Generate(silk_cpp::Generator& generator, const BatchSettings& s, const Batc
   result.Save(r->output, sp);
 }
 
+std::string OutputOf(const BatchSettings& s, const BatchArgs& args, const BatchInput& in) {
+  if (!in.problem.empty()) return "";
+  return silkapp::Utf8(silkapp::FsPath(s.output_dir) / silkapp::FsPath(in.stem + "." + args.format));
+}
+
 BatchResult OneInput(silk_cpp::Generator& generator, const BatchSettings& s, const BatchArgs& args,
                      const BatchInput& in) {
   const auto t0 = std::chrono::steady_clock::now();
   BatchResult r;
-  r.output = silkapp::Utf8(silkapp::FsPath(s.output_dir) / silkapp::FsPath(in.stem + "." + args.format));
+  r.output = OutputOf(s, args, in);
   std::error_code ec;
+  if (!in.problem.empty()) {  // a refused list line: nothing is opened
+    r.status = "failed";
+    r.error = silkapp::ErrorText(SILK_ERR_INVALID_ARGUMENT, in.problem);
+    return r;
+  }
   if (!args.overwrite && fs::exists(silkapp::FsPath(r.output), ec)) {
     r.status = "skipped";
     return r;
   }
   try {
+    silk_cpp::CheckOutputPath(r.output);  // a name the file system cannot hold: refused before generating
     Generate(generator, s, in, args.format, &r);
     r.status = "ok";
   } catch (const silk_cpp::Error& e) {
-    r.status = e.status() == SILK_ERR_CANCELLED && g_signal ? "cancelled" : "failed";
+    r.status = e.status() == SILK_ERR_CANCELLED && silkapp::InterruptSignal() ? "cancelled" : "failed";
     r.error = e.what();
   } catch (const std::exception& e) {  // std::bad_alloc, filesystem errors
     r.status = "failed";
@@ -149,9 +156,9 @@ void PrintLine(const BatchSettings& s, size_t k, size_t n, const BatchInput& in,
   else if (r.status == "skipped" && !s.quiet)
     std::fprintf(stderr, "silkgen: [%zu/%zu] %s: skipped, %s exists (--overwrite redoes it)\n", k, n, in.entry.c_str(),
                  r.output.c_str());
-  else if (r.status != "ok" && r.status != "skipped")  // failures are printed even with -q
-    std::fprintf(stderr, "silkgen: [%zu/%zu] %s: %s: %s\n", k, n, in.entry.c_str(), r.status.c_str(),
-                 r.error.c_str());
+  else if (r.status != "ok" && r.status != "skipped")  // failures are printed even with -q, in the error form
+    std::fprintf(stderr, "silkgen: %s (input %zu of %zu, %s: %s)\n", r.error.c_str(), k, n, in.entry.c_str(),
+                 r.status.c_str());
 }
 
 struct Tally {
@@ -161,9 +168,10 @@ struct Tally {
   }
 };
 
-// Every input of the shard in turn; stops after the one a signal interrupted.
+// Every input of the shard in turn; stops after the one a signal interrupted, or when the report
+// cannot be written (*error names it: a run that cannot record what it did does not go on).
 Tally RunInputs(const BatchArgs& args, const BatchSettings& settings, const std::vector<BatchInput>& mine,
-                const BatchRunInfo& run, BatchReport& report) {
+                const BatchRunInfo& run, BatchReport& report, std::string* error) {
   silk_cpp::Model model = silk_cpp::Model::Load(settings.model_dir, settings.model);
   silk_cpp::Generator generator(model);
   ProgressBar bar(!settings.quiet);
@@ -173,33 +181,62 @@ Tally RunInputs(const BatchArgs& args, const BatchSettings& settings, const std:
   s.generate.cancel = PollCancel;
   s.generate.user_data = &callbacks;
   Tally tally;
-  for (size_t k = 0; k < mine.size() && !g_signal; ++k) {
+  for (size_t k = 0; k < mine.size() && !silkapp::InterruptSignal(); ++k) {
     const BatchResult r = OneInput(generator, s, args, mine[k]);
     bar.Finish();
-    report.Write(run, mine[k], r);
     PrintLine(s, k + 1, mine.size(), mine[k], r);
     tally.Add(r.status);
+    if (!report.Write(run, mine[k], r, error)) break;
   }
   return tally;
+}
+
+// The rule of common/file_roles.h over the whole list (so every shard decides alike): no output
+// and not the report may be an input or the list, nor two of them one file.
+bool CheckFileRoles(const BatchArgs& args, const BatchSettings& s, const std::vector<BatchInput>& all,
+                    const std::string& report_path, std::string* error) {
+  silkapp::FileRoles roles;
+  if (!silkapp::IsDirectory(args.source)) roles.Reads(args.source, "the list");
+  for (const BatchInput& in : all)
+    if (in.problem.empty()) roles.Reads(in.path, "the input");
+  roles.Writes(report_path, "the report");
+  for (const BatchInput& in : all)
+    if (in.problem.empty()) roles.Writes(OutputOf(s, args, in), "the output of " + in.entry);
+  *error = roles.Check();
+  if (!error->empty()) *error = silkapp::ErrorText(SILK_ERR_INVALID_ARGUMENT, *error);
+  return error->empty();
+}
+
+// Shard, list, output folder, the file-role rule and the report, before the model is loaded.
+int Prepare(const BatchArgs& args, const BatchSettings& settings, BatchRunInfo* run, std::vector<BatchInput>* all,
+            std::string* report_path, BatchReport* report) {
+  std::string error;
+  if (!ChooseShard(args, &run->shard, &error)) {
+    silkapp::PrintError("silkgen", SILK_ERR_INVALID_ARGUMENT, error);
+    return kExitUsage;
+  }
+  if (args.report_given && args.report.empty()) {
+    silkapp::PrintError("silkgen", SILK_ERR_INVALID_ARGUMENT, "--report: an empty path");
+    return kExitUsage;
+  }
+  *report_path = args.report_given ? args.report : DefaultReport(settings.output_dir, run->shard);
+  if (!ListInputs(args.source, all, &error) || !PrepareOutputDir(args, settings.output_dir, &error) ||
+      !CheckFileRoles(args, settings, *all, *report_path, &error) || !report->Open(*report_path, &error)) {
+    std::fprintf(stderr, "silkgen: %s\n", error.c_str());
+    return kExitFail;
+  }
+  return kExitOk;
 }
 
 }  // namespace
 
 int RunBatch(const BatchArgs& args, const BatchSettings& settings) {
+  silkapp::HandleInterrupts(silkapp::OnInterrupt::kCancel);
   BatchRunInfo run;
-  std::string error;
-  if (!ChooseShard(args, &run.shard, &error)) {
-    std::fprintf(stderr, "silkgen: %s\n", error.c_str());
-    return kExitUsage;
-  }
   std::vector<BatchInput> all;
+  std::string report_path, error;
   BatchReport report;
-  const std::string report_path = args.report.empty() ? DefaultReport(settings.output_dir, run.shard) : args.report;
-  if (!ListInputs(args.source, &all, &error) || !PrepareOutputDir(args, settings.output_dir, &error) ||
-      !report.Open(report_path, &error)) {
-    std::fprintf(stderr, "silkgen: %s\n", error.c_str());
-    return kExitFail;
-  }
+  if (int rc = Prepare(args, settings, &run, &all, &report_path, &report); rc != kExitOk) return rc;
   const std::vector<BatchInput> mine = ShardInputs(all, run.shard);
   run.run = RunId();
   run.seed = settings.seed;
@@ -208,16 +245,22 @@ int RunBatch(const BatchArgs& args, const BatchSettings& settings) {
     std::fprintf(stderr, "silkgen --batch: %zu of %zu inputs (shard %d/%d from %s), seed %llu, report %s\n", mine.size(),
                  all.size(), run.shard.index, run.shard.count, run.shard.source.c_str(),
                  static_cast<unsigned long long>(run.seed), report_path.c_str());
-  std::signal(SIGINT, OnSignal);
-  std::signal(SIGTERM, OnSignal);
   const auto t0 = std::chrono::steady_clock::now();
-  const Tally t = RunInputs(args, settings, mine, run, report);  // throws only when the model fails to load
+  Tally t;
+  if (!silkapp::InterruptSignal())  // throws only when the model fails to load
+    t = RunInputs(args, settings, mine, run, report, &error);
+  if (error.empty()) report.Close(&error);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!settings.quiet || t.failed || g_signal)
+  const int sig = silkapp::InterruptSignal();
+  if (!settings.quiet || t.failed || sig || !error.empty())
     std::fprintf(stderr, "silkgen --batch: %zu ok, %zu skipped, %zu failed%s of %zu inputs in %.1f s%s\n", t.ok,
                  t.skipped, t.failed, t.cancelled ? ", 1 cancelled" : "", mine.size(), wall,
-                 g_signal ? " (interrupted: the rest not started)" : "");
-  if (g_signal) return 128 + g_signal;
+                 sig ? " (interrupted: the rest not started)" : !error.empty() ? " (stopped: the report failed)" : "");
+  if (!error.empty()) {
+    silkapp::PrintError("silkgen", SILK_ERR_IO, error);
+    return kExitFail;
+  }
+  if (sig) return 128 + sig;
   return t.failed ? kExitFail : kExitOk;
 }
 

@@ -10,7 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "../common/app_errors.h"
 #include "../common/app_files.h"
+#include "../common/file_roles.h"
+#include "../common/interrupt.h"
 #include "../common/utf8_args.h"
 #include "batch_options.h"
 #include "batch_run.h"
@@ -23,13 +26,18 @@ namespace {
 
 using silkgen::kExitFail, silkgen::kExitOk, silkgen::kExitUsage;
 
-int Fail(const std::string& message) {
-  std::fprintf(stderr, "silkgen: %s\n", message.c_str());
-  return kExitFail;
+int Fail(silk_status kind, const std::string& message, int rc = kExitFail) {
+  silkapp::PrintError("silkgen", kind, message);
+  return rc;
+}
+
+int Fail(const silk_cpp::Error& e) {
+  silkapp::PrintError("silkgen", e);
+  return e.status() == SILK_ERR_CANCELLED && silkapp::InterruptSignal() ? 128 + silkapp::InterruptSignal() : kExitFail;
 }
 
 // Output extension check before any work ("" if fine).
-std::string CheckOutputPath(const std::string& path) {
+std::string CheckOutputFormat(const std::string& path) {
   std::string p = path;
   for (char& c : p) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   for (const char* ext : {".glb", ".obj", ".ply"})
@@ -43,11 +51,8 @@ bool EndsWithPly(const std::string& path) {
   return p.size() >= 4 && p.compare(p.size() - 4, 4, ".ply") == 0;
 }
 
-// Writes text through a temporary file and a rename, so a failed run leaves no partial file.
-void WriteTextFile(const std::string& path, const std::string& text) {
-  const std::string why = silkapp::WriteFileAtomically(path, text);
-  if (!why.empty()) throw silk_cpp::Error(SILK_ERR_IO, path + ": " + why);
-}
+// Writes text through libsilk's atomic writer, so a failed run leaves no partial file.
+void WriteTextFile(const std::string& path, const std::string& text) { silk_cpp::WriteFile(path, text); }
 
 // The encoder's points (rows of x y z nx ny nz) as an ascii PLY point cloud, exact doubles.
 std::string PointsPly(const std::vector<double>& rows) {
@@ -229,6 +234,7 @@ int Run(const Args& a, uint64_t seed) {
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };
+  p.cancel = [](void*) -> int32_t { return silkapp::InterruptSignal() != 0 ? 1 : 0; };
   p.user_data = &bar;
   silk_cpp::Generator generator(model);
   silk_generate_input in = silk_cpp::Sized<silk_generate_input>();
@@ -264,17 +270,41 @@ int Run(const Args& a, uint64_t seed) {
 // --seed parsed and the bundled model found when --model is not given (kExitOk or the exit status).
 int SeedAndModel(Args& a, uint64_t* seed) {
   if (!ParseSeed(a.seed_text, seed)) {
-    std::fprintf(stderr, "silkgen: --seed: '%s' is neither an unsigned integer nor 'random'\n", a.seed_text.c_str());
-    return kExitUsage;
+    return Fail(SILK_ERR_INVALID_ARGUMENT, "--seed: '" + a.seed_text + "' is neither an unsigned integer nor 'random'",
+                kExitUsage);
   }
   if (a.model_dir.empty()) {
     a.model_dir = silkgen::DefaultModelDir();
     if (a.model_dir.empty()) {
       std::string tried;
       for (const std::string& c : silkgen::DefaultModelCandidates()) tried += "\n  " + c;
-      return Fail("no bundled model found; pass --model DIR (looked in:" + tried + ")");
+      return Fail(SILK_ERR_IO, "no bundled model found; pass --model DIR (looked in:" + tried + ")");
     }
   }
+  return kExitOk;
+}
+
+// Settings that can be checked before any work: the output names (format, what the file system
+// holds) and the rule that no output is the input or another output (common/file_roles.h).
+int CheckOutputs(const Args& a) {
+  if (!a.output.empty())
+    if (std::string e = CheckOutputFormat(a.output); !e.empty()) return Fail(SILK_ERR_INVALID_ARGUMENT, e);
+  if (!a.save_points.empty() && !EndsWithPly(a.save_points))
+    return Fail(SILK_ERR_INVALID_ARGUMENT, a.save_points + ": --save-points writes a PLY point cloud (use a .ply name)");
+  silkapp::FileRoles roles;
+  roles.Reads(a.input, "the input");
+  const std::pair<const char*, const std::string*> outputs[] = {{"-o", &a.output}, {"--tokens", &a.tokens_path},
+      {"--stats", &a.stats_path}, {"--save-points", &a.save_points}, {"--trace", &a.trace_path}};
+  for (const auto& [option, path] : outputs) {
+    if (path->empty()) continue;
+    roles.Writes(*path, option);
+    try {
+      silk_cpp::CheckOutputPath(*path);
+    } catch (const silk_cpp::Error& e) {
+      return Fail(e.status(), option + std::string(" ") + e.message());
+    }
+  }
+  if (std::string e = roles.Check(); !e.empty()) return Fail(SILK_ERR_INVALID_ARGUMENT, e);
   return kExitOk;
 }
 
@@ -282,9 +312,8 @@ int SeedAndModel(Args& a, uint64_t* seed) {
 int Batch(Args& a) {
   if (!a.input.empty() || a.output.empty() || !a.tokens_path.empty() || !a.stats_path.empty() ||
       !a.trace_path.empty() || !a.save_points.empty()) {
-    std::fprintf(stderr, "silkgen: --batch LIST_OR_DIR takes -o OUTDIR and no input file, --tokens, --stats, --trace "
-                         "or --save-points (the report holds each input's figures)\n");
-    return kExitUsage;
+    return Fail(SILK_ERR_INVALID_ARGUMENT, "--batch LIST_OR_DIR takes -o OUTDIR and no input file, --tokens, --stats, "
+                "--trace or --save-points (the report holds each input's figures)", kExitUsage);
   }
   silkgen::BatchSettings s;
   if (int rc = SeedAndModel(a, &s.seed); rc != kExitOk) return rc;
@@ -312,33 +341,26 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   try {
-    if (!a.batch.source.empty()) return Batch(a);
+    a.batch.shard_given = app.count("--shard") > 0;
+    a.batch.report_given = app.count("--report") > 0;
+    if (app.count("--batch")) return Batch(a);
   } catch (const silk_cpp::Error& e) {
-    return Fail(e.what());
+    return Fail(e);
   }
   for (const char* only : {"--format", "--shard", "--report", "--overwrite"})
-    if (app.count(only)) {
-      std::fprintf(stderr, "silkgen: %s is a --batch option\n", only);
-      return kExitUsage;
-    }
-  if (a.input.empty()) {
-    std::fprintf(stderr, "silkgen: give an input file (or --batch LIST_OR_DIR); --help lists the options\n");
-    return kExitUsage;
-  }
-  // Settings that can be checked before any work.
-  if (a.output.empty() && a.tokens_path.empty()) {
-    std::fprintf(stderr, "silkgen: give -o/--output (a mesh) or --tokens (the ids), or both\n");
-    return kExitUsage;
-  }
-  if (!a.output.empty())
-    if (std::string e = CheckOutputPath(a.output); !e.empty()) return Fail(e);
-  if (!a.save_points.empty() && !EndsWithPly(a.save_points))
-    return Fail(a.save_points + ": --save-points writes a PLY point cloud (use a .ply name)");
+    if (app.count(only)) return Fail(SILK_ERR_INVALID_ARGUMENT, std::string(only) + " is a --batch option", kExitUsage);
+  if (a.input.empty())
+    return Fail(SILK_ERR_INVALID_ARGUMENT, "give an input file (or --batch LIST_OR_DIR); --help lists the options",
+                kExitUsage);
+  if (a.output.empty() && a.tokens_path.empty())
+    return Fail(SILK_ERR_INVALID_ARGUMENT, "give -o/--output (a mesh) or --tokens (the ids), or both", kExitUsage);
+  if (int rc = CheckOutputs(a); rc != kExitOk) return rc;
   uint64_t seed = 0;
   if (int rc = SeedAndModel(a, &seed); rc != kExitOk) return rc;
+  silkapp::HandleInterrupts(silkapp::OnInterrupt::kCancel);
   try {
     return Run(a, seed);
   } catch (const silk_cpp::Error& e) {
-    return Fail(e.what());
+    return Fail(e);
   }
 }

@@ -2,7 +2,7 @@
 // silktok's error messages: the library's status name, then the message with its context.
 #include "cli_errors.h"
 
-#include <cstdio>
+#include "../common/app_errors.h"
 
 namespace silktok {
 
@@ -11,9 +11,9 @@ silk_cpp::Error WithContext(const silk_cpp::Error& e, const std::string& prefix)
 }
 
 silk_cpp::Error AppError(silk_status status, const std::string& message) {
-  return silk_cpp::Error(status, std::string(silk_status_name(status)) + ": " + message, message);
+  return silk_cpp::Error(status, silkapp::ErrorText(status, message), message);
 }
 
-void ReportError(const silk_cpp::Error& e) { std::fprintf(stderr, "silktok: %s\n", e.what()); }
+void ReportError(const silk_cpp::Error& e) { silkapp::PrintError("silktok", e); }
 
 }  // namespace silktok

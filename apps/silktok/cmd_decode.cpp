@@ -6,6 +6,7 @@
 #include "../common/app_files.h"
 #include "commands.h"
 #include "cli_errors.h"
+#include "output_checks.h"
 
 namespace silktok {
 namespace {
@@ -25,6 +26,7 @@ std::string HeaderComment(const DecodeArgs& a, const silk_decode_stats& s) {
 }
 
 int Run(const DecodeArgs& a) {
+  if (int rc = CheckOutputs({a.input}, {a.output}); rc != kExitOk) return rc;
   try {
     const silk_cpp::Tokens tokens = silk_cpp::Tokens::Load(a.input);
     silk_decode_params p = silk_decode_default_params();

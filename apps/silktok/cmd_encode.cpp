@@ -12,6 +12,7 @@
 #include "../common/app_files.h"
 #include "commands.h"
 #include "mesh_input.h"
+#include "output_checks.h"
 
 namespace silktok {
 namespace {
@@ -50,6 +51,7 @@ int Run(const EncodeArgs& a) {
   params.nonmanifold_processing = a.no_nonmanifold ? 0 : 1;
   try {
     if (a.inputs.size() == 1 && !silkapp::IsDirectory(a.output)) {
+      if (int rc = CheckOutputs(a.inputs, {a.output}); rc != kExitOk) return rc;
       EncodeOne(a.inputs[0], a.output, params);
       return kExitOk;
     }
@@ -58,6 +60,9 @@ int Run(const EncodeArgs& a) {
     ReportError(e);
     return kExitFailure;
   }
+  std::vector<std::string> outputs;
+  for (const std::string& in : a.inputs) outputs.push_back(a.output + "/" + StemOf(in) + ".tokens.txt");
+  if (int rc = CheckOutputs(a.inputs, outputs); rc != kExitOk) return rc;
   unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const size_t jobs = std::min(a.inputs.size(), static_cast<size_t>(a.jobs > 0 ? a.jobs : static_cast<int>(hw)));
   std::atomic<size_t> next{0};
@@ -65,9 +70,8 @@ int Run(const EncodeArgs& a) {
   std::mutex io_mu;
   auto worker = [&] {
     for (size_t i; (i = next.fetch_add(1)) < a.inputs.size();) {
-      const std::string out = a.output + "/" + StemOf(a.inputs[i]) + ".tokens.txt";
       try {
-        EncodeOne(a.inputs[i], out, params);
+        EncodeOne(a.inputs[i], outputs[i], params);
       } catch (const silk_cpp::Error& e) {
         ++failed;
         std::lock_guard<std::mutex> lock(io_mu);

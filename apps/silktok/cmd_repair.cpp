@@ -8,6 +8,7 @@
 #include "../common/app_files.h"
 #include "commands.h"
 #include "cli_errors.h"
+#include "output_checks.h"
 
 namespace silktok {
 namespace {
@@ -34,6 +35,7 @@ void PrintText(const std::string& input, const silk_repair_stats& st, const nloh
 }
 
 int Run(const RepairArgs& a) {
+  if (int rc = CheckOutputs({a.input}, {a.output}); rc != kExitOk) return rc;
   silk_repair_params p = silk_repair_default_params();
   p.holes = a.policy == "off" ? SILK_HOLES_OFF : a.policy == "report" ? SILK_HOLES_REPORT : SILK_HOLES_REPAIR;
   p.max_fill_loop = a.max_loop;

@@ -2,6 +2,7 @@
 // silktok: tokenize, decode, check, inspect and repair Mesh Silksong token streams.
 #include <cstdio>
 
+#include "../common/interrupt.h"
 #include "../common/utf8_args.h"
 #include "commands.h"
 #include "silk/silk.h"
@@ -15,6 +16,7 @@ int& ExitCode() {
 
 int main(int argc, char** argv) {
   silkapp::UseUtf8Arguments(argc, argv);  // Windows: UTF-8, not the ANSI code page
+  silkapp::HandleInterrupts(silkapp::OnInterrupt::kExit);  // no partial file left by a signal
   CLI::App app{"silktok — Mesh Silksong tokenizer tools (token format v1, 128 bins)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", silk_version());

@@ -146,6 +146,29 @@ SILK_API silk_status silk_mesh_copy_normals(const silk_mesh* mesh, double* out, 
 /* Point clouds: 1 when the mesh carries one normal per vertex. */
 SILK_API int32_t silk_mesh_has_normals(const silk_mesh* mesh);
 
+/* ---- files: the reads and writes every Silk tool makes ----------------------------- */
+/* Every file libsilk reads (meshes, token files, model files, silk_file_read) must be a regular
+ * file: a FIFO, device, socket or folder (a symlink to one included) is SILK_ERR_IO naming it and
+ * what it is, refused before it is opened. Every file it writes (silk_mesh_save, silk_tokens_save,
+ * silk_file_write) is written to a hidden temporary beside it (".<name>.tmp-<pid>"), synced and
+ * renamed into place: a reader sees the old file or the whole new one, never a partial one.
+ * SILK_OK when `path` can name an output file: not empty, not a folder, its folder exists, its
+ * name fits the file system (and, on Windows, is not a reserved device name such as CON or NUL,
+ * holds none of <>:"|?*, and does not end in a dot or space). Otherwise SILK_ERR_INVALID_ARGUMENT
+ * naming the path and the problem. Creates nothing; for a check before long work. */
+SILK_API silk_status silk_file_check_output(const char* path);
+/* Writes `size` bytes to `path` atomically (as above; `bytes` may be NULL when size is 0).
+ * SILK_ERR_INVALID_ARGUMENT (silk_file_check_output's reasons) or SILK_ERR_IO naming the path and
+ * the OS reason (disk full, permission, ...); on failure `path` is untouched. */
+SILK_API silk_status silk_file_write(const char* path, const void* bytes, size_t size);
+/* The bytes of the regular file `path` (size-query rule above; out_count: bytes). Over
+ * `max_bytes` is SILK_ERR_LIMIT, not a regular file SILK_ERR_IO, both naming the file. */
+SILK_API silk_status silk_file_read(const char* path, uint64_t max_bytes, char* out, size_t capacity,
+                                    size_t* out_count);
+/* Removes the temporary of every write in progress in this process. Async-signal-safe: for a
+ * signal handler that ends the process (the renamed outputs are kept, no partial file is left). */
+SILK_API void silk_file_discard_partial(void);
+
 /* ---- token sequences ---------------------------------------------------------------- */
 typedef struct silk_tokens silk_tokens;
 /* *out: owned by the caller, silk_tokens_destroy (also for silk_tokens_load). */

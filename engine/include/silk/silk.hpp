@@ -63,6 +63,18 @@ inline silk_vocab_info Vocab() {
   return v;
 }
 
+// Files (silk.h "files"): an output path checked before long work, the atomic writer, the
+// regular-file reader.
+inline void CheckOutputPath(const std::string& path) { Check(silk_file_check_output(path.c_str())); }
+inline void WriteFile(const std::string& path, const std::string& bytes) {
+  Check(silk_file_write(path.c_str(), bytes.data(), bytes.size()));
+}
+inline std::string ReadFile(const std::string& path, uint64_t max_bytes) {
+  const std::vector<char> v = CopyAll<char>(
+      [&](char* o, size_t c, size_t* n) { return silk_file_read(path.c_str(), max_bytes, o, c, n); });
+  return std::string(v.begin(), v.end());
+}
+
 struct ReportDeleter {
   void operator()(silk_report* r) const { silk_report_destroy(r); }
 };

@@ -1,11 +1,15 @@
-// SPDX-License-Identifier: MIT
-// mkstemp + write loop + fsync + rename, with cleanup on every failure path (Windows: a
-// CreateFileW temp file + WriteFile + FlushFileBuffers + MoveFileExW replacing the target).
+// A hidden temporary beside the target (".<name>.tmp-<pid>", created exclusively) + write loop +
+// fsync + rename, with cleanup on every failure path and the temporary registered for removal by
+// a signal handler (Windows: CreateFileW + WriteFile + FlushFileBuffers + MoveFileExW).
 #include "io/files/atomic_file.h"
+
+#include <string>
+
+#include "io/files/output_path.h"
+#include "io/files/partial_files.h"
 
 #ifdef _WIN32
 #include <algorithm>
-#include <atomic>
 
 #include "core/windows_text.h"
 #include "io/files/native_path.h"
@@ -17,23 +21,47 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <vector>
 #endif
 
 namespace silk {
 
+// ".<name>.tmp-<pid>" beside `path` (attempt > 0 appends "-<attempt>", for a name already taken);
+// a name too long to hold the suffix gets the short ".silk.tmp-<pid>-<attempt>" instead, so every
+// name the file system holds can be written.
+std::string TemporaryPathFor(const std::string& path, unsigned long pid, unsigned attempt) {
+  const size_t slash = path.find_last_of(
+#ifdef _WIN32
+      "/\\:"
+#else
+      "/"
+#endif
+  );
+  const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  std::string suffix = ".tmp-" + std::to_string(pid);
+  if (attempt > 0) suffix += "-" + std::to_string(attempt);
+  if (1 + name.size() + suffix.size() <= kTemporaryNameLimit) return dir + "." + name + suffix;
+  return dir + ".silk" + suffix + (attempt > 0 ? "" : "-0");
+}
+
 #ifdef _WIN32
 Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
-  if (path.empty()) return InvalidArgument("empty output path");
-  static std::atomic<unsigned> counter{0};
+  SILK_RETURN_IF_ERROR(CheckOutputPath(path));
   const std::wstring target = NativePath(path).wstring();
-  const std::wstring tmp = target + L".tmp." + std::to_wstring(GetCurrentProcessId()) + L"." + std::to_wstring(counter++);
-  HANDLE h = CreateFileW(tmp.c_str(), GENERIC_WRITE, 0, nullptr, CREATE_NEW, FILE_ATTRIBUTE_NORMAL, nullptr);
+  std::wstring tmp;
+  HANDLE h = INVALID_HANDLE_VALUE;
+  for (unsigned attempt = 0; attempt < 100 && h == INVALID_HANDLE_VALUE; ++attempt) {
+    tmp = NativePath(TemporaryPathFor(path, GetCurrentProcessId(), attempt)).wstring();
+    h = CreateFileW(tmp.c_str(), GENERIC_WRITE, 0, nullptr, CREATE_NEW, FILE_ATTRIBUTE_HIDDEN, nullptr);
+    if (h == INVALID_HANDLE_VALUE && GetLastError() != ERROR_FILE_EXISTS) break;
+  }
   if (h == INVALID_HANDLE_VALUE) return IoError(path + ": cannot create temporary file: " + WindowsErrorText(GetLastError()));
+  const int slot = RegisterPartialFile(Utf8Path(std::filesystem::path(tmp)));
   auto fail = [&](const std::string& what) {
     const DWORD err = GetLastError();
     if (h != INVALID_HANDLE_VALUE) CloseHandle(h);
     DeleteFileW(tmp.c_str());
+    ReleasePartialFile(slot);
     return IoError(path + ": " + what + ": " + WindowsErrorText(err));
   };
   size_t done = 0;
@@ -58,6 +86,8 @@ Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
     SetLastError(err);
     return fail("rename failed");
   }
+  SetFileAttributesW(target.c_str(), FILE_ATTRIBUTE_NORMAL);
+  ReleasePartialFile(slot);
   return Status::Ok();
 }
 #else
@@ -71,16 +101,20 @@ std::string DirOf(const std::string& path) {
 }  // namespace
 
 Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
-  if (path.empty()) return InvalidArgument("empty output path");
-  std::string tmpl = path + ".tmp.XXXXXX";
-  std::vector<char> buf(tmpl.begin(), tmpl.end());
-  buf.push_back('\0');
-  int fd = ::mkstemp(buf.data());
+  SILK_RETURN_IF_ERROR(CheckOutputPath(path));
+  std::string tmp;
+  int fd = -1;
+  for (unsigned attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    tmp = TemporaryPathFor(path, static_cast<unsigned long>(::getpid()), attempt);
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0600);
+    if (fd < 0 && errno != EEXIST) break;
+  }
   if (fd < 0) return IoError(path + ": cannot create temporary file: " + std::strerror(errno));
-  const std::string tmp(buf.data());
+  const int slot = RegisterPartialFile(tmp);
   auto fail = [&](const std::string& what, int err) {
     if (fd >= 0) ::close(fd);
     ::unlink(tmp.c_str());
+    ReleasePartialFile(slot);
     return IoError(path + ": " + what + ": " + std::strerror(err));
   };
   size_t done = 0;
@@ -92,7 +126,7 @@ Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
     }
     done += static_cast<size_t>(w);
   }
-  // mkstemp creates 0600; give the file the usual permissions (umask applies).
+  // Created 0600; give the file the usual permissions (umask applies).
   mode_t mask = ::umask(0);
   ::umask(mask);
   ::fchmod(fd, 0666 & ~mask);
@@ -103,6 +137,7 @@ Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
   }
   fd = -1;
   if (::rename(tmp.c_str(), path.c_str()) != 0) return fail("rename failed", errno);
+  ReleasePartialFile(slot);
   // Make the rename itself durable (best effort).
   int dfd = ::open(DirOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {

@@ -3,11 +3,10 @@
 #include "io/tokens/token_text.h"
 
 #include <charconv>
-#include <fstream>
 #include <algorithm>
 #include <climits>
 
-#include "io/files/native_path.h"
+#include "io/files/file_bytes.h"
 
 namespace silk {
 
@@ -35,17 +34,7 @@ StatusOr<std::vector<int32_t>> ParseTokenText(const std::string& text, const std
 }
 
 StatusOr<std::vector<int32_t>> ReadTokenText(const std::string& path, size_t max_bytes) {
-  std::ifstream in(NativePath(path), std::ios::binary);
-  if (!in) return IoError(path + ": cannot open token file");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) return IoError(path + ": cannot read token file");
-  if (static_cast<uint64_t>(size) > max_bytes)
-    return LimitExceeded(path + ": token file is " + std::to_string(size) + " bytes (limit " +
-                         std::to_string(max_bytes) + ")");
-  in.seekg(0);
-  std::string text(static_cast<size_t>(size), '\0');
-  if (size > 0 && !in.read(&text[0], size)) return IoError(path + ": read failed");
+  SILK_ASSIGN_OR_RETURN(std::string text, ReadFileBytes(path, max_bytes));
   return ParseTokenText(text, path);
 }
 

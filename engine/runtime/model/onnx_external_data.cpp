@@ -7,6 +7,7 @@
 #include <fstream>
 #include <vector>
 
+#include "io/files/file_bytes.h"
 #include "io/files/native_path.h"
 
 namespace silk {
@@ -196,6 +197,7 @@ Status ForEachExternalDataLocation(std::string_view bytes, const std::string& na
 }
 
 Status ForEachExternalDataLocationInFile(const std::string& path, const ExternalDataVisitor& visit) {
+  SILK_RETURN_IF_ERROR(CheckRegularFile(path));
   std::ifstream f(NativePath(path), std::ios::binary | std::ios::ate);
   if (!f) return IoError(path + ": cannot open");
   const std::streamoff size = f.tellg();
