@@ -33,7 +33,7 @@ std::string Choices(const Json& list, const Json& chosen) {
 std::string Row(const std::string& name, const std::string& arch, const std::string& size, const std::string& decoders,
                 const std::string& caches, const std::string& folder) {
   char buf[1024];
-  std::snprintf(buf, sizeof(buf), "%-16s %-24s %-9s %-18s %-18s %s\n", name.c_str(), arch.c_str(), size.c_str(),
+  std::snprintf(buf, sizeof(buf), "%-20s %-22s %-9s %-18s %-18s %s\n", name.c_str(), arch.c_str(), size.c_str(),
                 decoders.c_str(), caches.c_str(), folder.c_str());
   return buf;
 }
@@ -43,8 +43,9 @@ std::string ModelRow(const Json& m) {
   const std::string size = Size(m.value("bytes", 0.0));
   if (m.contains("error")) return Row(name, "unusable: " + m.value("error", ""), size, "", "", m.value("dir", ""));
   const Json& p = m["parameters"];
-  const std::string arch = m.value("arch", "") + " " + m.value("config", "") + " (" +
-                           std::to_string(p.value("n_layers", 0)) + "x" + std::to_string(p.value("d_model", 0)) + ")";
+  const std::string config = m.value("config", "");
+  const std::string arch = m.value("arch", "") + (config == m.value("arch", "") ? "" : " " + config) + " (" +
+                           std::to_string(p.value("n_layers", 0)) + " x " + std::to_string(p.value("d_model", 0)) + ")";
   return Row(name, arch, size, Choices(m["decoders"], m["default_decoder"]),
              Choices(m["kv_precisions"], m["default_kv_precision"]), m.value("dir", ""));
 }

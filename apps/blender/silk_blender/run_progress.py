@@ -36,6 +36,8 @@ class RunProgress:
 
     def text(self) -> str:
         p = self.last
+        if not p:
+            return "preparing the points (encoder)"
         return (f"candidate {max(0, self.candidate) + 1} of {p.get('candidates', 1)}, layer {self.layers_done + 1}, "
                 f"{p.get('tokens', 0)} / {p.get('max_tokens', 0)} ids")
 

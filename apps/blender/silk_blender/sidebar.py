@@ -135,16 +135,19 @@ class SILK_PT_sidebar(bpy.types.Panel):
         row.operator(SILK_OT_sidebar_generate.bl_idname, icon="PLAY")
         row.operator(SILK_OT_sidebar_cancel.bl_idname, icon="CANCEL")
         if s.running or s.status:
+            col = layout.column(align=True)
+            for line in s.status.split(", ", 1):  # "done: candidate 2 of 2", "layer 5, 812 / 2047 ids"
+                col.label(text=line)
             if hasattr(layout, "progress"):  # Blender 4.0+: a real progress bar
-                layout.progress(factor=s.progress, text=s.status)
+                col.progress(factor=s.progress, text=f"{round(100 * s.progress)} %")
             else:
-                layout.prop(s, "progress", text=s.status or "Progress", slider=True)
+                col.prop(s, "progress", text="Progress", slider=True)
         if s.scores:
             box = layout.box()
-            box.label(text="Candidates (Chamfer distance, lower is closer)")
+            box.label(text="Scores (lower = closer)")
             for c in s.scores:
-                box.label(text=f"{c.index + 1}: {c.score:.4f}, {c.faces} faces, seed {c.seed}",
-                          icon="CHECKMARK" if c.chosen else "BLANK1")
+                row = box.row()
+                row.label(text=f"{c.index + 1}: {c.score:.4f}, {c.faces} faces", icon="CHECKMARK" if c.chosen else "BLANK1")
 
 
 CLASSES = (SilkCandidateScore, SilkSettings, SILK_OT_refresh_models, SILK_OT_sidebar_generate, SILK_OT_sidebar_cancel,
