@@ -159,6 +159,8 @@ def install_train_extra(venv, env, tmp, site, wheel, deps):
     pth = site / "silk-test-train-deps.pth"
     if deps == "system":
         pth.write_text(sysconfig.get_paths()["purelib"] + "\n")
+        # The venv's own old setuptools would hide the interpreter's (torch needs setuptools >= 77).
+        sh([venv / "bin/pip", "uninstall", "-q", "-y", "setuptools"], env, tmp, check=False)
         sh([venv / "bin/pip", "install", "-q", "--no-index", "--find-links", tmp / "downloads", f"{wheel}[train]"], env, tmp)
     else:
         sh([venv / "bin/pip", "install", "-q", f"{wheel}[train]"], env, tmp)

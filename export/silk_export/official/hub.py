@@ -5,7 +5,6 @@ before import-official reads it. Every failure is a HubError naming the file's h
 wrong; a download that fails its check is removed from the cache, so a rerun fetches it again."""
 from __future__ import annotations
 
-import hashlib
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -92,14 +91,6 @@ def _forget(path: Path) -> None:
             pass
 
 
-def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        while chunk := f.read(1 << 22):
-            h.update(chunk)
-    return h.hexdigest()
-
-
 def _check(path: Path, src: HubSource, url: str, size: int | None, etag: str | None) -> str:
     """The cached file against the hub's size and SHA-256 (an LFS file's etag); returns its SHA-256."""
     got = path.stat().st_size
@@ -107,7 +98,8 @@ def _check(path: Path, src: HubSource, url: str, size: int | None, etag: str | N
         _forget(path)
         raise HubError(f"{url}: downloaded {got} bytes, the hub reports {size}; the partial file was removed, "
                        "run the command again")
-    digest = _sha256(path)
+    from .importer import sha256_of
+    digest = sha256_of(path)
     if etag and _SHA256.match(etag) and digest != etag:
         _forget(path)
         raise HubError(f"{url}: SHA-256 {digest} of the download differs from the hub's {etag}; the file was "
