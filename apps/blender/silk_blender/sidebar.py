@@ -29,7 +29,8 @@ def refresh_models() -> list[dict]:
     models = [m for m in catalog.get("models", []) if "error" not in m]
     _model_items.clear()
     for i, m in enumerate(models):
-        arch = f"{m['arch']} {m['config']}, {m['parameters']['n_layers']} layers x {m['parameters']['d_model']}"
+        name = m["arch"] if m["config"] == m["arch"] else f"{m['arch']} {m['config']}"
+        arch = f"{name}, {m['parameters']['n_layers']} layers x {m['parameters']['d_model']}"
         label = f"{m['name']}{' (bundled)' if m['bundled'] else ''}: {m['arch']}, {_size(m['bytes'])}"
         _model_items.append((m["dir"], label, f"{arch}; {_size(m['bytes'])}; decoders {', '.join(m['decoders'])}; "
                              f"{m['dir']}", i))

@@ -6,6 +6,7 @@
 
 #include "io/files/file_system.h"
 #include "io/files/module_folder.h"
+#include "io/files/native_path.h"
 
 #ifdef _WIN32
 #include "core/windows_text.h"
@@ -52,6 +53,9 @@ std::string Join(const std::string& folder, const std::string& rel) {
   return (last == '/' || last == '\\') ? folder + rel : folder + kSep + rel;
 }
 
+// The folder without "." and ".." steps, so messages and lists show a plain path.
+std::string Normal(const std::string& path) { return Utf8Path(NativePath(path).lexically_normal()); }
+
 }  // namespace
 
 StatusOr<std::string> UserModelsDir() {
@@ -87,9 +91,9 @@ std::vector<std::string> BundledModelCandidates() {
   std::vector<std::string> c;
   const std::string own = ModuleFolder();
   if (!own.empty()) {
-    c.push_back(Join(own, "../model"));
-    c.push_back(Join(own, SILK_LIB_TO_DATA_REL "/silk/models/default"));
-    c.push_back(Join(own, "models/default"));
+    c.push_back(Normal(Join(own, "../model")));
+    c.push_back(Normal(Join(own, SILK_LIB_TO_DATA_REL "/silk/models/default")));
+    c.push_back(Normal(Join(own, "models/default")));
   }
 #ifdef SILK_SOURCE_MODEL_DIR
   c.push_back(SILK_SOURCE_MODEL_DIR);
