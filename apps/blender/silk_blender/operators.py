@@ -188,8 +188,10 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             context.workspace.status_text_set(f"Silk: {self._run.text()}, {st['faces']} faces "
                                               f"in {st['components']} part(s) - Esc to cancel")
             for area in context.screen.areas if context.screen else ():
-                if area.type == "VIEW_3D":
-                    area.tag_redraw()  # the sidebar's progress bar
+                if area.type == "VIEW_3D":  # the sidebar's progress bar (its region only, not the 3D view)
+                    for region in area.regions:
+                        if region.type == "UI":
+                            region.tag_redraw()
             if self._job.done:
                 self._finish(context, self._job, self._src)
                 self._cleanup(context)
