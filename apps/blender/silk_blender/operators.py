@@ -128,6 +128,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                         return {"CANCELLED"}
                     raise
                 self._run.after_advance(32, job.done)
+                self._run.publish(job.done)
                 steps += 1
             self._finish(context, job, src)
             return {"FINISHED"}
@@ -180,6 +181,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             while not self._job.done and time.monotonic() < t_end:
                 self._job.advance(64, until_layer=True)
                 self._run.after_advance(64, self._job.done)
+            self._run.publish(self._job.done)
             st = self._job.stats()
             with self._job.preview() as m:
                 pos, tri = m.positions, m.triangles

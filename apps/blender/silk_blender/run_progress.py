@@ -19,7 +19,7 @@ class RunProgress:
 
     def after_advance(self, max_ids: int, done: bool) -> None:
         """After each advance(max_ids, until_layer=True): fewer ids than asked and not done means a layer
-        ended (a layer ending exactly at max_ids is counted at the next one)."""
+        ended (a layer ending exactly at max_ids is counted at the next one). publish() shows it."""
         p = self.last
         cand, tokens = p.get("candidate", 0), p.get("tokens", 0)
         if cand != self.candidate:
@@ -27,7 +27,6 @@ class RunProgress:
         elif not done and tokens - self._tokens < max_ids:
             self.layers_done += 1
         self._tokens = tokens
-        self.publish(done)
 
     def fraction(self) -> float:
         p = self.last
@@ -42,10 +41,18 @@ class RunProgress:
                 f"{p.get('tokens', 0)} / {p.get('max_tokens', 0)} ids")
 
     def publish(self, done: bool = False) -> None:
+        """Into the scene's settings, once per UI tick (each write of a scene property is an update Blender
+        handles), and only what changed."""
         s = self.settings
         if s is None:
             return
-        s.running, s.progress, s.status = not done, 1.0 if done else self.fraction(), self.text()
+        running, progress, status = not done, 1.0 if done else self.fraction(), self.text()
+        if s.running != running:
+            s.running = running
+        if abs(s.progress - progress) > 1e-4:
+            s.progress = progress
+        if s.status != status:
+            s.status = status
 
     def finish(self, report_json: str, chosen: int, outcome: str = "done") -> None:
         """The candidates' scores from the finished run's report (index, seed, score, faces); outcome: done,
