@@ -80,8 +80,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                         candidates=None if self.candidates <= 0 else self.candidates,
                         surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
         job = silk_mesh.Generator(_model_dir(self.model_dir))
-        self._run = run_progress.RunProgress(getattr(context.scene, "silk", None))
-        settings["progress"] = self._run.on_progress
+        cap = job.model.info()["max_seq_len"] - 1  # ids after BOS
+        self._run = run_progress.RunProgress(getattr(context.scene, "silk", None),
+                                             min(self.max_tokens, cap) if self.max_tokens else cap)
         try:
             if len(src.data.polygons) > 0:
                 pos, tri = blender_mesh.mesh_arrays(src, dg)
@@ -127,7 +128,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                         self.report({"WARNING"}, "Silk: generation cancelled")
                         return {"CANCELLED"}
                     raise
-                self._run.after_advance(32, job.done)
+                self._run.after_advance(job.stats(), 32, job.done)
                 self._run.publish(job.done)
                 steps += 1
             self._finish(context, job, src)
@@ -180,7 +181,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             t_end = time.monotonic() + 0.1  # keep the UI responsive
             while not self._job.done and time.monotonic() < t_end:
                 self._job.advance(64, until_layer=True)
-                self._run.after_advance(64, self._job.done)
+                self._run.after_advance(self._job.stats(), 64, self._job.done)
             self._run.publish(self._job.done)
             st = self._job.stats()
             with self._job.preview() as m:

@@ -1,5 +1,6 @@
-"""Where a step-wise generation is, for the sidebar's progress bar: the candidate (libsilk's progress
-callback) and the layer in progress (advance(until_layer=True) returns at each completed layer), and
+"""Where a step-wise generation is, for the sidebar's progress bar: the candidate and ids so far (the
+generator's stats after each advance; no per-id Python callback, which would cost the modal run its
+speed) and the layer in progress (advance(until_layer=True) returns at each completed layer), and
 afterwards the candidates' scores (the run's JSON report). Kept in the scene's Silk settings so the
 panel draws it and a script can read it."""
 from __future__ import annotations
@@ -8,20 +9,18 @@ import json
 
 
 class RunProgress:
-    def __init__(self, settings):
+    def __init__(self, settings, max_tokens: int):
         self.settings = settings  # the scene's SilkSettings, or None (no sidebar registered)
-        self.last = {}  # the latest silk_generate_progress as a dict
+        self.max_tokens = max(1, max_tokens)  # the run's cap on ids per candidate
+        self.last = {}  # candidate, candidates, tokens of the latest stats
         self.candidate, self.layers_done, self._tokens = -1, 0, 0
 
-    def on_progress(self, p: dict) -> None:
-        """libsilk's progress callback (after every id)."""
-        self.last = p
-
-    def after_advance(self, max_ids: int, done: bool) -> None:
+    def after_advance(self, stats: dict, max_ids: int, done: bool) -> None:
         """After each advance(max_ids, until_layer=True): fewer ids than asked and not done means a layer
         ended (a layer ending exactly at max_ids is counted at the next one). publish() shows it."""
-        p = self.last
-        cand, tokens = p.get("candidate", 0), p.get("tokens", 0)
+        self.last = p = {"candidate": stats["chosen_candidate"], "candidates": stats["candidates"],
+                         "tokens": stats["tokens"], "max_tokens": self.max_tokens}
+        cand, tokens = p["candidate"], p["tokens"]
         if cand != self.candidate:
             self.candidate, self.layers_done, self._tokens = cand, 0, 0
         elif not done and tokens - self._tokens < max_ids:
