@@ -59,7 +59,7 @@ def start():
 
 
 def wait():
-    s = bpy.context.scene.silk
+    s = bpy.context.window_manager.silk_run
     state["ticks"] += 1
     if (s.running or not len(s.scores)) and state["ticks"] < 600:
         return 0.2
@@ -78,8 +78,9 @@ def shoot():
     win, area = view3d()
     with bpy.context.temp_override(window=win, area=area):
         bpy.ops.screen.screenshot(filepath=env["SILK_SCREENSHOT"])
-    ok = os.path.isfile(env["SILK_SCREENSHOT"]) and len(bpy.context.scene.silk.scores) == 2
-    print(f"screenshot {env['SILK_SCREENSHOT']}: {'ok' if ok else 'FAILED'} ({bpy.context.scene.silk.status})", flush=True)
+    run = bpy.context.window_manager.silk_run
+    ok = os.path.isfile(env["SILK_SCREENSHOT"]) and len(run.scores) == 2
+    print(f"screenshot {env['SILK_SCREENSHOT']}: {'ok' if ok else 'FAILED'} ({run.status})", flush=True)
     os._exit(0 if ok else 1)
 
 

@@ -38,7 +38,7 @@ def run(addon, src, env, work, seed, check):
     check(any(i[0] == mine and i[1].startswith("imported-tiny: silk, ") and i[1].endswith(" MB") for i in items),
           "the drop-down lists the models folder's model with its architecture and size")
 
-    s = bpy.context.scene.silk
+    s, run = bpy.context.scene.silk, bpy.context.window_manager.silk_run
     s.model, s.candidates, s.seed, s.orient = mine, 2, seed, "INPUT"
     want = _silkgen_stats(env, work, "imported-tiny", seed)  # silkgen finds the same model by name
     bpy.context.view_layer.objects.active = src
@@ -46,22 +46,22 @@ def run(addon, src, env, work, seed, check):
     res = bpy.ops.silk.sidebar_generate()
     new = set(bpy.data.objects) - before
     faces = sum(len(o.data.polygons) for o in new if o.type == "MESH")
-    print(f"sidebar: {res}, {faces} faces; status '{s.status}', progress {s.progress:.2f}; scores "
-          + ", ".join(f"{c.index + 1}:{c.score:.4f}{'*' if c.chosen else ''}" for c in s.scores))
+    print(f"sidebar: {res}, {faces} faces; status '{run.status}', progress {run.progress:.2f}; scores "
+          + ", ".join(f"{c.index + 1}:{c.score:.4f}{'*' if c.chosen else ''}" for c in run.scores))
     check(res == {"FINISHED"} and faces == want["faces"], f"Generate: {faces} faces == silkgen's {want['faces']}")
-    check(not s.running and s.progress == 1.0 and s.status.startswith("done: candidate 2 of 2, layer "),
-          f"the progress bar ends at 100 % on candidate 2 of 2 ('{s.status}')")
-    scores = [c.score for c in s.scores]
+    check(not run.running and run.progress == 1.0 and run.status.startswith("done: candidate 2 of 2, layer "),
+          f"the progress bar ends at 100 % on candidate 2 of 2 ('{run.status}')")
+    scores = [c.score for c in run.scores]
     check(len(scores) == 2 and all(abs(a - b["score"]) <= 1e-6 * b["score"] for a, b in zip(scores, want["candidates"])),
           f"the candidates' scores are silkgen's (float32 in Blender: {scores})")
-    check([c.chosen for c in s.scores].index(True) == want["chosen_candidate"], "the chosen candidate is marked")
+    check([c.chosen for c in run.scores].index(True) == want["chosen_candidate"], "the chosen candidate is marked")
     check(not bpy.ops.silk.sidebar_cancel.poll(), "Cancel is greyed out when nothing runs")
     for o in new:  # the later checks and the picture see the scene as before
         bpy.data.objects.remove(o, do_unlink=True)
 
-    s.cancel_requested = True  # what the tab's Cancel button sets while a run is in progress
+    run.cancel_requested = True  # what the tab's Cancel button sets while a run is in progress
     before, n_meshes = set(bpy.data.objects), len(bpy.data.meshes)
     res = bpy.ops.silk.generate_mesh(model_dir=mine, seed=seed)
-    s.cancel_requested = False
+    run.cancel_requested = False
     check(res == {"CANCELLED"} and set(bpy.data.objects) == before and len(bpy.data.meshes) == n_meshes
-          and s.status.startswith("cancelled"), f"the tab's Cancel stops a run and leaves nothing ('{s.status}')")
+          and run.status.startswith("cancelled"), f"the tab's Cancel stops a run and leaves nothing ('{run.status}')")

@@ -23,7 +23,7 @@ def _model_dir(path: str) -> str | None:
 
 def _cancel_requested(context) -> bool:
     """The Silk tab's Cancel button (sidebar.py)."""
-    s = getattr(context.scene, "silk", None)
+    s = getattr(context.window_manager, "silk_run", None)
     return bool(s and s.cancel_requested)
 
 
@@ -81,7 +81,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                         surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
         job = silk_mesh.Generator(_model_dir(self.model_dir))
         cap = job.model.info()["max_seq_len"] - 1  # ids after BOS
-        self._run = run_progress.RunProgress(getattr(context.scene, "silk", None),
+        self._run = run_progress.RunProgress(getattr(context.window_manager, "silk_run", None),
                                              min(self.max_tokens, cap) if self.max_tokens else cap)
         try:
             if len(src.data.polygons) > 0:

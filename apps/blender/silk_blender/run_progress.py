@@ -1,8 +1,8 @@
 """Where a step-wise generation is, for the sidebar's progress bar: the candidate and ids so far (the
 generator's stats after each advance; no per-id Python callback, which would cost the modal run its
 speed) and the layer in progress (advance(until_layer=True) returns at each completed layer), and
-afterwards the candidates' scores (the run's JSON report). Kept in the scene's Silk settings so the
-panel draws it and a script can read it."""
+afterwards the candidates' scores (the run's JSON report). Kept in the window manager's silk_run
+(sidebar.SilkRunState) so the panel draws it and a script can read it."""
 from __future__ import annotations
 
 import json
@@ -10,7 +10,7 @@ import json
 
 class RunProgress:
     def __init__(self, settings, max_tokens: int):
-        self.settings = settings  # the scene's SilkSettings, or None (no sidebar registered)
+        self.settings = settings  # the window manager's SilkRunState, or None (no sidebar registered)
         self.max_tokens = max(1, max_tokens)  # the run's cap on ids per candidate
         self.last = {}  # candidate, candidates, tokens of the latest stats
         self.candidate, self.layers_done, self._tokens = -1, 0, 0
@@ -40,8 +40,7 @@ class RunProgress:
                 f"{p.get('tokens', 0)} / {p.get('max_tokens', 0)} ids")
 
     def publish(self, done: bool = False) -> None:
-        """Into the scene's settings, once per UI tick (each write of a scene property is an update Blender
-        handles), and only what changed."""
+        """Into the run state, once per UI tick, only what changed."""
         s = self.settings
         if s is None:
             return

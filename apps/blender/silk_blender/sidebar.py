@@ -65,6 +65,11 @@ class SilkSettings(bpy.types.PropertyGroup):
     orient: EnumProperty(name="Orientation", default="INPUT",
                          items=[("INPUT", "Face the input", "Reverse parts whose winding disagrees with the source"),
                                 ("TOKENS", "As generated", "The winding the generated ids carry")])
+
+
+class SilkRunState(bpy.types.PropertyGroup):
+    """The run in progress and its outcome: on the window manager, not the scene, so updating the progress
+    bar never tags the scene for a depsgraph update (and nothing transient is saved in the .blend)."""
     running: BoolProperty(default=False)
     cancel_requested: BoolProperty(default=False)
     progress: FloatProperty(name="Progress", subtype="FACTOR", min=0.0, max=1.0)
@@ -93,11 +98,11 @@ class SILK_OT_sidebar_generate(bpy.types.Operator):
     @classmethod
     def poll(cls, context):
         obj = context.active_object
-        return obj is not None and obj.type == "MESH" and not context.scene.silk.running
+        return obj is not None and obj.type == "MESH" and not context.window_manager.silk_run.running
 
     def execute(self, context):
         s = context.scene.silk
-        s.cancel_requested = False
+        context.window_manager.silk_run.cancel_requested = False
         return bpy.ops.silk.generate_mesh("INVOKE_DEFAULT", model_dir=s.model, seed=s.seed,
                                           temperature=s.temperature, candidates=s.candidates or -1,
                                           max_faces=s.max_faces, orient=s.orient)
@@ -111,10 +116,10 @@ class SILK_OT_sidebar_cancel(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return context.scene.silk.running
+        return context.window_manager.silk_run.running
 
     def execute(self, context):
-        context.scene.silk.cancel_requested = True
+        context.window_manager.silk_run.cancel_requested = True
         return {"FINISHED"}
 
 
@@ -125,7 +130,7 @@ class SILK_PT_sidebar(bpy.types.Panel):
     bl_category = "Silk"
 
     def draw(self, context):
-        s, layout = context.scene.silk, self.layout
+        s, run, layout = context.scene.silk, context.window_manager.silk_run, self.layout
         row = layout.row(align=True)
         row.prop(s, "model", text="")
         row.operator(SILK_OT_refresh_models.bl_idname, text="", icon="FILE_REFRESH")
@@ -135,23 +140,23 @@ class SILK_PT_sidebar(bpy.types.Panel):
         row = layout.row(align=True)
         row.operator(SILK_OT_sidebar_generate.bl_idname, icon="PLAY")
         row.operator(SILK_OT_sidebar_cancel.bl_idname, icon="CANCEL")
-        if s.running or s.status:
+        if run.running or run.status:
             col = layout.column(align=True)
-            for line in s.status.split(", ", 1):  # "done: candidate 2 of 2", "layer 5, 812 / 2047 ids"
+            for line in run.status.split(", ", 1):  # "done: candidate 2 of 2", "layer 5, 812 / 2047 ids"
                 col.label(text=line)
             if hasattr(layout, "progress"):  # Blender 4.0+: a real progress bar
-                col.progress(factor=s.progress, text=f"{round(100 * s.progress)} %")
+                col.progress(factor=run.progress, text=f"{round(100 * run.progress)} %")
             else:
-                col.prop(s, "progress", text="Progress", slider=True)
-        if s.scores:
+                col.prop(run, "progress", text="Progress", slider=True)
+        if run.scores:
             box = layout.box()
             box.label(text="Scores (lower = closer)")
-            for c in s.scores:
+            for c in run.scores:
                 row = box.row()
                 row.label(text=f"{c.index + 1}: {c.score:.4f}, {c.faces} faces", icon="CHECKMARK" if c.chosen else "BLANK1")
 
 
-CLASSES = (SilkCandidateScore, SilkSettings, SILK_OT_refresh_models, SILK_OT_sidebar_generate, SILK_OT_sidebar_cancel,
+CLASSES = (SilkCandidateScore, SilkSettings, SilkRunState, SILK_OT_refresh_models, SILK_OT_sidebar_generate, SILK_OT_sidebar_cancel,
            SILK_PT_sidebar)
 
 
@@ -159,9 +164,11 @@ def register():
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.Scene.silk = PointerProperty(type=SilkSettings)
+    bpy.types.WindowManager.silk_run = PointerProperty(type=SilkRunState)
 
 
 def unregister():
+    del bpy.types.WindowManager.silk_run
     del bpy.types.Scene.silk
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)
