@@ -191,9 +191,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             context.workspace.status_text_set(f"Silk: {self._run.text()}, {st['faces']} faces "
                                               f"in {st['components']} part(s) - Esc to cancel")
             for area in context.screen.areas if context.screen else ():
-                if area.type == "VIEW_3D":  # the sidebar's progress bar (its region only, not the 3D view)
+                if area.type == "VIEW_3D":  # the sidebar's progress bar: its region, when it is open
                     for region in area.regions:
-                        if region.type == "UI":
+                        if region.type == "UI" and region.width > 1 and area.spaces.active.show_region_ui:
                             region.tag_redraw()
             if self._job.done:
                 self._finish(context, self._job, self._src)
