@@ -80,7 +80,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                         candidates=None if self.candidates <= 0 else self.candidates,
                         surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
         job = silk_mesh.Generator(_model_dir(self.model_dir))
-        cap = job.model.info()["max_seq_len"]  # the model's limit on ids (as libsilk applies it)
+        cap = job.model.info()["max_seq_len"] - 1  # max_seq_len counts BOS: the ids libsilk allows after it
         self._run = run_progress.RunProgress(getattr(context.window_manager, "silk_run", None),
                                              min(self.max_tokens, cap) if self.max_tokens else cap)
         try:
