@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: arbitrary bytes as a silkgen --batch list file (apps/silkgen/batch_list.h).
 // Each kept line is a usable path: non-empty, within kMaxListLineBytes, no control byte, no blank
 // at either end, not a comment, and found in the input as written; each refused line has a

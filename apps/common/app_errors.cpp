@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The tools' error line (app_errors.h).
 #include "app_errors.h"
 

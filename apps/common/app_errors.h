@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one error line of silkgen and silktok, "<tool>: <kind>: <file>[:<line>]: <problem>", kind
 // being libsilk's status name (silk_status_name: "invalid argument", "I/O error", "parse error",
 // ...), for the library's errors and the few the tools find themselves alike.

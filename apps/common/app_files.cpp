@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // std::filesystem on u8path for the apps' file checks.
 #include "app_files.h"
 

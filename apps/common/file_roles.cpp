@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // FileRoles (file_roles.h): files compared by identity (device and inode; on Windows the volume
 // serial number and file index), so symlinks, hard links, "..", "./" and case variants on a
 // case-insensitive file system are all the same file; write targets that do not exist yet are

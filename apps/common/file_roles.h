@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one rule "Silk never writes to a file it reads", for silkgen (single and --batch) and every
 // silktok subcommand that writes: each run names the files it reads (inputs, a list) and the
 // files it writes (outputs, a report) before any work, and a write target that is one of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The SIGINT/SIGTERM handlers of interrupt.h: sigaction without SA_RESTART, so a blocked read or
 // open returns EINTR; only async-signal-safe calls in the handler (a flag, alarm, unlink, raise).
 // In cancel mode the first signal also arms a one-second alarm that ends the process if the work

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // SIGINT/SIGTERM for silkgen and silktok: Slurm's time limit, scancel, `timeout` and Ctrl-C end a
 // run within a second and leave no temporary file (libsilk's silk_file_discard_partial), whatever
 // the process is doing. A blocked system call is interrupted, not restarted.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The --batch list parser (batch_list.h): one pass over the text, string views until an entry is kept.
 #include "batch_list.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silkgen --batch's list file parser: text in, one entry per line out, each line checked on its
 // own. A list comes from pipelines and untrusted sources, so a line is refused (a failed row with
 // the reason, the rest still run) rather than guessed at: a NUL byte (the OS would open a shorter

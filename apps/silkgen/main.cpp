@@ -18,7 +18,7 @@
 #include "batch_options.h"
 #include "batch_run.h"
 #include "exit_codes.h"
-#include "model_locate.h"
+#include "model_list.h"
 #include "progress_bar.h"
 #include "silk/silk.hpp"
 
@@ -78,7 +78,7 @@ struct Args {
   int top_k = SILK_MODEL_VALUE;
   int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
   std::string decoder, kv_precision, preprocessing, orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
-  bool unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
+  bool list_models = false, unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
   silkgen::BatchArgs batch;
 };
@@ -88,7 +88,10 @@ void AddOptions(CLI::App& app, Args& a) {
                  "mesh: PLY OBJ STL OFF glTF GLB PMD (or --batch)")
       ->check(silkapp::ExistingFile());
   app.add_option("-o,--output", a.output, "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
-  app.add_option("--model", a.model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx); default: the bundled model");
+  app.add_option("--model", a.model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx), or the name of a model in the "
+                 "models folder (--list-models; a path always wins); default: the bundled model");
+  app.add_flag("--list-models", a.list_models, "List the models --model takes by name (name, architecture, size, decoders, "
+               "KV caches, folder) and exit");
   app.add_option("--seed", a.seed_text, "Random seed (integer) or 'random'")->capture_default_str();
   app.add_option("--threads", a.threads, "onnxruntime threads (0 = physical cores)")->check(CLI::Range(0, 1024))
       ->capture_default_str();
@@ -273,13 +276,10 @@ int SeedAndModel(Args& a, uint64_t* seed) {
     return Fail(SILK_ERR_INVALID_ARGUMENT, "--seed: '" + a.seed_text + "' is neither an unsigned integer nor 'random'",
                 kExitUsage);
   }
-  if (a.model_dir.empty()) {
-    a.model_dir = silkgen::DefaultModelDir();
-    if (a.model_dir.empty()) {
-      std::string tried;
-      for (const std::string& c : silkgen::DefaultModelCandidates()) tried += "\n  " + c;
-      return Fail(SILK_ERR_IO, "no bundled model found; pass --model DIR (looked in:" + tried + ")");
-    }
+  try {
+    a.model_dir = silk_cpp::FindModel(a.model_dir);  // "" = the bundled model; a name = the models folder's
+  } catch (const silk_cpp::Error& e) {
+    return Fail(e.status(), e.message() + "; pass --model DIR or NAME (silkgen --list-models)");
   }
   return kExitOk;
 }
@@ -343,6 +343,10 @@ int main(int argc, char** argv) {
   try {
     a.batch.shard_given = app.count("--shard") > 0;
     a.batch.report_given = app.count("--report") > 0;
+    if (a.list_models) {
+      std::fputs(silkgen::ModelListText(silk_cpp::ModelsListJson()).c_str(), stdout);
+      return kExitOk;
+    }
     if (app.count("--batch")) return Batch(a);
   } catch (const silk_cpp::Error& e) {
     return Fail(e);

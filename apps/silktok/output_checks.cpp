@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silktok's up-front output check (output_checks.h).
 #include "output_checks.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // silktok's check before any work of a subcommand that writes: every output name is one the file
 // system holds (silk_file_check_output) and no output is an input or another output
 // (common/file_roles.h: Silk never writes to a file it reads).

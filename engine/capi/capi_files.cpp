@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // C API: the file reads and writes the tools share (silk.h "files"): the atomic writer, the
 // regular-file reader, the output-path check and the signal-time discard of temporaries.
 #include <algorithm>

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "capi/capi_generator.h"
+#include "io/files/model_folders.h"
 
 using silk::capi::Guard;
 using silk::capi::Ok;
@@ -45,15 +46,18 @@ silk_status silk_model_load(const char* dir, const silk_model_params* params, si
     if (o.kv_precision == SILK_KV_FP32) lo.kv = silk::KvPrecision::kFp32;
     if (o.kv_precision == SILK_KV_FP16) lo.kv = silk::KvPrecision::kFp16;
     if (o.kv_precision == SILK_KV_INT8) lo.kv = silk::KvPrecision::kInt8;
-    auto m = silk::Model::Load(dir, lo);
+    auto found = silk::ResolveModelDir(dir);  // a path, a model name, or "" for the bundled model
+    if (!found.ok()) return SetError(found.status().WithContext("silk_model_load: "));
+    const std::string& folder = *found;
+    auto m = silk::Model::Load(folder, lo);
     if (!m.ok()) return SetError(m.status());
     auto h = std::make_unique<silk_model>();
     h->model = std::shared_ptr<silk::Model>(std::move(*m));
     const int pool = h->model->threads();
     if (o.threads > 0 && o.threads != pool)
-      silk::capi::Log(SILK_LOG_WARN, std::string(dir) + ": threads " + std::to_string(o.threads) +
+      silk::capi::Log(SILK_LOG_WARN, folder + ": threads " + std::to_string(o.threads) +
                                          " ignored: the process's shared pool has " + std::to_string(pool));
-    silk::capi::Log(SILK_LOG_INFO, std::string("loaded model ") + dir + " (" + h->model->config().config_name + ", " +
+    silk::capi::Log(SILK_LOG_INFO, std::string("loaded model ") + folder + " (" + h->model->config().config_name + ", " +
                                        std::to_string(pool) + " threads, " +
                                        silk::DecoderPrecisionName(h->model->precision()) + " decoder, " +
                                        silk::KvPrecisionName(h->model->kv_precision()) + " KV cache)");

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 from .json_io import dumps
+from .model_names import add_output_arguments, output_folder
 from .models.configs import CONFIGS
 
 # One pair per sub-command: _add_<command> declares its arguments, _cmd_<command> runs it.
@@ -128,7 +129,7 @@ def _cmd_pack_checkpoint(a) -> int:
 def _add_export(sub) -> None:
     e = sub.add_parser("export", help="checkpoint -> ONNX model folder (docs/model_contract.md)")
     e.add_argument("--checkpoint", required=True)
-    e.add_argument("--out", required=True)
+    add_output_arguments(e, "model")
     e.add_argument("--data", help="training data description for model.json")
     e.add_argument("--no-int8", action="store_true")
     e.add_argument("--temperature", type=float, help="model.json sampling default (absent: libsilk's, 0.5)")
@@ -151,7 +152,9 @@ def _cmd_export(a) -> int:
                                   ("candidates", a.candidates)) if v is not None}
     try:  # NaN / Inf weights or sampling values: refused before anything is written
         check_finite(ck["model"].items(), str(a.checkpoint))
-        meta = export_model(model, Path(a.out), training, int8=not a.no_int8, sampling=sampling or None)
+        out = output_folder(a.out, a.name)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        meta = export_model(model, out, training, int8=not a.no_int8, sampling=sampling or None)
     except ValueError as e:
         print(f"silk-export export: error: {e}", file=sys.stderr)
         return 2
@@ -160,15 +163,20 @@ def _cmd_export(a) -> int:
 
 
 def _add_import_official(sub) -> None:
-    i = sub.add_parser("import-official", help="released Mesh Silksong checkpoint -> Silk model folder "
-                       "(.safetensors / .pt / .bin; docs/model_contract.md v3)")
-    i.add_argument("checkpoint", help="model.safetensors (F32/F16/BF16) or a PyTorch state dict (.pt/.bin)")
-    i.add_argument("-o", "--out", required=True, help="model folder to create")
+    from .official.hub import DEFAULT_SOURCE
+    i = sub.add_parser("import-official", help="released Mesh Silksong checkpoint (a file, or hf:ORG/NAME[@REVISION]/PATH "
+                       "from the model hub) -> Silk model folder (docs/model_contract.md v3)")
+    i.add_argument("checkpoint", nargs="?", default=DEFAULT_SOURCE,
+                   help="model.safetensors (F32/F16/BF16) or a PyTorch state dict (.pt/.bin), or hf:ORG/NAME[@REVISION]/PATH "
+                        "downloaded through huggingface_hub (cached in $HF_HOME, resumed, checked against the hub's size "
+                        f"and SHA-256; HF_ENDPOINT, HF_TOKEN honoured); default: the released network, {DEFAULT_SOURCE}")
+    add_output_arguments(i, "model")
     i.add_argument("--precision", default="auto", choices=["fp32", "int8", "int4", "auto"],
                    help="default decoder: auto = the fastest variant that passes the fidelity check")
-    i.add_argument("--config", help="JSON in the official fixture's config.json format: values no shape "
-                   "reveals (point_encoder.heads, point_encoder.num_points, decoder.qk_norm_scale)")
-    i.add_argument("--force", action="store_true", help="replace OUT if it exists")
+    i.add_argument("--config", help="JSON in the official fixture's config.json format (a file or hf:...): values no "
+                   "shape reveals (point_encoder.heads, point_encoder.num_points, decoder.qk_norm_scale); "
+                   "default: the release's (the official code's defaults)")
+    i.add_argument("--force", action="store_true", help="replace the model folder if it exists")
     i.add_argument("--int4-block-size", type=int, default=32)
     i.add_argument("--int4-accuracy-level", type=int, default=4)
     i.add_argument("--fidelity-tokens", type=int, default=32, help="greedy tokens per probe cloud")
@@ -178,14 +186,30 @@ def _add_import_official(sub) -> None:
     i.set_defaults(fn=_cmd_import_official)
 
 
+def _local_or_hub(source: str | None, progress: bool) -> tuple[Path | None, dict | None]:
+    """A local path as given, or the hub file downloaded (and what the hub reported)."""
+    from .official import hub
+    if source is None or not hub.is_hub_source(source):
+        return (Path(source) if source else None), None
+    return hub.download(source, progress)
+
+
 def _cmd_import_official(a) -> int:
     from .import_official import import_official
+    from .official.hub import HubError
     from .official.state_dict_file import StateDictError
     try:
-        import_official(Path(a.checkpoint), Path(a.out), a.precision, Path(a.config) if a.config else None,
-                        a.force, not a.no_progress, a.int4_block_size, a.int4_accuracy_level, a.fidelity_tokens,
-                        kv_precision=a.kv_precision)
-    except (StateDictError, ValueError) as e:
+        out = output_folder(a.out, a.name)
+        if out.exists() and not a.force:
+            raise ValueError(f"{out} already exists (use --force to replace it)")
+        checkpoint, hub_info = _local_or_hub(a.checkpoint, not a.no_progress)
+        config, _ = _local_or_hub(a.config, not a.no_progress)
+        import_official(checkpoint, out, a.precision, config, a.force, not a.no_progress, a.int4_block_size,
+                        a.int4_accuracy_level, a.fidelity_tokens, kv_precision=a.kv_precision, hub=hub_info)
+    except HubError as e:
+        print(f"silk-export import-official: error: {e} (nothing was written)", file=sys.stderr)
+        return 1
+    except (StateDictError, ValueError, OSError) as e:
         print(f"silk-export import-official: error: {e}", file=sys.stderr)
         return 2
     return 0

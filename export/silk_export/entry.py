@@ -8,7 +8,7 @@ import importlib.util
 import sys
 
 # What `pip install 'silk-mesh[train]'` adds (pyproject.toml [project.optional-dependencies] train).
-TRAIN_MODULES = ("torch", "onnx", "onnxscript", "tqdm", "matplotlib")
+TRAIN_MODULES = ("torch", "onnx", "onnxscript", "tqdm", "matplotlib", "huggingface_hub")
 
 
 def missing_modules() -> list[str]:

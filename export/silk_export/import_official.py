@@ -88,10 +88,12 @@ def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: i
 def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", config_path: Path | None = None,
                     force: bool = False, progress: bool = True, int4_block: int = INT4_BLOCK_SIZE,
                     int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32,
-                    licence: str = SOURCE_LICENCE, kv_precision: str = DEFAULT_KV_PRECISION) -> dict:
+                    licence: str = SOURCE_LICENCE, kv_precision: str = DEFAULT_KV_PRECISION,
+                    hub: dict | None = None) -> dict:
     """Returns the model.json written. Raises StateDictError / ValueError with a message naming
     the problem (a key missing, misshaped or holding NaN / Inf; a non-finite model.json figure);
-    the destination is then untouched."""
+    the destination is then untouched. hub: where the checkpoint came from (official/hub.py download),
+    recorded in model.json's source."""
     if precision not in PRECISIONS:
         raise ValueError(f"precision '{precision}': expected one of {', '.join(PRECISIONS)}")
     checkpoint, out_dir = Path(checkpoint), Path(out_dir)
@@ -102,6 +104,7 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
     cfg = model.cfg
     _say(f"{report.used} tensors used, {report.skipped_unused} training-only point-encoder tensors skipped"
          + (f", prefixes stripped: {report.stripped_prefixes}" if report.stripped_prefixes else ""))
+    out_dir.parent.mkdir(parents=True, exist_ok=True)  # e.g. a models folder used for the first time
     tmp = out_dir.parent / f".{out_dir.name}.importing-{os.getpid()}"
     shutil.rmtree(tmp, ignore_errors=True)
     try:
@@ -110,8 +113,10 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
         del model
         gc.collect()
         figures = write_variants(tmp, files, cfg, precision, int4_block, int4_accuracy, fidelity_tokens, kv_precision)
-        source = {"file": checkpoint.name, "sha256": sha256_of(checkpoint), "bytes": checkpoint.stat().st_size,
-                  "licence": licence}
+        source = {"file": checkpoint.name, "sha256": hub["sha256"] if hub else sha256_of(checkpoint),
+                  "bytes": checkpoint.stat().st_size, "licence": licence}
+        if hub:
+            source.update(hub=hub["hub"], url=hub["url"])
         chosen = files["default_decoder"]
         extra = {"source": source,
                  "import": {"load": asdict(report), "precision": precision,

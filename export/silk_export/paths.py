@@ -1,21 +1,24 @@
 # SPDX-License-Identifier: MIT
-"""Where the package finds the repository's files (vocabulary layout, built libsilk, data folder).
+"""Where the package finds its files: the vocabulary layout ships inside the package (read with
+importlib.resources), everything else is named by environment variables. No path into a checkout,
+so the installed wheel works from any folder.
 
-All locations are derived from this file's place in the checkout or from environment variables;
-nothing machine-specific is stored."""
+vocabulary_layout.json in this package is engine/tokenizer/vocabulary_layout.json itself: a symbolic
+link in the checkout, the file's contents in the wheel (pyproject.toml) — one source, never a copy
+kept by hand."""
 from __future__ import annotations
 
 import os
+from importlib import resources
 from pathlib import Path
 
-# export/silk_export/paths.py -> repository root is two folders up from the package.
-REPO_ROOT = Path(__file__).resolve().parents[2]
 
-
-def vocabulary_layout_path() -> Path:
-    """engine/tokenizer/vocabulary_layout.json, or $SILK_VOCAB_LAYOUT."""
+def vocabulary_layout_text() -> str:
+    """The vocabulary layout JSON: $SILK_VOCAB_LAYOUT (a file), else the package's own copy."""
     env = os.environ.get("SILK_VOCAB_LAYOUT")
-    return Path(env) if env else REPO_ROOT / "engine" / "tokenizer" / "vocabulary_layout.json"
+    if env:
+        return Path(env).read_text(encoding="utf-8")
+    return resources.files("silk_export").joinpath("vocabulary_layout.json").read_text(encoding="utf-8")
 
 
 def data_dir() -> Path:
@@ -23,7 +26,7 @@ def data_dir() -> Path:
     return Path(os.environ.get("SILK_DATA_DIR", "/tmp/silk-data"))
 
 
-def shared_dir() -> Path:
-    """$SILK_SHARED_DIR, else ../shared beside the checkout (spec, goldens, dev corpus)."""
+def shared_dir() -> Path | None:
+    """$SILK_SHARED_DIR (spec, goldens, dev corpus), or None when it is not set."""
     env = os.environ.get("SILK_SHARED_DIR")
-    return Path(env) if env else REPO_ROOT.parent / "shared"
+    return Path(env) if env else None

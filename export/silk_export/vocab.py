@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""Token ids for the model, read from engine/tokenizer/vocabulary_layout.json (the single source).
+"""Token ids for the model, read from the vocabulary layout (engine/tokenizer/vocabulary_layout.json, the
+single source, shipped inside this package: paths.vocabulary_layout_text).
 
 Adds the model-only BOS id and the type-embedding classes of token_format.md §9 / docs/model_contract.md."""
 from __future__ import annotations
@@ -10,7 +11,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from .paths import vocabulary_layout_path
+from .paths import vocabulary_layout_text
 
 # Type-embedding classes (token_format.md §9): index 0 = no type vector (C, U, E, EOS, PAD, BOS).
 TYPE_CLASSES = ("X", "S", "B", "K", "O")
@@ -48,7 +49,7 @@ class Vocab:
 
 @lru_cache(maxsize=1)
 def load_vocab() -> Vocab:
-    layout = json.loads(vocabulary_layout_path().read_text())
+    layout = json.loads(vocabulary_layout_text())
     eos, pad = int(layout["eos_id"]), int(layout["pad_id"])
     model_vocab = int(layout["model_vocab_size"])
     assert model_vocab == pad + 1, "layout: model_vocab_size must be pad_id + 1"

@@ -16,7 +16,7 @@ sys.path.insert(0, str(ROOT / "tests" / "python"))  # the fixtures shared with t
 
 import torch  # noqa: E402
 
-import silk_export  # noqa: E402,F401  (puts the checkout's silk_mesh on the path when not installed)
+import silk_export  # noqa: E402,F401  (export/silk_mesh links to the binding)
 
 torch.set_num_threads(1)  # deterministic, and fast on a shared machine (no thread oversubscription)
 from silk_test_fixtures import lib_path, shared, silkgen, silktok  # noqa: E402,F401  (fixtures, registered here)

@@ -10,10 +10,12 @@ import shutil
 
 import numpy as np
 import pytest
+from pathlib import Path
 
 import silk_mesh
 from silk_export.json_io import write_json
-from silk_export.paths import REPO_ROOT
+
+REPO_ROOT = Path(__file__).resolve().parents[2]  # this checkout (tests only)
 
 TINY = REPO_ROOT / "tests/models/tiny"
 KNOT = REPO_ROOT / "samples/torus_knot.obj"

@@ -7,7 +7,8 @@ zip, its bundled model = the tiny test model), SILK_ADDON_KIND (addon or extensi
 SILK_WORK (scratch folder), SILK_RENDER (picture to write), SILK_MESH_CHECK (../shared/tools/mesh_check.py). It installs + enables the add-on,
 imports a dev-corpus mesh, generates with a fixed seed and checks the objects against
 `silkgen --stats` on the same mesh as Blender holds it (object frame) and with mesh_check.py; checks that a cancel leaves
-nothing behind, that silkgen's GLB imports with the same object/face counts, and renders a picture."""
+nothing behind, drives the Silk tab of the sidebar (sidebar_checks.py), that silkgen's GLB imports with the same
+object/face counts, and renders a picture."""
 import json
 import os
 import subprocess
@@ -117,6 +118,10 @@ mesh_count = len(bpy.data.meshes)
 res = bpy.ops.silk.generate_mesh(seed=SEED, max_tokens=MAX_TOKENS, cancel_after_steps=2)
 check(res == {"CANCELLED"}, f"cancelled run returns CANCELLED ({res})")
 check(set(bpy.data.objects) == before and len(bpy.data.meshes) == mesh_count, "a cancelled run leaves no object")
+
+# -- the Silk tab in the sidebar: models by name, settings, progress, scores, cancel -------------
+import sidebar_checks  # noqa: E402
+sidebar_checks.run(addon, src, env, work, SEED, check)
 
 # -- silkgen's GLB imports with the expected objects and faces ----------------------------------
 before = set(bpy.data.objects)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Issue 35's reproductions (tests/tools/hostile_files_checks.py): silkgen --batch and silktok under
 # hostile input: inputs, lists and reports never written, refused list lines, FIFOs and devices,
 # unwritable reports, output names, shards, signals. The property test over generated argument

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The file rules every Silk tool inherits from libsilk's one reader and one writer (issue 35):
 // only regular files are read (a FIFO, a device behind a symlink, a folder refused by type, at
 // once), outputs go through a hidden temporary that a signal handler can remove, and a name the

@@ -8,6 +8,7 @@ from __future__ import annotations
 import ctypes
 import json
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -175,10 +176,47 @@ def test_a_library_that_cannot_be_loaded_is_named_with_the_reason(tmp_path, lib_
     assert str(tmp_path / "absent.so") in out and "No such file" in out
 
 
-def test_no_bundled_model_beside_a_build_tree_library(lib_path):
-    with pytest.raises(silk_mesh.SilkError) as e:
-        silk_mesh.Model()
-    assert "no bundled model" in e.value.message and silk_mesh.bundled_model_dir() in e.value.message
+def test_the_bundled_model_is_libsilks(lib_path):
+    """silk_mesh asks libsilk (silk_model_default_dir): a build tree's library finds the source tree's model."""
+    assert silk_mesh.bundled_model_dir() == str(ROOT / "models" / "default")
+    if silk_mesh.generation_available():
+        with silk_mesh.Model() as m:
+            assert m.dir == silk_mesh.bundled_model_dir()
+
+
+def test_models_by_name(lib_path, tmp_path):
+    """A model in $SILK_MODELS is found by name (Model, find_model, list_models); a path wins; a name that
+    is a path is refused naming the rule; a missing name names the models folder and the import command."""
+    shutil.copytree(ROOT / "tests" / "models" / "tiny", tmp_path / "models" / "tiny-b")
+    (tmp_path / "cwd" / "tiny-b").mkdir(parents=True)
+    code = """import json, os, silk_mesh
+out = {"dir": silk_mesh.models_dir(), "named": silk_mesh.models_dir("x"), "find": silk_mesh.find_model("tiny-b"),
+       "list": [(m["name"], m["bundled"]) for m in silk_mesh.list_models()["models"]]}
+os.chdir("cwd")
+out["path_wins"] = silk_mesh.find_model("tiny-b")
+os.chdir("..")
+if silk_mesh.generation_available():
+    with silk_mesh.Model("tiny-b") as m:
+        out["loaded"] = m.dir
+for bad, call in (("../x", silk_mesh.models_dir), ("nope", silk_mesh.Model)):
+    try:
+        call(bad)
+    except silk_mesh.SilkError as e:
+        out[bad] = e.message
+print(json.dumps(out))
+"""
+    env = {**os.environ, "SILK_LIBRARY": str(lib_path), "PYTHONPATH": str(ROOT / "bindings" / "python"),
+           "SILK_MODELS": str(tmp_path / "models")}
+    r = json.loads(subprocess.run([sys.executable, "-c", code], env=env, cwd=tmp_path, capture_output=True, text=True,
+                                  check=True).stdout)
+    models = str(tmp_path / "models")
+    assert r["dir"] == models and r["named"] == os.path.join(models, "x")
+    assert r["find"] == os.path.join(models, "tiny-b") and r["path_wins"] == "tiny-b"
+    assert r["list"] == [["default", True], ["tiny-b", False]]
+    assert r.get("loaded", r["find"]) == r["find"]
+    assert "'../x' is not a model name" in r["../x"]
+    assert f"'nope' is neither a folder nor a model in {os.path.join(models, 'nope')}" in r["nope"]
+    assert "silk-export import-official --name nope" in r["nope"]
 
 
 def test_plain_python_results_equal_numpy_ones(shared, lib_path):

@@ -3,7 +3,8 @@
 """A caller built against libsilk 1.0 keeps working (docs/c_api.md "Struct growth"): the 1.0 symbol
 silk_model_default_params@SILK_1.0 still returns the 1.0 layout of silk_model_params (12 bytes,
 no kv_precision), silk_model_load and silk_model_get_info accept the 1.0 sizes and write nothing
-past them, and the current symbol returns today's size. Linux (ELF symbol versions) only.
+past them, and the current symbol returns today's size; the functions 1.3 added are bound to the
+SILK_1.3 node alone. Linux (ELF symbol versions) only.
 
     capi_abi_check.py LIBSILK MODEL_DIR
 """
@@ -19,6 +20,7 @@ class Params11(ctypes.Structure):
     _fields_ = Params10._fields_ + [("kv_precision", ctypes.c_int32)]
 
 
+SILK_1_3 = ("silk_models_dir", "silk_model_default_dir", "silk_model_find", "silk_models_list")
 INFO_INTS = ("d_model", "n_layers", "n_heads", "head_dim", "n_latents", "default_points", "max_seq_len", "threads",
              "int8", "decoder", "arch", "encoder_points")
 
@@ -61,6 +63,9 @@ def main(lib_path, model_dir):
         failures.append(f"struct_size 13 accepted or badly named: {lib.silk_last_error()}")
     lib.silk_model_destroy.argtypes = [ctypes.c_void_p]
     lib.silk_model_destroy(model)
+    for fn in SILK_1_3:  # added in 1.3: bound to that node alone, so an older libsilk is refused by name
+        if not libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.3") or libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.0"):
+            failures.append(f"{fn}: must be exported as {fn}@@SILK_1.3 only (engine/libsilk.map)")
     return failures
 
 

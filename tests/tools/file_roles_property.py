@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Property test of "Silk never writes to a file it reads" (apps/common/file_roles.h): generated
 argument combinations of silkgen (single and --batch) and silktok (encode, decode, repair) whose
 outputs, --tokens/--stats files and reports point at the inputs, the list and the report through

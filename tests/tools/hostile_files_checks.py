@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Issue 35's reproductions against silkgen and silktok, each a check that failed on 35a6440: files
 destroyed by `silkgen --batch`, reads that block or never end, writes that fail silently. Each case
 runs in its own temporary folder with the committed tiny model and a small id cap, and asserts the

@@ -14,10 +14,17 @@ scratch folder with a clean environment, so nothing of the source or build tree 
   * import silk_mesh: encode/decode/Model/generate with numpy arrays, bundled_model_dir() inside the
     installed package, libsilk and onnxruntime loaded from the venv;
   * silk-export without the train extra: exit 2 naming the missing packages and the pip command;
+  * with the train extra, every silk-export command from the installed wheel outside the checkout:
+    import-official of the official fixture by path and from a model hub on 127.0.0.1
+    (tests/tools/local_hub.py) with --name, the two model folders compared file by file; silkgen
+    --list-models and --model NAME on it; dataset on three meshes, two train steps, export --name of
+    that checkpoint and silkgen --model on it. The train extra's packages (torch is 3 GB with its CUDA
+    libraries) come from this interpreter's site-packages through a .pth file appended to the venv's path
+    (--train-deps pypi downloads them instead); the .pth is removed afterwards;
   * onnxruntime uninstalled: silkgen fails naming the library file it tried; silktok still works.
 Prints every command and its output (the transcript for docs and closing notes).
-Usage: wheel_fresh_venv.py REPO SHARED [--wheel W] [--build-silkgen PATH] [--keep DIR]"""
-import argparse, json, os, pathlib, shutil, subprocess, sys, tempfile, time
+Usage: wheel_fresh_venv.py REPO SHARED [--wheel W] [--build-silkgen PATH] [--keep DIR] [--train-deps system|pypi]"""
+import argparse, json, os, pathlib, shutil, subprocess, sys, sysconfig, tempfile, time
 
 GOLDEN_ARGS = ["--max-tokens", "300", "--threads", "1", "-q", "--surface-tolerance", "0", "--candidates", "1",
                "--orient", "tokens"]  # tests/tools/silkgen_checks.py COMMON
@@ -141,10 +148,91 @@ assert len(ort) == 1 and ort[0].startswith({str(site)!r}), ort
     print("ok: silk_mesh (encode == silktok, decode, numpy arrays, bundled Model, generate, onnxruntime from the venv)")
 
 
-def check_failures(venv, env, tmp, repo):
+def check_no_train_extra(env, tmp):
     p = sh(["silk-export", "--help"], env, tmp, check=False)
     expect(p.returncode == 2 and "silk-mesh[train]" in p.stderr and "torch" in p.stderr,
            "silk-export without the train extra: exit 2 naming torch and pip install 'silk-mesh[train]'")
+
+
+def install_train_extra(venv, env, tmp, site, wheel, deps):
+    """The train extra into the venv: from PyPI, or this interpreter's installed packages (a .pth line
+    appends its site-packages to the venv's path; its own .pth files, e.g. editable installs, are not run)."""
+    pth = site / "silk-test-train-deps.pth"
+    if deps == "system":
+        pth.write_text(sysconfig.get_paths()["purelib"] + "\n")
+        # The venv's own old setuptools would hide the interpreter's (torch needs setuptools >= 77).
+        sh([venv / "bin/pip", "uninstall", "-q", "-y", "setuptools"], env, tmp, check=False)
+        sh([venv / "bin/pip", "install", "-q", "--no-index", "--find-links", tmp / "downloads", f"{wheel}[train]"], env, tmp)
+    else:
+        sh([venv / "bin/pip", "install", "-q", f"{wheel}[train]"], env, tmp)
+    p = sh(["python", "-c", "import silk_export, torch, huggingface_hub; print(silk_export.__file__)"], env, tmp)
+    expect(p.stdout.strip().startswith(str(site / "silk_export")), "silk_export is the wheel's copy in the venv")
+    return pth
+
+
+def compare_folders(a, b):
+    """Prints each file of the two model folders (bytes, same or not); True when the ONNX files are identical and
+    model.json differs only in timings and the recorded hub source."""
+    names = sorted({f.name for f in a.iterdir()} | {f.name for f in b.iterdir()})
+    ok = True
+    for n in names:
+        fa, fb = a / n, b / n
+        same = fa.is_file() and fb.is_file() and fa.read_bytes() == fb.read_bytes()
+        print(f"  {n:28} {fa.stat().st_size if fa.is_file() else '-':>10} {fb.stat().st_size if fb.is_file() else '-':>10}"
+              f"  {'identical' if same else 'differs'}")
+        ok = ok and (same or n in ("model.json", "MODEL_CARD.md"))
+
+    def strip(o):
+        if isinstance(o, dict):
+            return {k: strip(v) for k, v in o.items() if k not in ("ms_per_token", "seconds", "hub", "url")}
+        return [strip(v) for v in o] if isinstance(o, list) else o
+    ja, jb = (json.loads((d / "model.json").read_text()) for d in (a, b))
+    print(f"  model.json: hub source {jb['source'].get('hub')}")
+    return ok and strip(ja) == strip(jb) and "hub" in jb["source"]
+
+
+def check_official_import(repo, shared, env, tmp):
+    fixture = shared / "official-fixture"
+    sys.path.insert(0, str(repo / "tests/tools"))
+    from local_hub import LocalHub
+    sh(["silk-export", "import-official", fixture / "model.safetensors", "--config", fixture / "config.json",
+        "-o", tmp / "fixture-by-path", "--precision", "fp32", "--no-progress"], env, tmp)
+    henv = {**env, "HF_HOME": str(tmp / "hf-home"), "SILK_MODELS": str(tmp / "models"), "HF_HUB_DISABLE_TELEMETRY": "1"}
+    with LocalHub({"gcsong/mesh_silksong": fixture}) as hub:
+        henv["HF_ENDPOINT"] = hub.endpoint
+        sh(["silk-export", "import-official", "hf:gcsong/mesh_silksong/model.safetensors", "--config",
+            "hf:gcsong/mesh_silksong/config.json", "--name", "fixture", "--precision", "fp32", "--no-progress"], henv, tmp)
+    print("file by file: by path (bytes), from the hub (bytes)")
+    expect(compare_folders(tmp / "fixture-by-path", tmp / "models/fixture"),
+           "import-official by path and from the local hub: identical ONNX files, model.json equal but for timings")
+    p = sh(["silkgen", "--list-models"], henv, tmp)
+    expect(any(l.startswith("fixture ") and "official" in l for l in p.stdout.splitlines()),
+           "silkgen --list-models lists the imported model by name with its architecture")
+    sh(["silkgen", repo / "samples/torus_knot.obj", "-o", tmp / "fixture.glb", "--model", "fixture", "--max-tokens", "64",
+        "--seed", "1", "--threads", "1"], henv, tmp)
+    expect((tmp / "fixture.glb").is_file(), "silkgen --model fixture (a name) runs the imported model")
+    return henv
+
+
+def check_train_path(repo, shared, henv, tmp):
+    meshes = tmp / "meshes"
+    meshes.mkdir()
+    for m in sorted((shared / "corpus/dev").glob("*.obj"))[:3]:
+        shutil.copy(m, meshes / m.name)
+    p = sh(["silk-export", "dataset", "--root", meshes, "--out", tmp / "ds"], henv, tmp, check=False)
+    expect(p.returncode != 0 and "--dev-dir" in p.stderr and "SILK_SHARED_DIR" in p.stderr,
+           "silk-export dataset with no dev corpus named: a message naming --dev-dir, SILK_SHARED_DIR, --all-train")
+    sh(["silk-export", "dataset", "--root", meshes, "--out", tmp / "ds", "--all-train"], henv, tmp)
+    sh(["silk-export", "train", "--data", tmp / "ds", "--out", tmp / "run", "--config", "tiny", "--steps", "2",
+        "--no-progress", "--val-every", "1000"], henv, tmp)
+    sh(["silk-export", "export", "--checkpoint", tmp / "run/checkpoint.pt", "--name", "tiny-trained", "--no-int8"], henv, tmp)
+    sh(["silkgen", repo / "samples/torus_knot.obj", "-o", tmp / "trained.glb", "--model", "tiny-trained", "--max-tokens", "64", "--threads",
+        "1"], henv, tmp)
+    expect((tmp / "models/tiny-trained/model.json").is_file() and (tmp / "trained.glb").is_file(),
+           "dataset (3 meshes) -> 2 train steps -> export --name -> silkgen --model NAME, all from the wheel")
+
+
+def check_no_onnxruntime(venv, env, tmp, repo):
     sh([venv / "bin/pip", "uninstall", "-q", "-y", "onnxruntime"], env, tmp)
     p = sh(["silkgen", repo / "samples/torus_knot.obj", "-o", tmp / "no_ort.glb", "-q"], env, tmp, check=False)
     expect(p.returncode != 0 and "onnxruntime/capi/libonnxruntime.so" in p.stderr and "No such file" in p.stderr,
@@ -160,6 +248,8 @@ def main():
     ap.add_argument("--wheel", type=pathlib.Path)
     ap.add_argument("--build-silkgen")
     ap.add_argument("--keep", type=pathlib.Path, help="work folder kept afterwards (default: a temporary one)")
+    ap.add_argument("--train-deps", choices=["system", "pypi"], default="system",
+                    help="the train extra's packages: this interpreter's (default) or downloaded from PyPI")
     a = ap.parse_args()
     if not a.wheel and os.environ.get("SILK_TEST_WHEEL") != "1":
         print("skipped: set SILK_TEST_WHEEL=1 (builds the wheel in Release, downloads onnxruntime and numpy)")
@@ -175,7 +265,12 @@ def main():
     check_launcher(env, tmp, site)
     check_silkgen(repo, venv, env, tmp, a.build_silkgen)
     check_silktok_and_python(repo, shared, env, tmp, site)
-    check_failures(venv, env, tmp, repo)
+    check_no_train_extra(env, tmp)
+    pth = install_train_extra(venv, env, tmp, site, wheel, a.train_deps)
+    henv = check_official_import(repo, shared, env, tmp)
+    check_train_path(repo, shared, henv, tmp)
+    pth.unlink(missing_ok=True)
+    check_no_onnxruntime(venv, env, tmp, repo)
     if not a.keep:
         shutil.rmtree(tmp, ignore_errors=True)
     print(f"{len(FAILURES)} failure(s)" + ("".join(f"\n  {f}" for f in FAILURES)))

@@ -7,14 +7,14 @@ bl_info = {
     "author": "Silk contributors",
     "version": (0, 0, 0),  # stamped with Silk's version (silk.h) by scripts/make_blender_addon.sh
     "blender": (3, 4, 0),
-    "location": "View3D > Object > Silk: Generate Artist Mesh; File > Import/Export > Silk tokens",
+    "location": "View3D > Sidebar > Silk; View3D > Object > Silk: Generate Artist Mesh; File > Import/Export > Silk tokens",
     "description": "Point-cloud-conditioned mesh generation (Mesh Silksong) on the CPU through libsilk",
     "category": "Mesh",
 }
 
 import bpy  # noqa: E402
 
-from . import operators  # noqa: E402
+from . import operators, sidebar  # noqa: E402
 
 
 def _menu_generate(self, context):
@@ -32,6 +32,7 @@ def _menu_export(self, context):
 def register():
     for cls in operators.CLASSES:
         bpy.utils.register_class(cls)
+    sidebar.register()
     bpy.types.VIEW3D_MT_object.append(_menu_generate)
     bpy.types.TOPBAR_MT_file_import.append(_menu_import)
     bpy.types.TOPBAR_MT_file_export.append(_menu_export)
@@ -41,5 +42,6 @@ def unregister():
     bpy.types.TOPBAR_MT_file_export.remove(_menu_export)
     bpy.types.TOPBAR_MT_file_import.remove(_menu_import)
     bpy.types.VIEW3D_MT_object.remove(_menu_generate)
+    sidebar.unregister()
     for cls in reversed(operators.CLASSES):
         bpy.utils.unregister_class(cls)

@@ -11,14 +11,21 @@ import bpy
 from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from . import blender_mesh, silk_mesh  # silk_mesh: bindings/python/silk_mesh, vendored unchanged
+from . import blender_mesh, run_progress, silk_mesh  # silk_mesh: bindings/python/silk_mesh, vendored unchanged
 
 PREVIEW_NAME = "Silk preview"
 
 
 def _model_dir(path: str) -> str | None:
-    """None: the model bundled with the add-on (silk_mesh/model beside silk_mesh/lib)."""
+    """None: the model bundled with the add-on (silk_mesh/model beside silk_mesh/lib); a folder (Blender's
+    // relative paths resolved) or a model name (libsilk finds it in the models folder)."""
     return bpy.path.abspath(path) if path else None
+
+
+def _cancel_requested(context) -> bool:
+    """The Silk tab's Cancel button (sidebar.py)."""
+    s = getattr(context.window_manager, "silk_run", None)
+    return bool(s and s.cancel_requested)
 
 
 class SILK_OT_generate_mesh(bpy.types.Operator):
@@ -50,7 +57,8 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                                  "source's normals"),
                                 ("TOKENS", "As generated", "The winding the generated ids carry")],
                          default="INPUT")
-    model_dir: StringProperty(name="Model folder", description="Empty: the model bundled with the add-on",
+    model_dir: StringProperty(name="Model", description="A model folder, or the name of a model in the models folder "
+                              "(silkgen --list-models); empty: the model bundled with the add-on",
                               default="", subtype="DIR_PATH")
     repair: EnumProperty(name="Holes", items=[("OFF", "Off", "Keep holes"), ("REPORT", "Report", "Count holes"),
                                               ("REPAIR", "Repair", "Close small holes")], default="OFF")
@@ -73,6 +81,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                         candidates=None if self.candidates <= 0 else self.candidates,
                         surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
         job = silk_mesh.Generator(_model_dir(self.model_dir))
+        cap = job.model.info()["max_seq_len"] - 1  # max_seq_len counts BOS: the ids libsilk allows after it
+        self._run = run_progress.RunProgress(getattr(context.window_manager, "silk_run", None),
+                                             min(self.max_tokens, cap) if self.max_tokens else cap)
         try:
             if len(src.data.polygons) > 0:
                 pos, tri = blender_mesh.mesh_arrays(src, dg)
@@ -80,6 +91,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                     job.start(m, **settings)
             else:
                 job.start(points=blender_mesh.point_cloud_arrays(src, dg), **settings)
+            self._run.publish()
         except BaseException:
             job.close()
             raise
@@ -87,6 +99,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
 
     def _finish(self, context, job, src):
         mesh, _, stats = job.finish()
+        self._run.finish(job.report_json(), stats["chosen_candidate"])
         with mesh:
             pos, tri, comp = mesh.positions, mesh.triangles, mesh.parts
         empty = blender_mesh.build_result(context, src, pos, tri, comp, stats)
@@ -106,19 +119,23 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         try:
             steps = 0
             while not job.done:
-                if self.cancel_after_steps and steps >= self.cancel_after_steps:
+                if (self.cancel_after_steps and steps >= self.cancel_after_steps) or _cancel_requested(context):
                     job.cancel()
                 try:
-                    job.advance(32, until_layer=False)
+                    job.advance(32, until_layer=True)
                 except silk_mesh.SilkError as e:
                     if e.status == silk_mesh.SILK_ERR_CANCELLED:
+                        self._run.finish("{}", -1, "cancelled")
                         self.report({"WARNING"}, "Silk: generation cancelled")
                         return {"CANCELLED"}
                     raise
+                self._run.after_advance(job.stats(), 32, job.done)
+                self._run.publish(job.done)
                 steps += 1
             self._finish(context, job, src)
             return {"FINISHED"}
         except silk_mesh.SilkError as e:
+            self._run.finish("{}", -1, "failed")
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         finally:
@@ -153,8 +170,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         self._job.close()
 
     def modal(self, context, event):
-        if event.type == "ESC":
+        if event.type == "ESC" or _cancel_requested(context):
             self._job.cancel()
+            self._run.finish("{}", -1, "cancelled")
             self._cleanup(context)
             self.report({"WARNING"}, "Silk: generation cancelled")
             return {"CANCELLED"}
@@ -164,20 +182,26 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             t_end = time.monotonic() + 0.1  # keep the UI responsive
             while not self._job.done and time.monotonic() < t_end:
                 self._job.advance(64, until_layer=True)
+                self._run.after_advance(self._job.stats(), 64, self._job.done)
+            self._run.publish(self._job.done)
             st = self._job.stats()
             with self._job.preview() as m:
                 pos, tri = m.positions, m.triangles
             if len(tri) != len(self._preview.data.polygons):
                 blender_mesh.set_mesh_data(self._preview, pos, tri)
-            cap = self.max_tokens or "model limit"
-            which = f"candidate {st['chosen_candidate'] + 1} of {st['candidates']}: " if st["candidates"] > 1 else ""
-            context.workspace.status_text_set(f"Silk: {which}{st['tokens']} / {cap} tokens, {st['faces']} faces "
+            context.workspace.status_text_set(f"Silk: {self._run.text()}, {st['faces']} faces "
                                               f"in {st['components']} part(s) - Esc to cancel")
+            for area in context.screen.areas if context.screen else ():
+                if area.type == "VIEW_3D":  # the sidebar's progress bar: its region, when it is open
+                    for region in area.regions:
+                        if region.type == "UI" and region.width > 1 and area.spaces.active.show_region_ui:
+                            region.tag_redraw()
             if self._job.done:
                 self._finish(context, self._job, self._src)
                 self._cleanup(context)
                 return {"FINISHED"}
         except silk_mesh.SilkError as e:
+            self._run.finish("{}", -1, "failed")
             self._cleanup(context)
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}

@@ -18,12 +18,14 @@ from ._capi import (SILK_ERR_BUFFER_TOO_SMALL, SILK_ERR_BUSY, SILK_ERR_CANCELLED
 from ._library import SilkError, library_path, load_library
 from . import _native
 from .codec import decode, encode, read_ids, write_ids
-from .generation import Generator, Model, Result, bundled_model_dir, generate
+from .generation import Generator, Model, Result, generate
+from .models import bundled_model_dir, find_model, list_models, models_dir
 from .mesh import Mesh, load_arrays
 from .points import prepare_points
 
 __all__ = ["Mesh", "Model", "Generator", "Result", "SilkError", "encode", "decode", "generate", "read_ids",
            "write_ids", "load_arrays", "prepare_points", "load_library", "library_path", "bundled_model_dir",
+           "models_dir", "find_model", "list_models",
            "version", "vocab", "generation_available"]
 
 

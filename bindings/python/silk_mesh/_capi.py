@@ -262,6 +262,10 @@ SIGNATURES = {
                                           ctypes.POINTER(ctypes.c_void_p), ctypes.POINTER(GenerateStats)]),
     "silk_save_default_params": (SaveParams, []),
     "silk_generator_copy_points": (ctypes.c_int, [ctypes.c_void_p, _c_double_p, ctypes.c_size_t, _c_size_p]),
+    "silk_models_dir": (ctypes.c_int, [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t, _c_size_p]),
+    "silk_model_default_dir": (ctypes.c_int, [ctypes.c_char_p, ctypes.c_size_t, _c_size_p]),
+    "silk_model_find": (ctypes.c_int, [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t, _c_size_p]),
+    "silk_models_list": (ctypes.c_int, [ctypes.POINTER(ctypes.c_void_p)]),
 }
 
 

@@ -20,7 +20,7 @@ import threading
 
 from . import _capi, _platform_libs
 
-PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+PACKAGE_DIR = os.path.dirname(os.path.realpath(__file__))  # realpath: export/silk_mesh is a link to this folder
 # bindings/python/silk_mesh -> the repository root, when this is a checkout (silk.h beside it).
 _CHECKOUT = os.path.dirname(os.path.dirname(os.path.dirname(PACKAGE_DIR)))
 

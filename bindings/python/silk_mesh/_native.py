@@ -170,6 +170,36 @@ def model_load(path: bytes, threads: int, decoder: int, kv_precision: int = 0) -
     return _out(L.silk_model_load, path, byref(opts))
 
 
+def _path(fn, *args) -> str:
+    """A path from a silk.h path function (size query in bytes, then the copy), decoded from UTF-8."""
+    n = ctypes.c_size_t()
+    check(fn(*args, None, 0, byref(n)))
+    buf = ctypes.create_string_buffer(n.value)
+    check(fn(*args, buf, n.value, None))
+    return buf.value.decode("utf-8", "surrogateescape")
+
+
+def models_dir(name: bytes | None) -> str:
+    return _path(lib().silk_models_dir, name)
+
+
+def model_default_dir() -> str:
+    return _path(lib().silk_model_default_dir)
+
+
+def model_find(name_or_dir: bytes) -> str:
+    return _path(lib().silk_model_find, name_or_dir)
+
+
+def models_list_json() -> str:
+    L, report = lib(), c_void_p()
+    check(L.silk_models_list(byref(report)))
+    try:
+        return L.silk_report_json(report).decode()
+    finally:
+        L.silk_report_destroy(report)
+
+
 def model_destroy(h: c_void_p) -> None:
     lib().silk_model_destroy(h)
 

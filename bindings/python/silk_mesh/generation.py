@@ -10,21 +10,18 @@ import os
 from typing import NamedTuple
 
 from . import _arrays, _capi, _native, _params
-from ._library import SilkError, _Owned, library_path, preload_onnxruntime
+from ._library import SilkError, _Owned, preload_onnxruntime
 from .mesh import Mesh, _Borrowed
+from .models import find_model
 
 _ENUMS = {"holes": _capi.HOLES, "orient": _capi.ORIENT, "preprocessing": _capi.PREPROCESS_KINDS}
 _HIDDEN = ("progress", "cancel", "user_data")  # set from Python callables, not keywords
 
 
-def bundled_model_dir() -> str:
-    """The model shipped beside the library: <library folder>/../model (silk_mesh/model)."""
-    return os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(library_path()))), "model")
-
-
 class Model(_Owned):
-    """A loaded model folder (model.json, encoder.onnx, decoder.onnx). dir None: the bundled model
-    (bundled_model_dir()), else SilkError naming where it looked. threads: the process's shared
+    """A loaded model folder (model.json, encoder.onnx, decoder.onnx). dir: a folder, or the name of a
+    model in the user's models folder (models.find_model; a path always wins); None: the bundled
+    model (bundled_model_dir()), else SilkError naming where libsilk looked. threads: the process's shared
     pool (0 = physical cores; the first load decides); decoder: "default", "int8", "fp32", "int4";
     kv_precision: "default" (the model's), "fp32", "fp16", "int8" (the self-attention cache; docs/runtime.md).
     Generators keep the model alive: close() may come first."""
@@ -33,11 +30,7 @@ class Model(_Owned):
 
     def __init__(self, dir: str | os.PathLike | None = None, threads: int = 0, decoder: str = "default",
                  kv_precision: str = "default"):
-        if dir is None:
-            dir = bundled_model_dir()
-            if not os.path.isfile(os.path.join(dir, "model.json")):
-                raise SilkError(_capi.SILK_ERR_IO, f"no bundled model: '{dir}' (beside the library "
-                                f"'{library_path()}') has no model.json; pass Model(dir)", "model")
+        dir = find_model(dir)  # libsilk's rule: bundled, a folder, or a name
         if decoder not in _capi.DECODERS:
             raise ValueError(f"Model: decoder must be one of {sorted(_capi.DECODERS)}, not {decoder!r}")
         if kv_precision not in _capi.KV_PRECISIONS:

@@ -20,7 +20,7 @@
  * PATCH fixes. silk_version() is the library's own string (compare it with SILK_VERSION_STRING
  * to detect a header/library mismatch). */
 #define SILK_VERSION_MAJOR 1
-#define SILK_VERSION_MINOR 2
+#define SILK_VERSION_MINOR 3
 #define SILK_VERSION_PATCH 0
 #define SILK_STR_(x) #x
 #define SILK_STR(x) SILK_STR_(x)
@@ -400,7 +400,8 @@ typedef struct silk_model_params {
                            chosen decoder has no such variant); default SILK_KV_DEFAULT */
 } silk_model_params;
 SILK_API silk_model_params silk_model_default_params(void);
-/* dir holds model.json, encoder.onnx, decoder.onnx (docs/model_contract.md). A model of another
+/* dir holds model.json, encoder.onnx, decoder.onnx (docs/model_contract.md); it may also be a model
+ * name or "" for the bundled model (silk_model_find, C API 1.3). A model of another
  * format/token-format version is refused with SILK_ERR_UNSUPPORTED. Every file the folder names,
  * ONNX external data included, must resolve inside it (no absolute path, no "..", no symlink
  * leading out): otherwise SILK_ERR_PARSE naming the model file and the location. params NULL = defaults.
@@ -423,6 +424,34 @@ typedef struct silk_model_info {
 /* The model's pre-processing (model.json "preprocessing"); out->struct_size as for an out struct. */
 SILK_API silk_status silk_model_get_preprocess_params(const silk_model* model, silk_preprocess_params* out);
 SILK_API silk_status silk_model_get_info(const silk_model* model, silk_model_info* out);
+
+/* ---- models by name (C API 1.3) ---------------------------------------------------------
+ * A model argument (silk_model_load's dir, silkgen --model, silk_mesh.Model) is a folder or a
+ * name. A path always wins: an existing folder is taken as it is. A model name (1-100 characters
+ * of A-Z a-z 0-9 . _ -, not starting with '.' or '-', so never a separator or "..") that is not a
+ * folder means <models folder>/<name>. The user's models folder: $SILK_MODELS, else
+ * %LOCALAPPDATA%\silk\models on Windows, $XDG_DATA_HOME/silk/models (an absolute XDG_DATA_HOME) or
+ * $HOME/.local/share/silk/models. Paths are UTF-8, copied by the size-query rule with capacity in
+ * bytes, the terminating NUL included. */
+/* name NULL: the models folder (it need not exist yet); else <models folder>/<name>
+ * (SILK_ERR_INVALID_ARGUMENT stating the rule when name is not a model name). SILK_ERR_IO when no
+ * variable gives a folder. */
+SILK_API silk_status silk_models_dir(const char* name, char* out, size_t capacity, size_t* out_count);
+/* The bundled model's folder, found beside libsilk: <lib>/../model (pip wheel, Blender add-on),
+ * <lib>/../share/silk/models/default (cmake --install), <lib>/models/default (Windows zip), then a
+ * build tree's source models/default. SILK_ERR_IO listing where it looked. */
+SILK_API silk_status silk_model_default_dir(char* out, size_t capacity, size_t* out_count);
+/* The folder silk_model_load takes for name_or_dir: NULL or "" = the bundled model; an existing
+ * folder as given; a model name = <models folder>/<name> (SILK_ERR_IO naming both places when
+ * neither exists); anything else as given (the load then names the missing folder). */
+SILK_API silk_status silk_model_find(const char* name_or_dir, char* out, size_t capacity, size_t* out_count);
+/* Every model a caller can name, read from model.json files (nothing is loaded), as a JSON report:
+ * {"models_dir": PATH or null (+ "models_dir_error"), "models": [{"name", "dir", "bundled", "arch",
+ * "config", "parameters": {"d_model", "n_layers", "n_heads"}, "bytes", "decoders", "default_decoder",
+ * "kv_precisions", "default_kv_precision"}, ...], "not_listed": N}: the bundled model first (name
+ * "default"), then each folder of the models folder by name; a folder that is not a usable model
+ * has "error" instead of the model fields. SILK_ERR_UNSUPPORTED without onnxruntime. */
+SILK_API silk_status silk_models_list(silk_report** out);
 
 /* *out: owned by the caller, silk_generator_destroy. */
 SILK_API silk_status silk_generator_create(const silk_model* model, silk_generator** out);

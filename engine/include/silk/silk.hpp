@@ -229,6 +229,26 @@ class Model {
   std::unique_ptr<silk_model, ModelDeleter> h_;
 };
 
+// Models by name (silk.h "models by name"): each returns a UTF-8 path or throws Error.
+inline std::string ModelsDir(const char* name = nullptr) {
+  const std::vector<char> v = CopyAll<char>([&](char* o, size_t c, size_t* n) { return silk_models_dir(name, o, c, n); });
+  return std::string(v.data());
+}
+inline std::string ModelDefaultDir() {
+  return std::string(CopyAll<char>([](char* o, size_t c, size_t* n) { return silk_model_default_dir(o, c, n); }).data());
+}
+inline std::string FindModel(const std::string& name_or_dir) {
+  const std::vector<char> v =
+      CopyAll<char>([&](char* o, size_t c, size_t* n) { return silk_model_find(name_or_dir.c_str(), o, c, n); });
+  return std::string(v.data());
+}
+// silk_models_list's JSON.
+inline std::string ModelsListJson() {
+  silk_report* r = nullptr;
+  Check(silk_models_list(&r));
+  return TakeReport(r);
+}
+
 // One generation at a time; keep one per thread (it keeps its model alive).
 class Generator {
  public:

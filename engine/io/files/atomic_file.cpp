@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A hidden temporary beside the target (".<name>.tmp-<pid>", created exclusively) + write loop +
 // fsync + rename, with cleanup on every failure path and the temporary registered for removal by
 // a signal handler (Windows: CreateFileW + WriteFile + FlushFileBuffers + MoveFileExW).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Output path checks (output_path.h): the name by the platform's rules, then the folder.
 #include "io/files/output_path.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whether a path can name an output file, decided before any work: an operator's run should not
 // generate for minutes and then fail on a name the file system cannot hold.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fixed slots of temporary-file paths (partial_files.h): a slot is claimed with a compare-exchange,
 // filled, then published; the signal-time discard reads only published slots and calls unlink.
 #include "io/files/partial_files.h"

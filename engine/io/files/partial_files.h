@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The temporaries of the atomic writes in progress, so a process ending on a signal can remove
 // them from its handler (async-signal-safe: fixed slots, lock-free flags, unlink only).
 #pragma once

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "io/files/module_folder.h"
 #include "runtime/model/ort_runtime_load.h"
 
 #ifndef SILK_ORT_SONAME
@@ -21,16 +22,6 @@
 namespace silk {
 
 namespace {
-
-// The folder of the module holding this code (libsilk.so), without symbolic links.
-std::string OwnFolder() {
-  Dl_info info{};
-  if (!dladdr(reinterpret_cast<void*>(&OwnFolder), &info) || !info.dli_fname) return ".";
-  char buf[PATH_MAX];
-  const std::string p = realpath(info.dli_fname, buf) ? std::string(buf) : std::string(info.dli_fname);
-  const size_t slash = p.rfind('/');
-  return slash == std::string::npos ? "." : p.substr(0, slash);
-}
 
 // folder + "/" + rel, with rel's leading "../" applied to folder (so messages show a plain path).
 std::string JoinRelative(std::string folder, std::string rel) {
@@ -61,7 +52,8 @@ Status LoadOnnxRuntimeForPlatform() {
   // Already in the process (RTLD_NOLOAD never searches a path): silk_mesh's preload.
   if (void* lib = dlopen(SILK_ORT_SONAME, RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD))
     return InitFrom(lib, SILK_ORT_SONAME);
-  const std::string path = JoinRelative(OwnFolder(), SILK_ORT_RELATIVE_PATH);
+  const std::string own = ModuleFolder();
+  const std::string path = JoinRelative(own.empty() ? "." : own, SILK_ORT_RELATIVE_PATH);
   void* lib = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!lib) {
     const char* err = dlerror();

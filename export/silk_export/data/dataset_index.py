@@ -26,7 +26,13 @@ DATASET_FORMAT = "silk-dataset/1"
 
 def dev_exclusion(dev_dir: Path | None, pmd_root: Path | None = None) -> DevExclusion:
     """Dev corpus paths and shape keys (from its OBJ files and, when present, the original PMDs)."""
-    dev_dir = Path(dev_dir) if dev_dir else shared_dir() / "corpus" / "dev"
+    if not dev_dir:
+        shared = shared_dir()
+        if shared is None:
+            raise SystemExit("silk-export dataset: no dev corpus to keep out of training: pass --dev-dir DIR, set "
+                             "SILK_SHARED_DIR (its corpus/dev is used), or --all-train")
+        dev_dir = shared / "corpus" / "dev"
+    dev_dir = Path(dev_dir)
     ex = load_dev_exclusion(dev_dir, silk_mesh.load_arrays)
     if pmd_root is not None:
         for zp in sorted(ex.zip_paths):
