@@ -58,10 +58,11 @@ TEST(FaceGuide, ScoresDistanceAndAngle) {
   const auto loose = MakeGuide(PlanePoints(), 8.0);
   EXPECT_NEAR(loose->EdgeScore({10, 64, 10}, {10, 70, 10}), 6.0 / 8.0, 1e-9);
   EXPECT_GT(Score(*loose, {10, 64, 10}, {10, 64, 12}, {11, 66, 11}), 1.0);
-  // Points without normals: distance alone.
+  // Points without normals: distance alone (2.45 cells of 3 passes; the angle, 63 degrees, would not).
   auto no_normals = PlanePoints();
   for (size_t i = 0; i < no_normals.size(); i += 6) no_normals[i + 3] = no_normals[i + 4] = no_normals[i + 5] = 0;
-  EXPECT_LE(Score(*MakeGuide(no_normals, 2.0), {10, 64, 10}, {10, 64, 12}, {11, 66, 11}), 1.0);
+  EXPECT_GT(Score(*MakeGuide(PlanePoints(), 3.0), {10, 64, 10}, {10, 64, 12}, {11, 66, 11}), 1.0);
+  EXPECT_NEAR(Score(*MakeGuide(no_normals, 3.0), {10, 64, 10}, {10, 64, 12}, {11, 66, 11}), std::sqrt(6.0) / 3, 1e-6);
 }
 
 // The previous-layer columns (and current-layer rows) adjacent to vertex b of the current layer
@@ -108,15 +109,30 @@ double BruteScore(const Grammar& g, int32_t id, const FaceGuide& guide) {
   return worst;
 }
 
-// Every B step of random legal walks: the stage's mask (hard) or penalties (soft) against the
-// brute-force scores; other ids untouched, the mask never empty.
+// Which ids the stage judges in the grammar's current state (none before the second layer).
+bool Judged(Grammar& g, int32_t id) {
+  const auto& comps = g.stream().components;
+  if (comps.empty() || comps.back().layers.size() < 2 || g.Forced() >= 0) return false;
+  const bool b = id >= vocab::kBBegin && id < vocab::kBEnd, k = id >= vocab::kKBegin && id < vocab::kKEnd;
+  switch (g.phase()) {
+    case GrammarPhase::kWantK: return k;
+    case GrammarPhase::kWantO: return id >= vocab::kOBegin && id < vocab::kOEnd;
+    case GrammarPhase::kAfterS: return b;
+    case GrammarPhase::kAfterB: return b || k;
+    default: return false;
+  }
+}
+
+// Every step of random legal walks. Where only B ids are judged (a row's first B), the stage's
+// mask (hard) or penalties (soft) equal the brute-force scores' verdicts exactly; everywhere
+// (positions and blocks too): ids not judged untouched, the mask never empty, and the counters.
 TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
   std::mt19937_64 rng(5);
   RandomWalkOptions walk;
   walk.max_layers = 5;
   walk.max_layer_size = 14;
-  int64_t steps = 0, removed = 0, fallbacks = 0, kept_all = 0, penalised = 0;
-  for (int trial = 0; trial < 24; ++trial) {
+  int64_t exact_steps = 0, removed = 0, passing = 0, penalised = 0, fallbacks = 0, narrowed_positions = 0;
+  for (int trial = 0; trial < 12; ++trial) {
     Grammar g;
     const std::vector<int32_t> ids = RandomLegalWalk(&g, &rng, walk);
     // Input points: the walk's own vertices (so some faces pass), tolerance 2..24 cells.
@@ -132,46 +148,51 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
     Grammar replay;
     GenerationStats stats;
     auto stage = MakeFaceGuideStage(guide.get(), mode, &replay, &stats);
-    int64_t trial_steps = 0, want_fallbacks = 0;
+    int64_t judged_steps = 0;
     for (int32_t id : ids) {
       const TokenMask legal = replay.LegalMask();
-      const int32_t first_b = legal.Next(vocab::kBBegin);
-      const bool b_step = replay.Forced() < 0 && first_b >= 0 && first_b < vocab::kBEnd &&
-                          (replay.phase() == GrammarPhase::kAfterS || replay.phase() == GrammarPhase::kAfterB);
+      bool any_judged = false;
+      for (int32_t x = legal.Next(0); x >= 0 && !any_judged; x = legal.Next(x + 1)) any_judged = Judged(replay, x);
       SamplerCandidates c;
       c.forced = replay.Forced();
       c.mask = &legal;
       stage->Apply(&c);
-      if (!b_step) {
+      judged_steps += any_judged ? 1 : 0;
+      if (!any_judged) {
         EXPECT_EQ(c.mask, &legal);
         EXPECT_EQ(c.penalties, nullptr);
+      } else if (mode == FaceGuidance::kHard) {
+        ASSERT_NE(c.mask, nullptr);
+        EXPECT_FALSE(c.mask->Empty());
+        for (int32_t x = 0; x < TokenMask::kBits; ++x) {
+          if (!Judged(replay, x) || !legal.Test(x)) ASSERT_EQ(c.mask->Test(x), legal.Test(x)) << x;
+        }
+        narrowed_positions += replay.phase() == GrammarPhase::kWantO && c.mask->Count() < legal.Count() ? 1 : 0;
       } else {
-        ++steps, ++trial_steps;
+        EXPECT_EQ(c.mask, &legal);
+        ASSERT_NE(c.penalties, nullptr);
+        for (const auto& [x, amount] : *c.penalties) {
+          EXPECT_TRUE(legal.Test(x) && Judged(replay, x)) << x;
+          EXPECT_TRUE(amount > 0 && amount <= 40) << amount;
+        }
+      }
+      if (any_judged && replay.phase() == GrammarPhase::kAfterS) {  // B ids alone: exact
+        ++exact_steps;
         std::vector<std::pair<double, int32_t>> brute;
         double best = HUGE_VAL;
-        for (int32_t b = first_b; b >= 0 && b < vocab::kBEnd; b = legal.Next(b + 1)) {
+        for (int32_t b = legal.Next(vocab::kBBegin); b >= 0 && b < vocab::kBEnd; b = legal.Next(b + 1)) {
           brute.push_back({BruteScore(replay, b, *guide), b});
           best = std::min(best, brute.back().first);
         }
-        const bool may_end = replay.phase() == GrammarPhase::kAfterB &&
-                             (legal.Test(vocab::kUBegin) || legal.Test(vocab::kEBegin) ||
-                              (legal.Next(vocab::kKBegin) >= 0 && legal.Next(vocab::kKBegin) < vocab::kKEnd));
-        want_fallbacks += best > 1 && (mode == FaceGuidance::kSoft || !may_end) ? 1 : 0;
         if (mode == FaceGuidance::kHard) {
-          ASSERT_NE(c.mask, nullptr);
-          EXPECT_FALSE(c.mask->Empty());
-          const double keep = best <= 1 ? 1.0 : may_end ? -1.0 : best * 1.25;
-          for (int32_t x = 0; x < TokenMask::kBits; ++x)
-            if (x < vocab::kBBegin || x >= vocab::kBEnd) ASSERT_EQ(c.mask->Test(x), legal.Test(x)) << x;
+          const double keep = best <= 1 ? 1.0 : best * 1.25;
           for (const auto& [score, b] : brute) {
             if (std::fabs(score - keep) < 1e-9) continue;  // a rounding tie: either answer is right
             ASSERT_EQ(c.mask->Test(b), score <= keep) << "id " << b << " score " << score << " best " << best;
             removed += score <= keep ? 0 : 1;
           }
-          kept_all += best <= 1 && c.mask->Count() == legal.Count() ? 1 : 0;
+          passing += best <= 1 ? 1 : 0;
         } else {
-          EXPECT_EQ(c.mask, &legal);
-          ASSERT_NE(c.penalties, nullptr);
           size_t k = 0;
           for (const auto& [score, b] : brute) {
             if (score <= 1 + 1e-9) continue;
@@ -185,22 +206,23 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
       }
       ASSERT_TRUE(replay.Accept(id).ok());
     }
-    EXPECT_EQ(stats.face_guided_tokens, trial_steps);
-    EXPECT_EQ(stats.face_fallbacks, want_fallbacks);
+    EXPECT_EQ(stats.face_guided_tokens, judged_steps);
+    EXPECT_LE(stats.face_fallbacks, judged_steps);
     fallbacks += stats.face_fallbacks;
   }
-  EXPECT_GT(steps, 50);      // enough B steps in layers >= 2
-  EXPECT_GT(removed, 0);     // ids removed,
-  EXPECT_GT(kept_all, 0);    // and steps where every id passed
+  EXPECT_GT(exact_steps, 30);  // enough first-B steps in layers >= 2
+  EXPECT_GT(removed, 0);       // ids removed,
+  EXPECT_GT(passing, 0);       // steps where some id passed,
   EXPECT_GT(penalised, 0);
-  EXPECT_GT(fallbacks, 0);   // and steps where none did
+  EXPECT_GT(fallbacks, 0);     // and steps where none did
+  EXPECT_GT(narrowed_positions, 0);
 }
 
 GenerateOptions Options(uint64_t seed) {
   GenerateOptions o;
   o.sampling.seed = seed;
   o.sampling.temperature = 1.0;
-  o.max_tokens = 400;
+  o.max_tokens = 300;
   o.record_trace = true;
   return o;
 }
@@ -213,7 +235,7 @@ TEST(FaceGuide, GenerationsOffHardSoft) {
   const auto points = testing::SamplePoints(*model);
   Generator gen(*model);
   int64_t guided = 0, narrowed = 0, penalised = 0;
-  for (uint64_t seed = 0; seed < 6; ++seed) {
+  for (uint64_t seed = 0; seed < 3; ++seed) {
     GenerateOptions o = Options(seed);
     auto off = gen.Run(points, o);
     ASSERT_TRUE(off.ok()) << off.status().ToString();

@@ -61,8 +61,11 @@ FaceGuide::FaceGuide(std::shared_ptr<const SurfaceGuide> field, const std::vecto
     : field_(std::move(field)),
       index_(GridPoints(points)),
       normals_(UnitNormals(points)),
+      root_(3 * 127 * 127 + 1),
       tolerance_(tolerance),
-      angle_scale_(1.0 / (1.0 - std::cos(kFaceAngleLimitDegrees * M_PI / 180.0))) {}
+      angle_scale_(1.0 / (1.0 - std::cos(kFaceAngleLimitDegrees * M_PI / 180.0))) {
+  for (size_t i = 0; i < root_.size(); ++i) root_[i] = static_cast<float>(std::sqrt(static_cast<double>(i)));
+}
 
 int32_t FaceGuide::NearestPoint(const QVec& q) const {
   return index_.Nearest({double(q.x), double(q.y), double(q.z)}).index;
@@ -70,15 +73,20 @@ int32_t FaceGuide::NearestPoint(const QVec& q) const {
 
 double FaceGuide::Distance(int32_t x, int32_t y, int32_t z, int32_t scale) const {
   const QVec c{NearestCell(x, scale), NearestCell(y, scale), NearestCell(z, scale)};
-  return std::sqrt(static_cast<double>(field_->CellDistance2(c)));
+  const int32_t d2 = field_->CellDistance2(c);  // no input point at all: "far" (beyond the table)
+  return d2 < static_cast<int32_t>(root_.size()) ? root_[static_cast<size_t>(d2)] : std::sqrt(static_cast<double>(d2));
 }
 
-double FaceGuide::EdgeScore(const QVec& a, const QVec& b) const {
-  double d = std::max(Distance(a.x, a.y, a.z, 1), Distance(b.x, b.y, b.z, 1));
-  d = std::max(d, Distance(a.x + b.x, a.y + b.y, a.z + b.z, 2));
+double FaceGuide::EdgeInterior(const QVec& a, const QVec& b) const {
+  double d = Distance(a.x + b.x, a.y + b.y, a.z + b.z, 2);
   d = std::max(d, Distance(3 * a.x + b.x, 3 * a.y + b.y, 3 * a.z + b.z, 4));
   d = std::max(d, Distance(a.x + 3 * b.x, a.y + 3 * b.y, a.z + 3 * b.z, 4));
   return d / tolerance_;
+}
+
+double FaceGuide::EdgeScore(const QVec& a, const QVec& b) const {
+  const double ends = std::max(Distance(a.x, a.y, a.z, 1), Distance(b.x, b.y, b.z, 1)) / tolerance_;
+  return std::max(ends, EdgeInterior(a, b));
 }
 
 double FaceGuide::FaceDistance(const QVec& a, const QVec& b, const QVec& c) const {

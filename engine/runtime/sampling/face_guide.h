@@ -57,6 +57,8 @@ class FaceGuide {
   double FaceDistance(const QVec& a, const QVec& b, const QVec& c) const;
   // Score of an edge alone (distance only: its ends, midpoint and quarter points).
   double EdgeScore(const QVec& a, const QVec& b) const;
+  // The same without its ends (a position still to be chosen: surface guidance judges that).
+  double EdgeInterior(const QVec& a, const QVec& b) const;
 
  private:
   // Distance (cells) from the grid cell nearest (x, y, z) / scale (scale 1..4) to the nearest
@@ -65,6 +67,7 @@ class FaceGuide {
   std::shared_ptr<const SurfaceGuide> field_;
   NearestPointIndex index_;            // the input points in grid units (cell centres at integers)
   std::vector<Point3> normals_;        // unit normals (zero when a point had none)
+  std::vector<float> root_;            // sqrt of every squared cell distance the grid holds
   double tolerance_;
   double angle_scale_;                 // 1 / (1 - cos limit)
 };

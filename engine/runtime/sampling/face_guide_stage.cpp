@@ -43,20 +43,22 @@ class FaceGuideStage : public SamplerStage {
   void Apply(SamplerCandidates* c) override {
     if (c->forced >= 0) return;
     const GrammarPhase phase = grammar_->phase();
-    const bool offsets = phase == GrammarPhase::kWantO;
-    if (!offsets && phase != GrammarPhase::kAfterS && phase != GrammarPhase::kAfterB) return;
-    const int32_t begin = offsets ? vocab::kOBegin : vocab::kBBegin, end = offsets ? vocab::kOEnd : vocab::kBEnd;
-    const int32_t first = c->mask->Next(begin);
-    if (first < 0 || first >= end || !PrepareLayer()) return;
+    if (phase != GrammarPhase::kWantK && phase != GrammarPhase::kWantO && phase != GrammarPhase::kAfterS &&
+        phase != GrammarPhase::kAfterB)
+      return;
+    if (!PrepareLayer()) return;
     const auto t0 = Clock::now();
     scored_.clear();
-    if (offsets) {
+    if (phase == GrammarPhase::kWantO) {
       ScoreOffsets(*c->mask);
+    } else if (phase == GrammarPhase::kWantK) {
+      ScoreBlocks(*c->mask);  // a layer's first vertex
     } else {
       PrepareVertex();
       ScoreBetween(*c->mask);
+      ScoreBlocks(*c->mask);  // after a B, the next vertex's block is legal too
     }
-    Decide(c, phase == GrammarPhase::kAfterB);
+    if (!scored_.empty()) Decide(c);
     stats_->seconds.face_guidance += std::chrono::duration<double>(Clock::now() - t0).count();
   }
 
@@ -68,7 +70,10 @@ class FaceGuideStage : public SamplerStage {
   double IdScore(int32_t id);
   void ScoreBetween(const TokenMask& mask);
   void ScoreOffsets(const TokenMask& mask);
-  void Decide(SamplerCandidates* c, bool row_has_b);
+  void ScoreBlocks(const TokenMask& mask);
+  void PreparePosition(int32_t b, const QVec& centre);
+  double PositionScore(const QVec& p, bool interior_only, double enough);
+  void Decide(SamplerCandidates* c);
 
   const FaceGuide* guide_;
   FaceGuidance mode_;
@@ -92,6 +97,8 @@ class FaceGuideStage : public SamplerStage {
   std::vector<std::pair<double, int32_t>> scored_;  // (score, id) of the legal ids judged
   std::vector<int32_t> linked_rows_, near_columns_;  // offsets: linked earlier rows, columns near the block
   std::vector<std::pair<int32_t, int32_t>> linked_pairs_;  // offsets: linked rows linked to each other
+  int32_t blocks_vertex_ = -1;            // the row whose block scores block_score_ holds
+  std::vector<double> block_score_ = std::vector<double>(512, kUnscored);
   std::vector<std::pair<int32_t, float>> penalties_;
   TokenMask guided_;
 };
@@ -113,6 +120,7 @@ bool FaceGuideStage::PrepareLayer() {
   layer_components_ = st.components.size();
   layer_count_ = layers;
   vertex_ = -1;
+  blocks_vertex_ = -1;
   LoadPreviousLayer();
   return layer_ok_;
 }
@@ -211,14 +219,12 @@ void FaceGuideStage::ScoreBetween(const TokenMask& mask) {
     scored_.push_back({IdScore(id), id});
 }
 
-// A position (O id after the block just taken) fixes the vertex's edges to the earlier rows of
-// its layer that stated one, the faces among those rows, and where its first B can go: its
-// score is the worst of those (distance only) and the best edge to one of the previous layer's
-// kNearColumns vertices nearest the block.
-void FaceGuideStage::ScoreOffsets(const TokenMask& mask) {
+// What a new vertex (row b) must join, for PositionScore: the earlier rows of its layer that
+// stated an edge to it, the pairs of those rows joined to each other, and the previous layer's
+// kNearColumns vertices nearest `centre` (its first B joins one of them).
+void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
   constexpr size_t kNearColumns = 8;
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
-  const int32_t b = static_cast<int32_t>(vs.size()) - 1, block = grammar_->tokens().back();
   linked_rows_.clear();
   linked_pairs_.clear();
   for (int32_t a = 0; a < b; ++a)
@@ -226,7 +232,6 @@ void FaceGuideStage::ScoreOffsets(const TokenMask& mask) {
   for (size_t i = 0; i < linked_rows_.size(); ++i)
     for (size_t j = i + 1; j < linked_rows_.size(); ++j)
       if (Linked(vs, linked_rows_[i], linked_rows_[j])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[j]});
-  const QVec centre = VertexOfTokens(block, vocab::kOBegin + 8 * 256 + 8 * 16 + 8);
   auto dist2 = [&](int32_t c) {
     const QVec& q = prev_pos_[c];
     return (q.x - centre.x) * (q.x - centre.x) + (q.y - centre.y) * (q.y - centre.y) + (q.z - centre.z) * (q.z - centre.z);
@@ -236,41 +241,85 @@ void FaceGuideStage::ScoreOffsets(const TokenMask& mask) {
   const size_t near = std::min(kNearColumns, near_columns_.size());
   std::partial_sort(near_columns_.begin(), near_columns_.begin() + near, near_columns_.end(),
                     [&](int32_t x, int32_t y) { return dist2(x) < dist2(y) || (dist2(x) == dist2(y) && x < y); });
-  for (int32_t id = mask.Next(vocab::kOBegin); id >= 0 && id < vocab::kOEnd; id = mask.Next(id + 1)) {
-    const QVec p = VertexOfTokens(block, id);
-    double best_column = HUGE_VAL;
-    for (size_t k = 0; k < near; ++k) best_column = std::min(best_column, guide_->EdgeScore(p, prev_pos_[near_columns_[k]]));
-    double worst = best_column;
-    for (int32_t a : linked_rows_) worst = std::max(worst, guide_->EdgeScore(vs[a].pos, p));
-    for (const auto& [a1, a2] : linked_pairs_) worst = std::max(worst, guide_->FaceDistance(vs[a1].pos, vs[a2].pos, p));
-    scored_.push_back({worst, id});
+  near_columns_.resize(near);
+}
+
+// A position fixes the vertex's edges to the linked rows, the faces among them, and where its
+// first B can go: the worst of those (distance only), the B part being the best edge to a near
+// column. interior_only: edges without their ends (a representative cell of a block). Work
+// stops once the score is known to exceed `enough` (the caller keeps only smaller ones).
+double FaceGuideStage::PositionScore(const QVec& p, bool interior_only, double enough) {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  auto edge = [&](const QVec& q) { return interior_only ? guide_->EdgeInterior(q, p) : guide_->EdgeScore(q, p); };
+  double worst = 0;
+  for (int32_t a : linked_rows_) worst = std::max(worst, edge(vs[a].pos));
+  for (const auto& [a1, a2] : linked_pairs_) {
+    if (worst > enough) return worst;
+    worst = std::max(worst, guide_->FaceDistance(vs[a1].pos, vs[a2].pos, p));
+  }
+  if (worst > enough || near_columns_.empty()) return worst;
+  double column = HUGE_VAL;
+  for (int32_t c : near_columns_) {
+    column = std::min(column, edge(prev_pos_[c]));
+    if (column <= worst) break;  // the linked part decides
+  }
+  return std::max(worst, column);
+}
+
+// O ids after the block just taken: each position's score.
+void FaceGuideStage::ScoreOffsets(const TokenMask& mask) {
+  const int32_t b = static_cast<int32_t>(grammar_->stream().components.back().layers.back().vertices.size()) - 1;
+  const int32_t block = grammar_->tokens().back();
+  PreparePosition(b, VertexOfTokens(block, vocab::kOBegin + 8 * 256 + 8 * 16 + 8));
+  for (int32_t id = mask.Next(vocab::kOBegin); id >= 0 && id < vocab::kOEnd; id = mask.Next(id + 1))
+    scored_.push_back({PositionScore(VertexOfTokens(block, id), false, HUGE_VAL), id});
+}
+
+// K ids (the next vertex's block, legal once a row has its B): each block's best of 64
+// representative cells (offsets 2, 6, 10, 14 per axis), edges without their ends; the offset
+// step then judges the cells of the block taken exactly. A block's score depends only on the
+// rows before the new vertex, so it is computed once per vertex.
+void FaceGuideStage::ScoreBlocks(const TokenMask& mask) {
+  const int32_t b = static_cast<int32_t>(grammar_->stream().components.back().layers.back().vertices.size());
+  if (b != blocks_vertex_) {
+    blocks_vertex_ = b;
+    std::fill(block_score_.begin(), block_score_.end(), kUnscored);
+  }
+  for (int32_t id = mask.Next(vocab::kKBegin); id >= 0 && id < vocab::kKEnd; id = mask.Next(id + 1)) {
+    double& best = block_score_[static_cast<size_t>(id - vocab::kKBegin)];
+    if (best == kUnscored) {
+      PreparePosition(b, VertexOfTokens(id, vocab::kOBegin + 8 * 256 + 8 * 16 + 8));
+      best = HUGE_VAL;
+      for (int32_t x = 2; x < 16; x += 4)
+        for (int32_t y = 2; y < 16; y += 4)
+          for (int32_t z = 2; z < 16; z += 4)
+            best = std::min(best, PositionScore(VertexOfTokens(id, vocab::kOBegin + x * 256 + y * 16 + z), true, best));
+    }
+    scored_.push_back({best, id});
   }
 }
 
-// Hard: the judged ids scoring above 1 removed; when none passes, a row that has its B may end
-// (no B kept), otherwise the ids within kFallbackSlack of the best stay. Soft: penalties.
-void FaceGuideStage::Decide(SamplerCandidates* c, bool row_has_b) {
+// Hard: the judged ids scoring above 1 removed; when none passes, the ones within
+// kFallbackSlack of the best stay (a fallback). Ids not judged (U, E, X) stay either way. Soft:
+// penalties for the ones above 1.
+void FaceGuideStage::Decide(SamplerCandidates* c) {
   double best = HUGE_VAL;
   for (const auto& sc : scored_) best = std::min(best, sc.first);
   ++stats_->face_guided_tokens;
   const bool none_pass = best > 1;
+  stats_->face_fallbacks += none_pass ? 1 : 0;
   if (mode_ == FaceGuidance::kSoft) {
     penalties_.clear();
     for (const auto& [score, id] : scored_)
       if (score > 1) penalties_.push_back({id, static_cast<float>(std::min(kFaceSoftPenaltyMax, kFaceSoftPenalty * (score - 1)))});
     c->penalties = &penalties_;
-    stats_->face_fallbacks += none_pass ? 1 : 0;
     return;
   }
   guided_ = *c->mask;
-  // A row with its B may end instead (K, U or E legal): then no B id is kept when none passes.
-  const bool may_end = row_has_b && (guided_.Test(vocab::kUBegin) || guided_.Test(vocab::kEBegin) ||
-                                     (guided_.Next(vocab::kKBegin) >= 0 && guided_.Next(vocab::kKBegin) < vocab::kKEnd));
-  const double keep = none_pass ? (may_end ? -1.0 : best * kFallbackSlack) : 1.0;
+  const double keep = none_pass ? best * kFallbackSlack : 1.0;
   for (const auto& [score, id] : scored_)
     if (score > keep) guided_.Reset(id);
   c->mask = &guided_;
-  stats_->face_fallbacks += none_pass && !may_end ? 1 : 0;
 }
 
 class FacePenaltyStage : public SamplerStage {
