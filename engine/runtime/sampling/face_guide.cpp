@@ -97,6 +97,7 @@ double FaceGuide::FaceDistance(const QVec& a, const QVec& b, const QVec& c) cons
 double FaceGuide::FaceScore(const QVec& a, const QVec& b, const QVec& c, int32_t n_a, int32_t n_b,
                             int32_t n_c) const {
   const double d = FaceDistance(a, b, c);
+  if (d > 1) return d;  // strays by distance: the normal cannot save it (and its query is skipped)
   // The face's normal against the input normals nearest its centroid and corners, up to sign.
   const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
   const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;

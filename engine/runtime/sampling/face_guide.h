@@ -27,7 +27,7 @@ bool ParseFaceGuidanceName(const std::string& text, FaceGuidance* out);
 // libsilk's defaults (a model.json may name its own: sampling.face_guidance / face_tolerance),
 // chosen by the quality protocol (docs/runtime.md, "Face guidance").
 inline constexpr FaceGuidance kDefaultFaceGuidance = FaceGuidance::kHard;
-inline constexpr double kDefaultFaceTolerance = 2.0;
+inline constexpr double kDefaultFaceTolerance = 4.0;
 
 // A face's normal may turn this far from the input's normals (up to sign) before it strays.
 inline constexpr double kFaceAngleLimitDegrees = 60.0;
@@ -43,12 +43,15 @@ inline constexpr double kMinFaceTolerance = 0.5, kMaxFaceTolerance = 64.0;
 // in cells from its corners, edge midpoints and centroid to the nearest cell holding an input
 // point, and a = (1 - |cos|) / (1 - cos kFaceAngleLimitDegrees) with |cos| the mean agreement, up
 // to sign, of its normal with the normals of the input points nearest its centroid and corners.
-// A score <= 1 passes.
+// A score <= 1 passes. A face whose distance part is past 1 scores by it alone (the normal
+// could not make it pass; the nearest-point query is skipped).
 class FaceGuide {
  public:
   FaceGuide(std::shared_ptr<const SurfaceGuide> field, const std::vector<float>& points, double tolerance);
 
   double tolerance() const { return tolerance_; }
+  // Distance (cells) from cell q to the nearest cell holding an input point.
+  double CellDistance(const QVec& q) const { return Distance(q.x, q.y, q.z, 1); }
   // Index of the input point nearest grid position q (its normal: Normal(index)).
   int32_t NearestPoint(const QVec& q) const;
   // Score of triangle (a, b, c); n_a, n_b, n_c: NearestPoint of the corners (cached by callers).

@@ -67,7 +67,7 @@ class FaceGuideStage : public SamplerStage {
   void LoadPreviousLayer();
   void PrepareVertex();
   double Pair(size_t entry);
-  double IdScore(int32_t id);
+  double IdScore(int32_t id, double enough);
   void ScoreBetween(const TokenMask& mask);
   void ScoreOffsets(const TokenMask& mask);
   void ScoreBlocks(const TokenMask& mask);
@@ -186,8 +186,9 @@ double FaceGuideStage::Pair(size_t entry) {
   return pair_[entry];
 }
 
-// The worst face or edge id (s, case) would add, given the row's columns so far (column_).
-double FaceGuideStage::IdScore(int32_t id) {
+// The worst face or edge id (s, case) would add, given the row's columns so far (column_);
+// work stops once it exceeds `enough`.
+double FaceGuideStage::IdScore(int32_t id, double enough) {
   const int32_t s = (id - vocab::kBBegin) / kBetweenCases, pattern = BetweenCasePattern((id - vocab::kBBegin) % kBetweenCases);
   const uint32_t window = 1u | (static_cast<uint32_t>(pattern) << 1);  // bit p: column s + p
   const int32_t n = static_cast<int32_t>(prev_pos_.size());
@@ -196,6 +197,7 @@ double FaceGuideStage::IdScore(int32_t id) {
     const int32_t c = s + p;
     if (!((window >> p) & 1) || c >= n) continue;
     worst = std::max(worst, column_[c]);
+    if (worst > enough) return worst;
     for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e) {
       const int32_t q = adj_[e] - s;  // a neighbour inside this id's own segment
       if (q > p && q <= kBetweenWindow && ((window >> q) & 1)) worst = std::max(worst, Pair(static_cast<size_t>(e)));
@@ -215,15 +217,23 @@ void FaceGuideStage::ScoreBetween(const TokenMask& mask) {
       if (row_.test(static_cast<size_t>(adj_[e]))) w = std::max(w, Pair(static_cast<size_t>(e)));
     column_[col] = w;
   }
-  for (int32_t id = mask.Next(vocab::kBBegin); id >= 0 && id < vocab::kBEnd; id = mask.Next(id + 1))
-    scored_.push_back({IdScore(id), id});
+  // Hard: a score past 1 only removes the id unless none passes (then the exact scores).
+  const double enough = mode_ == FaceGuidance::kHard ? 1.0 : HUGE_VAL;
+  const size_t first = scored_.size();
+  bool any_pass = false;
+  for (int32_t id = mask.Next(vocab::kBBegin); id >= 0 && id < vocab::kBEnd; id = mask.Next(id + 1)) {
+    scored_.push_back({IdScore(id, enough), id});
+    any_pass = any_pass || scored_.back().first <= 1;
+  }
+  if (any_pass || enough == HUGE_VAL) return;
+  for (size_t i = first; i < scored_.size(); ++i) scored_[i].first = IdScore(scored_[i].second, HUGE_VAL);
 }
 
 // What a new vertex (row b) must join, for PositionScore: the earlier rows of its layer that
 // stated an edge to it, the pairs of those rows joined to each other, and the previous layer's
 // kNearColumns vertices nearest `centre` (its first B joins one of them).
 void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
-  constexpr size_t kNearColumns = 8;
+  constexpr size_t kNearColumns = 4;
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   linked_rows_.clear();
   linked_pairs_.clear();
@@ -271,29 +281,41 @@ void FaceGuideStage::ScoreOffsets(const TokenMask& mask) {
   const int32_t b = static_cast<int32_t>(grammar_->stream().components.back().layers.back().vertices.size()) - 1;
   const int32_t block = grammar_->tokens().back();
   PreparePosition(b, VertexOfTokens(block, vocab::kOBegin + 8 * 256 + 8 * 16 + 8));
-  for (int32_t id = mask.Next(vocab::kOBegin); id >= 0 && id < vocab::kOEnd; id = mask.Next(id + 1))
-    scored_.push_back({PositionScore(VertexOfTokens(block, id), false, HUGE_VAL), id});
+  // Hard: a score past 1 only removes the id, unless none passes (then the exact scores, for the
+  // fallback's best). Soft: penalties need them all.
+  const double enough = mode_ == FaceGuidance::kHard ? 1.0 : HUGE_VAL;
+  bool any_pass = false;
+  for (int32_t id = mask.Next(vocab::kOBegin); id >= 0 && id < vocab::kOEnd; id = mask.Next(id + 1)) {
+    scored_.push_back({PositionScore(VertexOfTokens(block, id), false, enough), id});
+    any_pass = any_pass || scored_.back().first <= 1;
+  }
+  if (any_pass || enough == HUGE_VAL) return;
+  for (auto& [score, id] : scored_) score = PositionScore(VertexOfTokens(block, id), false, HUGE_VAL);
 }
 
-// K ids (the next vertex's block, legal once a row has its B): each block's best of 64
-// representative cells (offsets 2, 6, 10, 14 per axis), edges without their ends; the offset
-// step then judges the cells of the block taken exactly. A block's score depends only on the
-// rows before the new vertex, so it is computed once per vertex.
+// K ids (the next vertex's block, legal once a row has its B): each block's best of 8
+// representative cells (offsets 4, 12 per axis; each cell of the block is within 4 sqrt 3 of
+// one), edges without their ends; the offset step then judges the cells of the block taken.
+// Representatives farther from the input than a vertex can be (the tolerance) plus 4 sqrt 3 are
+// skipped, and a block stops at its first passing one (only scores above 1 matter, for the
+// fallback and the penalties). A block's score depends only on the rows before the new vertex,
+// so it is computed once per vertex.
 void FaceGuideStage::ScoreBlocks(const TokenMask& mask) {
   const int32_t b = static_cast<int32_t>(grammar_->stream().components.back().layers.back().vertices.size());
   if (b != blocks_vertex_) {
     blocks_vertex_ = b;
     std::fill(block_score_.begin(), block_score_.end(), kUnscored);
   }
+  const double reach = std::max(guide_->tolerance(), 2.0) + 4 * std::sqrt(3.0);
   for (int32_t id = mask.Next(vocab::kKBegin); id >= 0 && id < vocab::kKEnd; id = mask.Next(id + 1)) {
     double& best = block_score_[static_cast<size_t>(id - vocab::kKBegin)];
     if (best == kUnscored) {
       PreparePosition(b, VertexOfTokens(id, vocab::kOBegin + 8 * 256 + 8 * 16 + 8));
       best = HUGE_VAL;
-      for (int32_t x = 2; x < 16; x += 4)
-        for (int32_t y = 2; y < 16; y += 4)
-          for (int32_t z = 2; z < 16; z += 4)
-            best = std::min(best, PositionScore(VertexOfTokens(id, vocab::kOBegin + x * 256 + y * 16 + z), true, best));
+      for (int32_t r = 0; r < 8 && best > 1; ++r) {
+        const QVec q = VertexOfTokens(id, vocab::kOBegin + (4 + 8 * (r >> 2)) * 256 + (4 + 8 * ((r >> 1) & 1)) * 16 + 4 + 8 * (r & 1));
+        if (guide_->CellDistance(q) <= reach) best = std::min(best, PositionScore(q, true, best));
+      }
     }
     scored_.push_back({best, id});
   }
