@@ -36,9 +36,9 @@ def test_python_generation_matches_the_silkgen_golden():
 
 def test_step_wise_grows_by_layers_and_ends_with_the_same_ids():
     with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
-        # A plain run (no surface guidance): this seed's stream closes several layers.
-        _, whole, _ = gen.run(src, seed=3, max_tokens=200, surface_tolerance=0)
-        gen.start(src, seed=3, max_tokens=200, surface_tolerance=0)
+        # A plain run (no surface or face guidance): this seed's stream closes several layers.
+        _, whole, _ = gen.run(src, seed=3, max_tokens=200, surface_tolerance=0, face_guidance="off")
+        gen.start(src, seed=3, max_tokens=200, surface_tolerance=0, face_guidance="off")
         faces, done = [], False
         while not done:
             done = gen.advance(10_000, until_layer=True)
