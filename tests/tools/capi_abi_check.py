@@ -29,18 +29,25 @@ class Info10(ctypes.Structure):
     _fields_ = [("struct_size", ctypes.c_uint32), ("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in INFO_INTS]
 
 
+def both_versions(lib, libc, name, old_type, version, new_type):
+    """The default params `name` returns through its SILK_1.0 symbol and through `version`'s."""
+    old = libc.dlvsym(lib._handle, name.encode(), b"SILK_1.0")
+    new = libc.dlvsym(lib._handle, name.encode(), version.encode())
+    if not old or not new:
+        raise LookupError(f"{name}: SILK_1.0 {bool(old)}, {version} {bool(new)} (both must exist)")
+    return ctypes.CFUNCTYPE(old_type)(old)(), ctypes.CFUNCTYPE(new_type)(new)()
+
+
 def main(lib_path, model_dir):
     lib = ctypes.CDLL(lib_path)
     libc = ctypes.CDLL(None)
     libc.dlvsym.restype = ctypes.c_void_p
     libc.dlvsym.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p]
     failures = []
-    old = libc.dlvsym(lib._handle, b"silk_model_default_params", b"SILK_1.0")
-    new = libc.dlvsym(lib._handle, b"silk_model_default_params", b"SILK_1.1")
-    if not old or not new:
-        return [f"silk_model_default_params: SILK_1.0 {bool(old)}, SILK_1.1 {bool(new)} (both must exist)"]
-    p10 = ctypes.CFUNCTYPE(Params10)(old)()
-    p11 = ctypes.CFUNCTYPE(Params11)(new)()
+    try:
+        p10, p11 = both_versions(lib, libc, "silk_model_default_params", Params10, "SILK_1.1", Params11)
+    except LookupError as e:
+        return [str(e)]
     if (p10.struct_size, p10.decoder) != (ctypes.sizeof(Params10), 0):
         failures.append(f"1.0 default params: struct_size {p10.struct_size}, decoder {p10.decoder}")
     if (p11.struct_size, p11.kv_precision) != (ctypes.sizeof(Params11), 0):
@@ -80,12 +87,10 @@ def check_generate(lib, libc, model):
         _fields_ = [("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8)), ("face_guidance", ctypes.c_int32),
                     ("face_tolerance", ctypes.c_double)]
 
-    old = libc.dlvsym(lib._handle, b"silk_generate_default_params", b"SILK_1.0")
-    new = libc.dlvsym(lib._handle, b"silk_generate_default_params", b"SILK_1.3")
-    if not old or not new:
-        return [f"silk_generate_default_params: SILK_1.0 {bool(old)}, SILK_1.3 {bool(new)} (both must exist)"]
-    p10 = ctypes.CFUNCTYPE(Old)(old)()
-    p13 = ctypes.CFUNCTYPE(New)(new)()
+    try:
+        p10, p13 = both_versions(lib, libc, "silk_generate_default_params", Old, "SILK_1.3", New)
+    except LookupError as e:
+        return [str(e)]
     failures = []
     size10, size13 = p10.bytes[0] & 0xFFFFFFFF, p13.bytes[0] & 0xFFFFFFFF
     if size10 != GEN_PARAMS_10 or size13 != ctypes.sizeof(New):
