@@ -26,7 +26,7 @@ bool ParseFaceGuidanceName(const std::string& text, FaceGuidance* out);
 
 // libsilk's defaults (a model.json may name its own: sampling.face_guidance / face_tolerance),
 // chosen by the quality protocol (docs/runtime.md, "Face guidance").
-inline constexpr FaceGuidance kDefaultFaceGuidance = FaceGuidance::kHard;
+inline constexpr FaceGuidance kDefaultFaceGuidance = FaceGuidance::kSoft;
 inline constexpr double kDefaultFaceTolerance = 4.0;
 
 // A face's normal may turn this far from the input's normals (up to sign) before it strays.
