@@ -9,6 +9,7 @@
 #   bash scripts/eval_quality.sh OUT_DIR [silkgen options ...]
 #   bash scripts/eval_quality.sh /tmp/q/a --model models/default
 #   SETS="dev" LIMIT_TEST=40 THREADS=2 bash scripts/eval_quality.sh /tmp/q/b --surface-tolerance 2
+#   SETS="dev" LIMIT_DEV=10 bash scripts/eval_quality.sh /tmp/q/c --face-guidance hard   # a tuning subset
 #
 # Needs the build (silkgen), silk-export on the PATH and, for the test split, the index made by
 # `silk-export dataset` (scripts/train_default_model.sh, stages fetch + dataset).
@@ -27,7 +28,10 @@ export SILK_LIBRARY=${SILK_LIBRARY:-$PWD/${BUILD_DIR:-build}/engine/libsilk.so}
 
 inputs() {  # set -> one input path per line
   case "$1" in
-    dev) ls "$shared"/corpus/dev/*.obj ;;
+    dev)  # LIMIT_DEV=n: n meshes evenly spaced through the sorted list (tuning subsets); default all 160
+      ls "$shared"/corpus/dev/*.obj | awk -v n="${LIMIT_DEV:-0}" '{a[NR]=$0} END {
+        if (n <= 0 || n >= NR) { for (i = 1; i <= NR; i++) print a[i]; exit }
+        for (i = 0; i < n; i++) print a[int(i * NR / n) + 1] }' ;;
     test)
       [ -f "$index" ] || { echo "eval_quality: no index at $index (silk-export dataset)" >&2; return 1; }
       python3 - "$index" "$data/0ad" "${LIMIT_TEST:-40}" <<'PY'

@@ -78,6 +78,8 @@ struct Args {
   int top_k = SILK_MODEL_VALUE;
   int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
   std::string decoder, kv_precision, preprocessing, orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
+  std::string face_guidance;                 // empty: the model's (model.json sampling.face_guidance)
+  double face_tolerance = SILK_MODEL_VALUE;  // the model's
   bool list_models = false, unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
   silkgen::BatchArgs batch;
@@ -125,6 +127,15 @@ void AddOptions(CLI::App& app, Args& a) {
                  "Which side of each part faces out: input (reverse every part whose winding disagrees with the "
                  "input's normals) or tokens (the winding the ids carry, as silktok decode gives it)")
       ->check(CLI::IsMember({"input", "tokens"}))->capture_default_str();
+  app.add_option("--face-guidance", a.face_guidance,
+                 "Face guidance: off, hard (between-layer ids whose faces stray from the input's surface are removed; "
+                 "the best-scoring kept when none passes) or soft (their logits lowered); default: the model's "
+                 "(model.json sampling.face_guidance), else libsilk's (docs/runtime.md)")
+      ->check(CLI::IsMember({"off", "hard", "soft"}));
+  app.add_option("--face-tolerance", a.face_tolerance,
+                 "Face guidance: how far (cells of 128) a face's corners, edge midpoints and centroid may lie from the "
+                 "input's points; default: the model's, else libsilk's")
+      ->check(CLI::Range(0.5, 64.0))->type_name("CELLS");
   app.add_option("--stats", a.stats_path, "Write run figures as JSON");
   app.add_option("--save-points", a.save_points,
                  "Write the points the encoder saw, with their normals (estimated ones for a cloud without), in the "
@@ -185,6 +196,11 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.surface_tolerance = a.surface_tolerance;
   p.candidates = a.candidates;
   p.orient = a.orient == "input" ? SILK_ORIENT_INPUT : SILK_ORIENT_TOKENS;
+  p.face_guidance = a.face_guidance == "off"    ? SILK_FACE_GUIDANCE_OFF
+                    : a.face_guidance == "hard" ? SILK_FACE_GUIDANCE_HARD
+                    : a.face_guidance == "soft" ? SILK_FACE_GUIDANCE_SOFT
+                                                : SILK_MODEL_VALUE;
+  p.face_tolerance = a.face_tolerance;
   p.debug_flags = (a.no_skip_forced ? SILK_DEBUG_NO_SKIP_FORCED : 0) | (a.kv_copy ? SILK_DEBUG_KV_COPY : 0) |
                   (a.sample_then_check ? SILK_DEBUG_SAMPLE_THEN_CHECK : 0);
   p.report_flags = a.trace_path.empty() ? 0 : SILK_GENERATE_RECORD_TRACE;
@@ -221,7 +237,7 @@ int Run(const Args& a, uint64_t seed) {
     std::fprintf(stderr,
                  "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
                  "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
-                 "  points  %s\n  surface tolerance %d  candidates %s  orient %s\n",
+                 "  points  %s\n  surface tolerance %d  candidates %s  orient %s  face guidance %s (tolerance %s)\n",
                  silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
                  input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
                  info.config, info.threads,
@@ -233,7 +249,8 @@ int Run(const Args& a, uint64_t seed) {
                  a.raw_points ? "raw (used as given, model frame)"
                               : a.preprocessing.empty() ? "the model's pre-processing" : a.preprocessing.c_str(),
                  a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model",
-                 a.orient.c_str());
+                 a.orient.c_str(), a.face_guidance.empty() ? "model" : a.face_guidance.c_str(),
+                 given(a.face_tolerance).c_str());
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };
@@ -267,6 +284,9 @@ int Run(const Args& a, uint64_t seed) {
     std::fprintf(stderr, "silkgen: candidate %d of %d written (Chamfer %.4f); guidance: %lld vertex ids, %lld fallbacks\n",
                  st.chosen_candidate + 1, st.candidates, st.score, static_cast<long long>(st.guided_tokens),
                  static_cast<long long>(st.guidance_fallbacks));
+  if (!a.quiet && st.face_guided_tokens > 0)
+    std::fprintf(stderr, "silkgen: face guidance: %lld between-layer ids, %lld fallbacks (no legal id's faces on the input)\n",
+                 static_cast<long long>(st.face_guided_tokens), static_cast<long long>(st.face_fallbacks));
   return kExitOk;
 }
 

@@ -34,6 +34,9 @@ silk::Status CheckParams(const silk_generate_params& p) {
   if (p.preprocessing != SILK_MODEL_VALUE)
     SILK_RETURN_IF_ERROR(CheckEnum("preprocessing", p.preprocessing, SILK_PREPROCESS_SILK, SILK_PREPROCESS_OFFICIAL,
                                    "silk_preprocess_kind (or SILK_MODEL_VALUE, -1)"));
+  if (p.face_guidance != SILK_MODEL_VALUE)
+    SILK_RETURN_IF_ERROR(CheckEnum("face_guidance", p.face_guidance, SILK_FACE_GUIDANCE_OFF, SILK_FACE_GUIDANCE_SOFT,
+                                   "silk_face_guidance (or SILK_MODEL_VALUE, -1)"));
   if (p.debug_flags & ~kAllDebugFlags)
     return silk::InvalidArgument("debug_flags " + std::to_string(p.debug_flags) + " has unknown bits");
   if (p.point_count < 0) return silk::InvalidArgument("point_count " + std::to_string(p.point_count) + " is negative");
@@ -70,6 +73,8 @@ silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p)
   r.record_trace = (p.report_flags & SILK_GENERATE_RECORD_TRACE) != 0;
   r.surface_tolerance = p.surface_tolerance;
   r.orient_to_input = p.orient == SILK_ORIENT_INPUT;
+  if (p.face_guidance != SILK_MODEL_VALUE) r.face_guidance = static_cast<silk::FaceGuidance>(p.face_guidance);
+  if (p.face_tolerance != SILK_MODEL_VALUE) r.face_tolerance = p.face_tolerance;
   return r;
 }
 
@@ -266,8 +271,11 @@ silk_generate_params silk_generate_default_params(void) {
   p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
   p.candidates = SILK_DEFAULT_CANDIDATES;
   p.orient = SILK_DEFAULT_ORIENT;
+  p.face_guidance = SILK_MODEL_VALUE;  // the model's (model.json "sampling"), else libsilk's
+  p.face_tolerance = SILK_MODEL_VALUE;
   return p;
 }
+SILK_CAPI_GENERATE_PARAMS_1_0
 
 silk_status silk_generator_create(const silk_model* model, silk_generator** out) {
   return Guard([&] {

@@ -30,8 +30,11 @@ silk_generate_params silk_generate_default_params(void) {
   p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
   p.candidates = SILK_DEFAULT_CANDIDATES;
   p.orient = SILK_DEFAULT_ORIENT;
+  p.face_guidance = SILK_MODEL_VALUE;  // the model's (model.json "sampling"), else libsilk's
+  p.face_tolerance = SILK_MODEL_VALUE;
   return p;
 }
+SILK_CAPI_GENERATE_PARAMS_1_0
 silk_status silk_model_load(const char*, const silk_model_params*, silk_model** out) {
   if (out) *out = nullptr;
   return NoRuntime();

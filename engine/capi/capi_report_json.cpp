@@ -42,7 +42,9 @@ Json SettingsJson(const silk_generator& g) {
               {"unconstrained", p.unconstrained != 0},
               {"surface_tolerance", p.surface_tolerance},
               {"candidates", plan.options.candidates},  // resolved: the model's N applied
-              {"orient", p.orient == SILK_ORIENT_INPUT ? "input" : "tokens"}};
+              {"orient", p.orient == SILK_ORIENT_INPUT ? "input" : "tokens"},
+              {"face_guidance", FaceGuidanceName(plan.options.face_guidance)},  // resolved: the model's applied
+              {"face_tolerance", plan.options.face_tolerance}};
 }
 
 Json StatsJson(const silk_generator& g) {
@@ -81,6 +83,8 @@ Json StatsJson(const silk_generator& g) {
                    {"consistently_oriented", st.consistently_oriented}, {"open_edges", st.open_edges}};
   j["guidance"] = {{"guided_tokens", st.guided_tokens}, {"fallbacks", st.guidance_fallbacks},
                    {"seconds", st.seconds.guidance}};
+  j["face_guidance"] = {{"guided_tokens", st.face_guided_tokens}, {"fallbacks", st.face_fallbacks},
+                        {"seconds", st.seconds.face_guidance}};
   j["parts_flipped"] = st.parts_flipped;
   Json cands = Json::array();
   for (size_t i = 0; i < st.candidates.size(); ++i) {
@@ -112,7 +116,13 @@ Json TraceJson(const silk_generator& g) {
   for (const TraceStep& s : g.result.trace) {
     Json legal = Json::array();
     for (const auto& [b, e] : s.legal) legal.push_back({b, e});
-    steps.push_back({{"id", s.id}, {"forced", s.forced}, {"legal", legal}});
+    Json step = {{"id", s.id}, {"forced", s.forced}, {"legal", legal}};
+    if (!s.penalties.empty()) {  // soft face guidance: floats as doubles, so they read back exactly
+      Json pen = Json::array();
+      for (const auto& [id, amount] : s.penalties) pen.push_back({id, static_cast<double>(amount)});
+      step["penalties"] = pen;
+    }
+    steps.push_back(step);
   }
   j["steps"] = steps;
   return j;
@@ -168,6 +178,9 @@ void FillStats(const GenerationStats& s, silk_generate_stats* out) {
   out->chosen_candidate = s.chosen_candidate;
   out->score = s.candidates.empty() ? 0 : s.candidates[static_cast<size_t>(s.chosen_candidate)].score;
   out->seconds_guidance = s.seconds.guidance;
+  out->face_guided_tokens = s.face_guided_tokens;
+  out->face_fallbacks = s.face_fallbacks;
+  out->seconds_face_guidance = s.seconds.face_guidance;
   out->seconds_scoring = s.seconds.scoring;
   out->parts_flipped = s.parts_flipped;
 }

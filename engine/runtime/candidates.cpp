@@ -69,7 +69,7 @@ Status CandidateChoice::Add(GenerateResult* r, uint64_t seed, const std::vector<
   for (const Sum& e : std::initializer_list<Sum>{{&total_.encoder, s.encoder}, {&total_.decoder, s.decoder},
                                                  {&total_.grammar, s.grammar}, {&total_.sampling, s.sampling},
                                                  {&total_.build_mesh, s.build_mesh}, {&total_.guidance, s.guidance},
-                                                 {&total_.scoring, s.scoring}})
+                                                 {&total_.face_guidance, s.face_guidance}, {&total_.scoring, s.scoring}})
     *e.first += e.second;
   generation_seconds_ += r->stats.generation_seconds;
   const int32_t index = size() - 1;

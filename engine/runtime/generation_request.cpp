@@ -29,6 +29,10 @@ Status CheckRequest(const GenerationRequest& r) {
   if (r.candidates && (*r.candidates < 1 || *r.candidates > kMaxCandidates))
     return InvalidArgument("candidates " + std::to_string(*r.candidates) +
                            " is neither SILK_MODEL_VALUE (-1: the model's) nor in 1.." + std::to_string(kMaxCandidates));
+  if (r.face_tolerance && !(*r.face_tolerance >= kMinFaceTolerance && *r.face_tolerance <= kMaxFaceTolerance))
+    return InvalidArgument("face_tolerance " + ValueText(*r.face_tolerance) +
+                           " is neither SILK_MODEL_VALUE (-1: the model's) nor in " + ValueText(kMinFaceTolerance) +
+                           ".." + ValueText(kMaxFaceTolerance) + " (cells)");
   if (r.n_points && *r.n_points < 1)
     return InvalidArgument("n_points " + std::to_string(*r.n_points) + (*r.n_points < 0 ? " is negative" : " is zero"));
   for (const auto& [field, value] : {std::pair<const char*, int32_t>{"max_tokens", r.max_tokens},
@@ -74,6 +78,8 @@ StatusOr<GenerationPlan> ResolveRequest(const GenerationRequest& r, const ModelC
   o.surface_tolerance = r.surface_tolerance;
   o.candidates = r.candidates.value_or(config.candidates);
   o.orient_to_input = r.orient_to_input;
+  o.face_guidance = r.face_guidance.value_or(config.face_guidance);
+  o.face_tolerance = r.face_tolerance.value_or(config.face_tolerance);
   SILK_RETURN_IF_ERROR(CheckGenerateOptions(o));
   plan.preprocessing = ResolvePreprocessing(r, config);
   plan.raw_points = r.raw_points;

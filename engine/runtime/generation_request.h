@@ -31,6 +31,9 @@ struct GenerationRequest {
   bool record_trace = false;
   int32_t surface_tolerance = 0;
   bool orient_to_input = false;
+  // Unset: the model's (model.json sampling.face_guidance / face_tolerance, else libsilk's).
+  std::optional<FaceGuidance> face_guidance;
+  std::optional<double> face_tolerance;  // cells, kMinFaceTolerance..kMaxFaceTolerance
 };
 
 // A request resolved: what the session runs.

@@ -18,6 +18,7 @@ struct PhaseSeconds {
   double sampling = 0;      // the sampling chain
   double build_mesh = 0;    // tokens -> faces (+ hole handling)
   double guidance = 0;      // surface guidance: distance field + K/O mask restriction
+  double face_guidance = 0; // face guidance: the faces of the legal B ids scored (hard: masked)
   double scoring = 0;       // candidates' Chamfer scores
   double total = 0;
 };
@@ -61,6 +62,9 @@ struct GenerationStats {
   // Surface guidance: vertex ids sampled under it, and vertex ids (sampled or forced) taken
   // outside the tolerance because no legal id was within it.
   int64_t guided_tokens = 0, guidance_fallbacks = 0;
+  // Face guidance: B ids sampled under it, and of those the steps where no legal B id's faces
+  // passed (hard: the best-scoring ones kept; soft: all penalised).
+  int64_t face_guided_tokens = 0, face_fallbacks = 0;
   // Best of N: every candidate in order (one entry for a single generation), the chosen one.
   std::vector<CandidateScore> candidates;
   int32_t chosen_candidate = 0;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/value_text.h"
 #include "decoder/face_cap.h"
 #include "decoder/grammar.h"
 #include "runtime/decoder_runner.h"
@@ -55,11 +56,13 @@ int64_t FirstNonFinite(const float* logits, int64_t n) {
 // The sampling chain of one generation: the grammar mask unless unconstrained, then the guide
 // (set only when constrained), the measurement order, the sampling values.
 SamplerChainSettings ChainSettings(const GenerateOptions& o, Grammar* grammar, const SurfaceGuide* guide,
-                                   GenerationStats* stats) {
+                                   const FaceGuide* face_guide, GenerationStats* stats) {
   SamplerChainSettings c;
   c.sampling = o.sampling;
   c.grammar = o.unconstrained ? nullptr : grammar;
   c.guide = guide;
+  c.face_guide = face_guide;
+  c.face_mode = o.face_guidance;
   c.sample_then_check = o.order == SampleOrder::kSampleThenCheck;
   c.stats = stats;
   return c;
@@ -79,6 +82,13 @@ Status CheckGenerateOptions(const GenerateOptions& options) {
   if (options.surface_tolerance < 0 || options.surface_tolerance > kMaxSurfaceTolerance)
     return InvalidArgument("generate: surface_tolerance " + std::to_string(options.surface_tolerance) +
                            " is outside 0.." + std::to_string(kMaxSurfaceTolerance) + " (cells; 0 = off)");
+  if (!(options.face_tolerance >= kMinFaceTolerance && options.face_tolerance <= kMaxFaceTolerance))
+    return InvalidArgument("generate: face_tolerance " + ValueText(options.face_tolerance) + " is outside " +
+                           ValueText(kMinFaceTolerance) + ".." + ValueText(kMaxFaceTolerance) + " (cells)");
+  if (options.face_guidance != FaceGuidance::kOff && options.face_guidance != FaceGuidance::kHard &&
+      options.face_guidance != FaceGuidance::kSoft)
+    return InvalidArgument("generate: face_guidance " + std::to_string(static_cast<int32_t>(options.face_guidance)) +
+                           " is not off (0), hard (1) or soft (2)");
   if (options.candidates < 1 || options.candidates > kMaxCandidates)
     return InvalidArgument("generate: candidates " + std::to_string(options.candidates) + " is outside 1.." +
                            std::to_string(kMaxCandidates));
@@ -113,6 +123,7 @@ struct Generator::Session {
   int32_t faces_at_close = -1;
   int64_t layers_closed = 0;
   std::shared_ptr<const SurfaceGuide> guide;  // surface_tolerance > 0, constrained mode
+  std::shared_ptr<const FaceGuide> face_guide;  // face_guidance on, constrained mode
   std::shared_ptr<const OrientedPointSet> orientation;  // orient_to_input
   mutable MeshBuildCache so_far_cache;  // max_faces / MeshSoFar: closed components are built once
   bool illegal_seen = false;
@@ -144,6 +155,7 @@ void Generator::CacheInput(const std::vector<float>& points) {
   if (points == input_points_) return;
   input_points_ = points;
   guide_.reset();
+  face_guide_.reset();
   orientation_.reset();
 }
 
@@ -191,11 +203,21 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
     s.guide = guide_;
     st.seconds.guidance += Since(t0);
   }
+  if (options.face_guidance != FaceGuidance::kOff && !options.unconstrained) {
+    t0 = Clock::now();
+    if (!face_guide_ || face_guide_->tolerance() != options.face_tolerance) {
+      // The distance field is surface guidance's; its tolerance does not matter here.
+      auto field = guide_ ? guide_ : std::make_shared<const SurfaceGuide>(points, 1);
+      face_guide_ = std::make_shared<const FaceGuide>(field, points, options.face_tolerance);
+    }
+    s.face_guide = face_guide_;
+    st.seconds.face_guidance += Since(t0);
+  }
   if (options.orient_to_input) {
     if (!orientation_) orientation_ = MakeInputOrientation(points);
     s.orientation = orientation_;
   }
-  s.chain = BuildSamplerChain(ChainSettings(options, &s.grammar, s.guide.get(), &st));
+  s.chain = BuildSamplerChain(ChainSettings(options, &s.grammar, s.guide.get(), s.face_guide.get(), &st));
   s.pending = {cfg.bos_id};
   s.t_start = t_start;
   s.t_loop = Clock::now();
@@ -217,6 +239,7 @@ struct Generator::StepChoice {
   int32_t id = -1;
   bool forced = false;
   const TokenMask* mask = nullptr;
+  const std::vector<std::pair<int32_t, float>>* penalties = nullptr;  // soft face guidance
 };
 
 Status Generator::StepOnce() {
@@ -244,6 +267,7 @@ bool Generator::ConsultGrammar(StepChoice* c) {
   const SamplerCandidates& narrowed = s.chain->Narrow();
   c->id = narrowed.forced;
   c->mask = narrowed.mask;
+  c->penalties = narrowed.penalties;
   if (c->mask->Empty()) {
     // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
     // rather than fail the whole run, and say so in the stats.
@@ -291,6 +315,7 @@ void Generator::RecordTrace(const StepChoice& c) {
   step.id = c.id;
   step.forced = c.forced;
   if (!c.forced && c.mask) step.legal = MaskRanges(*c.mask);
+  if (!c.forced && c.penalties) step.penalties = *c.penalties;
   s.res.trace.push_back(std::move(step));
 }
 

@@ -19,6 +19,7 @@
 #include "runtime/generation_stats.h"
 #include "runtime/kv_cache.h"
 #include "runtime/model/model.h"
+#include "runtime/sampling/face_guide.h"
 #include "runtime/sampling/sampler.h"
 
 namespace Ort {
@@ -28,6 +29,7 @@ struct RunOptions;
 namespace silk {
 
 class SurfaceGuide;
+class FaceGuide;
 class OrientedPointSet;
 
 enum class SampleOrder {
@@ -56,6 +58,11 @@ struct GenerateOptions {
   // disagrees with the encoder's points' normals (area-weighted vote) is reversed, in the final
   // mesh and in MeshSoFar. Off = the winding the ids carry (what decoding the token file gives).
   bool orient_to_input = false;
+  // Face guidance (runtime/sampling/face_guide_stage.h): between-layer ids judged by the faces
+  // they would close, against the input's points (face_tolerance cells, FaceGuide's score);
+  // hard removes the ones that stray, soft lowers their logits. Constrained mode only.
+  FaceGuidance face_guidance = FaceGuidance::kOff;
+  double face_tolerance = 2.0;
 };
 
 constexpr int32_t kMaxSurfaceTolerance = 127;
@@ -82,6 +89,7 @@ struct TraceStep {
   int32_t id = 0;
   bool forced = false;
   std::vector<std::pair<int32_t, int32_t>> legal;
+  std::vector<std::pair<int32_t, float>> penalties;  // soft face guidance: (id, logit penalty)
 };
 
 struct GenerateResult {
@@ -145,6 +153,7 @@ class Generator {
   void CacheInput(const std::vector<float>& points);
   std::vector<float> input_points_;
   std::shared_ptr<const SurfaceGuide> guide_;
+  std::shared_ptr<const FaceGuide> face_guide_;
   std::shared_ptr<const OrientedPointSet> orientation_;
   std::unique_ptr<Session> session_;
   std::unique_ptr<Ort::RunOptions> encoder_run_;  // the encoder's run options (terminate flag)

@@ -27,7 +27,8 @@ pytestmark = pytest.mark.skipif(not silk_mesh.generation_available(), reason="li
 def test_python_generation_matches_the_silkgen_golden():
     want = np.array([int(x) for x in GOLDEN.read_text().split()], np.int32)
     with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
-        mesh, ids, stats = gen.run(src, seed=7, max_tokens=300, surface_tolerance=0, candidates=1)
+        mesh, ids, stats = gen.run(src, seed=7, max_tokens=300, surface_tolerance=0, candidates=1,
+                                   face_guidance="off")
         with mesh:
             assert np.array_equal(ids, want)
             assert stats["faces"] == mesh.triangle_count > 0
@@ -38,9 +39,9 @@ def test_python_generation_matches_the_silkgen_golden():
 
 def test_step_wise_grows_by_layers_and_ends_with_the_same_ids():
     with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
-        # A plain run (no surface guidance): this seed's stream closes several layers.
-        _, whole, _ = gen.run(src, seed=3, max_tokens=200, surface_tolerance=0)
-        gen.start(src, seed=3, max_tokens=200, surface_tolerance=0)
+        # A plain run (no surface or face guidance): this seed's stream closes several layers.
+        _, whole, _ = gen.run(src, seed=3, max_tokens=200, surface_tolerance=0, face_guidance="off")
+        gen.start(src, seed=3, max_tokens=200, surface_tolerance=0, face_guidance="off")
         faces, done = [], False
         while not done:
             done = gen.advance(10_000, until_layer=True)

@@ -356,7 +356,10 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
                           {"surface_tolerance 128", [](silk_generate_params* p) { p->surface_tolerance = 128; }},
                           {"candidates 0", [](silk_generate_params* p) { p->candidates = 0; }},
                           {"candidates 65", [](silk_generate_params* p) { p->candidates = 65; }},
-                          {"orient", [](silk_generate_params* p) { p->orient = 2; }}};
+                          {"orient", [](silk_generate_params* p) { p->orient = 2; }},
+                          {"face_guidance", [](silk_generate_params* p) { p->face_guidance = 3; }},
+                          {"face_tolerance 0.25", [](silk_generate_params* p) { p->face_tolerance = 0.25; }},
+                          {"face_tolerance -2", [](silk_generate_params* p) { p->face_tolerance = -2; }}};
     for (const Case& c : cases) {
       silk_generate_params p = silk_generate_default_params();
       c.set(&p);

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 """Independent check of the C++ generation loop (engine/runtime) against onnxruntime's Python
 API: given a trace written by `silkgen --trace` (the encoder points, every generated id, whether
-the grammar forced it, and the legal set it was sampled from), this script
+the grammar forced it, the legal set it was sampled from and, under soft face guidance, the
+logit penalties the chain subtracted), this script
 
   1. runs encoder.onnx on the same points,
   2. replays the generation with its own KV cache (compact per-layer arrays that onnxruntime
@@ -134,7 +135,7 @@ def main() -> int:
     rng = SplitMix64(int(s["seed"]))
     pending = [bos]
     fed = []  # all ids fed so far, BOS first
-    checked = []  # (position index in fed+pending sequence, logits row)
+    checked = []  # (position index in fed+pending sequence, logits row as the model gave it)
     ids = []
     for k, step in enumerate(trace["steps"]):
         if step["forced"]:
@@ -144,12 +145,16 @@ def main() -> int:
         logits, past = run(pending, len(fed), past)
         fed += pending
         row = logits[0, -1]
+        checked.append((len(fed) - 1, row))
+        if step.get("penalties"):  # soft face guidance: the logits the chain sampled from
+            row = row.copy()
+            for i, amount in step["penalties"]:
+                row[i] = np.float32(row[i]) - np.float32(amount)
         candidates = [i for b, e in step["legal"] for i in range(b, e)]
         got = sample(row, candidates, float(s["temperature"]), int(s["top_k"]), float(s["top_p"]), rng)
         if got != step["id"]:
             print(f"reference_loop: MISMATCH at id {k}: C++ sampled {step['id']}, reference {got}")
             return 1
-        checked.append((len(fed) - 1, row))
         ids.append(got)
         pending = [got]
     if ids != trace["tokens"]:

@@ -244,3 +244,24 @@ def test_save_parameters(tmp_path, lib_path):
     assert text.startswith("# made by silk_mesh") and "f 1 2 3" in text
     with pytest.raises(ValueError, match="triangles: 2 values"):
         silk_mesh.Mesh([0, 0, 0], [0, 1])
+
+
+def test_face_guidance_keywords(generation):
+    """face_guidance / face_tolerance reach libsilk (C API 1.3): off changes nothing, hard and soft
+    judge ids (stats), a name outside the enum and a tolerance out of range are refused by name."""
+    with silk_mesh.Generator(str(TINY)) as gen:
+        plain = gen.run(KNOT, seed=3, max_tokens=300, surface_tolerance=0, candidates=1, face_guidance="off")
+        assert plain.stats["face_guided_tokens"] == 0
+        for mode in ("hard", "soft"):
+            r = gen.run(KNOT, seed=3, max_tokens=300, surface_tolerance=2, candidates=1, face_guidance=mode,
+                        face_tolerance=3.0)
+            r.mesh.close()
+            assert r.stats["face_guided_tokens"] > 0 and r.stats["face_fallbacks"] <= r.stats["face_guided_tokens"]
+        again = gen.run(KNOT, seed=3, max_tokens=300, surface_tolerance=0, candidates=1, face_guidance="off")
+        assert list(again.ids) == list(plain.ids)
+        plain.mesh.close()
+        again.mesh.close()
+        with pytest.raises(ValueError, match="face_guidance"):
+            gen.run(KNOT, seed=3, face_guidance="strong")
+        with pytest.raises(silk_mesh.SilkError, match="face_tolerance"):
+            gen.run(KNOT, seed=3, face_tolerance=0.1)

@@ -3,8 +3,11 @@
 """A caller built against libsilk 1.0 keeps working (docs/c_api.md "Struct growth"): the 1.0 symbol
 silk_model_default_params@SILK_1.0 still returns the 1.0 layout of silk_model_params (12 bytes,
 no kv_precision), silk_model_load and silk_model_get_info accept the 1.0 sizes and write nothing
-past them, and the current symbol returns today's size; the functions 1.3 added are bound to the
-SILK_1.3 node alone. Linux (ELF symbol versions) only.
+past them, and the current symbol returns today's size. The same for silk_generate_default_params
+(@SILK_1.0: the struct before 1.3's face guidance fields; @SILK_1.3: today's): its 1.0 bytes equal
+the first bytes of today's defaults, and silk_generator_run accepts the 1.0 params and stats sizes
+without writing past them. The functions 1.3 added are bound to the SILK_1.3 node alone. Linux
+(ELF symbol versions) only.
 
     capi_abi_check.py LIBSILK MODEL_DIR
 """
@@ -29,18 +32,25 @@ class Info10(ctypes.Structure):
     _fields_ = [("struct_size", ctypes.c_uint32), ("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in INFO_INTS]
 
 
+def both_versions(lib, libc, name, old_type, version, new_type):
+    """The default params `name` returns through its SILK_1.0 symbol and through `version`'s."""
+    old = libc.dlvsym(lib._handle, name.encode(), b"SILK_1.0")
+    new = libc.dlvsym(lib._handle, name.encode(), version.encode())
+    if not old or not new:
+        raise LookupError(f"{name}: SILK_1.0 {bool(old)}, {version} {bool(new)} (both must exist)")
+    return ctypes.CFUNCTYPE(old_type)(old)(), ctypes.CFUNCTYPE(new_type)(new)()
+
+
 def main(lib_path, model_dir):
     lib = ctypes.CDLL(lib_path)
     libc = ctypes.CDLL(None)
     libc.dlvsym.restype = ctypes.c_void_p
     libc.dlvsym.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p]
     failures = []
-    old = libc.dlvsym(lib._handle, b"silk_model_default_params", b"SILK_1.0")
-    new = libc.dlvsym(lib._handle, b"silk_model_default_params", b"SILK_1.1")
-    if not old or not new:
-        return [f"silk_model_default_params: SILK_1.0 {bool(old)}, SILK_1.1 {bool(new)} (both must exist)"]
-    p10 = ctypes.CFUNCTYPE(Params10)(old)()
-    p11 = ctypes.CFUNCTYPE(Params11)(new)()
+    try:
+        p10, p11 = both_versions(lib, libc, "silk_model_default_params", Params10, "SILK_1.1", Params11)
+    except LookupError as e:
+        return [str(e)]
     if (p10.struct_size, p10.decoder) != (ctypes.sizeof(Params10), 0):
         failures.append(f"1.0 default params: struct_size {p10.struct_size}, decoder {p10.decoder}")
     if (p11.struct_size, p11.kv_precision) != (ctypes.sizeof(Params11), 0):
@@ -61,11 +71,66 @@ def main(lib_path, model_dir):
     if lib.silk_model_load(model_dir.encode(), ctypes.byref(bad), ctypes.byref(ctypes.c_void_p())) == 0 or \
             b"or 12 as libsilk 1.0" not in lib.silk_last_error():
         failures.append(f"struct_size 13 accepted or badly named: {lib.silk_last_error()}")
+    failures += check_generate(lib, libc, model)
     lib.silk_model_destroy.argtypes = [ctypes.c_void_p]
     lib.silk_model_destroy(model)
     for fn in SILK_1_3:  # added in 1.3: bound to that node alone, so an older libsilk is refused by name
         if not libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.3") or libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.0"):
             failures.append(f"{fn}: must be exported as {fn}@@SILK_1.3 only (engine/libsilk.map)")
+    return failures
+
+
+GEN_PARAMS_10 = 120  # offsetof(silk_generate_params, face_guidance) on x86-64 / aarch64 Linux
+GEN_STATS_10 = 232   # offsetof(silk_generate_stats, face_guided_tokens)
+
+
+def check_generate(lib, libc, model):
+    """silk_generate_default_params@SILK_1.0 / @SILK_1.3, and a 1.0-sized run."""
+    class Old(ctypes.Structure):
+        _fields_ = [("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8))]
+
+    class New(ctypes.Structure):
+        _fields_ = [("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8)), ("face_guidance", ctypes.c_int32),
+                    ("face_tolerance", ctypes.c_double)]
+
+    try:
+        p10, p13 = both_versions(lib, libc, "silk_generate_default_params", Old, "SILK_1.3", New)
+    except LookupError as e:
+        return [str(e)]
+    failures = []
+    size10, size13 = p10.bytes[0] & 0xFFFFFFFF, p13.bytes[0] & 0xFFFFFFFF
+    if size10 != GEN_PARAMS_10 or size13 != ctypes.sizeof(New):
+        failures.append(f"generate params sizes: 1.0 {size10} (want {GEN_PARAMS_10}), 1.3 {size13} "
+                        f"(want {ctypes.sizeof(New)})")
+    if list(p10.bytes)[1:] != list(p13.bytes)[1:] or (p13.face_guidance, p13.face_tolerance) != (-1, -1.0):
+        failures.append("the 1.0 default params differ from today's first bytes, or today's face guidance "
+                        f"defaults are not SILK_MODEL_VALUE ({p13.face_guidance}, {p13.face_tolerance})")
+    gen = ctypes.c_void_p()
+    lib.silk_generator_create.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]
+    if lib.silk_generator_create(model, ctypes.byref(gen)) != 0:
+        return failures + [f"silk_generator_create: {lib.silk_last_error().decode()}"]
+    pts = (ctypes.c_double * (6 * 64))(*[v for i in range(64) for v in (i / 64, (i % 8) / 8, 0.1, 0, 0, 1)])
+
+    class Input(ctypes.Structure):
+        _fields_ = [("struct_size", ctypes.c_uint32), ("mesh", ctypes.c_void_p), ("points", ctypes.c_void_p),
+                    ("point_rows", ctypes.c_size_t)]
+    inp = Input(ctypes.sizeof(Input), None, ctypes.cast(pts, ctypes.c_void_p), 64)
+    max_tokens_offset = 40  # offsetof(silk_generate_params, max_tokens)
+    ctypes.c_int32.from_buffer(p10, max_tokens_offset).value = 60
+    stats = (ctypes.c_ubyte * (GEN_STATS_10 + 32))(*([0xAB] * (GEN_STATS_10 + 32)))
+    ctypes.c_uint32.from_buffer(stats).value = GEN_STATS_10
+    mesh = ctypes.c_void_p()
+    lib.silk_generator_run.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p),
+                                       ctypes.c_void_p, ctypes.c_void_p]
+    rc = lib.silk_generator_run(gen, ctypes.byref(inp), ctypes.byref(p10), ctypes.byref(mesh), None, stats)
+    if rc != 0:
+        failures.append(f"silk_generator_run with the 1.0 params and stats: {lib.silk_last_error().decode()}")
+    elif any(b != 0xAB for b in stats[GEN_STATS_10:]):
+        failures.append("silk_generator_run wrote past the 1.0 size of silk_generate_stats")
+    lib.silk_mesh_destroy.argtypes = [ctypes.c_void_p]
+    lib.silk_mesh_destroy(mesh)
+    lib.silk_generator_destroy.argtypes = [ctypes.c_void_p]
+    lib.silk_generator_destroy(gen)
     return failures
 
 

@@ -29,9 +29,10 @@ CASES = [  # name, input (repo-relative), seed
     ("torus_knot_s7", "samples/torus_knot.obj", 7),
     ("points_s3", "tests/models/golden/torus_knot_points.ply", 3),
 ]
-# Goldens are plain runs: surface guidance off, one candidate, the ids' winding (the defaults differ).
+# Goldens are plain runs: surface and face guidance off, one candidate, the ids' winding (the
+# defaults differ).
 COMMON = ["--max-tokens", "300", "--threads", "1", "-q", "--surface-tolerance", "0", "--candidates", "1",
-          "--orient", "tokens"]
+          "--orient", "tokens", "--face-guidance", "off"]
 
 
 def run(cmd, check=True):
@@ -103,7 +104,11 @@ def check_reference(silkgen, repo):
                                                                            "--top-p", "0.9"]),
                     ("c", "samples/torus_knot.obj", 5, ["--temperature", "0"]),
                     # guided + best of 3: the trace holds the guided legal sets and the chosen seed
-                    ("d", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--candidates", "3"])]
+                    ("d", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--candidates", "3"]),
+                    # face guidance: hard (the trace holds the narrowed sets), soft (and its logit penalties)
+                    ("e", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--face-guidance", "hard"]),
+                    ("f", "samples/torus_knot.obj", 11, ["--surface-tolerance", "2", "--face-guidance", "soft",
+                                                         "--face-tolerance", "1.5"])]
         for name, rel, seed, extra in variants:
             _, tok, _, trace = generate(silkgen, repo, tmp, name, rel, seed, extra)
             rc, msg = reference(repo, trace, tok)
@@ -113,6 +118,8 @@ def check_reference(silkgen, repo):
             print(f"{name}: {msg}")
             if rc != 0:
                 failures.append(f"{name} ({' '.join(extra)}): {msg}")
+            if "soft" in extra and not any(st.get("penalties") for st in json.loads(trace.read_text())["steps"]):
+                failures.append(f"{name}: soft face guidance left no logit penalty in the trace (nothing checked)")
     return failures
 
 
@@ -163,6 +170,8 @@ def check_bad(silkgen, repo):
             ([sample, "-o", tmp / "o.obj", "--model", model, "--int8"], 1, ["INT8"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--surface-tolerance", "-1"], 2, ["surface-tolerance"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--surface-tolerance", "128"], 2, ["surface-tolerance"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--face-guidance", "strong"], 2, ["face-guidance"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--face-tolerance", "0.2"], 2, ["face-tolerance"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "0"], 2, ["candidates"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "65"], 2, ["candidates"]),
             ([sample, "-o", tmp / "nodir" / "o.obj", "--model", model, "--max-tokens", "40"], 1, ["nodir"]),

@@ -27,7 +27,7 @@ Usage: wheel_fresh_venv.py REPO SHARED [--wheel W] [--build-silkgen PATH] [--kee
 import argparse, json, os, pathlib, shutil, subprocess, sys, sysconfig, tempfile, time
 
 GOLDEN_ARGS = ["--max-tokens", "300", "--threads", "1", "-q", "--surface-tolerance", "0", "--candidates", "1",
-               "--orient", "tokens"]  # tests/tools/silkgen_checks.py COMMON
+               "--orient", "tokens", "--face-guidance", "off"]  # tests/tools/silkgen_checks.py COMMON
 SPEC_GOLDENS = ["cube", "icosphere2", "cylinder_capped"]
 FAILURES = []
 

@@ -49,6 +49,17 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                                    description="New vertices only within this many grid cells (of 128) of the "
                                                "input surface (0 = off, -1 = libsilk's measured default)",
                                    default=-1, min=-1, max=127)
+    face_guidance: EnumProperty(name="Face guidance",
+                                items=[("MODEL", "Model default", "The model's (model.json sampling), else libsilk's "
+                                        "measured default"),
+                                       ("HARD", "Hard", "Connections whose faces stray from the source's surface "
+                                        "are never made (the closest ones when none fits)"),
+                                       ("SOFT", "Soft", "Such connections are made less likely"),
+                                       ("OFF", "Off", "Connections as the model draws them")],
+                                default="MODEL")
+    face_tolerance: FloatProperty(name="Face tolerance", description="How far (grid cells of 128) a face may stray "
+                                  "from the source's surface (-1 = the model's default)",
+                                  default=-1.0, min=-1.0, max=64.0)
     candidates: IntProperty(name="Candidates", description="Best of N: generate N meshes one after another and "
                             "keep the one closest to the input (-1 = the model's N, model.json sampling)",
                             default=-1, min=-1, max=64)
@@ -79,7 +90,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                         top_k=None if self.top_k < 0 else self.top_k, max_faces=self.max_faces,
                         max_tokens=self.max_tokens, holes=self.repair, orient=self.orient,
                         candidates=None if self.candidates <= 0 else self.candidates,
-                        surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance)
+                        surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance,
+                        face_guidance=None if self.face_guidance == "MODEL" else self.face_guidance,
+                        face_tolerance=None if self.face_tolerance < 0 else self.face_tolerance)
         job = silk_mesh.Generator(_model_dir(self.model_dir))
         cap = job.model.info()["max_seq_len"] - 1  # max_seq_len counts BOS: the ids libsilk allows after it
         self._run = run_progress.RunProgress(getattr(context.window_manager, "silk_run", None),

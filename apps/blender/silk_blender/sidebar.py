@@ -66,6 +66,16 @@ class SilkSettings(bpy.types.PropertyGroup):
     orient: EnumProperty(name="Orientation", default="INPUT",
                          items=[("INPUT", "Face the input", "Reverse parts whose winding disagrees with the source"),
                                 ("TOKENS", "As generated", "The winding the generated ids carry")])
+    face_guidance: EnumProperty(name="Face guidance", default="MODEL",
+                                items=[("MODEL", "Model default", "The model's (model.json sampling), else libsilk's "
+                                        "measured default"),
+                                       ("HARD", "Hard", "Connections whose faces stray from the source's surface "
+                                        "are never made (the closest ones when none fits)"),
+                                       ("SOFT", "Soft", "Such connections are made less likely"),
+                                       ("OFF", "Off", "Connections as the model draws them")])
+    face_tolerance: FloatProperty(name="Face tolerance", default=-1.0, min=-1.0, max=64.0,
+                                  description="How far (grid cells of 128) a face may stray from the source's surface "
+                                  "(-1 = the model's default)")
 
 
 class SilkRunState(bpy.types.PropertyGroup):
@@ -106,7 +116,8 @@ class SILK_OT_sidebar_generate(bpy.types.Operator):
         context.window_manager.silk_run.cancel_requested = False
         return bpy.ops.silk.generate_mesh("INVOKE_DEFAULT", model_dir=s.model, seed=s.seed,
                                           temperature=s.temperature, candidates=s.candidates or -1,
-                                          max_faces=s.max_faces, orient=s.orient)
+                                          max_faces=s.max_faces, orient=s.orient, face_guidance=s.face_guidance,
+                                          face_tolerance=s.face_tolerance)
 
 
 class SILK_OT_sidebar_cancel(bpy.types.Operator):
@@ -136,7 +147,7 @@ class SILK_PT_sidebar(bpy.types.Panel):
         row.prop(s, "model", text="")
         row.operator(SILK_OT_refresh_models.bl_idname, text="", icon="FILE_REFRESH")
         col = layout.column(align=True)
-        for name in ("candidates", "seed", "temperature", "max_faces", "orient"):
+        for name in ("candidates", "seed", "temperature", "max_faces", "orient", "face_guidance", "face_tolerance"):
             col.prop(s, name)
         row = layout.row(align=True)
         row.operator(SILK_OT_sidebar_generate.bl_idname, icon="PLAY")

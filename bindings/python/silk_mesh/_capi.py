@@ -157,7 +157,12 @@ class GenerateParams(_Sized):
                         ("surface_tolerance", ctypes.c_int32), ("candidates", ctypes.c_int32),
                         ("orient", ctypes.c_int32),
                         # measurement only (docs/runtime.md): may change in a minor version
-                        ("unconstrained", ctypes.c_int32), ("debug_flags", ctypes.c_int32)]
+                        ("unconstrained", ctypes.c_int32), ("debug_flags", ctypes.c_int32),
+                        # C API 1.3: face guidance (silk_face_guidance or -1: the model's; cells or -1)
+                        ("face_guidance", ctypes.c_int32), ("face_tolerance", ctypes.c_double)]
+
+
+FACE_GUIDANCE = {"off": 0, "hard": 1, "soft": 2}  # silk_face_guidance
 
 
 class GenerateStats(_Sized):
@@ -173,7 +178,9 @@ class GenerateStats(_Sized):
         # timings
         (n, ctypes.c_double) for n in ("tokens_per_second", "seconds_prepare", "seconds_encoder", "seconds_decoder",
                                        "seconds_grammar", "seconds_sampling", "seconds_build_mesh",
-                                       "seconds_guidance", "seconds_scoring", "seconds_total")]
+                                       "seconds_guidance", "seconds_scoring", "seconds_total")] + [
+        # C API 1.3: face guidance
+        (n, ctypes.c_int64) for n in ("face_guided_tokens", "face_fallbacks")] + [("seconds_face_guidance", ctypes.c_double)]
 
     def as_dict(self) -> dict:
         d = super().as_dict()

@@ -14,7 +14,8 @@ from ._library import SilkError, _Owned, preload_onnxruntime
 from .mesh import Mesh, _Borrowed
 from .models import find_model
 
-_ENUMS = {"holes": _capi.HOLES, "orient": _capi.ORIENT, "preprocessing": _capi.PREPROCESS_KINDS}
+_ENUMS = {"holes": _capi.HOLES, "orient": _capi.ORIENT, "preprocessing": _capi.PREPROCESS_KINDS,
+          "face_guidance": _capi.FACE_GUIDANCE}
 _HIDDEN = ("progress", "cancel", "user_data")  # set from Python callables, not keywords
 
 
@@ -76,7 +77,8 @@ class Generator(_Owned):
     input: a Mesh, a mesh file path or (positions, triangles); or points= rows x y z nx ny nz.
     params: fields of silk_generate_params by name: seed, temperature, top_k, top_p, max_tokens,
     max_faces, holes ("off", "report", "repair"), point_count,
-    surface_tolerance, candidates, orient ("input", "tokens"), report_flags (1: record the trace for
+    surface_tolerance, candidates, orient ("input", "tokens"), face_guidance ("off", "hard", "soft"),
+    face_tolerance (cells), report_flags (1: record the trace for
     report_json(trace=True)), ...; None keeps libsilk's default (sampling: the model's values).
     progress(dict) is called after every id (tokens, max_tokens, components, faces, seconds);
     cancel() -> truthy stops the run (SilkError with status SILK_ERR_CANCELLED). An exception in

@@ -507,6 +507,12 @@ typedef enum silk_orientation {
   SILK_ORIENT_INPUT = 1   /* each part turned to face the side the input's normals call outside */
 } silk_orientation;
 #define SILK_DEFAULT_ORIENT SILK_ORIENT_INPUT
+/* Face guidance (silk_generate_params.face_guidance; C API 1.3). */
+typedef enum silk_face_guidance {
+  SILK_FACE_GUIDANCE_OFF = 0,  /* connectivity ids as the model draws them */
+  SILK_FACE_GUIDANCE_HARD = 1, /* between-layer ids whose faces stray from the input are removed */
+  SILK_FACE_GUIDANCE_SOFT = 2  /* their logits are lowered by how far they stray */
+} silk_face_guidance;
 
 /* temperature, top_k, top_p, top_p_temperature and preprocessing default to SILK_MODEL_VALUE (-1):
  * the model's (model.json "sampling" / "preprocessing"; v2 models: 0.5, 50, 1.0, 0, Silk's kind).
@@ -559,6 +565,14 @@ typedef struct silk_generate_params {
   /* ---- measurement only (docs/runtime.md): may change in a minor version ---- */
   int32_t unconstrained; /* 1: no grammar mask (mesh = legal prefix); default 0 */
   int32_t debug_flags;   /* SILK_DEBUG_* bits; default 0 */
+  /* ---- appended in C API 1.3 (a 1.0-1.2 caller's shorter struct gets the defaults) ---- */
+  /* Face guidance: each legal between-layer id is judged by the faces it would close (their
+   * corners, edge midpoints and centroid within face_tolerance cells of the input's points, their
+   * normals within 60 degrees of the nearby input normals, up to sign); silk_face_guidance.
+   * Default SILK_MODEL_VALUE (-1): the model's (model.json "sampling.face_guidance"), else
+   * libsilk's measured default (docs/runtime.md "Face guidance"). Ignored when unconstrained. */
+  int32_t face_guidance;
+  double face_tolerance; /* cells, 0.5..64; default SILK_MODEL_VALUE (-1): the model's, else libsilk's */
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
 
@@ -599,6 +613,11 @@ typedef struct silk_generate_stats {
   double tokens_per_second;
   double seconds_prepare, seconds_encoder, seconds_decoder, seconds_grammar, seconds_sampling,
       seconds_build_mesh, seconds_guidance, seconds_scoring, seconds_total;
+  /* ---- appended in C API 1.3 ---- */
+  /* face guidance: between-layer ids sampled under it; of those, the steps where no legal one's
+   * faces passed (hard: the best-scoring kept; soft: all penalised); its seconds */
+  int64_t face_guided_tokens, face_fallbacks;
+  double seconds_face_guidance;
 } silk_generate_stats;
 
 /* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh), borrowed for

@@ -218,6 +218,25 @@ Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp,
   return Status::Ok();
 }
 
+// sampling.face_guidance ("off", "hard", "soft") and sampling.face_tolerance (cells): the model's
+// own face guidance (runtime/sampling/face_guide.h); absent: libsilk's measured defaults.
+Status ParseFaceGuidance(const Json& j, const std::string& name, ModelConfig* c) {
+  c->face_guidance = kDefaultFaceGuidance;
+  c->face_tolerance = kDefaultFaceTolerance;
+  const Json* o = nullptr;
+  SILK_RETURN_IF_ERROR(GetObject(j, "sampling", name, &o));
+  if (!o) return Status::Ok();
+  const std::string where = name + " sampling";
+  std::string mode;
+  SILK_RETURN_IF_ERROR(GetString(*o, "face_guidance", where, FaceGuidanceName(c->face_guidance), &mode));
+  if (!ParseFaceGuidanceName(mode, &c->face_guidance))
+    return Status(StatusCode::kParseError, name + ": sampling.face_guidance \"" + mode + "\" is not off, hard or soft");
+  SILK_RETURN_IF_ERROR(GetDouble(*o, "face_tolerance", where, &c->face_tolerance));
+  if (!(c->face_tolerance >= kMinFaceTolerance && c->face_tolerance <= kMaxFaceTolerance))
+    return Status(StatusCode::kParseError, name + ": sampling.face_tolerance must be in [0.5, 64] (cells)");
+  return Status::Ok();
+}
+
 // files.kv_fp16 / files.kv_int8 {"decoder": ..., "decoder_int8": ..., "decoder_int4": ...}: each
 // the variant of the decoder of the same key, which must be given.
 Status ParseKvVariant(const Json& f, const std::string& name, KvPrecision kv, ModelConfig* c) {
@@ -361,6 +380,7 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
     return Bad(name, "dims.d_model must be n_heads * head_dim for arch \"silk\" (docs/model_contract.md)");
   SILK_RETURN_IF_ERROR(ParsePreprocessing(j, name, &c));
   SILK_RETURN_IF_ERROR(ParseSampling(j, name, &c.sampling, &c.candidates));
+  SILK_RETURN_IF_ERROR(ParseFaceGuidance(j, name, &c));
   SILK_RETURN_IF_ERROR(ParseFiles(j, name, &c));
   SILK_RETURN_IF_ERROR(ParseSource(j, name, &c));
   return c;

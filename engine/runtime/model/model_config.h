@@ -9,6 +9,7 @@
 
 #include "core/status.h"
 #include "mesh/point_preprocessing.h"
+#include "runtime/sampling/face_guide.h"
 #include "runtime/sampling/sampler.h"
 
 namespace silk {
@@ -64,6 +65,10 @@ struct ModelConfig {
   // sampling.candidates: the best-of-N a caller gets when it leaves N to the model (1 when
   // absent; a small model can afford several, the release-size one cannot).
   int32_t candidates = 1;
+  // sampling.face_guidance / sampling.face_tolerance: the face guidance a caller gets when it
+  // leaves it to the model (absent: kDefaultFaceGuidance, kDefaultFaceTolerance).
+  FaceGuidance face_guidance = kDefaultFaceGuidance;
+  double face_tolerance = kDefaultFaceTolerance;
   // Relative to dir; int8/int4 may be "". external_data: files the ONNX graphs reference.
   std::string encoder_file, decoder_file, decoder_int8_file, decoder_int4_file;
   DecoderPrecision default_decoder = DecoderPrecision::kFp32;

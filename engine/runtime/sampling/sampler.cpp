@@ -3,6 +3,7 @@
 #include "runtime/sampling/sampler.h"
 
 #include "runtime/generation_stats.h"
+#include "runtime/sampling/face_guide_stage.h"
 #include "runtime/sampling/legal_stages.h"
 #include "runtime/sampling/sampler_stages.h"
 
@@ -11,6 +12,7 @@ namespace silk {
 const SamplerCandidates& SamplerChain::Narrow() {
   c_.forced = -1;
   c_.mask = nullptr;
+  c_.penalties = nullptr;
   c_.id = -1;
   c_.done = false;
   for (const auto& stage : before_logits_) {
@@ -38,6 +40,10 @@ std::unique_ptr<SamplerChain> BuildSamplerChain(const SamplerChainSettings& s) {
   if (s.grammar) {
     chain->AddBeforeLogits(MakeGrammarMaskStage(s.grammar, s.stats));
     if (s.guide) chain->AddBeforeLogits(MakeSurfaceGuideStage(s.guide, s.grammar, s.stats));
+    if (s.face_guide) {
+      chain->AddBeforeLogits(MakeFaceGuideStage(s.face_guide, s.face_mode, s.grammar, s.stats));
+      if (s.face_mode == FaceGuidance::kSoft) chain->Add(MakeFacePenaltyStage());
+    }
   }
   if (s.sample_then_check) {
     auto unmasked = std::make_unique<SamplerChain>(rng);

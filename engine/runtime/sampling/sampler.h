@@ -2,7 +2,8 @@
 // The sampling chain, built as llama.cpp builds one: small stages behind one interface, each
 // narrowing the candidate ids of one step or choosing among them, assembled once per generation
 // by BuildSamplerChain from the resolved settings and run per step by Generator:
-//   grammar mask -> surface guidance | (sample-then-check) -> candidates -> temperature -> top-k
+//   grammar mask -> surface guidance -> face guidance | (face penalties) -> (sample-then-check)
+//   -> candidates -> temperature -> top-k
 //   -> (official top-p) -> softmax -> (top-p) -> draw; greedy (temperature <= 0): candidates ->
 //   greedy draw. Stages: runtime/sampling/sampler_stages.h (numeric), runtime/sampling/legal_stages.h (legality).
 // Every draw comes from one seeded SplitMix64, so tests/models/reference_loop.py reproduces the
@@ -21,6 +22,8 @@ namespace silk {
 
 class Grammar;
 class SurfaceGuide;
+class FaceGuide;
+enum class FaceGuidance : int32_t;
 struct GenerationStats;
 
 struct SamplingParams {
@@ -36,6 +39,8 @@ struct SamplingParams {
 struct SamplerCandidates {
   int32_t forced = -1;              // the grammar's only legal id, or -1
   const TokenMask* mask = nullptr;  // the ids that may be chosen; null: every id but PAD
+  // Soft face guidance: logit penalties (id, amount subtracted) of this step; null: none.
+  const std::vector<std::pair<int32_t, float>>* penalties = nullptr;
   const float* logits = nullptr;    // vocab::k_model_vocab_size entries
   std::vector<int32_t> ids;         // the candidates, ascending
   std::vector<std::pair<double, int32_t>> scored;  // (score, id)
@@ -80,6 +85,8 @@ struct SamplerChainSettings {
   SamplingParams sampling;
   Grammar* grammar = nullptr;           // the grammar mask's source; null: no mask (unconstrained)
   const SurfaceGuide* guide = nullptr;  // surface guidance (needs the grammar); null: off
+  const FaceGuide* face_guide = nullptr;  // face guidance (needs the grammar); null: off
+  FaceGuidance face_mode{};               // kHard or kSoft when face_guide is set
   bool sample_then_check = false;       // measurement: draw over all ids, the masked chain if illegal
   GenerationStats* stats = nullptr;     // counters and phase seconds of the stages; may be null
 };

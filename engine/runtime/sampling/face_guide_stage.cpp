@@ -1,0 +1,370 @@
+// SPDX-License-Identifier: MIT
+// Face guidance's stages (runtime/sampling/face_guide_stage.h): the faces each legal B id would
+// close, scored by FaceGuide, turned into a narrower mask (hard) or logit penalties (soft).
+#include "runtime/sampling/face_guide_stage.h"
+
+#include <algorithm>
+#include <bitset>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "decoder/grammar.h"
+#include "runtime/generation_stats.h"
+#include "tokenizer/adjacency/between_layer_cases.h"
+#include "tokenizer/adjacency/self_layer_decoder.h"
+#include "tokenizer/packing/vertex_codec.h"
+#include "tokenizer/vocabulary_layout.h"
+
+namespace silk {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Columns = std::bitset<256>;
+constexpr double kUnscored = -1;
+// Hard form's fallback: the legal B ids scoring within this factor of the best are kept.
+constexpr double kFallbackSlack = 1.25;
+
+// The previous-layer columns a row's B tokens join (token_format.md §7).
+void AddRowColumns(const std::vector<BetweenToken>& row, Columns* out) {
+  for (const BetweenToken& t : row) {
+    out->set(static_cast<size_t>(t.start));
+    const int32_t pattern = BetweenCasePattern(t.kase);
+    for (int32_t p = 1; p <= kBetweenWindow; ++p)
+      if ((pattern >> (p - 1)) & 1) out->set(static_cast<size_t>(t.start + p));
+  }
+}
+
+class FaceGuideStage : public SamplerStage {
+ public:
+  FaceGuideStage(const FaceGuide* guide, FaceGuidance mode, const Grammar* grammar, GenerationStats* stats)
+      : guide_(guide), mode_(mode), grammar_(grammar), stats_(stats ? stats : &own_stats_) {}
+
+  void Apply(SamplerCandidates* c) override {
+    if (c->forced >= 0) return;
+    const GrammarPhase phase = grammar_->phase();
+    if (phase != GrammarPhase::kWantK && phase != GrammarPhase::kWantO && phase != GrammarPhase::kAfterS &&
+        phase != GrammarPhase::kAfterB)
+      return;
+    if (!PrepareLayer()) return;
+    const auto t0 = Clock::now();
+    scored_.clear();
+    if (phase == GrammarPhase::kWantO) {
+      ScoreOffsets(*c->mask);
+    } else if (phase == GrammarPhase::kWantK) {
+      ScoreBlocks(*c->mask);  // a layer's first vertex
+    } else {
+      PrepareVertex();
+      ScoreBetween(*c->mask);
+      ScoreBlocks(*c->mask);  // after a B, the next vertex's block is legal too
+    }
+    if (!scored_.empty()) Decide(c);
+    stats_->seconds.face_guidance += std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+
+ private:
+  bool PrepareLayer();
+  void LoadPreviousLayer();
+  void PrepareVertex();
+  double Pair(size_t entry);
+  double IdScore(int32_t id, double enough);
+  void ScoreBetween(const TokenMask& mask);
+  void ScoreOffsets(const TokenMask& mask);
+  void ScoreBlocks(const TokenMask& mask);
+  void PreparePosition(int32_t b, const QVec& centre);
+  double PositionScore(const QVec& p, bool interior_only, double enough);
+  void Decide(SamplerCandidates* c);
+
+  const FaceGuide* guide_;
+  FaceGuidance mode_;
+  const Grammar* grammar_;
+  GenerationStats own_stats_;
+  GenerationStats* stats_;
+  // The previous layer (per layer): positions, nearest input points, self-layer adjacency (CSR).
+  size_t layer_components_ = 0, layer_count_ = 0;
+  bool layer_ok_ = false;
+  std::vector<QVec> prev_pos_;
+  std::vector<int32_t> prev_near_, adj_begin_, adj_;
+  // The vertex being written (per vertex): its edge and linked-face scores per column, the
+  // scores of the triangles it makes with previous-layer edges (lazy, per adjacency entry).
+  int32_t vertex_ = -1;
+  QVec u_;
+  int32_t u_near_ = -1;
+  std::vector<double> edge_, linked_, pair_;
+  // This step: the row's columns so far and each column's score with them.
+  Columns row_;
+  std::vector<double> column_;
+  std::vector<std::pair<double, int32_t>> scored_;  // (score, id) of the legal ids judged
+  std::vector<int32_t> linked_rows_, near_columns_;  // offsets: linked earlier rows, columns near the block
+  std::vector<std::pair<int32_t, int32_t>> linked_pairs_;  // offsets: linked rows linked to each other
+  int32_t blocks_vertex_ = -1;            // the row whose block scores block_score_ holds
+  std::vector<double> block_score_ = std::vector<double>(512, kUnscored);
+  std::vector<std::pair<int32_t, float>> penalties_;
+  TokenMask guided_;
+};
+
+// Earlier row a of a layer states an edge to row j > a (its window or an X reaches j).
+bool Linked(const std::vector<StreamVertex>& vs, int32_t a, int32_t j) {
+  const int32_t d = j - a;
+  if (d <= vocab::k_self_window) return ((vs[a].window >> (d - 1)) & 1) != 0;
+  return std::find(vs[a].extras.begin(), vs[a].extras.end(), d - 1) != vs[a].extras.end();
+}
+
+// The previous layer's part, once per layer; false when there is no previous layer to join
+// (cannot happen in these phases) or it does not decode.
+bool FaceGuideStage::PrepareLayer() {
+  const LayeredStream& st = grammar_->stream();
+  if (st.components.empty() || st.components.back().layers.size() < 2) return false;
+  const size_t layers = st.components.back().layers.size();
+  if (st.components.size() == layer_components_ && layers == layer_count_) return layer_ok_;
+  layer_components_ = st.components.size();
+  layer_count_ = layers;
+  vertex_ = -1;
+  blocks_vertex_ = -1;
+  LoadPreviousLayer();
+  return layer_ok_;
+}
+
+void FaceGuideStage::LoadPreviousLayer() {
+  const auto& layers = grammar_->stream().components.back().layers;
+  const StreamLayer& prev = layers[layers.size() - 2];
+  const int32_t n = static_cast<int32_t>(prev.vertices.size());
+  prev_pos_.resize(static_cast<size_t>(n));
+  prev_near_.resize(static_cast<size_t>(n));
+  for (int32_t i = 0; i < n; ++i) {
+    prev_pos_[i] = prev.vertices[i].pos;
+    prev_near_[i] = guide_->NearestPoint(prev_pos_[i]);
+  }
+  adj_begin_.assign(static_cast<size_t>(n) + 1, 0);
+  adj_.clear();
+  layer_ok_ = true;
+  if (layers.size() == 2) return;  // the previous layer is the root: no self-layer edges
+  auto edges = DecodeSelfLayer(prev);
+  if (!edges.ok()) {
+    layer_ok_ = false;  // a closed layer the grammar accepted always decodes; judge nothing if not
+    return;
+  }
+  for (const auto& [a, b] : *edges) ++adj_begin_[a + 1], ++adj_begin_[b + 1];
+  for (int32_t i = 0; i < n; ++i) adj_begin_[i + 1] += adj_begin_[i];
+  adj_.resize(static_cast<size_t>(adj_begin_[n]));
+  std::vector<int32_t> fill(adj_begin_.begin(), adj_begin_.end() - 1);
+  for (const auto& [a, b] : *edges) adj_[fill[a]++] = b, adj_[fill[b]++] = a;
+}
+
+// The vertex's new edges alone, and the faces (u, v, w_c) with an earlier vertex v of its layer
+// it is linked to (v's window or X reached it) whose row joins column c.
+void FaceGuideStage::PrepareVertex() {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  const int32_t b = static_cast<int32_t>(vs.size()) - 1, n = static_cast<int32_t>(prev_pos_.size());
+  if (b == vertex_) return;
+  vertex_ = b;
+  u_ = vs[b].pos;
+  u_near_ = guide_->NearestPoint(u_);
+  edge_.resize(static_cast<size_t>(n));
+  linked_.assign(static_cast<size_t>(n), 0);
+  pair_.assign(adj_.size(), kUnscored);
+  column_.resize(static_cast<size_t>(n));
+  for (int32_t c = 0; c < n; ++c) edge_[c] = guide_->EdgeScore(u_, prev_pos_[c]);
+  for (int32_t a = 0; a < b; ++a) {
+    if (!Linked(vs, a, b)) continue;
+    Columns cols;
+    AddRowColumns(vs[a].between, &cols);
+    const int32_t a_near = guide_->NearestPoint(vs[a].pos);
+    for (int32_t c = 0; c < n; ++c)
+      if (cols.test(static_cast<size_t>(c)))
+        linked_[c] = std::max(linked_[c], guide_->FaceScore(u_, vs[a].pos, prev_pos_[c], u_near_, a_near, prev_near_[c]));
+  }
+}
+
+// Triangle (u, w_c, w_c') of adjacency entry `entry` (c' = adj_[entry]), computed once.
+double FaceGuideStage::Pair(size_t entry) {
+  if (pair_[entry] != kUnscored) return pair_[entry];
+  const int32_t c2 = adj_[entry];
+  const int32_t c1 = static_cast<int32_t>(std::upper_bound(adj_begin_.begin(), adj_begin_.end(), static_cast<int32_t>(entry)) -
+                                          adj_begin_.begin()) - 1;
+  pair_[entry] = guide_->FaceScore(u_, prev_pos_[c1], prev_pos_[c2], u_near_, prev_near_[c1], prev_near_[c2]);
+  return pair_[entry];
+}
+
+// The worst face or edge id (s, case) would add, given the row's columns so far (column_);
+// work stops once it exceeds `enough`.
+double FaceGuideStage::IdScore(int32_t id, double enough) {
+  const int32_t s = (id - vocab::kBBegin) / kBetweenCases, pattern = BetweenCasePattern((id - vocab::kBBegin) % kBetweenCases);
+  const uint32_t window = 1u | (static_cast<uint32_t>(pattern) << 1);  // bit p: column s + p
+  const int32_t n = static_cast<int32_t>(prev_pos_.size());
+  double worst = 0;
+  for (int32_t p = 0; p <= kBetweenWindow; ++p) {
+    const int32_t c = s + p;
+    if (!((window >> p) & 1) || c >= n) continue;
+    worst = std::max(worst, column_[c]);
+    if (worst > enough) return worst;
+    for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e) {
+      const int32_t q = adj_[e] - s;  // a neighbour inside this id's own segment
+      if (q > p && q <= kBetweenWindow && ((window >> q) & 1)) worst = std::max(worst, Pair(static_cast<size_t>(e)));
+    }
+  }
+  return worst;
+}
+
+void FaceGuideStage::ScoreBetween(const TokenMask& mask) {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  row_.reset();
+  AddRowColumns(vs[vertex_].between, &row_);
+  const int32_t n = static_cast<int32_t>(prev_pos_.size());
+  for (int32_t col = 0; col < n; ++col) {
+    double w = std::max(edge_[col], linked_[col]);
+    for (int32_t e = adj_begin_[col]; e < adj_begin_[col + 1]; ++e)
+      if (row_.test(static_cast<size_t>(adj_[e]))) w = std::max(w, Pair(static_cast<size_t>(e)));
+    column_[col] = w;
+  }
+  // Hard: a score past 1 only removes the id unless none passes (then the exact scores).
+  const double enough = mode_ == FaceGuidance::kHard ? 1.0 : HUGE_VAL;
+  const size_t first = scored_.size();
+  bool any_pass = false;
+  for (int32_t id = mask.Next(vocab::kBBegin); id >= 0 && id < vocab::kBEnd; id = mask.Next(id + 1)) {
+    scored_.push_back({IdScore(id, enough), id});
+    any_pass = any_pass || scored_.back().first <= 1;
+  }
+  if (any_pass || enough == HUGE_VAL) return;
+  for (size_t i = first; i < scored_.size(); ++i) scored_[i].first = IdScore(scored_[i].second, HUGE_VAL);
+}
+
+// What a new vertex (row b) must join, for PositionScore: the earlier rows of its layer that
+// stated an edge to it, the pairs of those rows joined to each other, and the previous layer's
+// kNearColumns vertices nearest `centre` (its first B joins one of them).
+void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
+  constexpr size_t kNearColumns = 4;
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  linked_rows_.clear();
+  linked_pairs_.clear();
+  for (int32_t a = 0; a < b; ++a)
+    if (Linked(vs, a, b)) linked_rows_.push_back(a);
+  for (size_t i = 0; i < linked_rows_.size(); ++i)
+    for (size_t j = i + 1; j < linked_rows_.size(); ++j)
+      if (Linked(vs, linked_rows_[i], linked_rows_[j])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[j]});
+  auto dist2 = [&](int32_t c) {
+    const QVec& q = prev_pos_[c];
+    return (q.x - centre.x) * (q.x - centre.x) + (q.y - centre.y) * (q.y - centre.y) + (q.z - centre.z) * (q.z - centre.z);
+  };
+  near_columns_.resize(prev_pos_.size());
+  for (size_t c = 0; c < near_columns_.size(); ++c) near_columns_[c] = static_cast<int32_t>(c);
+  const size_t near = std::min(kNearColumns, near_columns_.size());
+  std::partial_sort(near_columns_.begin(), near_columns_.begin() + near, near_columns_.end(),
+                    [&](int32_t x, int32_t y) { return dist2(x) < dist2(y) || (dist2(x) == dist2(y) && x < y); });
+  near_columns_.resize(near);
+}
+
+// A position fixes the vertex's edges to the linked rows, the faces among them, and where its
+// first B can go: the worst of those (distance only), the B part being the best edge to a near
+// column. interior_only: edges without their ends (a representative cell of a block). Work
+// stops once the score is known to exceed `enough` (the caller keeps only smaller ones).
+double FaceGuideStage::PositionScore(const QVec& p, bool interior_only, double enough) {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  auto edge = [&](const QVec& q) { return interior_only ? guide_->EdgeInterior(q, p) : guide_->EdgeScore(q, p); };
+  double worst = 0;
+  for (int32_t a : linked_rows_) worst = std::max(worst, edge(vs[a].pos));
+  for (const auto& [a1, a2] : linked_pairs_) {
+    if (worst > enough) return worst;
+    worst = std::max(worst, guide_->FaceDistance(vs[a1].pos, vs[a2].pos, p));
+  }
+  if (worst > enough || near_columns_.empty()) return worst;
+  double column = HUGE_VAL;
+  for (int32_t c : near_columns_) {
+    column = std::min(column, edge(prev_pos_[c]));
+    if (column <= worst) break;  // the linked part decides
+  }
+  return std::max(worst, column);
+}
+
+// O ids after the block just taken: each position's score.
+void FaceGuideStage::ScoreOffsets(const TokenMask& mask) {
+  const int32_t b = static_cast<int32_t>(grammar_->stream().components.back().layers.back().vertices.size()) - 1;
+  const int32_t block = grammar_->tokens().back();
+  PreparePosition(b, VertexOfTokens(block, vocab::kOBegin + 8 * 256 + 8 * 16 + 8));
+  // Hard: a score past 1 only removes the id, unless none passes (then the exact scores, for the
+  // fallback's best). Soft: penalties need them all.
+  const double enough = mode_ == FaceGuidance::kHard ? 1.0 : HUGE_VAL;
+  bool any_pass = false;
+  for (int32_t id = mask.Next(vocab::kOBegin); id >= 0 && id < vocab::kOEnd; id = mask.Next(id + 1)) {
+    scored_.push_back({PositionScore(VertexOfTokens(block, id), false, enough), id});
+    any_pass = any_pass || scored_.back().first <= 1;
+  }
+  if (any_pass || enough == HUGE_VAL) return;
+  for (auto& [score, id] : scored_) score = PositionScore(VertexOfTokens(block, id), false, HUGE_VAL);
+}
+
+// K ids (the next vertex's block, legal once a row has its B): each block's best of 8
+// representative cells (offsets 4, 12 per axis; each cell of the block is within 4 sqrt 3 of
+// one), edges without their ends; the offset step then judges the cells of the block taken.
+// Representatives farther from the input than a vertex can be (the tolerance) plus 4 sqrt 3 are
+// skipped, and a block stops at its first passing one (only scores above 1 matter, for the
+// fallback and the penalties). A block's score depends only on the rows before the new vertex,
+// so it is computed once per vertex.
+void FaceGuideStage::ScoreBlocks(const TokenMask& mask) {
+  const int32_t b = static_cast<int32_t>(grammar_->stream().components.back().layers.back().vertices.size());
+  if (b != blocks_vertex_) {
+    blocks_vertex_ = b;
+    std::fill(block_score_.begin(), block_score_.end(), kUnscored);
+  }
+  const double reach = std::max(guide_->tolerance(), 2.0) + 4 * std::sqrt(3.0);
+  for (int32_t id = mask.Next(vocab::kKBegin); id >= 0 && id < vocab::kKEnd; id = mask.Next(id + 1)) {
+    double& best = block_score_[static_cast<size_t>(id - vocab::kKBegin)];
+    if (best == kUnscored) {
+      PreparePosition(b, VertexOfTokens(id, vocab::kOBegin + 8 * 256 + 8 * 16 + 8));
+      best = HUGE_VAL;
+      for (int32_t r = 0; r < 8 && best > 1; ++r) {
+        const QVec q = VertexOfTokens(id, vocab::kOBegin + (4 + 8 * (r >> 2)) * 256 + (4 + 8 * ((r >> 1) & 1)) * 16 + 4 + 8 * (r & 1));
+        if (guide_->CellDistance(q) <= reach) best = std::min(best, PositionScore(q, true, best));
+      }
+    }
+    scored_.push_back({best, id});
+  }
+}
+
+// Hard: the judged ids scoring above 1 removed; when none passes, the ones within
+// kFallbackSlack of the best stay (a fallback). Ids not judged (U, E, X) stay either way. Soft:
+// penalties for the ones above 1.
+void FaceGuideStage::Decide(SamplerCandidates* c) {
+  double best = HUGE_VAL;
+  for (const auto& sc : scored_) best = std::min(best, sc.first);
+  ++stats_->face_guided_tokens;
+  const bool none_pass = best > 1;
+  stats_->face_fallbacks += none_pass ? 1 : 0;
+  if (mode_ == FaceGuidance::kSoft) {
+    penalties_.clear();
+    for (const auto& [score, id] : scored_)
+      if (score > 1) penalties_.push_back({id, static_cast<float>(std::min(kFaceSoftPenaltyMax, kFaceSoftPenalty * (score - 1)))});
+    c->penalties = &penalties_;
+    return;
+  }
+  guided_ = *c->mask;
+  const double keep = none_pass ? best * kFallbackSlack : 1.0;
+  for (const auto& [score, id] : scored_)
+    if (score > keep) guided_.Reset(id);
+  c->mask = &guided_;
+}
+
+class FacePenaltyStage : public SamplerStage {
+ public:
+  void Apply(SamplerCandidates* c) override {
+    if (!c->penalties || c->penalties->empty()) return;
+    std::memcpy(logits_.data(), c->logits, sizeof(float) * logits_.size());
+    for (const auto& [id, amount] : *c->penalties) logits_[id] = c->logits[id] - amount;
+    c->logits = logits_.data();
+  }
+
+ private:
+  std::vector<float> logits_ = std::vector<float>(vocab::k_model_vocab_size);
+};
+
+}  // namespace
+
+std::unique_ptr<SamplerStage> MakeFaceGuideStage(const FaceGuide* guide, FaceGuidance mode, const Grammar* grammar,
+                                                 GenerationStats* stats) {
+  return std::make_unique<FaceGuideStage>(guide, mode, grammar, stats);
+}
+
+std::unique_ptr<SamplerStage> MakeFacePenaltyStage() { return std::make_unique<FacePenaltyStage>(); }
+
+}  // namespace silk

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+// Face guidance in the sampling chain (runtime/sampling/sampler.h): after the grammar mask and
+// surface guidance, each legal between-layer id (B) is judged by the faces it would close, so
+// the model connects vertices across the input's surface rather than through or across it.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "runtime/sampling/face_guide.h"
+#include "runtime/sampling/sampler.h"
+
+namespace silk {
+
+class Grammar;
+struct GenerationStats;
+
+// Before the logits. A B id (s, case) joins the vertex being written to the previous layer's
+// columns of its segment; it closes every triangle of the edge graph through a new edge: with
+// two of those columns that are neighbours in the previous layer (either one may come from the
+// row's earlier B ids), and with an earlier vertex of its own layer it is linked to whose row
+// holds the column. Its score is the worst of those faces and of its new edges alone
+// (FaceGuide). Hard: ids scoring above 1 are removed; when none passes, a row that has its B
+// may end (K, U or E stay), otherwise the legal B ids within 25 % of the best score are kept
+// (stats->face_fallbacks). Soft: nothing is removed; the step's logit penalties (id, amount),
+// kFaceSoftPenalty per unit past 1, go to SamplerCandidates::penalties for MakeFacePenaltyStage.
+// Other ids and forced ids are never touched, so the mask never empties. The vertex's and the
+// previous layer's parts are computed once per vertex and layer; nothing is allocated per id.
+std::unique_ptr<SamplerStage> MakeFaceGuideStage(const FaceGuide* guide, FaceGuidance mode, const Grammar* grammar,
+                                                 GenerationStats* stats);
+
+// First on the logits, soft form: the step's logits with the penalties subtracted (float, as the
+// reference loop does) in a buffer of the stage's own; no penalties: the logits untouched.
+std::unique_ptr<SamplerStage> MakeFacePenaltyStage();
+
+}  // namespace silk
