@@ -74,6 +74,35 @@ TEST(ModelConfig, RefusesMismatches) {
   EXPECT_FALSE(ParseModelConfig("not json", "x").ok());
 }
 
+// model.json sampling.face_guidance / face_tolerance: absent gives libsilk's defaults, each
+// mode is taken, and a bad mode, a tolerance out of [0.5, 64] or a wrong type is refused by name.
+TEST(ModelConfig, FaceGuidanceFields) {
+  auto plain = ParseModelConfig(TinyJson().dump(), "model.json");
+  ASSERT_TRUE(plain.ok()) << plain.status().ToString();
+  EXPECT_EQ(plain->face_guidance, kDefaultFaceGuidance);
+  EXPECT_EQ(plain->face_tolerance, kDefaultFaceTolerance);
+  for (const char* mode : {"off", "hard", "soft"}) {
+    nlohmann::json j = TinyJson();
+    j["sampling"]["face_guidance"] = mode;
+    j["sampling"]["face_tolerance"] = 2.5;
+    auto c = ParseModelConfig(j.dump(), "model.json");
+    ASSERT_TRUE(c.ok()) << mode << ": " << c.status().ToString();
+    EXPECT_STREQ(FaceGuidanceName(c->face_guidance), mode);
+    EXPECT_EQ(c->face_tolerance, 2.5);
+  }
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, const char*>> bad = {
+      {[](auto& j) { j["sampling"]["face_guidance"] = "strong"; }, "face_guidance"},
+      {[](auto& j) { j["sampling"]["face_guidance"] = 2; }, "not a string"},
+      {[](auto& j) { j["sampling"]["face_tolerance"] = 0.25; }, "face_tolerance"},
+      {[](auto& j) { j["sampling"]["face_tolerance"] = 65; }, "face_tolerance"},
+  };
+  for (const auto& [edit, needle] : bad) {
+    Status s = ParseWith(edit);
+    EXPECT_FALSE(s.ok()) << needle;
+    EXPECT_NE(s.message().find(needle), std::string::npos) << s.message();
+  }
+}
+
 // The committed tiny model is version 2: Silk's arch, Silk's pre-processing with its
 // normalize_bound, silkgen's former sampling defaults, the fp32 decoder.
 TEST(ModelConfig, Version2Defaults) {
