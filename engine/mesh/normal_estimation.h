@@ -14,9 +14,10 @@ namespace silk {
 
 // Neighbours per point; chosen by measurement on the dev corpus (docs/normals.md).
 inline constexpr int32_t kDefaultNormalNeighbors = 16;
-// The most points a cloud without normals may have: at the measured ~150 bytes and ~4 us per
-// point (docs/normals.md) 2 M points take about 300 MB and 9 s on one core.
-inline constexpr int64_t kMaxNormalEstimationPoints = 2'000'000;
+// The most points a cloud without normals may have: at the measured ~141 bytes per point above
+// the input and ~7 us per point at this size (docs/normals.md, bench/normal_estimation_memory),
+// 1 M points take about 165 MB with the input and under 10 s on one core.
+inline constexpr int64_t kMaxNormalEstimationPoints = 1'000'000;
 
 struct NormalEstimationParams {
   int32_t neighbors = kDefaultNormalNeighbors;  // k, 3..256 (fewer when the cloud is smaller)

@@ -40,12 +40,12 @@ struct Forest {
   std::vector<int32_t> offset, target;
 };
 
-// One Boruvka round: each tree's lightest edge to another tree (graph slots; -1: none), then
-// those joined. Returns the number of edges added to *kept.
+// One Boruvka round: each tree's lightest edge to another tree (a = -1: none), then those
+// joined. Returns the number of edges added to *kept.
 StatusOr<int64_t> BoruvkaRound(const KnnGraph& graph, const std::vector<Point3>& normals, std::vector<int32_t>* parent,
-                               std::vector<int64_t>* best, std::vector<Edge>* kept, const CancelCheck& cancel) {
+                               std::vector<Edge>* best, std::vector<Edge>* kept, const CancelCheck& cancel) {
   const size_t n = normals.size();
-  std::fill(best->begin(), best->end(), -1);
+  std::fill(best->begin(), best->end(), Edge{0, -1, -1});
   for (size_t i = 0; i < n; ++i) {
     if ((i + 1) % kCancelPollInterval == 0 && CancelRequested(cancel)) return CancelledStatus("normal orientation");
     const int32_t ri = Find(parent, static_cast<int32_t>(i));
@@ -55,13 +55,13 @@ StatusOr<int64_t> BoruvkaRound(const KnnGraph& graph, const std::vector<Point3>&
       if (ri == rj) continue;
       const Edge e = EdgeOf(graph, normals, slot);
       for (int32_t r : {ri, rj})
-        if ((*best)[r] < 0 || e < EdgeOf(graph, normals, (*best)[r])) (*best)[r] = slot;
+        if ((*best)[r].a < 0 || e < (*best)[r]) (*best)[r] = e;
     }
   }
   int64_t added = 0;
   for (size_t r = 0; r < n; ++r) {
-    if ((*best)[r] < 0) continue;
-    const Edge e = EdgeOf(graph, normals, (*best)[r]);
+    if ((*best)[r].a < 0) continue;
+    const Edge e = (*best)[r];
     const int32_t ra = Find(parent, e.a), rb = Find(parent, e.b);
     if (ra == rb) continue;  // the same edge chosen by both of its trees
     (*parent)[std::max(ra, rb)] = std::min(ra, rb);
@@ -80,7 +80,7 @@ StatusOr<Forest> SpanningForest(const KnnGraph& graph, const std::vector<Point3>
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<Edge> kept;
   {
-    std::vector<int64_t> best(n);
+    std::vector<Edge> best(n);
     for (;;) {
       SILK_ASSIGN_OR_RETURN(const int64_t added, BoruvkaRound(graph, normals, &parent, &best, &kept, cancel));
       if (added == 0) break;

@@ -14,7 +14,7 @@ namespace silk {
 // Flips entries of `normals` (unit, one per point) in place. The graph: an edge between every
 // point and each of its k nearest neighbours, weight 1 - |n_i . n_j|; its minimum spanning
 // forest (unique: ties broken by the point indices, so the result is deterministic; found by
-// Boruvka's rounds in O(n k log n) time and about 12 bytes per point beyond the graph). In each
+// Boruvka's rounds in O(n k log n) time and about 36 bytes per point beyond the graph). In each
 // tree the point farthest from the tree's centroid (for a closed surface its normal line goes
 // through the centroid, and outward is away from it) gets the normal facing away from the
 // centroid; every other point takes the sign that agrees with its parent's (n_child . n_parent
