@@ -421,9 +421,10 @@ typedef struct silk_generate_progress {
 /* Called after every generated id (the last one included), on the calling thread. */
 typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* user_data);
 /* Polled as the call begins, before point sampling, every 65,536 surface samples, before each
- * candidate's encoder run, while the input's points are indexed for orientation, before every id, and while each candidate is scored (every 4,096 points: ~10 ms),
- * but not in silk_generator_finish's scoring (a finish must be able to end a cancelled run);
- * non-zero stops the generation with SILK_ERR_CANCELLED.
+ * candidate's encoder run, while the input's points are indexed for orientation, before every
+ * id, and after a candidate's last id while its parts are oriented (before each face) and it is
+ * scored (every 4,096 points: ~10 ms), except in silk_generator_finish (a finish must be able to
+ * end a cancelled run); non-zero stops the generation with SILK_ERR_CANCELLED.
  * (silk_generator_cancel is honoured everywhere else too: see there.) */
 typedef int32_t (*silk_cancel_fn)(void* user_data);
 
