@@ -280,8 +280,9 @@ TEST_F(CapiGeneration, CancelFromAnotherThreadInterruptsTheEncoderRun) {
 // Issue 35: with a million encoder points, what follows the last id takes seconds: the parts
 // turned to the input's normals (a query per face, each up to all points) and the scoring
 // (indexing the points, a query per point). silk_generator_cancel from another thread 30 ms and
-// 300 ms after the last id must end the call within ~10 ms of work (it took 3.8-5.7 s); the bound
-// asserted is loose (1 s: a shared, loaded or sanitized machine), the latency is printed.
+// 300 ms after the last id must end the call within ~10 ms of work (main at 35a6440: 45-77 s on a
+// loaded 2-core VM); the bound asserted is loose (2 s: a shared, loaded or sanitized machine; ASan
+// at load 12 measured 0.5 s), the latency is printed.
 TEST_F(CapiGeneration, CancelDuringOrientationAndScoringOfAMillionPointsReturnsPromptly) {
   const size_t n = size_t{1} << 20;
   std::vector<double> pts(6 * n);
@@ -323,7 +324,7 @@ TEST_F(CapiGeneration, CancelDuringOrientationAndScoringOfAMillionPointsReturnsP
         << message;
     EXPECT_EQ(st.candidates, 1);
     const double ms = std::chrono::duration<double, std::milli>(returned_at - cancelled_at).count();
-    EXPECT_LT(ms, 1000) << "the cancel waited for the orientation or scoring to end";
+    EXPECT_LT(ms, 2000) << "the cancel waited for the orientation or scoring to end";
     std::printf("[ cancel ] 2^20 points, %d ms after the last id: returned %.1f ms after silk_generator_cancel (%s)\n",
                 delay_ms, ms, message.c_str());
   }
