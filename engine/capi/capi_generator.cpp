@@ -192,8 +192,7 @@ silk_status Cancelled(silk_generator* g, silk_generate_stats* stats) {
   const std::string message = silk_last_error();
   g->result = silk::GenerateResult{};
   g->result.tokens = g->session.tokens();
-  g->result.stats = g->session.stats();
-  g->result.stats.stop_reason = silk::StopReason::kCancelled;
+  g->result.stats = g->session.CancelledStats();
   g->session.Abandon();
   g->has_result = false;
   if (stats) StoreStats(g->result.stats, stats);
@@ -239,7 +238,7 @@ silk_status RunAll(silk_generator* g, const silk_generate_input& input, const si
   if (s == SILK_OK) s = Advance(g, INT32_MAX, SILK_ADVANCE_IDS);
   if (s == SILK_ERR_CANCELLED) return Cancelled(g, stats);
   if (s != SILK_OK) return s;
-  return Finish(g, out_mesh, out_tokens, stats, FlagCheck(g));
+  return Finish(g, out_mesh, out_tokens, stats, ToCallbacks(g, p).cancel);  // the last candidate's scoring
 }
 
 // The struct_size checks of a call taking an input, params and stats (each may be NULL here).

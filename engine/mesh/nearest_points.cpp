@@ -20,11 +20,22 @@ double Dist2(const Point3& a, const Point3& b) {
 }
 }  // namespace
 
-NearestPointIndex::NearestPointIndex(const std::vector<Point3>& points) : points_(points), order_(points.size()) {
+NearestPointIndex::NearestPointIndex(const std::vector<Point3>& points) : NearestPointIndex(points, CancelCheck{}) {}
+
+NearestPointIndex::NearestPointIndex(const std::vector<Point3>& points, const CancelCheck& cancel)
+    : points_(points), order_(points.size()), cancel_(&cancel) {
   std::iota(order_.begin(), order_.end(), 0);
   if (!points_.empty()) {
     nodes_.reserve(2 * points_.size() / kLeafSize + 2);
     Build(0, static_cast<int32_t>(points_.size()), 0);
+  }
+  cancel_ = nullptr;
+  if (cancelled_) {  // an unusable partial tree: drop it
+    nodes_.clear();
+    nodes_.shrink_to_fit();
+    points_.clear();
+    order_.clear();
+    return;
   }
   std::vector<Point3> sorted(order_.size());
   for (size_t i = 0; i < order_.size(); ++i) sorted[i] = points[order_[i]];
@@ -35,7 +46,15 @@ NearestPointIndex::NearestPointIndex(const std::vector<Point3>& points) : points
 int32_t NearestPointIndex::Build(int32_t begin, int32_t end, int32_t depth) {
   const int32_t id = static_cast<int32_t>(nodes_.size());
   nodes_.push_back(Node{begin, end});
-  if (end - begin <= kLeafSize || depth > 60) return id;
+  if (end - begin <= kLeafSize || depth > 60 || cancelled_) return id;
+  work_since_poll_ += end - begin;  // the partition below is linear in the node's size
+  if (work_since_poll_ >= kCancelPollInterval) {
+    work_since_poll_ = 0;
+    if (CancelRequested(*cancel_)) {
+      cancelled_ = true;
+      return id;
+    }
+  }
   Point3 lo = points_[order_[begin]], hi = lo;
   for (int32_t i = begin + 1; i < end; ++i)
     for (int a = 0; a < 3; ++a) {
@@ -113,14 +132,21 @@ void NearestPointIndex::Nearest(const Point3& q, int32_t k, int32_t skip,
 }
 
 KnnGraph NearestNeighbors(const std::vector<Point3>& points, int32_t k) {
+  return NearestNeighbors(points, k, CancelCheck{}).value();
+}
+
+StatusOr<KnnGraph> NearestNeighbors(const std::vector<Point3>& points, int32_t k, const CancelCheck& cancel) {
   KnnGraph g;
   const int64_t n = static_cast<int64_t>(points.size());
   g.k = static_cast<int32_t>(std::max<int64_t>(0, std::min<int64_t>(k, n - 1)));
   if (g.k == 0) return g;
+  const NearestPointIndex tree(points, cancel);
+  if (tree.cancelled()) return CancelledStatus("normal estimation (neighbours)");
   g.neighbors.resize(static_cast<size_t>(n) * g.k);
-  const NearestPointIndex tree(points);
   std::vector<std::pair<double, int32_t>> found;
   for (int64_t i = 0; i < n; ++i) {
+    if ((i + 1) % kCancelPollInterval == 0 && CancelRequested(cancel))
+      return CancelledStatus("normal estimation (neighbours)");
     tree.Nearest(points[i], g.k, static_cast<int32_t>(i), &found);
     for (int32_t j = 0; j < g.k; ++j) g.neighbors[i * g.k + j] = found[j].second;
   }

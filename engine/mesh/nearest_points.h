@@ -9,6 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/cancel_check.h"
+#include "core/status.h"
+
 namespace silk {
 
 using Point3 = std::array<double, 3>;
@@ -19,6 +22,11 @@ using Point3 = std::array<double, 3>;
 class NearestPointIndex {
  public:
   explicit NearestPointIndex(const std::vector<Point3>& points);
+  // The same, polling `cancel` about every kCancelPollInterval points of partitioning work (a
+  // million points take ~0.5 s to index): when it asks to stop, cancelled() is true and the
+  // index must not be queried.
+  NearestPointIndex(const std::vector<Point3>& points, const CancelCheck& cancel);
+  bool cancelled() const { return cancelled_; }
   struct Hit {
     double distance;  // Euclidean; +infinity when the set is empty
     int32_t index;    // into the points given to the constructor; -1 when the set is empty
@@ -45,6 +53,9 @@ class NearestPointIndex {
   std::vector<Point3> points_;   // in order_'s order
   std::vector<int32_t> order_;   // original index of each points_ entry
   std::vector<Node> nodes_;
+  const CancelCheck* cancel_ = nullptr;  // during construction only
+  int64_t work_since_poll_ = 0;
+  bool cancelled_ = false;
 };
 
 // Every point's k nearest other points: neighbors[i * k .. i * k + k), nearest first, ties by
@@ -55,5 +66,7 @@ struct KnnGraph {
   const int32_t* Of(size_t i) const { return neighbors.data() + i * static_cast<size_t>(k); }
 };
 KnnGraph NearestNeighbors(const std::vector<Point3>& points, int32_t k);
+// The same, polling `cancel` while indexing and every kCancelPollInterval queries.
+StatusOr<KnnGraph> NearestNeighbors(const std::vector<Point3>& points, int32_t k, const CancelCheck& cancel);
 
 }  // namespace silk

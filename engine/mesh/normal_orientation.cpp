@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
-// Minimum spanning forest over the kNN graph (Kruskal with a union-find) and the sign
+// Minimum spanning forest over the kNN graph (Boruvka rounds with a union-find) and the sign
 // propagation from each tree's outward seed.
 #include "mesh/normal_orientation.h"
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <numeric>
 
 namespace silk {
@@ -21,6 +22,14 @@ struct Edge {
   }
 };
 
+// Graph slot i * k + s (point i's s-th neighbour) as an edge: a total order on edges, so the
+// minimum spanning forest is unique whichever algorithm finds it.
+Edge EdgeOf(const KnnGraph& graph, const std::vector<Point3>& normals, int64_t slot) {
+  const int32_t i = static_cast<int32_t>(slot / graph.k), j = graph.neighbors[static_cast<size_t>(slot)];
+  const int32_t a = std::min(i, j), b = std::max(i, j);
+  return {1 - std::fabs(Dot(normals[a], normals[b])), a, b};
+}
+
 int32_t Find(std::vector<int32_t>* parent, int32_t x) {
   std::vector<int32_t>& p = *parent;
   while (p[x] != x) x = p[x] = p[p[x]];
@@ -32,34 +41,61 @@ struct Forest {
   std::vector<int32_t> offset, target;
 };
 
-Forest SpanningForest(const KnnGraph& graph, const std::vector<Point3>& normals) {
+// One Boruvka round: each tree's lightest edge to another tree (a = -1: none), then those
+// joined. Returns the number of edges added to *kept.
+StatusOr<int64_t> BoruvkaRound(const KnnGraph& graph, const std::vector<Point3>& normals, std::vector<int32_t>* parent,
+                               std::vector<Edge>* best, std::vector<Edge>* kept, const CancelCheck& cancel) {
   const size_t n = normals.size();
-  std::vector<Edge> edges;
-  edges.reserve(n * graph.k);
-  for (size_t i = 0; i < n; ++i)
+  std::fill(best->begin(), best->end(), Edge{0, -1, -1});
+  for (size_t i = 0; i < n; ++i) {
+    if ((i + 1) % kCancelPollInterval == 0 && CancelRequested(cancel)) return CancelledStatus("normal orientation");
+    const int32_t ri = Find(parent, static_cast<int32_t>(i));
     for (int32_t s = 0; s < graph.k; ++s) {
-      const int32_t j = graph.Of(i)[s];
-      const int32_t a = std::min<int32_t>(static_cast<int32_t>(i), j), b = std::max<int32_t>(static_cast<int32_t>(i), j);
-      edges.push_back({1 - std::fabs(Dot(normals[a], normals[b])), a, b});  // a mutual pair appears twice
+      const int64_t slot = static_cast<int64_t>(i) * graph.k + s;
+      const int32_t rj = Find(parent, graph.Of(i)[s]);
+      if (ri == rj) continue;
+      const Edge e = EdgeOf(graph, normals, slot);
+      for (int32_t r : {ri, rj})
+        if ((*best)[r].a < 0 || e < (*best)[r]) (*best)[r] = e;
     }
-  std::sort(edges.begin(), edges.end());
+  }
+  int64_t added = 0;
+  for (size_t r = 0; r < n; ++r) {
+    if ((*best)[r].a < 0) continue;
+    const Edge e = (*best)[r];
+    const int32_t ra = Find(parent, e.a), rb = Find(parent, e.b);
+    if (ra == rb) continue;  // the same edge chosen by both of its trees
+    (*parent)[std::max(ra, rb)] = std::min(ra, rb);
+    kept->push_back(e);
+    ++added;
+  }
+  return added;
+}
+
+// The minimum spanning forest of the kNN graph by Boruvka's rounds (each at least halves the
+// trees; no list of all n * k edges is held), its edges then in Kruskal's order (by weight, ties
+// by index), so the forest's adjacency lists are those Kruskal would build.
+StatusOr<Forest> SpanningForest(const KnnGraph& graph, const std::vector<Point3>& normals, const CancelCheck& cancel) {
+  const size_t n = normals.size();
   std::vector<int32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<std::pair<int32_t, int32_t>> kept;
-  kept.reserve(n);
-  for (const Edge& e : edges) {
-    const int32_t ra = Find(&parent, e.a), rb = Find(&parent, e.b);
-    if (ra == rb) continue;
-    parent[std::max(ra, rb)] = std::min(ra, rb);
-    kept.push_back({e.a, e.b});
+  std::vector<Edge> kept;
+  {
+    std::vector<Edge> best(n);
+    for (;;) {
+      SILK_ASSIGN_OR_RETURN(const int64_t added, BoruvkaRound(graph, normals, &parent, &best, &kept, cancel));
+      if (added == 0) break;
+    }
   }
+  std::vector<int32_t>().swap(parent);
+  std::sort(kept.begin(), kept.end());
   Forest f;
   f.offset.assign(n + 1, 0);
-  for (const auto& [a, b] : kept) ++f.offset[a + 1], ++f.offset[b + 1];
+  for (const Edge& e : kept) ++f.offset[e.a + 1], ++f.offset[e.b + 1];
   for (size_t i = 0; i < n; ++i) f.offset[i + 1] += f.offset[i];
   f.target.resize(kept.size() * 2);
   std::vector<int32_t> fill(f.offset.begin(), f.offset.end() - 1);
-  for (const auto& [a, b] : kept) f.target[fill[a]++] = b, f.target[fill[b]++] = a;
+  for (const Edge& e : kept) f.target[fill[e.a]++] = e.b, f.target[fill[e.b]++] = e.a;
   return f;
 }
 
@@ -120,9 +156,10 @@ void VoteOutward(const std::vector<Point3>& points, const std::vector<int32_t>& 
 
 }  // namespace
 
-int32_t OrientNormals(const std::vector<Point3>& points, const KnnGraph& graph, std::vector<Point3>* normals) {
+StatusOr<int32_t> OrientNormals(const std::vector<Point3>& points, const KnnGraph& graph, std::vector<Point3>* normals,
+                                const CancelCheck& cancel) {
   const size_t n = points.size();
-  const Forest f = SpanningForest(graph, *normals);
+  SILK_ASSIGN_OR_RETURN(const Forest f, SpanningForest(graph, *normals, cancel));
   std::vector<char> seen(n, 0), reseen(n, 0);
   std::vector<int32_t> members, order, parent_of(n, -1);
   int32_t trees = 0;

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/value_text.h"
+
 namespace silk {
 
 StatusOr<NormalizeTransform> ComputeNormalization(const IoMesh& mesh, double bound) {
@@ -29,6 +31,12 @@ StatusOr<NormalizeTransform> ComputeNormalization(const IoMesh& mesh, double bou
     return InvalidArgument("mesh has zero or infinite extent (all vertices coincide?)");
   const double two_bound = 2.0 * bound;
   t.scale = two_bound / extent;
+  // Extreme scales (1e-300, 1e300 and beyond) normalise fine down to what a double holds; past
+  // that the centre or the scale would be infinite or denormal and every point garbage.
+  if (!std::isnormal(t.scale) || !std::isnormal(extent) || !std::isfinite(t.center[0]) ||
+      !std::isfinite(t.center[1]) || !std::isfinite(t.center[2]))
+    return InvalidArgument("coordinates out of range: the extent " + ValueText(extent) +
+                           " cannot be normalised (a double's range ends near 1e-308 and 1e308)");
   return t;
 }
 

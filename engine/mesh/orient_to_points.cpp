@@ -28,10 +28,15 @@ std::vector<int32_t> CheckedParts(size_t vertices, const std::vector<std::array<
 }
 
 // Per part: the sum over its faces of area * cos(face normal, nearest reference normal).
-std::vector<double> PartVotes(const std::vector<Point3>& positions, const std::vector<std::array<int32_t, 3>>& faces,
-                              const std::vector<int32_t>& part_of, int32_t parts, const OrientedPointSet& reference) {
+// One nearest-point query per face; a query far inside a closed cloud (a sphere's centre) visits
+// every point, so `cancel` is polled before each.
+StatusOr<std::vector<double>> PartVotes(const std::vector<Point3>& positions,
+                                        const std::vector<std::array<int32_t, 3>>& faces,
+                                        const std::vector<int32_t>& part_of, int32_t parts,
+                                        const OrientedPointSet& reference, const CancelCheck& cancel) {
   std::vector<double> vote(static_cast<size_t>(parts), 0.0);
   for (size_t f = 0; f < faces.size(); ++f) {
+    if (CancelRequested(cancel)) return CancelledStatus("orientation");
     if (part_of[f] < 0) continue;
     const auto& t = faces[f];
     const Point3 &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
@@ -48,7 +53,10 @@ std::vector<double> PartVotes(const std::vector<Point3>& positions, const std::v
 }  // namespace
 
 OrientedPointSet::OrientedPointSet(std::vector<Point3> positions, std::vector<Point3> normals)
-    : normals_(std::move(normals)), index_(positions) {
+    : OrientedPointSet(std::move(positions), std::move(normals), CancelCheck{}) {}
+
+OrientedPointSet::OrientedPointSet(std::vector<Point3> positions, std::vector<Point3> normals, const CancelCheck& cancel)
+    : normals_(std::move(normals)), index_(positions, cancel) {
   if (positions.size() != normals_.size()) normals_.clear();
 }
 
@@ -62,10 +70,17 @@ PartOrientationReport OrientPartsToPoints(const std::vector<Point3>& positions,
                                           std::vector<std::array<int32_t, 3>>* faces,
                                           const std::vector<int32_t>& face_part, int32_t parts,
                                           const OrientedPointSet& reference) {
+  return OrientPartsToPoints(positions, faces, face_part, parts, reference, CancelCheck{}).value();
+}
+
+StatusOr<PartOrientationReport> OrientPartsToPoints(const std::vector<Point3>& positions,
+                                                    std::vector<std::array<int32_t, 3>>* faces,
+                                                    const std::vector<int32_t>& face_part, int32_t parts,
+                                                    const OrientedPointSet& reference, const CancelCheck& cancel) {
   PartOrientationReport report;
   if (parts <= 0 || reference.empty()) return report;
   const std::vector<int32_t> part_of = CheckedParts(positions.size(), *faces, face_part, parts);
-  const std::vector<double> vote = PartVotes(positions, *faces, part_of, parts, reference);
+  SILK_ASSIGN_OR_RETURN(const std::vector<double> vote, PartVotes(positions, *faces, part_of, parts, reference, cancel));
   std::vector<char> flip(static_cast<size_t>(parts), 0);
   for (int32_t p = 0; p < parts; ++p) {
     if (vote[p] < 0) {

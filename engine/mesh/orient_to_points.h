@@ -18,6 +18,10 @@ class OrientedPointSet {
  public:
   // positions.size() == normals.size(); normals need not be unit (only their direction counts).
   OrientedPointSet(std::vector<Point3> positions, std::vector<Point3> normals);
+  // The same, polling `cancel` while indexing (NearestPointIndex): cancelled() then says so and
+  // the set must not be used.
+  OrientedPointSet(std::vector<Point3> positions, std::vector<Point3> normals, const CancelCheck& cancel);
+  bool cancelled() const { return index_.cancelled(); }
   bool empty() const { return normals_.empty(); }
   // The normal of the point nearest to q (zero vector when the set is empty).
   Point3 NormalNear(const Point3& q) const;
@@ -44,5 +48,11 @@ PartOrientationReport OrientPartsToPoints(const std::vector<Point3>& positions,
                                           std::vector<std::array<int32_t, 3>>* faces,
                                           const std::vector<int32_t>& face_part, int32_t parts,
                                           const OrientedPointSet& reference);
+// The same, polling `cancel` before each face's query (one far inside a closed cloud visits every
+// point: a million take milliseconds): kCancelled leaves the faces as they were.
+StatusOr<PartOrientationReport> OrientPartsToPoints(const std::vector<Point3>& positions,
+                                                    std::vector<std::array<int32_t, 3>>* faces,
+                                                    const std::vector<int32_t>& face_part, int32_t parts,
+                                                    const OrientedPointSet& reference, const CancelCheck& cancel);
 
 }  // namespace silk

@@ -46,6 +46,7 @@ uint64_t CandidateSeed(uint64_t seed, int32_t index) {
 
 StatusOr<double> ScoreAgainstPoints(const TokenizerDecodedMesh& mesh, const std::vector<float>& points,
                                     const CancelCheck& cancel) {
+  if (CancelRequested(cancel)) return CancelledStatus("scoring");  // before copying up to 2^20 points
   IoMesh m;
   m.positions = DequantizePositions(mesh.positions);
   m.triangles = mesh.faces;

@@ -74,7 +74,7 @@ Status GenerationSession::StartCandidate() {
 // its mesh built, then scored into the choice, polling `cancel`.
 Status GenerationSession::CloseCandidate(const CancelCheck& cancel) {
   if (!ended_) {
-    SILK_ASSIGN_OR_RETURN(GenerateResult r, generator_.Finish());
+    SILK_ASSIGN_OR_RETURN(GenerateResult r, generator_.Finish(cancel));
     ended_ = std::move(r);
   }
   SILK_RETURN_IF_ERROR(
@@ -84,7 +84,10 @@ Status GenerationSession::CloseCandidate(const CancelCheck& cancel) {
 }
 
 Status GenerationSession::NextCandidate() {
-  SILK_RETURN_IF_ERROR(CloseCandidate(flag_));
+  // Scoring polls the caller's flag and the callbacks' cancel: with a million encoder points it
+  // runs for seconds between two ids.
+  const CancelCheck scoring = [this] { return CancelRequested(flag_) || CancelRequested(callbacks_.cancel); };
+  SILK_RETURN_IF_ERROR(CloseCandidate(scoring));
   ++candidate_;
   return StartCandidate();
 }
@@ -141,7 +144,7 @@ StatusOr<SessionResult> GenerationSession::Finish(const CancelCheck& scoring) {
 }
 
 void GenerationSession::Abandon() {
-  if (active_ && generator_.active()) (void)generator_.Finish();  // releases the candidate's state
+  if (active_ && generator_.active()) generator_.Release();  // the candidate's state
   Reset();
 }
 
@@ -157,6 +160,22 @@ const GenerationStats& GenerationSession::stats() const {
   if (!active_) return kNone;
   if (generator_.active()) return generator_.stats();
   return ended_ ? ended_->stats : kNone;
+}
+
+GenerationStats GenerationSession::CancelledStats() const {
+  GenerationStats st = stats();
+  st.candidates = choice_.scored();
+  if (active_ && (generator_.active() || ended_)) {
+    CandidateScore c;
+    c.seed = CandidateSeed(plan_.options.sampling.seed, candidate_);
+    c.faces = st.faces;
+    c.tokens = st.tokens;
+    c.seconds = st.generation_seconds;
+    st.candidates.push_back(c);
+  }
+  st.chosen_candidate = st.candidates.empty() ? 0 : static_cast<int32_t>(st.candidates.size()) - 1;
+  st.stop_reason = StopReason::kCancelled;
+  return st;
 }
 
 StatusOr<SessionPreview> GenerationSession::Preview() const {

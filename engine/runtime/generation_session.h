@@ -49,8 +49,9 @@ class GenerationSession {
   // Discards a generation in progress, resolves `request` (ResolveRequest: its messages name the
   // field), checks `input`, prepares the encoder's points (the model's pre-processing, or raw
   // points) and starts candidate 0 (its encoder run). callbacks.cancel is polled where Generator
-  // polls it (pre-processing, before each candidate's encoder run, before every id); `flag` (a
-  // caller's own cancel flag) in the loops the callback is not polled in: the input check, scoring.
+  // polls it (pre-processing, before each candidate's encoder run, the orientation index, before
+  // every id) and in the scoring of a candidate before the last; `flag` (a caller's own cancel
+  // flag) there too and in the input check.
   // Progress reports carry the candidate's index and N.
   Status Start(const GenerationRequest& request, const GenerationInput& input, const GenerateCallbacks& callbacks = {},
                const CancelCheck& flag = {});
@@ -75,6 +76,10 @@ class GenerationSession {
   // The candidate in progress (or ended, awaiting its score); empty when there is none.
   const std::vector<int32_t>& tokens() const;
   const GenerationStats& stats() const;
+  // A run ended by a cancel, before Abandon: stats() (the candidate in progress or ended, if any)
+  // with stop reason kCancelled and candidates listing every candidate started (the scored ones,
+  // then the unscored one with score 0), chosen_candidate the last of them.
+  GenerationStats CancelledStats() const;
   StatusOr<SessionPreview> Preview() const;
   // The last started run's resolved request and encoder points (kept after Finish).
   const GenerationPlan& plan() const { return plan_; }

@@ -214,7 +214,14 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
     st.seconds.face_guidance += Since(t0);
   }
   if (options.orient_to_input) {
-    if (!orientation_) orientation_ = MakeInputOrientation(points);
+    if (!orientation_) {
+      auto made = MakeInputOrientation(points, callbacks.cancel);
+      if (!made.ok()) {
+        session_.reset();
+        return made.status();
+      }
+      orientation_ = std::move(*made);
+    }
     s.orientation = orientation_;
   }
   s.chain = BuildSamplerChain(ChainSettings(options, &s.grammar, s.guide.get(), s.face_guide.get(), &st));
@@ -394,7 +401,9 @@ StatusOr<TokenizerDecodedMesh> Generator::MeshSoFar() const {
   return mesh;
 }
 
-StatusOr<GenerateResult> Generator::Finish() {
+void Generator::Release() { session_.reset(); }
+
+StatusOr<GenerateResult> Generator::Finish(const CancelCheck& cancel) {
   if (!session_ || session_->failed) return InvalidArgument("generate: no generation to finish");
   if (!finished()) Cancel();
   Session& s = *session_;
@@ -409,6 +418,7 @@ StatusOr<GenerateResult> Generator::Finish() {
 
   // Mesh: the whole sequence when it ended legally, else what the grammar closed so far.
   auto t0 = Clock::now();
+  res.report = MeshBuildReport{};  // a Finish again after a cancelled one starts afresh
   MeshBuildOptions bopt;
   bopt.holes = s.options.holes;
   const bool complete = !s.options.unconstrained ? st.stop_reason == StopReason::kEos || st.stop_reason == StopReason::kMaxTokens
@@ -419,7 +429,10 @@ StatusOr<GenerateResult> Generator::Finish() {
     SILK_ASSIGN_OR_RETURN(res.mesh, BuildMeshSoFar(s.grammar, bopt, &res.report));
   }
   if (s.options.max_faces > 0) res.mesh = CapFaces(res.mesh, s.options.max_faces);  // the last layer may overshoot
-  if (s.orientation) st.parts_flipped = OrientToInput(&res.mesh, *s.orientation).parts_flipped;
+  if (s.orientation) {  // kCancelled leaves the session: Finish again (or Release)
+    SILK_ASSIGN_OR_RETURN(const PartOrientationReport oriented, OrientToInput(&res.mesh, *s.orientation, cancel));
+    st.parts_flipped = oriented.parts_flipped;
+  }
   st.seconds.build_mesh += Since(t0);
   st.faces = static_cast<int32_t>(res.mesh.faces.size());
   st.vertices = static_cast<int32_t>(res.mesh.positions.size());

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/cancel_check.h"
 #include "core/status.h"
 #include "decoder/mesh_builder.h"
 #include "runtime/generation_stats.h"
@@ -130,7 +131,12 @@ class Generator {
   StatusOr<TokenizerDecodedMesh> MeshSoFar() const;
   // Completed layers so far (layer ends seen).
   int64_t layers_closed() const;
-  StatusOr<GenerateResult> Finish();
+  // `cancel` is polled while the mesh is turned to the input's normals (orient_to_input: a query
+  // per face into the encoder points, each up to all of them): kCancelled leaves the generation
+  // as it was, to Finish again or Release.
+  StatusOr<GenerateResult> Finish(const CancelCheck& cancel = {});
+  // Ends the generation without building its mesh.
+  void Release();
 
  private:
   struct Session;

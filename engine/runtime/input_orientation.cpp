@@ -7,8 +7,17 @@
 
 namespace silk {
 
-std::shared_ptr<const OrientedPointSet> MakeInputOrientation(const std::vector<float>& points) {
-  return std::make_shared<const OrientedPointSet>(PointRowPositions(points), PointRowNormals(points));
+StatusOr<std::shared_ptr<const OrientedPointSet>> MakeInputOrientation(const std::vector<float>& points,
+                                                                       const CancelCheck& cancel) {
+  auto set = std::make_shared<const OrientedPointSet>(PointRowPositions(points), PointRowNormals(points), cancel);
+  if (set->cancelled()) return CancelledStatus("the orientation index");
+  return std::shared_ptr<const OrientedPointSet>(std::move(set));
+}
+
+StatusOr<PartOrientationReport> OrientToInput(TokenizerDecodedMesh* mesh, const OrientedPointSet& reference,
+                                              const CancelCheck& cancel) {
+  return OrientPartsToPoints(DequantizePositions(mesh->positions), &mesh->faces, mesh->face_component,
+                             mesh->components, reference, cancel);
 }
 
 PartOrientationReport OrientToInput(TokenizerDecodedMesh* mesh, const OrientedPointSet& reference) {

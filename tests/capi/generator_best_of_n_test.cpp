@@ -200,6 +200,30 @@ TEST_F(CapiBestOfN, CancelInTheSecondCandidateLeavesFinishUsable) {
   EXPECT_EQ(again.stats.candidates, 3);
 }
 
+// Issue 35 (left over): a one-call run cancelled 20 ids into candidate 2 of 3 reports the two
+// candidates it started (it said 0), the one in progress as the one whose figures are shown.
+TEST_F(CapiBestOfN, OneCallCancelCountsTheCandidatesStarted) {
+  CancelAt at{g_};
+  silk_generate_params p = Params(5, 3);
+  p.user_data = &at;
+  p.progress = [](const silk_generate_progress* x, void* u) {
+    auto* at = static_cast<CancelAt*>(u);
+    if (x->candidate == at->candidate && x->tokens == at->tokens) silk_generator_cancel(at->g);
+  };
+  silk_mesh* m = nullptr;
+  silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
+  EXPECT_EQ(silk::testing::GenerateFromMesh(g_, mesh_, &p, &m, nullptr, &st), SILK_ERR_CANCELLED);
+  EXPECT_EQ(m, nullptr);
+  EXPECT_EQ(st.stop_reason, SILK_STOP_CANCELLED);
+  EXPECT_EQ(st.candidates, 2);
+  EXPECT_EQ(st.chosen_candidate, 1);
+  EXPECT_EQ(st.tokens, 20);
+  EXPECT_EQ(st.score, 0);  // the cancelled one was not scored
+  silk_generate_stats kept = silk_cpp::Sized<silk_generate_stats>();
+  ASSERT_EQ(silk_generator_get_stats(g_, &kept), SILK_OK);
+  EXPECT_EQ(kept.candidates, 2);
+}
+
 TEST(CapiStopReason, Names) {
   EXPECT_STREQ(silk_stop_reason_name(SILK_STOP_EOS), "eos");
   EXPECT_STREQ(silk_stop_reason_name(SILK_STOP_MAX_TOKENS), "max_tokens");

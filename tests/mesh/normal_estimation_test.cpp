@@ -7,10 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "core/splitmix64.h"
+#include "mesh/distinct_points.h"
 #include "mesh/normal_estimation.h"
 #include "mesh/plane_fit.h"
 #include "mesh/nearest_points.h"
@@ -144,6 +146,84 @@ TEST(NormalEstimation, DeterministicAndRefusesWhatItCannotFit) {
   auto line = EstimateNormals({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 0, 0}});
   ASSERT_TRUE(line.ok());
   for (const Point3& v : *line) EXPECT_NEAR(Dot(v, v), 1, 1e-12);
+}
+
+std::vector<Point3> TorusCloud(int n, uint64_t seed) {
+  SplitMix64 rng(seed);
+  std::vector<Point3> pts;
+  for (int i = 0; i < n; ++i) {
+    const double a = rng.Uniform() * 6.283185307179586, b = rng.Uniform() * 6.283185307179586;
+    pts.push_back({(2 + 0.7 * std::cos(b)) * std::cos(a), (2 + 0.7 * std::cos(b)) * std::sin(a), 0.7 * std::sin(b)});
+  }
+  return pts;
+}
+
+// Issue 35 item 7: duplicates are merged before the neighbour search. Every copy of a point gets
+// the normal the point has in the cloud without copies (before: a copy's neighbours were its own
+// copies, an empty plane, and n identical points took O(n^2): 100,000 took minutes).
+TEST(NormalEstimation, DuplicatePointsAreMergedAndEachCopyGetsItsPositionsNormal) {
+  const std::vector<Point3> distinct = TorusCloud(1500, 21);
+  std::vector<Point3> copies;
+  for (int c = 0; c < 40; ++c)  // 40 copies of each, interleaved (copy c of point i at c * 1500 + i)
+    copies.insert(copies.end(), distinct.begin(), distinct.end());
+  auto want = EstimateNormals(distinct), got = EstimateNormals(copies);
+  ASSERT_TRUE(want.ok() && got.ok()) << got.status().ToString();
+  ASSERT_EQ(got->size(), copies.size());
+  for (size_t i = 0; i < copies.size(); ++i) ASSERT_EQ((*got)[i], (*want)[i % distinct.size()]) << i;
+  auto merged = MergeDuplicatePoints(copies);
+  EXPECT_TRUE(merged.merged());
+  EXPECT_EQ(merged.points, distinct);
+  EXPECT_FALSE(MergeDuplicatePoints(distinct).merged());  // nothing copied when there is nothing to merge
+}
+
+TEST(NormalEstimation, IdenticalPointsAreRefusedNamingTheCount) {
+  const std::vector<Point3> same(100000, Point3{0.25, -1, 3});
+  auto r = EstimateNormals(same);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find("the 100000 points lie at 1 distinct position(s), at least 3 are needed"),
+            std::string::npos) << r.status().ToString();
+  std::vector<Point3> two = same;
+  two.push_back({1, 1, 1});
+  EXPECT_FALSE(EstimateNormals(two).ok());
+}
+
+TEST(NormalEstimation, APointLimitIsEnforcedWithAMessageNamingIt) {
+  const std::vector<Point3> pts = TorusCloud(1001, 3);
+  NormalEstimationParams p;
+  p.max_points = 1000;
+  auto r = EstimateNormals(pts, p);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status().message().find("cannot estimate normals for 1001 points: the limit is 1000"), std::string::npos)
+      << r.status().ToString();
+  EXPECT_EQ(NormalEstimationParams{}.max_points, kMaxNormalEstimationPoints);
+  p.max_points = 1001;
+  EXPECT_TRUE(EstimateNormals(pts, p).ok());
+}
+
+// Issue 35 item 12: a cloud at 1e-100 or 1e100 (and near the ends of a double's range) has the
+// normals of the same cloud at unit scale, bit for bit (before: axis-aligned normals).
+TEST(NormalEstimation, ExtremeScalesGiveTheNormalsOfTheUnitScaleCloud) {
+  const std::vector<Point3> pts = TorusCloud(3000, 17);
+  auto want = EstimateNormals(pts);
+  ASSERT_TRUE(want.ok());
+  for (int e : {-1000, -332, -40, 40, 332, 1000}) {  // 2^-332 ~ 1e-100, 2^332 ~ 1e100
+    std::vector<Point3> scaled = pts;
+    for (Point3& p : scaled)
+      for (double& x : p) x = std::ldexp(x, e);
+    auto got = EstimateNormals(scaled);
+    ASSERT_TRUE(got.ok()) << e << ": " << got.status().ToString();
+    EXPECT_EQ(*got, *want) << "scale 2^" << e;
+  }
+}
+
+TEST(NormalEstimation, CancelIsPolled) {
+  const std::vector<Point3> pts = TorusCloud(200000, 5);
+  int polls = 0;
+  auto r = EstimateNormals(pts, {}, [&] { return ++polls >= 3; });
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), StatusCode::kCancelled) << r.status().ToString();
+  EXPECT_EQ(polls, 3);
 }
 
 }  // namespace

@@ -180,5 +180,36 @@ TEST(PointPreprocessing, PointCloudsAndErrors) {
   EXPECT_NE(s.status().message().find("area"), std::string::npos);
 }
 
+// Issue 35 item 12: clouds at 1e-100 and 1e100 normalise to the rows of the unit-scale cloud
+// (the normalisation is scale-free up to rounding); beyond a double's range (a centre that
+// overflows, an extent that is denormal) they are refused with a message, not written as garbage.
+TEST(PointPreprocessing, ExtremeScalesNormaliseOrAreRefused) {
+  IoMesh cloud;
+  std::vector<std::array<double, 3>> normals;
+  for (int i = 0; i < 200; ++i) {
+    cloud.positions.push_back({std::cos(i * 0.3), std::sin(i * 0.7), i * 0.01});
+    normals.push_back({0, 0, 1});
+  }
+  auto unit = PreparePoints(cloud, &normals, SilkPreprocessing(0.95, 128), 4);
+  ASSERT_TRUE(unit.ok());
+  for (double scale : {1e-100, 1e100, 1e-300, 1e300}) {
+    IoMesh scaled = cloud;
+    for (auto& p : scaled.positions)
+      for (double& x : p) x *= scale;
+    auto r = PreparePoints(scaled, &normals, SilkPreprocessing(0.95, 128), 4);
+    ASSERT_TRUE(r.ok()) << scale << ": " << r.status().ToString();
+    ASSERT_EQ(r->rows.size(), unit->rows.size());
+    for (size_t i = 0; i < r->rows.size(); ++i) EXPECT_NEAR(r->rows[i], unit->rows[i], 1e-6) << scale << " " << i;
+  }
+  for (double scale : {1e307, 1e-310}) {  // near 1.5e308: a centre of inf; a denormal extent (scale overflows)
+    IoMesh scaled = cloud;
+    for (auto& p : scaled.positions)
+      for (double& x : p) x = x * scale + (scale > 1 ? 1.5e308 : 0);
+    auto r = PreparePoints(scaled, &normals, SilkPreprocessing(0.95, 128), 4);
+    ASSERT_FALSE(r.ok()) << scale;
+    EXPECT_NE(r.status().message().find("coordinates out of range"), std::string::npos) << r.status().ToString();
+  }
+}
+
 }  // namespace
 }  // namespace silk

@@ -7,9 +7,10 @@ silkgen with the tiny model and --save-points. Checks: exit 0, the output passes
 shared/tools/mesh_check.py, the saved points are input points (input frame) with unit normals
 that agree with the true ones (mean |cos| and outward share above the thresholds measured for
 this mesh in docs/normals.md, with margin), the same run twice writes the same points, and an
-XYZ with normals keeps them as given.
+XYZ with normals keeps them as given; the same scan at 1e-100 and 1e100 passes the same checks and
+100,000 identical points are refused (issue 35).
 Usage: silkgen_points_checks.py SILKGEN REPO SHARED"""
-import pathlib, struct, subprocess, sys, tempfile
+import gzip, pathlib, struct, subprocess, sys, tempfile
 
 import numpy as np
 
@@ -87,6 +88,22 @@ def check_cloud(silkgen, repo, shared, inp, pts, nrm, tmp, tag, failures):
     return rows
 
 
+def check_hostile_clouds(silkgen, repo, shared, pts, nrm, tmp, failures):
+    """Issue 35: the same scan at 1e-100 and 1e100 gets the same quality of normals (they were
+    axis-aligned, exit 0); 100,000 copies of one point (a 914-byte .xyz.gz) are refused at once,
+    naming the problem (it took minutes)."""
+    for scale in (1e-100, 1e100):
+        xyz = tmp / f"scale_{scale:g}.xyz"
+        xyz.write_text("".join(f"{float(p[0]) * scale!r} {float(p[1]) * scale!r} {float(p[2]) * scale!r}\n" for p in pts))
+        check_cloud(silkgen, repo, shared, xyz, pts * scale, nrm, tmp, f"xyz_scale_{scale:g}", failures)
+    same = tmp / "same.xyz.gz"
+    same.write_bytes(gzip.compress(b"0.5 0.25 1\n" * 100_000))
+    rc, msg = run([silkgen, same, "--model", repo / "tests/models/tiny", "-q", "-o", tmp / "same.glb"])
+    print(f"same.xyz.gz ({same.stat().st_size} bytes): exit {rc}: {msg.strip()}")
+    if rc != 1 or "100000 points lie at 1 distinct position(s)" not in msg or (tmp / "same.glb").exists():
+        failures.append(f"100,000 identical points: expected exit 1 naming the distinct positions, got {rc}: {msg}")
+
+
 def main():
     silkgen, repo, shared = (pathlib.Path(a) for a in sys.argv[1:4])
     v, f = read_obj(shared / MESH)
@@ -109,6 +126,7 @@ def main():
             d2 = ((rows[:, None, :3] - pts[None, :, :]) ** 2).sum(-1)
             if (rows[:, 3:] * nrm[d2.argmin(1)]).sum(1).min() < 0.9999:
                 failures.append("xyz_normals: the file's normals were not kept")
+        check_hostile_clouds(silkgen, repo, shared, pts, nrm, tmp, failures)
     return finish("silkgen points", failures)
 
 

@@ -12,6 +12,8 @@ from __future__ import annotations
 import ctypes
 import os
 
+from . import _checks
+
 try:
     import numpy as _numpy
 except ImportError:  # pragma: no cover - exercised through SILK_MESH_NUMPY=0 in the tests
@@ -28,8 +30,9 @@ def _flatten(values, width: int, what: str) -> list:
     if seq and not isinstance(seq[0], (int, float)) and hasattr(seq[0], "__len__"):
         flat = []
         for i, row in enumerate(seq):
-            if len(row) != width:
-                raise ValueError(f"{what}: row {i} has {len(row)} values, expected {width}")
+            if not hasattr(row, "__len__") or len(row) != width:
+                got = f"{len(row)} values" if hasattr(row, "__len__") else f"a {type(row).__name__}"
+                raise ValueError(f"{what}: row {i} has {got}, expected {width}")
             flat.extend(row)
         return flat
     if len(seq) % width:
@@ -38,17 +41,18 @@ def _flatten(values, width: int, what: str) -> list:
 
 
 def to_c(values, ctype, width: int, what: str):
-    """(pointer, rows, keep-alive) for values as a C array of ctype, `width` per row."""
+    """(pointer, rows, keep-alive) for values as a C array of ctype, `width` per row. Checked by
+    _checks before any conversion (dtype, shape, range); never reshaped or cast inexactly."""
     if _numpy is not None and hasattr(values, "__array_interface__"):
-        arr = _numpy.ascontiguousarray(values, dtype=_DTYPES[ctype])
-        if arr.size % width:
-            raise ValueError(f"{what}: {arr.size} values is not a multiple of {width}")
-        return arr.ctypes.data_as(ctypes.POINTER(ctype)), arr.size // width, arr
-    flat = _flatten(values, width, what)
-    try:
-        buf = (ctype * len(flat))(*flat)
-    except TypeError as e:
-        raise TypeError(f"{what}: {e}") from e
+        arr = _numpy.asarray(values)
+        rows = _checks.array_shape(arr.shape, width, what)
+        _checks.array_dtype(arr, ctype, what)
+        arr = _numpy.ascontiguousarray(arr, dtype=_DTYPES[ctype])  # a copy unless already so
+        return arr.ctypes.data_as(ctypes.POINTER(ctype)), rows, arr
+    if isinstance(values, (str, bytes)):
+        raise TypeError(f"{what}: expected numbers, not {type(values).__name__}")
+    flat = _checks.sequence_values(_flatten(values, width, what), ctype, what)
+    buf = (ctype * len(flat))(*flat)
     return ctypes.cast(buf, ctypes.POINTER(ctype)), len(flat) // width, buf
 
 

@@ -132,7 +132,10 @@ def library_path() -> str:
 
 def onnxruntime_library() -> str | None:
     """The onnxruntime package's C library (onnxruntime/capi/libonnxruntime.so.<version>), located
-    through importlib without importing onnxruntime; None when the package or the file is absent."""
+    through importlib without importing onnxruntime; None when the package or the file is absent.
+    Looked up afresh on every call (import caches dropped): a package installed after a failed
+    Model() is found by the next one, as libsilk's own loader retries (issue 35)."""
+    importlib.invalidate_caches()
     spec = importlib.util.find_spec("onnxruntime")
     for folder in (spec.submodule_search_locations or []) if spec else []:
         found = sorted(glob.glob(os.path.join(folder, "capi", "libonnxruntime.so.*")), key=len)

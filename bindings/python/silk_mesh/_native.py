@@ -155,7 +155,7 @@ def preprocess_defaults(kind: int) -> _capi.PreprocessParams:
 def prepare_points(mesh, cloud, n_cloud: int, params: _capi.PreprocessParams, seed: int):
     """(float array of rows * 6, transform double[4]) by silk_points_prepare (size query first)."""
     L, rows, transform = lib(), ctypes.c_size_t(), (ctypes.c_double * 4)()
-    s = ctypes.c_uint64(int(seed) & (2**64 - 1))
+    s = ctypes.c_uint64(seed)  # range-checked by the caller (_checks.integer)
     check(L.silk_points_prepare(mesh, cloud, n_cloud, byref(params), s, None, 0, byref(rows), None))
     out = (ctypes.c_float * rows.value)()
     check(L.silk_points_prepare(mesh, cloud, n_cloud, byref(params), s, out, len(out), byref(rows), transform))

@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import ctypes
 
+from . import _checks
+
 
 def fill(struct: ctypes.Structure, params: dict, where: str, enums: dict | None = None,
          hidden: tuple = ()) -> ctypes.Structure:
@@ -24,8 +26,10 @@ def fill(struct: ctypes.Structure, params: dict, where: str, enums: dict | None 
             value = enums[name][key]
         elif fields[name] is ctypes.c_char_p and isinstance(value, str):
             value = value.encode()
-        elif isinstance(value, bool):
-            value = int(value)
+        elif _checks.is_int_type(fields[name]):
+            value = _checks.integer(value, fields[name], f"{where}: {name}")
+        elif fields[name] in (ctypes.c_double, ctypes.c_float):
+            value = _checks.real(value, f"{where}: {name}")
         try:
             setattr(struct, name, value)
         except TypeError as e:

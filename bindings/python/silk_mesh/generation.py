@@ -9,8 +9,8 @@ import ctypes
 import os
 from typing import NamedTuple
 
-from . import _arrays, _capi, _native, _params
-from ._library import SilkError, _Owned, preload_onnxruntime
+from . import _arrays, _capi, _checks, _native, _params
+from ._library import SilkError, _Owned, library_path, preload_onnxruntime
 from .mesh import Mesh, _Borrowed
 from .models import find_model
 
@@ -38,7 +38,8 @@ class Model(_Owned):
             raise ValueError(f"Model: kv_precision must be one of {sorted(_capi.KV_PRECISIONS)}, not {kv_precision!r}")
         self.dir = os.fspath(dir)
         preload_onnxruntime()  # the pip wheel's libsilk: the onnxruntime package's library
-        self._h = _native.model_load(os.fsencode(self.dir), int(threads), _capi.DECODERS[decoder],
+        threads = _checks.integer(threads, ctypes.c_int32, "Model: threads")
+        self._h = _native.model_load(os.fsencode(self.dir), threads, _capi.DECODERS[decoder],
                                      _capi.KV_PRECISIONS[kv_precision])
 
     def info(self) -> dict:
@@ -164,7 +165,8 @@ class Generator(_Owned):
         """Adds up to max_ids ids (until_layer: stops at the next completed layer); True once done.
         A cancel raises SilkError(SILK_ERR_CANCELLED); finish() still gives the completed layers."""
         try:
-            self.done = _native.generator_advance(self.handle, int(max_ids), until_layer)
+            max_ids = _checks.integer(max_ids, ctypes.c_int32, "advance: max_ids")
+            self.done = _native.generator_advance(self.handle, max_ids, until_layer)
         finally:
             if self._error is not None:
                 err, self._error = self._error, None

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import ctypes
 
-from . import _arrays, _capi, _native, _params
+from . import _arrays, _capi, _checks, _native, _params
 from .mesh import _Borrowed
 
 
@@ -19,7 +19,8 @@ def prepare_points(source, triangles=None, kind: str = "silk", n_points: int = 4
         raise ValueError(f"prepare_points: kind must be one of {sorted(_capi.PREPROCESS_KINDS)}, not {kind!r}")
     p = _params.fill(_native.preprocess_defaults(_capi.PREPROCESS_KINDS[kind]), params, "prepare_points",
                      hidden=("struct_size", "kind", "point_count"))
-    p.point_count = int(n_points)
+    p.point_count = _checks.integer(n_points, ctypes.c_int32, "prepare_points: n_points")
+    seed = _checks.integer(seed, ctypes.c_uint64, "prepare_points: seed")
     if triangles is not None:
         source = (source, triangles)
     if triangles is None and not isinstance(source, _Borrowed.SOURCES):

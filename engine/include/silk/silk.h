@@ -474,7 +474,10 @@ typedef struct silk_generate_progress {
 /* Called after every generated id (the last one included), on the calling thread. */
 typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* user_data);
 /* Polled as the call begins, before point sampling, every 65,536 surface samples, before each
- * candidate's encoder run and before every id; non-zero stops the generation with SILK_ERR_CANCELLED.
+ * candidate's encoder run, while the input's points are indexed for orientation, before every
+ * id, and after a candidate's last id while its parts are oriented (before each face) and it is
+ * scored (every 4,096 points: ~10 ms), except in silk_generator_finish (a finish must be able to
+ * end a cancelled run); non-zero stops the generation with SILK_ERR_CANCELLED.
  * (silk_generator_cancel is honoured everywhere else too: see there.) */
 typedef int32_t (*silk_cancel_fn)(void* user_data);
 
@@ -604,7 +607,9 @@ typedef struct silk_generate_stats {
   /* surface guidance: vertex ids sampled under it; vertex ids (sampled or forced) taken outside
    * the tolerance because no legal id was within it */
   int64_t guided_tokens, guidance_fallbacks;
-  int32_t candidates;       /* candidates run (N; fewer after a cancel). During a step-wise run: N */
+  int32_t candidates;       /* candidates run (N; after a cancel those started, the cancelled one
+                               included, whose score is 0 when it was not scored). During a
+                               step-wise run: N */
   int32_t chosen_candidate; /* index of the returned one (the report JSON lists every seed and score);
                                during a step-wise run: the one in progress */
   double score;             /* returned mesh: symmetric Chamfer distance to the encoder's points, model frame */

@@ -14,8 +14,10 @@
 
 namespace silk {
 
-// Loads onnxruntime once and initialises its C++ API (built with ORT_API_MANUAL_INIT); later
-// calls return the first call's result.
+// Loads onnxruntime and initialises its C++ API (built with ORT_API_MANUAL_INIT). Once it has
+// succeeded, later calls return Ok at once; after a failure the next call tries again (a library
+// installed or replaced since is found). A release older than the headers' C API version is
+// refused naming its version, before it is asked for that API (nothing printed by it).
 Status LoadOnnxRuntimeLibrary();
 
 }  // namespace silk

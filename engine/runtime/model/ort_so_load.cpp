@@ -50,8 +50,11 @@ Status InitFrom(void* lib, const std::string& fallback_name) {
 
 Status LoadOnnxRuntimeForPlatform() {
   // Already in the process (RTLD_NOLOAD never searches a path): silk_mesh's preload.
-  if (void* lib = dlopen(SILK_ORT_SONAME, RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD))
-    return InitFrom(lib, SILK_ORT_SONAME);
+  if (void* lib = dlopen(SILK_ORT_SONAME, RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD)) {
+    Status s = InitFrom(lib, SILK_ORT_SONAME);
+    if (!s.ok()) dlclose(lib);  // our reference only: the preloader keeps its own
+    return s;
+  }
   const std::string own = ModuleFolder();
   const std::string path = JoinRelative(own.empty() ? "." : own, SILK_ORT_RELATIVE_PATH);
   void* lib = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -62,7 +65,9 @@ Status LoadOnnxRuntimeForPlatform() {
     return IoError(path + ": cannot load onnxruntime (needed for generation; the onnxruntime package "
                    "belongs beside silk_mesh): " + why);
   }
-  return InitFrom(lib, path);
+  Status s = InitFrom(lib, path);
+  if (!s.ok()) dlclose(lib);  // unusable: let a later try load a replacement
+  return s;
 }
 
 }  // namespace silk
