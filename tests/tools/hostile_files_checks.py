@@ -323,8 +323,11 @@ def check_signals(ctx):
     for attempt in range(5):
         out = ctx.tmp / f"twice{attempt}"
         p = subprocess.Popen([str(ctx.silkgen), "--batch", str(lst), "-o", str(out), "--model", str(ctx.model),
-                              "--max-tokens", "40", "--threads", "1", "-q"], stderr=subprocess.DEVNULL)
+                              "--max-tokens", "400", "--threads", "1", "-q"], stderr=subprocess.DEVNULL)
         time.sleep(1.0 + 0.05 * attempt)
+        if p.poll() is not None:  # the work must outlast the wait, or the signals test nothing
+            ctx.failures.append(f"two SIGTERMs: the run ended (exit {p.returncode}) before the first signal")
+            continue
         p.send_signal(signal.SIGTERM)
         time.sleep(0.02)
         if p.poll() is None:
