@@ -5,7 +5,6 @@ beside the destination and renamed at the end, so a failed import leaves nothing
 from __future__ import annotations
 
 import gc
-import hashlib
 import os
 import shutil
 import sys
@@ -16,6 +15,7 @@ from pathlib import Path
 from .json_io import write_json
 from .official.card import write_official_card
 from .official.checkpoint import load_official
+from .official.state_dict_file import sha256_of
 from .onnx import fidelity
 from .onnx.export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
                           transpose_linears)
@@ -31,14 +31,6 @@ INT4_ACCURACY_LEVEL = 4
 # The imported model's KV cache precision (files.default_kv_precision), chosen by measurement:
 # docs/runtime.md "KV cache precision" (bench/kv_fidelity.py and bench/time_to_mesh).
 DEFAULT_KV_PRECISION = "fp16"
-
-
-def sha256_of(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        while chunk := f.read(1 << 24):
-            h.update(chunk)
-    return h.hexdigest()
 
 
 def _say(msg: str) -> None:

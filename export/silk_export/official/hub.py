@@ -99,7 +99,7 @@ def _check(path: Path, src: HubSource, url: str, size: int | None, etag: str | N
         _forget(path)
         raise HubError(f"{url}: downloaded {got} bytes, the hub reports {size}; the partial file was removed, "
                        "run the command again")
-    from .importer import sha256_of
+    from .state_dict_file import sha256_of
     digest = sha256_of(path)
     if etag and _SHA256.match(etag) and digest != etag:
         _forget(path)

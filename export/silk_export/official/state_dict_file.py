@@ -4,6 +4,7 @@ twice: `.safetensors` (header parsed here; F32/F16/BF16) and PyTorch `.pt`/`.bin
 with weights_only=True, memory-mapped when the file is in the zip format)."""
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import struct
@@ -120,3 +121,12 @@ def open_state_dict(path: Path):
     if path.suffix in (".pt", ".pth", ".bin", ".ckpt"):
         return TorchFile(path)
     raise StateDictError(f"{path}: unknown checkpoint type '{path.suffix}' (expected .safetensors, .pt, .bin)")
+
+
+def sha256_of(path: Path) -> str:
+    """The SHA-256 of a checkpoint file (the model card's and the hub check's digest), read in 16 MiB chunks."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        while chunk := f.read(1 << 24):
+            h.update(chunk)
+    return h.hexdigest()
