@@ -58,13 +58,16 @@ bool ParseFaceGuidanceName(const std::string& text, FaceGuidance* out) {
   return false;
 }
 
+// M_PI is POSIX, not C++17: MinGW's <cmath> has no M_PI without _USE_MATH_DEFINES.
+constexpr double kPi = 3.14159265358979323846;  // the double M_PI names
+
 FaceGuide::FaceGuide(std::shared_ptr<const SurfaceGuide> field, const std::vector<float>& points, double tolerance)
     : field_(std::move(field)),
       index_(GridPoints(points)),
       normals_(UnitNormals(points)),
       root_(3 * 127 * 127 + 1),
       tolerance_(tolerance),
-      angle_scale_(1.0 / (1.0 - std::cos(kFaceAngleLimitDegrees * M_PI / 180.0))) {
+      angle_scale_(1.0 / (1.0 - std::cos(kFaceAngleLimitDegrees * kPi / 180.0))) {
   for (size_t i = 0; i < root_.size(); ++i) root_[i] = static_cast<float>(std::sqrt(static_cast<double>(i)));
 }
 
