@@ -42,17 +42,6 @@ std::vector<int32_t> IdsOf(silk_tokens* t) {
   return ids;
 }
 
-// n points of a Fibonacci sphere with outward normals (rows of x y z nx ny nz).
-std::vector<double> Sphere(size_t n) {
-  std::vector<double> pts(6 * n);
-  for (size_t i = 0; i < n; ++i) {
-    const double z = 1 - 2 * (i + 0.5) / n, r = std::sqrt(1 - z * z), phi = 2.399963229728653 * i;
-    const double xyz[3] = {r * std::cos(phi), r * std::sin(phi), z};
-    for (int a = 0; a < 3; ++a) pts[6 * i + a] = pts[6 * i + 3 + a] = xyz[a];
-  }
-  return pts;
-}
-
 class CapiLifetime : public silk::testing::TinyModelTest {};
 
 // What a callback needs to reach the handles (user_data).
@@ -226,7 +215,7 @@ Trial RunAndCancel(silk_generator* g, const std::vector<double>& pts, const silk
 // only a band of `slack` at either end (the few instructions between the clock reading and the
 // call's own start or end, a thread switch) cannot be ordered and excuses an SILK_OK.
 TEST_F(CapiLifetime, CancelAtRandomMomentsIsNeverLost) {
-  const std::vector<double> pts = Sphere(size_t{1} << 20);
+  const std::vector<double> pts = silk::testing::FibonacciSphere(size_t{1} << 20);
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
   const silk_generate_params p = Params(7, 120);

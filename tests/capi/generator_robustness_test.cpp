@@ -222,17 +222,6 @@ TEST_F(CapiGeneration, CancelIsPolledBeforeSamplingAndTheEncoder) {
   silk_generator_destroy(g);
 }
 
-// n points of a Fibonacci sphere, rows of x y z nx ny nz with outward normals.
-std::vector<double> FibonacciSphere(size_t n) {
-  std::vector<double> pts(6 * n);
-  for (size_t i = 0; i < n; ++i) {
-    const double z = 1 - 2 * (i + 0.5) / n, r = std::sqrt(1 - z * z), phi = 2.399963229728653 * i;
-    const double xyz[3] = {r * std::cos(phi), r * std::sin(phi), z};
-    for (int a = 0; a < 3; ++a) pts[6 * i + a] = pts[6 * i + 3 + a] = xyz[a];
-  }
-  return pts;
-}
-
 // Issue 12: silk_generator_cancel from another thread interrupts an encoder run in progress.
 // 2^20 points all go to the encoder (seconds uncancelled with the tiny model on a 2-core VM). The
 // params' cancel callback (polled, never stopping here) tells the canceller when the last poll
@@ -242,7 +231,7 @@ std::vector<double> FibonacciSphere(size_t n) {
 // assertion: the measured latency is printed (docs/runtime.md).
 TEST_F(CapiGeneration, CancelFromAnotherThreadInterruptsTheEncoderRun) {
   const size_t n = size_t{1} << 20;
-  const std::vector<double> pts = FibonacciSphere(n);
+  const std::vector<double> pts = silk::testing::FibonacciSphere(n);
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
   silk_generate_params p = Params(3);
@@ -292,7 +281,7 @@ TEST_F(CapiGeneration, CancelFromAnotherThreadInterruptsTheEncoderRun) {
 // at load 12 measured 0.5 s), the latency is printed.
 TEST_F(CapiGeneration, CancelDuringOrientationAndScoringOfAMillionPointsReturnsPromptly) {
   const size_t n = size_t{1} << 20;
-  const std::vector<double> pts = FibonacciSphere(n);
+  const std::vector<double> pts = silk::testing::FibonacciSphere(n);
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
   for (int delay_ms : {30, 300}) {

@@ -2,6 +2,8 @@
 // What the C API generation tests share: the one-call generation from a silk_mesh or from rows
 // of points through silk_generator_run, and a fixture holding the tiny test model and the sample.
 #pragma once
+#include <cmath>
+#include <vector>
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -12,6 +14,17 @@
 #include "support/test_paths.h"
 
 namespace silk::testing {
+
+// n points of a Fibonacci sphere with outward normals (rows of x y z nx ny nz).
+inline std::vector<double> FibonacciSphere(size_t n) {
+  std::vector<double> pts(6 * n);
+  for (size_t i = 0; i < n; ++i) {
+    const double z = 1 - 2 * (i + 0.5) / n, r = std::sqrt(1 - z * z), phi = 2.399963229728653 * i;
+    const double xyz[3] = {r * std::cos(phi), r * std::sin(phi), z};
+    for (int a = 0; a < 3; ++a) pts[6 * i + a] = pts[6 * i + 3 + a] = xyz[a];
+  }
+  return pts;
+}
 
 inline silk_status GenerateFromMesh(silk_generator* g, const silk_mesh* mesh, const silk_generate_params* p,
                                     silk_mesh** out, silk_tokens** tokens, silk_generate_stats* stats) {
