@@ -85,7 +85,8 @@ struct Args {
   silkgen::BatchArgs batch;
 };
 
-void AddOptions(CLI::App& app, Args& a) {
+// Input, output and model: what silkgen reads and writes.
+void AddFileOptions(CLI::App& app, Args& a) {
   app.add_option("input", a.input, "A point cloud (PLY without faces, XYZ/PTS; normals estimated when it has none), or a "
                  "mesh: PLY OBJ STL OFF glTF GLB PMD (or --batch)")
       ->check(silkapp::ExistingFile());
@@ -94,6 +95,10 @@ void AddOptions(CLI::App& app, Args& a) {
                  "models folder (--list-models; a path always wins); default: the bundled model");
   app.add_flag("--list-models", a.list_models, "List the models --model takes by name (name, architecture, size, decoders, "
                "KV caches, folder) and exit");
+}
+
+// The sampler chain: seed, temperature, truncation, guidance, best of N.
+void AddSamplingOptions(CLI::App& app, Args& a) {
   app.add_option("--seed", a.seed_text, "Random seed (integer) or 'random'")->capture_default_str();
   app.add_option("--threads", a.threads, "onnxruntime threads (0 = physical cores)")->check(CLI::Range(0, 1024))
       ->capture_default_str();
@@ -136,6 +141,10 @@ void AddOptions(CLI::App& app, Args& a) {
                  "Face guidance: how far (cells of 128) a face's corners, edge midpoints and centroid may lie from the "
                  "input's points; default: the model's, else libsilk's")
       ->check(CLI::Range(0.5, 64.0))->type_name("CELLS");
+}
+
+// Side outputs and how the model runs (precision, points, pre-processing).
+void AddRunOptions(CLI::App& app, Args& a) {
   app.add_option("--stats", a.stats_path, "Write run figures as JSON");
   app.add_option("--save-points", a.save_points,
                  "Write the points the encoder saw, with their normals (estimated ones for a cloud without), in the "
@@ -154,6 +163,12 @@ void AddOptions(CLI::App& app, Args& a) {
                "point count; no normalisation, resampling or rounding); the output stays in the model's frame");
   app.add_flag("--part-colors", a.part_colors, "GLB: a distinct COLOR_0 per part");
   app.add_flag("-q,--quiet", a.quiet, "No settings, progress or summary on stderr");
+}
+
+void AddOptions(CLI::App& app, Args& a) {
+  AddFileOptions(app, a);
+  AddSamplingOptions(app, a);
+  AddRunOptions(app, a);
   // Measurement switches (docs/runtime.md), not needed for normal use.
   app.add_option("--trace", a.trace_path, "Write points + every id with its legal set (reference check)")->group("");
   app.add_flag("--no-skip-forced", a.no_skip_forced, "Run the model for forced ids too")->group("");
