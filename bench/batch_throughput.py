@@ -11,7 +11,13 @@ run: one `silkgen FILE` process per mesh (the model loaded each time), 2 threads
 Usage: python3 bench/batch_throughput.py [--silkgen build/apps/silkgen] [--model DIR]
        [--corpus ../shared/corpus/dev] [--stride 20] [--candidates 8] [--max-tokens 0]
 """
-import argparse, pathlib, subprocess, sys, tempfile, time
+
+import argparse
+import pathlib
+import subprocess
+import sys
+import tempfile
+import time
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -48,16 +54,34 @@ def main():
 
         rows = []
         timed([[a.silkgen, files[0], "-o", tmp / "warm.glb", *common, "--threads", 2, "--candidates", 1]])  # page cache
-        base = sum(timed([[a.silkgen, f, "-o", tmp / f"single_{f.stem}.glb", *common, "--threads", 2,
-                           "--candidates", 1]]) for f in files)
+        base = sum(
+            timed([[a.silkgen, f, "-o", tmp / f"single_{f.stem}.glb", *common, "--threads", 2, "--candidates", 1]])
+            for f in files
+        )
         rows.append(("separate processes, 2 threads, best of 1 (baseline)", base))
-        rows.append(("--batch 1 process x 2 threads, best of 1",
-                     timed([[a.silkgen, *batch("b12", "--threads", 2, "--candidates", 1)]])))
-        rows.append(("--batch 2 processes x 1 thread, best of 1",
-                     timed([[a.silkgen, *batch("b21", "--threads", 1, "--candidates", 1, "--shard", f"{i}/2")]
-                            for i in range(2)])))
-        rows.append((f"--batch 1 process x 2 threads, best of {a.candidates}",
-                     timed([[a.silkgen, *batch("b12n", "--threads", 2, "--candidates", a.candidates)]])))
+        rows.append(
+            (
+                "--batch 1 process x 2 threads, best of 1",
+                timed([[a.silkgen, *batch("b12", "--threads", 2, "--candidates", 1)]]),
+            )
+        )
+        rows.append(
+            (
+                "--batch 2 processes x 1 thread, best of 1",
+                timed(
+                    [
+                        [a.silkgen, *batch("b21", "--threads", 1, "--candidates", 1, "--shard", f"{i}/2")]
+                        for i in range(2)
+                    ]
+                ),
+            )
+        )
+        rows.append(
+            (
+                f"--batch 1 process x 2 threads, best of {a.candidates}",
+                timed([[a.silkgen, *batch("b12n", "--threads", 2, "--candidates", a.candidates)]]),
+            )
+        )
     print(f"{len(files)} meshes (every {a.stride}th of {a.corpus}), model {a.model}, max-tokens {a.max_tokens}")
     print(f"{'configuration':58s} {'wall s':>8s} {'meshes/h':>9s} {'vs baseline':>11s}")
     for name, s in rows:

@@ -14,6 +14,7 @@ Beside the table: the wall time per call without the profiler, and the bytes one
 libsilk_ops is registered with onnxruntime for the ai.silk ops (beside $SILK_LIBRARY or the build tree's
 libsilk; $SILK_OPS_LIBRARY).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -48,6 +49,7 @@ def decoder_file(model: Path, key: str, kv: str) -> Path:
 
 def make_session(path: Path, threads: int, profile: bool):
     import onnxruntime as ort
+
     so = ort.SessionOptions()
     so.intra_op_num_threads = threads
     so.log_severity_level = 3
@@ -62,12 +64,14 @@ def bind(s, depth: int, calls: int, n_latents: int):
     """An IOBinding with random cache rows (in place: present_* = past_*), cross K/V and room for
     `calls` positions after `depth`; returns it with the arrays it points into."""
     import onnxruntime as ort
+
     rng, b, keep = np.random.default_rng(0), s.io_binding(), []
     for i in s.get_inputs():
         if not (i.name.startswith("past_") or i.name.startswith("cross_")):
             continue
-        shape = [d if isinstance(d, int) else (depth + calls if i.name.startswith("past_") else n_latents)
-                 for d in i.shape]
+        shape = [
+            d if isinstance(d, int) else (depth + calls if i.name.startswith("past_") else n_latents) for d in i.shape
+        ]
         dt = NUMPY[i.type]
         a = rng.integers(-100, 100, shape).astype(dt) if dt == np.int8 else (rng.normal(size=shape) * 0.3).astype(dt)
         if dt == np.int8:  # the last four bytes of each row: a float32 scale
@@ -85,8 +89,12 @@ def run_calls(s, b, keep, depth: int, calls: int) -> list[float]:
     times = []
     for k in range(calls):
         p = depth + k
-        for name, val in (("input_ids", np.array([[5]], np.int64)), ("positions", np.array([[p]], np.int64)),
-                          ("seqlens_k", np.array([p], np.int32)), ("total_sequence_length", np.array(p + 1, np.int32))):
+        for name, val in (
+            ("input_ids", np.array([[5]], np.int64)),
+            ("positions", np.array([[p]], np.int64)),
+            ("seqlens_k", np.array([p], np.int32)),
+            ("total_sequence_length", np.array(p + 1, np.int32)),
+        ):
             keep.append(val)
             b.bind_cpu_input(name, val)
         t = time.perf_counter()
@@ -131,8 +139,10 @@ def main() -> int:
     meta = json.loads((a.model / "model.json").read_text())
     d = meta["dims"]
     row_bytes = {"fp32": 4 * d["head_dim"], "fp16": 2 * d["head_dim"], "int8": d["head_dim"] + 4}
-    print(f"decoder_profile: {a.model} {a.decoder}, {a.threads} threads, {a.calls} calls per depth "
-          f"(median wall ms per call without the profiler; kernel ms per call by operator type)")
+    print(
+        f"decoder_profile: {a.model} {a.decoder}, {a.threads} threads, {a.calls} calls per depth "
+        f"(median wall ms per call without the profiler; kernel ms per call by operator type)"
+    )
     for kv in a.kv:
         path = decoder_file(a.model, a.decoder, kv)
         for depth in a.depths:
@@ -140,8 +150,11 @@ def main() -> int:
             cache_mb = depth * d["n_layers"] * 2 * d["n_heads"] * row_bytes[kv.split("@")[0]] / 1e6
             total = sum(ops.values())
             top = ", ".join(f"{op} {ms:.1f}" for op, ms in ops.most_common(a.top))
-            print(f"{kv:>8} depth {depth:5d}: wall {wall:6.1f} ms | kernels {total:6.1f} ms (cache read "
-                  f"{cache_mb:5.0f} MB): {top}", flush=True)
+            print(
+                f"{kv:>8} depth {depth:5d}: wall {wall:6.1f} ms | kernels {total:6.1f} ms (cache read "
+                f"{cache_mb:5.0f} MB): {top}",
+                flush=True,
+            )
     return 0
 
 

@@ -9,6 +9,7 @@ decoder.int8.onnx; "official" also gets decoder.int4.onnx and the importer's fid
 
     python3 bench/export_bench_models.py --out /tmp/silk-bench-models [--configs tiny small paper official]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -36,14 +37,18 @@ def export_official(out: Path, seed: int, int4_block: int, int4_accuracy: int) -
     from silk_export.official.checkpoint import RELEASE_SIZES, official_config
     from silk_export.import_official import write_variants
     from silk_export.official.model import OfficialModel
+
     model = OfficialModel(official_config(RELEASE_SIZES, {})).init_random(seed=seed)
     cfg, params = model.cfg, model.num_parameters()
     files = export_graphs(transpose_linears(model), out)
     del model
     figures = write_variants(out, files, cfg, "auto", int4_block, int4_accuracy)
-    meta = sidecar(cfg, {**RANDOM, "seed": seed}, files,
-                   {"import": {"fidelity": figures, "int4": {"block_size": int4_block,
-                                                             "accuracy_level": int4_accuracy}}})
+    meta = sidecar(
+        cfg,
+        {**RANDOM, "seed": seed},
+        files,
+        {"import": {"fidelity": figures, "int4": {"block_size": int4_block, "accuracy_level": int4_accuracy}}},
+    )
     write_json(out / "model.json", meta)
     return params
 
@@ -61,8 +66,9 @@ def main() -> int:
     for name in a.configs:
         out = Path(a.out) / name
         version = get_architecture("official" if name == "official" else "silk").model_version
-        current = (out / "model.json").exists() and \
-            json.loads((out / "model.json").read_text()).get("model_version") == version
+        current = (out / "model.json").exists() and json.loads((out / "model.json").read_text()).get(
+            "model_version"
+        ) == version
         if current and (a.no_int8 or (out / "decoder.int8.onnx").exists()):
             print(f"{name}: already in {out}")
             continue

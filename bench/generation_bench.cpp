@@ -43,13 +43,13 @@
 
 namespace {
 
+using silk::DecoderPrecision;
 using silk::bench::Clock;
 using silk::bench::DecoderFileBytes;
 using silk::bench::LastLevelCacheBytes;
 using silk::bench::PeakRssMiB;
 using silk::bench::ReadBandwidth;
 using silk::bench::Since;
-using silk::DecoderPrecision;
 
 struct Args {
   std::string models;
@@ -102,7 +102,9 @@ struct Fidelity {
 Fidelity ReadFidelity(const std::string& dir, DecoderPrecision p) {
   std::ifstream in(dir + "/model.json");
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  const std::string key = p == DecoderPrecision::kInt8 ? "decoder_int8" : p == DecoderPrecision::kInt4 ? "decoder_int4" : "decoder";
+  const std::string key = p == DecoderPrecision::kInt8   ? "decoder_int8"
+                          : p == DecoderPrecision::kInt4 ? "decoder_int4"
+                                                         : "decoder";
   const nlohmann::json::json_pointer at("/import/fidelity/" + key);
   Fidelity f;
   if (j.is_discarded() || !j.contains(at) || !j.at(at).is_object()) return f;
@@ -357,22 +359,27 @@ void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
     cpu[order] = (ThreadCpuSeconds() - t0) / (reps * logits.size());
   }
   const int64_t illegal = stats.resampled / reps;
-  std::printf("\nSampling order on %zu recorded steps of the tiny model (thread CPU time per sampled id):\n"
-              "  legal mask (grammar, needed by both): %.1f us per id\n"
-              "  mask-first:        %.1f us\n  sample-then-check: %.1f us (%lld of %zu unmasked draws illegal -> "
-              "second, masked draw)\n",
-              logits.size(), mask_cpu / mask_calls * 1e6, cpu[0] * 1e6, cpu[1] * 1e6, static_cast<long long>(illegal),
-              logits.size());
+  std::printf(
+      "\nSampling order on %zu recorded steps of the tiny model (thread CPU time per sampled id):\n"
+      "  legal mask (grammar, needed by both): %.1f us per id\n"
+      "  mask-first:        %.1f us\n  sample-then-check: %.1f us (%lld of %zu unmasked draws illegal -> "
+      "second, masked draw)\n",
+      logits.size(), mask_cpu / mask_calls * 1e6, cpu[0] * 1e6, cpu[1] * 1e6, static_cast<long long>(illegal),
+      logits.size());
 }
 
 bool ParsePrecisions(const std::string& list, std::vector<DecoderPrecision>* out) {
   out->clear();
   std::stringstream ss(list);
   for (std::string p; std::getline(ss, p, ',');) {
-    if (p == "fp32") out->push_back(DecoderPrecision::kFp32);
-    else if (p == "int8") out->push_back(DecoderPrecision::kInt8);
-    else if (p == "int4") out->push_back(DecoderPrecision::kInt4);
-    else return false;
+    if (p == "fp32")
+      out->push_back(DecoderPrecision::kFp32);
+    else if (p == "int8")
+      out->push_back(DecoderPrecision::kInt8);
+    else if (p == "int4")
+      out->push_back(DecoderPrecision::kInt4);
+    else
+      return false;
   }
   return !out->empty();
 }
@@ -381,11 +388,17 @@ bool ParseArgs(int argc, char** argv, Args* a) {
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-    if (k == "--models") a->models = next();
-    else if (k == "--threads") a->threads = std::atoi(next().c_str());
-    else if (k == "--steps") a->steps = std::atoi(next().c_str());
-    else if (k == "--budget") a->budget = std::atof(next().c_str());
-    else if (k == "--no-int8") a->precisions.erase(std::remove(a->precisions.begin(), a->precisions.end(), DecoderPrecision::kInt8), a->precisions.end());
+    if (k == "--models")
+      a->models = next();
+    else if (k == "--threads")
+      a->threads = std::atoi(next().c_str());
+    else if (k == "--steps")
+      a->steps = std::atoi(next().c_str());
+    else if (k == "--budget")
+      a->budget = std::atof(next().c_str());
+    else if (k == "--no-int8")
+      a->precisions.erase(std::remove(a->precisions.begin(), a->precisions.end(), DecoderPrecision::kInt8),
+                          a->precisions.end());
     else if (k == "--precisions") {
       if (!ParsePrecisions(next(), &a->precisions)) return false;
     } else if (k == "--configs") {
@@ -428,12 +441,13 @@ void PrintHeader() {
 void PrintRow(const std::string& name, DecoderPrecision p, const Result& r, const Fidelity& f) {
   const auto off = kOfficial.count(name) ? kOfficial.at(name) : std::make_pair(0.0, 0.0);
   auto times = [](double tps, double official) { return official > 0 ? tps / official : 0.0; };
-  std::printf("%-8s %-4s %6.1f %6.2f | %7.1f (%7.1f, %3.0f%%, %5.1fx)%s | %7.0f, %7.1f (%7.1f, %3.0f%%, %5.1fx) | "
-              "%4.0f MiB |",
-              name.c_str(), silk::DecoderPrecisionName(p), r.load_s, r.encoder_s, r.tps_shallow, r.bound_shallow,
-              100 * r.tps_shallow / r.bound_shallow, times(r.tps_shallow, off.first),
-              r.shallow_steps < r.shallow_target ? "*" : " ", r.prefill_tps, r.tps_deep, r.bound_deep,
-              100 * r.tps_deep / r.bound_deep, times(r.tps_deep, off.second), r.rss_mib);
+  std::printf(
+      "%-8s %-4s %6.1f %6.2f | %7.1f (%7.1f, %3.0f%%, %5.1fx)%s | %7.0f, %7.1f (%7.1f, %3.0f%%, %5.1fx) | "
+      "%4.0f MiB |",
+      name.c_str(), silk::DecoderPrecisionName(p), r.load_s, r.encoder_s, r.tps_shallow, r.bound_shallow,
+      100 * r.tps_shallow / r.bound_shallow, times(r.tps_shallow, off.first),
+      r.shallow_steps < r.shallow_target ? "*" : " ", r.prefill_tps, r.tps_deep, r.bound_deep,
+      100 * r.tps_deep / r.bound_deep, times(r.tps_deep, off.second), r.rss_mib);
   if (f.top1 >= 0) std::printf(" %5.1f%%, %.2g (%d pos.)", 100 * f.top1, f.kl, f.positions);
   std::printf("\n");
   if (p == DecoderPrecision::kFp32 && off.first > 0) {
@@ -469,8 +483,10 @@ void BenchConfig(const Args& a, const std::string& name, std::string* notes) {
       const double bytes = StepBytes(*cfg, p, depth);
       bw[k] = ReadBandwidth(a.threads, static_cast<int64_t>(bytes));
       char line[200];
-      std::snprintf(line, sizeof(line), "  %-8s %-4s depth %4.0f: %7.1f MiB read per token (cross K/V: %d rows), "
-                    "bandwidth %5.1f GB/s\n", name.c_str(), prec, depth, bytes / 1048576.0, cfg->dims.n_latents, bw[k]);
+      std::snprintf(line, sizeof(line),
+                    "  %-8s %-4s depth %4.0f: %7.1f MiB read per token (cross K/V: %d rows), "
+                    "bandwidth %5.1f GB/s\n",
+                    name.c_str(), prec, depth, bytes / 1048576.0, cfg->dims.n_latents, bw[k]);
       *notes += line;
     }
     Result r;
@@ -496,17 +512,19 @@ int main(int argc, char** argv) {
   const int64_t llc = LastLevelCacheBytes();
   const int64_t dram_bytes = std::max<int64_t>(4 * llc, int64_t{1} << 30);
   const double dram = ReadBandwidth(a.threads, dram_bytes);
-  std::printf("generation_bench: %d threads; last-level cache %.0f MiB; DRAM read bandwidth %.1f GB/s "
-              "(%d-thread memchr scan over %.0f MiB)\n",
-              a.threads, llc / 1048576.0, dram, a.threads, dram_bytes / 1048576.0);
+  std::printf(
+      "generation_bench: %d threads; last-level cache %.0f MiB; DRAM read bandwidth %.1f GB/s "
+      "(%d-thread memchr scan over %.0f MiB)\n",
+      a.threads, llc / 1048576.0, dram, a.threads, dram_bytes / 1048576.0);
   PrintHeader();
   std::string notes;
   for (const std::string& name : a.configs) BenchConfig(a, name, &notes);
-  std::printf("(* = depth 0-512 window stopped early by the --budget; %% = share of the bound; x off. = times "
-              "the official implementation's tok/s; bound = read bandwidth for a working set of that size / "
-              "(decoder weights as stored for the precision + cross K/V + self K/V at that depth); top-1, KL = "
-              "the exporter's fidelity to fp32, model.json \"import.fidelity\"), per model:)\n%s",
-              notes.c_str());
+  std::printf(
+      "(* = depth 0-512 window stopped early by the --budget; %% = share of the bound; x off. = times "
+      "the official implementation's tok/s; bound = read bandwidth for a working set of that size / "
+      "(decoder weights as stored for the precision + cross K/V + self K/V at that depth); top-1, KL = "
+      "the exporter's fidelity to fp32, model.json \"import.fidelity\"), per model:)\n%s",
+      notes.c_str());
   if (std::find(a.configs.begin(), a.configs.end(), "tiny") != a.configs.end() &&
       silk::IsRegularFile(a.models + "/tiny/model.json"))
     CompareLoop(a);

@@ -33,9 +33,15 @@ int main(int argc, char** argv) {
     for (const auto& ids : streams) {
       Grammar g(opt);
       for (int32_t id : ids) {
-        if (mode == 0) { sink += static_cast<uint64_t>(id); continue; }
+        if (mode == 0) {
+          sink += static_cast<uint64_t>(id);
+          continue;
+        }
         if (mode == 2) sink += g.LegalMask().words()[0];
-        if (!g.Accept(id).ok()) { std::fprintf(stderr, "refused\n"); return -1.0; }
+        if (!g.Accept(id).ok()) {
+          std::fprintf(stderr, "refused\n");
+          return -1.0;
+        }
       }
       sink += g.size();
     }

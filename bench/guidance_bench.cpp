@@ -65,9 +65,10 @@ int main() {
       fallbacks += guide.RestrictOffsets((*blocks)[static_cast<size_t>(i) % blocks->size()], &b) ? 1 : 0;
       sink += static_cast<uint64_t>(a.Count() + b.Count());
     }
-    std::printf("per vertex (K + O, every id legal, %s blocks, %d%% fallbacks): guided %.2f us, baseline (copy + "
-                "count) %.2f us\n", blocks == &near ? "near" : "far", 100 * fallbacks / (2 * kReps),
-                1e6 * Seconds(t0) / kReps, 1e6 * base);
+    std::printf(
+        "per vertex (K + O, every id legal, %s blocks, %d%% fallbacks): guided %.2f us, baseline (copy + "
+        "count) %.2f us\n",
+        blocks == &near ? "near" : "far", 100 * fallbacks / (2 * kReps), 1e6 * Seconds(t0) / kReps, 1e6 * base);
   }
 
   std::vector<Point3> a, b;
@@ -83,7 +84,8 @@ int main() {
     for (const Point3& p : dir ? b : a) {
       double best = 1e300;
       for (const Point3& q : dir ? a : b)
-        best = std::min(best, (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+        best = std::min(best,
+                        (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
       (dir ? ba : ab) += std::sqrt(best);
     }
   const double brute_s = Seconds(t0);

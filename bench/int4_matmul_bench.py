@@ -11,6 +11,7 @@ turns, plus the largest relative difference of their outputs.
 libsilk_ops is registered with onnxruntime for the ai.silk op (beside $SILK_LIBRARY or the build tree's
 libsilk; $SILK_OPS_LIBRARY).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -31,24 +32,42 @@ SHAPES = [(1024, 1024)] * 6 + [(1024, 8192), (4096, 1024)]  # (K, N) per layer
 
 def build(layers: int, seed: int = 0):
     from onnx import TensorProto, helper, numpy_helper
+
     rng, nodes, inits, outs = np.random.default_rng(seed), [], [], []
     for layer in range(layers):
         for j, (k, n) in enumerate(SHAPES):
             name = f"w{layer}_{j}"
-            inits += [numpy_helper.from_array(rng.integers(0, 256, (n, k // 32, 16), dtype=np.uint8), name + "_q"),
-                      numpy_helper.from_array(rng.uniform(0.001, 0.02, n * k // 32).astype(np.float32), name + "_s")]
-            nodes.append(helper.make_node("MatMulNBits", [f"a{k}", name + "_q", name + "_s"], [name + "_y"],
-                                          domain="com.microsoft", K=k, N=n, bits=4, block_size=32, accuracy_level=4))
+            inits += [
+                numpy_helper.from_array(rng.integers(0, 256, (n, k // 32, 16), dtype=np.uint8), name + "_q"),
+                numpy_helper.from_array(rng.uniform(0.001, 0.02, n * k // 32).astype(np.float32), name + "_s"),
+            ]
+            nodes.append(
+                helper.make_node(
+                    "MatMulNBits",
+                    [f"a{k}", name + "_q", name + "_s"],
+                    [name + "_y"],
+                    domain="com.microsoft",
+                    K=k,
+                    N=n,
+                    bits=4,
+                    block_size=32,
+                    accuracy_level=4,
+                )
+            )
             outs.append(helper.make_tensor_value_info(name + "_y", TensorProto.FLOAT, None))
     ins = [helper.make_tensor_value_info(f"a{k}", TensorProto.FLOAT, [1, k]) for k in (1024, 4096)]
-    model = helper.make_model(helper.make_graph(nodes, "int4", ins, outs, inits), ir_version=9,
-                              opset_imports=[helper.make_opsetid("", 17), helper.make_opsetid("com.microsoft", 1)])
+    model = helper.make_model(
+        helper.make_graph(nodes, "int4", ins, outs, inits),
+        ir_version=9,
+        opset_imports=[helper.make_opsetid("", 17), helper.make_opsetid("com.microsoft", 1)],
+    )
     weight_bytes = sum(t.ByteSize() for t in inits)
     return model, weight_bytes
 
 
 def session(model, threads: int):
     import onnxruntime as ort
+
     so = ort.SessionOptions()
     so.intra_op_num_threads = threads
     so.register_custom_ops_library(silk_ops_library())
@@ -57,6 +76,7 @@ def session(model, threads: int):
 
 def main() -> int:
     from onnx import helper
+
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--layers", type=int, default=24)
     ap.add_argument("--calls", type=int, default=30)
@@ -74,8 +94,10 @@ def main() -> int:
     feed = {f"a{k}": rng.standard_normal((1, k)).astype(np.float32) for k in (1024, 4096)}
     outs = {name: s.run(None, feed) for name, s in runs.items()}
     diff = max(float(np.abs(x - y).max() / np.abs(x).max()) for x, y in zip(outs["MatMulNBits"], outs["Int4MatMul"]))
-    print(f"int4_matmul_bench: {a.layers} layers, {weight_bytes / 1e6:.0f} MB of weights per call, {a.threads} threads; "
-          f"largest relative difference of the outputs {diff:.1e}")
+    print(
+        f"int4_matmul_bench: {a.layers} layers, {weight_bytes / 1e6:.0f} MB of weights per call, {a.threads} threads; "
+        f"largest relative difference of the outputs {diff:.1e}"
+    )
     for r in range(a.rounds):
         for name, s in runs.items():
             for _ in range(3):

@@ -15,6 +15,7 @@ random-weight bench models only show the numeric error).
 
     SILK_LIBRARY=build/engine/libsilk.so python3 bench/int8_quality.py MODEL_DIR... [--int4] [--meshes 8] [--tokens 512]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -45,8 +46,12 @@ def session(path: Path, threads: int) -> ort.InferenceSession:
 def logits_of(dec, meta, ids: np.ndarray, cross: np.ndarray) -> np.ndarray:
     d = meta["dims"]
     t = ids.shape[1]
-    feeds = {"input_ids": ids, "positions": np.arange(t, dtype=np.int64)[None],
-             "seqlens_k": np.array([t - 1], np.int32), "total_sequence_length": np.array(t, np.int32)}
+    feeds = {
+        "input_ids": ids,
+        "positions": np.arange(t, dtype=np.int64)[None],
+        "seqlens_k": np.array([t - 1], np.int32),
+        "total_sequence_length": np.array(t, np.int32),
+    }
     empty = np.zeros((1, d["n_heads"], 0, d["head_dim"]), np.float32)
     for l in range(d["n_layers"]):
         for j, kv in enumerate(("key", "value")):
@@ -62,9 +67,9 @@ def log_softmax(x: np.ndarray) -> np.ndarray:
 
 def load_inputs(shared: Path, n_meshes: int) -> list:
     """(name, points [N,6], official tokens) of `n_meshes` dev meshes spread over the golden set."""
-    names = sorted(p.name[:-len(".tokens.txt")] for p in (shared / "spec/golden-dev").glob("*.tokens.txt"))
+    names = sorted(p.name[: -len(".tokens.txt")] for p in (shared / "spec/golden-dev").glob("*.tokens.txt"))
     names = [n for n in names if (shared / "corpus/dev" / f"{n}.obj").exists()]
-    names = names[::max(1, len(names) // n_meshes)][:n_meshes]
+    names = names[:: max(1, len(names) // n_meshes)][:n_meshes]
     rng = np.random.default_rng(0)
     inputs = []
     for n in names:
@@ -78,8 +83,11 @@ def load_inputs(shared: Path, n_meshes: int) -> list:
 def variants(model_dir: Path, meta: dict, a, scratch: Path) -> dict[str, Path]:
     """Quantized decoders to compare: label -> file (INT4 made in `scratch` when asked and absent)."""
     files = meta["files"]
-    out = {label: model_dir / files[key] for key, label in (("decoder_int8", "int8"), ("decoder_int4", "int4"))
-           if files.get(key)}
+    out = {
+        label: model_dir / files[key]
+        for key, label in (("decoder_int8", "int8"), ("decoder_int4", "int4"))
+        if files.get(key)
+    }
     if a.int4 and "int4" not in out:
         out["int4"] = scratch / f"{model_dir.name}.decoder.int4.onnx"
         quantize_decoder_int4(model_dir / files["decoder"], out["int4"], a.int4_block_size, a.int4_accuracy_level)
@@ -131,10 +139,12 @@ def main() -> int:
             cap = min(a.tokens, meta["dims"]["max_seq_len"] - 1)
             for label, path in quantized.items():
                 m = compare(enc, fp32, session(path, a.threads), meta, inputs, cap)
-                print(f"{model_dir.name:>8} {label} ({meta['config']}, {len(inputs)} dev meshes x {cap} ids): max "
-                      f"|dlogit| {m['max']:.3f}, mean |dlogit| {m['abs']:.4f}, corr {m['corr']:.6f}, top-1 agreement "
-                      f"{100 * m['top1']:.1f}%, KL(fp32||{label}) {m['kl']:.5f} nats, NLL fp32 {m['nll32']:.3f} / "
-                      f"{label} {m['nllq']:.3f} nats/token")
+                print(
+                    f"{model_dir.name:>8} {label} ({meta['config']}, {len(inputs)} dev meshes x {cap} ids): max "
+                    f"|dlogit| {m['max']:.3f}, mean |dlogit| {m['abs']:.4f}, corr {m['corr']:.6f}, top-1 agreement "
+                    f"{100 * m['top1']:.1f}%, KL(fp32||{label}) {m['kl']:.5f} nats, NLL fp32 {m['nll32']:.3f} / "
+                    f"{label} {m['nllq']:.3f} nats/token"
+                )
     return 0
 
 

@@ -21,6 +21,7 @@ for float32 summation order, gives the floor that rounding noise alone puts unde
 Defaults: the model's default decoder; two long dev sequences; the official fixture's point cloud
 (shared/official-fixture/points.npy, 4,096 rows; resampled with replacement for another count).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -60,7 +61,7 @@ def log_softmax(x: np.ndarray) -> np.ndarray:
 
 def logits(decoder_path: Path, cross: np.ndarray, ids: list[int], chunk: int, threads: int) -> np.ndarray:
     state = DecoderState(session(decoder_path, threads), cross)
-    return np.concatenate([state.run(ids[i:i + chunk]) for i in range(0, len(ids), chunk)])
+    return np.concatenate([state.run(ids[i : i + chunk]) for i in range(0, len(ids), chunk)])
 
 
 # A position is "decided" when the fp32 cache's top id leads the runner-up by at least this many
@@ -78,7 +79,7 @@ def compare(ref: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray, 
     decided = (top2[:, 1] - top2[:, 0]) >= DECIDED_GAP
     kls = []
     for lo in range(0, len(ref), 512):  # float64 rows in blocks: bounded memory
-        lp, lq = log_softmax(ref[lo:lo + 512]), log_softmax(half[lo:lo + 512])
+        lp, lq = log_softmax(ref[lo : lo + 512]), log_softmax(half[lo : lo + 512])
         kls.append((np.exp(lp) * (lp - lq)).sum(-1))
     return agree, np.concatenate(kls), decided
 
@@ -86,16 +87,25 @@ def compare(ref: np.ndarray, half: np.ndarray) -> tuple[np.ndarray, np.ndarray, 
 def summary(agree: list[np.ndarray], kl: list[np.ndarray], decided: list[np.ndarray]) -> dict:
     """Overall figures, and by depth bucket pooling the sequences position by position."""
     a, k, d = np.concatenate(agree), np.concatenate(kl), np.concatenate(decided)
-    out = {"positions": int(a.size), "top1_agreement": round(float(a.mean()), 5),
-           "decided_positions": int(d.sum()), "top1_agreement_decided": round(float(a[d].mean()), 5) if d.any() else None,
-           "kl_mean": float(f"{k.mean():.3g}"), "kl_max": float(f"{k.max():.3g}"), "by_depth": {}}
+    out = {
+        "positions": int(a.size),
+        "top1_agreement": round(float(a.mean()), 5),
+        "decided_positions": int(d.sum()),
+        "top1_agreement_decided": round(float(a[d].mean()), 5) if d.any() else None,
+        "kl_mean": float(f"{k.mean():.3g}"),
+        "kl_max": float(f"{k.max():.3g}"),
+        "by_depth": {},
+    }
     for lo, hi in zip(DEPTH_BUCKETS, DEPTH_BUCKETS[1:]):
         ab = np.concatenate([x[lo:hi] for x in agree])
         if ab.size:
             kb = np.concatenate([x[lo:hi] for x in kl])
             top = max(min(hi, len(x)) for x in agree) - 1
-            out["by_depth"][f"{lo}-{top}"] = {"positions": int(ab.size), "top1_agreement": round(float(ab.mean()), 5),
-                                              "kl_mean": float(f"{kb.mean():.3g}")}
+            out["by_depth"][f"{lo}-{top}"] = {
+                "positions": int(ab.size),
+                "top1_agreement": round(float(ab.mean()), 5),
+                "kl_mean": float(f"{kb.mean():.3g}"),
+            }
     return out
 
 
@@ -107,14 +117,29 @@ def variant_file(model: Path, files: dict, key: str, kv: str) -> str:
     return name
 
 
-def measure(model: Path, decoders: list[str], kvs: list[str], sequences: dict[str, list[int]], points: Path,
-            chunk: int, threads: int, reference: str | None = None) -> dict:
+def measure(
+    model: Path,
+    decoders: list[str],
+    kvs: list[str],
+    sequences: dict[str, list[int]],
+    points: Path,
+    chunk: int,
+    threads: int,
+    reference: str | None = None,
+) -> dict:
     meta = json.loads((model / "model.json").read_text())
     files, dims, bos = meta["files"], meta["dims"], meta["vocab"]["bos_id"]
     cross = session(model / files.get("encoder", "encoder.onnx"), threads).run(
-        None, {"points": cloud(points, dims["n_points"])})[0]
-    result = {"model": str(model), "config": meta.get("config"), "points": str(points), "chunk": chunk,
-              "sequences": {k: len(v) for k, v in sequences.items()}, "decoders": {}}
+        None, {"points": cloud(points, dims["n_points"])}
+    )[0]
+    result = {
+        "model": str(model),
+        "config": meta.get("config"),
+        "points": str(points),
+        "chunk": chunk,
+        "sequences": {k: len(v) for k, v in sequences.items()},
+        "decoders": {},
+    }
     if reference:
         result["reference"] = reference
     for key in decoders:
@@ -122,14 +147,17 @@ def measure(model: Path, decoders: list[str], kvs: list[str], sequences: dict[st
         figs = {kv: ([], [], []) for kv in kvs}
         t0 = time.time()
         for name, ids in sequences.items():
-            seq = [bos] + ids[:dims["max_seq_len"] - 1]
+            seq = [bos] + ids[: dims["max_seq_len"] - 1]
             ref = logits(model / (reference or files[key]), cross, seq, chunk, threads)
             for kv, file in variants.items():
                 a, k, d = compare(ref, logits(model / file, cross, seq, chunk, threads))
                 for acc, x in zip(figs[kv], (a, k, d)):
                     acc.append(x)
-                print(f"  {key} {kv} {name}: {len(seq)} positions, top-1 {a.mean():.4f} (decided: {a[d].mean():.4f} "
-                      f"of {d.sum()}), KL mean {k.mean():.3g}", flush=True)
+                print(
+                    f"  {key} {kv} {name}: {len(seq)} positions, top-1 {a.mean():.4f} (decided: {a[d].mean():.4f} "
+                    f"of {d.sum()}), KL mean {k.mean():.3g}",
+                    flush=True,
+                )
         result["decoders"][key] = {kv: summary(*figs[kv]) for kv in kvs}
         result["decoders"][key]["seconds"] = round(time.time() - t0, 1)
     return result
@@ -139,8 +167,13 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("model", type=Path)
     ap.add_argument("--decoders", nargs="+", help="model.json files keys (default: the model's default decoder)")
-    ap.add_argument("--kv", nargs="+", default=["fp16"], choices=["fp16", "int8"],
-                    help="cache variants to compare with the fp32 cache (default: fp16)")
+    ap.add_argument(
+        "--kv",
+        nargs="+",
+        default=["fp16"],
+        choices=["fp16", "int8"],
+        help="cache variants to compare with the fp32 cache (default: fp16)",
+    )
     ap.add_argument("--tokens", nargs="+", type=Path, help="token files (one id per line)")
     ap.add_argument("--max-len", type=int, default=4096, help="positions per sequence, BOS included")
     ap.add_argument("--points", type=Path, default=SHARED / "official-fixture" / "points.npy")
@@ -154,7 +187,7 @@ def main() -> int:
     if a.reference and (len(decoders) != 1 or not (a.model / a.reference).is_file()):
         raise SystemExit(f"--reference {a.reference}: needs one decoder key and a file in {a.model}")
     paths = a.tokens or [SHARED / "spec" / "golden-dev" / f"{n}.tokens.txt" for n in DEFAULT_TOKENS]
-    sequences = {p.name.split(".")[0]: read_tokens(p)[:a.max_len - 1] for p in paths}
+    sequences = {p.name.split(".")[0]: read_tokens(p)[: a.max_len - 1] for p in paths}
     res = measure(a.model, decoders, a.kv, sequences, a.points, a.chunk, a.threads, a.reference)
     text = json.dumps(res, indent=1)
     if a.json:

@@ -43,7 +43,10 @@ double Dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] 
 std::vector<double> ComponentSigns(const IoMesh& m) {
   std::vector<int32_t> parent(m.positions.size());
   std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int32_t x) { while (parent[x] != x) x = parent[x] = parent[parent[x]]; return x; };
+  auto find = [&](int32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
   for (const auto& t : m.triangles)
     for (int k = 1; k < 3; ++k) parent[find(t[k])] = find(t[0]);
   std::vector<double> volume(m.positions.size(), 0);
@@ -74,8 +77,8 @@ Sampled Sample(const IoMesh& raw, int n, double noise, uint64_t seed) {
   SplitMix64 rng(seed);
   const double sigma = noise * std::sqrt(diag2);
   for (int i = 0; i < n; ++i) {
-    const size_t f = std::min<size_t>(std::upper_bound(cum.begin(), cum.end(), rng.Uniform() * total) - cum.begin(),
-                                      cum.size() - 1);
+    const size_t f =
+        std::min<size_t>(std::upper_bound(cum.begin(), cum.end(), rng.Uniform() * total) - cum.begin(), cum.size() - 1);
     const auto& t = m.triangles[f];
     double r1 = std::sqrt(rng.Uniform()), r2 = rng.Uniform();
     Point3 p, nrm = Cross(Sub(m.positions[t[1]], m.positions[t[0]]), Sub(m.positions[t[2]], m.positions[t[0]]));
@@ -128,13 +131,17 @@ int main(int argc, char** argv) {
   std::vector<int> ks{8, 12, 16, 24};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--verbose") verbose = true;
-    else if (a == "--points" && i + 1 < argc) n = std::atoi(argv[++i]);
-    else if (a == "--noise" && i + 1 < argc) noise = std::atof(argv[++i]);
+    if (a == "--verbose")
+      verbose = true;
+    else if (a == "--points" && i + 1 < argc)
+      n = std::atoi(argv[++i]);
+    else if (a == "--noise" && i + 1 < argc)
+      noise = std::atof(argv[++i]);
     else if (a == "--k" && i + 1 < argc) {
       ks.clear();
       for (char* p = argv[++i]; *p;) ks.push_back(static_cast<int>(std::strtol(p, &p, 10))), p += *p == ',';
-    } else dir = a;
+    } else
+      dir = a;
   }
   std::vector<std::string> files;
   for (const auto& e : std::filesystem::directory_iterator(dir))
@@ -160,8 +167,10 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("%zu meshes from %s, %d points each, noise %.4g x diagonal\n", files.size(), dir.c_str(), n, noise);
-  std::printf("| k | mean abs(cos), all (%d) | mean abs(cos), closed (%d) | outward share, closed | closed meshes >= 90%% outward | ms per 10k points |\n|---|---|---|---|---|---|\n",
-              rows[0].meshes, rows[0].closed);
+  std::printf(
+      "| k | mean abs(cos), all (%d) | mean abs(cos), closed (%d) | outward share, closed | closed meshes >= 90%% "
+      "outward | ms per 10k points |\n|---|---|---|---|---|---|\n",
+      rows[0].meshes, rows[0].closed);
   for (size_t j = 0; j < ks.size(); ++j) {
     const Row& r = rows[j];
     std::printf("| %d | %.4f | %.4f | %.4f | %d of %d | %.1f |\n", ks[j], r.cos_all / r.meshes,

@@ -18,6 +18,7 @@ PyTorch's OpenMP threads spin against them and a call takes several times longer
 
     python3 bench/official_loop.py [--depths 0 1024] [--steps 24] [--threads 2]   # prints JSON
 """
+
 from __future__ import annotations
 
 import argparse
@@ -42,13 +43,19 @@ def main() -> int:
     torch.set_num_threads(a.threads)
     from silk_export.official.checkpoint import RELEASE_SIZES, official_config
     from silk_export.official.model import OfficialModel
+
     t0 = time.perf_counter()
     model = OfficialModel(official_config(RELEASE_SIZES, {})).init_random(seed=a.seed).float().eval()
     build_s = time.perf_counter() - t0
     cfg = model.cfg
     gen = torch.Generator().manual_seed(a.seed)
-    out = {"what": "silk_export OfficialModel (release size, random weights), float32, CPU, step + torch.cat cache",
-           "threads": a.threads, "steps": a.steps, "build_seconds": round(build_s, 1), "ms_per_call": {}}
+    out = {
+        "what": "silk_export OfficialModel (release size, random weights), float32, CPU, step + torch.cat cache",
+        "threads": a.threads,
+        "steps": a.steps,
+        "build_seconds": round(build_s, 1),
+        "ms_per_call": {},
+    }
     with torch.no_grad():
         points = torch.rand(1, cfg.n_points, 6, generator=gen) * 1.8 - 0.9
         t0 = time.perf_counter()

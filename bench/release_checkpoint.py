@@ -9,6 +9,7 @@ downloaded (README, "Run the released Mesh Silksong model"):
     python3 bench/release_checkpoint.py /tmp/release/model.safetensors [--shared ../shared]
     /usr/bin/time -v silk-export import-official /tmp/release/model.safetensors -o /tmp/release/silksong
 """
+
 import argparse
 import json
 import os

@@ -24,7 +24,9 @@ using namespace silk;
 
 namespace {
 
-struct Tally { int total = 0, accepted = 0, tight_off = 0, tight_repair = 0; };
+struct Tally {
+  int total = 0, accepted = 0, tight_off = 0, tight_repair = 0;
+};
 
 void Measure(const LayeredStream& s, Tally* t) {
   const std::vector<int32_t> ids = WriteTokenStream(s);
@@ -75,7 +77,8 @@ IoMesh Torus(int nu, int nv, double minor) {
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j < nv; ++j) {
       const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
-      m.positions.push_back({(1 + minor * std::cos(v)) * std::cos(u), minor * std::sin(v), (1 + minor * std::cos(v)) * std::sin(u)});
+      m.positions.push_back(
+          {(1 + minor * std::cos(v)) * std::cos(u), minor * std::sin(v), (1 + minor * std::cos(v)) * std::sin(u)});
     }
   auto at = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
   for (int i = 0; i < nu; ++i)
@@ -118,8 +121,8 @@ int main(int argc, char** argv) {
   // (family, stream) pairs: the closed goldens as official token files, then generated shapes
   // encoded by the tokenizer.
   std::vector<std::pair<std::string, LayeredStream>> bases;
-  for (const char* name : {"cube", "tetrahedron", "octahedron", "icosphere2", "torus", "torus_12x8", "torus_24x6",
-                           "cylinder_capped"}) {
+  for (const char* name :
+       {"cube", "tetrahedron", "octahedron", "icosphere2", "torus", "torus_12x8", "torus_24x6", "cylinder_capped"}) {
     auto ids = ReadTokenText(dir + "/" + name + ".tokens.txt");
     if (!ids.ok()) {
       std::fprintf(stderr, "%s\n", ids.status().ToString().c_str());
@@ -184,10 +187,11 @@ int main(int argc, char** argv) {
           }
         }
       }
-    }
+  }
   std::printf("%-26s %7s %9s %12s %15s\n", "corruption", "streams", "accepted", "tight(off)", "tight(repair)");
   for (const auto& [k, t] : tallies)
     std::printf("%-26s %7d %9d %5d (%4.1f%%) %7d (%4.1f%%)\n", k.c_str(), t.total, t.accepted, t.tight_off,
-                100.0 * t.tight_off / std::max(1, t.total), t.tight_repair, 100.0 * t.tight_repair / std::max(1, t.total));
+                100.0 * t.tight_off / std::max(1, t.total), t.tight_repair,
+                100.0 * t.tight_repair / std::max(1, t.total));
   return 0;
 }

@@ -62,9 +62,9 @@ struct Args {
 // One config's pass, written by the child to a pipe as plain doubles.
 struct Pass {
   double load_s = 0, encoder_s = 0, rss_mib = 0;
-  double cross_bytes = 0;      // of the cross K/V each call reads (float32 or float16, as loaded)
-  double seconds[8] = {};      // decoder seconds for the first calls[i] calls
-  double ms_at_end[8] = {};    // ms per call over the last 50 calls before calls[i]
+  double cross_bytes = 0;    // of the cross K/V each call reads (float32 or float16, as loaded)
+  double seconds[8] = {};    // decoder seconds for the first calls[i] calls
+  double ms_at_end[8] = {};  // ms per call over the last 50 calls before calls[i]
   double ok = 0;
 };
 
@@ -105,8 +105,7 @@ bool OpenWorker(const Args& a, DecoderPrecision p, const KvConfig& kv, Worker* w
   r->cross_bytes = static_cast<double>(info.GetElementCount()) *
                    (info.GetElementType() == ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16 ? 2 : 4);
   if (!w->cache.Reserve(a.calls.back() + 1, silk::ModelKvShape(w->model->impl())).ok()) return false;
-  w->runner = std::make_unique<silk::DecoderRunner>(w->model->impl(), &w->cache,
-                                                    w->cross.GetTensorMutableData<void>());
+  w->runner = std::make_unique<silk::DecoderRunner>(w->model->impl(), &w->cache, w->cross.GetTensorMutableData<void>());
   return true;
 }
 
@@ -184,8 +183,9 @@ std::vector<Pass> RunInterleaved(const Args& a, DecoderPrecision p, const std::v
     const int n = std::min(kBlock, a.calls.back() - done);
     for (Child& ch : kids) {
       char ok = 0;
-      if (ch.alive) ch.alive = write(ch.cmd, &n, sizeof n) == static_cast<ssize_t>(sizeof n) &&
-                               read(ch.out, &ok, 1) == 1 && ok == 1;
+      if (ch.alive)
+        ch.alive =
+            write(ch.cmd, &n, sizeof n) == static_cast<ssize_t>(sizeof n) && read(ch.out, &ok, 1) == 1 && ok == 1;
     }
   }
   std::vector<Pass> passes(kids.size());
@@ -223,8 +223,8 @@ Bytes CallBytes(const silk::ModelConfig& c, DecoderPrecision p, KvPrecision kv, 
 // bench/official_loop.py's JSON (ms per call at each depth), or null when it failed.
 nlohmann::json RunOfficial(const Args& a) {
   std::ostringstream cmd;
-  cmd << "python3 " << SILK_BENCH_DIR << "/official_loop.py --threads " << a.threads << " --steps "
-      << a.official_steps << " --depths";
+  cmd << "python3 " << SILK_BENCH_DIR << "/official_loop.py --threads " << a.threads << " --steps " << a.official_steps
+      << " --depths";
   for (int d : a.official_depths) cmd << " " << d;
   FILE* f = popen(cmd.str().c_str(), "r");
   if (!f) return nullptr;
@@ -261,18 +261,25 @@ bool ParseArgs(int argc, char** argv, Args* a) {
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];
     auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-    if (k == "--model") a->model = next();
-    else if (k == "--calls") a->calls = Ints(next());
-    else if (k == "--threads") a->threads = std::atoi(next().c_str());
-    else if (k == "--official-depths") a->official_depths = Ints(next());
-    else if (k == "--official-steps") a->official_steps = std::atoi(next().c_str());
-    else if (k == "--no-official") a->official = false;
+    if (k == "--model")
+      a->model = next();
+    else if (k == "--calls")
+      a->calls = Ints(next());
+    else if (k == "--threads")
+      a->threads = std::atoi(next().c_str());
+    else if (k == "--official-depths")
+      a->official_depths = Ints(next());
+    else if (k == "--official-steps")
+      a->official_steps = std::atoi(next().c_str());
+    else if (k == "--no-official")
+      a->official = false;
     else if (k == "--decoders") {
       a->decoders.clear();
       std::stringstream ss(next());
       for (std::string x; std::getline(ss, x, ',');)
-        a->decoders.push_back(x == "int8" ? DecoderPrecision::kInt8 : x == "fp32" ? DecoderPrecision::kFp32
-                                                                                 : DecoderPrecision::kInt4);
+        a->decoders.push_back(x == "int8"   ? DecoderPrecision::kInt8
+                              : x == "fp32" ? DecoderPrecision::kFp32
+                                            : DecoderPrecision::kInt4);
     } else if (k == "--kv") {
       a->kvs.clear();
       std::stringstream ss(next());
@@ -285,7 +292,8 @@ bool ParseArgs(int argc, char** argv, Args* a) {
         if (!c.folder.empty()) c.label += "@" + c.folder.substr(c.folder.find_last_of('/') + 1);
         a->kvs.push_back(c);
       }
-    } else return false;
+    } else
+      return false;
   }
   std::sort(a->calls.begin(), a->calls.end());
   return !a->model.empty() && !a->calls.empty() && a->calls.front() > 0 && a->calls.size() <= 8;
@@ -307,7 +315,7 @@ void PrintConfig(const Args& a, const silk::ModelConfig& c, DecoderPrecision p, 
     const double avg_bytes = b.AtDepth(n / 2);
     const double gbps = silk::bench::ReadBandwidth(a.threads, static_cast<int64_t>(std::min(avg_bytes, 4e9)));
     const double bound_s = b.Total(n) / (gbps * 1e9);
-    std::printf("%-5s %-5s %6d | %7.1f %6.1f %8.1f %8.1f | %7.1f %7.1f | %8.1f %4.0f%% %5.1f | %8.0f |", 
+    std::printf("%-5s %-5s %6d | %7.1f %6.1f %8.1f %8.1f | %7.1f %7.1f | %8.1f %4.0f%% %5.1f | %8.0f |",
                 silk::DecoderPrecisionName(p), kv.label.c_str(), n, r.load_s, r.encoder_s, r.seconds[k],
                 r.load_s + r.encoder_s + r.seconds[k], r.seconds[k] / n * 1e3, r.ms_at_end[k], bound_s,
                 100 * bound_s / r.seconds[k], gbps, r.rss_mib);
@@ -326,12 +334,13 @@ void PrintConfig(const Args& a, const silk::ModelConfig& c, DecoderPrecision p, 
 int main(int argc, char** argv) {
   Args a;
   if (!ParseArgs(argc, argv, &a)) {
-    std::fprintf(stderr,
-                 "usage: time_to_mesh --model DIR [--calls 1000,4000] [--decoders int4,int8,fp32] [--kv fp32,fp16,int8]\n"
-                 "                    [--threads 2] [--official-depths 0,1024] [--official-steps 24] [--no-official]\n"
-                 "  (DIR: a release-size model folder, e.g. python3 bench/export_bench_models.py --configs official\n"
-                 "   --out OUT, then python3 -m silk_export kv16 OUT/official; a --kv item PRECISION@FOLDER takes\n"
-                 "   that variant from another folder)\n");
+    std::fprintf(
+        stderr,
+        "usage: time_to_mesh --model DIR [--calls 1000,4000] [--decoders int4,int8,fp32] [--kv fp32,fp16,int8]\n"
+        "                    [--threads 2] [--official-depths 0,1024] [--official-steps 24] [--no-official]\n"
+        "  (DIR: a release-size model folder, e.g. python3 bench/export_bench_models.py --configs official\n"
+        "   --out OUT, then python3 -m silk_export kv16 OUT/official; a --kv item PRECISION@FOLDER takes\n"
+        "   that variant from another folder)\n");
     return 2;
   }
   auto cfg = silk::LoadModelConfig(a.model);
@@ -339,9 +348,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", cfg.status().ToString().c_str());
     return 1;
   }
-  std::printf("time_to_mesh: %s (%s, %d layers, d_model %d), %d threads, load average at start %s\n",
-              a.model.c_str(), cfg->config_name.c_str(), cfg->dims.n_layers, cfg->dims.d_model, a.threads,
-              LoadAverage().c_str());
+  std::printf("time_to_mesh: %s (%s, %d layers, d_model %d), %d threads, load average at start %s\n", a.model.c_str(),
+              cfg->config_name.c_str(), cfg->dims.n_layers, cfg->dims.d_model, a.threads, LoadAverage().c_str());
   nlohmann::json official = nullptr;
   if (a.official) {
     const auto t0 = Clock::now();
@@ -349,33 +357,40 @@ int main(int argc, char** argv) {
     if (official.is_object()) {
       double oa = 0, ob = 0;
       OfficialSeconds(official, 1, &oa, &ob);
-      std::printf("official loop (bench/official_loop.py: %s; %.0f s incl. building the model): ms per call %s "
-                  "-> %.1f ms + %.4f ms x depth   [load %s]\n",
-                  official["what"].get<std::string>().c_str(), Since(t0), official["ms_per_call"].dump().c_str(), oa,
-                  ob, LoadAverage().c_str());
+      std::printf(
+          "official loop (bench/official_loop.py: %s; %.0f s incl. building the model): ms per call %s "
+          "-> %.1f ms + %.4f ms x depth   [load %s]\n",
+          official["what"].get<std::string>().c_str(), Since(t0), official["ms_per_call"].dump().c_str(), oa, ob,
+          LoadAverage().c_str());
     } else {
       std::printf("official loop: bench/official_loop.py failed (no official column)\n");
     }
   }
-  std::printf("\ndec   kv      N  | load s  enc s  calls s  total s | ms/call ms@end | bound s  %%bnd  GB/s | peak MiB |"
-              " official s  speed-up\n");
+  std::printf(
+      "\ndec   kv      N  | load s  enc s  calls s  total s | ms/call ms@end | bound s  %%bnd  GB/s | peak MiB |"
+      " official s  speed-up\n");
   for (DecoderPrecision p : a.decoders) {
     std::vector<KvConfig> kvs;
     for (const KvConfig& kv : a.kvs) {
       auto other = kv.folder.empty() ? cfg : silk::LoadModelConfig(kv.folder);
-      if (other.ok() && !other->DecoderFile(p, kv.precision).empty()) kvs.push_back(kv);
-      else std::printf("%-5s %-5s: not in that model folder (skipped)\n", silk::DecoderPrecisionName(p), kv.label.c_str());
+      if (other.ok() && !other->DecoderFile(p, kv.precision).empty())
+        kvs.push_back(kv);
+      else
+        std::printf("%-5s %-5s: not in that model folder (skipped)\n", silk::DecoderPrecisionName(p), kv.label.c_str());
     }
     std::fflush(stdout);
     const std::vector<Pass> passes = RunInterleaved(a, p, kvs);
     for (size_t i = 0; i < kvs.size(); ++i) {
-      if (!passes[i].ok) std::printf("%-5s %-5s: failed\n", silk::DecoderPrecisionName(p), kvs[i].label.c_str());
-      else PrintConfig(a, *cfg, p, kvs[i], passes[i], official);
+      if (!passes[i].ok)
+        std::printf("%-5s %-5s: failed\n", silk::DecoderPrecisionName(p), kvs[i].label.c_str());
+      else
+        PrintConfig(a, *cfg, p, kvs[i], passes[i], official);
       std::fflush(stdout);
     }
   }
-  std::printf("\n(calls s: decoder time of the first N calls from depth 0; ms@end: per call over calls N-50..N; "
-              "bound: bytes of those N calls / read bandwidth of a working set of one call at depth N/2; "
-              "official: its fitted cost summed over the same N calls)\n");
+  std::printf(
+      "\n(calls s: decoder time of the first N calls from depth 0; ms@end: per call over calls N-50..N; "
+      "bound: bytes of those N calls / read bandwidth of a working set of one call at depth N/2; "
+      "official: its fitted cost summed over the same N calls)\n");
   return 0;
 }

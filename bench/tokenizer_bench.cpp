@@ -120,8 +120,9 @@ void PrintSlowest(const std::vector<MeshRun>& runs, double MeshRun::*field, cons
 }
 
 int Usage() {
-  std::fprintf(stderr, "usage: tokenizer_bench [-j THREADS (default 2)] [--top K (default 5)] PATH...\n"
-                       "  PATH: mesh files or folders (searched recursively for .obj .ply .stl .off .gltf .glb .pmd)\n");
+  std::fprintf(stderr,
+               "usage: tokenizer_bench [-j THREADS (default 2)] [--top K (default 5)] PATH...\n"
+               "  PATH: mesh files or folders (searched recursively for .obj .ply .stl .off .gltf .glb .pmd)\n");
   return 2;
 }
 
@@ -151,8 +152,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   const size_t n = runs.size();
-  std::printf("tokenizer_bench: %zu meshes, %d threads, %u hardware threads, load average at start %s\n", n,
-              threads, std::thread::hardware_concurrency(), LoadAverage().c_str());
+  std::printf("tokenizer_bench: %zu meshes, %d threads, %u hardware threads, load average at start %s\n", n, threads,
+              std::thread::hardware_concurrency(), LoadAverage().c_str());
 
   // Warm the page cache so the read pass measures parsing, not the disk (untimed).
   ParallelFor(n, threads, [&](size_t i) {
@@ -228,8 +229,8 @@ int main(int argc, char** argv) {
   const double wall_read = pass_read.wall, wall_encode = pass_encode.wall, wall_decode = pass_decode.wall;
 
   // Totals.
-  int64_t read_ok = 0, faces_read = 0, encode_tried = 0, encoded = 0, faces_encoded = 0, decoded = 0,
-          faces_decoded = 0, tokens = 0, encodable_faces = 0;
+  int64_t read_ok = 0, faces_read = 0, encode_tried = 0, encoded = 0, faces_encoded = 0, decoded = 0, faces_decoded = 0,
+          tokens = 0, encodable_faces = 0;
   double sum_read = 0, sum_norm = 0, sum_enc = 0, sum_dec = 0, sum_enc_ok = 0;
   silk::EncodePhaseTimes ph;
   std::map<std::string, std::pair<int, double>> failures;  // count, encode+decode thread time
@@ -271,11 +272,11 @@ int main(int argc, char** argv) {
   }
 
   std::printf("\n== passes (wall clock, %d threads) ==\n", threads);
-  std::printf("%-26s %7s %9s %9s %10s %12s %13s %11s\n", "pass", "meshes", "wall s", "cpu s", "meshes/s",
-              "faces/s", "thread-s/mesh", "cpu-s/mesh");
+  std::printf("%-26s %7s %9s %9s %10s %12s %13s %11s\n", "pass", "meshes", "wall s", "cpu s", "meshes/s", "faces/s",
+              "thread-s/mesh", "cpu-s/mesh");
   auto row = [&](const char* name, int64_t m, PassTime t, int64_t faces, double thread_s) {
-    std::printf("%-26s %7lld %9.3f %9.3f %10.1f %12.0f %13.5f %11.5f\n", name, static_cast<long long>(m), t.wall,
-                t.cpu, t.wall > 0 ? m / t.wall : 0.0, t.wall > 0 ? faces / t.wall : 0.0, m ? thread_s / m : 0.0,
+    std::printf("%-26s %7lld %9.3f %9.3f %10.1f %12.0f %13.5f %11.5f\n", name, static_cast<long long>(m), t.wall, t.cpu,
+                t.wall > 0 ? m / t.wall : 0.0, t.wall > 0 ? faces / t.wall : 0.0, m ? thread_s / m : 0.0,
                 m ? t.cpu / m : 0.0);
   };
   row("read+normalize (baseline)", static_cast<int64_t>(n), pass_read, faces_read, sum_read + sum_norm);
@@ -283,26 +284,33 @@ int main(int argc, char** argv) {
   row("decode", decoded, pass_decode, faces_decoded, sum_dec);
   row("encode+decode", encode_tried, {wall_encode + wall_decode, pass_encode.cpu + pass_decode.cpu}, faces_encoded,
       sum_enc + sum_dec);
-  std::printf("(faces/s: input faces for read and encode, decoded faces for decode; thread-s: wall time inside\n"
-              " each call summed over threads; cpu s: process CPU time of the pass)\n");
+  std::printf(
+      "(faces/s: input faces for read and encode, decoded faces for decode; thread-s: wall time inside\n"
+      " each call summed over threads; cpu s: process CPU time of the pass)\n");
   std::printf("read alone: %.3f thread-s, normalize alone: %.3f thread-s\n", sum_read, sum_norm);
-  std::printf("encode+decode wall = %.2fx the read+normalize baseline; total wall (with file walk and "
-              "cache warm-up) %.3f s\n",
-              wall_read > 0 ? (wall_encode + wall_decode) / wall_read : 0.0, wall_total);
+  std::printf(
+      "encode+decode wall = %.2fx the read+normalize baseline; total wall (with file walk and "
+      "cache warm-up) %.3f s\n",
+      wall_read > 0 ? (wall_encode + wall_decode) / wall_read : 0.0, wall_total);
 
-  std::printf("\n== encode phases (EncodeStats::times summed over %lld encoded meshes, %% of all encode thread time %.3f s) ==\n",
-              static_cast<long long>(encoded), sum_enc);
-  const std::pair<const char*, double> phases[] = {
-      {"quantize+cleanup", ph.quantize_cleanup}, {"non-manifold", ph.nonmanifold}, {"orientation", ph.orientation},
-      {"components", ph.components},             {"layering", ph.layering},        {"codecs", ph.codecs},
-      {"packing", ph.packing}};
+  std::printf(
+      "\n== encode phases (EncodeStats::times summed over %lld encoded meshes, %% of all encode thread time %.3f s) "
+      "==\n",
+      static_cast<long long>(encoded), sum_enc);
+  const std::pair<const char*, double> phases[] = {{"quantize+cleanup", ph.quantize_cleanup},
+                                                   {"non-manifold", ph.nonmanifold},
+                                                   {"orientation", ph.orientation},
+                                                   {"components", ph.components},
+                                                   {"layering", ph.layering},
+                                                   {"codecs", ph.codecs},
+                                                   {"packing", ph.packing}};
   double phase_sum = 0;
   for (const auto& p : phases) {
     phase_sum += p.second;
     std::printf("  %-18s %9.3f s %6.1f%%\n", p.first, p.second, sum_enc > 0 ? 100 * p.second / sum_enc : 0.0);
   }
-  std::printf("  %-18s %9.3f s %6.1f%%  (encoded meshes, time outside the phases)\n", "other",
-              sum_enc_ok - phase_sum, sum_enc > 0 ? 100 * (sum_enc_ok - phase_sum) / sum_enc : 0.0);
+  std::printf("  %-18s %9.3f s %6.1f%%  (encoded meshes, time outside the phases)\n", "other", sum_enc_ok - phase_sum,
+              sum_enc > 0 ? 100 * (sum_enc_ok - phase_sum) / sum_enc : 0.0);
   std::printf("  %-18s %9.3f s %6.1f%%  (meshes refused by the encoder; no phase split returned)\n", "refused meshes",
               sum_enc - sum_enc_ok, sum_enc > 0 ? 100 * (sum_enc - sum_enc_ok) / sum_enc : 0.0);
 
@@ -316,11 +324,12 @@ int main(int argc, char** argv) {
 
   std::printf("\n== baseline and reference ==\n");
   std::printf("I/O baseline (read+normalize, same run): %.3f s wall for %zu meshes\n", wall_read, n);
-  std::printf("official Python tokenizer (reference from the issue, not measured): ~%.2f s/mesh -> ~%.0f s "
-              "single-threaded for these %zu meshes; ours: %.4f s/mesh encode, %.4f s/mesh encode+decode "
-              "(thread time)\n",
-              kPythonSecondsPerMesh, kPythonSecondsPerMesh * n, n, encode_tried ? sum_enc / encode_tried : 0.0,
-              encode_tried ? (sum_enc + sum_dec) / encode_tried : 0.0);
+  std::printf(
+      "official Python tokenizer (reference from the issue, not measured): ~%.2f s/mesh -> ~%.0f s "
+      "single-threaded for these %zu meshes; ours: %.4f s/mesh encode, %.4f s/mesh encode+decode "
+      "(thread time)\n",
+      kPythonSecondsPerMesh, kPythonSecondsPerMesh * n, n, encode_tried ? sum_enc / encode_tried : 0.0,
+      encode_tried ? (sum_enc + sum_dec) / encode_tried : 0.0);
   std::printf("peak RSS: %.1f MiB (all normalized meshes are held between passes); load average at end %s\n\n",
               PeakRssMiB(), LoadAverage().c_str());
   if (top > 0) {

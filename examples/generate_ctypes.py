@@ -9,6 +9,7 @@ Shows the whole API surface of one-call generation: silk_model_load, silk_genera
 silk_generator_run with progress and cancel callbacks, stats, the output mesh and its parts.
 --check additionally asserts the results (used by ctest capi_generate_ctypes).
 """
+
 import argparse
 import ctypes as C
 import sys
@@ -18,8 +19,16 @@ from pathlib import Path
 # The C declarations (structs, callback types, signatures of silk.h) are the single copy, pure
 # ctypes, that the silk_mesh binding is built on: bindings/python/silk_mesh/_capi.py.
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bindings" / "python"))
-from silk_mesh._capi import (CANCEL_FN, PROGRESS_FN, SILK_ERR_CANCELLED, SILK_OK, GenerateInput,  # noqa: E402
-                             GenerateStats as Stats, ModelInfo, declare)
+from silk_mesh._capi import (
+    CANCEL_FN,
+    PROGRESS_FN,
+    SILK_ERR_CANCELLED,
+    SILK_OK,
+    GenerateInput,  # noqa: E402
+    GenerateStats as Stats,
+    ModelInfo,
+    declare,
+)
 
 
 def load(path):
@@ -68,17 +77,22 @@ def main():
     params.seed, params.max_tokens, params.progress = a.seed, a.max_tokens, on_progress
     stats = Stats()  # struct_size set (sizeof), as every silk_*_stats the caller passes
     source = GenerateInput(mesh=mesh)  # or points= / point_rows= (rows of x y z nx ny nz)
-    check(lib, lib.silk_generator_run(gen, C.byref(source), C.byref(params), C.byref(out), C.byref(tokens),
-                                      C.byref(stats)), "silk_generator_run")
+    check(
+        lib,
+        lib.silk_generator_run(gen, C.byref(source), C.byref(params), C.byref(out), C.byref(tokens), C.byref(stats)),
+        "silk_generator_run",
+    )
     n = C.c_size_t()  # the size query, then the copy (silk.h's one rule)
     check(lib, lib.silk_mesh_copy_triangle_components(out, None, 0, C.byref(n)), "count components")
     n_tri = n.value
     parts = (C.c_int32 * max(n_tri, 1))()
     check(lib, lib.silk_mesh_copy_triangle_components(out, parts, n_tri, C.byref(n)), "copy components")
-    print(f"{stats.tokens} ids ({stats.forced_tokens} forced) -> {stats.faces} faces in "
-          f"{len(set(parts[:n_tri]))} part(s), {stats.tokens_per_second:.0f} tok/s, stop reason {stats.stop_reason}, "
-          f"edge-manifold {bool(stats.edge_manifold)}, vertex-manifold {bool(stats.vertex_manifold)}, "
-          f"oriented {bool(stats.consistently_oriented)}, watertight {bool(stats.watertight)}")
+    print(
+        f"{stats.tokens} ids ({stats.forced_tokens} forced) -> {stats.faces} faces in "
+        f"{len(set(parts[:n_tri]))} part(s), {stats.tokens_per_second:.0f} tok/s, stop reason {stats.stop_reason}, "
+        f"edge-manifold {bool(stats.edge_manifold)}, vertex-manifold {bool(stats.vertex_manifold)}, "
+        f"oriented {bool(stats.consistently_oriented)}, watertight {bool(stats.watertight)}"
+    )
     if a.out:
         check(lib, lib.silk_mesh_save(out, a.out.encode(), None), "silk_mesh_save")
 
@@ -95,6 +109,7 @@ def main():
         def cancel_soon(_user):
             cancel_soon.calls += 1
             return 1 if cancel_soon.calls > 10 else 0
+
         cancel_soon.calls = 0
         params.cancel = cancel_soon
         out2 = C.c_void_p()
@@ -105,8 +120,13 @@ def main():
         st = lib.silk_model_load(b"/nonexistent/model", None, C.byref(bad))
         if st == SILK_OK or b"not found" not in lib.silk_last_error():
             failures.append(f"bad model dir gave status {st}")
-    for h, f in ((tokens, lib.silk_tokens_destroy), (out, lib.silk_mesh_destroy), (mesh, lib.silk_mesh_destroy),
-                 (gen, lib.silk_generator_destroy), (model, lib.silk_model_destroy)):
+    for h, f in (
+        (tokens, lib.silk_tokens_destroy),
+        (out, lib.silk_mesh_destroy),
+        (mesh, lib.silk_mesh_destroy),
+        (gen, lib.silk_generator_destroy),
+        (model, lib.silk_model_destroy),
+    ):
         f(h)
     for f in failures:
         print("FAIL:", f)

@@ -4,7 +4,13 @@
 in every encoding (generated here) plus the project's own small golden and bad inputs; also
 point-cloud PLYs and model.json files. Only the folders of the targets below are replaced.
 Usage: fuzz/make_seeds.py [path/to/shared]   (default: ../shared beside the repo)"""
-import base64, json, pathlib, shutil, struct, sys
+
+import base64
+import json
+import pathlib
+import shutil
+import struct
+import sys
 
 repo = pathlib.Path(__file__).resolve().parent.parent
 shared = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else repo.parent / "shared"
@@ -28,9 +34,11 @@ def copy(target, src):
 
 def ply(fmt):
     e = "<" if fmt == "binary_little_endian" else ">"
-    head = (f"ply\nformat {fmt} 1.0\ncomment seed\nelement vertex 8\nproperty float x\nproperty float y\n"
-            "property float z\nproperty uchar red\nelement face 6\nproperty list uchar int vertex_indices\n"
-            "element edge 1\nproperty int v1\nproperty int v2\nend_header\n")
+    head = (
+        f"ply\nformat {fmt} 1.0\ncomment seed\nelement vertex 8\nproperty float x\nproperty float y\n"
+        "property float z\nproperty uchar red\nelement face 6\nproperty list uchar int vertex_indices\n"
+        "element edge 1\nproperty int v1\nproperty int v2\nend_header\n"
+    )
     if fmt == "ascii":
         body = "".join(f"{x} {y} {z} 7\n" for x, y, z in CUBE_V)
         body += "".join("4 " + " ".join(map(str, q)) + "\n" for q in CUBE_Q) + "0 1\n"
@@ -64,8 +72,9 @@ def ply_points(fmt, normals=True, faces=False, double=False):
 
 def stl_binary(header):
     h = header.ljust(80, b" ")[:80] + struct.pack("<I", len(CUBE_T))
-    return h + b"".join(struct.pack("<3f", 0, 0, 1) + b"".join(struct.pack("<3f", *CUBE_V[i]) for i in t) + b"\0\0"
-                        for t in CUBE_T)
+    return h + b"".join(
+        struct.pack("<3f", 0, 0, 1) + b"".join(struct.pack("<3f", *CUBE_V[i]) for i in t) + b"\0\0" for t in CUBE_T
+    )
 
 
 def stl_ascii():
@@ -82,15 +91,29 @@ def gltf_parts():
     idx = b"".join(struct.pack("<H", i) for t in CUBE_T for i in t)
     buf = pos + idx
     doc = {
-        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
-        "nodes": [{"translation": [1, 2, 3], "rotation": [0, 0.7071068, 0, 0.7071068], "scale": [2, 2, 2],
-                   "children": [1]}, {"mesh": 0, "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 5, 0, 1]}],
-        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4},
-                                   {"attributes": {"POSITION": 0}, "indices": 1, "mode": 5}]}],
-        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3"},
-                      {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"}],
-        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
-                        {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [
+            {"translation": [1, 2, 3], "rotation": [0, 0.7071068, 0, 0.7071068], "scale": [2, 2, 2], "children": [1]},
+            {"mesh": 0, "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 5, 0, 1]},
+        ],
+        "meshes": [
+            {
+                "primitives": [
+                    {"attributes": {"POSITION": 0}, "indices": 1, "mode": 4},
+                    {"attributes": {"POSITION": 0}, "indices": 1, "mode": 5},
+                ]
+            }
+        ],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3"},
+            {"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"},
+        ],
+        "bufferViews": [
+            {"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+            {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)},
+        ],
         "buffers": [{"byteLength": len(buf)}],
     }
     return doc, buf
@@ -101,12 +124,29 @@ def glb(doc, buf):
     j += b" " * (-len(j) % 4)
     buf += b"\0" * (-len(buf) % 4)
     total = 12 + 8 + len(j) + 8 + len(buf)
-    return (b"glTF" + struct.pack("<II", 2, total) + struct.pack("<I", len(j)) + b"JSON" + j +
-            struct.pack("<I", len(buf)) + b"BIN\0" + buf)
+    return (
+        b"glTF"
+        + struct.pack("<II", 2, total)
+        + struct.pack("<I", len(j))
+        + b"JSON"
+        + j
+        + struct.pack("<I", len(buf))
+        + b"BIN\0"
+        + buf
+    )
 
 
-OWNED = ("obj_reader_fuzzer", "ply_reader_fuzzer", "ply_point_cloud_fuzzer", "stl_reader_fuzzer", "off_reader_fuzzer",
-         "gltf_reader_fuzzer", "glb_reader_fuzzer", "model_config_fuzzer", "xyz_reader_fuzzer")
+OWNED = (
+    "obj_reader_fuzzer",
+    "ply_reader_fuzzer",
+    "ply_point_cloud_fuzzer",
+    "stl_reader_fuzzer",
+    "off_reader_fuzzer",
+    "gltf_reader_fuzzer",
+    "glb_reader_fuzzer",
+    "model_config_fuzzer",
+    "xyz_reader_fuzzer",
+)
 
 
 def main():
@@ -114,8 +154,12 @@ def main():
         if (out / target).exists():
             shutil.rmtree(out / target)
     # OBJ
-    put("obj_reader_fuzzer", "forms.obj", "# all face forms\nv 0 0 0\nv 1 0 0 1\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
-        "o a\ng b\nusemtl m\ns 1\nf 1/1/1 2/1/1 3/1/1\nf -4//1 -2//1 -1//1\nf 1/1 2/1 3/1 4/1\nl 1 2\n")
+    put(
+        "obj_reader_fuzzer",
+        "forms.obj",
+        "# all face forms\nv 0 0 0\nv 1 0 0 1\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
+        "o a\ng b\nusemtl m\ns 1\nf 1/1/1 2/1/1 3/1/1\nf -4//1 -2//1 -1//1\nf 1/1 2/1 3/1 4/1\nl 1 2\n",
+    )
     for g in ("cube", "octahedron", "nonmanifold_book", "dirty_cube"):
         copy("obj_reader_fuzzer", shared / "spec/golden" / f"{g}.obj")
     for b in ("empty.obj", "nan_coords.obj", "index_out_of_range.obj", "degenerate_only.obj", "garbage_bytes.obj"):
@@ -132,12 +176,22 @@ def main():
     put("ply_point_cloud_fuzzer", "cube_with_normals.ply", ply_points("binary_little_endian", faces=True))
     # XYZ/PTS point clouds: plain, with normals, PTS count line, commas + CRLF + comments
     put("xyz_reader_fuzzer", "points.xyz", "".join(f"{x} {y} {z}\n" for x, y, z in CUBE_V))
-    put("xyz_reader_fuzzer", "points_normals.xyz",
-        "".join(f"{x} {y} {z} {x - 0.5:.4f} {y - 0.5:.4f} {z - 0.5:.4f}\n".replace("-0.5000", "-0.57735")
-                .replace("0.5000", "0.57735") for x, y, z in CUBE_V))
+    put(
+        "xyz_reader_fuzzer",
+        "points_normals.xyz",
+        "".join(
+            f"{x} {y} {z} {x - 0.5:.4f} {y - 0.5:.4f} {z - 0.5:.4f}\n".replace("-0.5000", "-0.57735").replace(
+                "0.5000", "0.57735"
+            )
+            for x, y, z in CUBE_V
+        ),
+    )
     put("xyz_reader_fuzzer", "points_count.pts", "8\n" + "".join(f"{x} {y} {z}\n" for x, y, z in CUBE_V))
-    put("xyz_reader_fuzzer", "points_commas_crlf.xyz",
-        "# cube corners\r\n" + "".join(f"{x},{y},{z}\r\n" for x, y, z in CUBE_V))
+    put(
+        "xyz_reader_fuzzer",
+        "points_commas_crlf.xyz",
+        "# cube corners\r\n" + "".join(f"{x},{y},{z}\r\n" for x, y, z in CUBE_V),
+    )
     # model.json sidecars (docs/model_contract.md)
     copy("model_config_fuzzer", repo / "tests/models/tiny/model.json")
     meta = json.loads((repo / "tests/models/tiny/model.json").read_text())

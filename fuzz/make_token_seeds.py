@@ -4,9 +4,13 @@
 fuzzer's byte encoding: token_decoder_fuzzer (0xF0 + little-endian int32 per id) and
 grammar_fuzzer (one flag byte, then a little-endian uint16 per id).
 Usage: python3 fuzz/make_token_seeds.py [SHARED_DIR]   (default ../shared)"""
-import pathlib, struct, sys
+
+import pathlib
+import struct
+import sys
 
 NAMES = ["tetrahedron", "cube", "grid", "two_components", "nonmanifold_book", "torus_12x8", "open_tube"]
+
 
 def main():
     repo = pathlib.Path(__file__).resolve().parent.parent
@@ -20,6 +24,7 @@ def main():
         (dec / f"{name}.bin").write_bytes(b"".join(b"\xf0" + struct.pack("<i", i) for i in ids))
         (gram / f"{name}.bin").write_bytes(bytes([2]) + b"".join(struct.pack("<H", i) for i in ids))
     print(f"wrote {len(NAMES)} seeds each to {dec} and {gram}")
+
 
 if __name__ == "__main__":
     main()

@@ -23,7 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (c->arch == silk::ModelArch::kSilk && int64_t{d.d_model} != int64_t{d.n_heads} * d.head_dim) __builtin_trap();
   if (!ValidatePreprocessing(c->preprocessing).ok() || c->preprocessing.n_points != d.n_points) __builtin_trap();
   const silk::SamplingParams& s = c->sampling;
-  if (!(s.temperature >= 0 && s.top_k >= 0 && s.top_p > 0 && s.top_p <= 1 && s.top_p_temperature >= 0)) __builtin_trap();
+  if (!(s.temperature >= 0 && s.top_k >= 0 && s.top_p > 0 && s.top_p <= 1 && s.top_p_temperature >= 0))
+    __builtin_trap();
   if (c->DecoderFile(c->default_decoder).empty()) __builtin_trap();
   std::vector<const std::string*> files = {&c->encoder_file, &c->decoder_file, &c->decoder_int8_file,
                                            &c->decoder_int4_file};

@@ -18,9 +18,9 @@ std::vector<int32_t> IdsOf(const uint8_t* data, size_t size) {
   for (size_t i = 0; i < size;) {
     const uint8_t b = data[i++];
     if (b >= 0xF0 && i + 4 <= size) {
-      int32_t v = static_cast<int32_t>(static_cast<uint32_t>(data[i]) | static_cast<uint32_t>(data[i + 1]) << 8 |
-                                       static_cast<uint32_t>(data[i + 2]) << 16 |
-                                       static_cast<uint32_t>(data[i + 3]) << 24);
+      int32_t v =
+          static_cast<int32_t>(static_cast<uint32_t>(data[i]) | static_cast<uint32_t>(data[i + 1]) << 8 |
+                               static_cast<uint32_t>(data[i + 2]) << 16 | static_cast<uint32_t>(data[i + 3]) << 24);
       i += 4;
       ids.push_back(v);
       continue;

@@ -2,12 +2,16 @@
 # SPDX-License-Identifier: MIT
 """Writes samples/torus_knot.obj, the bundled sample mesh (our own procedural (2,3) torus
 knot tube; no third-party data). Usage: python3 scripts/make_sample.py [out.obj]"""
-import math, sys
+
+import math
+import sys
+
 
 def main(out="samples/torus_knot.obj", n_u=96, n_v=10, tube=0.28):
     def curve(t):
         r = 2 + math.cos(3 * t)
         return (r * math.cos(2 * t), math.sin(3 * t), r * math.sin(2 * t))
+
     verts = []
     for i in range(n_u):
         t = 2 * math.pi * i / n_u
@@ -41,6 +45,7 @@ def main(out="samples/torus_knot.obj", n_u=96, n_v=10, tube=0.28):
         for t in faces:
             f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
     print(f"wrote {out}: {len(verts)} vertices, {len(faces)} faces")
+
 
 if __name__ == "__main__":
     main(*sys.argv[1:2])

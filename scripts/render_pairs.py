@@ -11,6 +11,7 @@ through libsilk first); OUTPUT is silkgen's GLB (one object per generated part) 
 Each pair gets a cell of the grid: the input (grey) on the left, the generated parts (one colour
 per part) on the right, both at the input's scale.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -23,15 +24,18 @@ from mathutils import Vector  # noqa: E402
 
 
 def parse_args() -> argparse.Namespace:
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else []
     p = argparse.ArgumentParser(prog="render_pairs.py")
     p.add_argument("--out", required=True)
     p.add_argument("--pair", nargs=2, action="append", required=True, metavar=("INPUT", "OUTPUT"))
     p.add_argument("--cols", type=int, default=0, help="pairs per row; 0 = all in one row")
     p.add_argument("--size", default="", help="WIDTHxHEIGHT in pixels; default 480 px per mesh")
-    p.add_argument("--fit-each", action="store_true",
-                   help="scale the output by its own size, not the input's (for inputs that were normalised "
-                        "apart from the output, as `silk-export generate` writes its references)")
+    p.add_argument(
+        "--fit-each",
+        action="store_true",
+        help="scale the output by its own size, not the input's (for inputs that were normalised "
+        "apart from the output, as `silk-export generate` writes its references)",
+    )
     return p.parse_args(argv)
 
 
@@ -49,6 +53,7 @@ def import_file(path: str) -> list:
         bpy.ops.import_mesh.stl(filepath=path)
     elif ext in (".glb", ".gltf"):
         import numpy  # Blender 3.4's glTF importer uses np.bool, gone since numpy 1.24
+
         if not hasattr(numpy, "bool"):
             numpy.bool = bool
         bpy.ops.import_scene.gltf(filepath=path)

@@ -71,12 +71,15 @@ bool ReadFolder(const std::string& dir, std::vector<BatchInput>* out, std::strin
     const std::string name = silkapp::Utf8(it->path().filename());
     if (name.empty() || name[0] == '.' || !IsSupportedInput(name)) continue;  // hidden: temp files
     std::error_code ec2;
-    if (it->is_directory(ec2)) continue;  // subfolders are not walked; a FIFO or device fails as a row (libsilk's reader)
+    if (it->is_directory(ec2))
+      continue;  // subfolders are not walked; a FIFO or device fails as a row (libsilk's reader)
     BatchInput in;
     in.problem = EntryProblem(name);
     in.entry = in.problem.empty() ? name : PrintableExcerpt(name, 200);
-    if (in.problem.empty()) in.path = silkapp::Utf8(it->path());
-    else in.problem = "file name " + in.problem + " (not taken as an input)";
+    if (in.problem.empty())
+      in.path = silkapp::Utf8(it->path());
+    else
+      in.problem = "file name " + in.problem + " (not taken as an input)";
     out->push_back(in);
   }
   if (ec) *error = silkapp::ErrorText(SILK_ERR_IO, dir + ": cannot list the folder (" + ec.message() + ")");
@@ -90,8 +93,8 @@ bool CheckStems(const std::vector<BatchInput>& inputs, std::string* error) {
     if (!in.problem.empty()) continue;  // no output
     auto [it, fresh] = seen.emplace(Lower(in.stem), &in);
     if (!fresh) {
-      *error = "invalid argument: two inputs would write the same output '" + in.stem + "': " + it->second->path + " and " + in.path +
-               " (rename one, or split the list)";
+      *error = "invalid argument: two inputs would write the same output '" + in.stem + "': " + it->second->path +
+               " and " + in.path + " (rename one, or split the list)";
       return false;
     }
   }
@@ -133,14 +136,15 @@ bool ShardFromEnvironment(Shard* shard, std::string* error) {
   int task = 0, n = 0, first = 0, stride = 1;
   if (!count || !ParseCount(id, &task) || !ParseCount(count, &n) || (min && !ParseCount(min, &first)) ||
       (step && (!ParseCount(step, &stride) || stride < 1))) {
-    *error = "Slurm array variables unusable (" + all + "; each a non-negative integer, COUNT and STEP >= 1): give --shard I/N";
+    *error = "Slurm array variables unusable (" + all +
+             "; each a non-negative integer, COUNT and STEP >= 1): give --shard I/N";
     return false;
   }
   const int index = task >= first && (task - first) % stride == 0 ? (task - first) / stride : -1;
   if (n < 1 || index < 0 || index >= n) {
     *error = "SLURM_ARRAY_TASK_ID=" + std::string(id) + " is not one of the " + count +
-             " tasks from SLURM_ARRAY_TASK_MIN=" + std::to_string(first) + " step " + std::to_string(stride) +
-             " (" + all + "): give --shard I/N";
+             " tasks from SLURM_ARRAY_TASK_MIN=" + std::to_string(first) + " step " + std::to_string(stride) + " (" +
+             all + "): give --shard I/N";
     return false;
   }
   shard->index = index;
@@ -181,7 +185,8 @@ bool ListInputs(const std::string& source, std::vector<BatchInput>* inputs, std:
                         }),
             all.end());
   if (all.empty()) {
-    *error = "invalid argument: " + source + ": no inputs (a list needs one path a line; a folder, files the readers take)";
+    *error =
+        "invalid argument: " + source + ": no inputs (a list needs one path a line; a folder, files the readers take)";
     return false;
   }
   for (size_t i = 0; i < all.size(); ++i) {

@@ -14,7 +14,7 @@ namespace silkgen {
 struct BatchInput {
   std::string entry, path, stem;
   std::string problem;  // "" or why the entry is refused (a failed row; path and stem stay empty)
-  size_t index = 0;  // position in the sorted list (0-based), the same in every shard
+  size_t index = 0;     // position in the sorted list (0-based), the same in every shard
 };
 
 // Shard `index` of `count` takes the inputs whose sorted position p has p % count == index.

@@ -13,17 +13,23 @@ void AddBatchOptions(CLI::App& app, BatchArgs& b) {
                  "folder, '#' comments) or DIR (its files the readers take, not its subfolders), loading the model "
                  "once; -o is then the output folder, OUTDIR/<stem>.<format>. An existing output is skipped "
                  "(--overwrite redoes it); exit 1 if any input failed")
-      ->group(group)->type_name("LIST_OR_DIR");
+      ->group(group)
+      ->type_name("LIST_OR_DIR");
   app.add_option("--format", b.format, "--batch output format")
-      ->check(CLI::IsMember({"glb", "obj", "ply"}))->capture_default_str()->group(group);
-  app.add_option("--shard", b.shard,
-                 "--batch: take every N-th input of the sorted list from the I-th (0 <= I < N), so N processes cover it "
-                 "once; default: SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT when set, else 0/1")
-      ->group(group)->type_name("I/N");
+      ->check(CLI::IsMember({"glb", "obj", "ply"}))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option(
+         "--shard", b.shard,
+         "--batch: take every N-th input of the sorted list from the I-th (0 <= I < N), so N processes cover it "
+         "once; default: SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT when set, else 0/1")
+      ->group(group)
+      ->type_name("I/N");
   app.add_option("--report", b.report,
                  "--batch: JSON Lines report, one object per input, appended (default: OUTDIR/silkgen_batch.jsonl, "
                  "or OUTDIR/silkgen_batch.shard-I-of-N.jsonl when sharded)")
-      ->group(group)->type_name("FILE");
+      ->group(group)
+      ->type_name("FILE");
   app.add_flag("--overwrite", b.overwrite, "--batch: generate again for inputs whose output exists")->group(group);
 }
 

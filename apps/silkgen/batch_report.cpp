@@ -49,7 +49,8 @@ nlohmann::ordered_json Line(const BatchRunInfo& run, const BatchInput& in, const
   j["chosen_candidate"] = Figure(r.chosen_candidate);
   j["score"] = Figure(r.score);
   j["watertight"] = r.watertight < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.watertight != 0);
-  j["edge_manifold"] = r.edge_manifold < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.edge_manifold != 0);
+  j["edge_manifold"] =
+      r.edge_manifold < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.edge_manifold != 0);
   j["seed"] = run.seed;
   j["entry"] = in.entry;
   j["index"] = in.index;

@@ -56,9 +56,9 @@ bool ChooseShard(const BatchArgs& args, Shard* shard, std::string* error) {
 }
 
 std::string DefaultReport(const std::string& outdir, const Shard& s) {
-  const std::string name = s.count == 1 ? "silkgen_batch.jsonl"
-                                        : "silkgen_batch.shard-" + std::to_string(s.index) + "-of-" +
-                                              std::to_string(s.count) + ".jsonl";
+  const std::string name =
+      s.count == 1 ? "silkgen_batch.jsonl"
+                   : "silkgen_batch.shard-" + std::to_string(s.index) + "-of-" + std::to_string(s.count) + ".jsonl";
   return silkapp::Utf8(silkapp::FsPath(outdir) / name);
 }
 
@@ -68,13 +68,14 @@ bool PrepareOutputDir(const BatchArgs& args, const std::string& outdir, std::str
   std::error_code ec;
   fs::create_directories(silkapp::FsPath(outdir), ec);
   if (!fs::is_directory(silkapp::FsPath(outdir))) {
-    *error = silkapp::ErrorText(SILK_ERR_IO, outdir + ": cannot create the output folder" +
-                                                 (ec ? " (" + ec.message() + ")" : ""));
+    *error = silkapp::ErrorText(SILK_ERR_IO,
+                                outdir + ": cannot create the output folder" + (ec ? " (" + ec.message() + ")" : ""));
     return false;
   }
   if (fs::is_directory(silkapp::FsPath(args.source), ec) &&
       fs::equivalent(silkapp::FsPath(args.source), silkapp::FsPath(outdir), ec)) {
-    *error = "invalid argument: " + outdir + ": the output folder is the input folder (its outputs would be inputs next time); use another -o";
+    *error = "invalid argument: " + outdir +
+             ": the output folder is the input folder (its outputs would be inputs next time); use another -o";
     return false;
   }
   return true;
@@ -150,7 +151,8 @@ BatchResult OneInput(silk_cpp::Generator& generator, const BatchSettings& s, con
 
 void PrintLine(const BatchSettings& s, size_t k, size_t n, const BatchInput& in, const BatchResult& r) {
   if (r.status == "ok" && !s.quiet)
-    std::fprintf(stderr, "silkgen: [%zu/%zu] %s: ok -> %s (%d faces, %d part(s), %lld ids, %s, candidate %d of %d, %.2f s)\n",
+    std::fprintf(stderr,
+                 "silkgen: [%zu/%zu] %s: ok -> %s (%d faces, %d part(s), %lld ids, %s, candidate %d of %d, %.2f s)\n",
                  k, n, in.entry.c_str(), r.output.c_str(), r.faces, r.parts, static_cast<long long>(r.tokens),
                  r.stop_reason.c_str(), r.chosen_candidate + 1, r.candidates, r.seconds);
   else if (r.status == "skipped" && !s.quiet)
@@ -242,8 +244,8 @@ int RunBatch(const BatchArgs& args, const BatchSettings& settings) {
   run.seed = settings.seed;
   run.total = all.size();
   if (!settings.quiet)
-    std::fprintf(stderr, "silkgen --batch: %zu of %zu inputs (shard %d/%d from %s), seed %llu, report %s\n", mine.size(),
-                 all.size(), run.shard.index, run.shard.count, run.shard.source.c_str(),
+    std::fprintf(stderr, "silkgen --batch: %zu of %zu inputs (shard %d/%d from %s), seed %llu, report %s\n",
+                 mine.size(), all.size(), run.shard.index, run.shard.count, run.shard.source.c_str(),
                  static_cast<unsigned long long>(run.seed), report_path.c_str());
   const auto t0 = std::chrono::steady_clock::now();
   Tally t;
@@ -255,7 +257,9 @@ int RunBatch(const BatchArgs& args, const BatchSettings& settings) {
   if (!settings.quiet || t.failed || sig || !error.empty())
     std::fprintf(stderr, "silkgen --batch: %zu ok, %zu skipped, %zu failed%s of %zu inputs in %.1f s%s\n", t.ok,
                  t.skipped, t.failed, t.cancelled ? ", 1 cancelled" : "", mine.size(), wall,
-                 sig ? " (interrupted: the rest not started)" : !error.empty() ? " (stopped: the report failed)" : "");
+                 sig              ? " (interrupted: the rest not started)"
+                 : !error.empty() ? " (stopped: the report failed)"
+                                  : "");
   if (!error.empty()) {
     silkapp::PrintError("silkgen", SILK_ERR_IO, error);
     return kExitFail;

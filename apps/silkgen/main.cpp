@@ -56,8 +56,10 @@ void WriteTextFile(const std::string& path, const std::string& text) { silk_cpp:
 
 // The encoder's points (rows of x y z nx ny nz) as an ascii PLY point cloud, exact doubles.
 std::string PointsPly(const std::vector<double>& rows) {
-  std::string text = "ply\nformat ascii 1.0\ncomment silkgen --save-points: the encoder's points, input frame\n"
-                     "element vertex " + std::to_string(rows.size() / 6) + "\n";
+  std::string text =
+      "ply\nformat ascii 1.0\ncomment silkgen --save-points: the encoder's points, input frame\n"
+      "element vertex " +
+      std::to_string(rows.size() / 6) + "\n";
   for (const char* p : {"x", "y", "z", "nx", "ny", "nz"}) text += std::string("property double ") + p + "\n";
   text += "end_header\n";
   char buf[32];
@@ -70,14 +72,16 @@ std::string PointsPly(const std::vector<double>& rows) {
 }
 
 struct Args {
-  std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path, save_points;
+  std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path,
+                                        save_points;
   int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
   // Sampling, pre-processing and decoder precision default to model.json's; these sentinels
   // (SILK_MODEL_VALUE / empty) mean "not given"; the options' ranges refuse any other negative.
   double temperature = SILK_MODEL_VALUE, top_p = SILK_MODEL_VALUE, top_p_temperature = SILK_MODEL_VALUE;
   int top_k = SILK_MODEL_VALUE;
   int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
-  std::string decoder, kv_precision, preprocessing, orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
+  std::string decoder, kv_precision, preprocessing,
+      orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
   std::string face_guidance;                 // empty: the model's (model.json sampling.face_guidance)
   double face_tolerance = SILK_MODEL_VALUE;  // the model's
   bool list_models = false, unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
@@ -87,51 +91,68 @@ struct Args {
 
 // Input, output and model: what silkgen reads and writes.
 void AddFileOptions(CLI::App& app, Args& a) {
-  app.add_option("input", a.input, "A point cloud (PLY without faces, XYZ/PTS; normals estimated when it has none), or a "
+  app.add_option("input", a.input,
+                 "A point cloud (PLY without faces, XYZ/PTS; normals estimated when it has none), or a "
                  "mesh: PLY OBJ STL OFF glTF GLB PMD (or --batch)")
       ->check(silkapp::ExistingFile());
-  app.add_option("-o,--output", a.output, "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
-  app.add_option("--model", a.model_dir, "Model folder (model.json, encoder.onnx, decoder.onnx), or the name of a model in the "
+  app.add_option("-o,--output", a.output,
+                 "Output mesh: .glb (one node per part), .obj or .ply (optional with --tokens)");
+  app.add_option("--model", a.model_dir,
+                 "Model folder (model.json, encoder.onnx, decoder.onnx), or the name of a model in the "
                  "models folder (--list-models; a path always wins); default: the bundled model");
-  app.add_flag("--list-models", a.list_models, "List the models --model takes by name (name, architecture, size, decoders, "
+  app.add_flag("--list-models", a.list_models,
+               "List the models --model takes by name (name, architecture, size, decoders, "
                "KV caches, folder) and exit");
 }
 
 // The sampler chain: seed, temperature, truncation, guidance, best of N.
 void AddSamplingOptions(CLI::App& app, Args& a) {
   app.add_option("--seed", a.seed_text, "Random seed (integer) or 'random'")->capture_default_str();
-  app.add_option("--threads", a.threads, "onnxruntime threads (0 = physical cores)")->check(CLI::Range(0, 1024))
+  app.add_option("--threads", a.threads, "onnxruntime threads (0 = physical cores)")
+      ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   app.add_option("--temperature", a.temperature, "Sampling temperature (0 = greedy); default: model.json's")
       ->check(CLI::Range(0.0, 100.0));
   app.add_option("--top-k", a.top_k, "Keep the k most likely legal ids (0 = off); default: model.json's")
       ->check(CLI::Range(0, 10269));
-  app.add_option("--top-p", a.top_p, "Nucleus: keep the smallest set with this much probability (1 = off); default: "
-                 "model.json's")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--top-p", a.top_p,
+                 "Nucleus: keep the smallest set with this much probability (1 = off); default: "
+                 "model.json's")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--top-p-temperature", a.top_p_temperature,
                  "Compute top-p at this temperature on the top-k logits (official chain; 0 = at --temperature); "
-                 "default: model.json's")->check(CLI::Range(0.0, 100.0));
+                 "default: model.json's")
+      ->check(CLI::Range(0.0, 100.0));
   app.add_option("--max-tokens", a.max_tokens, "Cap on generated ids incl. EOS (0 = the model's limit)")
-      ->check(CLI::Range(0, 10240))->capture_default_str();
-  app.add_option("--max-faces", a.max_faces, "Hard cap on the output's faces: stop at the first layer end with at least this many, keep at most this many "
-                 "(a valid subset of that layer; 0 = off)")
-      ->check(CLI::Range(0, 1000000))->capture_default_str();
+      ->check(CLI::Range(0, 10240))
+      ->capture_default_str();
+  app.add_option(
+         "--max-faces", a.max_faces,
+         "Hard cap on the output's faces: stop at the first layer end with at least this many, keep at most this many "
+         "(a valid subset of that layer; 0 = off)")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
   app.add_option("--repair", a.repair, "Holes in the result: off, report, or repair (close small ones)")
-      ->check(CLI::IsMember({"off", "report", "repair"}))->capture_default_str();
+      ->check(CLI::IsMember({"off", "report", "repair"}))
+      ->capture_default_str();
   app.add_flag("--unconstrained", a.unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
   app.add_option("--surface-tolerance", a.surface_tolerance,
                  "Surface guidance: new vertices only on grid cells within CELLS (of 128) of an input point's cell, "
                  "nearest legal cells when none is (0 = off; ignored with --unconstrained)")
-      ->check(CLI::Range(0, 127))->capture_default_str()->type_name("CELLS");
+      ->check(CLI::Range(0, 127))
+      ->capture_default_str()
+      ->type_name("CELLS");
   app.add_option("--candidates", a.candidates,
                  "Best of N: N generations with seeds derived from --seed, the one closest to the input (Chamfer "
                  "distance to the encoder's points) written; every score goes into --stats (default: the model's "
                  "N, model.json sampling.candidates; 1 when it names none)")
-      ->check(CLI::Range(1, 64))->type_name("N");
+      ->check(CLI::Range(1, 64))
+      ->type_name("N");
   app.add_option("--orient", a.orient,
                  "Which side of each part faces out: input (reverse every part whose winding disagrees with the "
                  "input's normals) or tokens (the winding the ids carry, as silktok decode gives it)")
-      ->check(CLI::IsMember({"input", "tokens"}))->capture_default_str();
+      ->check(CLI::IsMember({"input", "tokens"}))
+      ->capture_default_str();
   app.add_option("--face-guidance", a.face_guidance,
                  "Face guidance: off, hard (between-layer ids whose faces stray from the input's surface are removed; "
                  "the best-scoring kept when none passes) or soft (their logits lowered); default: the model's "
@@ -140,7 +161,8 @@ void AddSamplingOptions(CLI::App& app, Args& a) {
   app.add_option("--face-tolerance", a.face_tolerance,
                  "Face guidance: how far (cells of 128) a face's corners, edge midpoints and centroid may lie from the "
                  "input's points; default: the model's, else libsilk's")
-      ->check(CLI::Range(0.5, 64.0))->type_name("CELLS");
+      ->check(CLI::Range(0.5, 64.0))
+      ->type_name("CELLS");
 }
 
 // Side outputs and how the model runs (precision, points, pre-processing).
@@ -148,14 +170,19 @@ void AddRunOptions(CLI::App& app, Args& a) {
   app.add_option("--stats", a.stats_path, "Write run figures as JSON");
   app.add_option("--save-points", a.save_points,
                  "Write the points the encoder saw, with their normals (estimated ones for a cloud without), in the "
-                 "input's frame, as an ascii PLY point cloud")->type_name("FILE.ply");
-  app.add_option("--tokens", a.tokens_path, "Write the generated ids, one per line (EOS 10267 last when one was generated)");
-  app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")->check(CLI::Range(0, 1 << 20));
+                 "input's frame, as an ascii PLY point cloud")
+      ->type_name("FILE.ply");
+  app.add_option("--tokens", a.tokens_path,
+                 "Write the generated ids, one per line (EOS 10267 last when one was generated)");
+  app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")
+      ->check(CLI::Range(0, 1 << 20));
   app.add_option("--decoder", a.decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
       ->check(CLI::IsMember({"fp32", "int8", "int4"}));
   app.add_flag("--int8", a.int8, "Same as --decoder int8");
-  app.add_option("--kv-precision", a.kv_precision, "Self-attention K/V cache: fp32, fp16 or int8; default: the model's "
-                 "(model.json files.default_kv_precision)")->check(CLI::IsMember({"fp32", "fp16", "int8"}));
+  app.add_option("--kv-precision", a.kv_precision,
+                 "Self-attention K/V cache: fp32, fp16 or int8; default: the model's "
+                 "(model.json files.default_kv_precision)")
+      ->check(CLI::IsMember({"fp32", "fp16", "int8"}));
   app.add_option("--preprocessing", a.preprocessing, "Point pre-processing: silk or official; default: model.json's")
       ->check(CLI::IsMember({"silk", "official"}));
   app.add_flag("--raw-points", a.raw_points,
@@ -200,8 +227,9 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.top_k = a.top_k;
   p.top_p = a.top_p;
   p.top_p_temperature = a.top_p_temperature;
-  p.preprocessing = a.preprocessing.empty() ? SILK_MODEL_VALUE : a.preprocessing == "official" ? SILK_PREPROCESS_OFFICIAL
-                                                                                  : SILK_PREPROCESS_SILK;
+  p.preprocessing = a.preprocessing.empty()         ? SILK_MODEL_VALUE
+                    : a.preprocessing == "official" ? SILK_PREPROCESS_OFFICIAL
+                                                    : SILK_PREPROCESS_SILK;
   p.raw_points = a.raw_points ? 1 : 0;
   p.max_tokens = a.max_tokens;
   p.max_faces = a.max_faces;
@@ -226,8 +254,10 @@ silk_model_params ToModelParams(const Args& a) {
   silk_model_params mo = silk_model_default_params();
   mo.threads = a.threads;
   const std::string decoder = a.int8 ? "int8" : a.decoder;
-  mo.decoder = decoder == "int8" ? SILK_DECODER_INT8 : decoder == "int4" ? SILK_DECODER_INT4
-               : decoder == "fp32" ? SILK_DECODER_FP32 : SILK_DECODER_DEFAULT;
+  mo.decoder = decoder == "int8"   ? SILK_DECODER_INT8
+               : decoder == "int4" ? SILK_DECODER_INT4
+               : decoder == "fp32" ? SILK_DECODER_FP32
+                                   : SILK_DECODER_DEFAULT;
   mo.kv_precision = a.kv_precision == "fp16"   ? SILK_KV_FP16
                     : a.kv_precision == "int8" ? SILK_KV_INT8
                     : a.kv_precision == "fp32" ? SILK_KV_FP32
@@ -251,24 +281,32 @@ int Run(const Args& a, uint64_t seed) {
     auto given = [](double v) { return v >= 0 ? std::to_string(v).substr(0, 6) : std::string("model"); };
     std::fprintf(stderr,
                  "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
-                 "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  repair %s%s\n"
+                 "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  "
+                 "repair %s%s\n"
                  "  points  %s\n  surface tolerance %d  candidates %s  orient %s  face guidance %s (tolerance %s)\n",
                  silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
                  input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
                  info.config, info.threads,
-                 info.decoder == SILK_DECODER_INT8 ? "INT8" : info.decoder == SILK_DECODER_INT4 ? "INT4" : "fp32",
-                 info.kv_precision == SILK_KV_FP16 ? "fp16" : info.kv_precision == SILK_KV_INT8 ? "int8" : "fp32",
+                 info.decoder == SILK_DECODER_INT8   ? "INT8"
+                 : info.decoder == SILK_DECODER_INT4 ? "INT4"
+                                                     : "fp32",
+                 info.kv_precision == SILK_KV_FP16   ? "fp16"
+                 : info.kv_precision == SILK_KV_INT8 ? "int8"
+                                                     : "fp32",
                  static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
                  a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens,
                  a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
-                 a.raw_points ? "raw (used as given, model frame)"
-                              : a.preprocessing.empty() ? "the model's pre-processing" : a.preprocessing.c_str(),
+                 a.raw_points              ? "raw (used as given, model frame)"
+                 : a.preprocessing.empty() ? "the model's pre-processing"
+                                           : a.preprocessing.c_str(),
                  a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model",
                  a.orient.c_str(), a.face_guidance.empty() ? "model" : a.face_guidance.c_str(),
                  given(a.face_tolerance).c_str());
   }
   silkgen::ProgressBar bar(!a.quiet);
-  p.progress = [](const silk_generate_progress* g, void* user) { static_cast<silkgen::ProgressBar*>(user)->Update(*g); };
+  p.progress = [](const silk_generate_progress* g, void* user) {
+    static_cast<silkgen::ProgressBar*>(user)->Update(*g);
+  };
   p.cancel = [](void*) -> int32_t { return silkapp::InterruptSignal() != 0 ? 1 : 0; };
   p.user_data = &bar;
   silk_cpp::Generator generator(model);
@@ -293,14 +331,18 @@ int Run(const Args& a, uint64_t seed) {
                  st.seconds_total, st.edge_manifold ? "yes" : "no", st.vertex_manifold ? "yes" : "no",
                  st.consistently_oriented ? "yes" : "no", st.watertight ? "yes" : "no");
   if (!a.quiet && st.parts_flipped > 0)
-    std::fprintf(stderr, "silkgen: %d of %d part(s) reversed to face the input's normals (--orient tokens keeps the ids' winding)\n",
-                 st.parts_flipped, st.components);
+    std::fprintf(
+        stderr,
+        "silkgen: %d of %d part(s) reversed to face the input's normals (--orient tokens keeps the ids' winding)\n",
+        st.parts_flipped, st.components);
   if (!a.quiet && (st.candidates > 1 || st.guided_tokens > 0))
-    std::fprintf(stderr, "silkgen: candidate %d of %d written (Chamfer %.4f); guidance: %lld vertex ids, %lld fallbacks\n",
+    std::fprintf(stderr,
+                 "silkgen: candidate %d of %d written (Chamfer %.4f); guidance: %lld vertex ids, %lld fallbacks\n",
                  st.chosen_candidate + 1, st.candidates, st.score, static_cast<long long>(st.guided_tokens),
                  static_cast<long long>(st.guidance_fallbacks));
   if (!a.quiet && st.face_guided_tokens > 0)
-    std::fprintf(stderr, "silkgen: face guidance: %lld between-layer ids, %lld fallbacks (no legal id's faces on the input)\n",
+    std::fprintf(stderr,
+                 "silkgen: face guidance: %lld between-layer ids, %lld fallbacks (no legal id's faces on the input)\n",
                  static_cast<long long>(st.face_guided_tokens), static_cast<long long>(st.face_fallbacks));
   return kExitOk;
 }
@@ -325,11 +367,15 @@ int CheckOutputs(const Args& a) {
   if (!a.output.empty())
     if (std::string e = CheckOutputFormat(a.output); !e.empty()) return Fail(SILK_ERR_INVALID_ARGUMENT, e);
   if (!a.save_points.empty() && !EndsWithPly(a.save_points))
-    return Fail(SILK_ERR_INVALID_ARGUMENT, a.save_points + ": --save-points writes a PLY point cloud (use a .ply name)");
+    return Fail(SILK_ERR_INVALID_ARGUMENT,
+                a.save_points + ": --save-points writes a PLY point cloud (use a .ply name)");
   silkapp::FileRoles roles;
   roles.Reads(a.input, "the input");
-  const std::pair<const char*, const std::string*> outputs[] = {{"-o", &a.output}, {"--tokens", &a.tokens_path},
-      {"--stats", &a.stats_path}, {"--save-points", &a.save_points}, {"--trace", &a.trace_path}};
+  const std::pair<const char*, const std::string*> outputs[] = {{"-o", &a.output},
+                                                                {"--tokens", &a.tokens_path},
+                                                                {"--stats", &a.stats_path},
+                                                                {"--save-points", &a.save_points},
+                                                                {"--trace", &a.trace_path}};
   for (const auto& [option, path] : outputs) {
     if (path->empty()) continue;
     roles.Writes(*path, option);
@@ -347,8 +393,10 @@ int CheckOutputs(const Args& a) {
 int Batch(Args& a) {
   if (!a.input.empty() || a.output.empty() || !a.tokens_path.empty() || !a.stats_path.empty() ||
       !a.trace_path.empty() || !a.save_points.empty()) {
-    return Fail(SILK_ERR_INVALID_ARGUMENT, "--batch LIST_OR_DIR takes -o OUTDIR and no input file, --tokens, --stats, "
-                "--trace or --save-points (the report holds each input's figures)", kExitUsage);
+    return Fail(SILK_ERR_INVALID_ARGUMENT,
+                "--batch LIST_OR_DIR takes -o OUTDIR and no input file, --tokens, --stats, "
+                "--trace or --save-points (the report holds each input's figures)",
+                kExitUsage);
   }
   silkgen::BatchSettings s;
   if (int rc = SeedAndModel(a, &s.seed); rc != kExitOk) return rc;

@@ -23,7 +23,8 @@ void ProgressBar::Update(const silk_generate_progress& p) {
   std::string bar(static_cast<size_t>(fill), '#');
   bar.resize(kWidth, '.');
   const std::string candidate =
-      p.candidates > 1 ? "candidate " + std::to_string(p.candidate + 1) + "/" + std::to_string(p.candidates) + "  " : "";
+      p.candidates > 1 ? "candidate " + std::to_string(p.candidate + 1) + "/" + std::to_string(p.candidates) + "  "
+                       : "";
   std::fprintf(stderr, "\r%s[%s] %lld/%lld tokens  %d part(s)  %.1f tok/s ", candidate.c_str(), bar.c_str(),
                static_cast<long long>(p.tokens), static_cast<long long>(p.max_tokens), p.components,
                p.seconds > 0 ? p.tokens / p.seconds : 0.0);

@@ -57,10 +57,10 @@ int Run(const DecodeArgs& a) {
 
 void RegisterDecodeCommand(CLI::App& app) {
   auto args = std::make_shared<DecodeArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "decode",
-      "Decode a token file (one id per line) into an OBJ mesh with every face the tokens carry,\n"
-      "consistently oriented. Vertices are in token reading order.");
+  CLI::App* cmd =
+      app.add_subcommand("decode",
+                         "Decode a token file (one id per line) into an OBJ mesh with every face the tokens carry,\n"
+                         "consistently oriented. Vertices are in token reading order.");
   cmd->add_option("input", args->input, "Token file")->required()->check(silkapp::ExistingFile());
   cmd->add_option("-o,--output", args->output, "Output OBJ file (written atomically)")->required();
   cmd->add_flag("--grid", args->grid,

@@ -29,7 +29,8 @@ std::string StemOf(const std::string& path) {
   std::string base = silkapp::FileName(path);
   for (const char* ext : {".gz"}) {
     const std::string e = ext;
-    if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0) base.resize(base.size() - e.size());
+    if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0)
+      base.resize(base.size() - e.size());
   }
   const size_t dot = base.find_last_of('.');
   return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
@@ -99,11 +100,13 @@ void RegisterEncodeCommand(CLI::App& app) {
       "  silktok encode IN1 IN2 ... -o DIR [-j N]   (writes DIR/<stem>.tokens.txt per input)\n"
       "Each mesh is normalised to [-0.95, 0.95] (bounding box) and quantised to 128 bins.");
   cmd->add_option("inputs", args->inputs, "Input mesh files")->required()->check(silkapp::ExistingFile());
-  cmd->add_option("-o,--output", args->output, "Output token file, or folder when several inputs are given")->required();
+  cmd->add_option("-o,--output", args->output, "Output token file, or folder when several inputs are given")
+      ->required();
   cmd->add_option("-j,--jobs", args->jobs, "Parallel encodes in batch form (default: hardware threads)")
       ->check(CLI::Range(0, 1024));
-  cmd->add_flag("--no-nonmanifold", args->no_nonmanifold,
-                "Skip non-manifold processing (token_format.md §3); non-manifold meshes are then refused (default: off)");
+  cmd->add_flag(
+      "--no-nonmanifold", args->no_nonmanifold,
+      "Skip non-manifold processing (token_format.md §3); non-manifold meshes are then refused (default: off)");
   cmd->add_flag("-q,--quiet", args->quiet, "No batch summary on stderr (default: off)");
   cmd->callback([args] { ExitCode() = Run(*args); });
 }

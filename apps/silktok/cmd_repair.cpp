@@ -21,10 +21,11 @@ struct RepairArgs {
 };
 
 void PrintText(const std::string& input, const silk_repair_stats& st, const nlohmann::json& report) {
-  std::printf("%s: %d vertices, %d faces; %d window disagreements OR-ed; %d holes, %d repaired (+%d faces); "
-              "open edges %d -> %d; %s\n",
-              input.c_str(), st.vertices, st.faces, st.window_findings, st.holes_found, st.holes_repaired,
-              st.faces_added, st.open_edges_before, st.open_edges_after, st.watertight ? "watertight" : "not watertight");
+  std::printf(
+      "%s: %d vertices, %d faces; %d window disagreements OR-ed; %d holes, %d repaired (+%d faces); "
+      "open edges %d -> %d; %s\n",
+      input.c_str(), st.vertices, st.faces, st.window_findings, st.holes_found, st.holes_repaired, st.faces_added,
+      st.open_edges_before, st.open_edges_after, st.watertight ? "watertight" : "not watertight");
   for (const auto& h : report["holes"]) {
     const bool repaired = h["repaired"].get<bool>();
     std::printf("  hole in component %d, %zu edges%s", h["component"].get<int>(), h["loop"].size(),

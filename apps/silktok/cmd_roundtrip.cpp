@@ -42,13 +42,13 @@ int Run(const RoundtripArgs& a) {
                      {"exact", r.exact != 0}};
     std::printf("%s\n", j.dump(2).c_str());
   } else {
-    std::printf("%s: %lld tokens; %lld processed faces, %lld representable: %lld recovered, %lld reversed, "
-                "%lld missing; %lld extra faces (%lld decoded) -> %s\n",
-                a.input.c_str(), static_cast<long long>(r.tokens), static_cast<long long>(r.processed_faces),
-                static_cast<long long>(r.representable_faces), static_cast<long long>(r.recovered),
-                static_cast<long long>(r.reversed), static_cast<long long>(r.missing),
-                static_cast<long long>(r.extra), static_cast<long long>(r.decoded_faces),
-                r.exact ? "exact" : "NOT EXACT");
+    std::printf(
+        "%s: %lld tokens; %lld processed faces, %lld representable: %lld recovered, %lld reversed, "
+        "%lld missing; %lld extra faces (%lld decoded) -> %s\n",
+        a.input.c_str(), static_cast<long long>(r.tokens), static_cast<long long>(r.processed_faces),
+        static_cast<long long>(r.representable_faces), static_cast<long long>(r.recovered),
+        static_cast<long long>(r.reversed), static_cast<long long>(r.missing), static_cast<long long>(r.extra),
+        static_cast<long long>(r.decoded_faces), r.exact ? "exact" : "NOT EXACT");
   }
   return r.exact ? kExitOk : kExitFailure;
 }
@@ -57,11 +57,11 @@ int Run(const RoundtripArgs& a) {
 
 void RegisterRoundtripCommand(CLI::App& app) {
   auto args = std::make_shared<RoundtripArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "roundtrip",
-      "Encode a mesh, decode the tokens, and compare with the processed mesh: representable faces\n"
-      "recovered, reversed windings, missing and extra faces. Exit 1 if a representable face is\n"
-      "missing or reversed.");
+  CLI::App* cmd =
+      app.add_subcommand("roundtrip",
+                         "Encode a mesh, decode the tokens, and compare with the processed mesh: representable faces\n"
+                         "recovered, reversed windings, missing and extra faces. Exit 1 if a representable face is\n"
+                         "missing or reversed.");
   cmd->add_option("input", args->input, "Input mesh file")->required()->check(silkapp::ExistingFile());
   cmd->add_flag("--json", args->json, "Print JSON instead of text (default: text)");
   cmd->callback([args] { ExitCode() = Run(*args); });

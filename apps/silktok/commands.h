@@ -18,7 +18,7 @@ int& ExitCode();
 
 // Exit codes shared by all subcommands.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;   // bad input, I/O error, refused mesh, failed check
-inline constexpr int kExitUsage = 2;     // command-line error (CLI11)
+inline constexpr int kExitFailure = 1;  // bad input, I/O error, refused mesh, failed check
+inline constexpr int kExitUsage = 2;    // command-line error (CLI11)
 
 }  // namespace silktok

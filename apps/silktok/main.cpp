@@ -15,7 +15,7 @@ int& ExitCode() {
 }  // namespace silktok
 
 int main(int argc, char** argv) {
-  silkapp::UseUtf8Arguments(argc, argv);  // Windows: UTF-8, not the ANSI code page
+  silkapp::UseUtf8Arguments(argc, argv);                   // Windows: UTF-8, not the ANSI code page
   silkapp::HandleInterrupts(silkapp::OnInterrupt::kExit);  // no partial file left by a signal
   CLI::App app{"silktok — Mesh Silksong tokenizer tools (token format v1, 128 bins)"};
   app.require_subcommand(1);

@@ -30,8 +30,8 @@ silk_status silk_tokens_check(const silk_tokens* tokens, const silk_check_params
   return Guard([&] {
     SILK_CAPI_REQUIRE(tokens && out, "silk_tokens_check: tokens or out is NULL");
     SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_tokens_check", "silk_check_result", out));
-    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_tokens_check", "silk_check_params", params,
-                                              "silk_check_default_params()"));
+    SILK_CAPI_TRY(
+        silk::capi::CheckParamsSize("silk_tokens_check", "silk_check_params", params, "silk_check_default_params()"));
     silk::capi::StoreOut(out, silk::capi::Blank<silk_check_result>());
     const silk_check_params p = silk::capi::ReadParams(params, silk_check_default_params());
     SILK_CAPI_REQUIRE(p.max_length >= 0, "silk_tokens_check: max_length must be >= 0 (0 = unlimited)");

@@ -56,7 +56,8 @@ silk_status silk::capi::CheckEncodeParams(const char* function, const silk_encod
   SILK_CAPI_TRY(CheckParamsSize(function, "silk_encode_params", params, "silk_encode_default_params()"));
   const silk_encode_params p = ReadParams(params, silk_encode_default_params());
   const std::string fn = function;
-  for (const Status& s : {CheckFlag("normalize", p.normalize), CheckFlag("nonmanifold_processing", p.nonmanifold_processing)})
+  for (const Status& s :
+       {CheckFlag("normalize", p.normalize), CheckFlag("nonmanifold_processing", p.nonmanifold_processing)})
     if (!s.ok()) return SetError(s.WithContext(fn + ": "));
   SILK_CAPI_REQUIRE(!p.normalize || (p.normalize_bound > 0 && p.normalize_bound <= 1),
                     fn + ": normalize_bound " + ValueText(p.normalize_bound) + " must lie in (0, 1]");
@@ -176,7 +177,8 @@ silk_status silk_tokens_decode(const silk_tokens* tokens, const silk_decode_para
     }
     std::vector<std::array<double, 3>> positions;
     for (const silk::QVec& q : r->positions) {
-      if (p.grid_coordinates) positions.push_back({double(q.x), double(q.y), double(q.z)});
+      if (p.grid_coordinates)
+        positions.push_back({double(q.x), double(q.y), double(q.z)});
       else
         positions.push_back(silk::DequantizePosition(q));
     }

@@ -21,15 +21,24 @@ void* g_log_user = nullptr;
 
 silk_status CodeOf(StatusCode c) {
   switch (c) {
-    case StatusCode::kOk: return SILK_OK;
-    case StatusCode::kInvalidArgument: return SILK_ERR_INVALID_ARGUMENT;
-    case StatusCode::kIoError: return SILK_ERR_IO;
-    case StatusCode::kParseError: return SILK_ERR_PARSE;
-    case StatusCode::kUnsupported: return SILK_ERR_UNSUPPORTED;
-    case StatusCode::kRefused: return SILK_ERR_REFUSED;
-    case StatusCode::kLimitExceeded: return SILK_ERR_LIMIT;
-    case StatusCode::kCancelled: return SILK_ERR_CANCELLED;
-    case StatusCode::kInternal: return SILK_ERR_INTERNAL;
+    case StatusCode::kOk:
+      return SILK_OK;
+    case StatusCode::kInvalidArgument:
+      return SILK_ERR_INVALID_ARGUMENT;
+    case StatusCode::kIoError:
+      return SILK_ERR_IO;
+    case StatusCode::kParseError:
+      return SILK_ERR_PARSE;
+    case StatusCode::kUnsupported:
+      return SILK_ERR_UNSUPPORTED;
+    case StatusCode::kRefused:
+      return SILK_ERR_REFUSED;
+    case StatusCode::kLimitExceeded:
+      return SILK_ERR_LIMIT;
+    case StatusCode::kCancelled:
+      return SILK_ERR_CANCELLED;
+    case StatusCode::kInternal:
+      return SILK_ERR_INTERNAL;
   }
   return SILK_ERR_INTERNAL;
 }
@@ -101,17 +110,28 @@ const char* silk_last_error(void) { return silk::capi::g_last_error.c_str(); }
 
 const char* silk_status_name(silk_status s) {
   switch (s) {
-    case SILK_OK: return "ok";
-    case SILK_ERR_INVALID_ARGUMENT: return "invalid argument";
-    case SILK_ERR_IO: return "I/O error";
-    case SILK_ERR_PARSE: return "parse error";
-    case SILK_ERR_UNSUPPORTED: return "unsupported";
-    case SILK_ERR_REFUSED: return "refused";
-    case SILK_ERR_LIMIT: return "limit exceeded";
-    case SILK_ERR_CANCELLED: return "cancelled";
-    case SILK_ERR_INTERNAL: return "internal error";
-    case SILK_ERR_BUFFER_TOO_SMALL: return "buffer too small";
-    case SILK_ERR_BUSY: return "generator busy";
+    case SILK_OK:
+      return "ok";
+    case SILK_ERR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case SILK_ERR_IO:
+      return "I/O error";
+    case SILK_ERR_PARSE:
+      return "parse error";
+    case SILK_ERR_UNSUPPORTED:
+      return "unsupported";
+    case SILK_ERR_REFUSED:
+      return "refused";
+    case SILK_ERR_LIMIT:
+      return "limit exceeded";
+    case SILK_ERR_CANCELLED:
+      return "cancelled";
+    case SILK_ERR_INTERNAL:
+      return "internal error";
+    case SILK_ERR_BUFFER_TOO_SMALL:
+      return "buffer too small";
+    case SILK_ERR_BUSY:
+      return "generator busy";
   }
   return "unknown";
 }
@@ -150,11 +170,16 @@ silk_status silk_vocab_get_info(silk_vocab_info* out) {
     i.c_id = v::kCBegin;
     i.u_id = v::kUBegin;
     i.e_id = v::kEBegin;
-    i.x_begin = v::kXBegin; i.x_end = v::kXEnd;
-    i.s_begin = v::kSBegin; i.s_end = v::kSEnd;
-    i.b_begin = v::kBBegin; i.b_end = v::kBEnd;
-    i.k_begin = v::kKBegin; i.k_end = v::kKEnd;
-    i.o_begin = v::kOBegin; i.o_end = v::kOEnd;
+    i.x_begin = v::kXBegin;
+    i.x_end = v::kXEnd;
+    i.s_begin = v::kSBegin;
+    i.s_end = v::kSEnd;
+    i.b_begin = v::kBBegin;
+    i.b_end = v::kBEnd;
+    i.k_begin = v::kKBegin;
+    i.k_end = v::kKEnd;
+    i.o_begin = v::kOBegin;
+    i.o_end = v::kOEnd;
     i.quant_bins = v::k_quant_bins;
     i.layer_vertex_limit = v::k_layer_vertex_limit;
     i.layer_count_limit = v::k_layer_count_limit;

@@ -19,7 +19,8 @@ constexpr int32_t kAllDebugFlags = SILK_DEBUG_NO_SKIP_FORCED | SILK_DEBUG_KV_COP
 constexpr int32_t kAllReportFlags = SILK_GENERATE_RECORD_TRACE;
 
 silk_status Busy(const char* function) {
-  return SetError(SILK_ERR_BUSY, std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
+  return SetError(SILK_ERR_BUSY,
+                  std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
 }
 
 // The C-only checks of the params: flags 0/1, enums in range, no unknown debug bit. Value ranges
@@ -63,13 +64,14 @@ silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p)
   r.raw_points = p.raw_points != 0;
   r.max_tokens = p.max_tokens;
   r.max_faces = p.max_faces;
-  r.holes = p.holes == SILK_HOLES_REPAIR ? silk::HolePolicy::kRepair
-            : p.holes == SILK_HOLES_REPORT ? silk::HolePolicy::kReport : silk::HolePolicy::kOff;
+  r.holes = p.holes == SILK_HOLES_REPAIR   ? silk::HolePolicy::kRepair
+            : p.holes == SILK_HOLES_REPORT ? silk::HolePolicy::kReport
+                                           : silk::HolePolicy::kOff;
   r.unconstrained = p.unconstrained != 0;
   r.skip_forced = !(p.debug_flags & SILK_DEBUG_NO_SKIP_FORCED);
   r.kv_in_place = !(p.debug_flags & SILK_DEBUG_KV_COPY);
   r.order = (p.debug_flags & SILK_DEBUG_SAMPLE_THEN_CHECK) ? silk::SampleOrder::kSampleThenCheck
-                                                          : silk::SampleOrder::kMaskFirst;
+                                                           : silk::SampleOrder::kMaskFirst;
   r.record_trace = (p.report_flags & SILK_GENERATE_RECORD_TRACE) != 0;
   r.surface_tolerance = p.surface_tolerance;
   r.orient_to_input = p.orient == SILK_ORIENT_INPUT;
@@ -89,14 +91,18 @@ silk::GenerateCallbacks ToCallbacks(silk_generator* g, const silk_generate_param
   silk::GenerateCallbacks cb;
   if (p.progress) {
     cb.progress = [fn = p.progress, user = p.user_data](const silk::GenerateProgress& x) {
-      silk_generate_progress c{sizeof(silk_generate_progress), x.tokens,    x.max_tokens, x.components,
-                               x.faces,                        x.seconds,   x.candidate,  x.candidates};
+      silk_generate_progress c{sizeof(silk_generate_progress),
+                               x.tokens,
+                               x.max_tokens,
+                               x.components,
+                               x.faces,
+                               x.seconds,
+                               x.candidate,
+                               x.candidates};
       fn(&c, user);
     };
   }
-  cb.cancel = [g, fn = p.cancel, user = p.user_data]() {
-    return g->cancelled() || (fn && fn(user) != 0);
-  };
+  cb.cancel = [g, fn = p.cancel, user = p.user_data]() { return g->cancelled() || (fn && fn(user) != 0); };
   return cb;
 }
 
@@ -141,7 +147,9 @@ silk_status Start(silk_generator* g, const silk_generate_input& input, const sil
   auto request = ToRequest(p);
   if (!request.ok()) return SetError(request.status().WithContext("silk_generator_start: "));
   auto in = ToInput(input, FlagCheck(g));  // its problems, like the session's, name the input's file
-  if (!in.ok()) return SetError(in.status().WithContext((input.mesh && !input.mesh->source.empty() ? input.mesh->source : "input") + ": "));
+  if (!in.ok())
+    return SetError(
+        in.status().WithContext((input.mesh && !input.mesh->source.empty() ? input.mesh->source : "input") + ": "));
   g->has_result = false;
   GenerationSettings& s = g->settings;
   s = GenerationSettings{};
@@ -154,8 +162,8 @@ silk_status Start(silk_generator* g, const silk_generate_input& input, const sil
 }
 
 silk_status Advance(silk_generator* g, int32_t max_ids, int32_t until) {
-  return SetError(g->session.Advance(max_ids, until == SILK_ADVANCE_LAYER ? silk::AdvanceUntil::kLayer
-                                                                          : silk::AdvanceUntil::kIds));
+  return SetError(
+      g->session.Advance(max_ids, until == SILK_ADVANCE_LAYER ? silk::AdvanceUntil::kLayer : silk::AdvanceUntil::kIds));
 }
 
 // The runtime's figures into the caller's stats (only its struct_size bytes).
@@ -179,7 +187,8 @@ silk_status Deliver(silk_generator* g, silk::SessionResult r, silk_mesh** out_me
   }
   if (stats) StoreStats(st, stats);
   silk::capi::Log(SILK_LOG_DEBUG, "generated " + std::to_string(st.tokens) + " ids (" +
-                                      silk::StopReasonName(st.stop_reason) + ") -> " + std::to_string(st.faces) + " faces");
+                                      silk::StopReasonName(st.stop_reason) + ") -> " + std::to_string(st.faces) +
+                                      " faces");
   *out_mesh = mesh.release();
   if (out_tokens) *out_tokens = tokens.release();
   return Ok();
@@ -248,7 +257,8 @@ silk_status CheckSizes(const char* function, const silk_generate_input* input, c
     SILK_CAPI_TRY(silk::capi::CheckStructSize(function, "silk_generate_input", input->struct_size,
                                               sizeof(silk_generate_input),
                                               "set struct_size = sizeof(silk_generate_input) before the call"));
-  SILK_CAPI_TRY(silk::capi::CheckParamsSize(function, "silk_generate_params", params, "silk_generate_default_params()"));
+  SILK_CAPI_TRY(
+      silk::capi::CheckParamsSize(function, "silk_generate_params", params, "silk_generate_default_params()"));
   return silk::capi::CheckOutSize(function, "silk_generate_stats", stats);
 }
 
@@ -291,7 +301,8 @@ void silk_generator_destroy(silk_generator* generator) {
   delete generator;
 }
 
-silk_status silk_generator_start(silk_generator* g, const silk_generate_input* input, const silk_generate_params* params) {
+silk_status silk_generator_start(silk_generator* g, const silk_generate_input* input,
+                                 const silk_generate_params* params) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(g && input, "silk_generator_start: generator or input is NULL");
     SILK_CAPI_TRY(CheckSizes("silk_generator_start", input, params, nullptr));
@@ -312,7 +323,8 @@ silk_status silk_generator_advance(silk_generator* g, int32_t max_ids, int32_t u
                       "silk_generator_advance: until is not a silk_advance_until (0..1)");
     BusyLock lock(g);
     if (!lock.ok()) return Busy("silk_generator_advance");
-    if (!g->session.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_advance: no generation started");
+    if (!g->session.active())
+      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_advance: no generation started");
     const silk_status s = Advance(g, max_ids, until);
     if (out_done) *out_done = g->session.done() ? 1 : 0;
     return s;
@@ -342,7 +354,8 @@ silk_status silk_generator_get_mesh(silk_generator* g, silk_mesh** out) {
     *out = nullptr;
     BusyLock lock(g);
     if (!lock.ok()) return Busy("silk_generator_get_mesh");
-    if (!g->session.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_get_mesh: no generation in progress");
+    if (!g->session.active())
+      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_get_mesh: no generation in progress");
     auto preview = g->session.Preview();
     if (!preview.ok()) return SetError(preview.status());
     auto h = silk::capi::MeshHandle(std::move(preview->output.positions), preview->grid);
@@ -369,7 +382,7 @@ silk_status silk_generator_get_stats(silk_generator* g, silk_generate_stats* out
       st.vertices = static_cast<int32_t>(preview->grid.positions.size());
       st.components = preview->grid.components;
     }
-    st.candidates = g->session.candidates();        // during a run: N
+    st.candidates = g->session.candidates();       // during a run: N
     st.chosen_candidate = g->session.candidate();  // and the one in progress
     silk::capi::StoreOut(out, st);
     return Ok();
@@ -386,7 +399,8 @@ silk_status silk_generator_finish(silk_generator* g, silk_mesh** out_mesh, silk_
     SILK_CAPI_TRY(CheckSizes("silk_generator_finish", nullptr, nullptr, stats));
     BusyLock lock(g, BusyLock::kEnd);
     if (!lock.ok()) return Busy("silk_generator_finish");
-    if (!g->session.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_finish: no generation started");
+    if (!g->session.active())
+      return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_finish: no generation started");
     return Finish(g, out_mesh, out_tokens, stats);
   });
 }
@@ -411,7 +425,7 @@ silk_status silk_generator_report(silk_generator* g, int32_t trace, silk_report*
 }
 
 silk_status silk_generator_run(silk_generator* g, const silk_generate_input* input, const silk_generate_params* params,
-                              silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
+                               silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(out_mesh, "silk_generator_run: out_mesh is NULL");
     *out_mesh = nullptr;

@@ -44,8 +44,8 @@ struct silk_generator {
   std::mutex cancel_mu;
   bool cancelled() const { return (state.load() & kCancel) != 0; }
   GenerationSettings settings;
-  bool has_result = false;              // a finished generation (for the report)
-  silk::GenerateResult result;          // tokens, stats, trace of the last finished (or cancelled) one
+  bool has_result = false;      // a finished generation (for the report)
+  silk::GenerateResult result;  // tokens, stats, trace of the last finished (or cancelled) one
 };
 
 namespace silk::capi {

@@ -21,12 +21,14 @@ silk_status silk_generator_copy_points(silk_generator* g, double* out, size_t ca
     SILK_CAPI_REQUIRE(g, "silk_generator_copy_points: generator is NULL");
     BusyLock lock(g);
     if (!lock.ok())
-      return SetError(SILK_ERR_BUSY, "silk_generator_copy_points: generator busy (in use on another thread; use one "
-                                     "generator per thread)");
+      return SetError(SILK_ERR_BUSY,
+                      "silk_generator_copy_points: generator busy (in use on another thread; use one "
+                      "generator per thread)");
     if (!g->has_result && !g->session.active())
       return SetError(SILK_ERR_INVALID_ARGUMENT, "silk_generator_copy_points: no generation started");
     const std::vector<double> points = g->session.InputFramePoints();
-    if (silk_status c; !silk::capi::BeginCopy("silk_generator_copy_points", out, capacity, points.size(), out_count, &c))
+    if (silk_status c;
+        !silk::capi::BeginCopy("silk_generator_copy_points", out, capacity, points.size(), out_count, &c))
       return c;
     std::copy(points.begin(), points.end(), out);
     return Ok();

@@ -108,10 +108,10 @@ struct ModelParams10 {
   int32_t threads, decoder;
 };
 #if defined(__ELF__)
-#define SILK_CAPI_MODEL_PARAMS_1_0                                                                   \
+#define SILK_CAPI_MODEL_PARAMS_1_0                                                                       \
   __attribute__((visibility("default"))) silk::capi::ModelParams10 capi_model_default_params_1_0(void) { \
-    return {sizeof(silk::capi::ModelParams10), 0, SILK_DECODER_DEFAULT};                            \
-  }                                                                                                  \
+    return {sizeof(silk::capi::ModelParams10), 0, SILK_DECODER_DEFAULT};                                 \
+  }                                                                                                      \
   __asm__(".symver capi_model_default_params_1_0,silk_model_default_params@SILK_1.0");
 #else
 #define SILK_CAPI_MODEL_PARAMS_1_0
@@ -127,14 +127,14 @@ struct alignas(silk_generate_params) GenerateParams10 {
   unsigned char bytes[kSize10<silk_generate_params>];
 };
 #if defined(__ELF__)
-#define SILK_CAPI_GENERATE_PARAMS_1_0                                                                      \
+#define SILK_CAPI_GENERATE_PARAMS_1_0                                                                          \
   __attribute__((visibility("default"))) silk::capi::GenerateParams10 capi_generate_default_params_1_0(void) { \
-    silk_generate_params p = silk_generate_default_params();                                               \
-    p.struct_size = static_cast<uint32_t>(sizeof(silk::capi::GenerateParams10));                          \
-    silk::capi::GenerateParams10 old;                                                                      \
-    std::memcpy(old.bytes, &p, sizeof(old.bytes));                                                         \
-    return old;                                                                                            \
-  }                                                                                                        \
+    silk_generate_params p = silk_generate_default_params();                                                   \
+    p.struct_size = static_cast<uint32_t>(sizeof(silk::capi::GenerateParams10));                               \
+    silk::capi::GenerateParams10 old;                                                                          \
+    std::memcpy(old.bytes, &p, sizeof(old.bytes));                                                             \
+    return old;                                                                                                \
+  }                                                                                                            \
   __asm__(".symver capi_generate_default_params_1_0,silk_generate_default_params@SILK_1.0");
 #else
 #define SILK_CAPI_GENERATE_PARAMS_1_0
@@ -182,8 +182,8 @@ T Blank() {
   if (!(cond)) return ::silk::capi::SetError(SILK_ERR_INVALID_ARGUMENT, what)
 // A field check (CheckFlag, CheckEnum, ...) of `function`'s params: on failure, its message
 // prefixed with the function's name.
-#define SILK_CAPI_CHECK(function, check)                                      \
-  if (::silk::Status silk_check_ = (check); !silk_check_.ok())                \
+#define SILK_CAPI_CHECK(function, check)                       \
+  if (::silk::Status silk_check_ = (check); !silk_check_.ok()) \
   return ::silk::capi::SetError(silk_check_.WithContext(function ": "))
 
 }  // namespace silk::capi

@@ -17,7 +17,7 @@ using silk::capi::Ok;
 using silk::capi::SetError;
 
 std::unique_ptr<silk_mesh> silk::capi::MeshHandle(std::vector<std::array<double, 3>> positions,
-                                                 const silk::TokenizerDecodedMesh& decoded) {
+                                                  const silk::TokenizerDecodedMesh& decoded) {
   auto m = std::make_unique<silk_mesh>();
   m->mesh.positions = std::move(positions);
   m->mesh.triangles = decoded.faces;
@@ -38,8 +38,8 @@ bool EndsWith(const std::string& s, const char* suf) {
 
 extern "C" {
 
-silk_status silk_mesh_create(const double* positions, size_t n_vertices, const int32_t* triangles,
-                             size_t n_triangles, silk_mesh** out) {
+silk_status silk_mesh_create(const double* positions, size_t n_vertices, const int32_t* triangles, size_t n_triangles,
+                             silk_mesh** out) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(out, "silk_mesh_create: out is NULL");
     *out = nullptr;
@@ -77,7 +77,8 @@ silk_status silk_mesh_load(const char* path, const silk_load_params* params, sil
     SILK_CAPI_REQUIRE(out, "silk_mesh_load: out is NULL");
     *out = nullptr;
     SILK_CAPI_REQUIRE(path, "silk_mesh_load: path is NULL");
-    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_mesh_load", "silk_load_params", params, "silk_load_default_params()"));
+    SILK_CAPI_TRY(
+        silk::capi::CheckParamsSize("silk_mesh_load", "silk_load_params", params, "silk_load_default_params()"));
     const silk_load_params lp = silk::capi::ReadParams(params, silk_load_default_params());
     SILK_CAPI_CHECK("silk_mesh_load", silk::capi::CheckFlag("point_clouds", lp.point_clouds));
     auto m = std::make_unique<silk_mesh>();
@@ -114,11 +115,12 @@ silk_save_params silk_save_default_params(void) {
 silk_status silk_mesh_save(const silk_mesh* mesh, const char* path, const silk_save_params* params) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(mesh && path, "silk_mesh_save: mesh or path is NULL");
-    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_mesh_save", "silk_save_params", params, "silk_save_default_params()"));
+    SILK_CAPI_TRY(
+        silk::capi::CheckParamsSize("silk_mesh_save", "silk_save_params", params, "silk_save_default_params()"));
     const silk_save_params sp = silk::capi::ReadParams(params, silk_save_default_params());
     SILK_CAPI_CHECK("silk_mesh_save", silk::capi::CheckFlag("part_colors", sp.part_colors));
-    SILK_CAPI_CHECK("silk_mesh_save", silk::capi::CheckEnum("format", sp.format, SILK_FORMAT_BY_EXTENSION, SILK_FORMAT_GLB,
-                                                            "silk_mesh_format"));
+    SILK_CAPI_CHECK("silk_mesh_save", silk::capi::CheckEnum("format", sp.format, SILK_FORMAT_BY_EXTENSION,
+                                                            SILK_FORMAT_GLB, "silk_mesh_format"));
     const std::string p = path;
     const auto is = [&](int32_t format, const char* ext) {
       return sp.format == format || (sp.format == SILK_FORMAT_BY_EXTENSION && EndsWith(p, ext));
@@ -128,11 +130,13 @@ silk_status silk_mesh_save(const silk_mesh* mesh, const char* path, const silk_s
       silk::ObjWriteOptions opt;
       if (sp.obj_comment) opt.header_comment = sp.obj_comment;
       st = silk::WriteObjFile(p, mesh->mesh, opt);
-    } else if (is(SILK_FORMAT_PLY, ".ply")) st = silk::WritePlyFile(p, mesh->mesh);
+    } else if (is(SILK_FORMAT_PLY, ".ply"))
+      st = silk::WritePlyFile(p, mesh->mesh);
     else if (is(SILK_FORMAT_GLB, ".glb"))
       st = silk::WriteGlbFile(p, silk::SplitGlbParts(mesh->mesh, mesh->triangle_component, sp.part_colors != 0),
                               "silk " SILK_VERSION_STRING);
-    else return SetError(SILK_ERR_UNSUPPORTED, p + ": unsupported output extension (use .glb, .obj or .ply)");
+    else
+      return SetError(SILK_ERR_UNSUPPORTED, p + ": unsupported output extension (use .glb, .obj or .ply)");
     return SetError(st);
   });
 }
@@ -163,12 +167,14 @@ silk_status silk_mesh_copy_triangles(const silk_mesh* mesh, int32_t* out, size_t
   });
 }
 
-silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity, size_t* out_count) {
+silk_status silk_mesh_copy_triangle_components(const silk_mesh* mesh, int32_t* out, size_t capacity,
+                                               size_t* out_count) {
   return Guard([&] {
     if (out_count) *out_count = 0;
     SILK_CAPI_REQUIRE(mesh, "silk_mesh_copy_triangle_components: mesh is NULL");
     const size_t n = mesh->triangle_component.size();
-    if (silk_status c; !silk::capi::BeginCopy("silk_mesh_copy_triangle_components", out, capacity, n, out_count, &c)) return c;
+    if (silk_status c; !silk::capi::BeginCopy("silk_mesh_copy_triangle_components", out, capacity, n, out_count, &c))
+      return c;
     std::copy(mesh->triangle_component.begin(), mesh->triangle_component.end(), out);
     return Ok();
   });

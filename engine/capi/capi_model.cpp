@@ -31,11 +31,11 @@ silk_status silk_model_load(const char* dir, const silk_model_params* params, si
     SILK_CAPI_REQUIRE(out, "silk_model_load: out is NULL");
     *out = nullptr;
     SILK_CAPI_REQUIRE(dir, "silk_model_load: dir is NULL");
-    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_model_load", "silk_model_params", params,
-                                              "silk_model_default_params()"));
+    SILK_CAPI_TRY(
+        silk::capi::CheckParamsSize("silk_model_load", "silk_model_params", params, "silk_model_default_params()"));
     const silk_model_params o = silk::capi::ReadParams(params, silk_model_default_params());
-    SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("decoder", o.decoder, SILK_DECODER_DEFAULT, SILK_DECODER_INT4,
-                                                             "silk_decoder_precision"));
+    SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("decoder", o.decoder, SILK_DECODER_DEFAULT,
+                                                             SILK_DECODER_INT4, "silk_decoder_precision"));
     SILK_CAPI_CHECK("silk_model_load", silk::capi::CheckEnum("kv_precision", o.kv_precision, SILK_KV_DEFAULT,
                                                              SILK_KV_INT8, "silk_kv_precision"));
     silk::ModelLoadOptions lo;
@@ -57,8 +57,8 @@ silk_status silk_model_load(const char* dir, const silk_model_params* params, si
     if (o.threads > 0 && o.threads != pool)
       silk::capi::Log(SILK_LOG_WARN, folder + ": threads " + std::to_string(o.threads) +
                                          " ignored: the process's shared pool has " + std::to_string(pool));
-    silk::capi::Log(SILK_LOG_INFO, std::string("loaded model ") + folder + " (" + h->model->config().config_name + ", " +
-                                       std::to_string(pool) + " threads, " +
+    silk::capi::Log(SILK_LOG_INFO, std::string("loaded model ") + folder + " (" + h->model->config().config_name +
+                                       ", " + std::to_string(pool) + " threads, " +
                                        silk::DecoderPrecisionName(h->model->precision()) + " decoder, " +
                                        silk::KvPrecisionName(h->model->kv_precision()) + " KV cache)");
     *out = h.release();
@@ -86,12 +86,15 @@ silk_status silk_model_get_info(const silk_model* model, silk_model_info* out) {
     o->threads = model->model->threads();
     const silk::DecoderPrecision d = model->model->precision();
     o->int8 = d == silk::DecoderPrecision::kInt8;
-    o->decoder = d == silk::DecoderPrecision::kInt8 ? SILK_DECODER_INT8
-                   : d == silk::DecoderPrecision::kInt4 ? SILK_DECODER_INT4 : SILK_DECODER_FP32;
+    o->decoder = d == silk::DecoderPrecision::kInt8   ? SILK_DECODER_INT8
+                 : d == silk::DecoderPrecision::kInt4 ? SILK_DECODER_INT4
+                                                      : SILK_DECODER_FP32;
     o->arch = c.arch == silk::ModelArch::kOfficial ? 1 : 0;
     o->encoder_points = static_cast<int32_t>(model->model->encoder_points());
     const silk::KvPrecision kv = model->model->kv_precision();
-    o->kv_precision = kv == silk::KvPrecision::kFp16 ? SILK_KV_FP16 : kv == silk::KvPrecision::kInt8 ? SILK_KV_INT8 : SILK_KV_FP32;
+    o->kv_precision = kv == silk::KvPrecision::kFp16   ? SILK_KV_FP16
+                      : kv == silk::KvPrecision::kInt8 ? SILK_KV_INT8
+                                                       : SILK_KV_FP32;
     silk::capi::StoreOut(out, info);
     return Ok();
   });

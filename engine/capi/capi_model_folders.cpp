@@ -45,8 +45,7 @@ silk_status silk_model_default_dir(char* out, size_t capacity, size_t* out_count
 
 silk_status silk_model_find(const char* name_or_dir, char* out, size_t capacity, size_t* out_count) {
   return Guard([&] {
-    return CopyPath("silk_model_find", silk::ResolveModelDir(name_or_dir ? name_or_dir : ""), out, capacity,
-                    out_count);
+    return CopyPath("silk_model_find", silk::ResolveModelDir(name_or_dir ? name_or_dir : ""), out, capacity, out_count);
   });
 }
 
@@ -60,7 +59,8 @@ silk_status silk_models_list(silk_report** out) {
     *out = r.release();
     return Ok();
 #else
-    return SetError(SILK_ERR_UNSUPPORTED, "silk_models_list: this libsilk was built without onnxruntime (no generation)");
+    return SetError(SILK_ERR_UNSUPPORTED,
+                    "silk_models_list: this libsilk was built without onnxruntime (no generation)");
 #endif
   });
 }

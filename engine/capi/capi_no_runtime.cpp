@@ -77,7 +77,7 @@ silk_status silk_generator_copy_points(silk_generator*, double*, size_t, size_t*
   return NoRuntime();
 }
 silk_status silk_generator_run(silk_generator*, const silk_generate_input*, const silk_generate_params*, silk_mesh** m,
-                              silk_tokens** t, silk_generate_stats*) {
+                               silk_tokens** t, silk_generate_stats*) {
   if (m) *m = nullptr;
   if (t) *t = nullptr;
   return NoRuntime();

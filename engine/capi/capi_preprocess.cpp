@@ -57,12 +57,13 @@ silk_status silk_points_prepare(const silk_mesh* mesh, const double* cloud, size
                                               "silk_preprocess_default_params(kind)"));
     const silk_preprocess_params cp =
         silk::capi::ReadParams(params, silk_preprocess_default_params(SILK_PREPROCESS_SILK));
-    for (const silk::Status& s : {silk::capi::CheckEnum("kind", cp.kind, SILK_PREPROCESS_SILK,
-                                                        SILK_PREPROCESS_OFFICIAL, "silk_preprocess_kind"),
+    for (const silk::Status& s : {silk::capi::CheckEnum("kind", cp.kind, SILK_PREPROCESS_SILK, SILK_PREPROCESS_OFFICIAL,
+                                                        "silk_preprocess_kind"),
                                   silk::capi::CheckFlag("round_float16", cp.round_float16)})
       if (!s.ok()) return SetError(s.WithContext("silk_points_prepare: "));
     const silk::PreprocessingParams p = silk::capi::FromCPreprocess(cp);
-    if (silk::Status s = silk::ValidatePreprocessing(p); !s.ok()) return SetError(s.WithContext("silk_points_prepare: "));
+    if (silk::Status s = silk::ValidatePreprocessing(p); !s.ok())
+      return SetError(s.WithContext("silk_points_prepare: "));
     const size_t rows = cloud && n_cloud < static_cast<size_t>(p.n_points) ? n_cloud : static_cast<size_t>(p.n_points);
     if (silk_status c; !silk::capi::BeginCopy("silk_points_prepare", out, capacity, rows * 6, out_count, &c)) return c;
     silk::IoMesh cloud_mesh;

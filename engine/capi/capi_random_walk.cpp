@@ -27,7 +27,8 @@ silk_random_walk_params silk_random_walk_default_params(void) {
   return p;
 }
 
-silk_status silk_tokens_random_walk(const silk_random_walk_params* params, silk_tokens** out_tokens, silk_mesh** out_mesh) {
+silk_status silk_tokens_random_walk(const silk_random_walk_params* params, silk_tokens** out_tokens,
+                                    silk_mesh** out_mesh) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(out_tokens, "silk_tokens_random_walk: out_tokens is NULL");
     *out_tokens = nullptr;
@@ -37,7 +38,8 @@ silk_status silk_tokens_random_walk(const silk_random_walk_params* params, silk_
     const silk_random_walk_params p = silk::capi::ReadParams(params, silk_random_walk_default_params());
     SILK_CAPI_REQUIRE(p.max_components >= 1 && p.max_components <= 1000,
                       "silk_tokens_random_walk: max_components must be in [1, 1000]");
-    SILK_CAPI_REQUIRE(p.max_layers >= 0 && p.max_layers <= 199, "silk_tokens_random_walk: max_layers must be in [0, 199]");
+    SILK_CAPI_REQUIRE(p.max_layers >= 0 && p.max_layers <= 199,
+                      "silk_tokens_random_walk: max_layers must be in [0, 199]");
     SILK_CAPI_REQUIRE(p.max_layer_size >= 0 && p.max_layer_size <= 200,
                       "silk_tokens_random_walk: max_layer_size must be in [0, 200]");
     silk::RandomWalkOptions wo;

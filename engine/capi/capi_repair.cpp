@@ -21,23 +21,29 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json ReportJson(size_t accepted, const silk::Rejection& illegal, int32_t illegal_id, const silk::TokenizerDecodedMesh& mesh,
-                const silk::MeshBuildReport& rep) {
+Json ReportJson(size_t accepted, const silk::Rejection& illegal, int32_t illegal_id,
+                const silk::TokenizerDecodedMesh& mesh, const silk::MeshBuildReport& rep) {
   Json j;
   j["tokens_accepted"] = accepted;
   j["illegal"] = illegal.ok() ? Json(nullptr)
-                              : Json{{"position", accepted}, {"id", illegal_id},
-                                     {"reason", silk::RejectReasonName(illegal.reason)}, {"message", illegal.message}};
+                              : Json{{"position", accepted},
+                                     {"id", illegal_id},
+                                     {"reason", silk::RejectReasonName(illegal.reason)},
+                                     {"message", illegal.message}};
   j["vertices"] = mesh.positions.size();
   j["faces"] = mesh.faces.size();
   j["watertight"] = silk::IsWatertight(mesh);
   j["window_findings"] = Json::array();
   for (const auto& f : rep.window_findings)
-    j["window_findings"].push_back({{"component", f.component}, {"layer", f.layer}, {"row_a", f.row_a}, {"row_b", f.row_b}});
+    j["window_findings"].push_back(
+        {{"component", f.component}, {"layer", f.layer}, {"row_a", f.row_a}, {"row_b", f.row_b}});
   j["holes"] = Json::array();
   for (const auto& h : rep.holes)
-    j["holes"].push_back({{"component", h.component}, {"loop", h.loop}, {"layers", h.layers},
-                          {"repaired", h.repaired}, {"added_edges", h.added_edges}});
+    j["holes"].push_back({{"component", h.component},
+                          {"loop", h.loop},
+                          {"layers", h.layers},
+                          {"repaired", h.repaired},
+                          {"added_edges", h.added_edges}});
   j["faces_added"] = rep.faces_added;
   j["open_edges_before"] = rep.open_edges_before;
   j["open_edges_after"] = rep.open_edges_after;
@@ -96,7 +102,8 @@ silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_para
     size_t pos = 0;
     silk::Rejection illegal;
     for (; pos < ids.size(); ++pos) {
-      if (ids[pos] == silk::vocab::k_eos_id || ids[pos] == -1) break;  // EOS / data padding end the stream (token_format.md §9)
+      if (ids[pos] == silk::vocab::k_eos_id || ids[pos] == -1)
+        break;  // EOS / data padding end the stream (token_format.md §9)
       illegal = g.Accept(ids[pos]);
       if (!illegal.ok()) break;
     }

@@ -70,27 +70,34 @@ Json StatsJson(const silk_generator& g) {
   j["decoder"] = st.decoder;
   j["kv_precision"] = st.kv_precision;
   j["kv_cache_bytes"] = st.kv_cache_bytes;
-  j["seconds"] = {{"load_input", st.seconds.load_input}, {"encoder", st.seconds.encoder},
-                  {"decoder", st.seconds.decoder},       {"grammar", st.seconds.grammar},
-                  {"sampling", st.seconds.sampling},     {"build_mesh", st.seconds.build_mesh},
-                  {"guidance", st.seconds.guidance},     {"scoring", st.seconds.scoring},
-                  {"total", st.seconds.total}};
-  j["repairs"] = {{"holes_found", st.holes_found}, {"holes_repaired", st.holes_repaired},
-                  {"faces_added", st.faces_added}, {"window_findings", st.window_findings},
+  j["seconds"] = {
+      {"load_input", st.seconds.load_input}, {"encoder", st.seconds.encoder},   {"decoder", st.seconds.decoder},
+      {"grammar", st.seconds.grammar},       {"sampling", st.seconds.sampling}, {"build_mesh", st.seconds.build_mesh},
+      {"guidance", st.seconds.guidance},     {"scoring", st.seconds.scoring},   {"total", st.seconds.total}};
+  j["repairs"] = {{"holes_found", st.holes_found},         {"holes_repaired", st.holes_repaired},
+                  {"faces_added", st.faces_added},         {"window_findings", st.window_findings},
                   {"fan_gaps_closed", st.fan_gaps_closed}, {"vertices_split", st.vertices_split}};
-  j["verdicts"] = {{"edge_manifold", st.edge_manifold}, {"vertex_manifold", st.vertex_manifold},
-                   {"nonmanifold_vertices", st.nonmanifold_vertices}, {"watertight", st.watertight},
-                   {"consistently_oriented", st.consistently_oriented}, {"open_edges", st.open_edges}};
-  j["guidance"] = {{"guided_tokens", st.guided_tokens}, {"fallbacks", st.guidance_fallbacks},
-                   {"seconds", st.seconds.guidance}};
-  j["face_guidance"] = {{"guided_tokens", st.face_guided_tokens}, {"fallbacks", st.face_fallbacks},
+  j["verdicts"] = {{"edge_manifold", st.edge_manifold},
+                   {"vertex_manifold", st.vertex_manifold},
+                   {"nonmanifold_vertices", st.nonmanifold_vertices},
+                   {"watertight", st.watertight},
+                   {"consistently_oriented", st.consistently_oriented},
+                   {"open_edges", st.open_edges}};
+  j["guidance"] = {
+      {"guided_tokens", st.guided_tokens}, {"fallbacks", st.guidance_fallbacks}, {"seconds", st.seconds.guidance}};
+  j["face_guidance"] = {{"guided_tokens", st.face_guided_tokens},
+                        {"fallbacks", st.face_fallbacks},
                         {"seconds", st.seconds.face_guidance}};
   j["parts_flipped"] = st.parts_flipped;
   Json cands = Json::array();
   for (size_t i = 0; i < st.candidates.size(); ++i) {
     const CandidateScore& c = st.candidates[i];
-    cands.push_back({{"index", i}, {"seed", c.seed}, {"score", std::isfinite(c.score) ? Json(c.score) : Json(nullptr)},
-                     {"faces", c.faces}, {"tokens", c.tokens}, {"seconds", c.seconds}});
+    cands.push_back({{"index", i},
+                     {"seed", c.seed},
+                     {"score", std::isfinite(c.score) ? Json(c.score) : Json(nullptr)},
+                     {"faces", c.faces},
+                     {"tokens", c.tokens},
+                     {"seconds", c.seconds}});
   }
   j["candidates"] = cands;
   j["chosen_candidate"] = st.chosen_candidate;

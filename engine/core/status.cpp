@@ -6,15 +6,24 @@ namespace silk {
 
 const char* StatusCodeName(StatusCode c) {
   switch (c) {
-    case StatusCode::kOk: return "ok";
-    case StatusCode::kInvalidArgument: return "invalid argument";
-    case StatusCode::kIoError: return "I/O error";
-    case StatusCode::kParseError: return "parse error";
-    case StatusCode::kUnsupported: return "unsupported";
-    case StatusCode::kRefused: return "refused";
-    case StatusCode::kLimitExceeded: return "limit exceeded";
-    case StatusCode::kCancelled: return "cancelled";
-    case StatusCode::kInternal: return "internal error";
+    case StatusCode::kOk:
+      return "ok";
+    case StatusCode::kInvalidArgument:
+      return "invalid argument";
+    case StatusCode::kIoError:
+      return "I/O error";
+    case StatusCode::kParseError:
+      return "parse error";
+    case StatusCode::kUnsupported:
+      return "unsupported";
+    case StatusCode::kRefused:
+      return "refused";
+    case StatusCode::kLimitExceeded:
+      return "limit exceeded";
+    case StatusCode::kCancelled:
+      return "cancelled";
+    case StatusCode::kInternal:
+      return "internal error";
   }
   return "unknown";
 }

@@ -52,7 +52,7 @@ template <typename T>
 class [[nodiscard]] StatusOr {
  public:
   StatusOr(Status s) : status_(std::move(s)) { assert(!status_.ok()); }  // NOLINT
-  StatusOr(T value) : value_(std::move(value)) {}                      // NOLINT
+  StatusOr(T value) : value_(std::move(value)) {}                        // NOLINT
   bool ok() const { return status_.ok(); }
   const Status& status() const { return status_; }
   T& value() & { return *value_; }
@@ -68,18 +68,17 @@ class [[nodiscard]] StatusOr {
   std::optional<T> value_;
 };
 
-#define SILK_RETURN_IF_ERROR(expr)            \
-  do {                                        \
-    ::silk::Status silk_status_ = (expr);     \
+#define SILK_RETURN_IF_ERROR(expr)               \
+  do {                                           \
+    ::silk::Status silk_status_ = (expr);        \
     if (!silk_status_.ok()) return silk_status_; \
   } while (0)
 
 #define SILK_CONCAT_INNER(a, b) a##b
 #define SILK_CONCAT(a, b) SILK_CONCAT_INNER(a, b)
-#define SILK_ASSIGN_OR_RETURN(lhs, expr)                                  \
-  auto SILK_CONCAT(silk_sor_, __LINE__) = (expr);                         \
-  if (!SILK_CONCAT(silk_sor_, __LINE__).ok())                             \
-    return SILK_CONCAT(silk_sor_, __LINE__).status();                     \
+#define SILK_ASSIGN_OR_RETURN(lhs, expr)                                                        \
+  auto SILK_CONCAT(silk_sor_, __LINE__) = (expr);                                               \
+  if (!SILK_CONCAT(silk_sor_, __LINE__).ok()) return SILK_CONCAT(silk_sor_, __LINE__).status(); \
   lhs = std::move(SILK_CONCAT(silk_sor_, __LINE__)).value()
 
 }  // namespace silk

@@ -24,8 +24,8 @@ struct StrongId {
 struct VertexTag {};
 struct FaceTag {};
 struct ComponentTag {};
-using VertexId = StrongId<VertexTag>;     // processed vertex index (token_format.md §2.3, §3.6)
-using FaceId = StrongId<FaceTag>;         // processed face index (token_format.md §2.4)
+using VertexId = StrongId<VertexTag>;  // processed vertex index (token_format.md §2.3, §3.6)
+using FaceId = StrongId<FaceTag>;      // processed face index (token_format.md §2.4)
 using ComponentId = StrongId<ComponentTag>;
 
 }  // namespace silk

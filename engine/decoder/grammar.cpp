@@ -68,20 +68,21 @@ Rejection Grammar::Check(int32_t id, bool with_message) const {
 // (grammar_rules.cpp). With commit = false nothing is written; with commit = true the admitted
 // id joins the history and its class's Apply updates the state.
 Rejection Grammar::Step(int32_t id, bool commit) {
-  if (id < 0 || id >= vocab::k_model_vocab_size) return Reject(RejectReason::kOutOfVocabulary, id,
-      [&] { return std::string("id outside 0..10268"); });
+  if (id < 0 || id >= vocab::k_model_vocab_size)
+    return Reject(RejectReason::kOutOfVocabulary, id, [&] { return std::string("id outside 0..10268"); });
   if (Rejection r = NotEnded(id); !r.ok()) return r;
-  if (id == vocab::k_pad_id) return Reject(RejectReason::kPadToken, id,
-      [&] { return std::string("PAD is padding, never a sequence token (token_format.md §9)"); });
+  if (id == vocab::k_pad_id)
+    return Reject(RejectReason::kPadToken, id,
+                  [&] { return std::string("PAD is padding, never a sequence token (token_format.md §9)"); });
   if (Rejection r = RoomForToken(id); !r.ok()) return r;
   const GrammarPhaseRule& row = RuleRow(phase_);
   const GrammarClassRule* cls = row.Find(id);
   if (!cls && id == vocab::k_eos_id)
     return Reject(RejectReason::kEosNotAfterE, id,
-        [&] { return std::string("EOS only directly after the E of a component (token_format.md §11.4)"); });
+                  [&] { return std::string("EOS only directly after the E of a component (token_format.md §11.4)"); });
   if (!cls)
     return Reject(RejectReason::kWrongClass, id,
-        [&] { return std::string("expected ") + row.expects + " (token_format.md §11.1)"; });
+                  [&] { return std::string("expected ") + row.expects + " (token_format.md §11.1)"; });
   if (cls->test)
     if (Rejection r = (this->*cls->test)(id); !r.ok()) return r;
   for (GrammarGate gate : cls->gates) {

@@ -29,8 +29,7 @@ bool HasExtra(const StreamVertex& v, int32_t e) {
 // How rows a < b of a layer of size n state their pair (token_format.md §11.2): *sa, *sb = 0/1 when the
 // pair is covered by both rows (windows for N <= 9-style distances, extras for N >= 18),
 // -1 when the rows do not both cover it.
-void PairStatements(const std::vector<StreamVertex>& vs, int32_t n, int32_t a, int32_t b, int32_t* sa,
-                    int32_t* sb) {
+void PairStatements(const std::vector<StreamVertex>& vs, int32_t n, int32_t a, int32_t b, int32_t* sa, int32_t* sb) {
   const int32_t g = b - a;
   *sa = *sb = -1;
   if (g <= kSelfWindow && n - g <= kSelfWindow) {
@@ -69,7 +68,8 @@ std::string Grammar::ExplainClose(int32_t n) const {
       return "layer 1 rows " + std::to_string(b) + " and " + std::to_string(b + 1) +
              " are not adjacent (chain rule, token_format.md §11.2)";
     for (int32_t e : v.extras)
-      if (e > n - kXMargin) return "row " + std::to_string(b) + " has X value " + std::to_string(e) + " > N-10 (token_format.md §6)";
+      if (e > n - kXMargin)
+        return "row " + std::to_string(b) + " has X value " + std::to_string(e) + " > N-10 (token_format.md §6)";
   }
   if (canonical) {
     for (int32_t a = 0; a < n; ++a)

@@ -31,8 +31,9 @@ Rejection Grammar::RoomForComponent(int32_t id) const {
 
 // E right after the root (phase kWantU0) is never legal: a component needs layer 1 (token_format.md §8.3).
 Rejection Grammar::RefuseEndAfterRoot(int32_t id) const {
-  return Reject(RejectReason::kLayerZeroSize, id,
-      [&] { return std::string("E directly after the root: a component needs layer 1 (token_format.md §8.3)"); });
+  return Reject(RejectReason::kLayerZeroSize, id, [&] {
+    return std::string("E directly after the root: a component needs layer 1 (token_format.md §8.3)");
+  });
 }
 
 // U/E: the deferred rules of token_format.md §11.2 hold at the layer's current size.
@@ -40,12 +41,13 @@ Rejection Grammar::LayerClosable(int32_t id) const {
   const int32_t n = static_cast<int32_t>(cur_layer().vertices.size());
   if (sizes_.Test(n)) return Rejection{};
   return Reject(RejectReason::kLayerNotClosable, id,
-      [&] { return "layer of " + std::to_string(n) + " vertices cannot close: " + ExplainClose(n); });
+                [&] { return "layer of " + std::to_string(n) + " vertices cannot close: " + ExplainClose(n); });
 }
 
 Rejection Grammar::BelowLayerIndexLimit(int32_t id) const {
   if (layer_ < kMaxLayerIndex) return Rejection{};
-  return Reject(RejectReason::kTooManyLayers, id, [&] { return std::string("layer index 200 would follow (token_format.md §5.3)"); });
+  return Reject(RejectReason::kTooManyLayers, id,
+                [&] { return std::string("layer index 200 would follow (token_format.md §5.3)"); });
 }
 
 // U: the next layer's cheapest content (K O S B) and E, EOS must fit.
@@ -64,7 +66,7 @@ Rejection Grammar::RoomForEos(int32_t id) const {
 Rejection Grammar::BelowLayerSizeLimit(int32_t id) const {
   if (static_cast<int32_t>(cur_layer().vertices.size()) < kMaxLayerSize) return Rejection{};
   return Reject(RejectReason::kLayerTooLarge, id,
-      [&] { return std::string("a layer holds at most 200 vertices (token_format.md §1.3)"); });
+                [&] { return std::string("a layer holds at most 200 vertices (token_format.md §1.3)"); });
 }
 
 // K after a finished vertex: some larger size must still close the layer (token_format.md §11.2), and the
@@ -74,13 +76,14 @@ Rejection Grammar::RoomForVertex(int32_t id) const {
   const int32_t next = sizes_.Next(n + 1);
   if (next < 0 && !FarFromCap())
     return Reject(RejectReason::kTooLong, id,
-        [&] { return std::string("no room left for another vertex and the layer's end"); });
+                  [&] { return std::string("no room left for another vertex and the layer's end"); });
   if (next < 0)
-    return Reject(RejectReason::kNotCanonical, id,
-        [&] { return "the earlier rows of this layer only fit a layer of " + std::to_string(n) + " vertices"; });
+    return Reject(RejectReason::kNotCanonical, id, [&] {
+      return "the earlier rows of this layer only fit a layer of " + std::to_string(n) + " vertices";
+    });
   if (remaining() < FutureRowsCost(n, next) + 2)
     return Reject(RejectReason::kTooLong, id,
-        [&] { return std::string("no room left for another vertex and the layer's end"); });
+                  [&] { return std::string("no room left for another vertex and the layer's end"); });
   return Rejection{};
 }
 
@@ -110,7 +113,8 @@ Rejection Grammar::RowCanFinish(int32_t id) const {
   if (budget_max < kMaxLayerSize)
     return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to finish the layer"); });
   return Reject(RejectReason::kNotCanonical, id, [&] {
-    return std::string("the vertex's X values miss a pair an earlier row states (token_format.md §11.2 canonical consistency)");
+    return std::string(
+        "the vertex's X values miss a pair an earlier row states (token_format.md §11.2 canonical consistency)");
   });
 }
 

@@ -21,8 +21,10 @@ void Grammar::ComputeMask() {
         open = (this->*gate)(cls.begin).ok();
       }
       if (!open) continue;
-      if (cls.bulk) (this->*cls.bulk)(&mask_);
-      else mask_.SetRange(cls.begin, cls.end);
+      if (cls.bulk)
+        (this->*cls.bulk)(&mask_);
+      else
+        mask_.SetRange(cls.begin, cls.end);
     }
   }
   messages_ = true;

@@ -40,7 +40,7 @@ Rejection Grammar::TestPosition(int32_t id) const {
   ForEachLinkedPosition([&](const QVec& q) { linked = linked || q == p; });
   if (!linked) return Rejection{};
   return Reject(RejectReason::kZeroLengthEdge, id,
-      [&] { return std::string("vertex at the position of a vertex it is linked to"); });
+                [&] { return std::string("vertex at the position of a vertex it is linked to"); });
 }
 
 // The offset id of position q after block pending_block_ is OffsetTokenOf(q) exactly when
@@ -94,7 +94,8 @@ WindowSizeRule Grammar::WindowRuleNow() const {
   cand.KeepAtMost(r.budget_max);
   r.far = cand;
   r.far.KeepAtLeast(b + kSelfWindow + 1);
-  for (int32_t n = cand.Next(b + 1); n >= 0 && n < b + kSelfWindow + 1; n = cand.Next(n + 1)) r.near[r.near_count++] = n;
+  for (int32_t n = cand.Next(b + 1); n >= 0 && n < b + kSelfWindow + 1; n = cand.Next(n + 1))
+    r.near[r.near_count++] = n;
   return r;
 }
 
@@ -184,24 +185,28 @@ Rejection Grammar::TestX(int32_t id) const {
   const int32_t e = id - vocab::kXBegin;
   if (e <= last_x_)
     return Reject(RejectReason::kXNotIncreasing, id,
-        [&] { return std::string("X values must increase within a vertex (token_format.md §11.2)"); });
+                  [&] { return std::string("X values must increase within a vertex (token_format.md §11.2)"); });
   if (e < kMinX || e > kMaxX)
-    return Reject(RejectReason::kXOutOfRange, id,
-        [&] { return std::string("X value " + std::to_string(e) + " outside [8, 190] (token_format.md §6)"); });
+    return Reject(RejectReason::kXOutOfRange, id, [&] {
+      return std::string("X value " + std::to_string(e) + " outside [8, 190] (token_format.md §6)");
+    });
   LayerSizeSet& ok = next_sizes_;
   ok.Clear();
   bool range_only = true, budget_hit = false;
   ForEachXRule([&](int32_t n, const XRowRule& rule) {
     range_only = range_only && e > rule.hi;
-    if (rule.Admits(e)) ok.Set(n);
-    else if (rule.Covers(e)) budget_hit = true;
+    if (rule.Admits(e))
+      ok.Set(n);
+    else if (rule.Covers(e))
+      budget_hit = true;
   });
   if (!ok.Empty()) return Rejection{};
   if (budget_hit)
     return Reject(RejectReason::kTooLong, id, [&] { return std::string("no room left to finish the layer"); });
   return Reject(range_only ? RejectReason::kXOutOfRange : RejectReason::kNotCanonical, id, [&] {
     return "X value " + std::to_string(e) +
-           " fits no layer size still possible (needs N >= e+10 and agreement with earlier rows; token_format.md §11.2)";
+           " fits no layer size still possible (needs N >= e+10 and agreement with earlier rows; token_format.md "
+           "§11.2)";
   });
 }
 
@@ -281,10 +286,11 @@ Rejection Grammar::TestB(int32_t id) const {
   if (s + BetweenCaseLastOne(c) > n_prev_ - 1)
     return Reject(RejectReason::kBOutsidePrevLayer, id, [&] {
       return std::string("segment ends at column " + std::to_string(s + BetweenCaseLastOne(c)) +
-                         " but the previous layer has " + std::to_string(n_prev_) + " vertices (token_format.md §11.3)");
+                         " but the previous layer has " + std::to_string(n_prev_) +
+                         " vertices (token_format.md §11.3)");
     });
   return Reject(RejectReason::kZeroLengthEdge, id,
-      [&] { return std::string("B segment links two vertices at one position"); });
+                [&] { return std::string("B segment links two vertices at one position"); });
 }
 
 // BCasesAt(s) is every case while room >= kBetweenWindow and no column is excluded: those starts

@@ -59,7 +59,8 @@ Rejection CheckTokens(const std::vector<int32_t>& ids, const GrammarOptions& opt
   if (require_end && !g.CanEnd() && !g.Ended()) {
     if (position) *position = ids.size();
     return Rejection{RejectReason::kIncomplete,
-                     "token " + std::to_string(ids.size()) + ": the ids end inside a component (token_format.md §11.1: a sequence ends after E)"};
+                     "token " + std::to_string(ids.size()) +
+                         ": the ids end inside a component (token_format.md §11.1: a sequence ends after E)"};
   }
   return Rejection{};
 }

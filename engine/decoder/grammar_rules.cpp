@@ -58,7 +58,8 @@ bool TestsHaveBulkForms(const GrammarPhaseRule* rows, size_t n) {
 const GrammarPhaseRule& Grammar::RuleRow(GrammarPhase p) {
   using G = Grammar;
   using namespace vocab;
-  constexpr GrammarClassRule kC = Class(kCBegin, kCEnd, &G::ApplyComponentStart, nullptr, nullptr, {&G::RoomForComponent});
+  constexpr GrammarClassRule kC =
+      Class(kCBegin, kCEnd, &G::ApplyComponentStart, nullptr, nullptr, {&G::RoomForComponent});
   constexpr GrammarClassRule kK = Class(kKBegin, kKEnd, &G::ApplyBlock);
   static constexpr GrammarPhaseRule kRows[] = {
       // kStart
@@ -70,20 +71,23 @@ const GrammarPhaseRule& Grammar::RuleRow(GrammarPhase p) {
       // kWantU0: layer 0 is the root alone
       Row("U (layer 0 holds only the root)",
           {Class(kUBegin, kUEnd, &G::ApplyRootLayerEnd),
-           Class(kEBegin, kEEnd, nullptr, nullptr, nullptr, {&G::RefuseEndAfterRoot})}, 2),
+           Class(kEBegin, kEEnd, nullptr, nullptr, nullptr, {&G::RefuseEndAfterRoot})},
+          2),
       // kWantS: the row's self-layer window
       Row("S (window)", {Class(kSBegin, kSEnd, &G::ApplyWindow, &G::TestWindow, &G::AddWindows)}, 1),
       // kAfterS: X values, then the row's first B
       Row("X or B",
           {Class(kXBegin, kXEnd, &G::ApplyX, &G::TestX, &G::AddX),
-           Class(kBBegin, kBEnd, &G::ApplyFirstB, &G::TestB, &G::AddB, {&G::RowCanFinish})}, 2),
+           Class(kBBegin, kBEnd, &G::ApplyFirstB, &G::TestB, &G::AddB, {&G::RowCanFinish})},
+          2),
       // kAfterB: more B, the next vertex, or the layer's end
       Row("B, K, U or E",
           {Class(kBBegin, kBEnd, &G::ApplyNextB, &G::TestB, &G::AddB, {&G::RoomToCloseAfterB}),
            Class(kKBegin, kKEnd, &G::ApplyBlock, nullptr, nullptr, {&G::BelowLayerSizeLimit, &G::RoomForVertex}),
            Class(kUBegin, kUEnd, &G::ApplyLayerEnd, nullptr, nullptr,
                  {&G::LayerClosable, &G::BelowLayerIndexLimit, &G::RoomForLayer}),
-           Class(kEBegin, kEEnd, &G::ApplyLayerEnd, nullptr, nullptr, {&G::LayerClosable, &G::RoomForEos})}, 4),
+           Class(kEBegin, kEEnd, &G::ApplyLayerEnd, nullptr, nullptr, {&G::LayerClosable, &G::RoomForEos})},
+          4),
       // kAfterE: the next component or the end
       Row("C or EOS", {kC, Class(k_eos_id, k_eos_id + 1, &G::ApplyEos)}, 2),
       // kEnded

@@ -37,16 +37,16 @@ using GrammarApply = void (Grammar::*)(int32_t id);
 inline constexpr int32_t kGrammarMaxGates = 3;
 
 struct GrammarClassRule {
-  int32_t begin = 0, end = 0;  // candidate ids [begin, end), from the vocabulary layout
-  GrammarIdTest test = nullptr;  // nullptr: every id of the range passes
-  GrammarIdBulk bulk = nullptr;  // set exactly when `test` is
+  int32_t begin = 0, end = 0;                         // candidate ids [begin, end), from the vocabulary layout
+  GrammarIdTest test = nullptr;                       // nullptr: every id of the range passes
+  GrammarIdBulk bulk = nullptr;                       // set exactly when `test` is
   std::array<GrammarGate, kGrammarMaxGates> gates{};  // in order; a nullptr ends the list
   GrammarApply apply = nullptr;
   bool Holds(int32_t id) const { return id >= begin && id < end; }
 };
 
 struct GrammarPhaseRule {
-  const char* expects = "";  // the classes in words, for kWrongClass refusals
+  const char* expects = "";                   // the classes in words, for kWrongClass refusals
   std::array<GrammarClassRule, 4> classes{};  // disjoint id ranges; `count` are used
   int32_t count = 0;
   const GrammarClassRule* Find(int32_t id) const {
@@ -62,7 +62,7 @@ struct GrammarPhaseRule {
 // per value, the mask adds the fitting intervals.
 struct XRowRule {
   enum Kind { kForward, kWrap, kEcho, kKinds };
-  int32_t hi = -1;  // largest X value at this size: min(N - 10, 190)
+  int32_t hi = -1;                                                   // largest X value at this size: min(N - 10, 190)
   std::array<int32_t, kKinds> first{{0, 0, 0}}, last{{-1, -1, -1}};  // [first, last], empty if last < first
   std::array<bool, kKinds> fits{};  // the cheapest completion after such a value fits the cap
   bool Covers(int32_t e) const {

@@ -28,8 +28,10 @@ class LayerSizeSet {
     for (int32_t i = 0; i < 4; ++i) {
       int32_t base = i * 64;
       if (lo <= base) break;
-      if (lo >= base + 64) w_[i] = 0;
-      else w_[i] &= ~uint64_t{0} << (lo - base);
+      if (lo >= base + 64)
+        w_[i] = 0;
+      else
+        w_[i] &= ~uint64_t{0} << (lo - base);
     }
   }
   // Keeps only values <= hi.
@@ -37,8 +39,10 @@ class LayerSizeSet {
     for (int32_t i = 3; i >= 0; --i) {
       int32_t base = i * 64;
       if (hi >= base + 63) break;
-      if (hi < base) w_[i] = 0;
-      else w_[i] &= ~uint64_t{0} >> (63 - (hi - base));
+      if (hi < base)
+        w_[i] = 0;
+      else
+        w_[i] &= ~uint64_t{0} >> (63 - (hi - base));
     }
   }
   // Smallest member >= from, or -1.

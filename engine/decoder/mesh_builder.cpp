@@ -17,7 +17,9 @@
 namespace silk {
 namespace {
 
-uint64_t Key(int32_t a, int32_t b) { return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b); }
+uint64_t Key(int32_t a, int32_t b) {
+  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+}
 
 // Open loops of one component's faces (local indices): chains of reversed open half-edges.
 std::vector<std::vector<int32_t>> OpenLoops(const std::vector<std::array<int32_t, 3>>& faces, int32_t* open_edges) {
@@ -105,7 +107,8 @@ bool FillLoop(const std::vector<int32_t>& loop, const TokenizerComponentMesh& cb
 }
 
 // token_format.md §12.2 hole policy on one component's faces (local indices).
-void HandleHoles(TokenizerComponentMesh* cm, int32_t ci, int32_t base, const MeshBuildOptions& options, MeshBuildReport* report) {
+void HandleHoles(TokenizerComponentMesh* cm, int32_t ci, int32_t base, const MeshBuildOptions& options,
+                 MeshBuildReport* report) {
   auto& faces = cm->faces;
   int32_t open_before = 0;
   auto loops = OpenLoops(faces, &open_before);
@@ -139,8 +142,7 @@ void HandleHoles(TokenizerComponentMesh* cm, int32_t ci, int32_t base, const Mes
 void HandleVertexFans(TokenizerComponentMesh* cm, const MeshBuildOptions& options, MeshBuildReport* report) {
   std::vector<int32_t> copy_of;
   VertexFanCounts counts;
-  ResolveVertexFans(&cm->faces, cm->positions, cm->layer_of, options.holes == HolePolicy::kRepair, &copy_of,
-                    &counts);
+  ResolveVertexFans(&cm->faces, cm->positions, cm->layer_of, options.holes == HolePolicy::kRepair, &copy_of, &counts);
   for (int32_t v : copy_of) {
     cm->positions.push_back(cm->positions[v]);
     cm->layer_of.push_back(cm->layer_of[v]);
@@ -157,7 +159,8 @@ void HandleVertexFans(TokenizerComponentMesh* cm, const MeshBuildOptions& option
 }  // namespace
 
 StatusOr<TokenizerComponentMesh> BuildComponentMesh(const StreamComponent& comp, int32_t closed_layers, int32_t ci,
-                                           int32_t base, const MeshBuildOptions& options, MeshBuildReport* report) {
+                                                    int32_t base, const MeshBuildOptions& options,
+                                                    MeshBuildReport* report) {
   SILK_ASSIGN_OR_RETURN(TokenizerComponentMesh cm, AssembleComponentMesh(comp, closed_layers));
   if (report) report->dropped_degenerate += cm.dropped_degenerate;
   if (cm.positions.empty()) return cm;
@@ -166,8 +169,8 @@ StatusOr<TokenizerComponentMesh> BuildComponentMesh(const StreamComponent& comp,
   return cm;
 }
 
-StatusOr<TokenizerDecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOptions& options, MeshBuildReport* report,
-                                int32_t closed_layers_of_last) {
+StatusOr<TokenizerDecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOptions& options,
+                                         MeshBuildReport* report, int32_t closed_layers_of_last) {
   TokenizerDecodedMesh mesh;
   const int32_t nc = static_cast<int32_t>(stream.components.size());
   for (int32_t ci = 0; ci < nc; ++ci) {
@@ -202,8 +205,8 @@ bool CacheValid(const MeshBuildCache& cache, const Grammar& grammar, const MeshB
 }
 }  // namespace
 
-StatusOr<TokenizerDecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options, MeshBuildReport* report,
-                                     MeshBuildCache* cache) {
+StatusOr<TokenizerDecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options,
+                                              MeshBuildReport* report, MeshBuildCache* cache) {
   const bool open = grammar.phase() != GrammarPhase::kAfterE && grammar.phase() != GrammarPhase::kEnded &&
                     grammar.phase() != GrammarPhase::kStart;
   if (report) report->window_findings = grammar.window_findings();

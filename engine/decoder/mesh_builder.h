@@ -41,8 +41,8 @@ struct MeshBuildOptions {
 // One hole: a loop of open edges (each with one face) in one component.
 struct HoleReport {
   int32_t component = 0;
-  std::vector<int32_t> loop;   // mesh vertex indices, in the hole's winding
-  std::vector<int32_t> layers; // layer of each loop vertex
+  std::vector<int32_t> loop;    // mesh vertex indices, in the hole's winding
+  std::vector<int32_t> layers;  // layer of each loop vertex
   bool repaired = false;
   // Chords added by the repair, as the matrix entries (1s predicted as 0s) they stand for:
   // "self L i j" or "between L i j" (layer-local indices; j in layer L-1 for between).
@@ -65,26 +65,27 @@ struct MeshBuildReport {
 // up to the last cached component are unchanged and the options are the same).
 struct MeshBuildCache {
   MeshBuildOptions options;
-  std::vector<int32_t> tokens;          // the grammar's tokens when the cache was last extended
+  std::vector<int32_t> tokens;                     // the grammar's tokens when the cache was last extended
   std::vector<TokenizerComponentMesh> components;  // final meshes of components 0..n-1 (rules applied)
-  std::vector<MeshBuildReport> reports;   // their report parts
+  std::vector<MeshBuildReport> reports;            // their report parts
 };
 
 // Mesh of the closed components of `stream` (an open last component is skipped unless
 // include_open is true, then only its closed layers count: `closed_layers_of_last`).
 StatusOr<TokenizerDecodedMesh> BuildMesh(const LayeredStream& stream, const MeshBuildOptions& options,
-                                MeshBuildReport* report, int32_t closed_layers_of_last = -1);
+                                         MeshBuildReport* report, int32_t closed_layers_of_last = -1);
 
 // One component through the shared assembly and the hole / vertex-fan rules (`base`: the
 // component's first vertex in the whole mesh, for hole reports).
 StatusOr<TokenizerComponentMesh> BuildComponentMesh(const StreamComponent& comp, int32_t closed_layers, int32_t ci,
-                                           int32_t base, const MeshBuildOptions& options, MeshBuildReport* report);
+                                                    int32_t base, const MeshBuildOptions& options,
+                                                    MeshBuildReport* report);
 
 // Mesh of everything the grammar has closed so far: whole components plus the closed layers
 // of the current one. With a cache, closed components are built once and reused; only the
 // open component (and those closed since the last call) are rebuilt.
 StatusOr<TokenizerDecodedMesh> BuildMeshSoFar(const Grammar& grammar, const MeshBuildOptions& options,
-                                     MeshBuildReport* report, MeshBuildCache* cache = nullptr);
+                                              MeshBuildReport* report, MeshBuildCache* cache = nullptr);
 
 // Structural guarantees of grammar.h, checked on a mesh: "" when they hold, else the first
 // failure (edge with > 2 faces, directed edge twice, repeated corner/position, face spanning

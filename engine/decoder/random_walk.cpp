@@ -112,7 +112,8 @@ class Walker {
     std::shuffle(bs.begin(), bs.end(), *rng_);
     if (unit_(*rng_) < o_.sparse)
       NarrowTo(&bs, [](int32_t id) {
-        return __builtin_popcount(static_cast<unsigned>(BetweenCasePattern((id - vocab::kBBegin) % kBetweenCases))) <= 1;
+        return __builtin_popcount(static_cast<unsigned>(BetweenCasePattern((id - vocab::kBBegin) % kBetweenCases))) <=
+               1;
       });
     const bool prefer_b = !bs.empty() && (xs.empty() || unit_(*rng_) >= o_.extra_x);
     std::vector<int32_t> cands = prefer_b ? bs : xs;
@@ -132,8 +133,10 @@ class Walker {
       if (is_b && b_failed) continue;
       ++tried;
       Grammar trial = g_->Clone();
-      if (trial.Accept(cands[i]).ok() && trial.NextClosableSize(aim) == aim) chosen = cands[i];
-      else if (is_b) b_failed = true;
+      if (trial.Accept(cands[i]).ok() && trial.NextClosableSize(aim) == aim)
+        chosen = cands[i];
+      else if (is_b)
+        b_failed = true;
     }
     if (chosen < 0) chosen = cands.empty() ? m.Next(0) : cands[0];
     return chosen;

@@ -17,9 +17,7 @@ class TokenMask {
   void Clear() { words_.fill(0); }
   void Set(int32_t id) { words_[id >> 6] |= uint64_t{1} << (id & 63); }
   void Reset(int32_t id) { words_[id >> 6] &= ~(uint64_t{1} << (id & 63)); }
-  bool Test(int32_t id) const {
-    return id >= 0 && id < kBits && ((words_[id >> 6] >> (id & 63)) & 1) != 0;
-  }
+  bool Test(int32_t id) const { return id >= 0 && id < kBits && ((words_[id >> 6] >> (id & 63)) & 1) != 0; }
   // Sets ids [begin, end).
   void SetRange(int32_t begin, int32_t end) {
     if (begin >= end) return;
@@ -40,7 +38,8 @@ class TokenMask {
     return c;
   }
   bool Empty() const {
-    for (uint64_t w : words_) if (w) return false;
+    for (uint64_t w : words_)
+      if (w) return false;
     return true;
   }
   // The only set id, or -1 when zero or several ids are set.

@@ -14,8 +14,8 @@ struct IoMesh {
   std::vector<std::array<double, 3>> positions;
   std::vector<std::array<int32_t, 3>> triangles;  // 0-based indices into positions
   // Additive reader diagnostics (never affect positions/triangles).
-  int64_t polygons_triangulated = 0;   // input faces with > 3 corners, fan-triangulated
-  std::vector<std::string> warnings;   // e.g. ignored OBJ statements, skipped glTF primitives
+  int64_t polygons_triangulated = 0;  // input faces with > 3 corners, fan-triangulated
+  std::vector<std::string> warnings;  // e.g. ignored OBJ statements, skipped glTF primitives
 };
 
 }  // namespace silk

@@ -11,22 +11,29 @@ namespace silk {
 
 const char* MeshFormatName(MeshFormat f) {
   switch (f) {
-    case MeshFormat::kObj: return "OBJ";
-    case MeshFormat::kPly: return "PLY";
-    case MeshFormat::kStl: return "STL";
-    case MeshFormat::kOff: return "OFF";
-    case MeshFormat::kGltf: return "glTF";
-    case MeshFormat::kGlb: return "GLB";
-    case MeshFormat::kPmd: return "PMD";
-    case MeshFormat::kXyz: return "XYZ";
+    case MeshFormat::kObj:
+      return "OBJ";
+    case MeshFormat::kPly:
+      return "PLY";
+    case MeshFormat::kStl:
+      return "STL";
+    case MeshFormat::kOff:
+      return "OFF";
+    case MeshFormat::kGltf:
+      return "glTF";
+    case MeshFormat::kGlb:
+      return "GLB";
+    case MeshFormat::kPmd:
+      return "PMD";
+    case MeshFormat::kXyz:
+      return "XYZ";
   }
   return "unknown";
 }
 
 namespace {
 std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
 }
 bool EndsWith(const std::string& s, const std::string& suffix) {
@@ -58,8 +65,7 @@ std::optional<MeshFormat> SniffMeshFormat(const uint8_t* data, size_t size) {
   if (starts("glTF")) return MeshFormat::kGlb;
   if (starts("PSMD")) return MeshFormat::kPmd;
   if (starts("ply\n") || starts("ply\r\n")) return MeshFormat::kPly;
-  if (starts("OFF") || starts("COFF") || starts("NOFF") || starts("CNOFF") || starts("STOFF"))
-    return MeshFormat::kOff;
+  if (starts("OFF") || starts("COFF") || starts("NOFF") || starts("CNOFF") || starts("STOFF")) return MeshFormat::kOff;
   if (starts("solid")) return MeshFormat::kStl;
   size_t i = 0;
   while (i < size && std::isspace(data[i])) ++i;

@@ -20,21 +20,28 @@ namespace silk {
 
 namespace {
 
-StatusOr<IoMesh> Dispatch(std::string_view bytes, MeshFormat fmt, const std::string& name,
-                           const std::string& base_dir, bool from_memory, const ReadOptions& opts) {
+StatusOr<IoMesh> Dispatch(std::string_view bytes, MeshFormat fmt, const std::string& name, const std::string& base_dir,
+                          bool from_memory, const ReadOptions& opts) {
   try {
     switch (fmt) {
-      case MeshFormat::kObj: return ReadObj(bytes, name, opts);
-      case MeshFormat::kPly: return ReadPly(bytes, name, opts);
-      case MeshFormat::kStl: return ReadStl(bytes, name, opts);
-      case MeshFormat::kOff: return ReadOff(bytes, name, opts);
-      case MeshFormat::kGltf: return ReadGltf(bytes, false, name, base_dir, from_memory, opts);
-      case MeshFormat::kGlb: return ReadGltf(bytes, true, name, base_dir, from_memory, opts);
-      case MeshFormat::kPmd: return ReadPmd(bytes, name, opts);
+      case MeshFormat::kObj:
+        return ReadObj(bytes, name, opts);
+      case MeshFormat::kPly:
+        return ReadPly(bytes, name, opts);
+      case MeshFormat::kStl:
+        return ReadStl(bytes, name, opts);
+      case MeshFormat::kOff:
+        return ReadOff(bytes, name, opts);
+      case MeshFormat::kGltf:
+        return ReadGltf(bytes, false, name, base_dir, from_memory, opts);
+      case MeshFormat::kGlb:
+        return ReadGltf(bytes, true, name, base_dir, from_memory, opts);
+      case MeshFormat::kPmd:
+        return ReadPmd(bytes, name, opts);
       case MeshFormat::kXyz: {
         SILK_ASSIGN_OR_RETURN(IoPointCloud pc, ReadXyz(bytes, name, opts));
-        return ParseErrorIn(name, "no faces (an XYZ file is a point cloud of " +
-                                      std::to_string(pc.mesh.positions.size()) + " points)");
+        return ParseErrorIn(
+            name, "no faces (an XYZ file is a point cloud of " + std::to_string(pc.mesh.positions.size()) + " points)");
       }
     }
   } catch (const std::bad_alloc&) {
@@ -60,9 +67,7 @@ std::string DirName(const std::string& path) {
 
 StatusOr<std::string> ReadInputFileBytes(const std::string& path, const ReadOptions& opts) {
   std::string bytes;
-  {
-    SILK_ASSIGN_OR_RETURN(bytes, ReadFileBytes(path, opts.max_file_bytes));
-  }
+  { SILK_ASSIGN_OR_RETURN(bytes, ReadFileBytes(path, opts.max_file_bytes)); }
   if (HasGzipSuffix(path)) {
     SILK_ASSIGN_OR_RETURN(std::string inflated, GunzipBytes(bytes, path, InflatedLimit(opts, bytes.size())));
     bytes.swap(inflated);
@@ -76,7 +81,9 @@ StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts) 
   std::optional<MeshFormat> fmt = MeshFormatFromPath(path);
   const std::optional<MeshFormat> sniffed = SniffMeshFormat(data, bytes.size());
   if (!fmt) {
-    if (!sniffed) return Unsupported(path + ": unknown mesh format (extension not one of .obj .ply .stl .off .gltf .glb .pmd .xyz .pts)");
+    if (!sniffed)
+      return Unsupported(path +
+                         ": unknown mesh format (extension not one of .obj .ply .stl .off .gltf .glb .pmd .xyz .pts)");
     fmt = sniffed;
   }
   // A .gltf that is really a GLB container is read as GLB; a .glb without the magic is an
@@ -86,7 +93,7 @@ StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts) 
 }
 
 StatusOr<IoMesh> ReadMeshFromMemory(const uint8_t* data, size_t size, MeshFormat fmt, const std::string& name,
-                                     const ReadOptions& opts) {
+                                    const ReadOptions& opts) {
   if (size > opts.max_file_bytes) return LimitErrorIn(name, "input larger than the size limit");
   // Copy so the text readers always see a terminated buffer of their own.
   std::string bytes = size ? std::string(reinterpret_cast<const char*>(data), size) : std::string();

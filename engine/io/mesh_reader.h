@@ -13,8 +13,8 @@
 
 namespace silk {
 
-// .obj .ply .stl .off .gltf .glb .pmd (.xyz/.pts point clouds: a 'no faces' error), optionally followed by .gz (e.g. "x.ply.gz"). Unknown
-// extensions are sniffed from the first bytes. Every error message names the file.
+// .obj .ply .stl .off .gltf .glb .pmd (.xyz/.pts point clouds: a 'no faces' error), optionally followed by .gz (e.g.
+// "x.ply.gz"). Unknown extensions are sniffed from the first bytes. Every error message names the file.
 StatusOr<IoMesh> ReadMeshFile(const std::string& path, const ReadOptions& opts = {});
 
 // The file's bytes, gunzipped when the path ends in ".gz" (within InflatedLimit); what every
@@ -23,7 +23,7 @@ StatusOr<std::string> ReadInputFileBytes(const std::string& path, const ReadOpti
 
 // Same readers on bytes already in memory (fuzzers, API callers). `name` is used in error
 // messages. glTF external buffers are never loaded from memory input.
-StatusOr<IoMesh> ReadMeshFromMemory(const uint8_t* data, size_t size, MeshFormat fmt,
-                                     const std::string& name, const ReadOptions& opts = {});
+StatusOr<IoMesh> ReadMeshFromMemory(const uint8_t* data, size_t size, MeshFormat fmt, const std::string& name,
+                                    const ReadOptions& opts = {});
 
 }  // namespace silk

@@ -16,8 +16,7 @@
 namespace silk {
 
 inline void AppendFan(const int32_t* corners, size_t n, IoMesh* mesh) {
-  for (size_t i = 1; i + 1 < n; ++i)
-    mesh->triangles.push_back({corners[0], corners[i], corners[i + 1]});
+  for (size_t i = 1; i + 1 < n; ++i) mesh->triangles.push_back({corners[0], corners[i], corners[i + 1]});
   if (n > 3) ++mesh->polygons_triangulated;
 }
 

@@ -21,9 +21,7 @@ struct ReadOptions {
 };
 
 // The vertex limit the readers enforce: max_vertices, capped at INT32_MAX.
-inline uint64_t VertexLimit(const ReadOptions& opts) {
-  return std::min<uint64_t>(opts.max_vertices, INT32_MAX);
-}
+inline uint64_t VertexLimit(const ReadOptions& opts) { return std::min<uint64_t>(opts.max_vertices, INT32_MAX); }
 
 // The most bytes a gzip input of gz_bytes compressed bytes may inflate to (see ReadOptions).
 inline uint64_t InflatedLimit(const ReadOptions& opts, uint64_t gz_bytes) {

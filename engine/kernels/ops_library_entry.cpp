@@ -13,7 +13,7 @@
 #endif
 
 extern "C" SILK_ORT_OPS_EXPORT OrtStatus* ORT_API_CALL RegisterCustomOps(OrtSessionOptions* options,
-                                                                          const OrtApiBase* api_base) {
+                                                                         const OrtApiBase* api_base) {
   const OrtApi* api = api_base ? api_base->GetApi(ORT_API_VERSION) : nullptr;
   if (!api) return nullptr;  // an onnxruntime older than the headers: nothing can be reported through it
   return silk::AddSilkOps(options, api);

@@ -16,8 +16,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 namespace {
 // The mean distance, summed in the same order whether or not `cancel` is polled (same value).
-StatusOr<double> MeanDistance(const std::vector<Point3>& from, const NearestPointIndex& to,
-                              const CancelCheck& cancel) {
+StatusOr<double> MeanDistance(const std::vector<Point3>& from, const NearestPointIndex& to, const CancelCheck& cancel) {
   if (from.empty()) return kInf;
   double sum = 0;
   for (size_t i = 0; i < from.size(); ++i) {
@@ -27,9 +26,9 @@ StatusOr<double> MeanDistance(const std::vector<Point3>& from, const NearestPoin
   return sum / static_cast<double>(from.size());
 }
 
-
 // MeanDistance from `from` to a cancellable index of `to` (a million points take ~0.5 s to index).
-StatusOr<double> MeanDistanceTo(const std::vector<Point3>& from, const std::vector<Point3>& to, const CancelCheck& cancel) {
+StatusOr<double> MeanDistanceTo(const std::vector<Point3>& from, const std::vector<Point3>& to,
+                                const CancelCheck& cancel) {
   const NearestPointIndex index(to, cancel);
   if (index.cancelled()) return CancelledStatus("scoring");
   return MeanDistance(from, index, cancel);

@@ -13,9 +13,8 @@ DistinctPoints MergeDuplicatePoints(const std::vector<Point3>& points) {
   const int32_t n = static_cast<int32_t>(points.size());
   std::vector<int32_t> order(points.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
-    return points[a] < points[b] || (points[a] == points[b] && a < b);
-  });
+  std::sort(order.begin(), order.end(),
+            [&](int32_t a, int32_t b) { return points[a] < points[b] || (points[a] == points[b] && a < b); });
   // rep[i]: the lowest index at input point i's position (the run's first, sorted by index).
   std::vector<int32_t>& rep = out.of;
   rep.resize(points.size());

@@ -14,10 +14,10 @@ double RoundToFloat16(double x) {
   if (!std::isfinite(x) || x == 0) return x;
   const double a = std::fabs(x);
   int exp = 0;
-  std::frexp(a, &exp);                        // a = m * 2^exp, m in [0.5, 1): a in [2^(exp-1), 2^exp)
-  const int e = std::max(exp - 1, -14);       // half exponent of the binade (-14: subnormal grid)
+  std::frexp(a, &exp);                          // a = m * 2^exp, m in [0.5, 1): a in [2^(exp-1), 2^exp)
+  const int e = std::max(exp - 1, -14);         // half exponent of the binade (-14: subnormal grid)
   const double step = std::ldexp(1.0, e - 10);  // spacing of halves in that binade
-  double r = std::nearbyint(a / step) * step;  // a / step is exact (power-of-two scaling)
+  double r = std::nearbyint(a / step) * step;   // a / step is exact (power-of-two scaling)
   if (r > 65504.0) r = std::numeric_limits<double>::infinity();  // past the largest half
   return std::copysign(r, x);
 }

@@ -19,12 +19,30 @@ std::array<float, 3> PartColor(int part) {
   const double s = 0.55, v = 0.9, c = v * s, x = c * (1 - std::fabs(std::fmod(h, 2.0) - 1)), m = v - c;
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(h)) {
-    case 0: r = c; g = x; break;
-    case 1: r = x; g = c; break;
-    case 2: g = c; b = x; break;
-    case 3: g = x; b = c; break;
-    case 4: r = x; b = c; break;
-    default: r = c; b = x; break;
+    case 0:
+      r = c;
+      g = x;
+      break;
+    case 1:
+      r = x;
+      g = c;
+      break;
+    case 2:
+      g = c;
+      b = x;
+      break;
+    case 3:
+      g = x;
+      b = c;
+      break;
+    case 4:
+      r = x;
+      b = c;
+      break;
+    default:
+      r = c;
+      b = x;
+      break;
   }
   return {static_cast<float>(r + m), static_cast<float>(g + m), static_cast<float>(b + m)};
 }
@@ -60,8 +78,8 @@ std::vector<GlbPart> SplitGlbParts(const IoMesh& mesh, const std::vector<int32_t
     for (size_t i = 0; i < part.positions.size(); ++i) {
       const auto& p = part.positions[i];
       out.positions.push_back({static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
-      out.normals.push_back({static_cast<float>(normals[i][0]), static_cast<float>(normals[i][1]),
-                             static_cast<float>(normals[i][2])});
+      out.normals.push_back(
+          {static_cast<float>(normals[i][0]), static_cast<float>(normals[i][1]), static_cast<float>(normals[i][2])});
     }
     for (const auto& t : part.triangles)
       out.triangles.push_back({static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]), static_cast<uint32_t>(t[2])});
@@ -72,6 +90,5 @@ std::vector<GlbPart> SplitGlbParts(const IoMesh& mesh, const std::vector<int32_t
   }
   return parts;
 }
-
 
 }  // namespace silk

@@ -100,7 +100,7 @@ NearestPointIndex::Hit NearestPointIndex::Nearest(const Point3& q) const {
 }
 
 void NearestPointIndex::Search(int32_t node, const Point3& q, size_t k, int32_t skip,
-                         std::vector<std::pair<double, int32_t>>* heap) const {
+                               std::vector<std::pair<double, int32_t>>* heap) const {
   const Node& n = nodes_[node];
   if (n.left < 0) {
     for (int32_t i = n.begin; i < n.end; ++i) {
@@ -124,7 +124,7 @@ void NearestPointIndex::Search(int32_t node, const Point3& q, size_t k, int32_t 
 }
 
 void NearestPointIndex::Nearest(const Point3& q, int32_t k, int32_t skip,
-                          std::vector<std::pair<double, int32_t>>* out) const {
+                                std::vector<std::pair<double, int32_t>>* out) const {
   out->clear();
   if (nodes_.empty() || k <= 0) return;
   Search(0, q, static_cast<size_t>(k), skip, out);

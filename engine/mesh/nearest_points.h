@@ -50,8 +50,8 @@ class NearestPointIndex {
   void SearchOne(int32_t node, const Point3& q, double* best2, int32_t* best) const;
   void Search(int32_t node, const Point3& q, size_t k, int32_t skip,
               std::vector<std::pair<double, int32_t>>* heap) const;
-  std::vector<Point3> points_;   // in order_'s order
-  std::vector<int32_t> order_;   // original index of each points_ entry
+  std::vector<Point3> points_;  // in order_'s order
+  std::vector<int32_t> order_;  // original index of each points_ entry
   std::vector<Node> nodes_;
   const CancelCheck* cancel_ = nullptr;  // during construction only
   int64_t work_since_poll_ = 0;

@@ -20,15 +20,16 @@ Status CheckInput(const std::vector<Point3>& points, const NormalEstimationParam
   if (params.neighbors < 3 || params.neighbors > 256)
     return InvalidArgument("normal estimation: neighbors " + std::to_string(params.neighbors) + " is not in 3..256");
   if (points.size() > static_cast<size_t>(std::max<int64_t>(params.max_points, 0)))
-    return InvalidArgument("cannot estimate normals for " + std::to_string(points.size()) +
-                           " points: the limit is " + std::to_string(params.max_points) +
+    return InvalidArgument("cannot estimate normals for " + std::to_string(points.size()) + " points: the limit is " +
+                           std::to_string(params.max_points) +
                            " (give the cloud with normals x y z nx ny nz, or fewer points)");
   if (points.size() < 3)
     return InvalidArgument("cannot estimate normals from " + std::to_string(points.size()) +
                            " point(s): at least 3 are needed");
   for (size_t i = 0; i < points.size(); ++i)
     for (double x : points[i])
-      if (!std::isfinite(x)) return InvalidArgument("cannot estimate normals: point " + std::to_string(i) + " is not finite");
+      if (!std::isfinite(x))
+        return InvalidArgument("cannot estimate normals: point " + std::to_string(i) + " is not finite");
   return Status::Ok();
 }
 
@@ -80,8 +81,7 @@ StatusOr<std::vector<Point3>> EstimateNormals(const std::vector<Point3>& points,
     for (Point3& p : scaled)
       for (double& x : p) x *= scale;
   }
-  SILK_ASSIGN_OR_RETURN(std::vector<Point3> normals,
-                        EstimateDistinct(scale != 1 ? scaled : unique, params, cancel));
+  SILK_ASSIGN_OR_RETURN(std::vector<Point3> normals, EstimateDistinct(scale != 1 ? scaled : unique, params, cancel));
   if (!distinct.merged()) return normals;
   std::vector<Point3> all(points.size());
   for (size_t i = 0; i < points.size(); ++i) all[i] = normals[static_cast<size_t>(distinct.of[i])];

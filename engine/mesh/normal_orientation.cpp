@@ -120,7 +120,8 @@ void TreeOrder(const Forest& f, int32_t root, std::vector<char>* seen, std::vect
 
 // The tree's member farthest from the members' centroid (lowest index among equals), with its
 // normal turned away from the centroid.
-int32_t OutwardSeed(const std::vector<Point3>& points, const std::vector<int32_t>& members, std::vector<Point3>* normals) {
+int32_t OutwardSeed(const std::vector<Point3>& points, const std::vector<int32_t>& members,
+                    std::vector<Point3>* normals) {
   Point3 c{0, 0, 0};
   for (int32_t m : members)
     for (int a = 0; a < 3; ++a) c[a] += points[m][a];
@@ -148,7 +149,8 @@ void VoteOutward(const std::vector<Point3>& points, const std::vector<int32_t>& 
     for (int a = 0; a < 3; ++a) c[a] += points[m][a];
   for (double& x : c) x /= static_cast<double>(members.size());
   double sum = 0;
-  for (int32_t m : members) sum += Dot((*normals)[m], Point3{points[m][0] - c[0], points[m][1] - c[1], points[m][2] - c[2]});
+  for (int32_t m : members)
+    sum += Dot((*normals)[m], Point3{points[m][0] - c[0], points[m][1] - c[1], points[m][2] - c[2]});
   if (sum < 0)
     for (int32_t m : members)
       for (double& x : (*normals)[m]) x = -x;

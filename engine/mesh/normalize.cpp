@@ -14,8 +14,7 @@ StatusOr<NormalizeTransform> ComputeNormalization(const IoMesh& mesh, double bou
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     const auto& p = mesh.positions[i];
     for (int a = 0; a < 3; ++a) {
-      if (!std::isfinite(p[a]))
-        return InvalidArgument("vertex " + std::to_string(i) + " has a non-finite coordinate");
+      if (!std::isfinite(p[a])) return InvalidArgument("vertex " + std::to_string(i) + " has a non-finite coordinate");
       if (p[a] < lo[a]) lo[a] = p[a];
       if (p[a] > hi[a]) hi[a] = p[a];
     }
@@ -33,8 +32,8 @@ StatusOr<NormalizeTransform> ComputeNormalization(const IoMesh& mesh, double bou
   t.scale = two_bound / extent;
   // Extreme scales (1e-300, 1e300 and beyond) normalise fine down to what a double holds; past
   // that the centre or the scale would be infinite or denormal and every point garbage.
-  if (!std::isnormal(t.scale) || !std::isnormal(extent) || !std::isfinite(t.center[0]) ||
-      !std::isfinite(t.center[1]) || !std::isfinite(t.center[2]))
+  if (!std::isnormal(t.scale) || !std::isnormal(extent) || !std::isfinite(t.center[0]) || !std::isfinite(t.center[1]) ||
+      !std::isfinite(t.center[2]))
     return InvalidArgument("coordinates out of range: the extent " + ValueText(extent) +
                            " cannot be normalised (a double's range ends near 1e-308 and 1e308)");
   return t;

@@ -55,7 +55,8 @@ StatusOr<std::vector<double>> PartVotes(const std::vector<Point3>& positions,
 OrientedPointSet::OrientedPointSet(std::vector<Point3> positions, std::vector<Point3> normals)
     : OrientedPointSet(std::move(positions), std::move(normals), CancelCheck{}) {}
 
-OrientedPointSet::OrientedPointSet(std::vector<Point3> positions, std::vector<Point3> normals, const CancelCheck& cancel)
+OrientedPointSet::OrientedPointSet(std::vector<Point3> positions, std::vector<Point3> normals,
+                                   const CancelCheck& cancel)
     : normals_(std::move(normals)), index_(positions, cancel) {
   if (positions.size() != normals_.size()) normals_.clear();
 }
@@ -80,7 +81,8 @@ StatusOr<PartOrientationReport> OrientPartsToPoints(const std::vector<Point3>& p
   PartOrientationReport report;
   if (parts <= 0 || reference.empty()) return report;
   const std::vector<int32_t> part_of = CheckedParts(positions.size(), *faces, face_part, parts);
-  SILK_ASSIGN_OR_RETURN(const std::vector<double> vote, PartVotes(positions, *faces, part_of, parts, reference, cancel));
+  SILK_ASSIGN_OR_RETURN(const std::vector<double> vote,
+                        PartVotes(positions, *faces, part_of, parts, reference, cancel));
   std::vector<char> flip(static_cast<size_t>(parts), 0);
   for (int32_t p = 0; p < parts; ++p) {
     if (vote[p] < 0) {

@@ -14,8 +14,9 @@ void Rotate(Matrix3* m, Matrix3* v, int p, int q) {
   Matrix3& a = *m;
   if (a[p][q] == 0) return;
   const double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-  const double t = std::fabs(theta) > 1e150 ? 0.5 / theta
-                                            : (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
+  const double t = std::fabs(theta) > 1e150
+                       ? 0.5 / theta
+                       : (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
   const double c = 1 / std::sqrt(t * t + 1), s = t * c;
   // J: identity with J[p][p] = J[q][q] = c, J[p][q] = s, J[q][p] = -s.
   Matrix3 j{};

@@ -39,7 +39,8 @@ std::vector<OrientedPoint> CloudPoints(const IoMesh& normalized, const std::vect
 std::vector<std::array<double, 3>> RowColumns(const std::vector<float>& rows, size_t first) {
   std::vector<std::array<double, 3>> out;
   out.reserve(rows.size() / 6);
-  for (size_t i = 0; i + 6 <= rows.size(); i += 6) out.push_back({rows[i + first], rows[i + first + 1], rows[i + first + 2]});
+  for (size_t i = 0; i + 6 <= rows.size(); i += 6)
+    out.push_back({rows[i + first], rows[i + first + 1], rows[i + first + 2]});
   return out;
 }
 
@@ -115,7 +116,8 @@ StatusOr<PreparedPoints> PreparePoints(const IoMesh& mesh, const std::vector<std
   if (CancelRequested(cancel)) return CancelledStatus("pre-processing");
   if (p.round_float16)
     for (OrientedPoint& q : pts)
-      for (int a = 0; a < 3; ++a) q.position[a] = RoundToFloat16(q.position[a]), q.normal[a] = RoundToFloat16(q.normal[a]);
+      for (int a = 0; a < 3; ++a)
+        q.position[a] = RoundToFloat16(q.position[a]), q.normal[a] = RoundToFloat16(q.normal[a]);
   // Silk's kind keeps its historical seeds (sampling n_points directly, or the cloud subset
   // with `seed`); a separate stream draws the subset after oversampling.
   const bool oversampled = !normals && pts.size() > static_cast<size_t>(p.n_points);

@@ -37,8 +37,8 @@ const char* PreprocessingKindName(PreprocessingKind kind);
 Status ValidatePreprocessing(const PreprocessingParams& params);
 
 struct PreparedPoints {
-  std::vector<float> rows;      // n * 6: normalised xyz, normal
-  NormalizeTransform transform; // input frame -> model frame
+  std::vector<float> rows;       // n * 6: normalised xyz, normal
+  NormalizeTransform transform;  // input frame -> model frame
 };
 
 // `normals` null: `mesh` is a triangle mesh; else a point cloud with one normal per position

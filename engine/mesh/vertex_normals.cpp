@@ -20,8 +20,10 @@ std::vector<std::array<double, 3>> SmoothVertexNormals(const IoMesh& mesh) {
   }
   for (auto& v : n) {
     const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (len > 0 && std::isfinite(len)) v = {v[0] / len, v[1] / len, v[2] / len};
-    else v = {0, 0, 1};
+    if (len > 0 && std::isfinite(len))
+      v = {v[0] / len, v[1] / len, v[2] / len};
+    else
+      v = {0, 0, 1};
   }
   return n;
 }

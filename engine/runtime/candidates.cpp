@@ -67,10 +67,14 @@ Status CandidateChoice::Add(GenerateResult* r, uint64_t seed, const std::vector<
   r->stats.seconds.scoring += std::chrono::duration<double>(Clock::now() - t0).count();
   const PhaseSeconds& s = r->stats.seconds;
   using Sum = std::pair<double*, double>;
-  for (const Sum& e : std::initializer_list<Sum>{{&total_.encoder, s.encoder}, {&total_.decoder, s.decoder},
-                                                 {&total_.grammar, s.grammar}, {&total_.sampling, s.sampling},
-                                                 {&total_.build_mesh, s.build_mesh}, {&total_.guidance, s.guidance},
-                                                 {&total_.face_guidance, s.face_guidance}, {&total_.scoring, s.scoring}})
+  for (const Sum& e : std::initializer_list<Sum>{{&total_.encoder, s.encoder},
+                                                 {&total_.decoder, s.decoder},
+                                                 {&total_.grammar, s.grammar},
+                                                 {&total_.sampling, s.sampling},
+                                                 {&total_.build_mesh, s.build_mesh},
+                                                 {&total_.guidance, s.guidance},
+                                                 {&total_.face_guidance, s.face_guidance},
+                                                 {&total_.scoring, s.scoring}})
     *e.first += e.second;
   generation_seconds_ += r->stats.generation_seconds;
   const int32_t index = size() - 1;

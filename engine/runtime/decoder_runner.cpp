@@ -11,9 +11,12 @@ namespace silk {
 
 KvShape ModelKvShape(const Model::Impl& model) { return KvShapeOf(model.config.dims, model.kv_precision); }
 
-DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, KvMode mode,
-                             int64_t max_chunk)
-    : model_(model), cache_(cache), cross_kv_(cross_kv), mode_(mode), max_chunk_(std::max<int64_t>(1, max_chunk)),
+DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, KvMode mode, int64_t max_chunk)
+    : model_(model),
+      cache_(cache),
+      cross_kv_(cross_kv),
+      mode_(mode),
+      max_chunk_(std::max<int64_t>(1, max_chunk)),
       vocab_(model.config.model_vocab_size),
       in_names_(DecoderInputNames(model.config.dims.n_layers)),
       out_names_(DecoderOutputNames(model.config.dims.n_layers)) {
@@ -47,8 +50,10 @@ Status DecoderRunner::RunChunk(const int32_t* ids, int64_t n) {
     if (!in_place || in_values_.empty() || views_of_ != cache_->block(0, 0) || views_capacity_ != cache_->capacity())
       MakeViews();
     BindChunkInputs(n);
-    if (in_place) RunInPlace(n);
-    else SILK_RETURN_IF_ERROR(RunCopying(n));
+    if (in_place)
+      RunInPlace(n);
+    else
+      SILK_RETURN_IF_ERROR(RunCopying(n));
     cache_->Extend(n);
     ++calls_;
     return Status::Ok();
@@ -139,8 +144,8 @@ void DecoderRunner::RunInPlace(int64_t n) {
   const std::array<int64_t, 3> logit_shape = {1, n, vocab_};
   out_values_[0] = Ort::Value::CreateTensor<float>(model_.cpu_memory, logits_.data(), static_cast<size_t>(n * vocab_),
                                                    logit_shape.data(), 3);
-  model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
-                      out_ptrs_.data(), out_values_.data(), out_values_.size());
+  model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(), out_ptrs_.data(),
+                      out_values_.data(), out_values_.size());
   last_logits_ = logits_.data() + (n - 1) * vocab_;
 }
 
@@ -161,8 +166,8 @@ Status DecoderRunner::RunCopying(int64_t n) {
       const int64_t row = cache_->shape().row_bytes();
       const unsigned char* src = static_cast<const unsigned char*>(present.GetTensorRawData());
       for (int64_t h = 0; h < H; ++h)
-        std::memcpy(static_cast<unsigned char*>(cache_->block(l, kv)) + (h * C + P) * row, src + (h * (P + n) + P) * row,
-                    static_cast<size_t>(n * row));
+        std::memcpy(static_cast<unsigned char*>(cache_->block(l, kv)) + (h * C + P) * row,
+                    src + (h * (P + n) + P) * row, static_cast<size_t>(n * row));
     }
   std::memcpy(logits_.data(), outs[0].GetTensorData<float>() + (n - 1) * vocab_,
               static_cast<size_t>(vocab_) * sizeof(float));

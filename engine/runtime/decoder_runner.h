@@ -60,7 +60,7 @@ class DecoderRunner {
   const void* views_of_ = nullptr;
   int64_t views_capacity_ = 0;
   std::vector<std::vector<unsigned char>> compact_;  // kCopy only
-  std::vector<float> logits_;     // [max_chunk, V] (kInPlace: the bound output)
+  std::vector<float> logits_;                        // [max_chunk, V] (kInPlace: the bound output)
   const float* last_logits_ = nullptr;
   int64_t calls_ = 0;
 };

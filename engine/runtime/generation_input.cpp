@@ -16,7 +16,8 @@ Status ValidateGenerationInput(const GenerationInput& in, const CancelCheck& can
       if (i % kCancelPollInterval == 0 && CancelRequested(cancel)) return CancelledStatus("the input check");
       const auto& n = in.normals[i];
       const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (!std::isfinite(len) || len == 0) return InvalidArgument("point " + std::to_string(i) + " has a zero or non-finite normal");
+      if (!std::isfinite(len) || len == 0)
+        return InvalidArgument("point " + std::to_string(i) + " has a zero or non-finite normal");
     }
   } else if (in.mesh.triangles.empty()) {
     return InvalidArgument("input mesh has no faces");
@@ -24,8 +25,8 @@ Status ValidateGenerationInput(const GenerationInput& in, const CancelCheck& can
   return Status::Ok();
 }
 
-StatusOr<PreparedPoints> PrepareModelPoints(const GenerationInput& in, const PreprocessingParams& params,
-                                            uint64_t seed, const CancelCheck& cancel) {
+StatusOr<PreparedPoints> PrepareModelPoints(const GenerationInput& in, const PreprocessingParams& params, uint64_t seed,
+                                            const CancelCheck& cancel) {
   SILK_RETURN_IF_ERROR(ValidateGenerationInput(in));
   return PreparePoints(in.mesh, in.point_cloud ? &in.normals : nullptr, params, seed, cancel);
 }

@@ -17,8 +17,8 @@
 namespace silk {
 
 struct GenerationInput {
-  IoMesh mesh;                                  // triangles empty for a point cloud
-  std::vector<std::array<double, 3>> normals;    // point cloud: one per position
+  IoMesh mesh;                                 // triangles empty for a point cloud
+  std::vector<std::array<double, 3>> normals;  // point cloud: one per position
   bool point_cloud = false;
   std::string name;  // for messages: the file it came from; "" = "input"
 };

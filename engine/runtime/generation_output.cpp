@@ -10,8 +10,7 @@ namespace silk {
 IoMesh ToInputFrame(const TokenizerDecodedMesh& decoded, const NormalizeTransform& t) {
   IoMesh g;
   g.positions.reserve(decoded.positions.size());
-  for (const QVec& q : decoded.positions)
-    g.positions.push_back(UndoNormalization(DequantizePosition(q), t));
+  for (const QVec& q : decoded.positions) g.positions.push_back(UndoNormalization(DequantizePosition(q), t));
   g.triangles = decoded.faces;
   return g;
 }

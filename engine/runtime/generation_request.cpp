@@ -28,15 +28,16 @@ Status CheckRequest(const GenerationRequest& r) {
   SILK_RETURN_IF_ERROR(CheckUnsetOr("top_p_temperature", r.top_p_temperature, HUGE_VAL));
   if (r.candidates && (*r.candidates < 1 || *r.candidates > kMaxCandidates))
     return InvalidArgument("candidates " + std::to_string(*r.candidates) +
-                           " is neither SILK_MODEL_VALUE (-1: the model's) nor in 1.." + std::to_string(kMaxCandidates));
+                           " is neither SILK_MODEL_VALUE (-1: the model's) nor in 1.." +
+                           std::to_string(kMaxCandidates));
   if (r.face_tolerance && !(*r.face_tolerance >= kMinFaceTolerance && *r.face_tolerance <= kMaxFaceTolerance))
     return InvalidArgument("face_tolerance " + ValueText(*r.face_tolerance) +
                            " is neither SILK_MODEL_VALUE (-1: the model's) nor in " + ValueText(kMinFaceTolerance) +
                            ".." + ValueText(kMaxFaceTolerance) + " (cells)");
   if (r.n_points && *r.n_points < 1)
     return InvalidArgument("n_points " + std::to_string(*r.n_points) + (*r.n_points < 0 ? " is negative" : " is zero"));
-  for (const auto& [field, value] : {std::pair<const char*, int32_t>{"max_tokens", r.max_tokens},
-                                     {"max_faces", r.max_faces}})
+  for (const auto& [field, value] :
+       {std::pair<const char*, int32_t>{"max_tokens", r.max_tokens}, {"max_faces", r.max_faces}})
     if (value < 0) return InvalidArgument(std::string(field) + " " + std::to_string(value) + " is negative");
   return Status::Ok();
 }

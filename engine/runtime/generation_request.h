@@ -22,8 +22,8 @@ struct GenerationRequest {
   std::optional<int32_t> candidates;               // best of N, 1..kMaxCandidates; unset: the model's N
   std::optional<PreprocessingKind> preprocessing;  // unset: model.json "preprocessing"
   std::optional<int32_t> n_points;                 // encoder points; unset: the model's pre-processing's
-  bool raw_points = false;  // the input's points are the encoder input as given (RawModelPoints)
-  int32_t max_tokens = 0, max_faces = 0;  // GenerateOptions' caps
+  bool raw_points = false;                         // the input's points are the encoder input as given (RawModelPoints)
+  int32_t max_tokens = 0, max_faces = 0;           // GenerateOptions' caps
   HolePolicy holes = HolePolicy::kOff;
   bool unconstrained = false;
   bool skip_forced = true, kv_in_place = true;  // measurement switches (GenerateOptions)

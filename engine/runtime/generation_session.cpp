@@ -77,8 +77,7 @@ Status GenerationSession::CloseCandidate(const CancelCheck& cancel) {
     SILK_ASSIGN_OR_RETURN(GenerateResult r, generator_.Finish(cancel));
     ended_ = std::move(r);
   }
-  SILK_RETURN_IF_ERROR(
-      choice_.Add(&*ended_, CandidateSeed(plan_.options.sampling.seed, candidate_), points_, cancel));
+  SILK_RETURN_IF_ERROR(choice_.Add(&*ended_, CandidateSeed(plan_.options.sampling.seed, candidate_), points_, cancel));
   ended_.reset();
   return Status::Ok();
 }
@@ -93,8 +92,10 @@ Status GenerationSession::NextCandidate() {
 }
 
 Status GenerationSession::Note(Status status) {
-  if (status.code() == StatusCode::kCancelled) cancelled_ = true;
-  else if (!status.ok()) failed_ = true;
+  if (status.code() == StatusCode::kCancelled)
+    cancelled_ = true;
+  else if (!status.ok())
+    failed_ = true;
   return status;
 }
 

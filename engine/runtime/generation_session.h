@@ -69,8 +69,8 @@ class GenerationSession {
   // Thread-safe, any time: stops an encoder run in progress (Generator::InterruptEncoder).
   void InterruptEncoder() { generator_.InterruptEncoder(); }
 
-  bool active() const { return active_; }  // started, not yet finished or abandoned
-  bool done() const;                       // every candidate has ended, or a cancel ended the run
+  bool active() const { return active_; }           // started, not yet finished or abandoned
+  bool done() const;                                // every candidate has ended, or a cancel ended the run
   int32_t candidate() const { return candidate_; }  // the one in progress (0-based)
   int32_t candidates() const { return plan_.options.candidates; }
   // The candidate in progress (or ended, awaiting its score); empty when there is none.

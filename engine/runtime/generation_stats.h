@@ -11,15 +11,15 @@
 namespace silk {
 
 struct PhaseSeconds {
-  double load_input = 0;    // input check + normalising + surface sampling (session)
-  double encoder = 0;       // encoder.onnx
-  double decoder = 0;       // decoder.onnx calls (all chunks)
-  double grammar = 0;       // legal masks + Accept
-  double sampling = 0;      // the sampling chain
-  double build_mesh = 0;    // tokens -> faces (+ hole handling)
-  double guidance = 0;      // surface guidance: distance field + K/O mask restriction
-  double face_guidance = 0; // face guidance: the faces of the legal B ids scored (hard: masked)
-  double scoring = 0;       // candidates' Chamfer scores
+  double load_input = 0;     // input check + normalising + surface sampling (session)
+  double encoder = 0;        // encoder.onnx
+  double decoder = 0;        // decoder.onnx calls (all chunks)
+  double grammar = 0;        // legal masks + Accept
+  double sampling = 0;       // the sampling chain
+  double build_mesh = 0;     // tokens -> faces (+ hole handling)
+  double guidance = 0;       // surface guidance: distance field + K/O mask restriction
+  double face_guidance = 0;  // face guidance: the faces of the legal B ids scored (hard: masked)
+  double scoring = 0;        // candidates' Chamfer scores
   double total = 0;
 };
 
@@ -34,14 +34,14 @@ struct CandidateScore {
 };
 
 struct GenerationStats {
-  int64_t tokens = 0;          // generated ids, EOS included when reached
-  int64_t forced_tokens = 0;   // ids the grammar forced (no sampling; model step skipped)
+  int64_t tokens = 0;         // generated ids, EOS included when reached
+  int64_t forced_tokens = 0;  // ids the grammar forced (no sampling; model step skipped)
   int64_t sampled_tokens = 0;
-  int64_t model_calls = 0;     // decoder.onnx runs
-  int64_t fed_positions = 0;   // positions written to the KV cache (BOS included)
-  int64_t resampled = 0;       // sample-then-check order: draws that were illegal
+  int64_t model_calls = 0;                     // decoder.onnx runs
+  int64_t fed_positions = 0;                   // positions written to the KV cache (BOS included)
+  int64_t resampled = 0;                       // sample-then-check order: draws that were illegal
   StopReason stop_reason = StopReason::kNone;  // kNone while running
-  std::string dead_end;        // grammar_dead_end: where (a grammar bug; reported, not fatal)
+  std::string dead_end;                        // grammar_dead_end: where (a grammar bug; reported, not fatal)
   int32_t faces = 0, vertices = 0, components = 0;
   int32_t holes_found = 0, holes_repaired = 0, faces_added = 0, window_findings = 0;
   int32_t open_edges = 0;
@@ -52,12 +52,12 @@ struct GenerationStats {
   int32_t fan_gaps_closed = 0, vertices_split = 0;
   // Parts reversed to face the input's normals (orient_to_input; runtime/input_orientation.h).
   int32_t parts_flipped = 0;
-  int64_t illegal_at = -1;     // unconstrained mode: index of the first id the grammar rejects
+  int64_t illegal_at = -1;  // unconstrained mode: index of the first id the grammar rejects
   std::string illegal_reason;
   int64_t kv_cache_bytes = 0;
   int32_t threads = 0;
   bool int8 = false;
-  std::string decoder = "fp32";  // decoder precision in use: fp32, int8, int4
+  std::string decoder = "fp32";       // decoder precision in use: fp32, int8, int4
   std::string kv_precision = "fp32";  // self-K/V cache element type: fp32, fp16
   // Surface guidance: vertex ids sampled under it, and vertex ids (sampled or forced) taken
   // outside the tolerance because no legal id was within it.

@@ -31,8 +31,10 @@ double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 std::vector<std::pair<int32_t, int32_t>> MaskRanges(const TokenMask& m) {
   std::vector<std::pair<int32_t, int32_t>> r;
   for (int32_t id = m.Next(0); id >= 0; id = m.Next(id + 1)) {
-    if (!r.empty() && r.back().second == id) r.back().second = id + 1;
-    else r.push_back({id, id + 1});
+    if (!r.empty() && r.back().second == id)
+      r.back().second = id + 1;
+    else
+      r.push_back({id, id + 1});
   }
   return r;
 }
@@ -98,8 +100,8 @@ Status CheckGenerateOptions(const GenerateOptions& options) {
 // One generation in progress: the encoder output, the decoder runner over the KV cache, the
 // grammar and the sampling chain, the ids so far.
 struct Generator::Session {
-  Session(const Model::Impl& m, KvCache* cache, Ort::Value cross_kv, const GenerateOptions& o, const GenerateCallbacks& cb,
-          int32_t cap)
+  Session(const Model::Impl& m, KvCache* cache, Ort::Value cross_kv, const GenerateOptions& o,
+          const GenerateCallbacks& cb, int32_t cap)
       : options(o),
         callbacks(cb),
         cap(cap),
@@ -122,10 +124,10 @@ struct Generator::Session {
   std::vector<int32_t> pending;
   int32_t faces_at_close = -1;
   int64_t layers_closed = 0;
-  std::shared_ptr<const SurfaceGuide> guide;  // surface_tolerance > 0, constrained mode
-  std::shared_ptr<const FaceGuide> face_guide;  // face_guidance on, constrained mode
+  std::shared_ptr<const SurfaceGuide> guide;            // surface_tolerance > 0, constrained mode
+  std::shared_ptr<const FaceGuide> face_guide;          // face_guidance on, constrained mode
   std::shared_ptr<const OrientedPointSet> orientation;  // orient_to_input
-  mutable MeshBuildCache so_far_cache;  // max_faces / MeshSoFar: closed components are built once
+  mutable MeshBuildCache so_far_cache;                  // max_faces / MeshSoFar: closed components are built once
   bool illegal_seen = false;
   bool failed = false;
   Clock::time_point t_start, t_loop;
@@ -171,7 +173,8 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   const int32_t cap = options.max_tokens > 0 ? std::min(options.max_tokens, model_cap) : model_cap;
   if (cap < kMinMeshTokens)
     return InvalidArgument(cfg.dir + "/model.json: max_seq_len " + std::to_string(cfg.dims.max_seq_len) +
-                           " leaves room for fewer ids than the smallest mesh (" + std::to_string(kMinMeshTokens) + ")");
+                           " leaves room for fewer ids than the smallest mesh (" + std::to_string(kMinMeshTokens) +
+                           ")");
   // A terminate request left from an earlier run is dropped before the poll; one made after the
   // poll stops the encoder run below (InterruptEncoder).
   encoder_run_->UnsetTerminate();
@@ -421,8 +424,9 @@ StatusOr<GenerateResult> Generator::Finish(const CancelCheck& cancel) {
   res.report = MeshBuildReport{};  // a Finish again after a cancelled one starts afresh
   MeshBuildOptions bopt;
   bopt.holes = s.options.holes;
-  const bool complete = !s.options.unconstrained ? st.stop_reason == StopReason::kEos || st.stop_reason == StopReason::kMaxTokens
-                                                 : (!s.illegal_seen && s.grammar.Ended());
+  const bool complete = !s.options.unconstrained
+                            ? st.stop_reason == StopReason::kEos || st.stop_reason == StopReason::kMaxTokens
+                            : (!s.illegal_seen && s.grammar.Ended());
   if (complete) {
     SILK_ASSIGN_OR_RETURN(res.mesh, BuildMesh(s.grammar.stream(), bopt, &res.report));
   } else {

@@ -47,7 +47,7 @@ struct GenerateOptions {
   bool skip_forced = true;     // false: run the model for forced ids too (measurement)
   bool kv_in_place = true;     // false: naive copying cache (measurement)
   SampleOrder order = SampleOrder::kMaskFirst;
-  bool record_trace = false;   // fill GenerateResult::trace (golden test reference check)
+  bool record_trace = false;  // fill GenerateResult::trace (golden test reference check)
   // Surface guidance (runtime/sampling/surface_guide.h): vertex ids only on grid cells within this many
   // cells of an input point's cell; 0 = off. Constrained mode only: with `unconstrained` there
   // is no mask to restrict, so the setting is ignored (stats.guided_tokens stays 0).
@@ -70,9 +70,9 @@ constexpr int32_t kMaxSurfaceTolerance = 127;
 
 struct GenerateProgress {
   int64_t tokens = 0, max_tokens = 0;
-  int32_t components = 0;  // started so far
-  int32_t faces = -1;      // at the last layer close, when max_faces is set; else -1
-  double seconds = 0;      // since the candidate's Start
+  int32_t components = 0;                 // started so far
+  int32_t faces = -1;                     // at the last layer close, when max_faces is set; else -1
+  double seconds = 0;                     // since the candidate's Start
   int32_t candidate = 0, candidates = 1;  // best of N: the one generating (GenerationSession)
 };
 
@@ -82,7 +82,6 @@ struct GenerateCallbacks {
   // true: stop (kCancelled).
   std::function<bool()> cancel;
 };
-
 
 // One generated id, for the reference check: forced or sampled, and the legal set it was
 // sampled from (ascending [begin, end) ranges; empty when forced or unconstrained).
@@ -116,7 +115,8 @@ class Generator {
   // Step-wise: Start runs the encoder; each Step adds one id (finished() once a stop reason is
   // set); Finish builds the mesh and returns the result (also after a cancel: what was closed).
   // A failed Start or Step ends the generation (Finish then fails too).
-  Status Start(const std::vector<float>& points, const GenerateOptions& options, const GenerateCallbacks& callbacks = {});
+  Status Start(const std::vector<float>& points, const GenerateOptions& options,
+               const GenerateCallbacks& callbacks = {});
   Status Step();
   bool active() const { return session_ != nullptr; }
   bool finished() const;

@@ -16,13 +16,13 @@ StatusOr<std::shared_ptr<const OrientedPointSet>> MakeInputOrientation(const std
 
 StatusOr<PartOrientationReport> OrientToInput(TokenizerDecodedMesh* mesh, const OrientedPointSet& reference,
                                               const CancelCheck& cancel) {
-  return OrientPartsToPoints(DequantizePositions(mesh->positions), &mesh->faces, mesh->face_component,
-                             mesh->components, reference, cancel);
+  return OrientPartsToPoints(DequantizePositions(mesh->positions), &mesh->faces, mesh->face_component, mesh->components,
+                             reference, cancel);
 }
 
 PartOrientationReport OrientToInput(TokenizerDecodedMesh* mesh, const OrientedPointSet& reference) {
-  return OrientPartsToPoints(DequantizePositions(mesh->positions), &mesh->faces, mesh->face_component,
-                             mesh->components, reference);
+  return OrientPartsToPoints(DequantizePositions(mesh->positions), &mesh->faces, mesh->face_component, mesh->components,
+                             reference);
 }
 
 }  // namespace silk

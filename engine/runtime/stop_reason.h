@@ -18,12 +18,18 @@ enum class StopReason : int32_t {
 // "none", "eos", "max_tokens", "max_faces", "grammar_dead_end", "cancelled".
 constexpr const char* StopReasonName(StopReason reason) {
   switch (reason) {
-    case StopReason::kNone: return "none";
-    case StopReason::kEos: return "eos";
-    case StopReason::kMaxTokens: return "max_tokens";
-    case StopReason::kMaxFaces: return "max_faces";
-    case StopReason::kGrammarDeadEnd: return "grammar_dead_end";
-    case StopReason::kCancelled: return "cancelled";
+    case StopReason::kNone:
+      return "none";
+    case StopReason::kEos:
+      return "eos";
+    case StopReason::kMaxTokens:
+      return "max_tokens";
+    case StopReason::kMaxFaces:
+      return "max_faces";
+    case StopReason::kGrammarDeadEnd:
+      return "grammar_dead_end";
+    case StopReason::kCancelled:
+      return "cancelled";
   }
   return "unknown";
 }

@@ -15,7 +15,7 @@
 namespace silk {
 
 struct TokenizerComponentMesh {
-  std::vector<QVec> positions;                // reading order: root, layer 1, layer 2, ...
+  std::vector<QVec> positions;  // reading order: root, layer 1, layer 2, ...
   std::vector<int32_t> layer_of, index_in_layer;
   std::vector<std::array<int32_t, 3>> faces;  // local indices, oriented (face_recovery.h)
   int32_t dropped_degenerate = 0;             // zero-area recovered faces dropped

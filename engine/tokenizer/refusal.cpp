@@ -30,7 +30,8 @@ constexpr Entry kEntries[] = {
 }  // namespace
 
 const char* RefusalName(Refusal r) {
-  for (const auto& e : kEntries) if (e.r == r) return e.name;
+  for (const auto& e : kEntries)
+    if (e.r == r) return e.name;
   return "unknown";
 }
 Status Refuse(Refusal r, const std::string& detail) {

@@ -9,21 +9,21 @@
 namespace silk {
 
 enum class Refusal {
-  kNotTriangles,            // "only support triangles now"
-  kEdgeGraphLimit,          // [NM] edge graph edges exceed limit (incident list > 50)
-  kStillDisconnectedFan,    // [NM] still meet 1v2cc situation
-  kTooManyNonManifoldVerts, // [NM] NM_verts exceed limit (> 300)
-  kNonManifoldWrong,        // non-manifold wrong: PARTITION groups do not cover the faces
-  kPostNotManifold,         // [NM] post not manifold
-  kMeetNonManifold,         // meet non-manifold: an edge with >= 3 faces after splitting
-  kMobius,                  // mobius cycle topology (non-orientable)
-  kVertexSharedByComponents,// pre process non-manifold wrong
-  kTooManyFaces,            // too many faces_p (> 12000)
-  kBoundaryVertex,          // nonmanifold, pls checking preprocess
-  kLayerCountLimit,         // reach layer limit 200
-  kNoFaces,                 // no face survived cleanup (max() arg is an empty sequence)
-  kLayerSizeLimit,          // [Encoder] max lv (> 200 vertices in a layer)
-  kAllComponentsDropped,    // every component < 3 faces (ZeroDivisionError)
+  kNotTriangles,              // "only support triangles now"
+  kEdgeGraphLimit,            // [NM] edge graph edges exceed limit (incident list > 50)
+  kStillDisconnectedFan,      // [NM] still meet 1v2cc situation
+  kTooManyNonManifoldVerts,   // [NM] NM_verts exceed limit (> 300)
+  kNonManifoldWrong,          // non-manifold wrong: PARTITION groups do not cover the faces
+  kPostNotManifold,           // [NM] post not manifold
+  kMeetNonManifold,           // meet non-manifold: an edge with >= 3 faces after splitting
+  kMobius,                    // mobius cycle topology (non-orientable)
+  kVertexSharedByComponents,  // pre process non-manifold wrong
+  kTooManyFaces,              // too many faces_p (> 12000)
+  kBoundaryVertex,            // nonmanifold, pls checking preprocess
+  kLayerCountLimit,           // reach layer limit 200
+  kNoFaces,                   // no face survived cleanup (max() arg is an empty sequence)
+  kLayerSizeLimit,            // [Encoder] max lv (> 200 vertices in a layer)
+  kAllComponentsDropped,      // every component < 3 faces (ZeroDivisionError)
 };
 
 // Stable machine-readable name, e.g. "mobius".

@@ -28,7 +28,9 @@ Key Canonical(const std::array<QVec, 3>& f) {
 
 Key Reversed(const std::array<QVec, 3>& f) { return Canonical({f[0], f[2], f[1]}); }
 
-bool Contains(const std::vector<Key>& sorted, const Key& k) { return std::binary_search(sorted.begin(), sorted.end(), k); }
+bool Contains(const std::vector<Key>& sorted, const Key& k) {
+  return std::binary_search(sorted.begin(), sorted.end(), k);
+}
 
 }  // namespace
 
@@ -48,9 +50,12 @@ RoundTripReport CompareRoundTrip(const EncodeResult& enc, const TokenizerDecoded
     const Key k = Canonical(f);
     if (Contains(unencodable, k)) continue;
     ++r.representable_faces;
-    if (Contains(decoded, k)) ++r.recovered;
-    else if (Contains(decoded, Reversed(f))) ++r.reversed;
-    else ++r.missing;
+    if (Contains(decoded, k))
+      ++r.recovered;
+    else if (Contains(decoded, Reversed(f)))
+      ++r.reversed;
+    else
+      ++r.missing;
   }
   std::vector<Key> processed_unoriented;
   for (const auto& f : enc.processed_faces) {

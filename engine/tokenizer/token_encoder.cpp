@@ -25,8 +25,8 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
 // Fills the S/X/B parts of every vertex of one component's layers.
-StreamComponent EncodeComponent(const TokenizerProcessedMesh& mesh, const ComponentVertexLayers& cl, const Layering& lay,
-                                const RotationLists& rot) {
+StreamComponent EncodeComponent(const TokenizerProcessedMesh& mesh, const ComponentVertexLayers& cl,
+                                const Layering& lay, const RotationLists& rot) {
   StreamComponent sc;
   sc.layers.resize(cl.layers.size());
   std::vector<int32_t> dists, cols;
@@ -64,7 +64,8 @@ StreamComponent EncodeComponent(const TokenizerProcessedMesh& mesh, const Compon
 
 // The processed faces of the kept components and those of them the layering cannot carry (a
 // corner left unlayered or an edge spanning more than one layer, §5.4), with the vertex and face counts.
-void RecordFaceLists(const TokenizerProcessedMesh& mesh, const ComponentSplit& split, const Layering& lay, EncodeResult* res) {
+void RecordFaceLists(const TokenizerProcessedMesh& mesh, const ComponentSplit& split, const Layering& lay,
+                     EncodeResult* res) {
   EncodeStats& st = res->stats;
   std::vector<char> used(static_cast<size_t>(mesh.vertex_count()), 0);
   for (const Component& c : split.kept) {
@@ -91,7 +92,8 @@ void RecordFaceLists(const TokenizerProcessedMesh& mesh, const ComponentSplit& s
 void RecordLayerStats(const Layering& lay, EncodeStats* st) {
   for (const ComponentVertexLayers& cl : lay.components) {
     st->layers += static_cast<int32_t>(cl.layers.size());
-    if (static_cast<int32_t>(cl.layers.size()) > st->max_layer_count) st->max_layer_count = static_cast<int32_t>(cl.layers.size());
+    if (static_cast<int32_t>(cl.layers.size()) > st->max_layer_count)
+      st->max_layer_count = static_cast<int32_t>(cl.layers.size());
     for (const auto& l : cl.layers) {
       st->emitted_vertices += static_cast<int32_t>(l.size());
       if (static_cast<int32_t>(l.size()) > st->max_layer_size) st->max_layer_size = static_cast<int32_t>(l.size());
@@ -111,7 +113,8 @@ StatusOr<LayeredStream> EncodeProcessedMesh(TokenizerProcessedMesh mesh) {
   SILK_ASSIGN_OR_RETURN(RotationLists rot, BuildRotationLists(mesh, split.kept));
   SILK_ASSIGN_OR_RETURN(Layering lay, BuildLayers(mesh, split.kept, rot));
   LayeredStream stream;
-  for (const ComponentVertexLayers& cl : lay.components) stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
+  for (const ComponentVertexLayers& cl : lay.components)
+    stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
   return stream;
 }
 
@@ -155,11 +158,11 @@ StatusOr<EncodeResult> EncodeMesh(const IoMesh& normalized, const EncodeOptions&
   st.times.layering = Seconds(t4, t5);
   if (split.kept.empty())
     return Refuse(Refusal::kAllComponentsDropped,
-                  "every component has fewer than 3 faces after cleanup (" + std::to_string(split.found) +
-                      " found)");
+                  "every component has fewer than 3 faces after cleanup (" + std::to_string(split.found) + " found)");
 
   res.stream.components.reserve(split.kept.size());
-  for (const ComponentVertexLayers& cl : lay.components) res.stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
+  for (const ComponentVertexLayers& cl : lay.components)
+    res.stream.components.push_back(EncodeComponent(mesh, cl, lay, rot));
   auto t6 = Clock::now();
   st.times.codecs = Seconds(t5, t6);
 

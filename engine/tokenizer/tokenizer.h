@@ -20,24 +20,23 @@ struct EncodeOptions {
 
 // Wall time per encoder phase, seconds.
 struct EncodePhaseTimes {
-  double quantize_cleanup = 0, nonmanifold = 0, orientation = 0, components = 0,
-         layering = 0, codecs = 0, packing = 0;
+  double quantize_cleanup = 0, nonmanifold = 0, orientation = 0, components = 0, layering = 0, codecs = 0, packing = 0;
 };
 
 struct EncodeStats {
   int32_t input_vertices = 0, input_faces = 0;
-  int32_t merged_vertices = 0;          // input vertices that became duplicates (§2.3)
+  int32_t merged_vertices = 0;  // input vertices that became duplicates (§2.3)
   int32_t dropped_degenerate_faces = 0, dropped_duplicate_faces = 0;
-  int32_t nonmanifold_copies = 0;       // vertices added by §3
-  int32_t flipped_faces = 0;            // faces reversed by §3.7
+  int32_t nonmanifold_copies = 0;  // vertices added by §3
+  int32_t flipped_faces = 0;       // faces reversed by §3.7
   int32_t components_found = 0, components_encoded = 0, components_dropped_small = 0;
-  int32_t processed_vertices = 0;       // distinct vertices used by emitted faces
-  int32_t processed_faces = 0;          // faces of emitted components
-  int32_t emitted_vertices = 0;         // vertices in the token stream
-  int32_t encodable_faces = 0;          // processed faces whose 3 edges the stream carries
-  int32_t layers = 0;                   // over all components (layer 0 included)
+  int32_t processed_vertices = 0;  // distinct vertices used by emitted faces
+  int32_t processed_faces = 0;     // faces of emitted components
+  int32_t emitted_vertices = 0;    // vertices in the token stream
+  int32_t encodable_faces = 0;     // processed faces whose 3 edges the stream carries
+  int32_t layers = 0;              // over all components (layer 0 included)
   int32_t max_layer_size = 0;
-  int32_t max_layer_count = 0;          // largest per-component layer count
+  int32_t max_layer_count = 0;  // largest per-component layer count
   int64_t tokens = 0;
   EncodePhaseTimes times;
 };
@@ -64,10 +63,10 @@ struct DecodeOptions {
 // The mesh the tokens carry, in grid coordinates (docs/mesh_types.md): what DecodeTokens gives and
 // the decoder's BuildMesh builds; the runtime and the C API turn it into an IoMesh.
 struct TokenizerDecodedMesh {
-  std::vector<QVec> positions;                    // one per emitted vertex, reading order
-  std::vector<std::array<int32_t, 3>> faces;      // indices into positions, oriented
-  std::vector<int32_t> face_component;            // component index per face
-  std::vector<int32_t> vertex_component;          // component index per vertex
+  std::vector<QVec> positions;                // one per emitted vertex, reading order
+  std::vector<std::array<int32_t, 3>> faces;  // indices into positions, oriented
+  std::vector<int32_t> face_component;        // component index per face
+  std::vector<int32_t> vertex_component;      // component index per vertex
   int32_t components = 0;
 };
 

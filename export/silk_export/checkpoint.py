@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Checkpoints: model + optimizer + step + RNG states, written atomically so an interrupted run
 resumes exactly where the last checkpoint left it."""
+
 from __future__ import annotations
 
 import os
@@ -12,8 +13,7 @@ from .models.configs import config_from_dict
 from .registry import build_model
 
 
-def save_state(path: Path, config: dict, model_state: dict, optim_state: dict | None, step: int,
-               extra: dict) -> None:
+def save_state(path: Path, config: dict, model_state: dict, optim_state: dict | None, step: int, extra: dict) -> None:
     """Writes a checkpoint from state dicts (training gathers them from DDP/FSDP first)."""
     path = Path(path)
     tmp = path.with_suffix(path.suffix + ".tmp")

@@ -2,6 +2,7 @@
 """The pip wheel's `silk-export` console script: the training side ships inside the silk-mesh wheel,
 its dependencies in the extra silk-mesh[train]; without them this says which are missing and the pip
 command, instead of a traceback from deep inside a sub-command."""
+
 from __future__ import annotations
 
 import importlib.util
@@ -18,8 +19,11 @@ def missing_modules() -> list[str]:
 def main(argv=None) -> int:
     missing = missing_modules()
     if missing:
-        sys.stderr.write(f"silk-export: the training dependencies are not installed ({', '.join(missing)} missing): "
-                         "pip install 'silk-mesh[train]'\n")
+        sys.stderr.write(
+            f"silk-export: the training dependencies are not installed ({', '.join(missing)} missing): "
+            "pip install 'silk-mesh[train]'\n"
+        )
         return 2
     from .cli import main as cli_main
+
     return cli_main(argv)

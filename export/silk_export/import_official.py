@@ -2,6 +2,7 @@
 """`silk-export import-official`: a released Mesh Silksong checkpoint -> a Silk model folder
 (docs/model_contract.md v3, arch "official"). Everything is written into a temporary folder
 beside the destination and renamed at the end, so a failed import leaves nothing behind."""
+
 from __future__ import annotations
 
 import gc
@@ -17,14 +18,22 @@ from .official.card import write_official_card
 from .official.checkpoint import load_official
 from .official.state_dict_file import sha256_of
 from .onnx import fidelity
-from .onnx.export import (export_graphs, has_external_data, quantize_decoder, quantize_decoder_int4, sidecar,
-                          transpose_linears)
+from .onnx.export import (
+    export_graphs,
+    has_external_data,
+    quantize_decoder,
+    quantize_decoder_int4,
+    sidecar,
+    transpose_linears,
+)
 from .onnx.kv_precision import KV_PRECISIONS, add_kv_variants
 from .vocab import load_vocab
 
 PRECISIONS = ("fp32", "int8", "int4", "auto")
-SOURCE_LICENCE = ("The official Mesh Silksong code (gaochao-s/Mesh-Silksong) is MIT-licensed; the weights "
-                  "are published with that release: see its release page for their terms.")
+SOURCE_LICENCE = (
+    "The official Mesh Silksong code (gaochao-s/Mesh-Silksong) is MIT-licensed; the weights "
+    "are published with that release: see its release page for their terms."
+)
 # Chosen by measurement on the release-size architecture (README "Run the released Mesh Silksong model").
 INT4_BLOCK_SIZE = 32
 INT4_ACCURACY_LEVEL = 4
@@ -51,9 +60,16 @@ def _variants(folder: Path, precision: str, int4_block: int, int4_accuracy: int)
     return files
 
 
-def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: int = INT4_BLOCK_SIZE,
-                   int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32,
-                   kv_precision: str = DEFAULT_KV_PRECISION) -> dict:
+def write_variants(
+    folder: Path,
+    files: dict,
+    cfg,
+    precision: str,
+    int4_block: int = INT4_BLOCK_SIZE,
+    int4_accuracy: int = INT4_ACCURACY_LEVEL,
+    fidelity_tokens: int = 32,
+    kv_precision: str = DEFAULT_KV_PRECISION,
+) -> dict:
     """After export_graphs (drop the PyTorch model first: quantization loads the fp32 graph): the
     quantized decoders `precision` asks for, their fidelity/speed figures and the default decoder,
     then the fp16- and int8-cache variants of every decoder and the default KV precision.
@@ -66,8 +82,11 @@ def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: i
     _say(f"fidelity and speed of {', '.join(variants)} ({fidelity_tokens} greedy tokens x 2 probes)")
     vocab = load_vocab()
     figures = fidelity.measure(folder, variants, vocab.bos_id, vocab.eos_id, cfg.n_points, fidelity_tokens)
-    files["default_decoder"] = fidelity.choose(figures) if precision == "auto" else \
-        {"fp32": "decoder", "int8": "decoder_int8", "int4": "decoder_int4"}[precision]
+    files["default_decoder"] = (
+        fidelity.choose(figures)
+        if precision == "auto"
+        else {"fp32": "decoder", "int8": "decoder_int8", "int4": "decoder_int4"}[precision]
+    )
     if kv_precision not in KV_PRECISIONS:
         raise ValueError(f"KV precision '{kv_precision}': expected one of {', '.join(KV_PRECISIONS)}")
     _say("fp16 and int8 self-K/V cache variants of every decoder (silk-export kv16, kv8)")
@@ -77,11 +96,20 @@ def write_variants(folder: Path, files: dict, cfg, precision: str, int4_block: i
     return figures
 
 
-def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", config_path: Path | None = None,
-                    force: bool = False, progress: bool = True, int4_block: int = INT4_BLOCK_SIZE,
-                    int4_accuracy: int = INT4_ACCURACY_LEVEL, fidelity_tokens: int = 32,
-                    licence: str = SOURCE_LICENCE, kv_precision: str = DEFAULT_KV_PRECISION,
-                    hub: dict | None = None) -> dict:
+def import_official(
+    checkpoint: Path,
+    out_dir: Path,
+    precision: str = "auto",
+    config_path: Path | None = None,
+    force: bool = False,
+    progress: bool = True,
+    int4_block: int = INT4_BLOCK_SIZE,
+    int4_accuracy: int = INT4_ACCURACY_LEVEL,
+    fidelity_tokens: int = 32,
+    licence: str = SOURCE_LICENCE,
+    kv_precision: str = DEFAULT_KV_PRECISION,
+    hub: dict | None = None,
+) -> dict:
     """Returns the model.json written. Raises StateDictError / ValueError with a message naming
     the problem (a key missing, misshaped or holding NaN / Inf; a non-finite model.json figure);
     the destination is then untouched. hub: where the checkpoint came from (official/hub.py download),
@@ -94,8 +122,10 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
     t0 = time.time()
     model, report = load_official(checkpoint, config_path, progress)
     cfg = model.cfg
-    _say(f"{report.used} tensors used, {report.skipped_unused} training-only point-encoder tensors skipped"
-         + (f", prefixes stripped: {report.stripped_prefixes}" if report.stripped_prefixes else ""))
+    _say(
+        f"{report.used} tensors used, {report.skipped_unused} training-only point-encoder tensors skipped"
+        + (f", prefixes stripped: {report.stripped_prefixes}" if report.stripped_prefixes else "")
+    )
     out_dir.parent.mkdir(parents=True, exist_ok=True)  # e.g. a models folder used for the first time
     tmp = out_dir.parent / f".{out_dir.name}.importing-{os.getpid()}"
     shutil.rmtree(tmp, ignore_errors=True)
@@ -105,17 +135,26 @@ def import_official(checkpoint: Path, out_dir: Path, precision: str = "auto", co
         del model
         gc.collect()
         figures = write_variants(tmp, files, cfg, precision, int4_block, int4_accuracy, fidelity_tokens, kv_precision)
-        source = {"file": checkpoint.name, "sha256": hub["sha256"] if hub else sha256_of(checkpoint),
-                  "bytes": checkpoint.stat().st_size, "licence": licence}
+        source = {
+            "file": checkpoint.name,
+            "sha256": hub["sha256"] if hub else sha256_of(checkpoint),
+            "bytes": checkpoint.stat().st_size,
+            "licence": licence,
+        }
         if hub:
             source.update(hub=hub["hub"], url=hub["url"])
         chosen = files["default_decoder"]
-        extra = {"source": source,
-                 "import": {"load": asdict(report), "precision": precision,
-                            "int4": {"block_size": int4_block, "accuracy_level": int4_accuracy},
-                            "fidelity": figures, "thresholds": {"min_top1": fidelity.MIN_TOP1,
-                                                                "max_kl_mean": fidelity.MAX_MEAN_KL},
-                            "seconds": None}}
+        extra = {
+            "source": source,
+            "import": {
+                "load": asdict(report),
+                "precision": precision,
+                "int4": {"block_size": int4_block, "accuracy_level": int4_accuracy},
+                "fidelity": figures,
+                "thresholds": {"min_top1": fidelity.MIN_TOP1, "max_kl_mean": fidelity.MAX_MEAN_KL},
+                "seconds": None,
+            },
+        }
         training = {"steps": None, "data": "released checkpoint (official training)", "seed": None}
         meta = sidecar(cfg, training, files, extra)
         meta["import"]["seconds"] = round(time.time() - t0, 1)

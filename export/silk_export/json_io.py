@@ -4,6 +4,7 @@ NaN / Infinity as the bare words `NaN` / `Infinity` by default, which no other J
 (silkgen: "not a JSON object"). Each writer chooses what a non-finite float becomes, by what the
 file's reader expects: "refuse" (a ValueError naming the field; for files read as inputs, e.g.
 model.json, the dataset index) or "null" (for reports and logs, where a missing figure is fine)."""
+
 from __future__ import annotations
 
 import json
@@ -53,8 +54,9 @@ def dumps(obj: Any, nonfinite: str = "refuse", what: str = "JSON document", **kw
     else:
         bad = list(nonfinite_fields(obj))
         if bad:
-            fields = ", ".join(f"'{p}' = {v}" for p, v in bad[:10]) + (f" (and {len(bad) - 10} more)"
-                                                                        if len(bad) > 10 else "")
+            fields = ", ".join(f"'{p}' = {v}" for p, v in bad[:10]) + (
+                f" (and {len(bad) - 10} more)" if len(bad) > 10 else ""
+            )
             raise NonFiniteJSONError(f"{what}: non-finite value(s), which JSON cannot hold: {fields}")
     return json.dumps(obj, allow_nan=False, **kwargs)
 

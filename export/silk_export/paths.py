@@ -6,6 +6,7 @@ so the installed wheel works from any folder.
 vocabulary_layout.json in this package is engine/tokenizer/vocabulary_layout.json itself: a symbolic
 link in the checkout, the file's contents in the wheel (pyproject.toml) — one source, never a copy
 kept by hand."""
+
 from __future__ import annotations
 
 import os

@@ -2,6 +2,7 @@
 """The architecture registry: one entry per network family that can sit behind the model contract
 (docs/model_contract.md), each an implementation of the Architecture interface (models/architecture.py).
 A ModelConfig's `arch` names its entry; checkpoints, training and the exporter build models here."""
+
 from __future__ import annotations
 
 from .models.architecture import Architecture

@@ -3,6 +3,7 @@
 single source, shipped inside this package: paths.vocabulary_layout_text).
 
 Adds the model-only BOS id and the type-embedding classes of token_format.md §9 / docs/model_contract.md."""
+
 from __future__ import annotations
 
 import json

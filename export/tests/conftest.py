@@ -2,6 +2,7 @@
 """Shared fixtures: libsilk is found as the package finds it ($SILK_LIBRARY, else build/ in the
 checkout); silkgen and silktok from the same build folder; spec files from the shared folder.
 Those four come from tests/python/silk_test_fixtures.py, shared with the silk_mesh tests."""
+
 from __future__ import annotations
 
 import shutil
@@ -35,9 +36,11 @@ def dev_dir(shared) -> Path:
 @pytest.fixture(scope="session")
 def mesh_folder(tmp_path_factory):
     """mesh_folder(src_dir, names) -> a new folder holding copies of src_dir/<name>.obj."""
+
     def make(src: Path, names) -> Path:
         dest = tmp_path_factory.mktemp("meshes")
         for n in names:
             shutil.copy(Path(src) / f"{n}.obj", dest / f"{n}.obj")
         return dest
+
     return make

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """The ctypes binding (silk_mesh) gives exactly the tokens `silktok encode` writes (and the official token
 files), reports errors and refusals with their names, and decodes back to a mesh."""
+
 from __future__ import annotations
 
 import subprocess

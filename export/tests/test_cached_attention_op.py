@@ -3,6 +3,7 @@
 Python's onnxruntime with libsilk registered as its custom-op library: against a numpy reference,
 in place (present bound to past's buffer, as libsilk runs it) and copying, against
 GroupQueryAttention with float16 casts, and its errors for inputs that do not fit together."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -21,16 +22,33 @@ H, KVH, D = 4, 2, 16
 def _graph(path, op="CachedAttention", domain="ai.silk", cache=TensorProto.FLOAT16, **attrs):
     # Symbolic dims, so onnxruntime passes shapes that do not fit through to the op's own checks.
     row = D + 4 if cache == TensorProto.INT8 else D
-    io = [("q", TensorProto.FLOAT, ["B", "T", "QD"]), ("k", TensorProto.FLOAT, ["B", "T", "KD"]),
-          ("v", TensorProto.FLOAT, ["B", "T", "KD"]), ("past_key", cache, ["B", "KV", "C", "D"]),
-          ("past_value", cache, ["B", "KV", "C", "D"]), ("seqlens_k", TensorProto.INT32, [1]),
-          ("total_sequence_length", TensorProto.INT32, [])]
-    outs = [("out", TensorProto.FLOAT, [1, "T", H * D]), ("present_key", cache, [1, KVH, "P", row]),
-            ("present_value", cache, [1, KVH, "P", row])]
-    node = helper.make_node(op, [n for n, _, _ in io], [n for n, _, _ in outs], name="attn", domain=domain,
-                            num_heads=H, kv_num_heads=KVH, **attrs)
-    g = helper.make_graph([node], "g", [helper.make_tensor_value_info(*x) for x in io],
-                          [helper.make_tensor_value_info(*x) for x in outs])
+    io = [
+        ("q", TensorProto.FLOAT, ["B", "T", "QD"]),
+        ("k", TensorProto.FLOAT, ["B", "T", "KD"]),
+        ("v", TensorProto.FLOAT, ["B", "T", "KD"]),
+        ("past_key", cache, ["B", "KV", "C", "D"]),
+        ("past_value", cache, ["B", "KV", "C", "D"]),
+        ("seqlens_k", TensorProto.INT32, [1]),
+        ("total_sequence_length", TensorProto.INT32, []),
+    ]
+    outs = [
+        ("out", TensorProto.FLOAT, [1, "T", H * D]),
+        ("present_key", cache, [1, KVH, "P", row]),
+        ("present_value", cache, [1, KVH, "P", row]),
+    ]
+    node = helper.make_node(
+        op,
+        [n for n, _, _ in io],
+        [n for n, _, _ in outs],
+        name="attn",
+        domain=domain,
+        num_heads=H,
+        kv_num_heads=KVH,
+        **attrs,
+    )
+    g = helper.make_graph(
+        [node], "g", [helper.make_tensor_value_info(*x) for x in io], [helper.make_tensor_value_info(*x) for x in outs]
+    )
     m = helper.make_model(g, opset_imports=[helper.make_opsetid("", 17), helper.make_opsetid(domain, 1)], ir_version=8)
     onnx.save(m, str(path))
     return path
@@ -41,11 +59,15 @@ def _inputs(T, P, C, seed=0):
     past = [np.zeros((1, KVH, C, D), np.float16) for _ in range(2)]
     for p in past:
         p[:, :, :P] = r.normal(size=(1, KVH, P, D)).astype(np.float16)
-    return {"q": r.normal(size=(1, T, H * D)).astype(np.float32) * 0.5,
-            "k": r.normal(size=(1, T, KVH * D)).astype(np.float32),
-            "v": r.normal(size=(1, T, KVH * D)).astype(np.float32),
-            "past_key": past[0], "past_value": past[1],
-            "seqlens_k": np.array([P + T - 1], np.int32), "total_sequence_length": np.array(P + T, np.int32)}
+    return {
+        "q": r.normal(size=(1, T, H * D)).astype(np.float32) * 0.5,
+        "k": r.normal(size=(1, T, KVH * D)).astype(np.float32),
+        "v": r.normal(size=(1, T, KVH * D)).astype(np.float32),
+        "past_key": past[0],
+        "past_value": past[1],
+        "seqlens_k": np.array([P + T - 1], np.int32),
+        "total_sequence_length": np.array(P + T, np.int32),
+    }
 
 
 def _int16_query(q):
@@ -64,16 +86,20 @@ def _attend(x, keys, vals, scale, query=lambda q: q.astype(np.float64)):
     out = np.zeros((T, H, D))
     for t in range(T):
         for h in range(H):
-            s = scale * keys[h // (H // KVH), :P + t + 1] @ query(x["q"][0, t, h * D:(h + 1) * D])
+            s = scale * keys[h // (H // KVH), : P + t + 1] @ query(x["q"][0, t, h * D : (h + 1) * D])
             w = np.exp(s - s.max())
-            out[t, h] = w @ vals[h // (H // KVH), :P + t + 1] / w.sum()
+            out[t, h] = w @ vals[h // (H // KVH), : P + t + 1] / w.sum()
     return out.reshape(1, T, H * D)
 
 
 def _reference(x, scale):
     T, P = x["q"].shape[1], int(x["total_sequence_length"]) - x["q"].shape[1]
-    keys = np.concatenate([x["past_key"][0, :, :P], x["k"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1)
-    vals = np.concatenate([x["past_value"][0, :, :P], x["v"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1)
+    keys = np.concatenate(
+        [x["past_key"][0, :, :P], x["k"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1
+    )
+    vals = np.concatenate(
+        [x["past_value"][0, :, :P], x["v"][0].reshape(T, KVH, D).transpose(1, 0, 2).astype(np.float16)], 1
+    )
     keys, vals = keys.astype(np.float64), vals.astype(np.float64)
     return _attend(x, keys, vals, scale), keys, vals
 
@@ -94,8 +120,9 @@ def _in_place_and_copying(s, x, past: int):
     """Runs `x` once copying (past_* cut to `past` rows) and once in place (present_* bound to
     past_*'s own buffers, libsilk's cache); asserts equal outputs and that the in-place buffer
     holds the copying run's present rows. Returns (copying outputs, the in-place key buffer)."""
-    copy = s.run(None, {**x, "past_key": x["past_key"][:, :, :past].copy(),
-                        "past_value": x["past_value"][:, :, :past].copy()})
+    copy = s.run(
+        None, {**x, "past_key": x["past_key"][:, :, :past].copy(), "past_value": x["past_value"][:, :, :past].copy()}
+    )
     b = s.io_binding()
     vals = {n: ort.OrtValue.ortvalue_from_numpy(a) for n, a in x.items()}
     for n, v in vals.items():
@@ -106,7 +133,7 @@ def _in_place_and_copying(s, x, past: int):
     s.run_with_iobinding(b)
     np.testing.assert_array_equal(b.copy_outputs_to_cpu()[0], copy[0])
     in_place = vals["past_key"].numpy()
-    np.testing.assert_array_equal(in_place[:, :, :copy[1].shape[2]], copy[1])
+    np.testing.assert_array_equal(in_place[:, :, : copy[1].shape[2]], copy[1])
     return copy, in_place
 
 
@@ -143,22 +170,33 @@ def _expect_refused(s, x, change, message):
     assert "CachedAttention 'attn'" in str(e.value)
 
 
-@pytest.mark.parametrize("change,message", [
-    (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),
-    (lambda x: x.update(total_sequence_length=np.array(99, np.int32), seqlens_k=np.array([98], np.int32)),
-     "do not fit together"),
-    (lambda x: x.update(past_key=np.zeros((1, KVH + 1, 8, D), np.float16)), "past_key/past_value have shapes"),
-    (lambda x: x.update(q=np.zeros((2, 1, H * D), np.float32)), "batch 1"),
-    (lambda x: x.update(k=np.zeros((1, 2, KVH * D), np.float32)), "key/value have shapes"),
-])
+@pytest.mark.parametrize(
+    "change,message",
+    [
+        (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),
+        (
+            lambda x: x.update(total_sequence_length=np.array(99, np.int32), seqlens_k=np.array([98], np.int32)),
+            "do not fit together",
+        ),
+        (lambda x: x.update(past_key=np.zeros((1, KVH + 1, 8, D), np.float16)), "past_key/past_value have shapes"),
+        (lambda x: x.update(q=np.zeros((2, 1, H * D), np.float32)), "batch 1"),
+        (lambda x: x.update(k=np.zeros((1, 2, KVH * D), np.float32)), "key/value have shapes"),
+    ],
+)
 def test_inputs_that_do_not_fit_are_refused_naming_the_node(tmp_path, change, message):
     _expect_refused(session(_graph(tmp_path / "a.onnx")), _inputs(1, 8, 8), change, message)
 
 
 def test_attributes_it_does_not_implement_are_refused(tmp_path):
     from silk_export.onnx.kv_precision import make_kv16_decoder
-    path = _graph(tmp_path / "decoder.onnx", op="GroupQueryAttention", domain="com.microsoft",
-                  cache=TensorProto.FLOAT, do_rotary=1)
+
+    path = _graph(
+        tmp_path / "decoder.onnx",
+        op="GroupQueryAttention",
+        domain="com.microsoft",
+        cache=TensorProto.FLOAT,
+        do_rotary=1,
+    )
     m = onnx.load(str(path))
     for vi in m.graph.input[3:5]:
         vi.name = vi.name.replace("past_key", "past_key_0").replace("past_value", "past_value_0")
@@ -170,6 +208,7 @@ def test_attributes_it_does_not_implement_are_refused(tmp_path):
 
 
 # --- int8 caches: rows of D int8 values + the row's float32 scale (docs/model_contract.md) ---
+
 
 def _quantize(x):
     """Rows [..., D] float32 -> [..., D + 4] int8 by the contract: scale = max|x| / 127,
@@ -226,12 +265,19 @@ def test_int8_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
     np.testing.assert_allclose(copy[0], _reference8(x, 1 / np.sqrt(D))[0], atol=2e-6)
 
 
-@pytest.mark.parametrize("change,message", [
-    (lambda x: x.update(past_key=np.zeros((1, KVH, 8, D), np.int8), past_value=np.zeros((1, KVH, 8, D), np.int8)),
-     rf"expected \[1, kv_heads, capacity, head_dim \+ 4\] = \[1, {KVH}, C, {D + 4}\]"),
-    (lambda x: x.update(past_key=np.zeros((1, KVH, 8, D + 4), np.int8)), "past_key/past_value have shapes"),
-    (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),
-])
+@pytest.mark.parametrize(
+    "change,message",
+    [
+        (
+            lambda x: x.update(
+                past_key=np.zeros((1, KVH, 8, D), np.int8), past_value=np.zeros((1, KVH, 8, D), np.int8)
+            ),
+            rf"expected \[1, kv_heads, capacity, head_dim \+ 4\] = \[1, {KVH}, C, {D + 4}\]",
+        ),
+        (lambda x: x.update(past_key=np.zeros((1, KVH, 8, D + 4), np.int8)), "past_key/past_value have shapes"),
+        (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),
+    ],
+)
 def test_int8_inputs_that_do_not_fit_are_refused_naming_the_node(tmp_path, change, message):
     _expect_refused(session(_graph(tmp_path / "a.onnx", cache=TensorProto.INT8)), _inputs8(1, 8, 9), change, message)
 

@@ -3,6 +3,7 @@
 --shard 1/2, --merge) holds exactly the samples of one unsharded build; cached tokens are the
 official golden tokens; refused meshes are listed with their named reasons; the cache is read
 back memory-mapped and gives the training pipeline's samples."""
+
 from __future__ import annotations
 
 import json
@@ -18,20 +19,27 @@ from silk_export.data.samples import make_sample
 from silk_export.data.shard_store import Shard, parse_shard
 from silk_export.data.sharded_dataset import ShardedSource, dataset_rows
 
-BAD = {"degenerate_only.obj": "no-faces", "garbage_bytes.obj": "error:parse error",
-       "empty.obj": "error:parse error"}
+BAD = {"degenerate_only.obj": "no-faces", "garbage_bytes.obj": "error:parse error", "empty.obj": "error:parse error"}
 
 
 def write_off(path, v, f):
-    path.write_text(f"OFF\n{len(v)} {len(f)} 0\n" + "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v)
-                    + "".join(f"3 {a} {b} {c}\n" for a, b, c in f))
+    path.write_text(
+        f"OFF\n{len(v)} {len(f)} 0\n"
+        + "".join(f"{x!r} {y!r} {z!r}\n" for x, y, z in v)
+        + "".join(f"3 {a} {b} {c}\n" for a, b, c in f)
+    )
 
 
 def write_stl(path, v, f):
     lines = ["solid t"]
     for tri in f:
-        lines += ["facet normal 0 0 0", "outer loop", *(f"vertex {v[i][0]!r} {v[i][1]!r} {v[i][2]!r}" for i in tri),
-                  "endloop", "endfacet"]
+        lines += [
+            "facet normal 0 0 0",
+            "outer loop",
+            *(f"vertex {v[i][0]!r} {v[i][1]!r} {v[i][2]!r}" for i in tri),
+            "endloop",
+            "endfacet",
+        ]
     path.write_text("\n".join(lines + ["endsolid t"]) + "\n")
 
 
@@ -60,7 +68,9 @@ def builds(tree, dev_dir, tmp_path_factory):
     build_index(tree, one, dev_dir)
     two = tmp_path_factory.mktemp("two")
     for shard in ("1/2", "0/2"):  # any order, e.g. two array jobs
-        assert main(["dataset", "--root", str(tree), "--out", str(two), "--shard", shard, "--dev-dir", str(dev_dir)]) == 0
+        assert (
+            main(["dataset", "--root", str(tree), "--out", str(two), "--shard", shard, "--dev-dir", str(dev_dir)]) == 0
+        )
     assert not (two / "dataset.json").exists()
     assert main(["dataset", "--out", str(two), "--merge"]) == 0
     return one, two

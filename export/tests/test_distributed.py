@@ -2,6 +2,7 @@
 """`silk-export train` under torchrun (2 ranks, CPU gloo) gives the per-step losses of a single
 process with the same global batch; checkpoints written by either resume to identical states;
 an FSDP run resumes a DDP checkpoint and continues with the same losses."""
+
 from __future__ import annotations
 
 import json
@@ -23,16 +24,47 @@ STEPS = 20
 
 
 def train_argv(data: Path, out: Path, *extra: str) -> list[str]:
-    return ["train", "--data", str(data), "--config", "micro", "--steps", str(STEPS), "--out", str(out),
-            "--batch-size", "4", "--threads", "1", "--log-every", "1", "--val-every", "0", "--no-progress",
-            *extra]
+    return [
+        "train",
+        "--data",
+        str(data),
+        "--config",
+        "micro",
+        "--steps",
+        str(STEPS),
+        "--out",
+        str(out),
+        "--batch-size",
+        "4",
+        "--threads",
+        "1",
+        "--log-every",
+        "1",
+        "--val-every",
+        "0",
+        "--no-progress",
+        *extra,
+    ]
 
 
 def torchrun(argv: list[str]) -> None:
-    env = {**os.environ, "SILK_LIBRARY": silk_mesh.library_path(), "OMP_NUM_THREADS": "1",
-           "PYTHONPATH": str(EXPORT_DIR) + os.pathsep + os.environ.get("PYTHONPATH", "")}
-    cmd = [sys.executable, "-m", "torch.distributed.run", "--standalone", "--nproc_per_node", "2",
-           "-m", "silk_export", *argv]
+    env = {
+        **os.environ,
+        "SILK_LIBRARY": silk_mesh.library_path(),
+        "OMP_NUM_THREADS": "1",
+        "PYTHONPATH": str(EXPORT_DIR) + os.pathsep + os.environ.get("PYTHONPATH", ""),
+    }
+    cmd = [
+        sys.executable,
+        "-m",
+        "torch.distributed.run",
+        "--standalone",
+        "--nproc_per_node",
+        "2",
+        "-m",
+        "silk_export",
+        *argv,
+    ]
     r = subprocess.run(cmd, cwd=EXPORT_DIR, env=env, capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
 

@@ -3,6 +3,7 @@
 official fixture: official architecture and key layout, random weights) through the importer,
 trains it with the fine-tuning defaults (lower LR, warm-up) on a few dev meshes and lowers their
 loss; `export` writes a model folder (model.json v3, arch official) that silkgen runs."""
+
 from __future__ import annotations
 
 import json
@@ -32,9 +33,33 @@ def run(dev_dir, fixture_dir, tmp_path_factory, mesh_folder):
     data = mesh_folder(dev_dir, SMALL_DEV)
     out = tmp_path_factory.mktemp("ft")
     torch.set_num_threads(1)
-    assert main(["train", "--data", str(data), "--init-from", str(fixture_dir / "model.safetensors"),
-                 "--init-config", str(fixture_dir / "config.json"), "--steps", str(STEPS), "--batch-size", "4",
-                 "--out", str(out), "--threads", "1", "--log-every", "1", "--val-every", "0", "--no-progress"]) == 0
+    assert (
+        main(
+            [
+                "train",
+                "--data",
+                str(data),
+                "--init-from",
+                str(fixture_dir / "model.safetensors"),
+                "--init-config",
+                str(fixture_dir / "config.json"),
+                "--steps",
+                str(STEPS),
+                "--batch-size",
+                "4",
+                "--out",
+                str(out),
+                "--threads",
+                "1",
+                "--log-every",
+                "1",
+                "--val-every",
+                "0",
+                "--no-progress",
+            ]
+        )
+        == 0
+    )
     return data, out
 
 
@@ -61,14 +86,33 @@ def test_ten_steps_lower_the_loss_of_the_released_network(run, fixture_dir):
 
 def test_export_of_the_fine_tuned_model_runs_in_silkgen(run, silkgen, dev_dir, tmp_path):
     data, out = run
-    assert main(["export", "--checkpoint", str(out / "checkpoint.pt"), "--out", str(tmp_path / "model"),
-                 "--no-int8"]) == 0
+    assert (
+        main(["export", "--checkpoint", str(out / "checkpoint.pt"), "--out", str(tmp_path / "model"), "--no-int8"]) == 0
+    )
     meta = json.loads((tmp_path / "model" / "model.json").read_text())
     assert meta["arch"] == "official" and meta["model_version"] == 3 and meta["training"]["steps"] == STEPS
-    r = subprocess.run([str(silkgen), str(data / f"{SMALL_DEV[0]}.obj"), "--model", str(tmp_path / "model"),
-                        "--tokens", str(tmp_path / "ids.txt"), "--max-tokens", "40", "--seed", "1",
-                        "--threads", "1", "--stats", str(tmp_path / "stats.json"), "-q"],
-                       capture_output=True, text=True, timeout=300)
+    r = subprocess.run(
+        [
+            str(silkgen),
+            str(data / f"{SMALL_DEV[0]}.obj"),
+            "--model",
+            str(tmp_path / "model"),
+            "--tokens",
+            str(tmp_path / "ids.txt"),
+            "--max-tokens",
+            "40",
+            "--seed",
+            "1",
+            "--threads",
+            "1",
+            "--stats",
+            str(tmp_path / "stats.json"),
+            "-q",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     ids = np.loadtxt(tmp_path / "ids.txt", dtype=np.int64, ndmin=1)
     assert 0 < ids.size <= 40 and ids.max() <= 10267

@@ -4,6 +4,7 @@ Architecture interface only: Architecture.step's KV-cache decoding gives the tea
 forward pass's logits, sample_tokens and `silk-export generate` produce ids from a tiny random
 model of each architecture, and with the official fixture's weights (official-fixture/) the
 PyTorch loop reproduces the official implementation's 100 greedy ids."""
+
 from __future__ import annotations
 
 import json
@@ -21,11 +22,27 @@ from silk_export.official.checkpoint import load_official
 
 # One tiny configuration per registered architecture (a new architecture needs its entry here).
 TINY = {
-    "silk": ModelConfig("tiny-silk", d_model=64, n_layers=2, n_heads=2, n_latents=16, max_seq_len=64,
-                        encoder_layers=1, n_points=128),
-    "official": ModelConfig("tiny-official", d_model=32, n_layers=2, n_heads=2, n_latents=4 + 9, max_seq_len=64,
-                            encoder_layers=1, n_points=128, arch="official", attn_head_dim=16, context_dim=24,
-                            n_queries=9, memory_slots=4, encoder_width=16, encoder_heads=2, qk_scale=10.0),
+    "silk": ModelConfig(
+        "tiny-silk", d_model=64, n_layers=2, n_heads=2, n_latents=16, max_seq_len=64, encoder_layers=1, n_points=128
+    ),
+    "official": ModelConfig(
+        "tiny-official",
+        d_model=32,
+        n_layers=2,
+        n_heads=2,
+        n_latents=4 + 9,
+        max_seq_len=64,
+        encoder_layers=1,
+        n_points=128,
+        arch="official",
+        attn_head_dim=16,
+        context_dim=24,
+        n_queries=9,
+        memory_slots=4,
+        encoder_width=16,
+        encoder_heads=2,
+        qk_scale=10.0,
+    ),
 }
 
 
@@ -101,6 +118,7 @@ def test_official_fixture_greedy_ids_through_step(shared):
         pytest.skip(f"no official fixture in {fixture}")
     model, _ = load_official(fixture / "model.safetensors", fixture / "config.json", progress=False)
     want = [int(x) for x in (fixture / "greedy.txt").read_text().split()]
-    toks, eos = sample_tokens(model, np.load(fixture / "points.npy"), len(want), 1.0, 1,
-                              torch.Generator().manual_seed(0))
+    toks, eos = sample_tokens(
+        model, np.load(fixture / "points.npy"), len(want), 1.0, 1, torch.Generator().manual_seed(0)
+    )
     assert not eos and toks.tolist() == want

@@ -3,6 +3,7 @@
 HalfMatMul), run by Python's onnxruntime with libsilk registered: against the float16 weights'
 product in numpy, the rewrite of the head only (MatMul + bias Add into `logits`, weight stored
 inline or as external data), what it leaves alone, and the op's errors for shapes that do not fit."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -22,8 +23,10 @@ def _head(path, k, n, bias=True, external=False, other_user=False, seed=0):
     r = np.random.default_rng(seed)
     w = r.normal(0, 0.05, (k, n)).astype(np.float32)
     b = r.normal(0, 0.1, n).astype(np.float32)
-    nodes = [helper.make_node("Relu", ["x"], ["hidden"], name="relu"),
-             helper.make_node("MatMul", ["hidden", "W"], ["mm" if bias else "logits"], name="head")]
+    nodes = [
+        helper.make_node("Relu", ["x"], ["hidden"], name="relu"),
+        helper.make_node("MatMul", ["hidden", "W"], ["mm" if bias else "logits"], name="head"),
+    ]
     inits = [numpy_helper.from_array(w, "W")]
     if bias:
         nodes.append(helper.make_node("Add", ["mm", "b"], ["logits"], name="bias"))
@@ -32,12 +35,19 @@ def _head(path, k, n, bias=True, external=False, other_user=False, seed=0):
     if other_user:  # W read elsewhere too: it must stay
         nodes.append(helper.make_node("ReduceSum", ["W"], ["w_sum"], name="other", keepdims=0))
         outputs.append(helper.make_tensor_value_info("w_sum", TensorProto.FLOAT, None))
-    g = helper.make_graph(nodes, "g", [helper.make_tensor_value_info("x", TensorProto.FLOAT, ["B", "T", k])],
-                          outputs, inits)
+    g = helper.make_graph(
+        nodes, "g", [helper.make_tensor_value_info("x", TensorProto.FLOAT, ["B", "T", k])], outputs, inits
+    )
     m = helper.make_model(g, opset_imports=[helper.make_opsetid("", 17)], ir_version=8)
     if external:
-        onnx.save(m, str(path), save_as_external_data=True, all_tensors_to_one_file=True,
-                  location=path.name + ".data", size_threshold=0)
+        onnx.save(
+            m,
+            str(path),
+            save_as_external_data=True,
+            all_tensors_to_one_file=True,
+            location=path.name + ".data",
+            size_threshold=0,
+        )
     else:
         onnx.save(m, str(path))
     return w, (b if bias else np.zeros(n, np.float32))
@@ -67,7 +77,7 @@ def test_head_becomes_halfmatmul_equal_to_the_float16_product(tmp_path, k, n, bi
     want = hidden @ w.astype(np.float16).astype(np.float64) + b
     np.testing.assert_allclose(got, want, rtol=1e-5, atol=1e-5)
     full = hidden @ w.astype(np.float64) + b  # float32 weights: within the float16 rounding of each weight
-    assert np.all(np.abs(got - full) <= (np.abs(hidden) @ np.abs(w).astype(np.float64)) * 2.0 ** -11 + 1e-5)
+    assert np.all(np.abs(got - full) <= (np.abs(hidden) @ np.abs(w).astype(np.float64)) * 2.0**-11 + 1e-5)
 
 
 def test_a_weight_read_elsewhere_stays(tmp_path):
@@ -95,10 +105,16 @@ def test_graphs_without_such_a_head_are_left_unchanged(tmp_path):
 def test_op_names_shapes_that_do_not_fit(tmp_path):
     w = numpy_helper.from_array(np.zeros((5, 8), np.float16), "W")
     node = helper.make_node("HalfMatMul", ["a", "W"], ["y"], name="head", domain="ai.silk")
-    g = helper.make_graph([node], "g", [helper.make_tensor_value_info("a", TensorProto.FLOAT, None)],
-                          [helper.make_tensor_value_info("y", TensorProto.FLOAT, None)], [w])
-    m = helper.make_model(g, opset_imports=[helper.make_opsetid("", 17), helper.make_opsetid("ai.silk", 1)],
-                          ir_version=8)
+    g = helper.make_graph(
+        [node],
+        "g",
+        [helper.make_tensor_value_info("a", TensorProto.FLOAT, None)],
+        [helper.make_tensor_value_info("y", TensorProto.FLOAT, None)],
+        [w],
+    )
+    m = helper.make_model(
+        g, opset_imports=[helper.make_opsetid("", 17), helper.make_opsetid("ai.silk", 1)], ir_version=8
+    )
     onnx.save(m, str(tmp_path / "bad.onnx"))
     s = session(tmp_path / "bad.onnx")
     assert s.run(None, {"a": np.ones((2, 8), np.float32)})[0].shape == (2, 5)

@@ -3,6 +3,7 @@
 Python's onnxruntime with libsilk registered: against onnxruntime's own MatMulNBits on the same
 initializers, against the dequantized product in numpy, the rewrite of a graph's MatMulNBits
 nodes (the ones it cannot compute are kept and named) and the errors for shapes that do not fit."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -33,12 +34,16 @@ def _dequantized(packed, scales, n, k, block):
 
 
 def _graph(path, n, k, block, packed, scales, op="MatMulNBits", domain="com.microsoft", rank=3, **extra):
-    a_shape = ["B", "T", "K"][3 - rank:]
+    a_shape = ["B", "T", "K"][3 - rank :]
     attrs = dict(K=k, N=n, bits=4, block_size=block, **extra)
     node = helper.make_node(op, ["a", "w", "s"], ["y"], name="mm", domain=domain, **attrs)
-    g = helper.make_graph([node], "g", [helper.make_tensor_value_info("a", TensorProto.FLOAT, a_shape)],
-                          [helper.make_tensor_value_info("y", TensorProto.FLOAT, None)],
-                          [numpy_helper.from_array(packed, "w"), numpy_helper.from_array(scales, "s")])
+    g = helper.make_graph(
+        [node],
+        "g",
+        [helper.make_tensor_value_info("a", TensorProto.FLOAT, a_shape)],
+        [helper.make_tensor_value_info("y", TensorProto.FLOAT, None)],
+        [numpy_helper.from_array(packed, "w"), numpy_helper.from_array(scales, "s")],
+    )
     m = helper.make_model(g, opset_imports=[helper.make_opsetid("", 17), helper.make_opsetid(domain, 1)], ir_version=8)
     onnx.save(m, str(path))
     return path
@@ -52,8 +57,9 @@ def _rewritten(src, dst):
     return dst
 
 
-@pytest.mark.parametrize("n,k,block,lead", [(64, 256, 32, (1, 1)), (40, 96, 32, (1, 3)), (24, 512, 128, (2,)),
-                                            (10, 128, 64, (1, 5))])
+@pytest.mark.parametrize(
+    "n,k,block,lead", [(64, 256, 32, (1, 1)), (40, 96, 32, (1, 3)), (24, 512, 128, (2,)), (10, 128, 64, (1, 5))]
+)
 def test_matches_matmulnbits_and_the_dequantized_product(tmp_path, n, k, block, lead):
     packed, scales = _weights(n, k, block)
     ref = _graph(tmp_path / "ref.onnx", n, k, block, packed, scales, accuracy_level=4, rank=len(lead) + 1)

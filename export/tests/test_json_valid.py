@@ -4,6 +4,7 @@ writes a bare NaN / Infinity unless told not to, and silkgen then reads "not a J
 the one JSON writer (silk_export.json_io) refuses or nulls them, `silk-export export` refuses a
 checkpoint with non-finite weights, model.json refuses non-finite figures, and the C API's
 reports (a candidate's Chamfer score of an empty mesh is +inf) parse with a strict parser."""
+
 from __future__ import annotations
 
 import json
@@ -25,8 +26,10 @@ REPO_ROOT = Path(__file__).resolve().parents[2]  # this checkout (tests only)
 
 def strict_loads(text: str):
     """json.loads that, like every non-Python reader, refuses NaN / Infinity / -Infinity."""
+
     def refuse(word):
         raise ValueError(f"not JSON: {word}")
+
     return json.loads(text, parse_constant=refuse)
 
 
@@ -58,8 +61,9 @@ def test_null_writes_valid_json(tmp_path):
         dumps(DOC, "zero")
 
 
-TINY_SILK = ModelConfig("tiny-silk", d_model=64, n_layers=2, n_heads=2, n_latents=16, max_seq_len=64,
-                        encoder_layers=1, n_points=128)
+TINY_SILK = ModelConfig(
+    "tiny-silk", d_model=64, n_layers=2, n_heads=2, n_latents=16, max_seq_len=64, encoder_layers=1, n_points=128
+)
 
 
 def tiny_checkpoint(path, poison: dict):
@@ -67,7 +71,7 @@ def tiny_checkpoint(path, poison: dict):
     model = get_architecture("silk").build(TINY_SILK)
     state = {k: v.clone() for k, v in model.state_dict().items()}
     for key, values in poison.items():
-        state[key].view(-1)[:len(values)] = torch.tensor(values)
+        state[key].view(-1)[: len(values)] = torch.tensor(values)
     save_state(path, model.cfg.to_dict(), state, None, 0, {})
     return sorted(state)
 
@@ -75,8 +79,7 @@ def tiny_checkpoint(path, poison: dict):
 def test_export_refuses_nonfinite_weights(tmp_path, capsys):
     keys = [k for k in tiny_checkpoint(tmp_path / "probe.pt", {}) if k.endswith(".weight")]
     nan_key, inf_key = keys[0], keys[-1]
-    tiny_checkpoint(tmp_path / "checkpoint.pt", {nan_key: [float("nan"), 0.5, float("nan")],
-                                                 inf_key: [float("-inf")]})
+    tiny_checkpoint(tmp_path / "checkpoint.pt", {nan_key: [float("nan"), 0.5, float("nan")], inf_key: [float("-inf")]})
     out = tmp_path / "model"
     assert main(["export", "--checkpoint", str(tmp_path / "checkpoint.pt"), "--out", str(out), "--no-int8"]) == 2
     err = capsys.readouterr().err
@@ -88,8 +91,21 @@ def test_export_refuses_nonfinite_weights(tmp_path, capsys):
 def test_export_refuses_a_nonfinite_sampling_default(tmp_path, capsys):
     tiny_checkpoint(tmp_path / "checkpoint.pt", {})
     out = tmp_path / "model"
-    assert main(["export", "--checkpoint", str(tmp_path / "checkpoint.pt"), "--out", str(out), "--no-int8",
-                 "--temperature", "nan"]) == 2
+    assert (
+        main(
+            [
+                "export",
+                "--checkpoint",
+                str(tmp_path / "checkpoint.pt"),
+                "--out",
+                str(out),
+                "--no-int8",
+                "--temperature",
+                "nan",
+            ]
+        )
+        == 2
+    )
     assert "model.json" in (err := capsys.readouterr().err) and "'sampling.temperature' = nan" in err
     assert not out.exists()
 
@@ -102,11 +118,15 @@ KNOT = REPO_ROOT / "samples/torus_knot.obj"
 def test_capi_reports_with_an_infinite_chamfer_score_are_valid_json():
     """Unconstrained (no grammar mask) at a high temperature, the first id is illegal: no face, so
     each candidate's Chamfer score against the input is +inf, which the report must not print."""
-    with silk_mesh.Model(TINY_MODEL, threads=1) as model, silk_mesh.Generator(model) as gen, \
-            silk_mesh.Mesh.load(KNOT) as src:
+    with (
+        silk_mesh.Model(TINY_MODEL, threads=1) as model,
+        silk_mesh.Generator(model) as gen,
+        silk_mesh.Mesh.load(KNOT) as src,
+    ):
         # report_flags 1 = SILK_GENERATE_RECORD_TRACE: report_json(trace=True) is available
-        mesh, _, st = gen.run(src, seed=3, max_tokens=14, candidates=2, temperature=5.0, top_k=0,
-                              unconstrained=1, report_flags=1)
+        mesh, _, st = gen.run(
+            src, seed=3, max_tokens=14, candidates=2, temperature=5.0, top_k=0, unconstrained=1, report_flags=1
+        )
         mesh.close()
         assert st["faces"] == 0 and st["score"] == math.inf
         report = strict_loads(gen.report_json())

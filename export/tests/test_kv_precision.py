@@ -2,6 +2,7 @@
 """The fp16 and int8 self-K/V cache variants (silk_export.onnx.kv_precision, `silk-export kv16`,
 `kv8`): made by rewriting a decoder graph, they keep the weights (sharing external data), take
 float16 caches / int8 rows [1, H, C, D + 4] and give the fp32 graph's logits to that precision."""
+
 from __future__ import annotations
 
 import json
@@ -31,7 +32,7 @@ def _cross(folder: Path) -> np.ndarray:
 
 def _logits(decoder_path: Path, cross: np.ndarray, chunk: int) -> np.ndarray:
     state = DecoderState(session(decoder_path), cross)
-    rows = [state.run(IDS[i:i + chunk]) for i in range(0, len(IDS), chunk)]
+    rows = [state.run(IDS[i : i + chunk]) for i in range(0, len(IDS), chunk)]
     return np.concatenate(rows)
 
 
@@ -50,7 +51,11 @@ def test_variant_takes_float16_caches_and_matches_fp32(tmp_path, attention):
     types = {i.name: i.type for i in session(m / "variant.onnx").get_inputs()}
     assert types["past_key_0"] == types["past_value_1"] == "tensor(float16)"
     # The silk form: float16 cross K/V (CrossAttention reads it) and logits head (HalfMatMul).
-    assert types["cross_key_0"] == types["cross_value_1"] == ("tensor(float16)" if attention == "silk" else "tensor(float)")
+    assert (
+        types["cross_key_0"]
+        == types["cross_value_1"]
+        == ("tensor(float16)" if attention == "silk" else "tensor(float)")
+    )
     assert ("HalfMatMul" in {n.op_type for n in nodes}) == (attention == "silk")
     cross = _cross(m)
     ref, half = _logits(m / "decoder.onnx", cross, 1), _logits(m / "variant.onnx", cross, 1)
@@ -63,15 +68,23 @@ def test_variant_shares_external_data(tmp_path):
     m = tmp_path / "m"
     shutil.copytree(TINY, m)
     g = onnx.load(str(m / "decoder.onnx"))
-    onnx.save_model(g, str(m / "decoder.onnx"), save_as_external_data=True, all_tensors_to_one_file=True,
-                    location="decoder.onnx.data", size_threshold=0)
+    onnx.save_model(
+        g,
+        str(m / "decoder.onnx"),
+        save_as_external_data=True,
+        all_tensors_to_one_file=True,
+        location="decoder.onnx.data",
+        size_threshold=0,
+    )
     assert make_kv16_decoder(m / "decoder.onnx", m / "decoder.kv16.onnx") == ["decoder.onnx.data"]
     dims = json.loads((m / "model.json").read_text())["dims"]
     head = dims["d_model"] * 10269 * 2  # the float16 logits head, inline
     assert head < (m / "decoder.kv16.onnx").stat().st_size < head + 100_000  # no copy of the other weights
     assert not (m / "decoder.kv16.onnx.data").exists()
     cross = _cross(m)
-    assert (_logits(m / "decoder.kv16.onnx", cross, 1).argmax(-1) == _logits(m / "decoder.onnx", cross, 1).argmax(-1)).all()
+    assert (
+        _logits(m / "decoder.kv16.onnx", cross, 1).argmax(-1) == _logits(m / "decoder.onnx", cross, 1).argmax(-1)
+    ).all()
 
 
 def test_refuses_a_graph_without_group_query_attention(tmp_path):
@@ -97,8 +110,12 @@ def _tiny_without(tmp_path, graphs: list[str], keys: list[str]):
 
 def test_cli_adds_variants_and_default(tmp_path):
     m = _tiny_without(tmp_path, ["decoder.kv16.onnx"], ["kv_fp16", "kv_int8"])
-    p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "fp16"],
-                       capture_output=True, text=True, cwd=REPO / "export")
+    p = subprocess.run(
+        [sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "fp16"],
+        capture_output=True,
+        text=True,
+        cwd=REPO / "export",
+    )
     assert p.returncode == 0, p.stderr
     files = json.loads((m / "model.json").read_text())["files"]
     assert files["kv_fp16"] == {"decoder": "decoder.kv16.onnx"} and files["default_kv_precision"] == "fp16"
@@ -137,20 +154,32 @@ def test_int8_variant_takes_int8_row_caches_and_matches_fp32(tmp_path):
 
 def test_cli_kv8_adds_int8_variants_and_default(tmp_path):
     m = _tiny_without(tmp_path, ["decoder.kv8.onnx"], ["kv_int8"])
-    p = subprocess.run([sys.executable, "-m", "silk_export", "kv8", str(m), "--default", "int8"],
-                       capture_output=True, text=True, cwd=REPO / "export")
+    p = subprocess.run(
+        [sys.executable, "-m", "silk_export", "kv8", str(m), "--default", "int8"],
+        capture_output=True,
+        text=True,
+        cwd=REPO / "export",
+    )
     assert p.returncode == 0, p.stderr
     assert json.loads(p.stdout) == {"kv_int8": {"decoder": "decoder.kv8.onnx"}, "default_kv_precision": "int8"}
     files = json.loads((m / "model.json").read_text())["files"]
     assert files["kv_int8"] == {"decoder": "decoder.kv8.onnx"} and files["default_kv_precision"] == "int8"
     assert files["kv_fp16"] == {"decoder": "decoder.kv16.onnx"}  # the fp16 variant stays
     assert (m / "decoder.kv8.onnx").read_bytes() == (TINY / "decoder.kv8.onnx").read_bytes()
-    p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "int8"],
-                       capture_output=True, text=True, cwd=REPO / "export")  # kv8 variants now exist
+    p = subprocess.run(
+        [sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "int8"],
+        capture_output=True,
+        text=True,
+        cwd=REPO / "export",
+    )  # kv8 variants now exist
     assert p.returncode == 0, p.stderr
     meta = json.loads((m / "model.json").read_text())
     del meta["files"]["kv_int8"]
     (m / "model.json").write_text(json.dumps(meta))
-    p = subprocess.run([sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "int8"],
-                       capture_output=True, text=True, cwd=REPO / "export")
+    p = subprocess.run(
+        [sys.executable, "-m", "silk_export", "kv16", str(m), "--default", "int8"],
+        capture_output=True,
+        text=True,
+        cwd=REPO / "export",
+    )
     assert p.returncode == 2 and "silk-export kv16: error" in p.stderr and "silk-export kv8 first" in p.stderr

@@ -3,6 +3,7 @@
 silkgen golden, the step-wise API grows by layers and ends with the same ids, destroy order is
 free, a model with NaN weights fails with an error naming the model, cancel keeps stats, and
 part orientation reverses whole parts in the preview and the result alike."""
+
 from __future__ import annotations
 
 import json
@@ -27,8 +28,7 @@ pytestmark = pytest.mark.skipif(not silk_mesh.generation_available(), reason="li
 def test_python_generation_matches_the_silkgen_golden():
     want = np.array([int(x) for x in GOLDEN.read_text().split()], np.int32)
     with silk_mesh.Model(TINY, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
-        mesh, ids, stats = gen.run(src, seed=7, max_tokens=300, surface_tolerance=0, candidates=1,
-                                   face_guidance="off")
+        mesh, ids, stats = gen.run(src, seed=7, max_tokens=300, surface_tolerance=0, candidates=1, face_guidance="off")
         with mesh:
             assert np.array_equal(ids, want)
             assert stats["faces"] == mesh.triangle_count > 0
@@ -77,6 +77,7 @@ def test_cancel_keeps_the_stats():
 def test_nan_weights_fail_naming_the_model(tmp_path):
     onnx = pytest.importorskip("onnx")
     from onnx import numpy_helper
+
     bad = tmp_path / "nan_model"
     shutil.copytree(TINY, bad)
     m = onnx.load(str(bad / "decoder.onnx"))
@@ -94,6 +95,7 @@ def test_nan_weights_fail_naming_the_model(tmp_path):
 def _c_struct_fields(name: str) -> list[tuple[str, str]]:
     """(field, C type) of `typedef struct NAME { ... } NAME;` in silk.h, in order."""
     import re
+
     text = (REPO_ROOT / "engine/include/silk/silk.h").read_text()
     body = re.search(r"typedef struct %s \{(.*?)\} %s;" % (name, name), text, re.S).group(1)
     body = re.sub(r"/\*.*?\*/", "", body, flags=re.S)
@@ -107,13 +109,19 @@ def _c_struct_fields(name: str) -> list[tuple[str, str]]:
     return out
 
 
-@pytest.mark.parametrize("c_name,py_struct", [("silk_generate_params", "GenerateParams"),
-                                              ("silk_generate_stats", "GenerateStats")])
+@pytest.mark.parametrize(
+    "c_name,py_struct", [("silk_generate_params", "GenerateParams"), ("silk_generate_stats", "GenerateStats")]
+)
 def test_ctypes_declarations_follow_silk_h(c_name, py_struct):
     import ctypes
     from silk_mesh import _capi as silk_c
-    scalar = {"int32_t": ctypes.c_int32, "int64_t": ctypes.c_int64, "uint64_t": ctypes.c_uint64,
-              "double": ctypes.c_double}
+
+    scalar = {
+        "int32_t": ctypes.c_int32,
+        "int64_t": ctypes.c_int64,
+        "uint64_t": ctypes.c_uint64,
+        "double": ctypes.c_double,
+    }
     want = _c_struct_fields(c_name)
     got = getattr(silk_c, py_struct)._fields_
     assert [n for n, _ in got] == [n for n, _ in want]
@@ -156,8 +164,11 @@ def test_orientation_reverses_whole_parts_in_the_preview_and_the_result():
     stats say); and the step-wise preview at the end equals the result, i.e. it is oriented too.
     Seeds 0.. until one run reverses a part (eight without one is a failure)."""
     default = REPO_ROOT / "models/default"
-    with silk_mesh.Model(default, threads=1) as model, silk_mesh.Generator(model) as gen, \
-            silk_mesh.Mesh.load(KNOT) as src:
+    with (
+        silk_mesh.Model(default, threads=1) as model,
+        silk_mesh.Generator(model) as gen,
+        silk_mesh.Mesh.load(KNOT) as src,
+    ):
         for seed in range(8):
             out = _orient_both(gen, src, seed)
             t_ids, t_pos, t_tri, t_stats, _ = out["tokens"]
@@ -183,6 +194,7 @@ def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
     """model.json "sampling" (written by `silk-export export --temperature`) is where a model's
     sampling defaults live; explicit parameters still win, and generate.json records the result."""
     from silk_export.evaluation.generate import generate_with_runtime
+
     greedy = tmp_path / "greedy"
     shutil.copytree(TINY, greedy)
     meta = json.loads((greedy / "model.json").read_text())
@@ -193,7 +205,11 @@ def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
         _, default, _ = gen.run(src, seed=5, max_tokens=120)
         assert json.loads(gen.report_json())["settings"]["temperature"] == 0.5
     assert not np.array_equal(explicit, default)  # the check can tell greedy from the built-in defaults
-    with silk_mesh.Model(greedy, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+    with (
+        silk_mesh.Model(greedy, threads=1) as model,
+        silk_mesh.Generator(model) as gen,
+        silk_mesh.Mesh.load(KNOT) as src,
+    ):
         _, from_json, _ = gen.run(src, seed=5, max_tokens=120)
         s = json.loads(gen.report_json())["settings"]
         assert (s["temperature"], s["top_k"]) == (0.0, 1)
@@ -210,12 +226,17 @@ def test_model_json_candidates_is_the_default_best_of_n(tmp_path):
     """model.json sampling.candidates (`silk-export export --candidates`) is the N a caller gets
     when it names none; an explicit N wins; generate.json lists every candidate that ran."""
     from silk_export.evaluation.generate import generate_with_runtime
+
     three = tmp_path / "three"
     shutil.copytree(TINY, three)
     meta = json.loads((three / "model.json").read_text())
     meta["sampling"] = {"candidates": 3}
     write_json(three / "model.json", meta)
-    with silk_mesh.Model(three, threads=1) as model, silk_mesh.Generator(model) as gen, silk_mesh.Mesh.load(KNOT) as src:
+    with (
+        silk_mesh.Model(three, threads=1) as model,
+        silk_mesh.Generator(model) as gen,
+        silk_mesh.Mesh.load(KNOT) as src,
+    ):
         _, _, st = gen.run(src, seed=5, max_tokens=120)
         assert st["candidates"] == 3 and json.loads(gen.report_json())["settings"]["candidates"] == 3
         _, _, st = gen.run(src, seed=5, max_tokens=120, candidates=1)

@@ -2,6 +2,7 @@
 """Evaluation on shapes with known answers: a mesh against itself, a cube against a larger
 concentric cube (analytic distances), reversed orientation (NC = -1, |NC| = 1), and the
 structural figures of closed, flipped, open and multi-part meshes."""
+
 from __future__ import annotations
 
 import json
@@ -15,14 +16,36 @@ from silk_export.evaluation.metrics import compare_meshes
 from silk_export.evaluation.structure import mesh_structure
 
 CUBE_V = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=np.float64)
-CUBE_F = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
-                   [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+CUBE_F = np.array(
+    [
+        [0, 1, 3],
+        [0, 3, 2],
+        [4, 6, 7],
+        [4, 7, 5],
+        [0, 4, 5],
+        [0, 5, 1],
+        [2, 3, 7],
+        [2, 7, 6],
+        [0, 2, 6],
+        [0, 6, 4],
+        [1, 5, 7],
+        [1, 7, 3],
+    ]
+)
 
 
 def test_cube_is_closed_and_outward():
     s = mesh_structure(CUBE_V, CUBE_F)
-    assert s == {"faces": 12, "vertices": 8, "components": 1, "manifold": True, "watertight": True,
-                 "orientation_consistent": True, "boundary_edges": 0, "nonmanifold_edges": 0}
+    assert s == {
+        "faces": 12,
+        "vertices": 8,
+        "components": 1,
+        "manifold": True,
+        "watertight": True,
+        "orientation_consistent": True,
+        "boundary_edges": 0,
+        "nonmanifold_edges": 0,
+    }
     a, b, c = CUBE_V[CUBE_F[:, 0]], CUBE_V[CUBE_F[:, 1]], CUBE_V[CUBE_F[:, 2]]
     centroids = (a + b + c) / 3
     assert (np.einsum("ij,ij->i", np.cross(b - a, c - a), centroids) > 0).all()  # outward normals

@@ -4,6 +4,7 @@
 on the fixture, then the EXPORTED fp32 graphs run with onnxruntime must give the fixture's
 conditioner output and teacher-forced logits within 1e-4 (one chunk and step by step through the
 KV cache) and reproduce its 100 greedy ids. The contract-v3 facts of the folder are checked too."""
+
 from __future__ import annotations
 
 import json
@@ -31,8 +32,21 @@ def fixture_dir(shared):
 @pytest.fixture(scope="module")
 def imported(fixture_dir, tmp_path_factory):
     out = tmp_path_factory.mktemp("official") / "model"
-    rc = main(["import-official", str(fixture_dir / "model.safetensors"), "-o", str(out), "--precision", "fp32",
-               "--config", str(fixture_dir / "config.json"), "--no-progress", "--fidelity-tokens", "4"])
+    rc = main(
+        [
+            "import-official",
+            str(fixture_dir / "model.safetensors"),
+            "-o",
+            str(out),
+            "--precision",
+            "fp32",
+            "--config",
+            str(fixture_dir / "config.json"),
+            "--no-progress",
+            "--fidelity-tokens",
+            "4",
+        ]
+    )
     assert rc == 0
     return out
 
@@ -55,8 +69,15 @@ def fixture_tokens(fixture_dir, name):
 def test_model_json_is_contract_v3(imported):
     meta = json.loads((imported / "model.json").read_text())
     assert meta["model_version"] == 3 and meta["arch"] == "official"
-    assert meta["dims"] == {"d_model": 32, "n_layers": 2, "n_heads": 2, "head_dim": 64, "n_latents": 261,
-                            "n_points": 4096, "max_seq_len": 513}
+    assert meta["dims"] == {
+        "d_model": 32,
+        "n_layers": 2,
+        "n_heads": 2,
+        "head_dim": 64,
+        "n_latents": 261,
+        "n_points": 4096,
+        "max_seq_len": 513,
+    }
     assert meta["preprocessing"]["kind"] == "official" and meta["preprocessing"]["surface_samples"] == 50000
     assert meta["sampling"] == {"temperature": 0.5, "top_k": 50, "top_p": 0.95, "top_p_temperature": 1.0}
     assert meta["files"]["default_decoder"] == "decoder" and "external_data" not in meta["files"]
@@ -85,8 +106,9 @@ def test_context_matches_fixture(imported, fixture_dir, cross_kv):
     points = torch.from_numpy(np.load(fixture_dir / "points.npy"))[None]
     with torch.no_grad():
         assert np.abs(model.context(points)[0].numpy() - ref_ctx[0].numpy()).max() <= TOL
-        ref_kv = np.stack([torch.stack([k[0], v[0]]).numpy() for k, v in
-                           (layer.cross_kv(ref_ctx) for layer in model.layers)])
+        ref_kv = np.stack(
+            [torch.stack([k[0], v[0]]).numpy() for k, v in (layer.cross_kv(ref_ctx) for layer in model.layers)]
+        )
     assert cross_kv.shape == ref_kv.shape == (2, 2, 2, 261, 64)
     assert np.abs(cross_kv - ref_kv).max() <= TOL
     keys = cross_kv[:, 0]
@@ -120,6 +142,7 @@ def test_external_data_export_is_the_same_network(fixture_dir, tmp_path):
     """The large-model path (weights streamed into decoder.onnx.data, never one big protobuf)
     gives the same logits, and the INT8 quantizer reads it."""
     from silk_export.onnx.export import export_graphs, quantize_decoder, transpose_linears
+
     model, _ = load_official(fixture_dir / "model.safetensors", fixture_dir / "config.json", progress=False)
     files = export_graphs(transpose_linears(model), tmp_path, external_over=0)
     assert files["external_data"] == ["decoder.onnx.data"] and (tmp_path / "decoder.onnx.data").exists()

@@ -5,6 +5,7 @@ values): it imports (safetensors and .pt, `module.` prefix stripped and reported
 training-only tensors skipped), the exported graphs agree with the PyTorch network, and one
 missing, one misshaped and one renamed key each give an error naming the key, exit status 2 and
 no output folder."""
+
 from __future__ import annotations
 
 import json
@@ -23,8 +24,7 @@ from silk_export.official.checkpoint import load_official
 # Release size -> test size. D = C = H·dh = 1024 -> 32 (H 16 -> 2, dh 64 -> 16), W = 768 -> 24
 # (12 heads of 2), every multiple of them alike; positions 10240 -> 256. 4 memory slots, 257
 # queries, 54 point features and 10269 vocabulary rows stay.
-SCALE = {1024: 32, 768: 24, 1536: 48, 2304: 72, 3072: 96, 4096: 128, 8192: 256, 16: 2, 64: 16, 128: 4,
-         10240: 256}
+SCALE = {1024: 32, 768: 24, 1536: 48, 2304: 72, 3072: 96, 4096: 128, 8192: 256, 16: 2, 64: 16, 128: 4, 10240: 256}
 
 
 def release_layout(shared) -> list[tuple[str, list[int], bool]]:
@@ -84,8 +84,19 @@ def test_layout_is_the_release(layout):
 @pytest.fixture(scope="module")
 def imported(checkpoint, tmp_path_factory):
     parent = tmp_path_factory.mktemp("imported")
-    rc = main(["import-official", str(checkpoint), "-o", str(parent / "model"), "--precision", "auto",
-               "--no-progress", "--fidelity-tokens", "4"])
+    rc = main(
+        [
+            "import-official",
+            str(checkpoint),
+            "-o",
+            str(parent / "model"),
+            "--precision",
+            "auto",
+            "--no-progress",
+            "--fidelity-tokens",
+            "4",
+        ]
+    )
     assert rc == 0
     assert [p.name for p in parent.iterdir()] == ["model"]  # the temporary folder is gone
     return parent / "model"
@@ -97,8 +108,15 @@ def test_imports_and_graphs_agree_with_pytorch(checkpoint, imported):
     load = meta["import"]["load"]
     assert (load["tensors"], load["used"], load["skipped_unused"]) == (804, 603, 201)
     assert load["source_dtypes"] == {"float16": 603} and load["stripped_prefixes"] == {}
-    assert meta["dims"] == {"d_model": 32, "n_layers": 24, "n_heads": 2, "head_dim": 16, "n_latents": 261,
-                            "n_points": 4096, "max_seq_len": 257}
+    assert meta["dims"] == {
+        "d_model": 32,
+        "n_layers": 24,
+        "n_heads": 2,
+        "head_dim": 16,
+        "n_latents": 261,
+        "n_points": 4096,
+        "max_seq_len": 257,
+    }
     files = meta["files"]
     assert {files["decoder_int8"], files["decoder_int4"]} == {"decoder.int8.onnx", "decoder.int4.onnx"}
     assert files["default_decoder"] in ("decoder", "decoder_int8", "decoder_int4")
@@ -134,11 +152,14 @@ def broken(state, how):
     return s
 
 
-@pytest.mark.parametrize("how, message", [
-    ("missing", "missing key 'decoder.layers.40.1.to_v.weight'"),
-    ("misshaped", "key 'decoder.layers.9.0.0.weight': shape [31], expected [32]"),
-    ("renamed", "unknown key 'to_logit.bias'"),
-])
+@pytest.mark.parametrize(
+    "how, message",
+    [
+        ("missing", "missing key 'decoder.layers.40.1.to_v.weight'"),
+        ("misshaped", "key 'decoder.layers.9.0.0.weight': shape [31], expected [32]"),
+        ("renamed", "unknown key 'to_logit.bias'"),
+    ],
+)
 def test_bad_checkpoint_is_an_error_naming_the_key(state, tmp_path, capsys, how, message):
     path = tmp_path / "bad.safetensors"
     write_safetensors(path, broken(state, how))
@@ -151,15 +172,19 @@ def test_bad_checkpoint_is_an_error_naming_the_key(state, tmp_path, capsys, how,
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.safetensors"]
 
 
-@pytest.mark.parametrize("damage, message", [
-    (lambda b: b[:5], "too short"),
-    (lambda b: struct.pack("<Q", 1 << 40) + b[8:], "header length"),
-    (lambda b: b[:8] + b"{" * 8 + b[16:], "not JSON"),
-    (lambda b: b.replace(b'"F16"', b'"I64"', 1), "dtype I64 is not supported"),
-    (lambda b: b[:-2], "do not fit"),
-])
+@pytest.mark.parametrize(
+    "damage, message",
+    [
+        (lambda b: b[:5], "too short"),
+        (lambda b: struct.pack("<Q", 1 << 40) + b[8:], "header length"),
+        (lambda b: b[:8] + b"{" * 8 + b[16:], "not JSON"),
+        (lambda b: b.replace(b'"F16"', b'"I64"', 1), "dtype I64 is not supported"),
+        (lambda b: b[:-2], "do not fit"),
+    ],
+)
 def test_damaged_safetensors_is_a_clear_error(tmp_path, damage, message):
     from silk_export.official.state_dict_file import StateDictError, open_state_dict
+
     good = tmp_path / "good.safetensors"
     write_safetensors(good, {"a": torch.ones(3, dtype=torch.float16), "b": torch.ones(2, 2, dtype=torch.float16)})
     bad = tmp_path / "bad.safetensors"
@@ -175,8 +200,9 @@ def write_cloud_ply(path, points: np.ndarray) -> None:
     path.write_bytes(head.encode() + np.ascontiguousarray(points, dtype="<f4").tobytes())
 
 
-@pytest.mark.parametrize("decoder,kv", [("fp32", "fp32"), ("fp32", "fp16"), ("fp32", "int8"), ("int4", "fp32"),
-                                        ("int4", "int8")])
+@pytest.mark.parametrize(
+    "decoder,kv", [("fp32", "fp32"), ("fp32", "fp16"), ("fp32", "int8"), ("int4", "fp32"), ("int4", "int8")]
+)
 def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp_path, decoder, kv):
     """The C++ runtime on the imported release-layout model: 64 greedy ids from raw points, equal
     to the Python onnxruntime loop over the same graph (the fp32 or INT4 decoder, or its
@@ -184,13 +210,36 @@ def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp
     variant's weights go through Int4MatMul)."""
     import json
     import subprocess
+
     points = np.random.default_rng(2).uniform(-0.9, 0.9, (4096, 6)).astype(np.float32)
     write_cloud_ply(tmp_path / "points.ply", points)
     out = tmp_path / "ids.txt"
-    r = subprocess.run([str(silkgen), str(tmp_path / "points.ply"), "--model", str(imported), "--raw-points",
-                        "--unconstrained", "--temperature", "0", "--max-tokens", "64", "--decoder", decoder,
-                        "--kv-precision", kv, "--threads", "1", "--tokens", str(out), "-q"],
-                       capture_output=True, text=True, timeout=300)
+    r = subprocess.run(
+        [
+            str(silkgen),
+            str(tmp_path / "points.ply"),
+            "--model",
+            str(imported),
+            "--raw-points",
+            "--unconstrained",
+            "--temperature",
+            "0",
+            "--max-tokens",
+            "64",
+            "--decoder",
+            decoder,
+            "--kv-precision",
+            kv,
+            "--threads",
+            "1",
+            "--tokens",
+            str(out),
+            "-q",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     got = [int(x) for x in out.read_text().split()]
     files = json.loads((imported / "model.json").read_text())["files"]
@@ -221,8 +270,22 @@ def test_nonfinite_weights_are_refused_naming_the_key(state, tmp_path, capsys, s
     else:
         write_safetensors(path, s)
     out = tmp_path / "model"
-    assert main(["import-official", str(path), "-o", str(out), "--no-progress", "--precision", "fp32",
-                 "--fidelity-tokens", "1"]) == 2
+    assert (
+        main(
+            [
+                "import-official",
+                str(path),
+                "-o",
+                str(out),
+                "--no-progress",
+                "--precision",
+                "fp32",
+                "--fidelity-tokens",
+                "1",
+            ]
+        )
+        == 2
+    )
     err = capsys.readouterr().err
     assert "non-finite" in err
     assert f"key '{nan_key}': 1 NaN" in err

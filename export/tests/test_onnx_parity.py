@@ -4,6 +4,7 @@ one com.microsoft GroupQueryAttention per layer, the model.json sidecar from the
 layout, and onnxruntime logits equal to PyTorch's (max abs diff <= 1e-4, fp32) on a
 teacher-forced 64-token sequence: in one chunk, step by step through per-layer caches that are
 shared between past_* and present_* (the runtime's way), and as prefix + chunk."""
+
 from __future__ import annotations
 
 import json
@@ -54,20 +55,32 @@ def test_sidecar_follows_contract(exported):
     assert on_disk == meta
     assert meta["format"] == "silk-model" and meta["model_version"] == 2
     assert meta["token_format"] == v.layout["token_format"] and meta["token_format_version"] == 1
-    assert meta["vocab"] == {"format_vocab_size": 10267, "eos_id": 10267, "pad_id": 10268, "bos_id": 10269,
-                             "model_vocab_size": 10269, "embedding_rows": 10270}
+    assert meta["vocab"] == {
+        "format_vocab_size": 10267,
+        "eos_id": 10267,
+        "pad_id": 10268,
+        "bos_id": 10269,
+        "model_vocab_size": 10269,
+        "embedding_rows": 10270,
+    }
     c = model.cfg
-    assert meta["dims"] == {"d_model": c.d_model, "n_layers": c.n_layers, "n_heads": c.n_heads,
-                            "head_dim": c.head_dim, "n_latents": c.n_latents, "n_points": 4096,
-                            "max_seq_len": c.max_seq_len}
-    assert meta["files"] == {"encoder": "encoder.onnx", "decoder": "decoder.onnx",
-                             "decoder_int8": "decoder.int8.onnx"}
+    assert meta["dims"] == {
+        "d_model": c.d_model,
+        "n_layers": c.n_layers,
+        "n_heads": c.n_heads,
+        "head_dim": c.head_dim,
+        "n_latents": c.n_latents,
+        "n_points": 4096,
+        "max_seq_len": c.max_seq_len,
+    }
+    assert meta["files"] == {"encoder": "encoder.onnx", "decoder": "decoder.onnx", "decoder_int8": "decoder.int8.onnx"}
     assert meta["normalize_bound"] == 0.95 and meta["config"] == "micro"
     assert "sampling" not in meta  # libsilk's built-in sampling defaults unless export is told otherwise
 
 
 def test_sidecar_carries_chosen_sampling_defaults(exported):
     from silk_export.onnx.export import sidecar
+
     model, _, meta, *_ = exported
     chosen = {"temperature": 1.3, "top_k": 50}
     with_sampling = sidecar(model.cfg, meta["training"], meta["files"], {"sampling": chosen})
@@ -88,8 +101,16 @@ def test_graph_interfaces_and_ops(exported):
     dec = session(out / "decoder.onnx")
     assert [i.name for i in dec.get_inputs()] == decoder_input_names(n)
     assert [o.name for o in dec.get_outputs()] == decoder_output_names(n)
-    assert decoder_input_names(2)[4:] == ["past_key_0", "past_value_0", "past_key_1", "past_value_1",
-                                          "cross_key_0", "cross_value_0", "cross_key_1", "cross_value_1"]
+    assert decoder_input_names(2)[4:] == [
+        "past_key_0",
+        "past_value_0",
+        "past_key_1",
+        "past_value_1",
+        "cross_key_0",
+        "cross_value_0",
+        "cross_key_1",
+        "cross_value_1",
+    ]
     shapes = {i.name: i.shape for i in dec.get_inputs()}
     types = {i.name: i.type for i in dec.get_inputs()}
     c = model.cfg
@@ -97,15 +118,22 @@ def test_graph_interfaces_and_ops(exported):
     assert shapes["past_key_0"][::3] == [1, c.head_dim] and shapes["past_key_0"][1] == c.n_heads
     assert shapes["cross_value_0"] == [1, c.n_heads, c.n_latents, c.head_dim]
     assert shapes["seqlens_k"] == [1] and shapes["total_sequence_length"] == []
-    assert [types[k] for k in ("input_ids", "positions", "seqlens_k", "total_sequence_length")] == \
-        ["tensor(int64)", "tensor(int64)", "tensor(int32)", "tensor(int32)"]
+    assert [types[k] for k in ("input_ids", "positions", "seqlens_k", "total_sequence_length")] == [
+        "tensor(int64)",
+        "tensor(int64)",
+        "tensor(int32)",
+        "tensor(int32)",
+    ]
     enc = session(out / "encoder.onnx")
     assert [i.name for i in enc.get_inputs()] == ["points"] and [o.name for o in enc.get_outputs()] == ["cross_kv"]
 
 
 def cross_feeds(cross, n_layers):
-    return {f"cross_{kv}_{l}": np.ascontiguousarray(cross[l, j][None])
-            for l in range(n_layers) for j, kv in enumerate(("key", "value"))}
+    return {
+        f"cross_{kv}_{l}": np.ascontiguousarray(cross[l, j][None])
+        for l in range(n_layers)
+        for j, kv in enumerate(("key", "value"))
+    }
 
 
 def run_decoder(dec, ids, first, past, cross):
@@ -113,9 +141,13 @@ def run_decoder(dec, ids, first, past, cross):
     positions; returns (logits, the caches grown to first + T positions)."""
     n_layers = len(past) // 2
     t = ids.shape[1]
-    feeds = {"input_ids": ids, "positions": np.arange(first, first + t, dtype=np.int64)[None],
-             "seqlens_k": np.array([first + t - 1], np.int32),
-             "total_sequence_length": np.array(first + t, np.int32), **cross_feeds(cross, n_layers)}
+    feeds = {
+        "input_ids": ids,
+        "positions": np.arange(first, first + t, dtype=np.int64)[None],
+        "seqlens_k": np.array([first + t - 1], np.int32),
+        "total_sequence_length": np.array(first + t, np.int32),
+        **cross_feeds(cross, n_layers),
+    }
     feeds.update({f"past_{kv}_{l}": past[2 * l + j] for l in range(n_layers) for j, kv in enumerate(("key", "value"))})
     outs = dec.run(None, feeds)
     return outs[0], outs[1:]
@@ -161,8 +193,8 @@ def test_parity_one_chunk_and_stepwise(exported):
     cache = np.full((c.n_layers, 2, 1, c.n_heads, 80, c.head_dim), np.nan, np.float32)
     worst, first = 0.0, 0
     for t in (1, 1, 2, 1, 7, 1, 1, 16, 1, 33):  # single steps and chunks, 64 in all
-        lg = run_shared(dec, ids[:, first:first + t], first, cache, cross)
-        worst = max(worst, float(np.abs(lg[0] - ref[0, first:first + t]).max()))
+        lg = run_shared(dec, ids[:, first : first + t], first, cache, cross)
+        worst = max(worst, float(np.abs(lg[0] - ref[0, first : first + t]).max()))
         first += t
     assert first == 64 and worst <= TOL
     for l in range(c.n_layers):  # the shared cache = the one-chunk run's present_*

@@ -2,6 +2,7 @@
 """libsilk's pre-processing through the binding (silk_points_prepare): the training point
 clouds come from the same code as generation; the official kind is seeded, float16-valued and
 on the surface; bad arguments raise SilkError."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -12,8 +13,23 @@ from silk_export.data import pointcloud
 
 # A box [0,2]x[0,1]x[0,1] of 12 triangles.
 V = np.array([[0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0], [0, 0, 1], [2, 0, 1], [2, 1, 1], [0, 1, 1]], float)
-F = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
-              [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6], [3, 0, 4], [3, 4, 7]], np.int32)
+F = np.array(
+    [
+        [0, 2, 1],
+        [0, 3, 2],
+        [4, 5, 6],
+        [4, 6, 7],
+        [0, 1, 5],
+        [0, 5, 4],
+        [1, 2, 6],
+        [1, 6, 5],
+        [2, 3, 7],
+        [2, 7, 6],
+        [3, 0, 4],
+        [3, 4, 7],
+    ],
+    np.int32,
+)
 
 
 def test_official_points_are_seeded_float16_and_on_the_box(lib_path):
@@ -36,7 +52,9 @@ def test_training_point_cloud_uses_the_library(lib_path):
     want, _, _ = silk_mesh.prepare_points(V, F, "silk", n_points=256, seed=seed)
     assert np.array_equal(pts, want)
     p, n = pointcloud.sample_surface(V, F, 500, np.random.default_rng(1))
-    assert p.shape == (500, 3) and (p.min(axis=0) >= -1e-6).all() and (p.max(axis=0) <= np.array([2, 1, 1]) + 1e-6).all()
+    assert (
+        p.shape == (500, 3) and (p.min(axis=0) >= -1e-6).all() and (p.max(axis=0) <= np.array([2, 1, 1]) + 1e-6).all()
+    )
     np.testing.assert_allclose(np.linalg.norm(n, axis=1), 1, atol=1e-6)
 
 

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Progressive-balanced resampling follows p_j(t) = (1 - t/T)·p_j^IB + (t/T)·p_j^CB with one class
 per 100 faces, and sampling frequencies follow those probabilities."""
+
 from __future__ import annotations
 
 import numpy as np

@@ -3,6 +3,7 @@
 architecture, in each weight precision, folded, computes exactly what it did for every chunk length and past length tried,
 with its shape arithmetic gone; what the pass cannot prove (a Reshape with two unrelated dims, an
 Expand whose consumer would broadcast differently, shapes behind an op it does not know) stays."""
+
 from __future__ import annotations
 
 import collections
@@ -29,8 +30,12 @@ def _run(model, feeds: dict) -> list[np.ndarray]:
 
 
 def _decoder_feeds(graph, t: int, p: int, rng) -> dict:
-    feeds = {"input_ids": rng.integers(0, 10267, (1, t)), "positions": np.arange(p, p + t)[None],
-             "seqlens_k": np.array([p + t - 1], np.int32), "total_sequence_length": np.array(p + t, np.int32)}
+    feeds = {
+        "input_ids": rng.integers(0, 10267, (1, t)),
+        "positions": np.arange(p, p + t)[None],
+        "seqlens_k": np.array([p + t - 1], np.int32),
+        "total_sequence_length": np.array(p + t, np.int32),
+    }
     for i in graph.input:
         dims = [d.dim_value for d in i.type.tensor_type.shape.dim]
         if i.name.startswith("past_"):
@@ -84,7 +89,11 @@ def _shape_dims(name: str, data: str, indices: list[int]) -> list:
     """Nodes computing Concat(Shape(data)[i] for i in indices) into `name`."""
     nodes = [helper.make_node("Shape", [data], [f"{name}_s"])]
     for i in indices:
-        nodes.append(helper.make_node("Constant", [], [f"{name}_i{i}"], value=helper.make_tensor("v", TensorProto.INT64, [1], [i])))
+        nodes.append(
+            helper.make_node(
+                "Constant", [], [f"{name}_i{i}"], value=helper.make_tensor("v", TensorProto.INT64, [1], [i])
+            )
+        )
         nodes.append(helper.make_node("Gather", [f"{name}_s", f"{name}_i{i}"], [f"{name}_g{i}"], axis=0))
     nodes.append(helper.make_node("Concat", [f"{name}_g{i}" for i in indices], [name], axis=0))
     return nodes
@@ -120,13 +129,18 @@ def test_reshape_targets_become_constants_only_where_proven():
 def test_expand_is_dropped_only_where_its_consumer_broadcasts_to_the_same_shape():
     # n [T, 1] expanded to y's shape [T, 4]: Div(y, .) gets n itself; Add(w [1, 4], .) would
     # broadcast n to [T, 4] only through the Expand, so that one stays.
-    nodes = [helper.make_node("Shape", ["y"], ["ys"]),
-             helper.make_node("Expand", ["n", "ys"], ["ne"]),
-             helper.make_node("Div", ["y", "ne"], ["q"]),
-             helper.make_node("Expand", ["n", "ys"], ["ne2"]),
-             helper.make_node("Add", ["w", "ne2"], ["r"])]
-    m = _model(nodes, [_float("y", ["T", 4]), _float("n", ["T", 1]), _float("w", [1, 4])],
-               [_float("q", None), _float("r", None)])
+    nodes = [
+        helper.make_node("Shape", ["y"], ["ys"]),
+        helper.make_node("Expand", ["n", "ys"], ["ne"]),
+        helper.make_node("Div", ["y", "ne"], ["q"]),
+        helper.make_node("Expand", ["n", "ys"], ["ne2"]),
+        helper.make_node("Add", ["w", "ne2"], ["r"]),
+    ]
+    m = _model(
+        nodes,
+        [_float("y", ["T", 4]), _float("n", ["T", 1]), _float("w", [1, 4])],
+        [_float("q", None), _float("r", None)],
+    )
     folded = onnx.ModelProto()
     folded.CopyFrom(m)
     assert fold_shapes(folded.graph)["expands"] == 1
@@ -134,8 +148,11 @@ def test_expand_is_dropped_only_where_its_consumer_broadcasts_to_the_same_shape(
     assert list(ops["q"].input) == ["y", "n"] and list(ops["r"].input) == ["w", "ne2"]
     rng = np.random.default_rng(1)
     for t in (1, 3):
-        feeds = {"y": rng.standard_normal((t, 4)).astype(np.float32), "n": rng.random((t, 1)).astype(np.float32) + 1,
-                 "w": rng.standard_normal((1, 4)).astype(np.float32)}
+        feeds = {
+            "y": rng.standard_normal((t, 4)).astype(np.float32),
+            "n": rng.random((t, 1)).astype(np.float32) + 1,
+            "w": rng.standard_normal((1, 4)).astype(np.float32),
+        }
         for u, v in zip(_run(m, feeds), _run(folded, feeds)):
             assert np.array_equal(u, v)
 
@@ -156,8 +173,15 @@ def test_constants_in_external_data_are_read_from_the_graphs_folder(decoder, tmp
     inline = onnx.ModelProto()
     inline.CopyFrom(decoder)
     want = fold_shapes(inline.graph)
-    onnx.save(decoder, str(tmp_path / "d.onnx"), save_as_external_data=True, all_tensors_to_one_file=True,
-              location="d.onnx.data", size_threshold=0, convert_attribute=True)
+    onnx.save(
+        decoder,
+        str(tmp_path / "d.onnx"),
+        save_as_external_data=True,
+        all_tensors_to_one_file=True,
+        location="d.onnx.data",
+        size_threshold=0,
+        convert_attribute=True,
+    )
     external = onnx.load(str(tmp_path / "d.onnx"), load_external_data=False)
     assert fold_shapes(external.graph, tmp_path) == want
     unread = onnx.load(str(tmp_path / "d.onnx"), load_external_data=False)
@@ -179,7 +203,14 @@ def test_a_graph_that_does_not_fit_its_shapes_is_left_as_it_is():
 def test_an_initializer_that_is_also_an_input_is_no_constant():
     # IR < 4 style: "shape" is an initializer and a graph input, so a feed may replace it.
     nodes = [helper.make_node("Add", ["shape", "zero"], ["s2"]), helper.make_node("Reshape", ["x", "s2"], ["y"])]
-    inits = [helper.make_tensor("shape", TensorProto.INT64, [2], [1, -1]), helper.make_tensor("zero", TensorProto.INT64, [1], [0])]
-    m = _model(nodes, [_float("x", ["A", "B"]), helper.make_tensor_value_info("shape", TensorProto.INT64, [2])],
-               [_float("y", None)], inits)
+    inits = [
+        helper.make_tensor("shape", TensorProto.INT64, [2], [1, -1]),
+        helper.make_tensor("zero", TensorProto.INT64, [1], [0]),
+    ]
+    m = _model(
+        nodes,
+        [_float("x", ["A", "B"]), helper.make_tensor_value_info("shape", TensorProto.INT64, [2])],
+        [_float("y", None)],
+        inits,
+    )
     assert fold_shapes(m.graph)["constants"] == 0

@@ -2,6 +2,7 @@
 """The split is the SHA-1 rule, shape keys identify same-shape copies, and no dev-corpus mesh
 (nor a same-shape copy) is ever put in train/val/test — checked on the real 0 A.D. files when
 the data cache is present."""
+
 from __future__ import annotations
 
 import hashlib

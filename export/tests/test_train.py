@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """A 20-step run on a handful of meshes lowers the loss, and an interrupted run resumed from its
 checkpoint ends with exactly the weights of an uninterrupted one."""
+
 from __future__ import annotations
 
 import json
@@ -17,8 +18,17 @@ from silk_export.data.samples import MeshCache
 from silk_export.json_io import jsonl_line
 from silk_export.training.train import TrainArgs, evaluate_loss, seed_everything, train
 
-TEST_CFG = ModelConfig("test", d_model=64, n_layers=2, n_heads=2, n_latents=16, max_seq_len=512,
-                       encoder_layers=1, fourier_freqs=4, n_points=256)
+TEST_CFG = ModelConfig(
+    "test",
+    d_model=64,
+    n_layers=2,
+    n_heads=2,
+    n_latents=16,
+    max_seq_len=512,
+    encoder_layers=1,
+    fourier_freqs=4,
+    n_points=256,
+)
 MESHES = ["cube", "octahedron", "tetrahedron", "torus_12x8", "two_components", "grid"]
 
 
@@ -37,9 +47,23 @@ def data(golden_dir, dev_dir, tmp_path_factory, mesh_folder):
 
 def args(data, out, steps, **kw):
     root, index, _ = data
-    base = dict(index=str(index), root=str(root), out=str(out), steps=steps, batch_size=3, lr=3e-3,
-                lr_min=1e-3, seed=0, threads=1, log_every=1, val_every=0, ckpt_minutes=1e9, progress=False,
-                augment=False, model_config=TEST_CFG.to_dict())
+    base = dict(
+        index=str(index),
+        root=str(root),
+        out=str(out),
+        steps=steps,
+        batch_size=3,
+        lr=3e-3,
+        lr_min=1e-3,
+        seed=0,
+        threads=1,
+        log_every=1,
+        val_every=0,
+        ckpt_minutes=1e9,
+        progress=False,
+        augment=False,
+        model_config=TEST_CFG.to_dict(),
+    )
     base.update(kw)
     return TrainArgs(**base)
 
@@ -48,8 +72,9 @@ def fixed_samples(data):
     root, _, rows = data
     cache = MeshCache(root, rows)
     rng = np.random.default_rng(123)
-    return [cache.sample(i, rng, TEST_CFG.max_tokens, augment=False, n_points=TEST_CFG.n_points)
-            for i in range(len(cache))]
+    return [
+        cache.sample(i, rng, TEST_CFG.max_tokens, augment=False, n_points=TEST_CFG.n_points) for i in range(len(cache))
+    ]
 
 
 def test_twenty_steps_lower_the_loss(data, tmp_path):
@@ -149,6 +174,7 @@ def test_workers_checkpointing_and_micro_batches_keep_the_losses(data, tmp_path)
 def test_conditioning_gap_is_zero_only_for_a_model_blind_to_its_points(data, tmp_path):
     """`silk-export loss` scores the tokens again with each mesh given the next mesh's points."""
     from silk_export.evaluation.split_loss import other_points, split_loss
+
     torch.set_num_threads(1)
     root, index, _ = data
     train(args(data, tmp_path, 10))
@@ -166,5 +192,6 @@ def test_conditioning_gap_is_zero_only_for_a_model_blind_to_its_points(data, tmp
     torch.save(ck, tmp_path / "blind.pt")
     blind = split_loss(tmp_path / "blind.pt", index, root, "train", baseline_split=None)
     assert blind["conditioning_gap"] == 0.0, blind
-    assert "conditioning_gap" not in split_loss(tmp_path / "checkpoint.pt", index, root, "train", limit=1,
-                                                baseline_split=None)
+    assert "conditioning_gap" not in split_loss(
+        tmp_path / "checkpoint.pt", index, root, "train", limit=1, baseline_split=None
+    )

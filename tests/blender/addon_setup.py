@@ -3,6 +3,7 @@
 install the zip into the scratch user folders the runner set up and enable it, either as a legacy
 add-on (the add-on zip; Blender 3.x and later) or as an extension (Blender 4.2+'s extensions API,
 SILK_ADDON_KIND=extension), and import a dev-corpus mesh as the active object at the origin."""
+
 import importlib
 
 import addon_utils
@@ -14,8 +15,7 @@ EXTENSION_REPO = "user_default"  # Blender 4.2+'s local repository for extension
 def install_and_enable(zip_path, failures, kind="addon"):
     """Installs and enables the add-on; returns its installed package (module), None on failure."""
     if kind == "extension":
-        res = bpy.ops.extensions.package_install_files(filepath=zip_path, repo=EXTENSION_REPO,
-                                                       enable_on_install=True)
+        res = bpy.ops.extensions.package_install_files(filepath=zip_path, repo=EXTENSION_REPO, enable_on_install=True)
         if res != {"FINISHED"}:
             failures.append(f"extensions.package_install_files: {res}")
             return None

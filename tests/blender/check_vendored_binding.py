@@ -7,6 +7,7 @@ Linux library finds the others it needs in lib/ itself (RUNPATH $ORIGIN), not on
 machine happens to have a system copy (Debian's libstb0 for libtinygltf, say).
 
   check_vendored_binding.py ZIP SOURCE_DIR   exit 1 naming each difference"""
+
 import pathlib
 import subprocess
 import sys
@@ -19,8 +20,11 @@ PREFIX = "silk_blender/silk_mesh/"
 def differences(zip_path: pathlib.Path, source: pathlib.Path) -> list[str]:
     src = {p.name: p.read_bytes() for p in sorted(source.iterdir()) if p.suffix == ".py" or p.name == "README.md"}
     with zipfile.ZipFile(zip_path) as z:
-        vendored = {n[len(PREFIX):]: z.read(n) for n in z.namelist()
-                    if n.startswith(PREFIX) and "/" not in n[len(PREFIX):] and n[len(PREFIX):]}
+        vendored = {
+            n[len(PREFIX) :]: z.read(n)
+            for n in z.namelist()
+            if n.startswith(PREFIX) and "/" not in n[len(PREFIX) :] and n[len(PREFIX) :]
+        }
     bad = [f"{PREFIX}{n}: missing from the zip" for n in src if n not in vendored]
     bad += [f"{PREFIX}{n}: differs from {source / n}" for n in src if n in vendored and vendored[n] != src[n]]
     bad += [f"{PREFIX}{n}: not in {source}" for n in vendored if n not in src and n != "LICENSE"]  # the repository's
@@ -38,8 +42,11 @@ def unresolved_bundled(zip_path: pathlib.Path) -> list[str]:
             path.write_bytes(z.read(n))
             dyn = subprocess.run(["readelf", "-d", str(path)], capture_output=True, text=True, check=True).stdout
             needed = [line.split("[", 1)[1].split("]", 1)[0] for line in dyn.splitlines() if "(NEEDED)" in line]
-            paths = [line.split("[", 1)[1].split("]", 1)[0] for line in dyn.splitlines()
-                     if "(RUNPATH)" in line or "(RPATH)" in line]
+            paths = [
+                line.split("[", 1)[1].split("]", 1)[0]
+                for line in dyn.splitlines()
+                if "(RUNPATH)" in line or "(RPATH)" in line
+            ]
             origin = any("$ORIGIN" == p.rstrip("/") for entry in paths for p in entry.split(":"))
             for dep in needed:
                 if dep in names and not origin:

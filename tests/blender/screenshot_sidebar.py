@@ -6,6 +6,7 @@ screen.screenshot operator, run as
 the test model as "imported-tiny", beside the bundled model; the dev mesh imported; Generate pressed with best of 2 (the modal path, as a user runs
 it); once it has finished, the sidebar shows the drop-down, settings, the full progress bar and the
 scores. Blender ends with os._exit(status)."""
+
 import os
 import shutil
 import sys

@@ -9,6 +9,7 @@ imports a dev-corpus mesh, generates with a fixed seed and checks the objects ag
 `silkgen --stats` on the same mesh as Blender holds it (object frame) and with mesh_check.py; checks that a cancel leaves
 nothing behind, drives the Silk tab of the sidebar (sidebar_checks.py), that silkgen's GLB imports with the same
 object/face counts, and renders a picture."""
+
 import json
 import os
 import subprocess
@@ -44,10 +45,14 @@ blender_mesh = addon_setup.submodule(addon, "blender_mesh")  # the installed cop
 silk_mesh = addon_setup.submodule(addon, "silk_mesh")  # its vendored binding
 
 silk_mesh.load_library()
-check(silk_mesh.library_path().startswith(os.path.join(os.path.dirname(silk_mesh.__file__), "lib")),
-      f"libsilk is the copy inside the add-on: {silk_mesh.library_path()}")
-check(os.path.isfile(os.path.join(silk_mesh.bundled_model_dir(), "model.json")),
-      f"the bundled model is beside it: {silk_mesh.bundled_model_dir()}")
+check(
+    silk_mesh.library_path().startswith(os.path.join(os.path.dirname(silk_mesh.__file__), "lib")),
+    f"libsilk is the copy inside the add-on: {silk_mesh.library_path()}",
+)
+check(
+    os.path.isfile(os.path.join(silk_mesh.bundled_model_dir(), "model.json")),
+    f"the bundled model is beside it: {silk_mesh.bundled_model_dir()}",
+)
 
 # -- a dev-corpus mesh, placed off the origin ---------------------------------------------------
 src = addon_setup.import_active_mesh(env["SILK_DEV_MESH"])
@@ -57,15 +62,36 @@ pos, tri = blender_mesh.mesh_arrays(src, bpy.context.evaluated_depsgraph_get())
 with silk_mesh.Mesh(pos, tri) as m:
     m.save(os.path.join(work, "source.obj"))
 glb, stats_path = os.path.join(work, "silkgen.glb"), os.path.join(work, "silkgen.json")
-subprocess.run([env["SILKGEN"], os.path.join(work, "source.obj"), "-o", glb, "--model", env["SILK_TEST_MODEL"],
-                "--seed", str(SEED), "--max-tokens", str(MAX_TOKENS), "--threads", "1", "--stats", stats_path, "-q"],
-               check=True)
+subprocess.run(
+    [
+        env["SILKGEN"],
+        os.path.join(work, "source.obj"),
+        "-o",
+        glb,
+        "--model",
+        env["SILK_TEST_MODEL"],
+        "--seed",
+        str(SEED),
+        "--max-tokens",
+        str(MAX_TOKENS),
+        "--threads",
+        "1",
+        "--stats",
+        stats_path,
+        "-q",
+    ],
+    check=True,
+)
 want = json.load(open(stats_path))
-print(f"silkgen --stats: {want['faces']} faces, {want['components']} part(s), {want['tokens']} tokens, "
-      f"candidate {want['chosen_candidate']} of {len(want['candidates'])}")
+print(
+    f"silkgen --stats: {want['faces']} faces, {want['components']} part(s), {want['tokens']} tokens, "
+    f"candidate {want['chosen_candidate']} of {len(want['candidates'])}"
+)
 if env.get("SILK_EXPECT_BEST_OF"):  # the model's own N ran (the bundled model's defaults)
-    check(len(want["candidates"]) == int(env["SILK_EXPECT_BEST_OF"]),
-          f"silkgen ran the model's best of {env['SILK_EXPECT_BEST_OF']} ({len(want['candidates'])} candidates)")
+    check(
+        len(want["candidates"]) == int(env["SILK_EXPECT_BEST_OF"]),
+        f"silkgen ran the model's best of {env['SILK_EXPECT_BEST_OF']} ({len(want['candidates'])} candidates)",
+    )
 
 # -- generate in Blender (model_dir empty: the model bundled in the zip) ------------------------
 before = set(bpy.data.objects)
@@ -76,8 +102,10 @@ empties = [o for o in new if o.type == "EMPTY"]
 parts = sorted((o for o in new if o.type == "MESH"), key=lambda o: o.name)
 check(len(empties) == 1 and all(p.parent == empties[0] for p in parts), "one empty holds every part")
 empty = empties[0]
-check(all(abs(a - b) < 1e-6 for ra, rb in zip(empty.matrix_world, src.matrix_world) for a, b in zip(ra, rb)),
-      "the empty sits in the source object's frame")
+check(
+    all(abs(a - b) < 1e-6 for ra, rb in zip(empty.matrix_world, src.matrix_world) for a, b in zip(ra, rb)),
+    "the empty sits in the source object's frame",
+)
 faces = sum(len(p.data.polygons) for p in parts)
 print(f"blender: {faces} faces in {len(parts)} object(s)")
 check(len(parts) == want["components"], f"objects {len(parts)} == parts {want['components']}")
@@ -92,8 +120,10 @@ for p in parts:
     if "vertex_manifold" in want.get("verdicts", {}):  # a libsilk whose decoder guarantees one fan per vertex
         check(nonmanifold_v == 0, f"{p.name}: vertex-manifold ({nonmanifold_v} non-manifold vertices)")
     else:
-        print(f"note {p.name}: {nonmanifold_v} non-manifold vertices (this libsilk reports no vertex_manifold "
-              "verdict, so its decoder does not guarantee it; not checked)")
+        print(
+            f"note {p.name}: {nonmanifold_v} non-manifold vertices (this libsilk reports no vertex_manifold "
+            "verdict, so its decoder does not guarantee it; not checked)"
+        )
     check(nonmanifold_e == 0, f"{p.name}: edge-manifold ({nonmanifold_e} edges with 3+ faces)")
     check(inconsistent == 0, f"{p.name}: consistently oriented ({inconsistent} edges with opposing faces)")
 
@@ -106,10 +136,13 @@ if env.get("SILK_MESH_CHECK"):
         with silk_mesh.Mesh(ppos, ptri) as m:
             m.save(objs[-1])
     run = subprocess.run(["python3", env["SILK_MESH_CHECK"], "--json"] + objs, capture_output=True, text=True)
-    verdicts = json.loads(run.stdout[:run.stdout.rindex("}") + 1])
+    verdicts = json.loads(run.stdout[: run.stdout.rindex("}") + 1])
     bad = {os.path.basename(k): v for k, v in verdicts.items() if not v.get("ok")}
-    check(run.returncode == 0 and not bad, f"mesh_check.py: {len(objs)} part(s) edge/vertex-manifold, oriented, "
-          f"no degenerate or duplicate faces{'' if not bad else f' (failed: {bad})'}")
+    check(
+        run.returncode == 0 and not bad,
+        f"mesh_check.py: {len(objs)} part(s) edge/vertex-manifold, oriented, "
+        f"no degenerate or duplicate faces{'' if not bad else f' (failed: {bad})'}",
+    )
     check(sum(v.get("faces", 0) for v in verdicts.values()) == want["faces"], "mesh_check.py counts silkgen's faces")
 
 # -- a cancel after a few steps leaves no object ------------------------------------------------
@@ -121,11 +154,13 @@ check(set(bpy.data.objects) == before and len(bpy.data.meshes) == mesh_count, "a
 
 # -- the Silk tab in the sidebar: models by name, settings, progress, scores, cancel -------------
 import sidebar_checks  # noqa: E402
+
 sidebar_checks.run(addon, src, env, work, SEED, check)
 
 # -- silkgen's GLB imports with the expected objects and faces ----------------------------------
 before = set(bpy.data.objects)
 import numpy  # noqa: E402
+
 if bpy.app.version < (3, 5, 0):  # Blender 3.4's glTF importer uses np.bool, gone since numpy 1.24 (Debian's)
     numpy.bool = bool
 bpy.ops.import_scene.gltf(filepath=glb)
@@ -138,10 +173,13 @@ for o in glb_objs:
 
 # -- a picture: the source beside the generated parts (Workbench) -------------------------------
 if env.get("SILK_RENDER"):
+
     def x_extent(objs):
         from mathutils import Vector
+
         xs = [(o.matrix_world @ Vector(c)).x for o in objs for c in o.bound_box]
         return min(xs), max(xs)
+
     s_lo, s_hi = x_extent([src])
     g_lo, g_hi = x_extent(parts)
     empty.location.x += (s_hi - g_lo) + 0.15 * (s_hi - s_lo)  # side by side, a small gap
@@ -170,6 +208,7 @@ if env.get("SILK_RENDER"):
     bpy.context.view_layer.update()
     # Frame both by hand (no 3D view in background mode): back off along the view axis.
     from mathutils import Vector
+
     pts = [o.matrix_world @ Vector(c) for o in [src] + parts for c in o.bound_box]
     lo = Vector((min(p.x for p in pts), min(p.y for p in pts), min(p.z for p in pts)))
     hi = Vector((max(p.x for p in pts), max(p.y for p in pts), max(p.z for p in pts)))

@@ -8,6 +8,7 @@ test's own timer watches it from outside; it starts again with each best-of-N ca
 run with the same settings. A second invocation gets a real Esc key event (window.event_simulate) while it
 runs: no object and no preview may be left. Blender ends with os._exit(status), since a
 windowed session's exit code does not follow --python-exit-code."""
+
 import json
 import os
 import sys
@@ -59,8 +60,10 @@ def remove(objs):
 
 # The synchronous run (what a script gets) is the reference.
 before = set(bpy.data.objects)
-check(bpy.ops.silk.generate_mesh(seed=SEED, max_tokens=MAX_TOKENS, model_dir=MODEL) == {"FINISHED"},
-      "synchronous run finished")
+check(
+    bpy.ops.silk.generate_mesh(seed=SEED, max_tokens=MAX_TOKENS, model_dir=MODEL) == {"FINISHED"},
+    "synchronous run finished",
+)
 ref_new = set(bpy.data.objects) - before
 want_parts, want_faces = results(ref_new)
 print(f"synchronous: {want_faces} faces in {want_parts} part(s)", flush=True)
@@ -97,13 +100,17 @@ def poll():
         faces = state["preview_faces"]
         parts, total = results(set(bpy.data.objects) - state["before"])
         print(f"modal: {total} faces in {parts} part(s); preview face counts seen {sorted(set(faces))}", flush=True)
-        check(parts == want_parts and total == want_faces,
-              f"modal result ({total} faces, {parts} parts) == synchronous ({want_faces}, {want_parts})")
+        check(
+            parts == want_parts and total == want_faces,
+            f"modal result ({total} faces, {parts} parts) == synchronous ({want_faces}, {want_parts})",
+        )
         # Best of N: the preview is the candidate in progress, so it starts again (a drop) as each
         # of the model's N candidates after the first begins, and only grows in between.
         drops = sum(b < a for a, b in zip(faces, faces[1:]))
-        check(len(faces) >= 2 and drops <= CANDIDATES - 1,
-              f"the preview only grows while a candidate runs ({drops} restarts, {CANDIDATES} candidates)")
+        check(
+            len(faces) >= 2 and drops <= CANDIDATES - 1,
+            f"the preview only grows while a candidate runs ({drops} restarts, {CANDIDATES} candidates)",
+        )
         check(len(set(f for f in faces if f > 0)) >= 2, "the preview shows at least two stages of growth")
         remove(set(bpy.data.objects) - state["before"])
         # Phase 2: Esc while running.
@@ -119,11 +126,15 @@ def poll():
                 state["win"].event_simulate(type="ESC", value="PRESS")
                 state["esc_sent"] = True
             return 0.02
-        check(state.get("esc_sent", False), f"Esc was sent while the operator ran (preview at "
-                                            f"{state.get('esc_faces')} faces)")
+        check(
+            state.get("esc_sent", False),
+            f"Esc was sent while the operator ran (preview at {state.get('esc_faces')} faces)",
+        )
         left = set(bpy.data.objects) - state["before"]
-        check(not left and len(bpy.data.meshes) == state["meshes"],
-              f"Esc leaves no object and no mesh behind ({sorted(o.name for o in left)})")
+        check(
+            not left and len(bpy.data.meshes) == state["meshes"],
+            f"Esc leaves no object and no mesh behind ({sorted(o.name for o in left)})",
+        )
         finish()
     return None
 

@@ -26,7 +26,8 @@ int main(void) {
   if (silk_mesh_copy_triangles(back, NULL, 0, &count) != SILK_OK || count != 12) return 5;
   if (silk_mesh_copy_positions(back, NULL, 0, &count) != SILK_OK || count != 12) return 5;
   /* errors: NULL arguments give a status and a message, never a crash */
-  if (silk_mesh_encode(NULL, NULL, &tokens, NULL) != SILK_ERR_INVALID_ARGUMENT || strlen(silk_last_error()) == 0) return 6;
+  if (silk_mesh_encode(NULL, NULL, &tokens, NULL) != SILK_ERR_INVALID_ARGUMENT || strlen(silk_last_error()) == 0)
+    return 6;
   /* generation entry points exist in every build; without onnxruntime they say so */
   {
     silk_generate_params gp = silk_generate_default_params();
@@ -72,7 +73,8 @@ int main(void) {
     silk_random_walk_params wp = silk_random_walk_default_params();
     if (silk_mesh_roundtrip(mesh, NULL, &rr) != SILK_OK || !rr.exact || rr.tokens != 17) return 18;
     if (silk_tokens_check(tokens, NULL, &cr) != SILK_OK || !cr.accepted) return 19;
-    if (silk_tokens_repair(tokens, NULL, &repaired, &rs, &report) != SILK_OK || rs.faces != 4 || !rs.watertight) return 20;
+    if (silk_tokens_repair(tokens, NULL, &repaired, &rs, &report) != SILK_OK || rs.faces != 4 || !rs.watertight)
+      return 20;
     if (strstr(silk_report_json(report), "\"holes\"") == NULL) return 21;
     silk_report_destroy(report);
     silk_mesh_destroy(repaired);
@@ -86,8 +88,8 @@ int main(void) {
   silk_tokens_destroy(tokens);
   silk_mesh_destroy(mesh);
   /* the header's version is the library's */
-  if (strcmp(silk_version(), SILK_VERSION_STRING) != 0 || SILK_VERSION_NUMBER != 10000 * SILK_VERSION_MAJOR +
-                                                              100 * SILK_VERSION_MINOR + SILK_VERSION_PATCH)
+  if (strcmp(silk_version(), SILK_VERSION_STRING) != 0 ||
+      SILK_VERSION_NUMBER != 10000 * SILK_VERSION_MAJOR + 100 * SILK_VERSION_MINOR + SILK_VERSION_PATCH)
     return 23;
   printf("C API from C: ok (%s)\n", silk_version());
   return 0;

@@ -52,7 +52,7 @@ void ExpectSizeQueryRule(const char* name, const Copy<T>& copy, const std::vecto
   size_t n = 12345;
   ASSERT_EQ(copy(nullptr, 0, &n), SILK_OK) << silk_last_error();  // the size query
   EXPECT_EQ(n, want.size());
-  EXPECT_EQ(copy(nullptr, 0, nullptr), SILK_OK);  // out_count may be NULL
+  EXPECT_EQ(copy(nullptr, 0, nullptr), SILK_OK);               // out_count may be NULL
   EXPECT_EQ(copy(nullptr, 4, &n), SILK_ERR_INVALID_ARGUMENT);  // a buffer promised, none given
   if (!want.empty()) {
     const T sentinel = static_cast<T>(-7);
@@ -80,19 +80,19 @@ TEST(CapiRules, EveryMeshAndTokensCopyFollowsTheSizeQueryRule) {
   ExpectSizeQueryRule<int32_t>(
       "components", [&](int32_t* o, size_t c, size_t* n) { return silk_mesh_copy_triangle_components(m, o, c, n); },
       std::vector<int32_t>(4, 0));
-  ExpectSizeQueryRule<double>(
-      "normals of a mesh", [&](double* o, size_t c, size_t* n) { return silk_mesh_copy_normals(m, o, c, n); }, {});
+  ExpectSizeQueryRule<double>("normals of a mesh",
+                              [&](double* o, size_t c, size_t* n) { return silk_mesh_copy_normals(m, o, c, n); }, {});
   const fs::path dir = fs::temp_directory_path() / ("silk_capi_rules_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   silk_mesh* cloud = PointCloud(dir);
-  ExpectSizeQueryRule<double>(
-      "normals of a cloud", [&](double* o, size_t c, size_t* n) { return silk_mesh_copy_normals(cloud, o, c, n); },
-      {0, 0, 1, 0, 0, 1, 1, 0, 0});
+  ExpectSizeQueryRule<double>("normals of a cloud",
+                              [&](double* o, size_t c, size_t* n) { return silk_mesh_copy_normals(cloud, o, c, n); },
+                              {0, 0, 1, 0, 0, 1, 1, 0, 0});
   const std::vector<int32_t> ids = {1, 2, 3, 4, 5};
   silk_tokens* t = nullptr;
   ASSERT_EQ(silk_tokens_create(ids.data(), ids.size(), &t), SILK_OK);
-  ExpectSizeQueryRule<int32_t>("tokens", [&](int32_t* o, size_t c, size_t* n) { return silk_tokens_copy(t, o, c, n); },
-                               ids);
+  ExpectSizeQueryRule<int32_t>(
+      "tokens", [&](int32_t* o, size_t c, size_t* n) { return silk_tokens_copy(t, o, c, n); }, ids);
   size_t n = 99;
   EXPECT_EQ(silk_tokens_copy(nullptr, nullptr, 0, &n), SILK_ERR_INVALID_ARGUMENT);
   EXPECT_EQ(n, 0u);
@@ -121,21 +121,21 @@ void ExpectSizeRefused(const char* type, size_t expected, const char* how, const
   SCOPED_TRACE(type);
   ASSERT_EQ(call(), SILK_ERR_INVALID_ARGUMENT);
   const std::string msg = silk_last_error();
-  for (const std::string& part : {std::string(type) + ".struct_size 0", "expected " + std::to_string(expected),
-                                 std::string(how)})
+  for (const std::string& part :
+       {std::string(type) + ".struct_size 0", "expected " + std::to_string(expected), std::string(how)})
     EXPECT_NE(msg.find(part), std::string::npos) << "missing '" << part << "' in: " << msg;
 }
 
-#define SILK_REFUSED_PARAMS(type, defaults, call_with)     \
-  {                                                        \
-    type x = defaults;                                     \
-    x.struct_size = 0;                                     \
-    const std::string how = #defaults; /* the function's name, "(" included */      \
+#define SILK_REFUSED_PARAMS(type, defaults, call_with)                                                           \
+  {                                                                                                              \
+    type x = defaults;                                                                                           \
+    x.struct_size = 0;                                                                                           \
+    const std::string how = #defaults; /* the function's name, "(" included */                                   \
     ExpectSizeRefused(#type, sizeof(type), how.substr(0, how.find('(') + 1).c_str(), [&] { return call_with; }); \
   }
-#define SILK_REFUSED_OUT(type, call_with)                                                      \
-  {                                                                                            \
-    type x{};                                                                                  \
+#define SILK_REFUSED_OUT(type, call_with)                                                   \
+  {                                                                                         \
+    type x{};                                                                               \
     ExpectSizeRefused(#type, sizeof(type), "sizeof(" #type ")", [&] { return call_with; }); \
   }
 
@@ -155,7 +155,8 @@ TEST(CapiRules, AWrongStructSizeIsRefusedNamingTheStruct) {
     r.struct_size = sizeof r;
     return silk_tokens_check(t, &x, &r);
   }());
-  SILK_REFUSED_PARAMS(silk_repair_params, silk_repair_default_params(), silk_tokens_repair(t, &x, &out, nullptr, nullptr));
+  SILK_REFUSED_PARAMS(silk_repair_params, silk_repair_default_params(),
+                      silk_tokens_repair(t, &x, &out, nullptr, nullptr));
   SILK_REFUSED_PARAMS(silk_random_walk_params, silk_random_walk_default_params(),
                       silk_tokens_random_walk(&x, &out_t, nullptr));
   SILK_REFUSED_PARAMS(silk_preprocess_params, silk_preprocess_default_params(SILK_PREPROCESS_SILK),
@@ -170,7 +171,7 @@ TEST(CapiRules, AWrongStructSizeIsRefusedNamingTheStruct) {
   SILK_REFUSED_OUT(silk_check_result, silk_tokens_check(t, nullptr, &x));
   SILK_REFUSED_OUT(silk_repair_stats, silk_tokens_repair(t, nullptr, &out, &x, nullptr));
   SILK_REFUSED_OUT(silk_vocab_info, silk_vocab_get_info(&x));
-  EXPECT_EQ(out, nullptr);    // nothing was made
+  EXPECT_EQ(out, nullptr);  // nothing was made
   EXPECT_EQ(out_t, nullptr);
   silk_tokens_destroy(t);
   silk_mesh_destroy(m);
@@ -189,7 +190,7 @@ TEST(CapiRules, DefaultsCarryTheirSizeAndARightSizeIsAccepted) {
   silk_vocab_info v{};
   v.struct_size = sizeof v;
   ASSERT_EQ(silk_vocab_get_info(&v), SILK_OK) << silk_last_error();
-  EXPECT_EQ(v.struct_size, sizeof v);  // the library keeps the caller's size
+  EXPECT_EQ(v.struct_size, sizeof v);     // the library keeps the caller's size
   EXPECT_EQ(v.format_vocab_size, 10267);  // token_format.md: ids 0..10266
   silk_mesh* m = Tetrahedron();
   silk_roundtrip_report r{};

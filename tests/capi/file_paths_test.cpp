@@ -155,7 +155,10 @@ TEST(FilePaths, NonAsciiFolderHoldsTheMeshAndTheOutputs) {
 #ifdef _WIN32
   EXPECT_TRUE(HasName(dir + "/..", L"\u00dcn\u00efc\u00f8d\u00e9 \u5f62\u72b6"));
 #else
-  EXPECT_TRUE(HasName(dir + "/..", "\xc3\x9cn\xc3\xaf" "c\xc3\xb8" "d\xc3\xa9 \xe5\xbd\xa2\xe7\x8a\xb6"));
+  EXPECT_TRUE(HasName(dir + "/..",
+                      "\xc3\x9cn\xc3\xaf"
+                      "c\xc3\xb8"
+                      "d\xc3\xa9 \xe5\xbd\xa2\xe7\x8a\xb6"));
 #endif
   const std::string mesh = dir + u8"/würfel 立方体.obj";
   CopyWritable(silk::testing::SharedPath("spec/golden/cube.obj"), mesh);
@@ -209,8 +212,7 @@ TEST(FilePaths, NonAsciiModelFolderWithCrlfModelJson) {
   const std::string dir = TempFolder(kUnicodeFolder) + u8"/modèle 模型";
   fs::create_directories(silk::NativePath(dir));
   const std::string tiny = silk::testing::SourcePath("tests/models/tiny");
-  for (const char* f : {"encoder.onnx", "decoder.onnx"})
-    CopyWritable(tiny + "/" + f, dir + "/" + f);
+  for (const char* f : {"encoder.onnx", "decoder.onnx"}) CopyWritable(tiny + "/" + f, dir + "/" + f);
   WriteAll(dir + "/model.json", WithCrlf(ReadAll(tiny + "/model.json")));
   ASSERT_NE(ReadAll(dir + "/model.json").find("\r\n"), std::string::npos);
   silk_model* model = nullptr;
@@ -240,7 +242,8 @@ TEST(FilePaths, BackslashesAndDriveLetters) {
   if (silk_generation_available()) {
     silk_model* model = nullptr;
     EXPECT_EQ(silk_model_load(Backslashed(silk::testing::SourcePath("tests/models/tiny")).c_str(), nullptr, &model),
-              SILK_OK) << silk_last_error();
+              SILK_OK)
+        << silk_last_error();
     silk_model_destroy(model);
   }
 }

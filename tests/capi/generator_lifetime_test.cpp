@@ -54,8 +54,8 @@ struct Handles {
 
 // Finding 1: silk_generator_destroy from another thread while silk_generator_run runs on the generator
 // (before: SIGSEGV). The destroy lands at random moments of the call; the call returns SILK_OK
-// (destroy after its end; delays up to 120 ms, about a call's length) or SILK_ERR_CANCELLED (destroy during it: the call is cancelled and frees
-// the generator as it returns) and never crashes; ASan/LSan check the memory.
+// (destroy after its end; delays up to 120 ms, about a call's length) or SILK_ERR_CANCELLED (destroy during it: the
+// call is cancelled and frees the generator as it returns) and never crashes; ASan/LSan check the memory.
 TEST_F(CapiLifetime, DestroyFromAnotherThreadDuringACallIsSafe) {
   const int iterations = kSanitized ? 12 : 40;
   std::mt19937 rng(20);
@@ -244,13 +244,16 @@ TEST_F(CapiLifetime, CancelAtRandomMomentsIsNeverLost) {
     EXPECT_TRUE(r.mesh);
     EXPECT_EQ(r.ids, base.ids) << i;
     const bool before = r.cancel_issued <= r.called + slack, after = r.cancel_issued >= r.returned - slack;
-    if (r.cancel_issued >= r.returned) ++after_end;
-    else if (before || after) ++excused;
+    if (r.cancel_issued >= r.returned)
+      ++after_end;
+    else if (before || after)
+      ++excused;
     EXPECT_TRUE(before || after) << i << ": cancel issued " << Ms(r.cancel_issued - r.called) << " ms into a "
                                  << Ms(r.returned - r.called) << " ms call was lost (SILK_OK)";
   }
-  std::printf("[ cancel ] %d calls of %.1f ms: %d cancelled, %d ended before the cancel, %d SILK_OK within %.2f ms of an end\n",
-              iterations, Ms(length), cancelled, after_end, excused, Ms(slack));
+  std::printf(
+      "[ cancel ] %d calls of %.1f ms: %d cancelled, %d ended before the cancel, %d SILK_OK within %.2f ms of an end\n",
+      iterations, Ms(length), cancelled, after_end, excused, Ms(slack));
   silk_generator_destroy(g);
 }
 

@@ -499,7 +499,8 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
     silk_mesh_destroy(out);
   }
   // The sentinel and the documented ranges' ends still run.
-  const Case good[] = {{"sentinel", [](silk_generate_params* p) {
+  const Case good[] = {{"sentinel",
+                        [](silk_generate_params* p) {
                           p->temperature = p->top_p = p->top_p_temperature = SILK_MODEL_VALUE;
                           p->top_k = p->candidates = p->preprocessing = SILK_MODEL_VALUE;
                         }},
@@ -510,7 +511,8 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
     p.max_tokens = 60;
     c.set(&p);
     silk_mesh* out = nullptr;
-    EXPECT_EQ(silk::testing::GenerateFromMesh(g, m, &p, &out, nullptr, nullptr), SILK_OK) << c.what << ": " << silk_last_error();
+    EXPECT_EQ(silk::testing::GenerateFromMesh(g, m, &p, &out, nullptr, nullptr), SILK_OK)
+        << c.what << ": " << silk_last_error();
     silk_mesh_destroy(out);
   }
   silk_generate_params d = silk_generate_default_params();
@@ -629,7 +631,8 @@ TEST(CapiLog, TheCallbackFires) {
   EXPECT_NE(sink.lines[0].second.find("silk_missing.obj"), std::string::npos) << sink.lines[0].second;
   if (silk_generation_available()) {
     bool info = false;
-    for (const auto& [level, text] : sink.lines) info |= level == SILK_LOG_INFO && text.find("loaded model") != std::string::npos;
+    for (const auto& [level, text] : sink.lines)
+      info |= level == SILK_LOG_INFO && text.find("loaded model") != std::string::npos;
     EXPECT_TRUE(info);
   }
 }
@@ -696,8 +699,8 @@ TEST_F(CapiGeneration, FiftyGenerationsKeepTheRssFlat) {
   ASSERT_GT(rss.front(), 0) << "VmRSS not readable from /proc/self/status";
   const long start = *std::max_element(rss.begin(), rss.begin() + kWindow);
   const long end = *std::max_element(rss.end() - kWindow, rss.end());
-  std::printf("soak: %d generations, RSS max of the first %d %ld kB, of the last %d %ld kB (%+ld kB)\n", kRuns,
-              kWindow, start, kWindow, end, end - start);
+  std::printf("soak: %d generations, RSS max of the first %d %ld kB, of the last %d %ld kB (%+ld kB)\n", kRuns, kWindow,
+              start, kWindow, end, end - start);
   EXPECT_LT(end - start, 16 * 1024);
   silk_generator_destroy(g);
 }

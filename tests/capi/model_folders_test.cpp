@@ -127,7 +127,8 @@ TEST_F(ModelFolders, FindTakesTheBundledModelAPathOrAName) {
   EXPECT_EQ(Find("no/such/folder"), "no/such/folder");  // a path: the loader names it
   const std::string e = Error(silk_model_find, "silksong", SILK_ERR_IO);
   EXPECT_NE(e.find("'silksong' is neither a folder nor a model in " + (root_ / "models" / "silksong").string()),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
   EXPECT_NE(e.find("import-official --name silksong"), std::string::npos) << e;
 }
 
@@ -148,7 +149,8 @@ TEST_F(ModelFolders, LoadTakesAName) {
   EXPECT_EQ(silk_model_load("no-such-model", nullptr, &h), SILK_ERR_IO);
   EXPECT_EQ(h, nullptr);
   EXPECT_NE(std::string(silk_last_error()).find("silk_model_load: 'no-such-model' is neither a folder nor a model in"),
-            std::string::npos) << silk_last_error();
+            std::string::npos)
+      << silk_last_error();
 }
 
 TEST_F(ModelFolders, ListDescribesEachModelWithoutLoadingIt) {

@@ -56,8 +56,9 @@ std::vector<double> Normals(const silk_mesh* m) {
 
 TEST_F(CapiPointClouds, CloudsWithoutNormalsGetOutwardEstimates) {
   const auto pts = Sphere(2000);
-  std::string ply = "ply\nformat ascii 1.0\nelement vertex 2000\nproperty double x\nproperty double y\n"
-                    "property double z\nend_header\n";
+  std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 2000\nproperty double x\nproperty double y\n"
+      "property double z\nend_header\n";
   std::string xyz = "# sphere\r\n";
   char buf[96];
   for (const auto& p : pts) {
@@ -74,7 +75,8 @@ TEST_F(CapiPointClouds, CloudsWithoutNormalsGetOutwardEstimates) {
     ASSERT_EQ(silk_mesh_has_normals(m), 1) << path;
     const std::vector<double> n = Normals(m);
     for (size_t i = 0; i < pts.size(); ++i) {
-      const double radial = ((pts[i][0] - 1) * n[3 * i] + pts[i][1] * n[3 * i + 1] + (pts[i][2] + 1) * n[3 * i + 2]) / 2;
+      const double radial =
+          ((pts[i][0] - 1) * n[3 * i] + pts[i][1] * n[3 * i + 1] + (pts[i][2] + 1) * n[3 * i + 2]) / 2;
       ASSERT_GT(radial, 0.99) << path << " point " << i;
     }
     silk_mesh_destroy(m);
@@ -88,12 +90,14 @@ TEST_F(CapiPointClouds, OwnNormalsKeptAndRefusals) {
   EXPECT_EQ(Normals(m), (std::vector<double>{0, 0, 1, 0.6, 0.8, 0, 0, -1, 0}));
   silk_mesh_destroy(m);
   m = nullptr;
-  const std::string two = Write("two.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
-                                           "property float z\nend_header\n0 0 0\n1 0 0\n");
+  const std::string two = Write("two.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                                "property float z\nend_header\n0 0 0\n1 0 0\n");
   EXPECT_EQ(silk_mesh_load(two.c_str(), nullptr, &m), SILK_ERR_INVALID_ARGUMENT);
   EXPECT_EQ(m, nullptr);
-  EXPECT_NE(std::string(silk_last_error()).find("two.ply: a point cloud without normals: cannot estimate normals from 2"),
-            std::string::npos)
+  EXPECT_NE(
+      std::string(silk_last_error()).find("two.ply: a point cloud without normals: cannot estimate normals from 2"),
+      std::string::npos)
       << silk_last_error();
   silk_load_params lp = silk_load_default_params();
   lp.point_clouds = 0;  // the tokenizer's view: an XYZ file has no faces

@@ -42,8 +42,8 @@ TEST(ReportJson, JsonNumberWritesNullForNonFiniteValues) {
   EXPECT_EQ(silk::JsonNumber(-1.5, 9), "-1.5");
   const float f = 0.1f;  // 9 significant digits read a float back exactly
   EXPECT_EQ(static_cast<float>(std::stod(silk::JsonNumber(f, 9))), f);
-  const std::string list = "[" + silk::JsonNumber(1.25, 9) + "," + silk::JsonNumber(kNaN, 9) + "," +
-                           silk::JsonNumber(1e-30, 9) + "]";
+  const std::string list =
+      "[" + silk::JsonNumber(1.25, 9) + "," + silk::JsonNumber(kNaN, 9) + "," + silk::JsonNumber(1e-30, 9) + "]";
   const nlohmann::json back = nlohmann::json::parse(list);
   ASSERT_EQ(back.size(), 3u);
   EXPECT_EQ(back[0].get<double>(), 1.25);

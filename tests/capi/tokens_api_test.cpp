@@ -76,7 +76,8 @@ int VerticesWithSeveralFans(const std::vector<int32_t>& tris) {
       for (size_t b = a + 1; b < fs.size(); ++b) {
         const auto oa = others(fs[a]), ob = others(fs[b]);
         for (int32_t x : oa)
-          if (std::find(ob.begin(), ob.end(), x) != ob.end()) parent[find(static_cast<int>(a))] = find(static_cast<int>(b));
+          if (std::find(ob.begin(), ob.end(), x) != ob.end())
+            parent[find(static_cast<int>(a))] = find(static_cast<int>(b));
       }
     int roots = 0;
     for (size_t a = 0; a < fs.size(); ++a) roots += find(static_cast<int>(a)) == static_cast<int>(a);
@@ -87,7 +88,8 @@ int VerticesWithSeveralFans(const std::vector<int32_t>& tris) {
 
 TEST(CapiTokens, EncodeStatsCarryCleanupCountsAndPhaseTimes) {
   silk_mesh* m = nullptr;
-  ASSERT_EQ(silk_mesh_load(silk::testing::SharedPath("spec/golden/dirty_cube.obj").c_str(), nullptr, &m), SILK_OK) << silk_last_error();
+  ASSERT_EQ(silk_mesh_load(silk::testing::SharedPath("spec/golden/dirty_cube.obj").c_str(), nullptr, &m), SILK_OK)
+      << silk_last_error();
   silk_tokens* t = nullptr;
   silk_encode_stats st;
   std::memset(&st, 0xff, sizeof st);
@@ -164,7 +166,9 @@ TEST(CapiTokens, DecodeSplitsEveryVertexWithSeveralFans) {
 TEST(CapiTokens, RoundTripOfTheGoldensIsExact) {
   for (const char* name : {"cube", "icosphere2", "nonmanifold_book", "cylinder_capped"}) {
     silk_mesh* m = nullptr;
-    ASSERT_EQ(silk_mesh_load(silk::testing::SharedPath(std::string("spec/golden/") + name + ".obj").c_str(), nullptr, &m), SILK_OK);
+    ASSERT_EQ(
+        silk_mesh_load(silk::testing::SharedPath(std::string("spec/golden/") + name + ".obj").c_str(), nullptr, &m),
+        SILK_OK);
     silk_roundtrip_report r = silk_cpp::Sized<silk_roundtrip_report>();
     ASSERT_EQ(silk_mesh_roundtrip(m, nullptr, &r), SILK_OK) << silk_last_error();
     EXPECT_EQ(r.tokens, static_cast<int64_t>(GoldenIds(name).size())) << name;

@@ -18,10 +18,10 @@ namespace {
 
 // Class ranges of the model vocabulary, in id order.
 std::vector<std::pair<int32_t, int32_t>> ClassRanges() {
-  return {{vocab::kCBegin, vocab::kCBegin + 1}, {vocab::kUBegin, vocab::kUBegin + 1},
-          {vocab::kEBegin, vocab::kEBegin + 1}, {vocab::kXBegin, vocab::kXEnd},
-          {vocab::kSBegin, vocab::kSEnd},       {vocab::kBBegin, vocab::kBEnd},
-          {vocab::kBEnd, vocab::kKEnd},         {vocab::kKEnd, vocab::kOEnd},
+  return {{vocab::kCBegin, vocab::kCBegin + 1},  {vocab::kUBegin, vocab::kUBegin + 1},
+          {vocab::kEBegin, vocab::kEBegin + 1},  {vocab::kXBegin, vocab::kXEnd},
+          {vocab::kSBegin, vocab::kSEnd},        {vocab::kBBegin, vocab::kBEnd},
+          {vocab::kBEnd, vocab::kKEnd},          {vocab::kKEnd, vocab::kOEnd},
           {vocab::k_eos_id, vocab::k_eos_id + 1}};
 }
 

@@ -138,10 +138,12 @@ TEST(GrammarRandomWalk, LargeLayersWithExtras) {
   RunWalks(50000, 30, wo, true);
 }
 
-TEST(GrammarRandomWalkSlow, TenThousandWalksSatisfyGuarantees) { RandomWalkOptions wo;
+TEST(GrammarRandomWalkSlow, TenThousandWalksSatisfyGuarantees) {
+  RandomWalkOptions wo;
   wo.max_layer_size = 8;
   wo.max_layers = 4;
-  RunWalks(1, 10000, wo, false); }
+  RunWalks(1, 10000, wo, false);
+}
 
 }  // namespace
 }  // namespace silk

@@ -43,31 +43,52 @@ const Case kCases[] = {
     {"two_components_ok", "two_components", [](std::vector<int32_t>*) {}, RejectReason::kNone, -1},
     {"empty_incomplete", "cube", [](std::vector<int32_t>* v) { v->clear(); }, RejectReason::kIncomplete, 0},
     {"first_not_c", "cube", [](std::vector<int32_t>* v) { (*v)[0] = 1; }, RejectReason::kWrongClass, 0},
-    {"offset_before_block", "cube", [](std::vector<int32_t>* v) { std::swap((*v)[1], (*v)[2]); }, RejectReason::kWrongClass, 1},
+    {"offset_before_block", "cube", [](std::vector<int32_t>* v) { std::swap((*v)[1], (*v)[2]); },
+     RejectReason::kWrongClass, 1},
     {"e_after_root", "cube", [](std::vector<int32_t>* v) { (*v)[3] = 2; }, RejectReason::kLayerZeroSize, 3},
     {"two_roots", "cube", [](std::vector<int32_t>* v) { (*v)[3] = 5659; }, RejectReason::kWrongClass, 3},
     {"pad_inside", "cube", [](std::vector<int32_t>* v) { (*v)[5] = 10268; }, RejectReason::kPadToken, 5},
     {"eos_inside", "cube", [](std::vector<int32_t>* v) { (*v)[28] = 10267; }, RejectReason::kEosNotAfterE, 28},
     {"out_of_vocab", "cube", [](std::vector<int32_t>* v) { (*v)[6] = 10269; }, RejectReason::kOutOfVocabulary, 6},
     {"eos_at_end_ok", "cube", [](std::vector<int32_t>* v) { v->push_back(10267); }, RejectReason::kNone, -1},
-    {"token_after_eos", "cube", [](std::vector<int32_t>* v) { v->push_back(10267); v->push_back(0); }, RejectReason::kAfterEos, 35},
+    {"token_after_eos", "cube",
+     [](std::vector<int32_t>* v) {
+       v->push_back(10267);
+       v->push_back(0);
+     },
+     RejectReason::kAfterEos, 35},
     {"truncated", "cube", [](std::vector<int32_t>* v) { v->resize(30); }, RejectReason::kIncomplete, 30},
     // Layer 1 allows only B id 460 (token_format.md §11.3).
     {"layer1_b459", "cube", [](std::vector<int32_t>* v) { (*v)[7] = 459; }, RejectReason::kBOutsidePrevLayer, 7},
-    {"layer1_two_b", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 8, 460); }, RejectReason::kBContinuation, 8},
+    {"layer1_two_b", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 8, 460); },
+     RejectReason::kBContinuation, 8},
     // Cube layer 2 row over 6 columns: s=0 case 0 (459). s=1 case 0 reaches column 6 -> outside.
     {"b_outside", "cube", [](std::vector<int32_t>* v) { (*v)[32] = 459 + 26; }, RejectReason::kBOutsidePrevLayer, 32},
-    {"b_continuation", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 33, 459 + 26 * 5 + 1); }, RejectReason::kBContinuation, 33},
+    {"b_continuation", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 33, 459 + 26 * 5 + 1); },
+     RejectReason::kBContinuation, 33},
     // S window of a 1-vertex layer must be 0 (bits at distance >= N; token_format.md §11.2).
     {"window_beyond", "cube", [](std::vector<int32_t>* v) { (*v)[31] = 204; }, RejectReason::kLayerNotClosable, 33},
     // Cube layer 1 row 0 drops its d=5 bit (w=1): the partner row 5 still states the pair.
-    {"window_inconsistent", "cube", [](std::vector<int32_t>* v) { (*v)[6] = 204; }, RejectReason::kLayerNotClosable, 28},
+    {"window_inconsistent", "cube", [](std::vector<int32_t>* v) { (*v)[6] = 204; }, RejectReason::kLayerNotClosable,
+     28},
     // Layer-1 chain: row 0 without bit 0 forces N = 1, which layer 1 cannot have.
     {"layer1_chain", "cube", [](std::vector<int32_t>* v) { (*v)[6] = 203 + 16; }, RejectReason::kNotCanonical, 6},
-    {"x_small_layer", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 7, 3 + 8); }, RejectReason::kLayerNotClosable, 29},
-    {"x_below_8", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 7, 3 + 7); }, RejectReason::kXOutOfRange, 7},
-    {"x_not_increasing", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 7, 3 + 20); v->insert(v->begin() + 8, 3 + 9); }, RejectReason::kXNotIncreasing, 8},
-    {"zero_length_edge", "cube", [](std::vector<int32_t>* v) { (*v)[8] = (*v)[4]; (*v)[9] = (*v)[5]; }, RejectReason::kZeroLengthEdge, 9},
+    {"x_small_layer", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 7, 3 + 8); },
+     RejectReason::kLayerNotClosable, 29},
+    {"x_below_8", "cube", [](std::vector<int32_t>* v) { v->insert(v->begin() + 7, 3 + 7); }, RejectReason::kXOutOfRange,
+     7},
+    {"x_not_increasing", "cube",
+     [](std::vector<int32_t>* v) {
+       v->insert(v->begin() + 7, 3 + 20);
+       v->insert(v->begin() + 8, 3 + 9);
+     },
+     RejectReason::kXNotIncreasing, 8},
+    {"zero_length_edge", "cube",
+     [](std::vector<int32_t>* v) {
+       (*v)[8] = (*v)[4];
+       (*v)[9] = (*v)[5];
+     },
+     RejectReason::kZeroLengthEdge, 9},
     {"u_at_layer_end_ok_as_e", "cube", [](std::vector<int32_t>* v) { (*v)[33] = 2; }, RejectReason::kNone, -1},
 };
 

@@ -50,7 +50,7 @@ TEST(VertexFanRules, SplitWithoutRepair) {
 TEST(VertexFanRules, IllegalGapsAreSplit) {
   Bowtie b;
   b.layer = {1, 0, 2, 3, 3};  // gap 4 -> 1 spans three layers: not a legal chord
-  b.pos[3] = {60, 70, 50};     // gap 2 -> 3: the face (0, 2, 3) would be flat (collinear corners)
+  b.pos[3] = {60, 70, 50};    // gap 2 -> 3: the face (0, 2, 3) would be flat (collinear corners)
   std::vector<int32_t> copy_of;
   VertexFanCounts c;
   ResolveVertexFans(&b.faces, b.pos, b.layer, true, &copy_of, &c);

@@ -16,8 +16,8 @@ namespace silk {
 namespace {
 
 struct Expectation {
-  bool reads_raw;        // reader succeeds (cleaning happens in a later layer)
-  std::string message;   // substring of the error message, after "<path>"
+  bool reads_raw;       // reader succeeds (cleaning happens in a later layer)
+  std::string message;  // substring of the error message, after "<path>"
 };
 
 const std::map<std::string, Expectation>& Table() {

@@ -43,7 +43,8 @@ class TempDir {
     buf.push_back('\0');
 #ifdef _WIN32  // no mkdtemp: _mktemp_s names it, create_directory refuses an existing one
     path_ = _mktemp_s(buf.data(), buf.size()) == 0 && std::filesystem::create_directory(buf.data())
-                ? std::string(buf.data()) : std::string();
+                ? std::string(buf.data())
+                : std::string();
 #else
     path_ = mkdtemp(buf.data()) ? std::string(buf.data()) : std::string();
 #endif

@@ -96,7 +96,8 @@ TEST(MeshReader, GzipBombIsRefusedWhileInflating) {
   ASSERT_FALSE(m.ok());
   EXPECT_EQ(m.status().code(), StatusCode::kLimitExceeded) << m.status().ToString();
   EXPECT_NE(m.status().message().find(path + ": gzip data inflates past the limit of 67108864 bytes"),
-            std::string::npos) << m.status().message();
+            std::string::npos)
+      << m.status().message();
   EXPECT_LT(seconds, 5.0);
   EXPECT_LT(MaxRssKb() - rss_before, 128 * 1024) << "peak RSS grew by " << (MaxRssKb() - rss_before) << " KB";
 }
@@ -113,14 +114,16 @@ TEST(MeshReader, GzipInflatedLimitScalesWithCompressedSize) {
   testing::TempDir dir;
   std::string noise;  // incompressible comment bytes: ratio about 1
   uint32_t x = 12345;
-  for (int i = 0; i < (2 << 20); ++i) noise.push_back(static_cast<char>('a' + ((x = x * 1103515245u + 12345u) >> 16) % 26));
+  for (int i = 0; i < (2 << 20); ++i)
+    noise.push_back(static_cast<char>('a' + ((x = x * 1103515245u + 12345u) >> 16) % 26));
   auto ok = ReadMeshFile(dir.Write("noisy.obj.gz", Gzip(kTriObj + ("# " + noise + "\n"))), opts);
   ASSERT_TRUE(ok.ok()) << ok.status().ToString();
   EXPECT_EQ(ok->triangles.size(), 1u);
   auto bomb = ReadMeshFile(dir.Write("small_bomb.obj.gz", Gzip(kTriObj + std::string(2 << 20, '#'))), opts);
   ASSERT_FALSE(bomb.ok());
   EXPECT_NE(bomb.status().message().find("small_bomb.obj.gz: gzip data inflates past the limit of 1048576 bytes"),
-            std::string::npos) << bomb.status().message();
+            std::string::npos)
+      << bomb.status().message();
 }
 
 #endif  // SILK_HAVE_ZLIB

@@ -16,8 +16,8 @@ namespace {
 double BruteNearest(const std::vector<Point3>& set, const Point3& q) {
   double best = std::numeric_limits<double>::infinity();
   for (const Point3& p : set)
-    best = std::min(best, std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                                    (p[2] - q[2]) * (p[2] - q[2])));
+    best = std::min(
+        best, std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2])));
   return best;
 }
 
@@ -53,8 +53,8 @@ TEST(ChamferDistance, NearestIndexIsTheBruteForceArgminWithTheLowestIndexOnTies)
       double best = std::numeric_limits<double>::infinity();
       for (size_t i = 0; i < set.size(); ++i) {
         const Point3& p = set[i];
-        const double d = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                                   (p[2] - q[2]) * (p[2] - q[2]));
+        const double d =
+            std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
         if (d < best) best = d, want = static_cast<int32_t>(i);
       }
       ASSERT_EQ(hit.index, want) << "trial " << trial;

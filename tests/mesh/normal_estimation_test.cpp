@@ -181,7 +181,8 @@ TEST(NormalEstimation, IdenticalPointsAreRefusedNamingTheCount) {
   auto r = EstimateNormals(same);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message().find("the 100000 points lie at 1 distinct position(s), at least 3 are needed"),
-            std::string::npos) << r.status().ToString();
+            std::string::npos)
+      << r.status().ToString();
   std::vector<Point3> two = same;
   two.push_back({1, 1, 1});
   EXPECT_FALSE(EstimateNormals(two).ok());

@@ -46,8 +46,8 @@ void AddSpherePoints(const Point3& centre, double r, bool inward_normals, std::v
 
 // Independent verdict: +1 every face of the part points away from `centre`, -1 every face
 // towards it, 0 mixed.
-int Facing(const std::vector<Point3>& p, const std::vector<Face>& faces, const std::vector<int32_t>& part, int32_t which,
-           const Point3& centre) {
+int Facing(const std::vector<Point3>& p, const std::vector<Face>& faces, const std::vector<int32_t>& part,
+           int32_t which, const Point3& centre) {
   int out = 0, in = 0;
   for (size_t f = 0; f < faces.size(); ++f) {
     if (part[f] != which) continue;

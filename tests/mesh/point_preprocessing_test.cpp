@@ -29,10 +29,10 @@ IoMesh Box() {
 
 TEST(Float16Rounding, KnownValuesTiesAndRange) {
   EXPECT_EQ(RoundToFloat16(1.0), 1.0);
-  EXPECT_EQ(RoundToFloat16(0.1), 0.0999755859375);               // 0x2E66
-  EXPECT_EQ(RoundToFloat16(0.95), 0.9501953125);                 // 0x3B9A
+  EXPECT_EQ(RoundToFloat16(0.1), 0.0999755859375);  // 0x2E66
+  EXPECT_EQ(RoundToFloat16(0.95), 0.9501953125);    // 0x3B9A
   EXPECT_EQ(RoundToFloat16(-0.95), -0.9501953125);
-  EXPECT_EQ(RoundToFloat16(1.0 + std::ldexp(1.0, -11)), 1.0);    // tie -> even mantissa
+  EXPECT_EQ(RoundToFloat16(1.0 + std::ldexp(1.0, -11)), 1.0);  // tie -> even mantissa
   EXPECT_EQ(RoundToFloat16(1.0 + 3 * std::ldexp(1.0, -11)), 1.0 + std::ldexp(1.0, -9));
   EXPECT_EQ(RoundToFloat16(65504.0), 65504.0);
   EXPECT_EQ(RoundToFloat16(65519.0), 65504.0);
@@ -57,7 +57,7 @@ TEST(CloseVertexMerge, MergesNearDuplicatesAndDropsDegenerateAndRepeatedFaces) {
   IoMesh m;
   // A unit square (two triangles) whose second triangle uses copies of two corners moved by
   // 1e-3, a sliver triangle inside the merge distance, a repeated face, an unreferenced vertex.
-  m.positions = {{0, 0, 0},    {1, 0, 0},    {1, 1, 0},      {0, 1, 0},   {0.001, 0, 0},
+  m.positions = {{0, 0, 0},     {1, 0, 0},     {1, 1, 0},       {0, 1, 0},       {0.001, 0, 0},
                  {1, 1.001, 0}, {0.5, 0.5, 0}, {0.5, 0.505, 0}, {0.505, 0.5, 0}, {9, 9, 9}};
   m.triangles = {{0, 1, 2}, {4, 5, 3}, {6, 7, 8}, {2, 0, 1}};
   const double diag = ReferencedBoundingBoxDiagonal(m);

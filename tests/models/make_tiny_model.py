@@ -10,6 +10,7 @@ spread and any runtime mistake changes the sampled ids), plus output biases towa
 
 Also writes tests/models/golden/torus_knot_points.ply, the golden test's point-cloud input.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -35,8 +36,18 @@ SEED = 20240611
 CLOSING_BIAS = {"U": 4.0, "E": 3.0, "X": -6.0}
 # Two heads of width 8 (onnxruntime's GroupQueryAttention needs a multiple of 8); d_model 16
 # keeps the two 10,270 x d tables (embedding, output head) at ~330 KB each in float16.
-TINY = ModelConfig("test-tiny", d_model=16, n_layers=2, n_heads=2, n_latents=4, max_seq_len=1024,
-                   encoder_layers=1, ff_mult=2, fourier_freqs=2, n_points=256)
+TINY = ModelConfig(
+    "test-tiny",
+    d_model=16,
+    n_layers=2,
+    n_heads=2,
+    n_latents=4,
+    max_seq_len=1024,
+    encoder_layers=1,
+    ff_mult=2,
+    fourier_freqs=2,
+    n_points=256,
+)
 
 
 def shrink(path: Path, min_elems: int = 4096) -> None:
@@ -53,8 +64,7 @@ def shrink(path: Path, min_elems: int = 4096) -> None:
         name = init.name
         g.initializer.remove(init)
         g.initializer.append(numpy_helper.from_array(arr, name + "_f16"))
-        casts.append(helper.make_node("Cast", [name + "_f16"], [name], to=onnx.TensorProto.FLOAT,
-                                      name=name + "_cast"))
+        casts.append(helper.make_node("Cast", [name + "_f16"], [name], to=onnx.TensorProto.FLOAT, name=name + "_cast"))
     nodes = casts[:]
     for node in list(g.node):
         nodes.append(node)
@@ -118,17 +128,23 @@ def write_point_cloud(obj: Path, out: Path) -> None:
         np.add.at(n, f[:, k], fn)
     n /= np.linalg.norm(n, axis=1, keepdims=True)
     rows = np.hstack([v, n]).astype("<f4")
-    header = ("ply\nformat binary_little_endian 1.0\ncomment made by tests/models/make_tiny_model.py\n"
-              f"element vertex {len(rows)}\n" + "".join(f"property float {p}\n" for p in
-                                                       ("x", "y", "z", "nx", "ny", "nz")) + "end_header\n")
+    header = (
+        "ply\nformat binary_little_endian 1.0\ncomment made by tests/models/make_tiny_model.py\n"
+        f"element vertex {len(rows)}\n"
+        + "".join(f"property float {p}\n" for p in ("x", "y", "z", "nx", "ny", "nz"))
+        + "end_header\n"
+    )
     out.write_bytes(header.encode() + rows.tobytes())
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", default=str(REPO / "tests" / "models" / "tiny"))
-    ap.add_argument("--points-ply", default=str(REPO / "tests" / "models" / "golden" / "torus_knot_points.ply"),
-                    help="also write the golden point-cloud input here ('' = skip)")
+    ap.add_argument(
+        "--points-ply",
+        default=str(REPO / "tests" / "models" / "golden" / "torus_knot_points.ply"),
+        help="also write the golden point-cloud input here ('' = skip)",
+    )
     a = ap.parse_args()
     if a.points_ply:
         Path(a.points_ply).parent.mkdir(parents=True, exist_ok=True)

@@ -20,6 +20,7 @@ Exit 0 = match, 1 = mismatch, 77 = onnxruntime/numpy not installed (ctest SKIP).
 
     reference_loop.py MODEL_DIR TRACE.json [--tokens FILE]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -122,10 +123,13 @@ def main() -> int:
     def run(ids_, first, past_):
         """decoder.onnx on ids_ at positions first..; returns (logits, the grown per-layer cache)."""
         n = len(ids_)
-        feeds = {"input_ids": np.asarray([ids_], np.int64),
-                 "positions": np.arange(first, first + n, dtype=np.int64)[None, :],
-                 "seqlens_k": np.asarray([first + n - 1], np.int32),
-                 "total_sequence_length": np.asarray(first + n, np.int32), **cross_feeds}
+        feeds = {
+            "input_ids": np.asarray([ids_], np.int64),
+            "positions": np.arange(first, first + n, dtype=np.int64)[None, :],
+            "seqlens_k": np.asarray([first + n - 1], np.int32),
+            "total_sequence_length": np.asarray(first + n, np.int32),
+            **cross_feeds,
+        }
         feeds.update({f"past_{name}": past_[i] for i, name in enumerate(kv_names)})
         outs = dec.run(None, feeds)
         return outs[0], outs[1:]
@@ -178,8 +182,10 @@ def main() -> int:
             print("reference_loop: token file differs from the trace")
             return 1
     forced = sum(1 for st in trace["steps"] if st["forced"])
-    print(f"reference_loop: OK: {len(ids)} ids ({forced} forced, {len(checked)} sampled) reproduced; "
-          f"cached vs uncached logits within {worst:.2g}")
+    print(
+        f"reference_loop: OK: {len(ids)} ids ({forced} forced, {len(checked)} sampled) reproduced; "
+        f"cached vs uncached logits within {worst:.2g}"
+    )
     return 0
 
 

@@ -82,9 +82,9 @@ std::string CompareWhole(const MeshVerdicts& v, const OpenMeshView& om, bool has
     return "bowtie vertices: mesh_checks " + std::to_string(v.nonmanifold_vertices) + ", OpenMesh " +
            std::to_string(om.nonmanifold_vertices);
   if (v.vertex_manifold != (om.nonmanifold_vertices == 0)) return "vertex_manifold disagrees with the bowtie count";
-  if (v.watertight != (has_faces && om.boundary_edges == 0)) return "watertight: mesh_checks " +
-                                                                     std::to_string(v.watertight) + ", OpenMesh " +
-                                                                     std::to_string(has_faces && om.boundary_edges == 0);
+  if (v.watertight != (has_faces && om.boundary_edges == 0))
+    return "watertight: mesh_checks " + std::to_string(v.watertight) + ", OpenMesh " +
+           std::to_string(has_faces && om.boundary_edges == 0);
   return "";
 }
 
@@ -150,8 +150,8 @@ TEST_F(OpenMeshOracle, CatchesWrongVerdicts) {
     int32_t vertices;
     bool refused;
   };
-  for (const Case& c : {Case{&tetra, 4, false}, Case{&open, 4, false}, Case{&bowtie, 5, false},
-                        Case{&flipped, 4, true}, Case{&fin, 5, true}}) {
+  for (const Case& c : {Case{&tetra, 4, false}, Case{&open, 4, false}, Case{&bowtie, 5, false}, Case{&flipped, 4, true},
+                        Case{&fin, 5, true}}) {
     const OpenMeshView om = BuildWithOpenMesh(*c.faces, c.vertices);
     const MeshVerdicts v = CheckFaces(*c.faces, c.vertices);
     ASSERT_EQ(om.refused > 0, c.refused) << c.faces->size() << " faces";
@@ -162,12 +162,24 @@ TEST_F(OpenMeshOracle, CatchesWrongVerdicts) {
     for (int k = 0; k < 6; ++k) {
       MeshVerdicts wrong = v;
       switch (k) {
-        case 0: wrong.consistently_oriented = !wrong.consistently_oriented; break;
-        case 1: wrong.edge_manifold = !wrong.edge_manifold; break;
-        case 2: wrong.boundary_edges += 1; break;
-        case 3: wrong.nonmanifold_vertices += 1; break;
-        case 4: wrong.vertex_manifold = !wrong.vertex_manifold; break;
-        default: wrong.watertight = !wrong.watertight; break;
+        case 0:
+          wrong.consistently_oriented = !wrong.consistently_oriented;
+          break;
+        case 1:
+          wrong.edge_manifold = !wrong.edge_manifold;
+          break;
+        case 2:
+          wrong.boundary_edges += 1;
+          break;
+        case 3:
+          wrong.nonmanifold_vertices += 1;
+          break;
+        case 4:
+          wrong.vertex_manifold = !wrong.vertex_manifold;
+          break;
+        default:
+          wrong.watertight = !wrong.watertight;
+          break;
       }
       EXPECT_NE(CompareWhole(wrong, om, true), "") << "falsified verdict " << k << " not caught";
     }
@@ -257,7 +269,7 @@ TEST_F(OpenMeshOracle, RandomLegalWalks) {
   PrintTally("random walks (fans kept)", tally);
   PrintTally("random walks (fans resolved)", resolved);
   EXPECT_EQ(resolved.with_refusals + resolved.with_bowties, 0);  // the grammar's guarantee (grammar.h)
-  EXPECT_GT(tally.with_refusals, 0);  // kKeep walks: bowties next to closed fans
+  EXPECT_GT(tally.with_refusals, 0);                             // kKeep walks: bowties next to closed fans
   EXPECT_GT(tally.with_bowties, 0);
   EXPECT_GT(tally.watertight, 0);
 }

@@ -11,8 +11,10 @@ typedef struct StubApiBase {
 } StubApiBase;
 
 static const void* StubGetApi(unsigned version) {
-  fprintf(stderr, "The requested API version [%u] is not available, only API versions [1, 10] are supported "
-          "in this build. Current ORT Version is: 1.10.0\n", version);
+  fprintf(stderr,
+          "The requested API version [%u] is not available, only API versions [1, 10] are supported "
+          "in this build. Current ORT Version is: 1.10.0\n",
+          version);
   return NULL;
 }
 

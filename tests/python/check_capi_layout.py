@@ -8,6 +8,7 @@ figures must equal ctypes'. Then every function the binding declares must exist 
 
   check_capi_layout.py --cc CC --include DIR --library LIBSILK [--selftest]
   --selftest: also checks that a copy of silk_encode_params with two fields swapped fails."""
+
 import argparse
 import ctypes
 import pathlib
@@ -35,8 +36,9 @@ def c_program(structs: dict) -> str:
     for cname, cls in structs.items():
         lines.append(f'  printf("{cname} . %zu %zu\\n", (size_t)0, sizeof({cname}));')
         for field, _ in cls._fields_:
-            lines.append(f'  printf("{cname} {field} %zu %zu\\n", offsetof({cname}, {field}), '
-                         f'sizeof((({cname}*)0)->{field}));')
+            lines.append(
+                f'  printf("{cname} {field} %zu %zu\\n", offsetof({cname}, {field}), sizeof((({cname}*)0)->{field}));'
+            )
     return "\n".join(lines + ["  return 0;", "}", ""])
 
 
@@ -71,8 +73,11 @@ def compare(structs: dict, layout: dict) -> list[str]:
 
 def missing_functions(library: str) -> list[str]:
     lib = ctypes.CDLL(library)
-    return [f"{name}: declared in _capi.SIGNATURES, not exported by {library}"
-            for name in _capi.SIGNATURES if not hasattr(lib, name)]
+    return [
+        f"{name}: declared in _capi.SIGNATURES, not exported by {library}"
+        for name in _capi.SIGNATURES
+        if not hasattr(lib, name)
+    ]
 
 
 def swapped_copy(cls):

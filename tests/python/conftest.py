@@ -2,6 +2,7 @@
 """Fixtures of the silk_mesh tests (ctest python_silk_mesh): the binding from this checkout's
 bindings/python, libsilk from $SILK_LIBRARY (ctest sets the build's) or the checkout's build,
 silkgen from $SILKGEN or beside the library, spec files from $SILK_SHARED_DIR or ../shared."""
+
 from __future__ import annotations
 
 import sys

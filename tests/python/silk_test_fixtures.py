@@ -3,6 +3,7 @@
 libsilk as silk_mesh loads it, the shared folder, and Silk's tools from the library's build folder.
 Each conftest imports them by name (pytest registers the fixtures it finds in a conftest); the
 caller puts bindings/python (silk_mesh) on sys.path first."""
+
 from __future__ import annotations
 
 import os

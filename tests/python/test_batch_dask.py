@@ -2,6 +2,7 @@
 """silkgen --batch on a local Dask cluster (issue 21): a LocalCluster of 2 worker processes runs
 `silkgen --batch LIST --shard i/2` for i = 0, 1, and the union of their reports covers the list
 exactly once, every input ok. Skipped only when dask.distributed is not installed."""
+
 from __future__ import annotations
 
 import json
@@ -16,9 +17,33 @@ ROOT = Path(__file__).resolve().parents[2]
 def run_shard(silkgen: str, lst: str, out: str, i: int, n: int) -> tuple[int, str, str]:
     """One shard on a worker: the command a farm would run, its exit status and its report."""
     report = f"{out}/report-{i}.jsonl"
-    p = subprocess.run([silkgen, "--batch", lst, "-o", out, "--shard", f"{i}/{n}", "--report", report,
-                        "--model", str(ROOT / "tests/models/tiny"), "--max-tokens", "120", "--threads", "1",
-                        "--candidates", "1", "--format", "obj", "-q"], capture_output=True, text=True, timeout=600)
+    p = subprocess.run(
+        [
+            silkgen,
+            "--batch",
+            lst,
+            "-o",
+            out,
+            "--shard",
+            f"{i}/{n}",
+            "--report",
+            report,
+            "--model",
+            str(ROOT / "tests/models/tiny"),
+            "--max-tokens",
+            "120",
+            "--threads",
+            "1",
+            "--candidates",
+            "1",
+            "--format",
+            "obj",
+            "-q",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     return p.returncode, report, p.stderr
 
 
@@ -28,8 +53,10 @@ def test_dask_local_cluster_covers_list_once(silkgen, shared, tmp_path):
     lst = tmp_path / "list.txt"
     lst.write_text("".join(f"{f}\n" for f in files))
     out = tmp_path / "out"
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
-            distributed.Client(cluster) as client:
+    with (
+        distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster,
+        distributed.Client(cluster) as client,
+    ):
         futures = [client.submit(run_shard, str(silkgen), str(lst), str(out), i, 2, pure=False) for i in range(2)]
         results = client.gather(futures)
     seen = []

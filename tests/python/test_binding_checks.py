@@ -4,6 +4,7 @@ before any cast. Integers out of their C type's range, arrays of the wrong dtype
 values a cast would change are refused with ValueError / TypeError naming the argument; nothing is
 truncated (max_tokens=2**32+14 ran with 14), cast (float or int64 triangle indices) or reshaped (a
 (3, 4) positions array became 4 vertices; points=<4096 x 3> became 2,048 rows of 6)."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -22,15 +23,20 @@ QUAD = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
 
 
 def test_integer_parameters_are_range_checked_against_their_c_type(lib_path):
-    with pytest.raises(ValueError, match=r"encode: normalize=4294967297 is out of range: it must be in "
-                                         r"\[-2147483648, 2147483647\] \(int32\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"encode: normalize=4294967297 is out of range: it must be in "
+        r"\[-2147483648, 2147483647\] \(int32\)",
+    ):
         silk_mesh.encode(KNOT, normalize=2**32 + 1)
     with pytest.raises(TypeError, match="encode: normalize: expected an integer, not float"):
         silk_mesh.encode(KNOT, normalize=1.0)
     with pytest.raises(TypeError, match="encode: normalize_bound: expected a number, not str"):
         silk_mesh.encode(KNOT, normalize_bound="0.9")
     assert silk_mesh.encode(KNOT, normalize=np.int64(1)) == silk_mesh.encode(KNOT)  # numpy integers are integers
-    with pytest.raises(ValueError, match=r"prepare_points: seed=-1 is out of range: it must be in \[0, 18446744073709551615\]"):
+    with pytest.raises(
+        ValueError, match=r"prepare_points: seed=-1 is out of range: it must be in \[0, 18446744073709551615\]"
+    ):
         silk_mesh.prepare_points(KNOT, seed=-1)
     with pytest.raises(ValueError, match="prepare_points: n_points=2147483648 is out of range"):
         silk_mesh.prepare_points(KNOT, n_points=2**31)
@@ -38,8 +44,11 @@ def test_integer_parameters_are_range_checked_against_their_c_type(lib_path):
 
 def test_generation_integers_are_refused_not_truncated(generation):
     with silk_mesh.Generator(TINY) as gen:
-        with pytest.raises(ValueError, match=r"generate: max_tokens=4294967310 is out of range: it must be in "
-                                             r"\[-2147483648, 2147483647\] \(int32\)"):
+        with pytest.raises(
+            ValueError,
+            match=r"generate: max_tokens=4294967310 is out of range: it must be in "
+            r"\[-2147483648, 2147483647\] \(int32\)",
+        ):
             gen.run(KNOT, seed=1, max_tokens=2**32 + 14)
         with pytest.raises(ValueError, match="generate: seed=-1 is out of range"):
             gen.run(KNOT, seed=-1, max_tokens=60)
@@ -56,8 +65,11 @@ def test_triangle_indices_must_be_integers_that_fit_int32(lib_path):
         assert m.triangles.tolist() == TRI
     with silk_mesh.Mesh(QUAD, np.array(TRI, dtype=np.uint8)) as m:
         assert m.triangles.tolist() == TRI
-    with pytest.raises(TypeError, match=r"triangles: dtype float64 is not an integer type \(convert it with "
-                                        r"\.astype\(numpy\.int32\)"):
+    with pytest.raises(
+        TypeError,
+        match=r"triangles: dtype float64 is not an integer type \(convert it with "
+        r"\.astype\(numpy\.int32\)",
+    ):
         silk_mesh.Mesh(QUAD, np.array(TRI, dtype=np.float64))
     with pytest.raises(ValueError, match=r"triangles: value 4294967296 is out of range for int32"):
         silk_mesh.Mesh(QUAD, np.array([[0, 1, 2**32]], dtype=np.int64))
@@ -84,8 +96,11 @@ def test_arrays_are_never_reshaped(lib_path):
 
 def test_points_of_three_columns_are_refused_by_generate(generation):
     with silk_mesh.Generator(TINY) as gen:
-        with pytest.raises(ValueError, match=r"points: an array of shape \(4096, 3\) is not \(n, 6\) or flat .*"
-                                             r"x y z nx ny nz"):
+        with pytest.raises(
+            ValueError,
+            match=r"points: an array of shape \(4096, 3\) is not \(n, 6\) or flat .*"
+            r"x y z nx ny nz",
+        ):
             gen.run(points=np.random.default_rng(0).random((4096, 3)), seed=1, max_tokens=60)
 
 

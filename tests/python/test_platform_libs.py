@@ -4,6 +4,7 @@ by full path from libsilk's folder, and a failed load that names the file and th
 Python is not available here, so the Windows cases run the same (pure Python) diagnosis on Linux
 with real or crafted PE files; the real Windows load is checked under Wine by
 scripts/test_windows.sh (silkgen.exe without onnxruntime.dll)."""
+
 from __future__ import annotations
 
 import os
@@ -19,8 +20,10 @@ from silk_mesh import _platform_libs
 
 ROOT = Path(__file__).resolve().parents[2]
 WINDOWS_ORT = ROOT / ".deps" / "onnxruntime-windows" / "onnxruntime.dll"
-LOAD = ("import silk_mesh\ntry:\n    silk_mesh.encode([])\nexcept silk_mesh.SilkError as e:\n"
-        "    print(e.status, e.name, e.message)\n")
+LOAD = (
+    "import silk_mesh\ntry:\n    silk_mesh.encode([])\nexcept silk_mesh.SilkError as e:\n"
+    "    print(e.status, e.name, e.message)\n"
+)
 
 
 def fake_pe(path: Path, machine: int = 0x8664) -> Path:
@@ -60,8 +63,10 @@ def test_a_library_for_another_machine_names_both_machines(tmp_path, lib_path):
     out = load_in_subprocess(arm)
     assert f"wrong architecture: built for arm64, this Python is {_platform_libs.this_machine()}" in out, out
     arm_dll = fake_pe(tmp_path / "arm64.dll", machine=0xAA64)
-    assert _platform_libs.diagnose(str(arm_dll), plat="win32", machine="x86-64") == \
-        "wrong architecture: built for arm64, this Python is x86-64"
+    assert (
+        _platform_libs.diagnose(str(arm_dll), plat="win32", machine="x86-64")
+        == "wrong architecture: built for arm64, this Python is x86-64"
+    )
     elf_on_windows = _platform_libs.diagnose(str(lib_path), plat="win32", machine="x86-64")
     assert elf_on_windows.startswith("wrong architecture: not a Windows library (a Linux ELF file"), elf_on_windows
 
@@ -80,8 +85,19 @@ def test_a_missing_linux_dependency_is_named(tmp_path):
     (tmp_path / "dep.c").write_text("int dep(void) { return 1; }\n")
     (tmp_path / "top.c").write_text("int dep(void);\nint top(void) { return dep(); }\n")
     subprocess.run([cc, "-shared", "-fPIC", "-o", str(tmp_path / "libsilkdep.so"), str(tmp_path / "dep.c")], check=True)
-    subprocess.run([cc, "-shared", "-fPIC", "-o", str(tmp_path / "libsilk.so"), str(tmp_path / "top.c"),
-                    f"-L{tmp_path}", "-lsilkdep"], check=True)
+    subprocess.run(
+        [
+            cc,
+            "-shared",
+            "-fPIC",
+            "-o",
+            str(tmp_path / "libsilk.so"),
+            str(tmp_path / "top.c"),
+            f"-L{tmp_path}",
+            "-lsilkdep",
+        ],
+        check=True,
+    )
     (tmp_path / "libsilkdep.so").unlink()
     out = load_in_subprocess(tmp_path / "libsilk.so")
     assert "missing dependency: libsilkdep.so" in out, out
@@ -110,8 +126,10 @@ def test_windows_missing_dependency_names_the_dlls_from_the_import_table(tmp_pat
 
 def test_windows_blocked_files(tmp_path):
     dll = fake_pe(tmp_path / "libsilk.dll")
-    assert _platform_libs.diagnose(str(dll), _WinError(4551), plat="win32", machine="x86-64") == \
-        "blocked: blocked by an application control policy"
+    assert (
+        _platform_libs.diagnose(str(dll), _WinError(4551), plat="win32", machine="x86-64")
+        == "blocked: blocked by an application control policy"
+    )
     assert _platform_libs.diagnose(str(dll), _WinError(5), plat="win32", machine="x86-64") == "blocked: access denied"
 
 
@@ -125,16 +143,19 @@ def test_platform_file_names():
 def test_onnxruntime_is_loaded_first_from_libsilks_own_folder(tmp_path, lib_path):
     """A folder like the add-on's silk_mesh/lib: onnxruntime there is the one loaded (by full
     path, before libsilk), and a broken one there is named, not silently replaced by another."""
-    ort = next((p for p in sorted(lib_path.resolve().parent.glob("libonnxruntime.so*"))), None) or \
-        next(iter(sorted((ROOT / ".deps" / "onnxruntime").rglob("libonnxruntime.so.1*"))), None)
+    ort = next((p for p in sorted(lib_path.resolve().parent.glob("libonnxruntime.so*"))), None) or next(
+        iter(sorted((ROOT / ".deps" / "onnxruntime").rglob("libonnxruntime.so.1*"))), None
+    )
     if ort is None:
         pytest.skip("no libonnxruntime.so to copy")
     folder = tmp_path / "lib"
     folder.mkdir()
     shutil.copy(lib_path.resolve(), folder / "libsilk.so")
     shutil.copy(ort.resolve(), folder / "libonnxruntime.so.1")
-    code = ("import silk_mesh\nsilk_mesh.load_library()\n"
-            "print([l.split()[-1] for l in open('/proc/self/maps') if 'libonnxruntime' in l][0])\n")
+    code = (
+        "import silk_mesh\nsilk_mesh.load_library()\n"
+        "print([l.split()[-1] for l in open('/proc/self/maps') if 'libonnxruntime' in l][0])\n"
+    )
     env = {**os.environ, "SILK_LIBRARY": str(folder / "libsilk.so"), "PYTHONPATH": str(ROOT / "bindings" / "python")}
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True).stdout
     assert out.strip() == str(folder / "libonnxruntime.so.1")

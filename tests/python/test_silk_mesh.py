@@ -3,6 +3,7 @@
 mesh the independent checker (shared/tools/mesh_check.py) accepts, generate gives silkgen's ids
 for the same seed, step-wise equals one call, callbacks work, errors name the file, and the
 plain-Python (no numpy) results equal the numpy ones."""
+
 from __future__ import annotations
 
 import ctypes
@@ -45,10 +46,13 @@ def test_decode_gives_a_mesh_the_independent_checker_accepts(name, shared, tmp_p
         assert stats["faces"] == mesh.triangle_count > 0 and len(mesh.triangles) == mesh.triangle_count
         assert len(set(mesh.parts.tolist() if hasattr(mesh.parts, "tolist") else mesh.parts)) == stats["components"]
         mesh.save(tmp_path / f"{name}.obj")
-    r = subprocess.run([sys.executable, str(shared / "tools" / "mesh_check.py"), str(tmp_path / f"{name}.obj"),
-                        "--json"], capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, str(shared / "tools" / "mesh_check.py"), str(tmp_path / f"{name}.obj"), "--json"],
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stdout + r.stderr
-    verdict = json.loads(r.stdout[:r.stdout.rindex("}") + 1])[str(tmp_path / f"{name}.obj")]
+    verdict = json.loads(r.stdout[: r.stdout.rindex("}") + 1])[str(tmp_path / f"{name}.obj")]
     assert verdict["ok"] and verdict["faces"] == stats["faces"] and verdict["components"] == stats["components"]
 
 
@@ -62,9 +66,26 @@ def test_token_files_round_trip_through_libsilk(shared, tmp_path, lib_path):
 
 
 def test_generate_with_the_tiny_model_gives_silkgens_ids(silkgen, generation, tmp_path):
-    subprocess.run([str(silkgen), str(KNOT), "--model", str(TINY), "--seed", "11", "--max-tokens", "250",
-                    "--threads", "1", "--tokens", str(tmp_path / "ids.txt"), "--stats", str(tmp_path / "s.json"),
-                    "-q"], check=True)
+    subprocess.run(
+        [
+            str(silkgen),
+            str(KNOT),
+            "--model",
+            str(TINY),
+            "--seed",
+            "11",
+            "--max-tokens",
+            "250",
+            "--threads",
+            "1",
+            "--tokens",
+            str(tmp_path / "ids.txt"),
+            "--stats",
+            str(tmp_path / "s.json"),
+            "-q",
+        ],
+        check=True,
+    )
     want = silk_mesh.read_ids(tmp_path / "ids.txt")
     with silk_mesh.Model(TINY, threads=1) as model:
         result = silk_mesh.generate(KNOT, model=model, seed=11, max_tokens=250)
@@ -77,9 +98,26 @@ def test_kv_precision_picks_the_cache_as_silkgen_does(silkgen, generation, tmp_p
     """Model(kv_precision=...) is silk_model_params.kv_precision: the same ids as silkgen's
     --kv-precision, the cache in use in info(), and a precision the folder lacks named."""
     for kv in ("fp32", "fp16", "int8"):
-        subprocess.run([str(silkgen), str(KNOT), "--model", str(TINY), "--seed", "3", "--max-tokens", "200",
-                        "--threads", "1", "--kv-precision", kv, "--tokens", str(tmp_path / f"{kv}.txt"), "-q"],
-                       check=True)
+        subprocess.run(
+            [
+                str(silkgen),
+                str(KNOT),
+                "--model",
+                str(TINY),
+                "--seed",
+                "3",
+                "--max-tokens",
+                "200",
+                "--threads",
+                "1",
+                "--kv-precision",
+                kv,
+                "--tokens",
+                str(tmp_path / f"{kv}.txt"),
+                "-q",
+            ],
+            check=True,
+        )
         with silk_mesh.Model(TINY, threads=1, kv_precision=kv) as model:
             assert model.info()["kv_precision"] == silk_mesh._capi.KV_PRECISIONS[kv]
             ids = silk_mesh.generate(KNOT, model=model, seed=3, max_tokens=200).ids
@@ -125,6 +163,7 @@ def test_cancel_and_a_failing_callback(generation):
 
         def boom(progress):
             raise KeyError("from the callback")
+
         with pytest.raises(KeyError, match="from the callback"):
             gen.run(KNOT, seed=1, max_tokens=200, progress=boom)
         result = gen.run(KNOT, seed=1, max_tokens=60)  # the generator is still usable
@@ -135,8 +174,11 @@ def test_point_cloud_input_and_normals(generation):
     with silk_mesh.Mesh.load(CLOUD) as cloud:
         normals, positions = cloud.normals, cloud.positions
         assert cloud.triangle_count == 0 and len(normals) == len(positions) > 0
-        rows = [tuple(p) + tuple(n) for p, n in zip(positions.tolist(), normals.tolist())] \
-            if hasattr(positions, "tolist") else [p + n for p, n in zip(positions, normals)]
+        rows = (
+            [tuple(p) + tuple(n) for p, n in zip(positions.tolist(), normals.tolist())]
+            if hasattr(positions, "tolist")
+            else [p + n for p, n in zip(positions, normals)]
+        )
         with silk_mesh.Model(TINY, threads=1) as model:
             a = silk_mesh.generate(cloud, model=model, seed=2, max_tokens=120)
             b = silk_mesh.generate(points=rows, model=model, seed=2, max_tokens=120)
@@ -164,8 +206,10 @@ def test_model_errors_name_the_folder_and_the_value(tmp_path, generation):
 def test_a_library_that_cannot_be_loaded_is_named_with_the_reason(tmp_path, lib_path):
     bad = tmp_path / "libsilk.so"
     bad.write_text("not a library")
-    code = ("import silk_mesh\ntry:\n    silk_mesh.encode([])\nexcept silk_mesh.SilkError as e:\n"
-            "    print(e.status, e.name, e.message)\n")
+    code = (
+        "import silk_mesh\ntry:\n    silk_mesh.encode([])\nexcept silk_mesh.SilkError as e:\n"
+        "    print(e.status, e.name, e.message)\n"
+    )
     env = {**os.environ, "SILK_LIBRARY": str(bad), "PYTHONPATH": str(ROOT / "bindings" / "python")}
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True).stdout
     with pytest.raises(OSError) as reason:  # what the OS says about that file
@@ -205,10 +249,17 @@ for bad, call in (("../x", silk_mesh.models_dir), ("nope", silk_mesh.Model)):
         out[bad] = e.message
 print(json.dumps(out))
 """
-    env = {**os.environ, "SILK_LIBRARY": str(lib_path), "PYTHONPATH": str(ROOT / "bindings" / "python"),
-           "SILK_MODELS": str(tmp_path / "models")}
-    r = json.loads(subprocess.run([sys.executable, "-c", code], env=env, cwd=tmp_path, capture_output=True, text=True,
-                                  check=True).stdout)
+    env = {
+        **os.environ,
+        "SILK_LIBRARY": str(lib_path),
+        "PYTHONPATH": str(ROOT / "bindings" / "python"),
+        "SILK_MODELS": str(tmp_path / "models"),
+    }
+    r = json.loads(
+        subprocess.run(
+            [sys.executable, "-c", code], env=env, cwd=tmp_path, capture_output=True, text=True, check=True
+        ).stdout
+    )
     models = str(tmp_path / "models")
     assert r["dir"] == models and r["named"] == os.path.join(models, "x")
     assert r["find"] == os.path.join(models, "tiny-b") and r["path_wins"] == "tiny-b"
@@ -222,13 +273,20 @@ print(json.dumps(out))
 def test_plain_python_results_equal_numpy_ones(shared, lib_path):
     """SILK_MESH_NUMPY=0: lists of tuples where numpy gives arrays; the values are the same."""
     np = pytest.importorskip("numpy")
-    code = ("import json, silk_mesh\nm = silk_mesh.decode(silk_mesh.encode(%r))\n"
-            "print(json.dumps([type(m.positions).__name__, m.positions, m.triangles, m.parts]))\n"
-            % str(shared / "spec" / "golden" / "two_components.obj"))
-    env = {**os.environ, "SILK_MESH_NUMPY": "0", "SILK_LIBRARY": str(lib_path),
-           "PYTHONPATH": str(ROOT / "bindings" / "python")}
-    kind, pos, tri, parts = json.loads(subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
-                                                      text=True, check=True).stdout)
+    code = (
+        "import json, silk_mesh\nm = silk_mesh.decode(silk_mesh.encode(%r))\n"
+        "print(json.dumps([type(m.positions).__name__, m.positions, m.triangles, m.parts]))\n"
+        % str(shared / "spec" / "golden" / "two_components.obj")
+    )
+    env = {
+        **os.environ,
+        "SILK_MESH_NUMPY": "0",
+        "SILK_LIBRARY": str(lib_path),
+        "PYTHONPATH": str(ROOT / "bindings" / "python"),
+    }
+    kind, pos, tri, parts = json.loads(
+        subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True).stdout
+    )
     with silk_mesh.decode(silk_mesh.encode(shared / "spec" / "golden" / "two_components.obj")) as m:
         assert kind == "list" and isinstance(m.positions, np.ndarray) and m.positions.shape == (len(pos), 3)
         assert m.positions.tolist() == pos and m.triangles.tolist() == tri and m.parts.tolist() == parts
@@ -253,8 +311,9 @@ def test_face_guidance_keywords(generation):
         plain = gen.run(KNOT, seed=3, max_tokens=300, surface_tolerance=0, candidates=1, face_guidance="off")
         assert plain.stats["face_guided_tokens"] == 0
         for mode in ("hard", "soft"):
-            r = gen.run(KNOT, seed=3, max_tokens=300, surface_tolerance=2, candidates=1, face_guidance=mode,
-                        face_tolerance=3.0)
+            r = gen.run(
+                KNOT, seed=3, max_tokens=300, surface_tolerance=2, candidates=1, face_guidance=mode, face_tolerance=3.0
+            )
             r.mesh.close()
             assert r.stats["face_guided_tokens"] > 0 and r.stats["face_fallbacks"] <= r.stats["face_guided_tokens"]
         again = gen.run(KNOT, seed=3, max_tokens=300, surface_tolerance=0, candidates=1, face_guidance="off")

@@ -90,7 +90,8 @@ double BruteScore(const Grammar& g, int32_t id, const FaceGuide& guide) {
     for (int32_t j = a + 1; j <= b; ++j) {
       const int32_t d = j - a;
       const auto& ex = cur.vertices[a].extras;
-      if (d <= 8 ? (cur.vertices[a].window >> (d - 1)) & 1 : std::count(ex.begin(), ex.end(), d - 1) > 0) link(n + a, n + j);
+      if (d <= 8 ? (cur.vertices[a].window >> (d - 1)) & 1 : std::count(ex.begin(), ex.end(), d - 1) > 0)
+        link(n + a, n + j);
     }
   auto pos = [&](int32_t v) { return v < n ? prev.vertices[v].pos : cur.vertices[v - n].pos; };
   // The id's own columns: the row after the id minus the row before it (a continuation's
@@ -116,11 +117,16 @@ bool Judged(Grammar& g, int32_t id) {
   if (comps.empty() || comps.back().layers.size() < 2 || g.Forced() >= 0) return false;
   const bool b = id >= vocab::kBBegin && id < vocab::kBEnd, k = id >= vocab::kKBegin && id < vocab::kKEnd;
   switch (g.phase()) {
-    case GrammarPhase::kWantK: return k;
-    case GrammarPhase::kWantO: return id >= vocab::kOBegin && id < vocab::kOEnd;
-    case GrammarPhase::kAfterS: return b;
-    case GrammarPhase::kAfterB: return b || k;
-    default: return false;
+    case GrammarPhase::kWantK:
+      return k;
+    case GrammarPhase::kWantO:
+      return id >= vocab::kOBegin && id < vocab::kOEnd;
+    case GrammarPhase::kAfterS:
+      return b;
+    case GrammarPhase::kAfterB:
+      return b || k;
+    default:
+      return false;
   }
 }
 
@@ -141,8 +147,9 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
     for (const auto& comp : g.stream().components)
       for (const auto& layer : comp.layers)
         for (const auto& v : layer.vertices)
-          rows.insert(rows.end(), {static_cast<float>((v.pos.x + 0.5) / 64 - 1), static_cast<float>((v.pos.y + 0.5) / 64 - 1),
-                                   static_cast<float>((v.pos.z + 0.5) / 64 - 1), 0.f, 0.f, 1.f});
+          rows.insert(rows.end(),
+                      {static_cast<float>((v.pos.x + 0.5) / 64 - 1), static_cast<float>((v.pos.y + 0.5) / 64 - 1),
+                       static_cast<float>((v.pos.z + 0.5) / 64 - 1), 0.f, 0.f, 1.f});
     const double tolerance = 2.0 + 22.0 * static_cast<double>(rng() % 1000) / 1000.0;
     const auto guide = MakeGuide(rows, tolerance);
     const FaceGuidance mode = trial % 2 ? FaceGuidance::kSoft : FaceGuidance::kHard;
@@ -215,7 +222,7 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
   EXPECT_GT(removed, 0);       // ids removed,
   EXPECT_GT(passing, 0);       // steps where some id passed,
   EXPECT_GT(penalised, 0);
-  EXPECT_GT(fallbacks, 0);     // and steps where none did
+  EXPECT_GT(fallbacks, 0);  // and steps where none did
   EXPECT_GT(narrowed_positions, 0);
 }
 

@@ -214,9 +214,8 @@ TEST(GenerationRequest, UnsetValuesAreTheModelsAndBadValuesAreNamed) {
   const Case bad[] = {{"temperature nan", [](GenerationRequest* q) { q->temperature = std::nan(""); }},
                       {"temperature -0.5", [](GenerationRequest* q) { q->temperature = -0.5; }},
                       {"top_p 1.5", [](GenerationRequest* q) { q->top_p = 1.5; }},
-                      {"top_p_temperature inf", [](GenerationRequest* q) {
-                         q->top_p_temperature = std::numeric_limits<double>::infinity();
-                       }},
+                      {"top_p_temperature inf",
+                       [](GenerationRequest* q) { q->top_p_temperature = std::numeric_limits<double>::infinity(); }},
                       {"top_k -2", [](GenerationRequest* q) { q->top_k = -2; }},
                       {"candidates 0", [](GenerationRequest* q) { q->candidates = 0; }},
                       {"candidates 65", [](GenerationRequest* q) { q->candidates = 65; }},

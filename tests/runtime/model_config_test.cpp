@@ -134,14 +134,14 @@ nlohmann::json OfficialV3() {
   j["model_version"] = 3;
   j["arch"] = "official";
   j.erase("normalize_bound");
-  j["dims"] = {{"d_model", 32}, {"n_layers", 2}, {"n_heads", 2}, {"head_dim", 64},
+  j["dims"] = {{"d_model", 32},    {"n_layers", 2},    {"n_heads", 2},      {"head_dim", 64},
                {"n_latents", 261}, {"n_points", 4096}, {"max_seq_len", 512}};
-  j["preprocessing"] = {{"kind", "official"}, {"normalize_bound", 0.95}, {"merge_distance_fraction", 0.01},
-                        {"surface_samples", 50000}, {"round_float16", true}, {"n_points", 4096}};
+  j["preprocessing"] = {{"kind", "official"},       {"normalize_bound", 0.95}, {"merge_distance_fraction", 0.01},
+                        {"surface_samples", 50000}, {"round_float16", true},   {"n_points", 4096}};
   j["sampling"] = {{"temperature", 0.5}, {"top_k", 50}, {"top_p", 0.95}, {"top_p_temperature", 1.0}};
-  j["files"] = {{"encoder", "encoder.onnx"}, {"decoder", "decoder.onnx"}, {"decoder_int8", "decoder.int8.onnx"},
-                {"decoder_int4", "decoder.int4.onnx"}, {"default_decoder", "decoder_int4"},
-                {"external_data", {"decoder.onnx.data"}}};
+  j["files"] = {{"encoder", "encoder.onnx"},           {"decoder", "decoder.onnx"},
+                {"decoder_int8", "decoder.int8.onnx"}, {"decoder_int4", "decoder.int4.onnx"},
+                {"default_decoder", "decoder_int4"},   {"external_data", {"decoder.onnx.data"}}};
   j["source"] = {{"file", "model.safetensors"}, {"sha256", "ab12"}, {"licence", "see the model card"}};
   return j;
 }
@@ -199,7 +199,12 @@ TEST(ModelConfig, Version3RefusesEveryBadField) {
       {"arch value", [](auto& j) { j["arch"] = "gpt"; }, "arch \"gpt\""},
       {"arch type", [](auto& j) { j["arch"] = 2; }, "'arch' is not a string"},
       {"arch missing", [](auto& j) { j.erase("arch"); }, "arch"},
-      {"silk dims", [](auto& j) { j["arch"] = "silk"; j["preprocessing"]["kind"] = "silk"; }, "n_heads * head_dim"},
+      {"silk dims",
+       [](auto& j) {
+         j["arch"] = "silk";
+         j["preprocessing"]["kind"] = "silk";
+       },
+       "n_heads * head_dim"},
       {"preprocessing type", [](auto& j) { j["preprocessing"] = 1; }, "'preprocessing' is not an object"},
       {"kind", [](auto& j) { j["preprocessing"]["kind"] = "fancy"; }, "preprocessing.kind"},
       {"bound", [](auto& j) { j["preprocessing"]["normalize_bound"] = 1.5; }, "preprocessing.normalize_bound"},
@@ -221,7 +226,8 @@ TEST(ModelConfig, Version3RefusesEveryBadField) {
       {"int4 name", [](auto& j) { j["files"]["decoder_int4"] = "../d.onnx"; }, "plain names"},
       {"int4 type", [](auto& j) { j["files"]["decoder_int4"] = 4; }, "'decoder_int4' is not a string"},
       {"default decoder", [](auto& j) { j["files"]["default_decoder"] = "decoder_int2"; }, "files.default_decoder"},
-      {"default decoder absent file", [](auto& j) { j["files"].erase("decoder_int4"); }, "files.decoder_int4 is not given"},
+      {"default decoder absent file", [](auto& j) { j["files"].erase("decoder_int4"); },
+       "files.decoder_int4 is not given"},
       {"external data type", [](auto& j) { j["files"]["external_data"] = "x.data"; }, "files.external_data"},
       {"external data entry", [](auto& j) { j["files"]["external_data"] = {1}; }, "files.external_data"},
       {"external data path", [](auto& j) { j["files"]["external_data"] = {"/etc/passwd"}; }, "plain names"},
@@ -266,11 +272,13 @@ TEST(ModelConfig, KvPrecisionFiles) {
   EXPECT_TRUE(c->DecoderFile(DecoderPrecision::kInt8, KvPrecision::kFp16).empty());
   EXPECT_TRUE(c->DecoderFile(DecoderPrecision::kInt8, KvPrecision::kInt8).empty());
   EXPECT_EQ(c->default_kv, KvPrecision::kFp32);  // absent: fp32
-  auto fp16 = ParseModelConfig([] {
-    nlohmann::json j = TinyJson();
-    j["files"]["default_kv_precision"] = "fp16";
-    return j.dump();
-  }(), "model.json");
+  auto fp16 = ParseModelConfig(
+      [] {
+        nlohmann::json j = TinyJson();
+        j["files"]["default_kv_precision"] = "fp16";
+        return j.dump();
+      }(),
+      "model.json");
   ASSERT_TRUE(fp16.ok()) << fp16.status().ToString();
   EXPECT_EQ(fp16->DefaultKv(DecoderPrecision::kFp32), KvPrecision::kFp16);
   const std::vector<std::pair<std::function<void(nlohmann::json&)>, const char*>> bad = {
@@ -283,7 +291,8 @@ TEST(ModelConfig, KvPrecisionFiles) {
          j["files"]["default_kv_precision"] = "int8";
        },
        "no files.kv_int8 variant"},
-      {[](auto& j) { j["files"]["kv_int8"]["decoder_int4"] = "d.int4.kv8.onnx"; }, "files.kv_int8.decoder_int4 is given"},
+      {[](auto& j) { j["files"]["kv_int8"]["decoder_int4"] = "d.int4.kv8.onnx"; },
+       "files.kv_int8.decoder_int4 is given"},
       {[](auto& j) {
          j["files"].erase("kv_fp16");
          j["files"]["default_kv_precision"] = "fp16";

@@ -61,7 +61,8 @@ std::vector<Field> Fields(std::string_view m) {
 // A TensorProto with raw_data moved to `*data` (appended) and named by external-data entries.
 std::string Externalize(std::string_view tensor, const std::string& location, std::string* data) {
   std::string out, raw;
-  for (const Field& f : Fields(tensor)) (f.number == 9 && f.wire == 2 ? raw : out).append(f.number == 9 ? f.payload : f.whole);
+  for (const Field& f : Fields(tensor))
+    (f.number == 9 && f.wire == 2 ? raw : out).append(f.number == 9 ? f.payload : f.whole);
   const std::pair<std::string, std::string> entries[] = {
       {"location", location}, {"offset", std::to_string(data->size())}, {"length", std::to_string(raw.size())}};
   for (const auto& [k, v] : entries) {
@@ -86,8 +87,10 @@ std::string ExternalizeModel(std::string_view model, const std::string& location
     }
     std::string graph;
     for (const Field& g : Fields(m.payload)) {
-      if (g.number == 5 && g.wire == 2) PutBytes(&graph, 5, Externalize(g.payload, location, data));
-      else graph.append(g.whole);
+      if (g.number == 5 && g.wire == 2)
+        PutBytes(&graph, 5, Externalize(g.payload, location, data));
+      else
+        graph.append(g.whole);
     }
     PutBytes(&out, 7, graph);
   }
@@ -101,7 +104,8 @@ class ModelFolder {
   ModelFolder(const std::string& location, const std::string& data_file) {
     dir_ = tmp_.path() + "/model";
     fs::create_directory(dir_);
-    for (const char* f : {"model.json", "encoder.onnx"}) fs::copy_file(testing::TinyModelDir() + "/" + f, dir_ + "/" + f);
+    for (const char* f : {"model.json", "encoder.onnx"})
+      fs::copy_file(testing::TinyModelDir() + "/" + f, dir_ + "/" + f);
     auto onnx = ReadFileBytes(testing::TinyModelDir() + "/decoder.onnx", 1 << 30);
     EXPECT_TRUE(onnx.ok());
     std::string data;
@@ -186,7 +190,8 @@ TEST(OnnxExternalData, FindsEveryPlaceAndRefusesTruncation) {
   });
   ASSERT_TRUE(s.ok()) << s.ToString();
   EXPECT_EQ(seen, std::vector<std::string>(6, "../outside.bin"));
-  Status t = ForEachExternalDataLocationInFile(seeds + "truncated.onnx", [](const std::string&) { return Status::Ok(); });
+  Status t =
+      ForEachExternalDataLocationInFile(seeds + "truncated.onnx", [](const std::string&) { return Status::Ok(); });
   EXPECT_EQ(t.code(), StatusCode::kParseError) << t.ToString();
   EXPECT_NE(t.message().find("truncated.onnx: not a valid ONNX model"), std::string::npos) << t.message();
 }

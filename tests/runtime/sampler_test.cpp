@@ -148,7 +148,8 @@ TEST(Sampler, OfficialChainMatchesIndependentReference) {
     int top_k;
     double top_p, temperature;
   };
-  for (const Setting& st : {Setting{50, 0.95, 0.5}, Setting{5, 0.5, 1.0}, Setting{0, 0.3, 0.7}, Setting{50, 0.999, 2.0}}) {
+  for (const Setting& st :
+       {Setting{50, 0.95, 0.5}, Setting{5, 0.5, 1.0}, Setting{0, 0.3, 0.7}, Setting{50, 0.999, 2.0}}) {
     SamplingParams p;
     p.top_k = st.top_k;
     p.top_p = st.top_p;

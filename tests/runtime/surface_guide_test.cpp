@@ -81,8 +81,8 @@ TokenMask RandomMask(SplitMix64* rng, int32_t begin, int32_t end, double p) {
 }
 
 // The restriction against the brute-force rule, for K (block < 0) or O (after `block`).
-void CheckRestriction(const SurfaceGuide& guide, const std::vector<QVec>& occ, const TokenMask& legal,
-                      int32_t block, int32_t tolerance) {
+void CheckRestriction(const SurfaceGuide& guide, const std::vector<QVec>& occ, const TokenMask& legal, int32_t block,
+                      int32_t tolerance) {
   const bool offsets = block >= 0;
   const int32_t begin = offsets ? vocab::kOBegin : vocab::kKBegin, end = offsets ? vocab::kOEnd : vocab::kKEnd;
   auto brute = [&](int32_t id) {
@@ -132,7 +132,7 @@ TEST(SurfaceGuide, RestrictsExactlyAndNeverEmpties) {
     fallbacks += guide.RestrictOffsets(block, &to) ? 1 : 0;
     restricted += tk.Count() < k.Count() ? 1 : 0;
   }
-  EXPECT_GT(fallbacks, 0);   // both branches were exercised
+  EXPECT_GT(fallbacks, 0);  // both branches were exercised
   EXPECT_GT(restricted, 0);
   // A mask without vertex ids is left alone.
   const auto rows = RandomPoints(&rng, 5);

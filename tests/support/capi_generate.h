@@ -32,8 +32,9 @@ inline silk_status GenerateFromMesh(silk_generator* g, const silk_mesh* mesh, co
   in.mesh = mesh;
   return silk_generator_run(g, &in, p, out, tokens, stats);
 }
-inline silk_status GenerateFromPoints(silk_generator* g, const double* points, size_t rows, const silk_generate_params* p,
-                                      silk_mesh** out, silk_tokens** tokens, silk_generate_stats* stats) {
+inline silk_status GenerateFromPoints(silk_generator* g, const double* points, size_t rows,
+                                      const silk_generate_params* p, silk_mesh** out, silk_tokens** tokens,
+                                      silk_generate_stats* stats) {
   silk_generate_input in = silk_cpp::Sized<silk_generate_input>();
   in.points = points;
   in.point_rows = rows;

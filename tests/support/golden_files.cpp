@@ -109,8 +109,8 @@ bool ReadPlainObj(const std::string& path, silk::IoMesh* mesh) {
     if (kw == "v") {
       std::string a, b, c;
       ls >> a >> b >> c;
-      mesh->positions.push_back({std::strtod(a.c_str(), nullptr), std::strtod(b.c_str(), nullptr),
-                                 std::strtod(c.c_str(), nullptr)});
+      mesh->positions.push_back(
+          {std::strtod(a.c_str(), nullptr), std::strtod(b.c_str(), nullptr), std::strtod(c.c_str(), nullptr)});
     } else if (kw == "f") {
       std::array<int32_t, 3> t{};
       for (int k = 0; k < 3; ++k) {

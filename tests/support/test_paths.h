@@ -4,7 +4,7 @@
 #include <string>
 
 namespace silk::testing {
-std::string SharedDir();           // .../shared
+std::string SharedDir();                         // .../shared
 std::string SharedPath(const std::string& rel);  // SharedDir() + "/" + rel
 std::string SourcePath(const std::string& rel);  // repo root + "/" + rel
 }  // namespace silk::testing

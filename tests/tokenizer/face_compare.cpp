@@ -84,9 +84,12 @@ FaceComparison CompareFaces(const std::vector<CoordFace>& decoded, const std::ve
     got_rev.insert(Reversed(f));
   }
   for (const Key& k : want) {
-    if (got.count(k)) ++r.recovered;
-    else if (got_rev.count(k)) ++r.reversed;
-    else ++r.missing;
+    if (got.count(k))
+      ++r.recovered;
+    else if (got_rev.count(k))
+      ++r.reversed;
+    else
+      ++r.missing;
   }
   std::set<Key> want_rev;
   for (const auto& f : target) want_rev.insert(Reversed(f));
@@ -98,8 +101,10 @@ FaceComparison CompareFaces(const std::vector<CoordFace>& decoded, const std::ve
       auto it = target_edge_faces.find(Edge(f[i], f[(i + 1) % 3]));
       if (it == target_edge_faces.end() || it->second != 1) hole = false;
     }
-    if (hole) ++r.extra_hole;
-    else ++r.extra_other;
+    if (hole)
+      ++r.extra_hole;
+    else
+      ++r.extra_other;
   }
   return r;
 }

@@ -15,12 +15,12 @@ namespace silk::testing {
 using CoordFace = std::array<QVec, 3>;
 
 struct FaceComparison {
-  int64_t target = 0;      // representable faces (processed minus unencodable)
-  int64_t recovered = 0;   // target faces decoded with the same winding
-  int64_t reversed = 0;    // target faces decoded with the opposite winding
-  int64_t missing = 0;     // target faces not decoded at all
-  int64_t extra_hole = 0;  // decoded non-target faces whose 3 edges are boundary edges of the target
-  int64_t extra_other = 0; // other decoded non-target faces
+  int64_t target = 0;       // representable faces (processed minus unencodable)
+  int64_t recovered = 0;    // target faces decoded with the same winding
+  int64_t reversed = 0;     // target faces decoded with the opposite winding
+  int64_t missing = 0;      // target faces not decoded at all
+  int64_t extra_hole = 0;   // decoded non-target faces whose 3 edges are boundary edges of the target
+  int64_t extra_other = 0;  // other decoded non-target faces
 };
 
 std::vector<int32_t> ReadIds(const std::string& path);

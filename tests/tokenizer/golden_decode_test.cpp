@@ -23,12 +23,17 @@ std::vector<CoordFace> ReadDecodedTxt(const std::string& path) {
   bool in_faces = false;
   std::vector<CoordFace> faces;
   while (std::getline(in, line)) {
-    if (line.rfind("decoded_faces_quantized", 0) == 0) { in_faces = true; continue; }
+    if (line.rfind("decoded_faces_quantized", 0) == 0) {
+      in_faces = true;
+      continue;
+    }
     if (!in_faces) continue;
-    for (char& c : line) if (c == '|') c = ' ';
+    for (char& c : line)
+      if (c == '|') c = ' ';
     std::istringstream ls(line);
     CoordFace f;
-    if (ls >> f[0].x >> f[0].y >> f[0].z >> f[1].x >> f[1].y >> f[1].z >> f[2].x >> f[2].y >> f[2].z) faces.push_back(f);
+    if (ls >> f[0].x >> f[0].y >> f[0].z >> f[1].x >> f[1].y >> f[1].z >> f[2].x >> f[2].y >> f[2].z)
+      faces.push_back(f);
   }
   return faces;
 }
@@ -36,8 +41,8 @@ std::vector<CoordFace> ReadDecodedTxt(const std::string& path) {
 struct GoldenCase {
   const char* name;
   int vertices;
-  int faces;           // processed F (golden README)
-  bool official_exact; // official decoded set == processed, oriented
+  int faces;            // processed F (golden README)
+  bool official_exact;  // official decoded set == processed, oriented
 };
 
 class GoldenDecode : public ::testing::TestWithParam<GoldenCase> {};

@@ -118,8 +118,10 @@ TEST(GoldenDevDecodeSlow, RecoversEveryRepresentableFaceWithItsWinding) {
                   row.name.c_str(), (long long)r.target, (long long)r.missing, (long long)r.reversed,
                   (long long)r.extra_hole, (long long)r.extra_other);
     }
-    if (!r.missing && !r.reversed && !r.extra_other && !r.extra_hole) ++exact;
-    else if (!r.missing && !r.reversed && !r.extra_other) ++exact_but_holes;
+    if (!r.missing && !r.reversed && !r.extra_other && !r.extra_hole)
+      ++exact;
+    else if (!r.missing && !r.reversed && !r.extra_other)
+      ++exact_but_holes;
     total.target += r.target;
     total.recovered += r.recovered;
     total.reversed += r.reversed;
@@ -127,15 +129,17 @@ TEST(GoldenDevDecodeSlow, RecoversEveryRepresentableFaceWithItsWinding) {
     total.extra_hole += r.extra_hole;
     total.extra_other += r.extra_other;
   }
-  std::printf("golden-dev decode: %zu meshes, representable faces %lld, recovered %lld, reversed %lld, "
-              "missing %lld (of the missing/reversed: proven token-equivalent %lld, not proven %lld), "
-              "extra (triangular hole) %lld, extra (other) %lld; exact meshes %d, exact up to filled holes %d\n",
-              rows.size(), (long long)total.target, (long long)total.recovered, (long long)total.reversed,
-              (long long)total.missing, (long long)proven_ambiguous, (long long)unproven, (long long)total.extra_hole,
-              (long long)total.extra_other, exact, exact_but_holes);
-  std::printf("golden-dev decode: with unencodable faces added (components of meshes with misses): checked %d, "
-              "truth does not re-encode (inconclusive) %d, ours and truth re-encode (proven) %d\n",
-              aug_checked, aug_truth_fail, aug_proven);
+  std::printf(
+      "golden-dev decode: %zu meshes, representable faces %lld, recovered %lld, reversed %lld, "
+      "missing %lld (of the missing/reversed: proven token-equivalent %lld, not proven %lld), "
+      "extra (triangular hole) %lld, extra (other) %lld; exact meshes %d, exact up to filled holes %d\n",
+      rows.size(), (long long)total.target, (long long)total.recovered, (long long)total.reversed,
+      (long long)total.missing, (long long)proven_ambiguous, (long long)unproven, (long long)total.extra_hole,
+      (long long)total.extra_other, exact, exact_but_holes);
+  std::printf(
+      "golden-dev decode: with unencodable faces added (components of meshes with misses): checked %d, "
+      "truth does not re-encode (inconclusive) %d, ours and truth re-encode (proven) %d\n",
+      aug_checked, aug_truth_fail, aug_proven);
   EXPECT_EQ(unproven, 0);
   EXPECT_EQ(total.target, 177261);
 }

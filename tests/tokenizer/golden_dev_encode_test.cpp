@@ -84,10 +84,11 @@ TEST(GoldenDevEncodeSlow, AllMeshesMatchOfficial) {
     processed_total += enc->stats.processed_faces;
     encodable_total += enc->stats.encodable_faces;
   }
-  std::printf("golden-dev encode: %d/%d ok meshes token-identical, %d/%d refusals identical; "
-              "%lld tokens, %lld processed faces, %lld encodable faces\n",
-              ok_match, ok_total, refused_match, refused_total, static_cast<long long>(tokens_total),
-              static_cast<long long>(processed_total), static_cast<long long>(encodable_total));
+  std::printf(
+      "golden-dev encode: %d/%d ok meshes token-identical, %d/%d refusals identical; "
+      "%lld tokens, %lld processed faces, %lld encodable faces\n",
+      ok_match, ok_total, refused_match, refused_total, static_cast<long long>(tokens_total),
+      static_cast<long long>(processed_total), static_cast<long long>(encodable_total));
   EXPECT_EQ(ok_match, 140);
   EXPECT_EQ(refused_match, 20);
 }

@@ -11,6 +11,7 @@ without writing past them. The functions 1.3 added are bound to the SILK_1.3 nod
 
     capi_abi_check.py LIBSILK MODEL_DIR
 """
+
 import ctypes
 import sys
 
@@ -24,12 +25,26 @@ class Params11(ctypes.Structure):
 
 
 SILK_1_3 = ("silk_models_dir", "silk_model_default_dir", "silk_model_find", "silk_models_list")
-INFO_INTS = ("d_model", "n_layers", "n_heads", "head_dim", "n_latents", "default_points", "max_seq_len", "threads",
-             "int8", "decoder", "arch", "encoder_points")
+INFO_INTS = (
+    "d_model",
+    "n_layers",
+    "n_heads",
+    "head_dim",
+    "n_latents",
+    "default_points",
+    "max_seq_len",
+    "threads",
+    "int8",
+    "decoder",
+    "arch",
+    "encoder_points",
+)
 
 
 class Info10(ctypes.Structure):
-    _fields_ = [("struct_size", ctypes.c_uint32), ("config", ctypes.c_char * 32)] + [(n, ctypes.c_int32) for n in INFO_INTS]
+    _fields_ = [("struct_size", ctypes.c_uint32), ("config", ctypes.c_char * 32)] + [
+        (n, ctypes.c_int32) for n in INFO_INTS
+    ]
 
 
 def both_versions(lib, libc, name, old_type, version, new_type):
@@ -65,11 +80,13 @@ def main(lib_path, model_dir):
     info.struct_size = ctypes.sizeof(Info10)
     if lib.silk_model_get_info(model, ctypes.byref(buf)) != 0:
         failures.append(f"silk_model_get_info with the 1.0 size: {lib.silk_last_error().decode()}")
-    elif any(b != 0xAB for b in buf[ctypes.sizeof(Info10):]) or info.n_layers <= 0:
+    elif any(b != 0xAB for b in buf[ctypes.sizeof(Info10) :]) or info.n_layers <= 0:
         failures.append("silk_model_get_info wrote past the 1.0 size of silk_model_info (or filled nothing)")
     bad = Params10(13, 0, 0)
-    if lib.silk_model_load(model_dir.encode(), ctypes.byref(bad), ctypes.byref(ctypes.c_void_p())) == 0 or \
-            b"or 12 as libsilk 1.0" not in lib.silk_last_error():
+    if (
+        lib.silk_model_load(model_dir.encode(), ctypes.byref(bad), ctypes.byref(ctypes.c_void_p())) == 0
+        or b"or 12 as libsilk 1.0" not in lib.silk_last_error()
+    ):
         failures.append(f"struct_size 13 accepted or badly named: {lib.silk_last_error()}")
     failures += check_generate(lib, libc, model)
     lib.silk_model_destroy.argtypes = [ctypes.c_void_p]
@@ -81,17 +98,21 @@ def main(lib_path, model_dir):
 
 
 GEN_PARAMS_10 = 120  # offsetof(silk_generate_params, face_guidance) on x86-64 / aarch64 Linux
-GEN_STATS_10 = 232   # offsetof(silk_generate_stats, face_guided_tokens)
+GEN_STATS_10 = 232  # offsetof(silk_generate_stats, face_guided_tokens)
 
 
 def check_generate(lib, libc, model):
     """silk_generate_default_params@SILK_1.0 / @SILK_1.3, and a 1.0-sized run."""
+
     class Old(ctypes.Structure):
         _fields_ = [("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8))]
 
     class New(ctypes.Structure):
-        _fields_ = [("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8)), ("face_guidance", ctypes.c_int32),
-                    ("face_tolerance", ctypes.c_double)]
+        _fields_ = [
+            ("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8)),
+            ("face_guidance", ctypes.c_int32),
+            ("face_tolerance", ctypes.c_double),
+        ]
 
     try:
         p10, p13 = both_versions(lib, libc, "silk_generate_default_params", Old, "SILK_1.3", New)
@@ -100,11 +121,14 @@ def check_generate(lib, libc, model):
     failures = []
     size10, size13 = p10.bytes[0] & 0xFFFFFFFF, p13.bytes[0] & 0xFFFFFFFF
     if size10 != GEN_PARAMS_10 or size13 != ctypes.sizeof(New):
-        failures.append(f"generate params sizes: 1.0 {size10} (want {GEN_PARAMS_10}), 1.3 {size13} "
-                        f"(want {ctypes.sizeof(New)})")
+        failures.append(
+            f"generate params sizes: 1.0 {size10} (want {GEN_PARAMS_10}), 1.3 {size13} (want {ctypes.sizeof(New)})"
+        )
     if list(p10.bytes)[1:] != list(p13.bytes)[1:] or (p13.face_guidance, p13.face_tolerance) != (-1, -1.0):
-        failures.append("the 1.0 default params differ from today's first bytes, or today's face guidance "
-                        f"defaults are not SILK_MODEL_VALUE ({p13.face_guidance}, {p13.face_tolerance})")
+        failures.append(
+            "the 1.0 default params differ from today's first bytes, or today's face guidance "
+            f"defaults are not SILK_MODEL_VALUE ({p13.face_guidance}, {p13.face_tolerance})"
+        )
     gen = ctypes.c_void_p()
     lib.silk_generator_create.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]
     if lib.silk_generator_create(model, ctypes.byref(gen)) != 0:
@@ -112,16 +136,27 @@ def check_generate(lib, libc, model):
     pts = (ctypes.c_double * (6 * 64))(*[v for i in range(64) for v in (i / 64, (i % 8) / 8, 0.1, 0, 0, 1)])
 
     class Input(ctypes.Structure):
-        _fields_ = [("struct_size", ctypes.c_uint32), ("mesh", ctypes.c_void_p), ("points", ctypes.c_void_p),
-                    ("point_rows", ctypes.c_size_t)]
+        _fields_ = [
+            ("struct_size", ctypes.c_uint32),
+            ("mesh", ctypes.c_void_p),
+            ("points", ctypes.c_void_p),
+            ("point_rows", ctypes.c_size_t),
+        ]
+
     inp = Input(ctypes.sizeof(Input), None, ctypes.cast(pts, ctypes.c_void_p), 64)
     max_tokens_offset = 40  # offsetof(silk_generate_params, max_tokens)
     ctypes.c_int32.from_buffer(p10, max_tokens_offset).value = 60
     stats = (ctypes.c_ubyte * (GEN_STATS_10 + 32))(*([0xAB] * (GEN_STATS_10 + 32)))
     ctypes.c_uint32.from_buffer(stats).value = GEN_STATS_10
     mesh = ctypes.c_void_p()
-    lib.silk_generator_run.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p),
-                                       ctypes.c_void_p, ctypes.c_void_p]
+    lib.silk_generator_run.argtypes = [
+        ctypes.c_void_p,
+        ctypes.c_void_p,
+        ctypes.c_void_p,
+        ctypes.POINTER(ctypes.c_void_p),
+        ctypes.c_void_p,
+        ctypes.c_void_p,
+    ]
     rc = lib.silk_generator_run(gen, ctypes.byref(inp), ctypes.byref(p10), ctypes.byref(mesh), None, stats)
     if rc != 0:
         failures.append(f"silk_generator_run with the 1.0 params and stats: {lib.silk_last_error().decode()}")

@@ -12,7 +12,11 @@ A "path" is a Markdown link target or a back-quoted word that starts with one of
 top-level folders (or is a top-level file) and holds no spaces, wildcards or placeholders; links
 to other sites, anchors and paths outside the repository (`../shared/...`) are not checked.
 """
-import pathlib, re, sys, tempfile
+
+import pathlib
+import re
+import sys
+import tempfile
 
 README_MAX_LINES = 150
 LINK = re.compile(r"\]\(([^)\s]+)\)")
@@ -91,7 +95,9 @@ def selftest():
             if not check(root):
                 print(f"selftest: {what} was not caught")
                 return 1
-    print("selftest: ok (a clean tree passes; a missing link, a missing code path, an unnamed folder and a long README fail)")
+    print(
+        "selftest: ok (a clean tree passes; a missing link, a missing code path, an unnamed folder and a long README fail)"
+    )
     return 0
 
 

@@ -28,7 +28,12 @@ or a peer. Files directly in the layer folder belong to no stage (the layer's sh
 front door): a stage file may include one only if every stage that file reaches through its own
 includes (transitively) is the includer's stage or an earlier one.
 """
-import ast, pathlib, re, sys, tempfile
+
+import ast
+import pathlib
+import re
+import sys
+import tempfile
 
 ORDER = ["core", "io", "mesh", "tokenizer", "decoder", "kernels", "runtime", "capi"]
 APPS = ["silkgen", "silktok", "common"]  # common/: sources both tools build in
@@ -70,8 +75,10 @@ def check_apps(root, apps=APPS):
             for n, line in enumerate(f.read_text(encoding="utf-8").splitlines(), 1):
                 m = quoted.match(line)
                 if m and m.group(1) not in PUBLIC and not (f.parent / m.group(1)).is_file():
-                    bad.append(f"{f}:{n}: includes \"{m.group(1)}\", which is neither silk/silk.h, "
-                               f"silk/silk.hpp nor a file of {app}")
+                    bad.append(
+                        f'{f}:{n}: includes "{m.group(1)}", which is neither silk/silk.h, '
+                        f"silk/silk.hpp nor a file of {app}"
+                    )
     return bad, f"checked {files} app sources under {root} (public API only)"
 
 
@@ -100,6 +107,8 @@ def check_folders(root):
         if n > MAX_FILES_PER_FOLDER:
             bad.append(f"{d}: {n} source files directly inside (at most {MAX_FILES_PER_FOLDER})")
     return bad, f"checked {folders} folders under {root}"
+
+
 def private_selftest():
     with tempfile.TemporaryDirectory() as tmp:
         root = pathlib.Path(tmp)
@@ -129,6 +138,7 @@ def read_stage_order(readme):
 def stage_findings(deps, order, layer):
     """Back includes among the stages of one layer. deps: {file: [(line, included file)]}, paths
     relative to the layer ("packing/token_reader.cpp", "tokenizer.h"); order: {stage: rank}."""
+
     def stage(f):
         return f.split("/")[0] if "/" in f else None
 
@@ -147,8 +157,10 @@ def stage_findings(deps, order, layer):
         return out
 
     chain = " -> ".join(" | ".join(k for k, r in order.items() if r == i) for i in sorted(set(order.values())))
-    bad = [f"{layer}/{s}: sub-folder not in {layer}'s stage order ({chain})"
-           for s in sorted({stage(f) for f in deps if stage(f)} - set(order))]
+    bad = [
+        f"{layer}/{s}: sub-folder not in {layer}'s stage order ({chain})"
+        for s in sorted({stage(f) for f in deps if stage(f)} - set(order))
+    ]
     for f in sorted(deps):
         a = stage(f)
         if a is None or a not in order:
@@ -159,8 +171,10 @@ def stage_findings(deps, order, layer):
             for c in sorted(x for x in reached if x != a and x in order and order[x] >= order[a]):
                 how = "" if b else f", which reaches stage '{c}'"
                 rel = "a peer" if order[c] == order[a] else "after it"
-                bad.append(f"{layer}/{f}:{n}: stage '{a}' includes '{g}'{how}: '{c}' comes {rel} in "
-                           f"{layer}'s stage order ({chain})")
+                bad.append(
+                    f"{layer}/{f}:{n}: stage '{a}' includes '{g}'{how}: '{c}' comes {rel} in "
+                    f"{layer}'s stage order ({chain})"
+                )
     return bad
 
 
@@ -171,8 +185,9 @@ def cpp_deps(folder, layer):
     for f in sorted(folder.rglob("*")):
         if f.suffix in SOURCES:
             lines = f.read_text(encoding="utf-8").splitlines()
-            deps[f.relative_to(folder).as_posix()] = [(n, m.group(1)) for n, l in enumerate(lines, 1)
-                                                      if (m := inc.match(l))]
+            deps[f.relative_to(folder).as_posix()] = [
+                (n, m.group(1)) for n, l in enumerate(lines, 1) if (m := inc.match(l))
+            ]
     return deps
 
 
@@ -186,8 +201,10 @@ def check_stages(root):
         if order is None:
             bad.append(f"{folder / 'README.md'}: no 'Stage order: `a -> b`' line for the sub-folders of {layer}/")
             continue
-        layers.append(f"{layer}: " + " -> ".join(" | ".join(k for k, r in order.items() if r == i)
-                                                  for i in sorted(set(order.values()))))
+        layers.append(
+            f"{layer}: "
+            + " -> ".join(" | ".join(k for k, r in order.items() if r == i) for i in sorted(set(order.values())))
+        )
         bad += stage_findings(cpp_deps(folder, layer), order, layer)
     print("\n".join(layers))
     return bad, f"checked the stage order of {len(layers)} layers under {root}"
@@ -212,7 +229,7 @@ def python_deps(pkg):
             targets = []
             if isinstance(node, ast.ImportFrom):
                 if node.level:
-                    base = here[:len(here) - (node.level - 1)] if node.level > 1 else here
+                    base = here[: len(here) - (node.level - 1)] if node.level > 1 else here
                 elif node.module and node.module.split(".")[0] == pkg.name:
                     base = []
                     node_module = node.module.split(".")[1:]
@@ -237,8 +254,10 @@ def check_python_stages(pkg, readme):
     order = read_stage_order(readme)
     if order is None:
         return [f"{readme}: no 'Stage order: `a -> b`' line for the sub-packages of {pkg.name}"], "python stages"
-    print(f"{pkg.name}: " + " -> ".join(" | ".join(k for k, r in order.items() if r == i)
-                                         for i in sorted(set(order.values()))))
+    print(
+        f"{pkg.name}: "
+        + " -> ".join(" | ".join(k for k, r in order.items() if r == i) for i in sorted(set(order.values())))
+    )
     return stage_findings(python_deps(pkg), order, pkg.name), f"checked the stage order of {pkg}"
 
 
@@ -264,9 +283,11 @@ def stages_selftest():
         (pkg / "models" / "net.py").write_text("def f():\n    from pkg.onnx.export import g\n")
         (pkg / "README.md").write_text("Stage order: `models -> onnx`\n")
         py, _ = check_python_stages(pkg, pkg / "README.md")
-    want = ["cleanup/quantize.cpp:1: stage 'cleanup' includes 'packing/stream.h'",
-            "cleanup/face.cpp:1: stage 'cleanup' includes 'shared.h', which reaches stage 'packing'",
-            "models/net.py:2: stage 'models' includes 'onnx/export.py'"]
+    want = [
+        "cleanup/quantize.cpp:1: stage 'cleanup' includes 'packing/stream.h'",
+        "cleanup/face.cpp:1: stage 'cleanup' includes 'shared.h', which reaches stage 'packing'",
+        "models/net.py:2: stage 'models' includes 'onnx/export.py'",
+    ]
     found = dirty + py
     ok = not clean and len(found) == 3 and all(any(w in b for b in found) for w in want)
     print(f"selftest: ordered layer -> {len(clean)} finding(s); planted back includes -> {found}")

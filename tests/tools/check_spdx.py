@@ -15,6 +15,7 @@ git lists them (every file below ROOT outside build folders when ROOT is not a c
 (meshes, token lists, models, docs), generated files (a "DO NOT EDIT" in their first lines) and
 third-party files (THIRD_PARTY) are not sources.
 """
+
 import pathlib
 import re
 import subprocess
@@ -76,7 +77,7 @@ def examine(rel, text):
         return None, None
     want = spdx_line(style, licence_of(rel))
     at = header_end(bare)
-    existing = [i for i, l in enumerate(bare[:at + 3]) if TAG in l]
+    existing = [i for i, l in enumerate(bare[: at + 3]) if TAG in l]
     if at < len(bare) and bare[at] == want and len(existing) == 1:
         return None, None
     newline = "\r\n" if lines and lines[0].endswith("\r\n") else "\n"
@@ -94,8 +95,12 @@ def source_files(root):
         out = subprocess.run(["git", "-C", str(root), "ls-files", "-z"], check=True, capture_output=True).stdout
         return sorted(p for p in out.decode("utf-8").split("\0") if p)
     except (OSError, subprocess.CalledProcessError):
-        return sorted(p.relative_to(root).as_posix() for p in root.rglob("*") if p.is_file() and not any(
-            part in SKIP_DIRS or part.startswith("build") for part in p.relative_to(root).parts[:-1]))
+        return sorted(
+            p.relative_to(root).as_posix()
+            for p in root.rglob("*")
+            if p.is_file()
+            and not any(part in SKIP_DIRS or part.startswith("build") for part in p.relative_to(root).parts[:-1])
+        )
 
 
 def run(root, fix):
@@ -119,13 +124,20 @@ def run(root, fix):
 
 def selftest():
     cases = {  # file -> (text, the text --fix must give)
-        "tool.py": ("#!/usr/bin/env python3\n\"\"\"Doc.\"\"\"\n",
-                    "#!/usr/bin/env python3\n# SPDX-License-Identifier: MIT\n\"\"\"Doc.\"\"\"\n"),
-        "enc.py": ("# -*- coding: utf-8 -*-\nx = 1\n", "# -*- coding: utf-8 -*-\n# SPDX-License-Identifier: MIT\nx = 1\n"),
+        "tool.py": (
+            '#!/usr/bin/env python3\n"""Doc."""\n',
+            '#!/usr/bin/env python3\n# SPDX-License-Identifier: MIT\n"""Doc."""\n',
+        ),
+        "enc.py": (
+            "# -*- coding: utf-8 -*-\nx = 1\n",
+            "# -*- coding: utf-8 -*-\n# SPDX-License-Identifier: MIT\nx = 1\n",
+        ),
         "a.cpp": ("// Why a exists.\nint a;\n", "// SPDX-License-Identifier: MIT\n// Why a exists.\nint a;\n"),
         "c.h": ("/* A C header. */\n", "/* SPDX-License-Identifier: MIT */\n/* A C header. */\n"),
-        "apps/blender/silk_blender/ops.py": ("# SPDX-License-Identifier: MIT\nimport bpy\n",
-                                             "# SPDX-License-Identifier: GPL-3.0-or-later\nimport bpy\n"),
+        "apps/blender/silk_blender/ops.py": (
+            "# SPDX-License-Identifier: MIT\nimport bpy\n",
+            "# SPDX-License-Identifier: GPL-3.0-or-later\nimport bpy\n",
+        ),
         "s.sh": ("#!/bin/sh\necho\n", "#!/bin/sh\n# SPDX-License-Identifier: MIT\necho\n"),
         "CMakeLists.txt": ("project(x)\n", "# SPDX-License-Identifier: MIT\nproject(x)\n"),
         "ok.cpp": ("// SPDX-License-Identifier: MIT\nint b;\n", None),
@@ -152,8 +164,12 @@ def selftest():
         again, _ = run(root, fix=False)
         if again:
             errors.append(f"after --fix the check still reports {again}")
-    print("selftest:", "ok (missing, wrong and misplaced lines caught and fixed; data and generated files left alone)"
-          if not errors else "; ".join(errors))
+    print(
+        "selftest:",
+        "ok (missing, wrong and misplaced lines caught and fixed; data and generated files left alone)"
+        if not errors
+        else "; ".join(errors),
+    )
     return 1 if errors else 0
 
 

@@ -11,6 +11,7 @@ libsilk_ops, which exports it alone (--plugin).
                                              the header must agree with it)
   check_symbols.py --selftest                the comparison fails on a known bad set (the check can fail)
 """
+
 import re
 import subprocess
 import sys
@@ -52,8 +53,10 @@ def problems(lib_syms, listed, header_syms):
     return out
 
 
-HOW = "python3 tests/tools/check_symbols.py --write build/engine/libsilk.so engine/libsilk.symbols " \
-      "engine/include/silk/silk.h"
+HOW = (
+    "python3 tests/tools/check_symbols.py --write build/engine/libsilk.so engine/libsilk.symbols "
+    "engine/include/silk/silk.h"
+)
 
 
 def plugin_problems(lib_syms):
@@ -66,16 +69,25 @@ def selftest():
     bad = problems({"silk_a", "silk_new", "helper"}, {"silk_a", "silk_gone"}, {"silk_a", "silk_new"})
     bad += problems({"silk_a", "RegisterCustomOps"}, {"silk_a", "RegisterCustomOps"}, {"silk_a"})  # libsilk
     bad += plugin_problems({"silk_a"})
-    want = ["not a silk_ symbol: helper", "added): helper", "added): silk_new", "missing): silk_gone",
-            "not declared in silk.h: helper", "not a silk_ symbol: RegisterCustomOps",
-            "more than its entry: silk_a", "does not export: RegisterCustomOps"]
+    want = [
+        "not a silk_ symbol: helper",
+        "added): helper",
+        "added): silk_new",
+        "missing): silk_gone",
+        "not declared in silk.h: helper",
+        "not a silk_ symbol: RegisterCustomOps",
+        "more than its entry: silk_a",
+        "does not export: RegisterCustomOps",
+    ]
     missing = [w for w in want if not any(w in b for b in bad)]
     ok = {"silk_a"}
     if missing or problems(ok, ok, ok) or plugin_problems(PLUGIN_ENTRIES):
         print("selftest failed:", missing or "a matching set reported problems")
         return 1
-    print("selftest ok: the comparison reports added, missing and non-silk_ symbols (RegisterCustomOps "
-          "on libsilk too), and a libsilk_ops exporting more or less than its entry")
+    print(
+        "selftest ok: the comparison reports added, missing and non-silk_ symbols (RegisterCustomOps "
+        "on libsilk too), and a libsilk_ops exporting more or less than its entry"
+    )
     return 0
 
 

@@ -2,17 +2,27 @@
 # SPDX-License-Identifier: MIT
 """End-to-end checks of the silktok binary, run by ctest (tests/cli/silktok.cmake).
 
-  bad SILKTOK SHARED      every corpus/bad file through `encode` and `stats`: non-zero exit,
-                          stderr names the file, no output file left, each within seconds
-  golden SILKTOK SHARED   `encode` of the 14 goldens and (batch form, -j 2) of the 160 dev meshes:
-                          token files byte-identical to the official ones, official refusals refused
-  roundtrip SILKTOK SHARED  `roundtrip --json` on the 14 goldens: exact
-  decode SILKTOK SHARED   `decode` of the 140 golden-dev streams, faithful and with
-                          --split-nonmanifold-vertices, judged by shared/tools/mesh_check.py: the
-                          split OBJ has no vertex with two fans and the same faces; some faithful
-                          ones do have such vertices (the references contain them)
+bad SILKTOK SHARED      every corpus/bad file through `encode` and `stats`: non-zero exit,
+                        stderr names the file, no output file left, each within seconds
+golden SILKTOK SHARED   `encode` of the 14 goldens and (batch form, -j 2) of the 160 dev meshes:
+                        token files byte-identical to the official ones, official refusals refused
+roundtrip SILKTOK SHARED  `roundtrip --json` on the 14 goldens: exact
+decode SILKTOK SHARED   `decode` of the 140 golden-dev streams, faithful and with
+                        --split-nonmanifold-vertices, judged by shared/tools/mesh_check.py: the
+                        split OBJ has no vertex with two fans and the same faces; some faithful
+                        ones do have such vertices (the references contain them)
 """
-import csv, gzip, json, os, pathlib, shutil, subprocess, sys, tempfile, time
+
+import csv
+import gzip
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
 
 from check_report import finish
 
@@ -101,8 +111,10 @@ def check_golden(silktok, shared):
                     refused += 1
                 else:
                     failures.append(f"dev {r['name']}: refused without naming the file")
-        print(f"dev corpus via `silktok encode -j 2`: {same} token files identical, {refused} refused as the "
-              f"reference does, {dt:.2f}s; exit {p.returncode}")
+        print(
+            f"dev corpus via `silktok encode -j 2`: {same} token files identical, {refused} refused as the "
+            f"reference does, {dt:.2f}s; exit {p.returncode}"
+        )
         if p.returncode == 0:
             failures.append("batch encode exited 0 although 20 inputs are refused")
     return failures
@@ -117,8 +129,10 @@ def check_roundtrip(silktok, shared):
         except json.JSONDecodeError:
             failures.append(f"{obj.name}: no JSON ({p.stderr.strip()})")
             continue
-        print(f"{obj.stem:20s} representable {j['representable_faces']:4d} recovered {j['recovered']:4d} "
-              f"reversed {j['reversed']} missing {j['missing']} extra {j['extra_faces']}")
+        print(
+            f"{obj.stem:20s} representable {j['representable_faces']:4d} recovered {j['recovered']:4d} "
+            f"reversed {j['reversed']} missing {j['missing']} extra {j['extra_faces']}"
+        )
         if p.returncode != 0 or not j["exact"]:
             failures.append(f"{obj.name}: roundtrip not exact")
     return failures
@@ -127,6 +141,7 @@ def check_roundtrip(silktok, shared):
 def check_decode(silktok, shared):
     sys.path.insert(0, str(pathlib.Path(shared) / "tools"))
     import mesh_check  # the independent checker (shares no code with Silk)
+
     failures, with_bowties = [], 0
     with tempfile.TemporaryDirectory() as tmp:
         for tok in sorted((pathlib.Path(shared) / "spec" / "golden-dev").glob("*.tokens.txt")):
@@ -136,11 +151,16 @@ def check_decode(silktok, shared):
             if p1.returncode or p2.returncode:
                 failures.append(f"{tok.name}: decode failed ({p1.stderr.strip()} {p2.stderr.strip()})")
                 continue
-            a, b = mesh_check.verdict(*mesh_check.read_obj(str(keep))), mesh_check.verdict(*mesh_check.read_obj(str(split)))
+            a, b = (
+                mesh_check.verdict(*mesh_check.read_obj(str(keep))),
+                mesh_check.verdict(*mesh_check.read_obj(str(split))),
+            )
             with_bowties += a["nonmanifold_vertices"] > 0
             if not b["ok"] or b["faces"] != a["faces"] or b["edge_manifold"] != a["edge_manifold"]:
                 failures.append(f"{tok.name}: split output {b}, faithful {a}")
-    print(f"decode: {with_bowties} faithful meshes with vertices of two or more fans, all split outputs vertex-manifold")
+    print(
+        f"decode: {with_bowties} faithful meshes with vertices of two or more fans, all split outputs vertex-manifold"
+    )
     if with_bowties == 0:
         failures.append("no faithful decode had a vertex with two fans (the check would be vacuous)")
     return failures
@@ -148,8 +168,9 @@ def check_decode(silktok, shared):
 
 def main():
     mode, silktok, shared = sys.argv[1:4]
-    failures = {"bad": check_bad, "golden": check_golden, "roundtrip": check_roundtrip,
-                "decode": check_decode}[mode](silktok, shared)
+    failures = {"bad": check_bad, "golden": check_golden, "roundtrip": check_roundtrip, "decode": check_decode}[mode](
+        silktok, shared
+    )
     sys.exit(finish(f"silktok {mode}", failures))
 
 

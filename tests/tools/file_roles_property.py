@@ -11,7 +11,17 @@ of combinations.
 
   file_roles_property.py SILKGEN SILKTOK REPO [--all]   (default: a fixed-seed sample of 160)
 """
-import hashlib, itertools, json, os, pathlib, random, subprocess, sys, tempfile, time
+
+import hashlib
+import itertools
+import json
+import os
+import pathlib
+import random
+import subprocess
+import sys
+import tempfile
+import time
 
 from check_report import finish
 
@@ -52,13 +62,15 @@ def combinations(table):
     for opt, t in itertools.product(("-o", "--tokens", "--stats"), targets):
         yield "silkgen", ["in.obj", opt, t] + (["-o", "fresh.glb"] if opt != "-o" else []), ["in.obj"], None
     lists = ("list.txt", "list2.txt", "list3.txt")
-    for lst, outdir, fmt, overwrite, rep in itertools.product(lists, (".", "out", "sub/.."), ("obj", "glb"),
-                                                               (False, True), targets + [None]):
+    for lst, outdir, fmt, overwrite, rep in itertools.product(
+        lists, (".", "out", "sub/.."), ("obj", "glb"), (False, True), targets + [None]
+    ):
         args = ["--batch", lst, "-o", outdir, "--format", fmt] + (["--overwrite"] if overwrite else [])
         report = rep or f"{outdir}/silkgen_batch.jsonl"
         yield "silkgen", args + (["--report", rep] if rep else []), [lst, "in.obj"], report
-    for (cmd, src), t in itertools.product((("encode", "in.obj"), ("decode", "t.tokens.txt"),
-                                            ("repair", "t.tokens.txt")), targets):
+    for (cmd, src), t in itertools.product(
+        (("encode", "in.obj"), ("decode", "t.tokens.txt"), ("repair", "t.tokens.txt")), targets
+    ):
         yield "silktok", [cmd, src, "-o", t], [src], None
 
 
@@ -76,7 +88,7 @@ def check_run(tmp, label, p, reads, before, report, report_before):
             failures.append(f"{label}: the report {report} was rewritten, not appended to")
         else:
             try:
-                [json.loads(line) for line in now[len(report_before):].decode().splitlines()]
+                [json.loads(line) for line in now[len(report_before) :].decode().splitlines()]
             except (ValueError, UnicodeDecodeError):
                 failures.append(f"{label}: the report {report} grew by something other than JSON lines")
     return failures
@@ -96,8 +108,10 @@ def main():
         total = len(combos)
         if "--all" not in sys.argv:
             combos = random.Random(35).sample(combos, min(160, total))
-        pristine = {n: (tmp / n).read_bytes() for n in ("in.obj", "t.tokens.txt", "list.txt", "list2.txt",
-                                                      "list3.txt", "r.jsonl")}
+        pristine = {
+            n: (tmp / n).read_bytes()
+            for n in ("in.obj", "t.tokens.txt", "list.txt", "list2.txt", "list3.txt", "r.jsonl")
+        }
         for tool, args, read_names, report in combos:
             for n, data in pristine.items():  # every run starts from the same files (hard links kept)
                 if (tmp / n).read_bytes() != data:
@@ -110,8 +124,10 @@ def main():
             extra = ["--model", str(repo / "tests/models/tiny"), *GEN] if tool == "silkgen" else []
             p = subprocess.run([str(exe), *args, *extra], cwd=tmp, capture_output=True, timeout=60)
             failures += check_run(tmp, f"{tool} {' '.join(args)}", p, reads, before, report, report_before)
-    print(f"file_roles_property: {len(combos)} argument combinations run (of {total} generated), "
-          f"{time.monotonic() - t0:.1f} s")
+    print(
+        f"file_roles_property: {len(combos)} argument combinations run (of {total} generated), "
+        f"{time.monotonic() - t0:.1f} s"
+    )
     return finish("file roles property", failures)
 
 

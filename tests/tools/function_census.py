@@ -14,10 +14,16 @@ that holds them. A Python function is a def (methods and nested defs count on th
 tables are exempt where the function is marked with a comment `// census: data table` on the
 line above its header.
 """
-import ast, pathlib, re, sys, tempfile
+
+import ast
+import pathlib
+import re
+import sys
 
 CPP = (".cpp", ".cc", ".h", ".hpp")
-NOT_FUNCTION = re.compile(r"^\s*(if|for|while|switch|catch|do|else|try|return)\b|\b(namespace|class|struct|union|enum)\b[^()]*$|=\s*$|\[\]\s*$")
+NOT_FUNCTION = re.compile(
+    r"^\s*(if|for|while|switch|catch|do|else|try|return)\b|\b(namespace|class|struct|union|enum)\b[^()]*$|=\s*$|\[\]\s*$"
+)
 EXEMPT = "census: data table"
 
 
@@ -42,7 +48,7 @@ def strip_cpp(text):
             j = n if end < 0 else end + len(m.group(1)) + 2
             out.append(re.sub(r"[^\n]", " ", text[i:j]))
             i = j
-        elif c in "\"'" and not (c == "'" and i and text[i - 1].isalnum() and text[i + 1:i + 2].isdigit()):
+        elif c in "\"'" and not (c == "'" and i and text[i - 1].isalnum() and text[i + 1 : i + 2].isdigit()):
             j = i + 1
             while j < n and text[j] != c and text[j] != "\n":
                 j += 2 if text[j] == "\\" else 1
@@ -58,8 +64,8 @@ def cpp_functions(text):
     """Yields (name, first line, line count, exempt) for each function body in C++ source."""
     # Preprocessor lines blanked, a macro continued with a backslash over all its lines.
     code = re.sub(r"(?m)^[ \t]*#(?:.*\\\n)*.*$", lambda m: re.sub(r"[^\n]", " ", m.group(0)), strip_cpp(text))
-    stack = []            # (kind, name, first line, exempt) per open brace
-    header_start = 0      # offset where the current statement/header began
+    stack = []  # (kind, name, first line, exempt) per open brace
+    header_start = 0  # offset where the current statement/header began
     for pos, ch in enumerate(code):
         if ch in ";":
             header_start = pos + 1
@@ -118,10 +124,12 @@ def census(paths):
 
 
 def selftest():
-    cpp = ("#define TWO(x) \\\n  F(x) \"(\" F(x)\n"
-           "namespace a {\nstruct S {\n  int f(int x) const {\n    if (x) {\n      return 1;\n    }\n"
-           "    return 2;\n  }\n};\nint g() {\n  auto l = [] { return \"}\"; };\n  return l()[0];\n}\n"
-           "// census: data table\nconst int* Table() {\n  static const int t[] = {1, 2};\n  return t;\n}\n}\n")
+    cpp = (
+        '#define TWO(x) \\\n  F(x) "(" F(x)\n'
+        "namespace a {\nstruct S {\n  int f(int x) const {\n    if (x) {\n      return 1;\n    }\n"
+        '    return 2;\n  }\n};\nint g() {\n  auto l = [] { return "}"; };\n  return l()[0];\n}\n'
+        "// census: data table\nconst int* Table() {\n  static const int t[] = {1, 2};\n  return t;\n}\n}\n"
+    )
     got = [(name, line, n, ex) for name, line, n, ex in cpp_functions(cpp)]
     want = [("f", 5, 6, False), ("g", 12, 4, False), ("Table", 17, 4, True)]
     py = "def a():\n    def b():\n        return 1\n    return b\n"

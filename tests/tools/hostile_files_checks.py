@@ -16,7 +16,17 @@ time (under 10 s) and, where the old code ran away, the peak memory (under 512 M
   signals SILKGEN SILKTOK REPO   SIGTERM/SIGINT end a batch within a second (exit 143/130), leaving
                                  no temporary; a second signal ends it at once, no temporary left
 """
-import hashlib, json, os, pathlib, re, resource, signal, stat, subprocess, sys, tempfile, time
+
+import hashlib
+import json
+import os
+import pathlib
+import resource
+import signal
+import subprocess
+import sys
+import tempfile
+import time
 
 from check_report import finish
 
@@ -36,8 +46,14 @@ class Ctx:
         e = {k: v for k, v in os.environ.items() if not k.startswith("SLURM_")}
         e.update(env or {})
         t0 = time.monotonic()
-        p = subprocess.Popen([str(c) for c in cmd], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=e,
-                             preexec_fn=preexec, start_new_session=True)
+        p = subprocess.Popen(
+            [str(c) for c in cmd],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            env=e,
+            preexec_fn=preexec,
+            start_new_session=True,
+        )
         try:
             _, err = p.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
@@ -51,8 +67,9 @@ class Ctx:
         e = {k: v for k, v in os.environ.items() if not k.startswith("SLURM_")}
         e.update(env or {})
         t0 = time.monotonic()
-        p = subprocess.Popen([str(c) for c in cmd], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=e,
-                             start_new_session=True)
+        p = subprocess.Popen(
+            [str(c) for c in cmd], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=e, start_new_session=True
+        )
         deadline = t0 + timeout
         err = b""
         while True:
@@ -77,8 +94,10 @@ class Ctx:
                 self.failures.append(f"{label}: stderr lacks '{w}': {err.strip()[-500:]}")
         if secs > seconds:
             self.failures.append(f"{label}: took {secs:.1f} s (limit {seconds} s)")
-        print(f"{label}: exit {code}, {secs:.2f} s{f', {got[3]:.0f} MB' if len(got) > 3 else ''}: "
-              f"{err.strip().splitlines()[-1] if err.strip() else ''}"[:400])
+        print(
+            f"{label}: exit {code}, {secs:.2f} s{f', {got[3]:.0f} MB' if len(got) > 3 else ''}: "
+            f"{err.strip().splitlines()[-1] if err.strip() else ''}"[:400]
+        )
 
     def batch(self, lst, out, *extra, env=None):
         return self.run([self.silkgen, "--batch", lst, "-o", out, "--model", self.model, *GEN, *extra], env=env)
@@ -108,15 +127,23 @@ def case_inputs_in_outdir(ctx):
     lst.write_text("a.obj\n")
     before = fingerprint([a, lst])
     for extra in ([], ["--overwrite"]):
-        ctx.expect(f"1. input in OUTDIR {extra}", ctx.batch(lst, d, "--format", "obj", *extra), 1,
-                   [str(a), "never writes to a file it reads"])
+        ctx.expect(
+            f"1. input in OUTDIR {extra}",
+            ctx.batch(lst, d, "--format", "obj", *extra),
+            1,
+            [str(a), "never writes to a file it reads"],
+        )
     unchanged(ctx, "1. input in OUTDIR", before)
     # The same through a hard link and a symlink in another OUTDIR.
     o = ctx.tmp / "o1"
     o.mkdir()
     os.link(a, o / "a.obj")
-    ctx.expect("1. output is a hard link to the input", ctx.batch(lst, o, "--format", "obj", "--overwrite"), 1,
-               ["never writes"])
+    ctx.expect(
+        "1. output is a hard link to the input",
+        ctx.batch(lst, o, "--format", "obj", "--overwrite"),
+        1,
+        ["never writes"],
+    )
     unchanged(ctx, "1. hard link", before)
 
 
@@ -145,21 +172,31 @@ def case_report_is_input_or_list(ctx):
     inp.write_bytes(ctx.mesh.read_bytes())
     lst.write_text(f"{inp}\n")
     before = fingerprint([lst, inp])
-    ctx.expect("3. --report is an input", ctx.batch(lst, ctx.tmp / "o3", "--report", inp), 1,
-               ["report", str(inp), "never writes"])
-    ctx.expect("3. --report is the list", ctx.batch(lst, ctx.tmp / "o3", "--report", lst), 1,
-               ["report", str(lst), "the list"])
+    ctx.expect(
+        "3. --report is an input",
+        ctx.batch(lst, ctx.tmp / "o3", "--report", inp),
+        1,
+        ["report", str(inp), "never writes"],
+    )
+    ctx.expect(
+        "3. --report is the list", ctx.batch(lst, ctx.tmp / "o3", "--report", lst), 1, ["report", str(lst), "the list"]
+    )
     os.symlink(inp, ctx.tmp / "link3.jsonl")
-    ctx.expect("3. --report is a symlink to an input", ctx.batch(lst, ctx.tmp / "o3", "--report", ctx.tmp / "link3.jsonl"),
-               1, ["never writes"])
+    ctx.expect(
+        "3. --report is a symlink to an input",
+        ctx.batch(lst, ctx.tmp / "o3", "--report", ctx.tmp / "link3.jsonl"),
+        1,
+        ["never writes"],
+    )
     unchanged(ctx, "3. report", before)
 
 
 def case_report_write_fails(ctx):
     lst = ctx.tmp / "l4.txt"
     lst.write_text(f"{ctx.mesh}\n")
-    ctx.expect("4. --report /dev/full", ctx.batch(lst, ctx.tmp / "o4", "--report", "/dev/full"), 1,
-               ["/dev/full", "report"])
+    ctx.expect(
+        "4. --report /dev/full", ctx.batch(lst, ctx.tmp / "o4", "--report", "/dev/full"), 1, ["/dev/full", "report"]
+    )
     # A regular report that cannot grow (a file size limit its earlier lines already reach; the
     # output, a few KB, still fits): the write fails, the run fails naming it.
     rep = ctx.tmp / "o4b.jsonl"
@@ -169,8 +206,11 @@ def case_report_write_fails(ctx):
     def small_files():
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
         resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
-    got = ctx.run([ctx.silkgen, "--batch", lst, "-o", ctx.tmp / "o4b", "--report", rep, "--model", ctx.model, *GEN],
-                  preexec=small_files)
+
+    got = ctx.run(
+        [ctx.silkgen, "--batch", lst, "-o", ctx.tmp / "o4b", "--report", rep, "--model", ctx.model, *GEN],
+        preexec=small_files,
+    )
     ctx.expect("4. report write fails (RLIMIT_FSIZE)", got, 1, [str(rep), "cannot write the report"])
 
 
@@ -197,21 +237,33 @@ def case_shards(ctx):
     lst = ctx.tmp / "l6.txt"
     lst.write_text(f"{ctx.mesh}\n")
     ctx.expect('6. --shard ""', ctx.batch(lst, ctx.tmp / "o6", "--shard", ""), 2, ["--shard", "''"])
-    for env, word in (({"SLURM_ARRAY_TASK_ID": ""}, "SLURM_ARRAY_TASK_ID=''"),
-                      ({"SLURM_ARRAY_TASK_COUNT": "4"}, "without SLURM_ARRAY_TASK_ID"),
-                      ({"SLURM_ARRAY_TASK_ID": "1", "SLURM_ARRAY_TASK_COUNT": "2", "SLURM_ARRAY_TASK_STEP": ""},
-                       "SLURM_ARRAY_TASK_STEP=''"),
-                      ({"SLURM_ARRAY_TASK_ID": "1", "SLURM_ARRAY_TASK_COUNT": "2", "SLURM_ARRAY_TASK_MIN": "-1"},
-                       "SLURM_ARRAY_TASK_MIN='-1'"),
-                      ({"SLURM_ARRAY_TASK_ID": "1e3", "SLURM_ARRAY_TASK_COUNT": "2"}, "1e3")):
+    for env, word in (
+        ({"SLURM_ARRAY_TASK_ID": ""}, "SLURM_ARRAY_TASK_ID=''"),
+        ({"SLURM_ARRAY_TASK_COUNT": "4"}, "without SLURM_ARRAY_TASK_ID"),
+        (
+            {"SLURM_ARRAY_TASK_ID": "1", "SLURM_ARRAY_TASK_COUNT": "2", "SLURM_ARRAY_TASK_STEP": ""},
+            "SLURM_ARRAY_TASK_STEP=''",
+        ),
+        (
+            {"SLURM_ARRAY_TASK_ID": "1", "SLURM_ARRAY_TASK_COUNT": "2", "SLURM_ARRAY_TASK_MIN": "-1"},
+            "SLURM_ARRAY_TASK_MIN='-1'",
+        ),
+        ({"SLURM_ARRAY_TASK_ID": "1e3", "SLURM_ARRAY_TASK_COUNT": "2"}, "1e3"),
+    ):
         ctx.expect(f"6. {env}", ctx.batch(lst, ctx.tmp / "o6", env=env), 2, [word])
     if (ctx.tmp / "o6").exists() and any((ctx.tmp / "o6").glob("*.glb")):
         ctx.failures.append("6. an output was written with a refused shard")
 
 
 def check_batch(ctx):
-    for case in (case_inputs_in_outdir, case_nul_and_control_lines, case_report_is_input_or_list,
-                 case_report_write_fails, case_temporaries_and_long_names, case_shards):
+    for case in (
+        case_inputs_in_outdir,
+        case_nul_and_control_lines,
+        case_report_is_input_or_list,
+        case_report_write_fails,
+        case_temporaries_and_long_names,
+        case_shards,
+    ):
         case(ctx)
 
 
@@ -220,8 +272,9 @@ def case_fifo(ctx):
     os.mkfifo(fifo)
     lst = ctx.tmp / "l8.txt"
     lst.write_text(f"{fifo}\n{ctx.mesh}\n")
-    got = ctx.run(["timeout", "15", ctx.silkgen, "--batch", lst, "-o", ctx.tmp / "o8", "--model", ctx.model, *GEN],
-                  timeout=30)
+    got = ctx.run(
+        ["timeout", "15", ctx.silkgen, "--batch", lst, "-o", ctx.tmp / "o8", "--model", ctx.model, *GEN], timeout=30
+    )
     ctx.expect("8. a FIFO in the list", got, 1, ["pipe.obj", "FIFO"])
     rows = {pathlib.Path(r["input"]).name: r["status"] for r in report_lines(ctx.tmp / "o8/silkgen_batch.jsonl")}
     if rows != {"pipe.obj": "failed", ctx.mesh.name: "ok"}:
@@ -230,15 +283,26 @@ def case_fifo(ctx):
     folder.mkdir()
     os.mkfifo(folder / "pipe.obj")
     (folder / "knot.obj").write_bytes(ctx.mesh.read_bytes())
-    got = ctx.run(["timeout", "15", ctx.silkgen, "--batch", folder, "-o", ctx.tmp / "o8d", "--model", ctx.model, *GEN],
-                  timeout=30)
+    got = ctx.run(
+        ["timeout", "15", ctx.silkgen, "--batch", folder, "-o", ctx.tmp / "o8d", "--model", ctx.model, *GEN], timeout=30
+    )
     ctx.expect("8. a FIFO in a --batch folder", got, 1, ["pipe.obj", "FIFO"])
     fifo_list = ctx.tmp / "list.fifo"
     os.mkfifo(fifo_list)
-    ctx.expect("8. a FIFO as the list", ctx.run(["timeout", "15", ctx.silkgen, "--batch", fifo_list, "-o", ctx.tmp / "o8f",
-                                                 "--model", ctx.model, *GEN]), 1, ["FIFO"])
-    ctx.expect("8. silktok stats on a FIFO", ctx.run(["timeout", "15", ctx.silktok, "stats", fifo]), 1,
-               ["silktok: I/O error: ", "FIFO"])
+    ctx.expect(
+        "8. a FIFO as the list",
+        ctx.run(
+            ["timeout", "15", ctx.silkgen, "--batch", fifo_list, "-o", ctx.tmp / "o8f", "--model", ctx.model, *GEN]
+        ),
+        1,
+        ["FIFO"],
+    )
+    ctx.expect(
+        "8. silktok stats on a FIFO",
+        ctx.run(["timeout", "15", ctx.silktok, "stats", fifo]),
+        1,
+        ["silktok: I/O error: ", "FIFO"],
+    )
 
 
 def case_dev_zero_and_long_list(ctx):
@@ -303,8 +367,23 @@ def check_signals(ctx):
     lst.write_text("".join(f"{c}\n" for c in copies))
     for sig, rc in ((signal.SIGTERM, 143), (signal.SIGINT, 130)):
         out = ctx.tmp / f"sig{sig}"
-        p = subprocess.Popen([str(ctx.silkgen), "--batch", str(lst), "-o", str(out), "--model", str(ctx.model),
-                              "--max-tokens", "2000", "--threads", "1", "-q"], stderr=subprocess.PIPE)
+        p = subprocess.Popen(
+            [
+                str(ctx.silkgen),
+                "--batch",
+                str(lst),
+                "-o",
+                str(out),
+                "--model",
+                str(ctx.model),
+                "--max-tokens",
+                "2000",
+                "--threads",
+                "1",
+                "-q",
+            ],
+            stderr=subprocess.PIPE,
+        )
         time.sleep(1.5)
         t0 = time.monotonic()
         p.send_signal(sig)
@@ -322,8 +401,23 @@ def check_signals(ctx):
     # temporary of a save in progress; repeated so some land during a save.
     for attempt in range(5):
         out = ctx.tmp / f"twice{attempt}"
-        p = subprocess.Popen([str(ctx.silkgen), "--batch", str(lst), "-o", str(out), "--model", str(ctx.model),
-                              "--max-tokens", "400", "--threads", "1", "-q"], stderr=subprocess.DEVNULL)
+        p = subprocess.Popen(
+            [
+                str(ctx.silkgen),
+                "--batch",
+                str(lst),
+                "-o",
+                str(out),
+                "--model",
+                str(ctx.model),
+                "--max-tokens",
+                "400",
+                "--threads",
+                "1",
+                "-q",
+            ],
+            stderr=subprocess.DEVNULL,
+        )
         time.sleep(1.0 + 0.05 * attempt)
         if p.poll() is not None:  # the work must outlast the wait, or the signals test nothing
             ctx.failures.append(f"two SIGTERMs: the run ended (exit {p.returncode}) before the first signal")

@@ -9,6 +9,7 @@ Faults on demand: the first N GETs cut off half-way (a truncated download), a wr
     local_hub.py --repo gcsong/mesh_silksong=DIR [--port P] [--truncate N] [--wrong-hash]
       prints the endpoint (for HF_ENDPOINT) and serves until interrupted. DIR's files appear under
       the revision "main" (and the commit hash the server prints)."""
+
 from __future__ import annotations
 
 import argparse

@@ -12,7 +12,13 @@ to print exactly greedy.txt, the official implementation's 100 greedy ids (READM
 once with the fp32 decoder and once with the importer's default decoder.
 Usage: official_fixture_check.py SILKGEN REPO SHARED_DIR. Exit 77 (ctest SKIP) when the fixture or
 the Python packages the importer needs (numpy, torch, onnx, onnxruntime) are missing."""
-import importlib.util, os, pathlib, subprocess, sys, tempfile
+
+import importlib.util
+import os
+import pathlib
+import subprocess
+import sys
+import tempfile
 
 from check_report import finish
 
@@ -24,6 +30,7 @@ def skip(why):
 
 def write_cloud_ply(path, points):
     import numpy as np
+
     head = "ply\nformat binary_little_endian 1.0\nelement vertex %d\n" % len(points)
     head += "".join(f"property float {a}\n" for a in ("x", "y", "z", "nx", "ny", "nz")) + "end_header\n"
     path.write_bytes(head.encode() + np.ascontiguousarray(points, dtype="<f4").tobytes())
@@ -41,14 +48,30 @@ def main():
     if missing:
         return skip(f"Python packages missing for silk-export import-official: {', '.join(missing)}")
     import numpy as np
+
     want = (fixture / "greedy.txt").read_text().split()
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
         env = dict(os.environ, PYTHONPATH=str(repo / "export") + os.pathsep + os.environ.get("PYTHONPATH", ""))
-        p = subprocess.run([sys.executable, "-m", "silk_export", "import-official", str(fixture / "model.safetensors"),
-                            "-o", str(tmp / "model"), "--config", str(fixture / "config.json"), "--no-progress"],
-                           capture_output=True, text=True, env=env, timeout=600)
+        p = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "silk_export",
+                "import-official",
+                str(fixture / "model.safetensors"),
+                "-o",
+                str(tmp / "model"),
+                "--config",
+                str(fixture / "config.json"),
+                "--no-progress",
+            ],
+            capture_output=True,
+            text=True,
+            env=env,
+            timeout=600,
+        )
         if p.returncode != 0:
             print(p.stdout + p.stderr)
             print("FAIL: import-official failed")
@@ -57,13 +80,29 @@ def main():
         write_cloud_ply(tmp / "points.ply", np.load(fixture / "points.npy"))
         for label, extra in (("fp32", ["--decoder", "fp32"]), ("default decoder", [])):
             out = tmp / "out.txt"
-            cmd = [str(silkgen), str(tmp / "points.ply"), "--model", str(tmp / "model"), "--raw-points",
-                   "--unconstrained", "--temperature", "0", "--max-tokens", "100", "--tokens", str(out), "-q", *extra]
+            cmd = [
+                str(silkgen),
+                str(tmp / "points.ply"),
+                "--model",
+                str(tmp / "model"),
+                "--raw-points",
+                "--unconstrained",
+                "--temperature",
+                "0",
+                "--max-tokens",
+                "100",
+                "--tokens",
+                str(out),
+                "-q",
+                *extra,
+            ]
             r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
             got = out.read_text().split() if r.returncode == 0 else []
             same = sum(a == b for a, b in zip(got, want))
-            print(f"{label}: {len(got)} ids, {same} of {len(want)} equal to greedy.txt" +
-                  ("" if r.returncode == 0 else f" (silkgen exit {r.returncode}: {r.stderr.strip()})"))
+            print(
+                f"{label}: {len(got)} ids, {same} of {len(want)} equal to greedy.txt"
+                + ("" if r.returncode == 0 else f" (silkgen exit {r.returncode}: {r.stderr.strip()})")
+            )
             if got != want:
                 first = next((i for i, (a, b) in enumerate(zip(got, want)) if a != b), min(len(got), len(want)))
                 failures.append(f"{label}: differs from greedy.txt at line {first + 1}")

@@ -17,12 +17,22 @@ ctest (tests/cli/silkgen_batch.cmake). Each mode builds its own list in a tempor
                                 message naming the problem, nothing generated; list syntax
                                 (comments, blank lines, CRLF, relative paths) and folder listing
 """
-import json, os, pathlib, subprocess, sys, tempfile
+
+import json
+import os
+import pathlib
+import subprocess
+import sys
+import tempfile
 
 from check_report import finish
 
-DEV = ["gaia__fern_tropical_a.obj", "gaia__maple_a.obj", "gaia__mushrooms__small_red_01.obj",
-       "props__helmet__rome_coolus_c.obj"]
+DEV = [
+    "gaia__fern_tropical_a.obj",
+    "gaia__maple_a.obj",
+    "gaia__mushrooms__small_red_01.obj",
+    "props__helmet__rome_coolus_c.obj",
+]
 # Small and fast: the tiny model, 120 ids, best of 2 (so the candidate fields are exercised).
 GEN = ["--max-tokens", "120", "--threads", "1", "--candidates", "2", "--seed", "11"]
 
@@ -43,8 +53,9 @@ def report(path):
 
 
 def inputs(repo, shared):
-    return [repo / "samples/torus_knot.obj", repo / "tests/models/golden/torus_knot_points.ply"] + \
-           [shared / "corpus/dev" / n for n in DEV]
+    return [repo / "samples/torus_knot.obj", repo / "tests/models/golden/torus_knot_points.ply"] + [
+        shared / "corpus/dev" / n for n in DEV
+    ]
 
 
 def write_list(path, files):
@@ -53,8 +64,9 @@ def write_list(path, files):
 
 
 def batch(silkgen, repo, lst, out, *extra, env=None, check=None):
-    return run([silkgen, "--batch", lst, "-o", out, "--model", repo / "tests/models/tiny", *GEN, *extra],
-               env=env, check=check)
+    return run(
+        [silkgen, "--batch", lst, "-o", out, "--model", repo / "tests/models/tiny", *GEN, *extra], env=env, check=check
+    )
 
 
 def check_shards(silkgen, repo, shared, tmp):
@@ -125,19 +137,26 @@ def check_resume(silkgen, repo, shared, tmp):
     good = [f for f in files if f not in bad]
     for f in good:
         r = status.get(f.name, {})
-        if r.get("status") != "ok" or not r.get("faces") or not r.get("tokens") or r.get("error") is not None or \
-                not (out / (f.stem + ".glb")).read_bytes().startswith(b"glTF"):
+        if (
+            r.get("status") != "ok"
+            or not r.get("faces")
+            or not r.get("tokens")
+            or r.get("error") is not None
+            or not (out / (f.stem + ".glb")).read_bytes().startswith(b"glTF")
+        ):
             failures.append(f"{f.name}: expected ok with an output: {r}")
     before = {f: (out / (f.stem + ".glb")).stat().st_mtime_ns for f in good}
     p2 = batch(silkgen, repo, lst, out, "--report", rep)
-    again = report(rep)[len(lines):]  # appended
-    if p2.returncode != 1 or sorted(r["status"] for r in again) != sorted(["skipped"] * len(good) + ["failed"] * len(bad)):
+    again = report(rep)[len(lines) :]  # appended
+    if p2.returncode != 1 or sorted(r["status"] for r in again) != sorted(
+        ["skipped"] * len(good) + ["failed"] * len(bad)
+    ):
         failures.append(f"rerun: exit {p2.returncode}, statuses {[r['status'] for r in again]}")
     if any((out / (f.stem + ".glb")).stat().st_mtime_ns != t for f, t in before.items()):
         failures.append("rerun rewrote a finished output")
     write_list(lst, good)
     p3 = batch(silkgen, repo, lst, out, "--report", rep, "--overwrite")
-    third = report(rep)[len(lines) + len(again):]
+    third = report(rep)[len(lines) + len(again) :]
     if p3.returncode != 0 or [r["status"] for r in third] != ["ok"] * len(good):
         failures.append(f"--overwrite: exit {p3.returncode}, statuses {[r['status'] for r in third]}")
     if len({r["run"] for r in lines + again + third}) != 3:
@@ -163,9 +182,11 @@ def check_options(silkgen, repo, shared, tmp):
     for bad in ("2/2", "3/2", "-1/2", "1/0", "a/b", "1", "0/2x", "/2"):
         p = batch(silkgen, repo, lst, tmp / "o", "--shard", bad)
         expect(failures, p, 2, ["--shard", bad], f"--shard {bad}")
-    for env, word in (({"SLURM_ARRAY_TASK_ID": "5", "SLURM_ARRAY_TASK_COUNT": "2"}, "SLURM_ARRAY_TASK_ID=5"),
-                      ({"SLURM_ARRAY_TASK_ID": "0"}, "SLURM_ARRAY_TASK_COUNT"),
-                      ({"SLURM_ARRAY_TASK_ID": "x", "SLURM_ARRAY_TASK_COUNT": "2"}, "--shard")):
+    for env, word in (
+        ({"SLURM_ARRAY_TASK_ID": "5", "SLURM_ARRAY_TASK_COUNT": "2"}, "SLURM_ARRAY_TASK_ID=5"),
+        ({"SLURM_ARRAY_TASK_ID": "0"}, "SLURM_ARRAY_TASK_COUNT"),
+        ({"SLURM_ARRAY_TASK_ID": "x", "SLURM_ARRAY_TASK_COUNT": "2"}, "--shard"),
+    ):
         expect(failures, batch(silkgen, repo, lst, tmp / "o", env=env), 2, [word], f"env {env}")
     # --shard wins over the Slurm variables.
     p = batch(silkgen, repo, lst, tmp / "o", "--shard", "0/1", env={"SLURM_ARRAY_TASK_ID": "9"})
@@ -174,8 +195,13 @@ def check_options(silkgen, repo, shared, tmp):
     twin.mkdir()
     (twin / "torus_knot.ply").write_bytes((repo / "tests/models/golden/torus_knot_points.ply").read_bytes())
     clash = write_list(tmp / "clash.txt", [files[0], twin / "torus_knot.ply"])
-    expect(failures, batch(silkgen, repo, clash, tmp / "c"), 1, [str(files[0]), str(twin / "torus_knot.ply")],
-           "stem collision")
+    expect(
+        failures,
+        batch(silkgen, repo, clash, tmp / "c"),
+        1,
+        [str(files[0]), str(twin / "torus_knot.ply")],
+        "stem collision",
+    )
     if (tmp / "c").exists() and any((tmp / "c").glob("*.glb")):
         failures.append("stem collision: outputs written")
     expect(failures, batch(silkgen, repo, files[0], tmp / "o"), 1, ["list file"], "a mesh as the list")
@@ -209,8 +235,13 @@ def check_list_syntax(silkgen, repo, shared, tmp):
     got = [r["entry"] for r in report(tmp / "fo/silkgen_batch.jsonl")]
     if p.returncode != 0 or got != sorted(f.name for f in inputs(repo, shared)[:3]):
         failures.append(f"folder: exit {p.returncode}, entries {got} (sorted, no subfolders, no .txt)")
-    expect(failures, run([silkgen, "--batch", folder, "-o", folder, "--model", repo / "tests/models/tiny"]), 1,
-           ["input folder"], "OUTDIR = input folder")
+    expect(
+        failures,
+        run([silkgen, "--batch", folder, "-o", folder, "--model", repo / "tests/models/tiny"]),
+        1,
+        ["input folder"],
+        "OUTDIR = input folder",
+    )
     return failures
 
 

@@ -21,7 +21,14 @@
                                   whole parts reversed (as many as --stats says), and the output
                                   agrees with the input mesh's own normals (numpy samples, not libsilk)
 """
-import json, os, pathlib, shutil, struct, subprocess, sys, tempfile
+
+import json
+import pathlib
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
 
 from check_report import finish
 
@@ -31,8 +38,21 @@ CASES = [  # name, input (repo-relative), seed
 ]
 # Goldens are plain runs: surface and face guidance off, one candidate, the ids' winding (the
 # defaults differ).
-COMMON = ["--max-tokens", "300", "--threads", "1", "-q", "--surface-tolerance", "0", "--candidates", "1",
-          "--orient", "tokens", "--face-guidance", "off"]
+COMMON = [
+    "--max-tokens",
+    "300",
+    "--threads",
+    "1",
+    "-q",
+    "--surface-tolerance",
+    "0",
+    "--candidates",
+    "1",
+    "--orient",
+    "tokens",
+    "--face-guidance",
+    "off",
+]
 
 
 def run(cmd, check=True):
@@ -48,14 +68,34 @@ def generate(silkgen, repo, tmp, name, rel, seed, extra=()):
     tok = tmp / f"{name}.tokens.txt"
     stats = tmp / f"{name}.json"
     trace = tmp / f"{name}.trace.json"
-    run([silkgen, repo / rel, "-o", out, "--model", model, "--seed", seed, "--tokens", tok, "--stats", stats,
-         "--trace", trace, *COMMON, *extra])
+    run(
+        [
+            silkgen,
+            repo / rel,
+            "-o",
+            out,
+            "--model",
+            model,
+            "--seed",
+            seed,
+            "--tokens",
+            tok,
+            "--stats",
+            stats,
+            "--trace",
+            trace,
+            *COMMON,
+            *extra,
+        ]
+    )
     return out, tok, json.loads(stats.read_text()), trace
 
 
 def reference(repo, trace, tok):
-    p = run([sys.executable, repo / "tests/models/reference_loop.py", repo / "tests/models/tiny", trace,
-             "--tokens", tok], check=False)
+    p = run(
+        [sys.executable, repo / "tests/models/reference_loop.py", repo / "tests/models/tiny", trace, "--tokens", tok],
+        check=False,
+    )
     return p.returncode, (p.stdout + p.stderr).strip()
 
 
@@ -74,9 +114,14 @@ def check_golden(silkgen, repo, update, what=(".tokens.txt",)):
                 failures.append(f"{name}: 1 and 2 threads give different tokens")
             if update:
                 rc, msg = reference(repo, trace, tok)
-                ok = (rc == 0 and stats["stop_reason"] == "eos" and stats["verdicts"]["edge_manifold"]
-                      and stats["verdicts"]["consistently_oriented"] and stats["verdicts"].get("vertex_manifold")
-                      and stats["faces"] > 0)
+                ok = (
+                    rc == 0
+                    and stats["stop_reason"] == "eos"
+                    and stats["verdicts"]["edge_manifold"]
+                    and stats["verdicts"]["consistently_oriented"]
+                    and stats["verdicts"].get("vertex_manifold")
+                    and stats["faces"] > 0
+                )
                 if not ok:
                     failures.append(f"{name}: not updating, independent checks failed: rc={rc} {msg} {stats}")
                     continue
@@ -99,16 +144,26 @@ def check_reference(silkgen, repo):
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
-        variants = [("a", "samples/torus_knot.obj", 7, []),
-                    ("b", "tests/models/golden/torus_knot_points.ply", 3, ["--temperature", "1", "--top-k", "0",
-                                                                           "--top-p", "0.9"]),
-                    ("c", "samples/torus_knot.obj", 5, ["--temperature", "0"]),
-                    # guided + best of 3: the trace holds the guided legal sets and the chosen seed
-                    ("d", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--candidates", "3"]),
-                    # face guidance: hard (the trace holds the narrowed sets), soft (and its logit penalties)
-                    ("e", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--face-guidance", "hard"]),
-                    ("f", "samples/torus_knot.obj", 11, ["--surface-tolerance", "2", "--face-guidance", "soft",
-                                                         "--face-tolerance", "1.5"])]
+        variants = [
+            ("a", "samples/torus_knot.obj", 7, []),
+            (
+                "b",
+                "tests/models/golden/torus_knot_points.ply",
+                3,
+                ["--temperature", "1", "--top-k", "0", "--top-p", "0.9"],
+            ),
+            ("c", "samples/torus_knot.obj", 5, ["--temperature", "0"]),
+            # guided + best of 3: the trace holds the guided legal sets and the chosen seed
+            ("d", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--candidates", "3"]),
+            # face guidance: hard (the trace holds the narrowed sets), soft (and its logit penalties)
+            ("e", "samples/torus_knot.obj", 7, ["--surface-tolerance", "2", "--face-guidance", "hard"]),
+            (
+                "f",
+                "samples/torus_knot.obj",
+                11,
+                ["--surface-tolerance", "2", "--face-guidance", "soft", "--face-tolerance", "1.5"],
+            ),
+        ]
         for name, rel, seed, extra in variants:
             _, tok, _, trace = generate(silkgen, repo, tmp, name, rel, seed, extra)
             rc, msg = reference(repo, trace, tok)
@@ -129,8 +184,10 @@ def check_bad(silkgen, repo):
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
         nonormals = tmp / "nonormals.ply"  # too few points to estimate normals from (3 or more since issue 22)
-        nonormals.write_text("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
-                             "property float z\nend_header\n0 0 0\n1 0 0\n")
+        nonormals.write_text(
+            "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n0 0 0\n1 0 0\n"
+        )
         colours = tmp / "colours.xyz"
         colours.write_text("0 0 0 255 0 0\n1 0 0 0 255 0\n")
         garbage = tmp / "garbage.obj"
@@ -160,8 +217,11 @@ def check_bad(silkgen, repo):
             ([sample, "-o", tmp / "o.obj", "--model", broken], 1, ["decoder.onnx"]),
             ([nonormals, "-o", tmp / "o.obj", "--model", model], 1, ["nonormals.ply", "normals", "at least 3"]),
             ([colours, "-o", tmp / "o.obj", "--model", model], 1, ["colours.xyz:1", "not a unit normal"]),
-            ([sample, "-o", tmp / "o.obj", "--model", model, "--save-points", tmp / "o.xyz"], 1,
-             ["o.xyz", "--save-points"]),
+            (
+                [sample, "-o", tmp / "o.obj", "--model", model, "--save-points", tmp / "o.xyz"],
+                1,
+                ["o.xyz", "--save-points"],
+            ),
             ([garbage, "-o", tmp / "o.obj", "--model", model], 1, ["garbage.obj"]),
             ([flat, "-o", tmp / "o.obj", "--model", model], 1, ["flat.obj", "area"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--seed", "abc"], 2, ["seed"]),
@@ -196,7 +256,7 @@ def read_glb(path):
     assert magic == b"glTF" and version == 2 and length == len(b), "bad GLB header"
     jlen, jtype = struct.unpack_from("<I4s", b, 12)
     assert jtype == b"JSON" and jlen % 4 == 0
-    return json.loads(b[20:20 + jlen])
+    return json.loads(b[20 : 20 + jlen])
 
 
 def check_formats(silkgen, repo):
@@ -220,8 +280,18 @@ def check_formats(silkgen, repo):
         n_idx = sum(doc["accessors"][m["primitives"][0]["indices"]]["count"] for m in doc.get("meshes", []))
         if n_idx != 3 * stats["faces"]:
             failures.append(f"glb has {n_idx // 3} triangles, stats say {stats['faces']}")
-        for key in ("tokens", "faces", "components", "forced_share", "tokens_per_second", "seconds", "repairs",
-                    "verdicts", "stop_reason", "threads"):
+        for key in (
+            "tokens",
+            "faces",
+            "components",
+            "forced_share",
+            "tokens_per_second",
+            "seconds",
+            "repairs",
+            "verdicts",
+            "stop_reason",
+            "threads",
+        ):
             if key not in stats:
                 failures.append(f"stats lacks '{key}'")
         for key in ("encoder", "decoder", "grammar", "sampling", "build_mesh", "total"):
@@ -245,6 +315,7 @@ def check_formats(silkgen, repo):
 def glb_parts(path):
     """Per node of a silkgen GLB (one per part): (positions [n, 3], triangles [m, 3]) as numpy."""
     import numpy as np
+
     b = path.read_bytes()
     doc = read_glb(path)
     jlen = struct.unpack_from("<I", b, 12)[0]
@@ -258,17 +329,23 @@ def glb_parts(path):
         off = bin_start + view.get("byteOffset", 0) + a.get("byteOffset", 0)
         n = a["count"] * width[a["type"]]
         return np.frombuffer(b, kinds[a["componentType"]], n, off).reshape(a["count"], -1)
+
     parts = []
     for node in doc["nodes"]:
         prim = doc["meshes"][node["mesh"]]["primitives"][0]
-        parts.append((accessor(prim["attributes"]["POSITION"]).astype(np.float64),
-                      accessor(prim["indices"]).reshape(-1, 3).astype(np.int64)))
+        parts.append(
+            (
+                accessor(prim["attributes"]["POSITION"]).astype(np.float64),
+                accessor(prim["indices"]).reshape(-1, 3).astype(np.int64),
+            )
+        )
     return parts
 
 
 def check_orient(silkgen, repo):
     """--orient input vs tokens with the bundled model (several parts per mesh), per GLB node."""
     import numpy as np
+
     failures, flipped_total = [], 0
     src = repo / "samples/torus_knot.obj"
     lines = src.read_text().splitlines()
@@ -295,9 +372,27 @@ def check_orient(silkgen, repo):
                 break
             out = {}
             for mode in ("tokens", "input"):
-                run([silkgen, src, "-o", tmp / f"{mode}.glb", "--model", repo / "models/default", "--seed", seed,
-                     "--max-tokens", "1500", "--tokens", tmp / f"{mode}.txt", "--stats", tmp / f"{mode}.json",
-                     *plain, "--orient", mode])
+                run(
+                    [
+                        silkgen,
+                        src,
+                        "-o",
+                        tmp / f"{mode}.glb",
+                        "--model",
+                        repo / "models/default",
+                        "--seed",
+                        seed,
+                        "--max-tokens",
+                        "1500",
+                        "--tokens",
+                        tmp / f"{mode}.txt",
+                        "--stats",
+                        tmp / f"{mode}.json",
+                        *plain,
+                        "--orient",
+                        mode,
+                    ]
+                )
                 out[mode] = glb_parts(tmp / f"{mode}.glb"), json.loads((tmp / f"{mode}.json").read_text())
             (tparts, ts), (iparts, ist) = out["tokens"], out["input"]
             tag = f"seed {seed}"
@@ -315,8 +410,10 @@ def check_orient(silkgen, repo):
                 pt, pi = tv[tf], iv[i_f]  # [faces, 3 corners, xyz]
 
                 def cyclic_equal(x, y):  # every face of x is the same face of y up to a rotation of corners
-                    return bool(np.all(np.any([np.all(np.roll(y, r, axis=1) == x, axis=(1, 2)) for r in range(3)],
-                                              axis=0)))
+                    return bool(
+                        np.all(np.any([np.all(np.roll(y, r, axis=1) == x, axis=(1, 2)) for r in range(3)], axis=0))
+                    )
+
                 same = cyclic_equal(pi, pt)
                 rev = cyclic_equal(pi, pt[:, [0, 2, 1]])
                 if not (same or rev):
@@ -333,8 +430,10 @@ def check_orient(silkgen, repo):
             flipped_total += reversed_parts
             total = sum(abs(x) for x in votes)
             against = sum(-x for x in votes if x < 0)
-            print(f"{tag}: {reversed_parts} of {len(iparts)} parts reversed; parts facing against the input's "
-                  f"normals now hold {against / max(total, 1e-300):.1%} of the area-weighted vote")
+            print(
+                f"{tag}: {reversed_parts} of {len(iparts)} parts reversed; parts facing against the input's "
+                f"normals now hold {against / max(total, 1e-300):.1%} of the area-weighted vote"
+            )
             if against > 0.05 * total:
                 failures.append(f"{tag}: parts holding {against / total:.1%} of the vote still face inward")
     if flipped_total == 0:

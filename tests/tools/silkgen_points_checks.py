@@ -10,7 +10,12 @@ this mesh in docs/normals.md, with margin), the same run twice writes the same p
 XYZ with normals keeps them as given; the same scan at 1e-100 and 1e100 passes the same checks and
 100,000 identical points are refused (issue 35).
 Usage: silkgen_points_checks.py SILKGEN REPO SHARED"""
-import gzip, pathlib, struct, subprocess, sys, tempfile
+
+import gzip
+import pathlib
+import subprocess
+import sys
+import tempfile
 
 import numpy as np
 
@@ -49,7 +54,7 @@ def sample(v, f, n, seed=0):
 def read_points_ply(path):
     lines = pathlib.Path(path).read_text().splitlines()
     end = lines.index("end_header")
-    return np.array([[float(x) for x in l.split()] for l in lines[end + 1:] if l.strip()])
+    return np.array([[float(x) for x in l.split()] for l in lines[end + 1 :] if l.strip()])
 
 
 def run(cmd):
@@ -59,8 +64,23 @@ def run(cmd):
 
 def check_cloud(silkgen, repo, shared, inp, pts, nrm, tmp, tag, failures):
     out, saved = tmp / f"{tag}.obj", tmp / f"{tag}_points.ply"
-    base = [silkgen, inp, "--model", repo / "tests/models/tiny", "--seed", "3", "--max-tokens", "300", "--threads", "1",
-            "-q", "-o", out, "--save-points", saved]
+    base = [
+        silkgen,
+        inp,
+        "--model",
+        repo / "tests/models/tiny",
+        "--seed",
+        "3",
+        "--max-tokens",
+        "300",
+        "--threads",
+        "1",
+        "-q",
+        "-o",
+        out,
+        "--save-points",
+        saved,
+    ]
     rc, msg = run(base)
     if rc != 0:
         return failures.append(f"{tag}: silkgen failed ({rc}): {msg}")
@@ -75,8 +95,10 @@ def check_cloud(silkgen, repo, shared, inp, pts, nrm, tmp, tag, failures):
     lens = np.linalg.norm(rows[:, 3:], axis=1)
     cos = (rows[:, 3:] * nrm[near]).sum(1) / lens
     abs_cos, outward = np.abs(cos).mean(), (cos > 0).mean()
-    print(f"{tag}: {len(rows)} points saved, farthest from an input point {far:.2e} x diagonal, "
-          f"mean |cos| {abs_cos:.4f}, outward {outward:.4f}")
+    print(
+        f"{tag}: {len(rows)} points saved, farthest from an input point {far:.2e} x diagonal, "
+        f"mean |cos| {abs_cos:.4f}, outward {outward:.4f}"
+    )
     if far > 1e-5 or abs(lens - 1).max() > 1e-5:
         failures.append(f"{tag}: saved points not on the input ({far:.2e}) or normals not unit")
     if abs_cos < MIN_ABS_COS or outward < MIN_OUTWARD:
@@ -94,7 +116,9 @@ def check_hostile_clouds(silkgen, repo, shared, pts, nrm, tmp, failures):
     naming the problem (it took minutes)."""
     for scale in (1e-100, 1e100):
         xyz = tmp / f"scale_{scale:g}.xyz"
-        xyz.write_text("".join(f"{float(p[0]) * scale!r} {float(p[1]) * scale!r} {float(p[2]) * scale!r}\n" for p in pts))
+        xyz.write_text(
+            "".join(f"{float(p[0]) * scale!r} {float(p[1]) * scale!r} {float(p[2]) * scale!r}\n" for p in pts)
+        )
         check_cloud(silkgen, repo, shared, xyz, pts * scale, nrm, tmp, f"xyz_scale_{scale:g}", failures)
     same = tmp / "same.xyz.gz"
     same.write_bytes(gzip.compress(b"0.5 0.25 1\n" * 100_000))
@@ -112,12 +136,19 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
         ply = tmp / "scan.ply"
-        head = f"ply\nformat binary_little_endian 1.0\nelement vertex {N}\nproperty float x\nproperty float y\n" \
-               "property float z\nend_header\n"
+        head = (
+            f"ply\nformat binary_little_endian 1.0\nelement vertex {N}\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n"
+        )
         ply.write_bytes(head.encode() + pts.astype("<f4").tobytes())
         check_cloud(silkgen, repo, shared, ply, pts.astype(np.float32).astype(float), nrm, tmp, "ply", failures)
         xyz = tmp / "scan.xyz"
-        xyz.write_bytes(("# scan without normals\r\n" + "".join(f"{float(p[0])!r} {float(p[1])!r} {float(p[2])!r}\r\n" for p in pts)).encode())
+        xyz.write_bytes(
+            (
+                "# scan without normals\r\n"
+                + "".join(f"{float(p[0])!r} {float(p[1])!r} {float(p[2])!r}\r\n" for p in pts)
+            ).encode()
+        )
         check_cloud(silkgen, repo, shared, xyz, pts, nrm, tmp, "xyz", failures)
         given = tmp / "given.xyz"  # with normals: kept as read (here: the true ones)
         given.write_text("".join(" ".join(repr(float(x)) for x in (*p, *n)) + "\n" for p, n in zip(pts, nrm)))

@@ -13,7 +13,14 @@ on COPIES of the committed tiny model made at test time:
              PLY, checked through --trace), --tokens works without -o, and a wrong point count,
              a mesh input, or a non-finite value are clear errors
 Usage: silkgen_v3_checks.py SILKGEN REPO"""
-import json, pathlib, shutil, struct, subprocess, sys, tempfile
+
+import json
+import pathlib
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
 
 from check_report import finish
 
@@ -63,6 +70,7 @@ def f32(x):
 
 def cloud(n):
     import math
+
     rows = []
     for i in range(n):
         a, b = 2 * math.pi * i / n, 0.7 * i
@@ -108,9 +116,16 @@ def check_defaults(silkgen, repo, tmp):
     got2, st2, _ = tokens_of(silkgen, v3, sample, tmp, "v3_pre_override", [*base, "--preprocessing", "official"])
     if got2 is None or st2["settings"]["preprocessing"] != "official":
         failures.append("--preprocessing official did not override the model's silk kind")
-    int4 = v3_model(repo, tmp / "v3_int4", files={"encoder": "encoder.onnx", "decoder": "decoder.onnx",
-                                                   "decoder_int4": "decoder.int4.onnx",
-                                                   "default_decoder": "decoder_int4"})
+    int4 = v3_model(
+        repo,
+        tmp / "v3_int4",
+        files={
+            "encoder": "encoder.onnx",
+            "decoder": "decoder.onnx",
+            "decoder_int4": "decoder.int4.onnx",
+            "default_decoder": "decoder_int4",
+        },
+    )
     shutil.copy(int4 / "decoder.onnx", int4 / "decoder.int4.onnx")  # same graph: only the selection is tested
     got, st, err = tokens_of(silkgen, int4, sample, tmp, "v3_int4", base)
     if got is None or st.get("decoder") != "int4":
@@ -122,16 +137,18 @@ def check_defaults(silkgen, repo, tmp):
     got, st, err = tokens_of(silkgen, kv16, sample, tmp, "v3_kv16", base)
     if got is None or st.get("kv_precision") != "fp16":
         failures.append(f"default_kv_precision fp16 not used: {err} {st and st.get('kv_precision')}")
-    elif st.get("kv_cache_bytes") * 2 != tokens_of(silkgen, kv16, sample, tmp, "v3_kv32",
-                                                    [*base, "--kv-precision", "fp32"])[1].get("kv_cache_bytes"):
+    elif st.get("kv_cache_bytes") * 2 != tokens_of(
+        silkgen, kv16, sample, tmp, "v3_kv32", [*base, "--kv-precision", "fp32"]
+    )[1].get("kv_cache_bytes"):
         failures.append("--kv-precision fp32 did not override the model's fp16 (or the cache is not half the size)")
     kv8 = v3_model(repo, tmp / "v3_kv8", files={"default_kv_precision": "int8"})
     got, st, err = tokens_of(silkgen, kv8, sample, tmp, "v3_kv8", base)
     d = json.loads((kv8 / "model.json").read_text())["dims"]["head_dim"]
     if got is None or st.get("kv_precision") != "int8":
         failures.append(f"default_kv_precision int8 not used: {err} {st and st.get('kv_precision')}")
-    elif st.get("kv_cache_bytes") * 4 * d != tokens_of(silkgen, kv8, sample, tmp, "v3_kv8_32",
-                                                        [*base, "--kv-precision", "fp32"])[1].get("kv_cache_bytes") * (d + 4):
+    elif st.get("kv_cache_bytes") * 4 * d != tokens_of(
+        silkgen, kv8, sample, tmp, "v3_kv8_32", [*base, "--kv-precision", "fp32"]
+    )[1].get("kv_cache_bytes") * (d + 4):
         failures.append("the int8 cache is not (head_dim + 4) / (4 head_dim) of the fp32 cache's bytes")
     return failures
 
@@ -140,22 +157,40 @@ def check_errors(silkgen, repo, tmp):
     failures = []
     sample = repo / "samples/torus_knot.obj"
     ext = v3_model(repo, tmp / "v3_ext", files={"external_data": ["decoder.onnx.data"]})
-    expect_fail(failures, "missing external data", run([silkgen, sample, "--model", ext, "--tokens", tmp / "t", "-q"]),
-                ["decoder.onnx.data", "missing"])
-    nofile = v3_model(repo, tmp / "v3_noint4", files={"decoder_int4": "decoder.int4.onnx",
-                                                      "default_decoder": "decoder_int4"})
-    expect_fail(failures, "absent int4 file", run([silkgen, sample, "--model", nofile, "--tokens", tmp / "t", "-q"]),
-                ["decoder.int4.onnx", "missing"])
-    expect_fail(failures, "--decoder int8 without file",
-                run([silkgen, sample, "--model", repo / "tests/models/tiny", "--decoder", "int8", "--tokens",
-                     tmp / "t", "-q"]), ["INT8"])
+    expect_fail(
+        failures,
+        "missing external data",
+        run([silkgen, sample, "--model", ext, "--tokens", tmp / "t", "-q"]),
+        ["decoder.onnx.data", "missing"],
+    )
+    nofile = v3_model(
+        repo, tmp / "v3_noint4", files={"decoder_int4": "decoder.int4.onnx", "default_decoder": "decoder_int4"}
+    )
+    expect_fail(
+        failures,
+        "absent int4 file",
+        run([silkgen, sample, "--model", nofile, "--tokens", tmp / "t", "-q"]),
+        ["decoder.int4.onnx", "missing"],
+    )
+    expect_fail(
+        failures,
+        "--decoder int8 without file",
+        run([silkgen, sample, "--model", repo / "tests/models/tiny", "--decoder", "int8", "--tokens", tmp / "t", "-q"]),
+        ["INT8"],
+    )
     nokv = v3_model(repo, tmp / "v3_nokv", files={"kv_fp16": {}})
-    expect_fail(failures, "--kv-precision fp16 without a variant",
-                run([silkgen, sample, "--model", nokv, "--kv-precision", "fp16", "--tokens", tmp / "t", "-q"]),
-                ["fp16", str(nokv)])
-    expect_fail(failures, "--kv-precision int8 without a variant",
-                run([silkgen, sample, "--model", nokv_int8(repo, tmp), "--kv-precision", "int8", "--tokens", tmp / "t",
-                     "-q"]), ["int8", "files.kv_int8", "silk-export kv8"])
+    expect_fail(
+        failures,
+        "--kv-precision fp16 without a variant",
+        run([silkgen, sample, "--model", nokv, "--kv-precision", "fp16", "--tokens", tmp / "t", "-q"]),
+        ["fp16", str(nokv)],
+    )
+    expect_fail(
+        failures,
+        "--kv-precision int8 without a variant",
+        run([silkgen, sample, "--model", nokv_int8(repo, tmp), "--kv-precision", "int8", "--tokens", tmp / "t", "-q"]),
+        ["int8", "files.kv_int8", "silk-export kv8"],
+    )
     try:
         import onnx
     except ImportError:
@@ -165,13 +200,23 @@ def check_errors(silkgen, repo, tmp):
     enc = onnx.load(str(fixed / "encoder.onnx"))
     enc.graph.input[0].type.tensor_type.shape.dim[1].dim_value = 128
     onnx.save(enc, str(fixed / "encoder.onnx"))
-    expect_fail(failures, "encoder point count", run([silkgen, sample, "--model", fixed, "--tokens", tmp / "t", "-q"]),
-                ["takes 128 points", "n_points is 256"])
+    expect_fail(
+        failures,
+        "encoder point count",
+        run([silkgen, sample, "--model", fixed, "--tokens", tmp / "t", "-q"]),
+        ["takes 128 points", "n_points is 256"],
+    )
     # A decoder whose weights live in external data next to it loads (sessions from paths).
     ext_ok = v3_model(repo, tmp / "v3_external", files={"external_data": ["decoder.onnx.data"]})
     dec = onnx.load(str(ext_ok / "decoder.onnx"))
-    onnx.save_model(dec, str(ext_ok / "decoder.onnx"), save_as_external_data=True, all_tensors_to_one_file=True,
-                    location="decoder.onnx.data", size_threshold=0)
+    onnx.save_model(
+        dec,
+        str(ext_ok / "decoder.onnx"),
+        save_as_external_data=True,
+        all_tensors_to_one_file=True,
+        location="decoder.onnx.data",
+        size_threshold=0,
+    )
     plain, _, _ = tokens_of(silkgen, v3_model(repo, tmp / "v3_plain"), sample, tmp, "plain", ["--seed", "3"])
     got, _, err = tokens_of(silkgen, ext_ok, sample, tmp, "external", ["--seed", "3"])
     if got is None or got != plain or (ext_ok / "decoder.onnx").stat().st_size > 100000:
@@ -196,15 +241,26 @@ def check_raw(silkgen, repo, tmp):
             failures.append("--raw-points: the encoder input differs from the file's values")
         if not tok.read_text().strip():
             failures.append("--raw-points: no tokens written")
-    if (tmp / "raw_False.txt").exists() and (tmp / "raw_True.txt").exists() and \
-            (tmp / "raw_False.txt").read_text() != (tmp / "raw_True.txt").read_text():
+    if (
+        (tmp / "raw_False.txt").exists()
+        and (tmp / "raw_True.txt").exists()
+        and (tmp / "raw_False.txt").read_text() != (tmp / "raw_True.txt").read_text()
+    ):
         failures.append("--raw-points: float32 and float64 files of the same values gave different tokens")
     short = tmp / "raw_short.ply"
     write_cloud_ply(short, rows[:100])
-    expect_fail(failures, "raw count", run([silkgen, short, "--model", model, "--raw-points", "--tokens", tmp / "t"]),
-                ["100 points", "takes 256"])
-    expect_fail(failures, "raw mesh", run([silkgen, repo / "samples/torus_knot.obj", "--model", model, "--raw-points",
-                                           "--tokens", tmp / "t"]), ["point-cloud PLY"])
+    expect_fail(
+        failures,
+        "raw count",
+        run([silkgen, short, "--model", model, "--raw-points", "--tokens", tmp / "t"]),
+        ["100 points", "takes 256"],
+    )
+    expect_fail(
+        failures,
+        "raw mesh",
+        run([silkgen, repo / "samples/torus_knot.obj", "--model", model, "--raw-points", "--tokens", tmp / "t"]),
+        ["point-cloud PLY"],
+    )
     bad = list(rows)
     bad[5] = (float("nan"),) + bad[5][1:]
     nan = tmp / "raw_nan.ply"

@@ -3,6 +3,7 @@
 triangles (object frame), a face-less object's vertices + normals as a point cloud, and the
 generated mesh (silk_mesh rows: numpy arrays or lists of tuples) back as one object per part
 under an empty in the source object's frame."""
+
 from __future__ import annotations
 
 import array

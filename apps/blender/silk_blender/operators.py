@@ -2,6 +2,7 @@
 """The add-on's operators: silk.generate_mesh (modal with Esc cancel, status-bar progress and a
 preview that grows per completed layer; synchronous from scripts and in background mode, with the
 same result), silk.import_tokens and silk.export_tokens."""
+
 from __future__ import annotations
 
 import os
@@ -36,45 +37,95 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}
 
     seed: IntProperty(name="Seed", default=0, min=0)
-    temperature: FloatProperty(name="Temperature", description="-1 = the model's default (model.json sampling, "
-                               "else 0.5); 0 = greedy", default=-1.0, min=-1.0, max=10.0)
-    top_k: IntProperty(name="Top-k", description="-1 = the model's default (else 50); 0 = off",
-                       default=-1, min=-1, max=10269)
-    max_faces: IntProperty(name="Max faces", description="At most this many faces: stop at the first layer end with this many, "
-                           "keep a valid subset (0 = off)",
-                           default=0, min=0)
-    max_tokens: IntProperty(name="Max tokens", description="Cap on generated ids (0 = the model's limit; else >= 14)",
-                            default=0, min=0)
-    surface_tolerance: IntProperty(name="Surface tolerance",
-                                   description="New vertices only within this many grid cells (of 128) of the "
-                                               "input surface (0 = off, -1 = libsilk's measured default)",
-                                   default=-1, min=-1, max=127)
-    face_guidance: EnumProperty(name="Face guidance",
-                                items=[("MODEL", "Model default", "The model's (model.json sampling), else libsilk's "
-                                        "measured default"),
-                                       ("HARD", "Hard", "Connections whose faces stray from the source's surface "
-                                        "are never made (the closest ones when none fits)"),
-                                       ("SOFT", "Soft", "Such connections are made less likely"),
-                                       ("OFF", "Off", "Connections as the model draws them")],
-                                default="MODEL")
-    face_tolerance: FloatProperty(name="Face tolerance", description="How far (grid cells of 128) a face may stray "
-                                  "from the source's surface (-1 = the model's default)",
-                                  default=-1.0, min=-1.0, max=64.0)
-    candidates: IntProperty(name="Candidates", description="Best of N: generate N meshes one after another and "
-                            "keep the one closest to the input (-1 = the model's N, model.json sampling)",
-                            default=-1, min=-1, max=64)
-    orient: EnumProperty(name="Orientation",
-                         items=[("INPUT", "Face the input", "Reverse every part whose winding disagrees with the "
-                                 "source's normals"),
-                                ("TOKENS", "As generated", "The winding the generated ids carry")],
-                         default="INPUT")
-    model_dir: StringProperty(name="Model", description="A model folder, or the name of a model in the models folder "
-                              "(silkgen --list-models); empty: the model bundled with the add-on",
-                              default="", subtype="DIR_PATH")
-    repair: EnumProperty(name="Holes", items=[("OFF", "Off", "Keep holes"), ("REPORT", "Report", "Count holes"),
-                                              ("REPAIR", "Repair", "Close small holes")], default="OFF")
-    cancel_after_steps: IntProperty(name="Cancel after steps", description="Testing: cancel after this many steps",
-                                    default=0, min=0, options={"HIDDEN", "SKIP_SAVE"})
+    temperature: FloatProperty(
+        name="Temperature",
+        description="-1 = the model's default (model.json sampling, else 0.5); 0 = greedy",
+        default=-1.0,
+        min=-1.0,
+        max=10.0,
+    )
+    top_k: IntProperty(
+        name="Top-k", description="-1 = the model's default (else 50); 0 = off", default=-1, min=-1, max=10269
+    )
+    max_faces: IntProperty(
+        name="Max faces",
+        description="At most this many faces: stop at the first layer end with this many, "
+        "keep a valid subset (0 = off)",
+        default=0,
+        min=0,
+    )
+    max_tokens: IntProperty(
+        name="Max tokens", description="Cap on generated ids (0 = the model's limit; else >= 14)", default=0, min=0
+    )
+    surface_tolerance: IntProperty(
+        name="Surface tolerance",
+        description="New vertices only within this many grid cells (of 128) of the "
+        "input surface (0 = off, -1 = libsilk's measured default)",
+        default=-1,
+        min=-1,
+        max=127,
+    )
+    face_guidance: EnumProperty(
+        name="Face guidance",
+        items=[
+            ("MODEL", "Model default", "The model's (model.json sampling), else libsilk's measured default"),
+            (
+                "HARD",
+                "Hard",
+                "Connections whose faces stray from the source's surface "
+                "are never made (the closest ones when none fits)",
+            ),
+            ("SOFT", "Soft", "Such connections are made less likely"),
+            ("OFF", "Off", "Connections as the model draws them"),
+        ],
+        default="MODEL",
+    )
+    face_tolerance: FloatProperty(
+        name="Face tolerance",
+        description="How far (grid cells of 128) a face may stray from the source's surface (-1 = the model's default)",
+        default=-1.0,
+        min=-1.0,
+        max=64.0,
+    )
+    candidates: IntProperty(
+        name="Candidates",
+        description="Best of N: generate N meshes one after another and "
+        "keep the one closest to the input (-1 = the model's N, model.json sampling)",
+        default=-1,
+        min=-1,
+        max=64,
+    )
+    orient: EnumProperty(
+        name="Orientation",
+        items=[
+            ("INPUT", "Face the input", "Reverse every part whose winding disagrees with the source's normals"),
+            ("TOKENS", "As generated", "The winding the generated ids carry"),
+        ],
+        default="INPUT",
+    )
+    model_dir: StringProperty(
+        name="Model",
+        description="A model folder, or the name of a model in the models folder "
+        "(silkgen --list-models); empty: the model bundled with the add-on",
+        default="",
+        subtype="DIR_PATH",
+    )
+    repair: EnumProperty(
+        name="Holes",
+        items=[
+            ("OFF", "Off", "Keep holes"),
+            ("REPORT", "Report", "Count holes"),
+            ("REPAIR", "Repair", "Close small holes"),
+        ],
+        default="OFF",
+    )
+    cancel_after_steps: IntProperty(
+        name="Cancel after steps",
+        description="Testing: cancel after this many steps",
+        default=0,
+        min=0,
+        options={"HIDDEN", "SKIP_SAVE"},
+    )
 
     @classmethod
     def poll(cls, context):
@@ -86,17 +137,24 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         src = context.active_object
         dg = context.evaluated_depsgraph_get()
         # None (a negative property): libsilk's default (sampling: the model's own values).
-        settings = dict(seed=self.seed, temperature=None if self.temperature < 0 else self.temperature,
-                        top_k=None if self.top_k < 0 else self.top_k, max_faces=self.max_faces,
-                        max_tokens=self.max_tokens, holes=self.repair, orient=self.orient,
-                        candidates=None if self.candidates <= 0 else self.candidates,
-                        surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance,
-                        face_guidance=None if self.face_guidance == "MODEL" else self.face_guidance,
-                        face_tolerance=None if self.face_tolerance < 0 else self.face_tolerance)
+        settings = dict(
+            seed=self.seed,
+            temperature=None if self.temperature < 0 else self.temperature,
+            top_k=None if self.top_k < 0 else self.top_k,
+            max_faces=self.max_faces,
+            max_tokens=self.max_tokens,
+            holes=self.repair,
+            orient=self.orient,
+            candidates=None if self.candidates <= 0 else self.candidates,
+            surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance,
+            face_guidance=None if self.face_guidance == "MODEL" else self.face_guidance,
+            face_tolerance=None if self.face_tolerance < 0 else self.face_tolerance,
+        )
         job = silk_mesh.Generator(_model_dir(self.model_dir))
         cap = job.model.info()["max_seq_len"] - 1  # max_seq_len counts BOS: the ids libsilk allows after it
-        self._run = run_progress.RunProgress(getattr(context.window_manager, "silk_run", None),
-                                             min(self.max_tokens, cap) if self.max_tokens else cap)
+        self._run = run_progress.RunProgress(
+            getattr(context.window_manager, "silk_run", None), min(self.max_tokens, cap) if self.max_tokens else cap
+        )
         try:
             if len(src.data.polygons) > 0:
                 pos, tri = blender_mesh.mesh_arrays(src, dg)
@@ -116,10 +174,16 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         with mesh:
             pos, tri, comp = mesh.positions, mesh.triangles, mesh.parts
         empty = blender_mesh.build_result(context, src, pos, tri, comp, stats)
-        best = (f", best of {stats['candidates']} (candidate {stats['chosen_candidate'] + 1})"
-                if stats["candidates"] > 1 else "")
-        self.report({"INFO"}, f"Silk: {stats['faces']} faces in {stats['components']} part(s), "
-                              f"{stats['tokens']} tokens ({stats['stop_reason']}){best}")
+        best = (
+            f", best of {stats['candidates']} (candidate {stats['chosen_candidate'] + 1})"
+            if stats["candidates"] > 1
+            else ""
+        )
+        self.report(
+            {"INFO"},
+            f"Silk: {stats['faces']} faces in {stats['components']} part(s), "
+            f"{stats['tokens']} tokens ({stats['stop_reason']}){best}",
+        )
         return empty
 
     def execute(self, context):
@@ -202,8 +266,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
                 pos, tri = m.positions, m.triangles
             if len(tri) != len(self._preview.data.polygons):
                 blender_mesh.set_mesh_data(self._preview, pos, tri)
-            context.workspace.status_text_set(f"Silk: {self._run.text()}, {st['faces']} faces "
-                                              f"in {st['components']} part(s) - Esc to cancel")
+            context.workspace.status_text_set(
+                f"Silk: {self._run.text()}, {st['faces']} faces in {st['components']} part(s) - Esc to cancel"
+            )
             for area in context.screen.areas if context.screen else ():
                 if area.type == "VIEW_3D":  # the sidebar's progress bar: its region, when it is open
                     for region in area.regions:

@@ -4,6 +4,7 @@ generator's stats after each advance; no per-id Python callback, which would cos
 speed) and the layer in progress (advance(until_layer=True) returns at each completed layer), and
 afterwards the candidates' scores (the run's JSON report). Kept in the window manager's silk_run
 (sidebar.SilkRunState) so the panel draws it and a script can read it."""
+
 from __future__ import annotations
 
 import json
@@ -19,8 +20,12 @@ class RunProgress:
     def after_advance(self, stats: dict, max_ids: int, done: bool) -> None:
         """After each advance(max_ids, until_layer=True): fewer ids than asked and not done means a layer
         ended (a layer ending exactly at max_ids is counted at the next one). publish() shows it."""
-        self.last = p = {"candidate": stats["chosen_candidate"], "candidates": stats["candidates"],
-                         "tokens": stats["tokens"], "max_tokens": self.max_tokens}
+        self.last = p = {
+            "candidate": stats["chosen_candidate"],
+            "candidates": stats["candidates"],
+            "tokens": stats["tokens"],
+            "max_tokens": self.max_tokens,
+        }
         cand, tokens = p["candidate"], p["tokens"]
         if cand != self.candidate:
             self.candidate, self.layers_done, self._tokens = cand, 0, 0
@@ -37,8 +42,10 @@ class RunProgress:
         p = self.last
         if not p:
             return "preparing the points (encoder)"
-        return (f"candidate {max(0, self.candidate) + 1} of {p.get('candidates', 1)}, layer {self.layers_done + 1}, "
-                f"{p.get('tokens', 0)} / {p.get('max_tokens', 0)} ids")
+        return (
+            f"candidate {max(0, self.candidate) + 1} of {p.get('candidates', 1)}, layer {self.layers_done + 1}, "
+            f"{p.get('tokens', 0)} / {p.get('max_tokens', 0)} ids"
+        )
 
     def publish(self, done: bool = False) -> None:
         """Into the run state, once per UI tick, only what changed."""

@@ -4,11 +4,19 @@ and every model in the user's models folder, with architecture and size, as libs
 main settings before the run, Generate and Cancel, a progress bar with the candidate and layer in
 progress, and the candidates' scores after the run. Generate runs silk.generate_mesh with these
 settings, so the menu entry and the tab are one generation path."""
+
 from __future__ import annotations
 
 import bpy
-from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty,
-                       StringProperty)
+from bpy.props import (
+    BoolProperty,
+    CollectionProperty,
+    EnumProperty,
+    FloatProperty,
+    IntProperty,
+    PointerProperty,
+    StringProperty,
+)
 
 from . import silk_mesh
 
@@ -33,8 +41,9 @@ def refresh_models() -> list[dict]:
         name = m["arch"] if m["config"] == m["arch"] else f"{m['arch']} {m['config']}"
         arch = f"{name}, {m['parameters']['n_layers']} layers x {m['parameters']['d_model']}"
         label = f"{m['name']}{' (bundled)' if m['bundled'] else ''}: {m['arch']}, {_size(m['bytes'])}"
-        _model_items.append((m["dir"], label, f"{arch}; {_size(m['bytes'])}; decoders {', '.join(m['decoders'])}; "
-                             f"{m['dir']}", i))
+        _model_items.append(
+            (m["dir"], label, f"{arch}; {_size(m['bytes'])}; decoders {', '.join(m['decoders'])}; {m['dir']}", i)
+        )
     if not _model_items:
         _model_items.append(("", "No model found", catalog.get("models_dir_error", "no usable model"), 0))
     return models
@@ -55,32 +64,59 @@ class SilkCandidateScore(bpy.types.PropertyGroup):
 
 
 class SilkSettings(bpy.types.PropertyGroup):
-    model: EnumProperty(name="Model", items=_model_enum,
-                        description="The bundled model or one in the models folder (silk-export import-official --name)")
-    candidates: IntProperty(name="Candidates", default=0, min=0, max=64,
-                            description="Best of N: keep the one closest to the input (0 = the model's N)")
+    model: EnumProperty(
+        name="Model",
+        items=_model_enum,
+        description="The bundled model or one in the models folder (silk-export import-official --name)",
+    )
+    candidates: IntProperty(
+        name="Candidates",
+        default=0,
+        min=0,
+        max=64,
+        description="Best of N: keep the one closest to the input (0 = the model's N)",
+    )
     seed: IntProperty(name="Seed", default=0, min=0)
-    temperature: FloatProperty(name="Temperature", default=-1.0, min=-1.0, max=10.0,
-                               description="-1 = the model's default; 0 = greedy")
+    temperature: FloatProperty(
+        name="Temperature", default=-1.0, min=-1.0, max=10.0, description="-1 = the model's default; 0 = greedy"
+    )
     max_faces: IntProperty(name="Face limit", default=0, min=0, description="At most this many faces (0 = off)")
-    orient: EnumProperty(name="Orientation", default="INPUT",
-                         items=[("INPUT", "Face the input", "Reverse parts whose winding disagrees with the source"),
-                                ("TOKENS", "As generated", "The winding the generated ids carry")])
-    face_guidance: EnumProperty(name="Face guidance", default="MODEL",
-                                items=[("MODEL", "Model default", "The model's (model.json sampling), else libsilk's "
-                                        "measured default"),
-                                       ("HARD", "Hard", "Connections whose faces stray from the source's surface "
-                                        "are never made (the closest ones when none fits)"),
-                                       ("SOFT", "Soft", "Such connections are made less likely"),
-                                       ("OFF", "Off", "Connections as the model draws them")])
-    face_tolerance: FloatProperty(name="Face tolerance", default=-1.0, min=-1.0, max=64.0,
-                                  description="How far (grid cells of 128) a face may stray from the source's surface "
-                                  "(-1 = the model's default)")
+    orient: EnumProperty(
+        name="Orientation",
+        default="INPUT",
+        items=[
+            ("INPUT", "Face the input", "Reverse parts whose winding disagrees with the source"),
+            ("TOKENS", "As generated", "The winding the generated ids carry"),
+        ],
+    )
+    face_guidance: EnumProperty(
+        name="Face guidance",
+        default="MODEL",
+        items=[
+            ("MODEL", "Model default", "The model's (model.json sampling), else libsilk's measured default"),
+            (
+                "HARD",
+                "Hard",
+                "Connections whose faces stray from the source's surface "
+                "are never made (the closest ones when none fits)",
+            ),
+            ("SOFT", "Soft", "Such connections are made less likely"),
+            ("OFF", "Off", "Connections as the model draws them"),
+        ],
+    )
+    face_tolerance: FloatProperty(
+        name="Face tolerance",
+        default=-1.0,
+        min=-1.0,
+        max=64.0,
+        description="How far (grid cells of 128) a face may stray from the source's surface (-1 = the model's default)",
+    )
 
 
 class SilkRunState(bpy.types.PropertyGroup):
     """The run in progress and its outcome: on the window manager, not the scene, so updating the progress
     bar never tags the scene for a depsgraph update (and nothing transient is saved in the .blend)."""
+
     running: BoolProperty(default=False)
     cancel_requested: BoolProperty(default=False)
     progress: FloatProperty(name="Progress", subtype="FACTOR", min=0.0, max=1.0)
@@ -114,10 +150,17 @@ class SILK_OT_sidebar_generate(bpy.types.Operator):
     def execute(self, context):
         s = context.scene.silk
         context.window_manager.silk_run.cancel_requested = False
-        return bpy.ops.silk.generate_mesh("INVOKE_DEFAULT", model_dir=s.model, seed=s.seed,
-                                          temperature=s.temperature, candidates=s.candidates or -1,
-                                          max_faces=s.max_faces, orient=s.orient, face_guidance=s.face_guidance,
-                                          face_tolerance=s.face_tolerance)
+        return bpy.ops.silk.generate_mesh(
+            "INVOKE_DEFAULT",
+            model_dir=s.model,
+            seed=s.seed,
+            temperature=s.temperature,
+            candidates=s.candidates or -1,
+            max_faces=s.max_faces,
+            orient=s.orient,
+            face_guidance=s.face_guidance,
+            face_tolerance=s.face_tolerance,
+        )
 
 
 class SILK_OT_sidebar_cancel(bpy.types.Operator):
@@ -165,11 +208,20 @@ class SILK_PT_sidebar(bpy.types.Panel):
             box.label(text="Scores (lower = closer)")
             for c in run.scores:
                 row = box.row()
-                row.label(text=f"{c.index + 1}: {c.score:.4f}, {c.faces} faces", icon="CHECKMARK" if c.chosen else "BLANK1")
+                row.label(
+                    text=f"{c.index + 1}: {c.score:.4f}, {c.faces} faces", icon="CHECKMARK" if c.chosen else "BLANK1"
+                )
 
 
-CLASSES = (SilkCandidateScore, SilkSettings, SilkRunState, SILK_OT_refresh_models, SILK_OT_sidebar_generate, SILK_OT_sidebar_cancel,
-           SILK_PT_sidebar)
+CLASSES = (
+    SilkCandidateScore,
+    SilkSettings,
+    SilkRunState,
+    SILK_OT_refresh_models,
+    SILK_OT_sidebar_generate,
+    SILK_OT_sidebar_cancel,
+    SILK_PT_sidebar,
+)
 
 
 def register():

@@ -13,8 +13,16 @@ Arrays: inputs are numpy arrays or Python sequences; geometry results are numpy 
 is importable, else lists of tuples; token ids are always list[int] (_arrays.py states the rule).
 Errors: SilkError(status, message) with libsilk's message. The library: load_library(path), else
 $SILK_LIBRARY, else silk_mesh/lib/, else a build tree of the checkout (_library.py)."""
-from ._capi import (SILK_ERR_BUFFER_TOO_SMALL, SILK_ERR_BUSY, SILK_ERR_CANCELLED,  # noqa: F401
-                    SILK_ERR_INVALID_ARGUMENT, SILK_ERR_IO, SILK_ERR_REFUSED, SILK_OK)
+
+from ._capi import (
+    SILK_ERR_BUFFER_TOO_SMALL,
+    SILK_ERR_BUSY,
+    SILK_ERR_CANCELLED,  # noqa: F401
+    SILK_ERR_INVALID_ARGUMENT,
+    SILK_ERR_IO,
+    SILK_ERR_REFUSED,
+    SILK_OK,
+)
 from ._library import SilkError, library_path, load_library
 from . import _native
 from .codec import decode, encode, read_ids, write_ids
@@ -23,10 +31,29 @@ from .models import bundled_model_dir, find_model, list_models, models_dir
 from .mesh import Mesh, load_arrays
 from .points import prepare_points
 
-__all__ = ["Mesh", "Model", "Generator", "Result", "SilkError", "encode", "decode", "generate", "read_ids",
-           "write_ids", "load_arrays", "prepare_points", "load_library", "library_path", "bundled_model_dir",
-           "models_dir", "find_model", "list_models",
-           "version", "vocab", "generation_available"]
+__all__ = [
+    "Mesh",
+    "Model",
+    "Generator",
+    "Result",
+    "SilkError",
+    "encode",
+    "decode",
+    "generate",
+    "read_ids",
+    "write_ids",
+    "load_arrays",
+    "prepare_points",
+    "load_library",
+    "library_path",
+    "bundled_model_dir",
+    "models_dir",
+    "find_model",
+    "list_models",
+    "version",
+    "vocab",
+    "generation_available",
+]
 
 
 def version() -> str:
@@ -37,6 +64,7 @@ def version() -> str:
 def vocab() -> dict:
     """The token vocabulary's layout (silk_vocab_info by field name)."""
     from ._params import as_dict
+
     return as_dict(_native.vocab())
 
 

@@ -7,6 +7,7 @@ numpy is importable ((n, 3) float64, (m, 3) int32, (m,) int32, (n, 6) float32), 
 tuples (a list of ints for one value per row). Token ids are always a list of int. Setting the
 environment variable SILK_MESH_NUMPY=0 before the import gives the plain-Python results even
 where numpy is installed."""
+
 from __future__ import annotations
 
 import ctypes
@@ -65,4 +66,4 @@ def from_c(buf, width: int):
     if width == 1:
         return list(buf)
     flat = list(buf)
-    return [tuple(flat[i:i + width]) for i in range(0, len(flat), width)]
+    return [tuple(flat[i : i + width]) for i in range(0, len(flat), width)]

@@ -11,22 +11,35 @@ The array rule (docs: bindings/python/silk_mesh/README.md):
   whole values: convert it yourself, e.g. .astype(numpy.int32)); every value must fit int32.
 - shape: (n, width) rows, or flat (width * n,); any other shape is refused, never reshaped.
 - strides and byte order: a non-contiguous or byte-swapped array is copied (values unchanged)."""
+
 from __future__ import annotations
 
 import ctypes
 import numbers
 
 _INT_RANGES = {
-    ctypes.c_int8: (-2**7, 2**7 - 1), ctypes.c_uint8: (0, 2**8 - 1),
-    ctypes.c_int16: (-2**15, 2**15 - 1), ctypes.c_uint16: (0, 2**16 - 1),
-    ctypes.c_int32: (-2**31, 2**31 - 1), ctypes.c_uint32: (0, 2**32 - 1),
-    ctypes.c_int64: (-2**63, 2**63 - 1), ctypes.c_uint64: (0, 2**64 - 1),
+    ctypes.c_int8: (-(2**7), 2**7 - 1),
+    ctypes.c_uint8: (0, 2**8 - 1),
+    ctypes.c_int16: (-(2**15), 2**15 - 1),
+    ctypes.c_uint16: (0, 2**16 - 1),
+    ctypes.c_int32: (-(2**31), 2**31 - 1),
+    ctypes.c_uint32: (0, 2**32 - 1),
+    ctypes.c_int64: (-(2**63), 2**63 - 1),
+    ctypes.c_uint64: (0, 2**64 - 1),
 }
-_INT_RANGES[ctypes.c_size_t] = (0, 2**(8 * ctypes.sizeof(ctypes.c_size_t)) - 1)
-_C_NAMES = {ctypes.c_int32: "int32", ctypes.c_uint32: "uint32", ctypes.c_int64: "int64",
-            ctypes.c_uint64: "uint64", ctypes.c_int8: "int8", ctypes.c_uint8: "uint8",
-            ctypes.c_int16: "int16", ctypes.c_uint16: "uint16", ctypes.c_double: "float64",
-            ctypes.c_float: "float32"}
+_INT_RANGES[ctypes.c_size_t] = (0, 2 ** (8 * ctypes.sizeof(ctypes.c_size_t)) - 1)
+_C_NAMES = {
+    ctypes.c_int32: "int32",
+    ctypes.c_uint32: "uint32",
+    ctypes.c_int64: "int64",
+    ctypes.c_uint64: "uint64",
+    ctypes.c_int8: "int8",
+    ctypes.c_uint8: "uint8",
+    ctypes.c_int16: "int16",
+    ctypes.c_uint16: "uint16",
+    ctypes.c_double: "float64",
+    ctypes.c_float: "float32",
+}
 _FLOAT_EXACT = 2**53  # the largest magnitude up to which every integer is a float64
 
 
@@ -69,8 +82,10 @@ def array_shape(shape: tuple, width: int, name: str) -> int:
         return shape[0]
     if len(shape) == 1 and shape[0] % width == 0:
         return shape[0] // width
-    raise ValueError(f"{name}: an array of shape {tuple(shape)} is not {what} or flat ({width} values a row); "
-                     f"it is not reshaped" + (" (points are rows of x y z nx ny nz)" if width == 6 else ""))
+    raise ValueError(
+        f"{name}: an array of shape {tuple(shape)} is not {what} or flat ({width} values a row); "
+        f"it is not reshaped" + (" (points are rows of x y z nx ny nz)" if width == 6 else "")
+    )
 
 
 def array_dtype(arr, ctype, name: str) -> None:

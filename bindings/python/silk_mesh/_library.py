@@ -10,6 +10,7 @@ when the package runs from a checkout (<repo>/build/engine/libsilk.so, else the 
 <repo>/build*/engine/libsilk.so), else the system loader ("libsilk.so"). onnxruntime is loaded
 first, by full path (never from PATH or a system copy): the copy in libsilk's folder (the add-on,
 the Windows zip), else the onnxruntime package's own library (the wheel)."""
+
 from __future__ import annotations
 
 import ctypes
@@ -84,8 +85,11 @@ def _load_dependencies(path: str) -> None:
             _dependencies.append(ctypes.CDLL(found[0]))
         except OSError as e:
             why = _platform_libs.diagnose(found[0], e)
-            raise SilkError(_capi.SILK_ERR_IO, f"cannot load onnxruntime from '{found[0]}' (needed by libsilk): {e}"
-                            + (f"; {why}" if why else ""), "library") from e
+            raise SilkError(
+                _capi.SILK_ERR_IO,
+                f"cannot load onnxruntime from '{found[0]}' (needed by libsilk): {e}" + (f"; {why}" if why else ""),
+                "library",
+            ) from e
 
 
 def _open(path: str) -> ctypes.CDLL:
@@ -93,11 +97,17 @@ def _open(path: str) -> ctypes.CDLL:
     try:
         handle = ctypes.CDLL(path)
     except OSError as e:
-        hint = (f"set SILK_LIBRARY to the path of {_NAME}, or build it (scripts/build.sh)"
-                if path == _NAME else f"check the file, or set SILK_LIBRARY to another {_NAME}")
+        hint = (
+            f"set SILK_LIBRARY to the path of {_NAME}, or build it (scripts/build.sh)"
+            if path == _NAME
+            else f"check the file, or set SILK_LIBRARY to another {_NAME}"
+        )
         why = _platform_libs.diagnose(path, e) if path != _NAME else ""
-        raise SilkError(_capi.SILK_ERR_IO, f"cannot load libsilk from '{path}': {e}; " + (f"{why}; " if why else "")
-                        + hint, "library") from e
+        raise SilkError(
+            _capi.SILK_ERR_IO,
+            f"cannot load libsilk from '{path}': {e}; " + (f"{why}; " if why else "") + hint,
+            "library",
+        ) from e
     try:
         _capi.declare(handle)
     except AttributeError as e:
@@ -112,8 +122,12 @@ def load_library(path: str | os.PathLike | None = None) -> ctypes.CDLL:
     with _lock:
         if _loaded is not None:
             if path is not None and os.path.abspath(os.fspath(path)) != os.path.abspath(_loaded[0]):
-                raise SilkError(_capi.SILK_ERR_INVALID_ARGUMENT, f"libsilk is already loaded from '{_loaded[0]}'; "
-                                f"load_library('{os.fspath(path)}') must come before the first call", "library")
+                raise SilkError(
+                    _capi.SILK_ERR_INVALID_ARGUMENT,
+                    f"libsilk is already loaded from '{_loaded[0]}'; "
+                    f"load_library('{os.fspath(path)}') must come before the first call",
+                    "library",
+                )
             return _loaded[1]
         chosen = os.fspath(path) if path is not None else _first_candidate()
         _loaded = (chosen, _open(chosen))
@@ -155,8 +169,11 @@ def preload_onnxruntime() -> None:
     No package found: nothing either; libsilk's own lookup then names the file it tried."""
     global _onnxruntime
     own = os.path.join(PACKAGE_DIR, "lib")
-    if (_onnxruntime is not None or os.path.dirname(os.path.abspath(library_path())) != own
-            or glob.glob(os.path.join(own, "libonnxruntime*"))):
+    if (
+        _onnxruntime is not None
+        or os.path.dirname(os.path.abspath(library_path())) != own
+        or glob.glob(os.path.join(own, "libonnxruntime*"))
+    ):
         return
     path = onnxruntime_library()
     if path is None:
@@ -164,16 +181,18 @@ def preload_onnxruntime() -> None:
     try:
         _onnxruntime = ctypes.CDLL(path)
     except OSError as e:
-        raise SilkError(_capi.SILK_ERR_IO, f"cannot load onnxruntime from '{path}' (the onnxruntime package, "
-                        f"found by importlib): {e}", "library") from e
+        raise SilkError(
+            _capi.SILK_ERR_IO,
+            f"cannot load onnxruntime from '{path}' (the onnxruntime package, found by importlib): {e}",
+            "library",
+        ) from e
 
 
 def check(status: int) -> None:
     """Raises SilkError with the library's message for a status other than SILK_OK."""
     if status != _capi.SILK_OK:
         L = lib()
-        raise SilkError(status, L.silk_last_error().decode(errors="replace"),
-                        L.silk_status_name(status).decode())
+        raise SilkError(status, L.silk_last_error().decode(errors="replace"), L.silk_status_name(status).decode())
 
 
 class _Owned:
@@ -199,4 +218,3 @@ class _Owned:
 
     def __exit__(self, *exc) -> None:
         self.close()
-

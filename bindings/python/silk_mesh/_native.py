@@ -2,6 +2,7 @@
 """The thin internal layer: every call into libsilk is made here (declarations in _capi), so a
 change of the C API (a renamed function, a count query folded into its copy call) is adapted in
 this file alone. Handles are ctypes.c_void_p, arrays ctypes arrays; nothing Pythonic."""
+
 from __future__ import annotations
 
 import ctypes

@@ -2,6 +2,7 @@
 """Keyword parameters onto a C params struct: each keyword names a field of the struct (as in
 silk.h); None keeps libsilk's default; an enum field takes its name ("repair", "input", ...) or
 its number. An unknown keyword or enum name raises TypeError / ValueError naming it."""
+
 from __future__ import annotations
 
 import ctypes
@@ -9,8 +10,9 @@ import ctypes
 from . import _checks
 
 
-def fill(struct: ctypes.Structure, params: dict, where: str, enums: dict | None = None,
-         hidden: tuple = ()) -> ctypes.Structure:
+def fill(
+    struct: ctypes.Structure, params: dict, where: str, enums: dict | None = None, hidden: tuple = ()
+) -> ctypes.Structure:
     """Sets struct fields from params (see the module docstring) and returns the struct."""
     enums = enums or {}
     fields = {name: ctype for name, ctype in type(struct)._fields_ if name not in hidden and name != "struct_size"}

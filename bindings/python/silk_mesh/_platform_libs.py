@@ -6,6 +6,7 @@ PE / Mach-O machine field against this Python's), is blocked (Windows' applicati
 antivirus, a file marked as downloaded, no read permission), or a library it needs is missing
 (named from the loader's message, or from the DLL's import table). Pure Python: the checks run
 on any platform, so tests on Linux cover the Windows diagnosis with fake files."""
+
 from __future__ import annotations
 
 import os
@@ -26,9 +27,14 @@ _PE_MACHINES = {0x8664: "x86-64", 0xAA64: "arm64", 0x014C: "x86", 0x01C4: "arm"}
 _MACHO_CPUS = {0x01000007: "x86-64", 0x0100000C: "arm64", 7: "x86", 12: "arm"}
 # Windows LoadLibrary errors that mean "not allowed" rather than "broken": access denied, blocked
 # by group policy, virus detected / potentially unwanted, application control (WDAC, Smart App Control).
-_WIN_BLOCKED = {5: "access denied", 1260: "blocked by group policy", 225: "flagged by antivirus",
-                226: "flagged by antivirus", 4551: "blocked by an application control policy",
-                4556: "blocked by an application control policy"}
+_WIN_BLOCKED = {
+    5: "access denied",
+    1260: "blocked by group policy",
+    225: "flagged by antivirus",
+    226: "flagged by antivirus",
+    4551: "blocked by an application control policy",
+    4556: "blocked by an application control policy",
+}
 _WIN_MOD_NOT_FOUND, _WIN_BAD_FORMAT = 126, 193
 
 
@@ -121,7 +127,7 @@ def pe_imports(path: str) -> list[str]:
             if name_rva == 0:
                 return names
             start = offset(name_rva)
-            names.append(data[start:data.index(b"\0", start)].decode("ascii", "replace"))
+            names.append(data[start : data.index(b"\0", start)].decode("ascii", "replace"))
             at += 20
     except (OSError, ValueError, struct.error, IndexError):
         return []
@@ -131,9 +137,12 @@ def _missing_windows_imports(path: str) -> list[str]:
     """Imported DLLs found neither beside `path` nor in the system folder (API sets excepted)."""
     folder = os.path.dirname(os.path.abspath(path))
     system = os.path.join(os.environ.get("SystemRoot", r"C:\Windows"), "System32")
-    return [d for d in pe_imports(path)
-            if not d.lower().startswith(("api-ms-", "ext-ms-"))
-            and not any(os.path.isfile(os.path.join(p, d)) for p in (folder, system))]
+    return [
+        d
+        for d in pe_imports(path)
+        if not d.lower().startswith(("api-ms-", "ext-ms-"))
+        and not any(os.path.isfile(os.path.join(p, d)) for p in (folder, system))
+    ]
 
 
 def _blocked_mark(path: str) -> str:
@@ -165,8 +174,10 @@ def diagnose(path: str, error: OSError | None = None, plat: str | None = None, m
     if kind is None:
         return f"not a library (no ELF, PE or Mach-O header): not a {_SYSTEM_NAMES[fmt]} library"
     if kind[0] != fmt:
-        return (f"wrong architecture: not a {_SYSTEM_NAMES[fmt]} library (a {_SYSTEM_NAMES[kind[0]]} "
-                f"{kind[0]} file for {kind[1]}); use the {_SYSTEM_NAMES[fmt].lower()} build")
+        return (
+            f"wrong architecture: not a {_SYSTEM_NAMES[fmt]} library (a {_SYSTEM_NAMES[kind[0]]} "
+            f"{kind[0]} file for {kind[1]}); use the {_SYSTEM_NAMES[fmt].lower()} build"
+        )
     if kind[1] not in (machine, "universal"):
         return f"wrong architecture: built for {kind[1]}, this Python is {machine}"
     winerror = getattr(error, "winerror", None)
@@ -174,10 +185,16 @@ def diagnose(path: str, error: OSError | None = None, plat: str | None = None, m
         return f"blocked: {_WIN_BLOCKED[winerror]}{_blocked_mark(path)}"
     if winerror == _WIN_MOD_NOT_FOUND:
         missing = _missing_windows_imports(path)
-        hint = (" (the Microsoft Visual C++ 2015-2022 runtime: install vc_redist.x64.exe)"
-                if any(d.lower().startswith(("msvcp140", "vcruntime140")) for d in missing) else "")
-        return ("missing dependency: " + ", ".join(missing) + hint) if missing else \
-            "missing dependency (a library it needs was not found)"
+        hint = (
+            " (the Microsoft Visual C++ 2015-2022 runtime: install vc_redist.x64.exe)"
+            if any(d.lower().startswith(("msvcp140", "vcruntime140")) for d in missing)
+            else ""
+        )
+        return (
+            ("missing dependency: " + ", ".join(missing) + hint)
+            if missing
+            else "missing dependency (a library it needs was not found)"
+        )
     text = str(error or "")
     base = os.path.basename(path)
     if ": cannot open shared object file" in text:

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """silk_mesh.encode / decode: a mesh to its Mesh Silksong token ids and back (bit-exact with the
 reference tokenizer), and token files (one id per line) read and written by libsilk."""
+
 from __future__ import annotations
 
 import ctypes

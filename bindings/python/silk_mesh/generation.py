@@ -3,6 +3,7 @@
 time, in one call or step by step: start / advance / preview / finish / cancel, with a progress
 callback) and silk_mesh.generate (one call with a fresh generator). Results are Result(mesh, ids,
 stats); the mesh is in the input's frame, its `parts` give each triangle's part."""
+
 from __future__ import annotations
 
 import ctypes
@@ -10,12 +11,16 @@ import os
 from typing import NamedTuple
 
 from . import _arrays, _capi, _checks, _native, _params
-from ._library import SilkError, _Owned, library_path, preload_onnxruntime
+from ._library import SilkError, _Owned, preload_onnxruntime
 from .mesh import Mesh, _Borrowed
 from .models import find_model
 
-_ENUMS = {"holes": _capi.HOLES, "orient": _capi.ORIENT, "preprocessing": _capi.PREPROCESS_KINDS,
-          "face_guidance": _capi.FACE_GUIDANCE}
+_ENUMS = {
+    "holes": _capi.HOLES,
+    "orient": _capi.ORIENT,
+    "preprocessing": _capi.PREPROCESS_KINDS,
+    "face_guidance": _capi.FACE_GUIDANCE,
+}
 _HIDDEN = ("progress", "cancel", "user_data")  # set from Python callables, not keywords
 
 
@@ -29,8 +34,13 @@ class Model(_Owned):
 
     _h = None
 
-    def __init__(self, dir: str | os.PathLike | None = None, threads: int = 0, decoder: str = "default",
-                 kv_precision: str = "default"):
+    def __init__(
+        self,
+        dir: str | os.PathLike | None = None,
+        threads: int = 0,
+        decoder: str = "default",
+        kv_precision: str = "default",
+    ):
         dir = find_model(dir)  # libsilk's rule: bundled, a folder, or a name
         if decoder not in _capi.DECODERS:
             raise ValueError(f"Model: decoder must be one of {sorted(_capi.DECODERS)}, not {decoder!r}")
@@ -39,8 +49,9 @@ class Model(_Owned):
         self.dir = os.fspath(dir)
         preload_onnxruntime()  # the pip wheel's libsilk: the onnxruntime package's library
         threads = _checks.integer(threads, ctypes.c_int32, "Model: threads")
-        self._h = _native.model_load(os.fsencode(self.dir), threads, _capi.DECODERS[decoder],
-                                     _capi.KV_PRECISIONS[kv_precision])
+        self._h = _native.model_load(
+            os.fsencode(self.dir), threads, _capi.DECODERS[decoder], _capi.KV_PRECISIONS[kv_precision]
+        )
 
     def info(self) -> dict:
         """model.json figures and the options in use (d_model, default_points, decoder, ...)."""
@@ -58,10 +69,9 @@ class Model(_Owned):
             self._h = None
 
 
-
 class Result(NamedTuple):
-    mesh: Mesh   # the generated mesh (input frame); Mesh.parts: each triangle's part
-    ids: list    # the generated token ids (format ids, EOS included when generated)
+    mesh: Mesh  # the generated mesh (input frame); Mesh.parts: each triangle's part
+    ids: list  # the generated token ids (format ids, EOS included when generated)
     stats: dict  # silk_generate_stats by field name; stop_reason as a name ("eos", ...)
 
 
@@ -211,9 +221,9 @@ class Generator(_Owned):
             self.model.close()
 
 
-
-def generate(input=None, model: Model | str | os.PathLike | None = None, *, points=None, progress=None,
-             cancel=None, **params) -> Result:
+def generate(
+    input=None, model: Model | str | os.PathLike | None = None, *, points=None, progress=None, cancel=None, **params
+) -> Result:
     """One generation with a fresh Generator (see Generator for input and params); model: a
     Model, a model folder, or None for the bundled model."""
     with Generator(model) as gen:  # closes the model too when it made it

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """silk_mesh.Mesh: a triangle mesh (or a point cloud with normals) held by libsilk, built from
 arrays or read from a file, with its arrays copied out on request and saved in libsilk's formats."""
+
 from __future__ import annotations
 
 import ctypes
@@ -79,7 +80,6 @@ class Mesh(_Owned):
         if self._h:
             _native.mesh_destroy(self._h)
             self._h = None
-
 
     def __repr__(self) -> str:
         if not self._h:

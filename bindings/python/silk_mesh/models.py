@@ -2,6 +2,7 @@
 """Models by name: the user's models folder and the bundled model, as libsilk finds them (silk.h
 "models by name": silk_models_dir, silk_model_default_dir, silk_model_find, silk_models_list), so
 Python, silkgen and the Blender add-on agree on every path."""
+
 from __future__ import annotations
 
 import json

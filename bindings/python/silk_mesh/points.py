@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """silk_mesh.prepare_points: the encoder's input points by libsilk's pre-processing (the same code
 generation runs, and training uses), from a mesh or an oriented point cloud."""
+
 from __future__ import annotations
 
 import ctypes
@@ -17,8 +18,12 @@ def prepare_points(source, triangles=None, kind: str = "silk", n_points: int = 4
     params: normalize_bound, merge_distance_fraction, surface_samples, round_float16."""
     if kind not in _capi.PREPROCESS_KINDS:
         raise ValueError(f"prepare_points: kind must be one of {sorted(_capi.PREPROCESS_KINDS)}, not {kind!r}")
-    p = _params.fill(_native.preprocess_defaults(_capi.PREPROCESS_KINDS[kind]), params, "prepare_points",
-                     hidden=("struct_size", "kind", "point_count"))
+    p = _params.fill(
+        _native.preprocess_defaults(_capi.PREPROCESS_KINDS[kind]),
+        params,
+        "prepare_points",
+        hidden=("struct_size", "kind", "point_count"),
+    )
     p.point_count = _checks.integer(n_points, ctypes.c_int32, "prepare_points: n_points")
     seed = _checks.integer(seed, ctypes.c_uint64, "prepare_points: seed")
     if triangles is not None:

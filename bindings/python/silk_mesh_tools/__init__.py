@@ -7,6 +7,7 @@ the binaries find libsilk (RPATH $ORIGIN/../lib), the bundled model (../model) a
 ~/.local/bin) has no fixed relation to site-packages (it depends on the Python version and scheme).
 A package of its own, beside silk_mesh rather than in it: importing silk_mesh imports numpy (0.4 s
 measured), which a launcher has no use for; importlib finds silk_mesh's folder without importing it."""
+
 from __future__ import annotations
 
 import os
@@ -25,8 +26,10 @@ def tool_path(name: str) -> str:
 def _run(name: str) -> int:
     exe = tool_path(name)
     if not os.access(exe, os.X_OK):
-        sys.stderr.write(f"{name}: '{exe}' is missing or not executable: only the pip wheel carries a bundled "
-                         f"{name} (in a checkout, run build/apps/{name})\n")
+        sys.stderr.write(
+            f"{name}: '{exe}' is missing or not executable: only the pip wheel carries a bundled "
+            f"{name} (in a checkout, run build/apps/{name})\n"
+        )
         return 127
     os.execv(exe, [name, *sys.argv[1:]])
     return 127  # not reached: execv replaces this process or raises

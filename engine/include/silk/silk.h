@@ -24,7 +24,8 @@
 #define SILK_VERSION_PATCH 0
 #define SILK_STR_(x) #x
 #define SILK_STR(x) SILK_STR_(x)
-#define SILK_VERSION_STRING SILK_STR(SILK_VERSION_MAJOR) "." SILK_STR(SILK_VERSION_MINOR) "." SILK_STR(SILK_VERSION_PATCH)
+#define SILK_VERSION_STRING \
+  SILK_STR(SILK_VERSION_MAJOR) "." SILK_STR(SILK_VERSION_MINOR) "." SILK_STR(SILK_VERSION_PATCH)
 /* 10000 * MAJOR + 100 * MINOR + PATCH (1.0.0 = 10000), for #if comparisons. */
 #define SILK_VERSION_NUMBER (SILK_VERSION_MAJOR * 10000 + SILK_VERSION_MINOR * 100 + SILK_VERSION_PATCH)
 
@@ -58,12 +59,12 @@ typedef enum silk_status {
   SILK_ERR_IO = 2,
   SILK_ERR_PARSE = 3,
   SILK_ERR_UNSUPPORTED = 4,
-  SILK_ERR_REFUSED = 5,        /* the tokenizer refuses the mesh (named reason in the message) */
+  SILK_ERR_REFUSED = 5, /* the tokenizer refuses the mesh (named reason in the message) */
   SILK_ERR_LIMIT = 6,
   SILK_ERR_CANCELLED = 7,
   SILK_ERR_INTERNAL = 8,
   SILK_ERR_BUFFER_TOO_SMALL = 9,
-  SILK_ERR_BUSY = 10           /* a silk_generator used by two calls at once ("generator busy") */
+  SILK_ERR_BUSY = 10 /* a silk_generator used by two calls at once ("generator busy") */
 } silk_status;
 
 /* Message of the last call on this thread ("" after a success). Borrowed: valid until the
@@ -75,7 +76,12 @@ SILK_API const char* silk_status_name(silk_status s);
 SILK_API const char* silk_version(void);
 
 /* ---- logging: the library prints nothing itself ------------------------------------ */
-typedef enum silk_log_level { SILK_LOG_DEBUG = 0, SILK_LOG_INFO = 1, SILK_LOG_WARN = 2, SILK_LOG_ERROR = 3 } silk_log_level;
+typedef enum silk_log_level {
+  SILK_LOG_DEBUG = 0,
+  SILK_LOG_INFO = 1,
+  SILK_LOG_WARN = 2,
+  SILK_LOG_ERROR = 3
+} silk_log_level;
 /* message is borrowed for the callback's duration. */
 typedef void (*silk_log_fn)(silk_log_level level, const char* message, void* user_data);
 /* Process-wide; NULL disables logging (the default). Receives every failed call's message
@@ -119,7 +125,10 @@ SILK_API silk_load_params silk_load_default_params(void);
  * *out: owned by the caller, silk_mesh_destroy. */
 SILK_API silk_status silk_mesh_load(const char* path, const silk_load_params* params, silk_mesh** out);
 typedef enum silk_mesh_format {
-  SILK_FORMAT_BY_EXTENSION = 0, SILK_FORMAT_OBJ = 1, SILK_FORMAT_PLY = 2, SILK_FORMAT_GLB = 3
+  SILK_FORMAT_BY_EXTENSION = 0,
+  SILK_FORMAT_OBJ = 1,
+  SILK_FORMAT_PLY = 2,
+  SILK_FORMAT_GLB = 3
 } silk_mesh_format;
 typedef struct silk_save_params {
   uint32_t struct_size;    /* set by silk_save_default_params() */
@@ -210,8 +219,8 @@ SILK_API silk_status silk_mesh_encode(const silk_mesh* mesh, const silk_encode_p
 
 /* ---- decode: tokens -> mesh (every face the tokens carry, consistently oriented) ----- */
 typedef struct silk_decode_params {
-  uint32_t struct_size;     /* set by silk_decode_default_params() */
-  int32_t grid_coordinates; /* 1: positions are grid integers 0..127; 0: dequantised [-1,1] (default) */
+  uint32_t struct_size;               /* set by silk_decode_default_params() */
+  int32_t grid_coordinates;           /* 1: positions are grid integers 0..127; 0: dequantised [-1,1] (default) */
   int32_t split_nonmanifold_vertices; /* 1: every vertex whose faces form two or more fans is split (one
                                          copy per extra fan, same position, appended); 0: the mesh the
                                          tokens encode (default) */
@@ -228,7 +237,7 @@ SILK_API silk_status silk_tokens_decode(const silk_tokens* tokens, const silk_de
 
 /* ---- round trip: encode, decode, compare ---------------------------------------------- */
 typedef struct silk_roundtrip_report {
-  uint32_t struct_size;        /* set by the caller: sizeof(silk_roundtrip_report) */
+  uint32_t struct_size; /* set by the caller: sizeof(silk_roundtrip_report) */
   int64_t tokens;
   int64_t processed_faces;     /* faces of the emitted components, after clean-up */
   int64_t representable_faces; /* processed faces whose three edges the stream carries */
@@ -237,7 +246,7 @@ typedef struct silk_roundtrip_report {
   int64_t missing;             /* ... not decoded */
   int64_t extra;               /* decoded faces that are not processed faces */
   int64_t decoded_faces;
-  int32_t exact;               /* 1: nothing missing or reversed */
+  int32_t exact; /* 1: nothing missing or reversed */
 } silk_roundtrip_report;
 /* Encodes `mesh` (params as silk_mesh_encode), decodes the ids and compares faces by grid corners
  * and winding. A mesh the encoder refuses fails as in silk_mesh_encode; an inexact result is SILK_OK. */
@@ -264,15 +273,16 @@ typedef struct silk_check_params {
 SILK_API silk_check_params silk_check_default_params(void);
 typedef struct silk_check_result {
   uint32_t struct_size; /* set by the caller: sizeof(silk_check_result) */
-  int32_t accepted;  /* 1: every id is legal (and the stream ends after an E unless allow_prefix) */
-  int32_t reason;    /* 0 when accepted, else a stable code named by silk_reject_reason_name */
-  int64_t position;  /* index of the first rejected id (the count when the stream ends too early); -1 if accepted */
-  int32_t id;        /* the rejected id; -1 past the end or when accepted */
-  char message[512]; /* why, naming the rule and its spec section ("" when accepted; truncated, NUL-terminated) */
+  int32_t accepted;     /* 1: every id is legal (and the stream ends after an E unless allow_prefix) */
+  int32_t reason;       /* 0 when accepted, else a stable code named by silk_reject_reason_name */
+  int64_t position;     /* index of the first rejected id (the count when the stream ends too early); -1 if accepted */
+  int32_t id;           /* the rejected id; -1 past the end or when accepted */
+  char message[512];    /* why, naming the rule and its spec section ("" when accepted; truncated, NUL-terminated) */
 } silk_check_result;
 /* Runs the ids (EOS optional at the end) through the grammar token by token. A rejected stream is
  * SILK_OK with accepted = 0; only bad arguments fail. */
-SILK_API silk_status silk_tokens_check(const silk_tokens* tokens, const silk_check_params* params, silk_check_result* out);
+SILK_API silk_status silk_tokens_check(const silk_tokens* tokens, const silk_check_params* params,
+                                       silk_check_result* out);
 /* "wrong_class", "not_canonical", ... for a silk_check_result reason ("none" for 0; "unknown" out
  * of range). A static string. */
 SILK_API const char* silk_reject_reason_name(int32_t reason);
@@ -302,8 +312,8 @@ typedef struct silk_repair_stats {
  * "vertices", "faces", "watertight", "window_findings": [{"component", "layer", "row_a", "row_b"}],
  * "holes": [{"component", "loop", "layers", "repaired", "added_edges"}], "faces_added",
  * "open_edges_before", "open_edges_after"}. */
-SILK_API silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_params* params, silk_mesh** out_mesh,
-                                        silk_repair_stats* stats, silk_report** report);
+SILK_API silk_status silk_tokens_repair(const silk_tokens* tokens, const silk_repair_params* params,
+                                        silk_mesh** out_mesh, silk_repair_stats* stats, silk_report** report);
 
 /* ---- random legal token streams (property tests, fuzzing, demos) ---------------------- */
 typedef struct silk_random_walk_params {
@@ -393,9 +403,9 @@ typedef enum silk_kv_precision {
 
 typedef struct silk_model_params {
   uint32_t struct_size; /* set by silk_model_default_params() */
-  int32_t threads; /* threads of the process's shared pool (first load decides); 0 = physical
-                      cores (default); at most max(64, hardware threads) */
-  int32_t decoder; /* silk_decoder_precision (error if the model lacks that file); default SILK_DECODER_DEFAULT */
+  int32_t threads;      /* threads of the process's shared pool (first load decides); 0 = physical
+                           cores (default); at most max(64, hardware threads) */
+  int32_t decoder;      /* silk_decoder_precision (error if the model lacks that file); default SILK_DECODER_DEFAULT */
   int32_t kv_precision; /* silk_kv_precision (SILK_ERR_UNSUPPORTED naming the precision and folder if the
                            chosen decoder has no such variant); default SILK_KV_DEFAULT */
 } silk_model_params;
@@ -411,13 +421,13 @@ SILK_API void silk_model_destroy(silk_model* model);
 
 typedef struct silk_model_info {
   uint32_t struct_size; /* set by the caller: sizeof(silk_model_info) */
-  char config[32]; /* model.json "config" (truncated) */
+  char config[32];      /* model.json "config" (truncated) */
   int32_t d_model, n_layers, n_heads, head_dim, n_latents;
   int32_t default_points; /* encoder points per generation by default (model.json dims.n_points) */
   int32_t max_seq_len;
   int32_t threads, int8;
-  int32_t decoder;      /* silk_decoder_precision in use (never DEFAULT) */
-  int32_t arch;         /* 0 = "silk", 1 = "official" */
+  int32_t decoder;        /* silk_decoder_precision in use (never DEFAULT) */
+  int32_t arch;           /* 0 = "silk", 1 = "official" */
   int32_t encoder_points; /* the encoder graph's fixed point count; -1 = any */
   int32_t kv_precision;   /* silk_kv_precision in use (never DEFAULT) */
 } silk_model_info;
@@ -464,11 +474,11 @@ SILK_API void silk_generator_destroy(silk_generator* generator);
 /* Per candidate: with best of N (silk_generate_params.candidates) the counts start again for
  * each candidate, which `candidate` (0-based, of `candidates`) names. */
 typedef struct silk_generate_progress {
-  uint32_t struct_size;       /* set by the library: sizeof(silk_generate_progress) of this libsilk */
-  int64_t tokens, max_tokens; /* max_tokens == tokens on the candidate's last id (a bar reaches 100 %) */
-  int32_t components;         /* started so far */
-  int32_t faces;              /* at the last layer end when max_faces is set (before the cap), else -1 */
-  double seconds;             /* since the candidate's encoder run began */
+  uint32_t struct_size;          /* set by the library: sizeof(silk_generate_progress) of this libsilk */
+  int64_t tokens, max_tokens;    /* max_tokens == tokens on the candidate's last id (a bar reaches 100 %) */
+  int32_t components;            /* started so far */
+  int32_t faces;                 /* at the last layer end when max_faces is set (before the cap), else -1 */
+  double seconds;                /* since the candidate's encoder run began */
   int32_t candidate, candidates; /* the candidate generating (0-based) and N */
 } silk_generate_progress;
 /* Called after every generated id (the last one included), on the calling thread. */
@@ -481,7 +491,6 @@ typedef void (*silk_progress_fn)(const silk_generate_progress* progress, void* u
  * (silk_generator_cancel is honoured everywhere else too: see there.) */
 typedef int32_t (*silk_cancel_fn)(void* user_data);
 
-
 /* silk_generate_params.report_flags: what the generation keeps for silk_generator_report. */
 enum {
   SILK_GENERATE_RECORD_TRACE = 1 /* keep the encoder points and every id's legal set (report trace 1) */
@@ -489,9 +498,9 @@ enum {
 /* silk_generate_params.debug_flags: measurement switches (docs/runtime.md), 0 for normal use;
  * measurement only: they may change in a minor version. */
 enum {
-  SILK_DEBUG_NO_SKIP_FORCED = 1,     /* run the model for forced ids too */
-  SILK_DEBUG_KV_COPY = 2,            /* naive KV cache handling */
-  SILK_DEBUG_SAMPLE_THEN_CHECK = 4   /* sample unmasked, fall back to the mask */
+  SILK_DEBUG_NO_SKIP_FORCED = 1,   /* run the model for forced ids too */
+  SILK_DEBUG_KV_COPY = 2,          /* naive KV cache handling */
+  SILK_DEBUG_SAMPLE_THEN_CHECK = 4 /* sample unmasked, fall back to the mask */
 };
 
 /* "Use the model's value" (model.json "sampling" / "preprocessing"): the one sentinel of
@@ -522,28 +531,29 @@ typedef enum silk_face_guidance {
  * Any other negative, NaN or infinite value, top_p > 1, and a flag or enum out of its range is
  * SILK_ERR_INVALID_ARGUMENT naming the field and its value. */
 typedef struct silk_generate_params {
-  uint32_t struct_size; /* set by silk_generate_default_params() */
-  uint64_t seed;        /* default 0 */
-  double temperature;   /* 0 = greedy */
-  int32_t top_k;        /* 0 = off */
-  double top_p;         /* 1.0 = off */
-  int32_t max_tokens;   /* ids incl. EOS; 0 = the model's limit (default); else >= 14 (one triangle) */
-  int32_t max_faces;    /* a hard cap on the result's faces; 0 = off (default). The generation stops at
-                           the first layer end with >= max_faces faces; since that layer may overshoot,
-                           the mesh (silk_generator_get_mesh too) keeps at most max_faces faces: in generation
-                           order, each unless it would give a vertex a second fan, so the result stays
-                           edge- and vertex-manifold and consistently oriented (it may have fewer than
-                           max_faces; unused vertices and empty parts are dropped). The ids are not cut:
-                           decoding them gives the whole last layer (docs/runtime.md "Caps") */
-  int32_t holes;        /* silk_hole_policy, default SILK_HOLES_OFF */
-  int32_t point_count;  /* encoder points; 0 = the model's (silk_model_info.default_points; default) */
+  uint32_t struct_size;      /* set by silk_generate_default_params() */
+  uint64_t seed;             /* default 0 */
+  double temperature;        /* 0 = greedy */
+  int32_t top_k;             /* 0 = off */
+  double top_p;              /* 1.0 = off */
+  int32_t max_tokens;        /* ids incl. EOS; 0 = the model's limit (default); else >= 14 (one triangle) */
+  int32_t max_faces;         /* a hard cap on the result's faces; 0 = off (default). The generation stops at
+                                the first layer end with >= max_faces faces; since that layer may overshoot,
+                                the mesh (silk_generator_get_mesh too) keeps at most max_faces faces: in generation
+                                order, each unless it would give a vertex a second fan, so the result stays
+                                edge- and vertex-manifold and consistently oriented (it may have fewer than
+                                max_faces; unused vertices and empty parts are dropped). The ids are not cut:
+                                decoding them gives the whole last layer (docs/runtime.md "Caps") */
+  int32_t holes;             /* silk_hole_policy, default SILK_HOLES_OFF */
+  int32_t point_count;       /* encoder points; 0 = the model's (silk_model_info.default_points; default) */
   silk_progress_fn progress; /* may be NULL */
   silk_cancel_fn cancel;     /* may be NULL */
   void* user_data;           /* passed to both callbacks */
-  double top_p_temperature;  /* > 0: top-p on the top-k logits at this temperature (official chain); 0: at temperature */
-  int32_t preprocessing;     /* silk_preprocess_kind with that kind's defaults */
-  int32_t raw_points;        /* 1 (point clouds only): the points are the encoder input as given, output in the model's frame */
-  int32_t report_flags;      /* SILK_GENERATE_* bits (SILK_GENERATE_RECORD_TRACE); default 0 */
+  double top_p_temperature; /* > 0: top-p on the top-k logits at this temperature (official chain); 0: at temperature */
+  int32_t preprocessing;    /* silk_preprocess_kind with that kind's defaults */
+  int32_t
+      raw_points; /* 1 (point clouds only): the points are the encoder input as given, output in the model's frame */
+  int32_t report_flags; /* SILK_GENERATE_* bits (SILK_GENERATE_RECORD_TRACE); default 0 */
   /* Surface guidance: each new vertex's block and offset ids are restricted to grid cells (of the
    * model's 128^3 grid) within this many cells (Euclidean) of a cell holding an encoder point;
    * when no legal id is that close, the nearest legal ones are kept (a "fallback" in the stats),
@@ -613,11 +623,11 @@ typedef struct silk_generate_stats {
   int32_t chosen_candidate; /* index of the returned one (the report JSON lists every seed and score);
                                during a step-wise run: the one in progress */
   double score;             /* returned mesh: symmetric Chamfer distance to the encoder's points, model frame */
-  int32_t parts_flipped; /* parts reversed to face the input's normals (params.orient) */
+  int32_t parts_flipped;    /* parts reversed to face the input's normals (params.orient) */
   /* ---- timings (measurement; seconds, wall clock) ---- */
   double tokens_per_second;
-  double seconds_prepare, seconds_encoder, seconds_decoder, seconds_grammar, seconds_sampling,
-      seconds_build_mesh, seconds_guidance, seconds_scoring, seconds_total;
+  double seconds_prepare, seconds_encoder, seconds_decoder, seconds_grammar, seconds_sampling, seconds_build_mesh,
+      seconds_guidance, seconds_scoring, seconds_total;
   /* ---- appended in C API 1.3 ---- */
   /* face guidance: between-layer ids sampled under it; of those, the steps where no legal one's
    * faces passed (hard: the best-scoring kept; soft: all penalised); its seconds */
@@ -691,7 +701,8 @@ SILK_API silk_status silk_generator_report(silk_generator* generator, int32_t tr
  * unit normals; raw_points: as given). A point cloud loaded without normals shows the estimated
  * ones. Copy rule: capacity and *out_count in doubles (6 per point); before any generation
  * SILK_ERR_INVALID_ARGUMENT. */
-SILK_API silk_status silk_generator_copy_points(silk_generator* generator, double* out, size_t capacity, size_t* out_count);
+SILK_API silk_status silk_generator_copy_points(silk_generator* generator, double* out, size_t capacity,
+                                                size_t* out_count);
 
 /* ---- one-call generation: start + advance to the end + finish --------------------------
  * From any input (a mesh, a point-cloud silk_mesh or rows of points). The result is in the

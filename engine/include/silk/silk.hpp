@@ -70,8 +70,8 @@ inline void WriteFile(const std::string& path, const std::string& bytes) {
   Check(silk_file_write(path.c_str(), bytes.data(), bytes.size()));
 }
 inline std::string ReadFile(const std::string& path, uint64_t max_bytes) {
-  const std::vector<char> v = CopyAll<char>(
-      [&](char* o, size_t c, size_t* n) { return silk_file_read(path.c_str(), max_bytes, o, c, n); });
+  const std::vector<char> v =
+      CopyAll<char>([&](char* o, size_t c, size_t* n) { return silk_file_read(path.c_str(), max_bytes, o, c, n); });
   return std::string(v.begin(), v.end());
 }
 
@@ -140,10 +140,13 @@ class Mesh {
     Check(silk_mesh_save(h_.get(), path.c_str(), &p));
   }
   size_t vertex_count() const {
-    return CountOf<double>([&](double* o, size_t c, size_t* n) { return silk_mesh_copy_positions(h_.get(), o, c, n); }) / 3;
+    return CountOf<double>(
+               [&](double* o, size_t c, size_t* n) { return silk_mesh_copy_positions(h_.get(), o, c, n); }) /
+           3;
   }
   size_t triangle_count() const {
-    return CountOf<int32_t>([&](int32_t* o, size_t c, size_t* n) { return silk_mesh_copy_triangles(h_.get(), o, c, n); }) /
+    return CountOf<int32_t>(
+               [&](int32_t* o, size_t c, size_t* n) { return silk_mesh_copy_triangles(h_.get(), o, c, n); }) /
            3;
   }
   bool is_point_cloud() const { return silk_mesh_has_normals(h_.get()) && triangle_count() == 0; }
@@ -151,7 +154,8 @@ class Mesh {
     return CopyAll<double>([&](double* o, size_t c, size_t* n) { return silk_mesh_copy_positions(h_.get(), o, c, n); });
   }
   std::vector<int32_t> triangles() const {
-    return CopyAll<int32_t>([&](int32_t* o, size_t c, size_t* n) { return silk_mesh_copy_triangles(h_.get(), o, c, n); });
+    return CopyAll<int32_t>(
+        [&](int32_t* o, size_t c, size_t* n) { return silk_mesh_copy_triangles(h_.get(), o, c, n); });
   }
   std::vector<int32_t> triangle_components() const {
     return CopyAll<int32_t>(
@@ -231,11 +235,13 @@ class Model {
 
 // Models by name (silk.h "models by name"): each returns a UTF-8 path or throws Error.
 inline std::string ModelsDir(const char* name = nullptr) {
-  const std::vector<char> v = CopyAll<char>([&](char* o, size_t c, size_t* n) { return silk_models_dir(name, o, c, n); });
+  const std::vector<char> v =
+      CopyAll<char>([&](char* o, size_t c, size_t* n) { return silk_models_dir(name, o, c, n); });
   return std::string(v.data());
 }
 inline std::string ModelDefaultDir() {
-  return std::string(CopyAll<char>([](char* o, size_t c, size_t* n) { return silk_model_default_dir(o, c, n); }).data());
+  return std::string(
+      CopyAll<char>([](char* o, size_t c, size_t* n) { return silk_model_default_dir(o, c, n); }).data());
 }
 inline std::string FindModel(const std::string& name_or_dir) {
   const std::vector<char> v =
@@ -306,7 +312,8 @@ class Generator {
   }
   // The encoder's points in the input frame: rows of x y z nx ny nz, flattened (silk_generator_copy_points).
   std::vector<double> Points() {
-    return CopyAll<double>([&](double* o, size_t c, size_t* n) { return silk_generator_copy_points(h_.get(), o, c, n); });
+    return CopyAll<double>(
+        [&](double* o, size_t c, size_t* n) { return silk_generator_copy_points(h_.get(), o, c, n); });
   }
   // points: rows of x y z nx ny nz.
   Mesh GenerateFromPoints(const std::vector<double>& points,

@@ -56,7 +56,8 @@ Status WriteFileAtomically(const std::string& path, const std::string& bytes) {
     h = CreateFileW(tmp.c_str(), GENERIC_WRITE, 0, nullptr, CREATE_NEW, FILE_ATTRIBUTE_HIDDEN, nullptr);
     if (h == INVALID_HANDLE_VALUE && GetLastError() != ERROR_FILE_EXISTS) break;
   }
-  if (h == INVALID_HANDLE_VALUE) return IoError(path + ": cannot create temporary file: " + WindowsErrorText(GetLastError()));
+  if (h == INVALID_HANDLE_VALUE)
+    return IoError(path + ": cannot create temporary file: " + WindowsErrorText(GetLastError()));
   const int slot = RegisterPartialFile(Utf8Path(std::filesystem::path(tmp)));
   auto fail = [&](const std::string& what) {
     const DWORD err = GetLastError();

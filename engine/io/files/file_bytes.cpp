@@ -72,7 +72,8 @@ StatusOr<std::string> ReadFileBytes(const std::string& path, uint64_t max_bytes)
   }
   if (static_cast<uint64_t>(st.st_size) > max_bytes) {
     ::close(fd);
-    return LimitExceeded(path + ": file is " + std::to_string(st.st_size) + " bytes, limit " + std::to_string(max_bytes));
+    return LimitExceeded(path + ": file is " + std::to_string(st.st_size) + " bytes, limit " +
+                         std::to_string(max_bytes));
   }
   std::string out;
   out.resize(static_cast<size_t>(st.st_size));

@@ -36,7 +36,8 @@ std::string Env(const char* name) {
 
 bool IsAbsolute(const std::string& p) {
 #ifdef _WIN32
-  return (p.size() > 2 && p[1] == ':' && (p[2] == '\\' || p[2] == '/')) || (p.size() > 1 && p[0] == '\\' && p[1] == '\\');
+  return (p.size() > 2 && p[1] == ':' && (p[2] == '\\' || p[2] == '/')) ||
+         (p.size() > 1 && p[0] == '\\' && p[1] == '\\');
 #else
   return !p.empty() && p[0] == '/';
 #endif
@@ -74,8 +75,8 @@ StatusOr<std::string> UserModelsDir() {
 Status CheckModelName(const std::string& name) {
   bool ok = !name.empty() && name.size() <= kMaxNameLength && name[0] != '.' && name[0] != '-';
   for (const char c : name)
-    ok = ok && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
-                c == '_' || c == '-');
+    ok = ok && ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' ||
+                c == '-');
   if (ok) return Status::Ok();
   return InvalidArgument("'" + name + "' is not a model name (1-" + std::to_string(kMaxNameLength) +
                          " of A-Z a-z 0-9 . _ -, not starting with '.' or '-'; a folder is given by its path)");
@@ -118,7 +119,8 @@ StatusOr<std::string> ResolveModelDir(const std::string& name_or_dir) {
   if (!dir.ok()) return IoError("'" + name_or_dir + "' is not a folder, and " + dir.status().message());
   if (IsDirectory(*dir)) return *dir;
   return IoError("'" + name_or_dir + "' is neither a folder nor a model in " + *dir +
-                 " (silk-export import-official --name " + name_or_dir + " puts one there; SILK_MODELS moves the models folder)");
+                 " (silk-export import-official --name " + name_or_dir +
+                 " puts one there; SILK_MODELS moves the models folder)");
 }
 
 }  // namespace silk

@@ -35,8 +35,10 @@ Status CheckWindowsName(const std::string& path, const std::string& name) {
   if (IsReservedWindowsName(name)) return Bad(path, "'" + name + "' is a reserved device name on Windows");
   for (char c : name)
     if (static_cast<unsigned char>(c) < 0x20 || std::string("<>:\"|?*").find(c) != std::string::npos)
-      return Bad(path, "the file name holds a character Windows does not allow in names (<>:\"|?* or a control character)");
-  if (name.back() == '.' || name.back() == ' ') return Bad(path, "a file name ending in a dot or space is not kept by Windows");
+      return Bad(path,
+                 "the file name holds a character Windows does not allow in names (<>:\"|?* or a control character)");
+  if (name.back() == '.' || name.back() == ' ')
+    return Bad(path, "a file name ending in a dot or space is not kept by Windows");
   if (NativePath(path).wstring().size() >= 260 && path.rfind("\\\\?\\", 0) != 0)
     return Bad(path, "longer than Windows' MAX_PATH (260 characters); prefix an absolute path with \\\\?\\");
   return Status::Ok();
@@ -70,8 +72,8 @@ Status CheckOutputPath(const std::string& path) {
     return IoError(path + ": cannot be an output file: its folder " + Utf8Path(folder) + " does not exist");
   const size_t limit = NameLimit(Utf8Path(folder));
   if (name.size() > limit)
-    return Bad(path, "the file name is " + std::to_string(name.size()) + " bytes; this file system holds names of at most " +
-                         std::to_string(limit));
+    return Bad(path, "the file name is " + std::to_string(name.size()) +
+                         " bytes; this file system holds names of at most " + std::to_string(limit));
 #ifdef _WIN32
   SILK_RETURN_IF_ERROR(CheckWindowsName(path, name));
 #endif

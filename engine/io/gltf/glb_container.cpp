@@ -18,15 +18,14 @@ constexpr uint32_t kBinChunk = 0x004E4942;
 }  // namespace
 
 StatusOr<GlbChunks> ParseGlbContainer(std::string_view data, const std::string& name) {
-  if (data.size() < 4 || data.substr(0, 4) != "glTF")
-    return ParseErrorIn(name, "not a GLB file (no 'glTF' magic)");
+  if (data.size() < 4 || data.substr(0, 4) != "glTF") return ParseErrorIn(name, "not a GLB file (no 'glTF' magic)");
   if (data.size() < 20) return ParseErrorIn(name, "GLB file shorter than its 20-byte header");
   const uint32_t version = U32(data, 4);
   if (version != 2) return Unsupported(name + ": GLB version " + std::to_string(version) + " (only 2 is supported)");
   const uint64_t length = U32(data, 8);
   if (length > data.size())
-    return ParseErrorIn(name, "GLB header says " + std::to_string(length) + " bytes but the file has " +
-                                  std::to_string(data.size()));
+    return ParseErrorIn(
+        name, "GLB header says " + std::to_string(length) + " bytes but the file has " + std::to_string(data.size()));
   if (length < 20) return ParseErrorIn(name, "GLB header length " + std::to_string(length) + " is too small");
   const uint64_t json_len = U32(data, 12);
   if (U32(data, 16) != kJsonChunk) return ParseErrorIn(name, "first GLB chunk is not JSON");

@@ -36,8 +36,10 @@ int AddAccessor(Json* doc, std::string* bin, const void* data, size_t bytes, int
   bin->append(static_cast<const char*>(data), bytes);
   Json view = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}};
   (*doc)["bufferViews"].push_back(view);
-  Json acc = {{"bufferView", (*doc)["bufferViews"].size() - 1}, {"componentType", component_type},
-              {"count", count}, {"type", type}};
+  Json acc = {{"bufferView", (*doc)["bufferViews"].size() - 1},
+              {"componentType", component_type},
+              {"count", count},
+              {"type", type}};
   if (!min.is_null()) acc["min"] = min;
   if (!max.is_null()) acc["max"] = max;
   (*doc)["accessors"].push_back(acc);
@@ -74,8 +76,8 @@ StatusOr<std::string> FormatGlb(const std::vector<GlbPart>& parts, const std::st
         hi[d] = std::max(hi[d], p[d]);
       }
     Json attributes;
-    attributes["POSITION"] = AddAccessor(&doc, &bin, part.positions.data(), nv * 12, kArrayBuffer, kFloat, nv, "VEC3",
-                                         Json(lo), Json(hi));
+    attributes["POSITION"] =
+        AddAccessor(&doc, &bin, part.positions.data(), nv * 12, kArrayBuffer, kFloat, nv, "VEC3", Json(lo), Json(hi));
     if (!part.normals.empty())
       attributes["NORMAL"] = AddAccessor(&doc, &bin, part.normals.data(), nv * 12, kArrayBuffer, kFloat, nv, "VEC3");
     if (part.color) {
@@ -83,8 +85,8 @@ StatusOr<std::string> FormatGlb(const std::vector<GlbPart>& parts, const std::st
       attributes["COLOR_0"] = AddAccessor(&doc, &bin, colors.data(), nv * 12, kArrayBuffer, kFloat, nv, "VEC3");
     }
     const size_t ni = part.triangles.size() * 3;
-    const int indices = AddAccessor(&doc, &bin, part.triangles.data(), ni * 4, kElementArrayBuffer, kUnsignedInt, ni,
-                                    "SCALAR");
+    const int indices =
+        AddAccessor(&doc, &bin, part.triangles.data(), ni * 4, kElementArrayBuffer, kUnsignedInt, ni, "SCALAR");
     Json prim = {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
     doc["meshes"].push_back({{"name", part.name}, {"primitives", Json::array({prim})}});
     doc["nodes"].push_back({{"name", part.name}, {"mesh", doc["meshes"].size() - 1}});

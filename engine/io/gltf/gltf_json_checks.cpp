@@ -15,11 +15,14 @@ Status CheckGltfJsonText(std::string_view json, const std::string& name, int max
   for (size_t i = 0; i < json.size(); ++i) {
     const char c = json[i];
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
       continue;
     }
-    if (c == '"') in_string = true;
+    if (c == '"')
+      in_string = true;
     else if (c == '[' || c == '{') {
       if (++depth > max_depth)
         return ParseErrorIn(name, "glTF JSON nests deeper than " + std::to_string(max_depth) + " levels");
@@ -28,8 +31,7 @@ Status CheckGltfJsonText(std::string_view json, const std::string& name, int max
     }
   }
   try {
-    if (!nlohmann::json::accept(json.begin(), json.end()))
-      return ParseErrorIn(name, "glTF JSON is not valid JSON");
+    if (!nlohmann::json::accept(json.begin(), json.end())) return ParseErrorIn(name, "glTF JSON is not valid JSON");
   } catch (const std::exception& e) {
     return ParseErrorIn(name, std::string("glTF JSON is not valid JSON: ") + e.what());
   }
@@ -55,8 +57,8 @@ std::string DecodeUriPercent(const std::string& uri) {
   return out;
 }
 
-Status CheckGltfExternalBuffers(std::string_view json, const std::string& name,
-                                const std::string& base_dir, bool from_memory) {
+Status CheckGltfExternalBuffers(std::string_view json, const std::string& name, const std::string& base_dir,
+                                bool from_memory) {
   try {
     nlohmann::json doc = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
     if (doc.is_discarded()) return ParseErrorIn(name, "glTF JSON is not valid JSON");

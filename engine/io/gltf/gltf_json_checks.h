@@ -14,8 +14,8 @@ Status CheckGltfJsonText(std::string_view json, const std::string& name, int max
 
 // Every buffer with a non-data URI must name an existing file under base_dir. When
 // from_memory is true no external file may be used at all.
-Status CheckGltfExternalBuffers(std::string_view json, const std::string& name,
-                                const std::string& base_dir, bool from_memory);
+Status CheckGltfExternalBuffers(std::string_view json, const std::string& name, const std::string& base_dir,
+                                bool from_memory);
 
 // %XX decoding as glTF URIs use it.
 std::string DecodeUriPercent(const std::string& uri);

@@ -37,7 +37,8 @@ StatusOr<AccessorView> ViewAccessor(const tinygltf::Model& model, int index, con
   if (comp_size <= 0 || ncomp <= 0) return ParseErrorIn(name, who + ": invalid type or componentType");
   const uint64_t elem = static_cast<uint64_t>(comp_size) * static_cast<uint64_t>(ncomp);
   const uint64_t stride = bv.byteStride ? bv.byteStride : elem;
-  if (stride < elem) return ParseErrorIn(name, who + ": byteStride " + std::to_string(stride) + " is smaller than an element");
+  if (stride < elem)
+    return ParseErrorIn(name, who + ": byteStride " + std::to_string(stride) + " is smaller than an element");
   const uint64_t bv_off = bv.byteOffset, bv_len = bv.byteLength, acc_off = a.byteOffset;
   if (bv_off > buf.data.size() || bv_len > buf.data.size() - bv_off)
     return ParseErrorIn(name, who + ": bufferView " + std::to_string(a.bufferView) + " runs past the end of buffer " +
@@ -59,9 +60,18 @@ StatusOr<AccessorView> ViewAccessor(const tinygltf::Model& model, int index, con
 uint32_t LoadIndex(const AccessorView& v, size_t i) {
   const uint8_t* p = v.base + i * v.stride;
   switch (v.component_type) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t x; std::memcpy(&x, p, 2); return x; }
-    default: { uint32_t x; std::memcpy(&x, p, 4); return x; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t x;
+      std::memcpy(&x, p, 2);
+      return x;
+    }
+    default: {
+      uint32_t x;
+      std::memcpy(&x, p, 4);
+      return x;
+    }
   }
 }
 
@@ -75,8 +85,8 @@ struct InstanceTransform {
 InstanceTransform TransformOf(const GltfMeshInstance& inst) {
   const auto& M = inst.matrix;
   const bool identity = M == std::array<double, 16>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  const double det = M[0] * (M[5] * M[10] - M[9] * M[6]) - M[4] * (M[1] * M[10] - M[9] * M[2]) +
-                     M[8] * (M[1] * M[6] - M[5] * M[2]);
+  const double det =
+      M[0] * (M[5] * M[10] - M[9] * M[6]) - M[4] * (M[1] * M[10] - M[9] * M[2]) + M[8] * (M[1] * M[6] - M[5] * M[2]);
   return InstanceTransform{M, identity, det < 0};
 }
 
@@ -106,10 +116,9 @@ StatusOr<std::vector<uint32_t>> PrimitiveCorners(const tinygltf::Model& model, c
   }
   SILK_ASSIGN_OR_RETURN(AccessorView idx, ViewAccessor(model, prim.indices, what + " indices", name));
   const tinygltf::Accessor& ia = model.accessors[prim.indices];
-  if (ia.type != TINYGLTF_TYPE_SCALAR ||
-      (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-       ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-       ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+  if (ia.type != TINYGLTF_TYPE_SCALAR || (ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                                          ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                                          ia.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
     return ParseErrorIn(name, what + ": indices must be SCALAR unsigned byte/short/int");
   corners.resize(idx.count);
   for (size_t i = 0; i < idx.count; ++i) {
@@ -132,8 +141,10 @@ StatusOr<std::vector<std::array<uint32_t, 3>>> PrimitiveTriangles(int mode, cons
     for (size_t i = 0; i + 2 < n; i += 3) tris.push_back({corners[i], corners[i + 1], corners[i + 2]});
   } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
     for (size_t i = 0; i + 2 < n; ++i) {
-      if (i % 2 == 0) tris.push_back({corners[i], corners[i + 1], corners[i + 2]});
-      else tris.push_back({corners[i + 1], corners[i], corners[i + 2]});
+      if (i % 2 == 0)
+        tris.push_back({corners[i], corners[i + 1], corners[i + 2]});
+      else
+        tris.push_back({corners[i + 1], corners[i], corners[i + 2]});
     }
   } else {
     for (size_t i = 1; i + 1 < n; ++i) tris.push_back({corners[i], corners[i + 1], corners[0]});
@@ -201,8 +212,8 @@ Status AppendPrimitive(const tinygltf::Model& model, const GltfMeshInstance& ins
 
 }  // namespace
 
-Status AppendGltfMeshInstance(const tinygltf::Model& model, const GltfMeshInstance& inst,
-                              const std::string& name, const ReadOptions& opts, IoMesh* mesh) {
+Status AppendGltfMeshInstance(const tinygltf::Model& model, const GltfMeshInstance& inst, const std::string& name,
+                              const ReadOptions& opts, IoMesh* mesh) {
   const InstanceTransform xf = TransformOf(inst);
   for (size_t pi = 0; pi < model.meshes[inst.mesh].primitives.size(); ++pi)
     SILK_RETURN_IF_ERROR(AppendPrimitive(model, inst, pi, xf, name, opts, mesh));

@@ -17,7 +17,7 @@ namespace silk {
 // to triangles as the glTF spec defines them); points/lines are skipped with a warning.
 // Every vertex of the POSITION accessor is appended (unreferenced ones too). A transform
 // with negative determinant flips the winding so the faces keep their outward side.
-Status AppendGltfMeshInstance(const tinygltf::Model& model, const GltfMeshInstance& inst,
-                              const std::string& name, const ReadOptions& opts, IoMesh* mesh);
+Status AppendGltfMeshInstance(const tinygltf::Model& model, const GltfMeshInstance& inst, const std::string& name,
+                              const ReadOptions& opts, IoMesh* mesh);
 
 }  // namespace silk

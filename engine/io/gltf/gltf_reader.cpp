@@ -72,8 +72,8 @@ std::string FirstLine(const std::string& s) {
 
 }  // namespace
 
-StatusOr<IoMesh> ReadGltf(std::string_view data, bool binary, const std::string& name,
-                           const std::string& base_dir, bool from_memory, const ReadOptions& opts) {
+StatusOr<IoMesh> ReadGltf(std::string_view data, bool binary, const std::string& name, const std::string& base_dir,
+                          bool from_memory, const ReadOptions& opts) {
   std::string_view json = data;
   if (binary) {
     SILK_ASSIGN_OR_RETURN(GlbChunks chunks, ParseGlbContainer(data, name));

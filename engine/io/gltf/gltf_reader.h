@@ -15,7 +15,7 @@ namespace silk {
 // all root nodes when there are no scenes), with node transforms applied. `base_dir` is the
 // folder external buffers are resolved against; when `from_memory` is true no external file
 // is ever opened (fuzzing, in-memory inputs). Images are never loaded or decoded.
-StatusOr<IoMesh> ReadGltf(std::string_view data, bool binary, const std::string& name,
-                           const std::string& base_dir, bool from_memory, const ReadOptions& opts = {});
+StatusOr<IoMesh> ReadGltf(std::string_view data, bool binary, const std::string& name, const std::string& base_dir,
+                          bool from_memory, const ReadOptions& opts = {});
 
 }  // namespace silk

@@ -114,13 +114,13 @@ StatusOr<std::vector<GltfMeshInstance>> CollectGltfMeshInstances(const tinygltf:
     visited[item.node] = true;
     const tinygltf::Node& n = model.nodes[item.node];
     SILK_ASSIGN_OR_RETURN(Mat4 local, LocalMatrix(n, item.node, name));
-    Mat4 world = IsIdentity(local) ? item.parent_matrix
+    Mat4 world = IsIdentity(local)                ? item.parent_matrix
                  : IsIdentity(item.parent_matrix) ? local
                                                   : Mul(item.parent_matrix, local);
     if (n.mesh >= 0) {
       if (n.mesh >= static_cast<int>(model.meshes.size()))
-        return ParseErrorIn(name, "node " + std::to_string(item.node) + " refers to mesh " +
-                                      std::to_string(n.mesh) + ", which does not exist");
+        return ParseErrorIn(name, "node " + std::to_string(item.node) + " refers to mesh " + std::to_string(n.mesh) +
+                                      ", which does not exist");
       out.push_back({n.mesh, item.node, world});
     }
     for (auto it = n.children.rbegin(); it != n.children.rend(); ++it) stack.push_back({*it, item.node, world});

@@ -20,7 +20,6 @@ struct GltfMeshInstance {
 };
 
 // Scene: model.defaultScene when set, else scene 0, else (no scenes) every root node.
-StatusOr<std::vector<GltfMeshInstance>> CollectGltfMeshInstances(const tinygltf::Model& model,
-                                                                 const std::string& name);
+StatusOr<std::vector<GltfMeshInstance>> CollectGltfMeshInstances(const tinygltf::Model& model, const std::string& name);
 
 }  // namespace silk

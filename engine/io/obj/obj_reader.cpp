@@ -64,8 +64,9 @@ Status ReadObjVertex(LineTokens* toks, int64_t ln, const std::string& name, uint
     if (!toks->Next(&t)) return ParseErrorAt(name, ln, "vertex has fewer than 3 coordinates");
     if (!ParseDoubleToken(t, &p[k])) return ParseErrorAt(name, ln, "bad vertex coordinate '" + std::string(t) + "'");
     if (!std::isfinite(p[k]))
-      return ParseErrorAt(name, ln, "vertex " + std::to_string(mesh->positions.size() + 1) +
-                                        " has a non-finite coordinate '" + std::string(t) + "'");
+      return ParseErrorAt(name, ln,
+                          "vertex " + std::to_string(mesh->positions.size() + 1) + " has a non-finite coordinate '" +
+                              std::string(t) + "'");
   }
   while (toks->Next(&t)) {
     double ignored;
@@ -88,8 +89,8 @@ StatusOr<int32_t> ObjCornerIndex(std::string_view t, int64_t nverts, int64_t ln,
   if (idx == 0) return ParseErrorAt(name, ln, "face index 0 is invalid (OBJ indices start at 1)");
   const int64_t zero_based = idx < 0 ? nverts + idx : idx - 1;
   if (zero_based < 0 || zero_based >= nverts)
-    return ParseErrorAt(name, ln, "face index " + std::to_string(idx) + " out of range (" + std::to_string(nverts) +
-                                      " vertices)");
+    return ParseErrorAt(
+        name, ln, "face index " + std::to_string(idx) + " out of range (" + std::to_string(nverts) + " vertices)");
   return static_cast<int32_t>(zero_based);
 }
 
@@ -112,10 +113,8 @@ Status ReadObjFace(LineTokens* toks, int64_t ln, const std::string& name, const 
 // free-form statements are ignored with a warning (the first kMaxWarnings of them).
 Status NoteOtherStatement(std::string_view kw, int64_t ln, const std::string& name, int64_t* ignored_statements,
                           IoMesh* mesh) {
-  if (!IsIdentifier(kw))
-    return ParseErrorAt(name, ln, "not an OBJ statement: '" + std::string(kw.substr(0, 32)) + "'");
-  if (kw == "vt" || kw == "vn" || kw == "vp" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" ||
-      kw == "mtllib")
+  if (!IsIdentifier(kw)) return ParseErrorAt(name, ln, "not an OBJ statement: '" + std::string(kw.substr(0, 32)) + "'");
+  if (kw == "vt" || kw == "vn" || kw == "vp" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" || kw == "mtllib")
     return Status::Ok();
   if (++*ignored_statements <= static_cast<int64_t>(kMaxWarnings))
     mesh->warnings.push_back(name + ":" + std::to_string(ln) + ": ignored statement '" + std::string(kw) + "'");

@@ -14,7 +14,6 @@ namespace silk {
 // `name` is used in error messages ("bad.obj:3: face index 5 out of range (4 vertices)").
 // Polygons with more than 3 corners are fan-triangulated; vertex order is file order;
 // nothing is welded or removed. A face may only use vertices defined above it.
-StatusOr<IoMesh> ReadObj(std::string_view text, const std::string& name,
-                          const ReadOptions& opts = {});
+StatusOr<IoMesh> ReadObj(std::string_view text, const std::string& name, const ReadOptions& opts = {});
 
 }  // namespace silk

@@ -26,8 +26,8 @@ bool NextDataLine(TextLines* lines, std::string_view* line) {
 }
 
 bool IsOffKeyword(std::string_view kw) {
-  return kw == "OFF" || kw == "COFF" || kw == "NOFF" || kw == "CNOFF" || kw == "STOFF" ||
-         kw == "STCOFF" || kw == "STNOFF" || kw == "STCNOFF";
+  return kw == "OFF" || kw == "COFF" || kw == "NOFF" || kw == "CNOFF" || kw == "STOFF" || kw == "STCOFF" ||
+         kw == "STNOFF" || kw == "STCNOFF";
 }
 
 // The header's counts and the line they are on.
@@ -75,8 +75,7 @@ uint64_t CountDataLines(TextLines lines, uint64_t enough) {
 }
 
 // Vertex block: one "x y z [extra values]" line per vertex.
-Status ReadOffVertices(TextLines* lines, uint64_t nv, const Status& too_few, const std::string& name,
-                       IoMesh* mesh) {
+Status ReadOffVertices(TextLines* lines, uint64_t nv, const Status& too_few, const std::string& name, IoMesh* mesh) {
   std::string_view line, tok;
   for (uint64_t i = 0; i < nv; ++i) {
     if (!NextDataLine(lines, &line)) return too_few;
@@ -87,8 +86,8 @@ Status ReadOffVertices(TextLines* lines, uint64_t nv, const Status& too_few, con
       if (!toks.Next(&tok))
         return ParseErrorAt(name, ln, "vertex " + std::to_string(i) + " has fewer than 3 coordinates");
       if (!ParseDoubleToken(tok, &p[k]))
-        return ParseErrorAt(name, ln, "vertex " + std::to_string(i) + ": bad coordinate '" +
-                                          std::string(tok.substr(0, 32)) + "'");
+        return ParseErrorAt(
+            name, ln, "vertex " + std::to_string(i) + ": bad coordinate '" + std::string(tok.substr(0, 32)) + "'");
       if (!std::isfinite(p[k]))
         return ParseErrorAt(name, ln, "vertex " + std::to_string(i) + ": non-finite coordinate");
     }
@@ -105,20 +104,21 @@ Status ParseOffFace(std::string_view line, uint64_t f, int64_t ln, uint64_t nv, 
   int64_t n = 0;
   toks.Next(&tok);
   if (!ParseInt64Token(tok, &n) || n < 0)
-    return ParseErrorAt(name, ln, "face " + std::to_string(f) + ": bad corner count '" +
-                                      std::string(tok.substr(0, 32)) + "'");
+    return ParseErrorAt(name, ln,
+                        "face " + std::to_string(f) + ": bad corner count '" + std::string(tok.substr(0, 32)) + "'");
   if (n < 3)
-    return ParseErrorAt(name, ln, "face " + std::to_string(f) + " has " + std::to_string(n) +
-                                      " corner(s), at least 3 needed");
+    return ParseErrorAt(name, ln,
+                        "face " + std::to_string(f) + " has " + std::to_string(n) + " corner(s), at least 3 needed");
   corners->clear();
   for (int64_t k = 0; k < n; ++k) {
     int64_t idx;
     if (!toks.Next(&tok))
-      return ParseErrorAt(name, ln, "face " + std::to_string(f) + " declares " + std::to_string(n) +
-                                        " corners but has " + std::to_string(k) + " indices");
+      return ParseErrorAt(name, ln,
+                          "face " + std::to_string(f) + " declares " + std::to_string(n) + " corners but has " +
+                              std::to_string(k) + " indices");
     if (!ParseInt64Token(tok, &idx))
-      return ParseErrorAt(name, ln, "face " + std::to_string(f) + ": bad vertex index '" +
-                                        std::string(tok.substr(0, 32)) + "'");
+      return ParseErrorAt(name, ln,
+                          "face " + std::to_string(f) + ": bad vertex index '" + std::string(tok.substr(0, 32)) + "'");
     if (idx < 0 || static_cast<uint64_t>(idx) >= nv)
       return ParseErrorAt(name, ln, "face " + std::to_string(f) + ": " + VertexIndexOutOfRange(idx, nv));
     corners->push_back(static_cast<int32_t>(idx));
@@ -127,8 +127,9 @@ Status ParseOffFace(std::string_view line, uint64_t f, int64_t ln, uint64_t nv, 
   while (toks.Next(&tok)) {
     double ignored;
     if (!ParseDoubleToken(tok, &ignored))
-      return ParseErrorAt(name, ln, "face " + std::to_string(f) + ": unexpected '" + std::string(tok.substr(0, 32)) +
-                                        "' after the indices");
+      return ParseErrorAt(
+          name, ln,
+          "face " + std::to_string(f) + ": unexpected '" + std::string(tok.substr(0, 32)) + "' after the indices");
   }
   return Status::Ok();
 }
@@ -160,9 +161,9 @@ StatusOr<IoMesh> ReadOff(std::string_view text, const std::string& name, const R
   // record is reported as such; running out of lines reports the header counts.
   const uint64_t data_lines = CountDataLines(lines, nv + nf);
   const bool plausible = data_lines >= nv + nf;
-  const Status too_few = ParseErrorAt(name, c.line, "header says " + std::to_string(nv) + " vertices and " +
-                                                        std::to_string(nf) + " faces but only " +
-                                                        std::to_string(data_lines) + " data lines follow");
+  const Status too_few = ParseErrorAt(name, c.line,
+                                      "header says " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+                                          " faces but only " + std::to_string(data_lines) + " data lines follow");
   const uint64_t max_vertices = VertexLimit(opts);
   if (plausible && nv > max_vertices)
     return LimitErrorIn(name, std::to_string(nv) + " vertices exceed the limit " + std::to_string(max_vertices));

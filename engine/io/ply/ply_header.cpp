@@ -13,10 +13,18 @@ namespace silk {
 
 size_t PlyTypeSize(PlyType t) {
   switch (t) {
-    case PlyType::kInt8: case PlyType::kUInt8: return 1;
-    case PlyType::kInt16: case PlyType::kUInt16: return 2;
-    case PlyType::kInt32: case PlyType::kUInt32: case PlyType::kFloat32: return 4;
-    case PlyType::kFloat64: return 8;
+    case PlyType::kInt8:
+    case PlyType::kUInt8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUInt16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUInt32:
+    case PlyType::kFloat32:
+      return 4;
+    case PlyType::kFloat64:
+      return 8;
   }
   return 0;
 }
@@ -41,10 +49,14 @@ std::optional<PlyType> TypeFromName(std::string_view s) {
 Status ParseFormatLine(LineTokens* toks, const std::string& name, int64_t ln, PlyHeader* h) {
   std::string_view f, ver;
   if (!toks->Next(&f) || !toks->Next(&ver) || !toks->AtEnd()) return ParseErrorAt(name, ln, "bad format line");
-  if (f == "ascii") h->format = PlyFormat::kAscii;
-  else if (f == "binary_little_endian") h->format = PlyFormat::kBinaryLittleEndian;
-  else if (f == "binary_big_endian") h->format = PlyFormat::kBinaryBigEndian;
-  else return ParseErrorAt(name, ln, "unknown PLY format '" + std::string(f) + "'");
+  if (f == "ascii")
+    h->format = PlyFormat::kAscii;
+  else if (f == "binary_little_endian")
+    h->format = PlyFormat::kBinaryLittleEndian;
+  else if (f == "binary_big_endian")
+    h->format = PlyFormat::kBinaryBigEndian;
+  else
+    return ParseErrorAt(name, ln, "unknown PLY format '" + std::string(f) + "'");
   if (ver != "1.0") return ParseErrorAt(name, ln, "unsupported PLY version '" + std::string(ver) + "'");
   return Status::Ok();
 }
@@ -107,13 +119,11 @@ StatusOr<PlyHeader> ParsePlyHeader(std::string_view data, const std::string& nam
   PlyHeader h;
   TextLines lines(data);
   std::string_view line;
-  if (!lines.Next(&line) || line != "ply")
-    return ParseErrorIn(name, "not a PLY file (first line is not 'ply')");
+  if (!lines.Next(&line) || line != "ply") return ParseErrorIn(name, "not a PLY file (first line is not 'ply')");
   bool have_format = false;
   constexpr size_t kMaxHeaderBytes = 1 << 20;
   while (true) {
-    if (lines.position() > kMaxHeaderBytes)
-      return ParseErrorIn(name, "PLY header longer than 1 MiB (no end_header?)");
+    if (lines.position() > kMaxHeaderBytes) return ParseErrorIn(name, "PLY header longer than 1 MiB (no end_header?)");
     if (!lines.Next(&line)) return ParseErrorIn(name, "PLY header has no end_header line");
     const int64_t ln = lines.line_number();
     if (FindBinaryByte(line) != std::string_view::npos)

@@ -36,8 +36,8 @@ struct PlyElement {
 struct PlyHeader {
   PlyFormat format = PlyFormat::kAscii;
   std::vector<PlyElement> elements;
-  size_t body_offset = 0;   // first byte after "end_header\n"
-  int64_t body_line = 0;    // line number of the first body line (ascii)
+  size_t body_offset = 0;  // first byte after "end_header\n"
+  int64_t body_line = 0;   // line number of the first body line (ascii)
 };
 
 // Parses the header at the start of `data`; errors name `name` and the header line.

@@ -48,13 +48,20 @@ T LoadRaw(const uint8_t* p, bool swap) {
 
 int64_t LoadInt(const uint8_t* p, PlyType t, bool swap) {  // integer types only
   switch (t) {
-    case PlyType::kInt8: return LoadRaw<int8_t>(p, swap);
-    case PlyType::kUInt8: return LoadRaw<uint8_t>(p, swap);
-    case PlyType::kInt16: return LoadRaw<int16_t>(p, swap);
-    case PlyType::kUInt16: return LoadRaw<uint16_t>(p, swap);
-    case PlyType::kInt32: return LoadRaw<int32_t>(p, swap);
-    case PlyType::kUInt32: return LoadRaw<uint32_t>(p, swap);
-    default: return 0;
+    case PlyType::kInt8:
+      return LoadRaw<int8_t>(p, swap);
+    case PlyType::kUInt8:
+      return LoadRaw<uint8_t>(p, swap);
+    case PlyType::kInt16:
+      return LoadRaw<int16_t>(p, swap);
+    case PlyType::kUInt16:
+      return LoadRaw<uint16_t>(p, swap);
+    case PlyType::kInt32:
+      return LoadRaw<int32_t>(p, swap);
+    case PlyType::kUInt32:
+      return LoadRaw<uint32_t>(p, swap);
+    default:
+      return 0;
   }
 }
 
@@ -81,8 +88,8 @@ std::string Item(const PlyElement& e, uint64_t i) { return e.name + " " + std::t
 
 class PlyBodyReader {
  public:
-  PlyBodyReader(std::string_view data, const PlyHeader& h, const std::string& name,
-                const ReadOptions& opts, IoMesh* mesh, std::vector<std::array<double, 3>>* normals)
+  PlyBodyReader(std::string_view data, const PlyHeader& h, const std::string& name, const ReadOptions& opts,
+                IoMesh* mesh, std::vector<std::array<double, 3>>* normals)
       : data_(data), h_(h), name_(name), opts_(opts), mesh_(mesh), normals_(normals) {}
 
   Status Read(const std::vector<ElementPlan>& plans, uint64_t vertex_count) {
@@ -101,12 +108,11 @@ class PlyBodyReader {
 
  private:
   Status Truncated(const PlyElement& e, uint64_t i) {
-    return ParseErrorIn(name_, "truncated body: " + Item(e, i) + " of " + std::to_string(e.count) +
-                                   " ends past the end of the file");
+    return ParseErrorIn(
+        name_, "truncated body: " + Item(e, i) + " of " + std::to_string(e.count) + " ends past the end of the file");
   }
 
-  Status AddPosition(const PlyElement& e, uint64_t i, const std::array<double, 3>& p,
-                     const std::array<double, 3>& n) {
+  Status AddPosition(const PlyElement& e, uint64_t i, const std::array<double, 3>& p, const std::array<double, 3>& n) {
     for (double c : p)
       if (!std::isfinite(c)) return ParseErrorIn(name_, Item(e, i) + ": non-finite coordinate");
     if (normals_) {
@@ -122,8 +128,7 @@ class PlyBodyReader {
 
   Status AddFace(const PlyElement& e, uint64_t i) {
     if (corners_.size() < 3)
-      return ParseErrorIn(name_, Item(e, i) + ": " + std::to_string(corners_.size()) +
-                                     " corner(s), at least 3 needed");
+      return ParseErrorIn(name_, Item(e, i) + ": " + std::to_string(corners_.size()) + " corner(s), at least 3 needed");
     return AppendFanWithinLimit(corners_, name_, opts_, mesh_);
   }
 
@@ -195,8 +200,9 @@ class PlyBodyReader {
         if (!prop.is_list) {
           double v;
           if (!ParseAsciiValue(tok, prop.value_type, &v))
-            return ParseErrorAt(name_, ln, Item(e, i) + ": bad value '" + std::string(tok.substr(0, 32)) +
-                                               "' for property '" + prop.name + "'");
+            return ParseErrorAt(
+                name_, ln,
+                Item(e, i) + ": bad value '" + std::string(tok.substr(0, 32)) + "' for property '" + prop.name + "'");
           if (role == Role::kX || role == Role::kY || role == Role::kZ)
             pos[static_cast<int>(role) - static_cast<int>(Role::kX)] = v;
           if (role == Role::kNx || role == Role::kNy || role == Role::kNz)
@@ -205,24 +211,26 @@ class PlyBodyReader {
         }
         int64_t n;
         if (!ParseInt64Token(tok, &n) || n < 0)
-          return ParseErrorAt(name_, ln, Item(e, i) + ": bad list length '" + std::string(tok.substr(0, 32)) +
-                                             "' for property '" + prop.name + "'");
+          return ParseErrorAt(name_, ln,
+                              Item(e, i) + ": bad list length '" + std::string(tok.substr(0, 32)) + "' for property '" +
+                                  prop.name + "'");
         for (int64_t j = 0; j < n; ++j) {
           if (!toks.Next(&tok))
-            return ParseErrorAt(name_, ln, Item(e, i) + ": list '" + prop.name + "' has fewer than " +
-                                               std::to_string(n) + " values");
+            return ParseErrorAt(
+                name_, ln, Item(e, i) + ": list '" + prop.name + "' has fewer than " + std::to_string(n) + " values");
           if (role == Role::kFaceList) {
             int64_t idx;
             if (!ParseInt64Token(tok, &idx))
-              return ParseErrorAt(name_, ln, Item(e, i) + ": bad vertex index '" +
-                                                 std::string(tok.substr(0, 32)) + "'");
+              return ParseErrorAt(name_, ln,
+                                  Item(e, i) + ": bad vertex index '" + std::string(tok.substr(0, 32)) + "'");
             Status s = CheckIndex(e, i, idx);
             if (!s.ok()) return ParseErrorAt(name_, ln, s.message().substr(name_.size() + 2));
           } else {
             double v;
             if (!ParseAsciiValue(tok, prop.value_type, &v))
-              return ParseErrorAt(name_, ln, Item(e, i) + ": bad value '" + std::string(tok.substr(0, 32)) +
-                                                 "' in list '" + prop.name + "'");
+              return ParseErrorAt(
+                  name_, ln,
+                  Item(e, i) + ": bad value '" + std::string(tok.substr(0, 32)) + "' in list '" + prop.name + "'");
           }
         }
       }
@@ -335,9 +343,11 @@ uint64_t MinItemBytes(const ElementPlan& plan, bool ascii) {
   for (size_t k = 0; k < e.properties.size(); ++k) {
     const PlyProperty& p = e.properties[k];
     const uint64_t values = plan.roles[k] == Role::kFaceList ? 3 : 0;
-    if (ascii) min_item += 2 * (1 + (p.is_list ? values : 0));
-    else min_item += p.is_list ? PlyTypeSize(p.count_type) + values * PlyTypeSize(p.value_type)
-                               : PlyTypeSize(p.value_type);
+    if (ascii)
+      min_item += 2 * (1 + (p.is_list ? values : 0));
+    else
+      min_item +=
+          p.is_list ? PlyTypeSize(p.count_type) + values * PlyTypeSize(p.value_type) : PlyTypeSize(p.value_type);
   }
   return min_item;
 }
@@ -374,7 +384,7 @@ Status CheckDeclaredCounts(const ReadPlan& plan, const std::string& name, const 
 // Shared body of ReadPly and ReadPlyPointCloud: `normals` non-null reads nx/ny/nz when the
 // vertex element has all three (left empty otherwise) and allows a file without faces.
 StatusOr<IoMesh> ReadPlyImpl(std::string_view data, const std::string& name, const ReadOptions& opts,
-                              std::vector<std::array<double, 3>>* normals) {
+                             std::vector<std::array<double, 3>>* normals) {
   const bool normals_requested = normals != nullptr;
   SILK_ASSIGN_OR_RETURN(PlyHeader h, ParsePlyHeader(data, name));
   SILK_ASSIGN_OR_RETURN(ReadPlan plan, PlanElements(h, name, normals_requested));
@@ -390,7 +400,8 @@ StatusOr<IoMesh> ReadPlyImpl(std::string_view data, const std::string& name, con
   PlyBodyReader reader(data, h, name, opts, &mesh, plan.normals ? normals : nullptr);
   SILK_RETURN_IF_ERROR(reader.Read(plan.elements, plan.vertex->count));
   if (!plausible)  // cannot happen: the body reader runs out of data first
-    return ParseErrorIn(name, "header counts do not fit in the " + std::to_string(remaining) + " bytes after the header");
+    return ParseErrorIn(name,
+                        "header counts do not fit in the " + std::to_string(remaining) + " bytes after the header");
   if (mesh.triangles.empty() && !normals_requested)
     return ParseErrorIn(name, plan.face ? "no faces" : "no faces (no 'face' element)");
   return mesh;

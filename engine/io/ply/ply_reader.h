@@ -24,7 +24,6 @@ StatusOr<IoMesh> ReadPly(std::string_view data, const std::string& name, const R
 // A PLY that may be a point cloud: faces optional, per-vertex normals (nx, ny, nz) read when
 // the vertex element has all three (`normals` empty otherwise, else one per vertex).
 using PlyPointCloud = IoPointCloud;
-StatusOr<PlyPointCloud> ReadPlyPointCloud(std::string_view data, const std::string& name,
-                                          const ReadOptions& opts = {});
+StatusOr<PlyPointCloud> ReadPlyPointCloud(std::string_view data, const std::string& name, const ReadOptions& opts = {});
 
 }  // namespace silk

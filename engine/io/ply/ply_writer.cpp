@@ -32,8 +32,10 @@ StatusOr<std::string> FormatPlyBinary(const IoMesh& mesh, const PlyWriteOptions&
   out.reserve(out.size() + mesh.positions.size() * 24 + mesh.triangles.size() * 13);
   for (const auto& p : mesh.positions)
     for (double c : p) {
-      if (opts.float32_coordinates) PutLE(&out, static_cast<float>(c));
-      else PutLE(&out, c);
+      if (opts.float32_coordinates)
+        PutLE(&out, static_cast<float>(c));
+      else
+        PutLE(&out, c);
     }
   for (const auto& t : mesh.triangles) {
     out.push_back(3);

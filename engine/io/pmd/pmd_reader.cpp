@@ -14,12 +14,12 @@ namespace silk {
 namespace {
 
 // Sizes of the fixed records (bytes).
-constexpr uint64_t kHeaderBytes = 12;       // magic, version, data size
-constexpr uint64_t kVec3Bytes = 12;         // float x, y, z
-constexpr uint64_t kUvBytes = 8;            // float u, v
-constexpr uint64_t kBlendBytes = 4 + 16;    // u8 bones[4], float weights[4]
-constexpr uint64_t kFaceBytes = 6;          // u16 vertices[3]
-constexpr uint64_t kBoneBytes = 12 + 16;    // translation, quaternion
+constexpr uint64_t kHeaderBytes = 12;             // magic, version, data size
+constexpr uint64_t kVec3Bytes = 12;               // float x, y, z
+constexpr uint64_t kUvBytes = 8;                  // float u, v
+constexpr uint64_t kBlendBytes = 4 + 16;          // u8 bones[4], float weights[4]
+constexpr uint64_t kFaceBytes = 6;                // u16 vertices[3]
+constexpr uint64_t kBoneBytes = 12 + 16;          // translation, quaternion
 constexpr uint64_t kPropTailBytes = 12 + 16 + 1;  // translation, quaternion, u8 bone
 
 class Cursor {
@@ -32,9 +32,8 @@ class Cursor {
   // Error unless `n` more bytes are available for `field`.
   Status Need(uint64_t n, const std::string& field) const {
     if (n <= left()) return Status::Ok();
-    return ParseErrorIn(name_, "truncated at byte " + std::to_string(pos_) + " reading " + field +
-                                   " (needs " + std::to_string(n) + " bytes, " + std::to_string(left()) +
-                                   " left)");
+    return ParseErrorIn(name_, "truncated at byte " + std::to_string(pos_) + " reading " + field + " (needs " +
+                                   std::to_string(n) + " bytes, " + std::to_string(left()) + " left)");
   }
   Status U32(const std::string& field, uint32_t* v) {
     SILK_RETURN_IF_ERROR(Need(4, field));
@@ -64,9 +63,9 @@ class Cursor {
     const uint64_t at = pos_;
     SILK_RETURN_IF_ERROR(U32(field, n));
     if (record_bytes > 0 && *n > left() / record_bytes)
-      return ParseErrorIn(name_, field + " = " + std::to_string(*n) + " at byte " + std::to_string(at) +
-                                     " needs " + std::to_string(*n * record_bytes) + " bytes, only " +
-                                     std::to_string(left()) + " left");
+      return ParseErrorIn(name_, field + " = " + std::to_string(*n) + " at byte " + std::to_string(at) + " needs " +
+                                     std::to_string(*n * record_bytes) + " bytes, only " + std::to_string(left()) +
+                                     " left");
     return Status::Ok();
   }
 
@@ -95,8 +94,7 @@ StatusOr<uint32_t> ReadPmdHeader(std::string_view data, const std::string& name,
 
 // Vertex block: position, normal, UV sets (one before version 4), bone blend; only the
 // positions are kept.
-Status ReadPmdVertices(uint32_t version, const std::string& name, const ReadOptions& opts, Cursor* in,
-                       IoMesh* mesh) {
+Status ReadPmdVertices(uint32_t version, const std::string& name, const ReadOptions& opts, Cursor* in, IoMesh* mesh) {
   uint32_t num_vertices = 0, num_uv_sets = 1;
   SILK_RETURN_IF_ERROR(in->U32("vertex count", &num_vertices));
   if (version >= 4) {
@@ -175,8 +173,7 @@ StatusOr<IoMesh> ReadPmd(std::string_view data, const std::string& name, const R
   SILK_RETURN_IF_ERROR(SkipPmdBonesAndProps(version, &in));
   if (in.left() != 0)
     return ParseErrorIn(name, std::to_string(in.left()) + " unexpected bytes after the " +
-                                  (version >= 2 ? "prop points" : "bones") + " at byte " +
-                                  std::to_string(in.offset()));
+                                  (version >= 2 ? "prop points" : "bones") + " at byte " + std::to_string(in.offset()));
   return mesh;
 }
 

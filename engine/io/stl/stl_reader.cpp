@@ -80,10 +80,11 @@ StatusOr<IoMesh> ReadAsciiStl(std::string_view text, const std::string& name, co
   StlTokens in(text);
   std::string_view tok;
   auto expect = [&](const char* word) -> Status {
-    if (!in.Next(&tok)) return ParseErrorAt(name, in.line(), std::string("unexpected end of file, expected '") + word + "'");
+    if (!in.Next(&tok))
+      return ParseErrorAt(name, in.line(), std::string("unexpected end of file, expected '") + word + "'");
     if (tok != word)
-      return ParseErrorAt(name, in.line(), std::string("expected '") + word + "', found '" +
-                                               std::string(tok.substr(0, 32)) + "'");
+      return ParseErrorAt(name, in.line(),
+                          std::string("expected '") + word + "', found '" + std::string(tok.substr(0, 32)) + "'");
     return Status::Ok();
   };
   auto number = [&](double* v) -> Status {
@@ -107,8 +108,8 @@ StatusOr<IoMesh> ReadAsciiStl(std::string_view text, const std::string& name, co
         break;
       }
       if (tok != "facet")
-        return ParseErrorAt(name, in.line(), "expected 'facet' or 'endsolid', found '" +
-                                                 std::string(tok.substr(0, 32)) + "'");
+        return ParseErrorAt(name, in.line(),
+                            "expected 'facet' or 'endsolid', found '" + std::string(tok.substr(0, 32)) + "'");
       SILK_RETURN_IF_ERROR(expect("normal"));
       double ignored;
       for (int k = 0; k < 3; ++k) SILK_RETURN_IF_ERROR(number(&ignored));
@@ -119,8 +120,8 @@ StatusOr<IoMesh> ReadAsciiStl(std::string_view text, const std::string& name, co
         if (!in.Next(&tok)) return ParseErrorAt(name, in.line(), "unexpected end of file in a facet");
         if (tok == "endloop") break;
         if (tok != "vertex")
-          return ParseErrorAt(name, in.line(), "expected 'vertex' or 'endloop', found '" +
-                                                   std::string(tok.substr(0, 32)) + "'");
+          return ParseErrorAt(name, in.line(),
+                              "expected 'vertex' or 'endloop', found '" + std::string(tok.substr(0, 32)) + "'");
         std::array<double, 3> p;
         for (int k = 0; k < 3; ++k) {
           SILK_RETURN_IF_ERROR(number(&p[k]));
@@ -132,8 +133,8 @@ StatusOr<IoMesh> ReadAsciiStl(std::string_view text, const std::string& name, co
         mesh.positions.push_back(p);
       }
       if (corners.size() < 3)
-        return ParseErrorAt(name, in.line(), "facet has " + std::to_string(corners.size()) +
-                                                 " vertices, at least 3 needed");
+        return ParseErrorAt(name, in.line(),
+                            "facet has " + std::to_string(corners.size()) + " vertices, at least 3 needed");
       SILK_RETURN_IF_ERROR(AppendFanWithinLimit(corners, name, opts, &mesh));
       SILK_RETURN_IF_ERROR(expect("endfacet"));
     }

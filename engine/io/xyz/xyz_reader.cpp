@@ -71,8 +71,9 @@ Status AppendPoint(const XyzValues& v, int columns, int64_t ln, const std::strin
   if (columns == 6) {
     const double len = std::sqrt(x[3] * x[3] + x[4] * x[4] + x[5] * x[5]);
     if (!(std::fabs(len - 1) <= kUnitTolerance))
-      return ParseErrorAt(name, ln, "values 4-6 are not a unit normal (length " + LengthText(len) + "); " +
-                                        kLineForms + " (colours are not read)");
+      return ParseErrorAt(name, ln,
+                          "values 4-6 are not a unit normal (length " + LengthText(len) + "); " + kLineForms +
+                              " (colours are not read)");
     pc->normals.push_back({x[3], x[4], x[5]});
   }
   return Status::Ok();
@@ -82,12 +83,12 @@ Status AppendPoint(const XyzValues& v, int columns, int64_t ln, const std::strin
 Status CheckColumns(const XyzValues& v, int64_t ln, int64_t first_line, int columns, const std::string& name) {
   if (columns == 0) {
     if (v.count == 3 || v.count == 6) return Status::Ok();
-    return ParseErrorAt(name, ln, Values(v.count) + "; " + kLineForms +
-                                      " (drop colour or intensity columns first)");
+    return ParseErrorAt(name, ln, Values(v.count) + "; " + kLineForms + " (drop colour or intensity columns first)");
   }
   if (v.count == columns) return Status::Ok();
-  return ParseErrorAt(name, ln, Values(v.count) + ", but line " + std::to_string(first_line) +
-                                    " has " + std::to_string(columns) + " (every point line has the same columns)");
+  return ParseErrorAt(name, ln,
+                      Values(v.count) + ", but line " + std::to_string(first_line) + " has " + std::to_string(columns) +
+                          " (every point line has the same columns)");
 }
 
 // A PTS count line: a single whole number as the first data line (-1 when there is none).
@@ -95,14 +96,15 @@ StatusOr<int64_t> CountLine(const XyzValues& v, int64_t ln, const std::string& n
   if (v.count != 1) return int64_t{-1};
   int64_t count = 0;
   if (!ParseInt64Token(v.token[0], &count) || count < 0)
-    return ParseErrorAt(name, ln, "1 value " + Shown(v.token[0]) + "; " + kLineForms +
-                                      " (a single value is only allowed as the first line's point count)");
+    return ParseErrorAt(name, ln,
+                        "1 value " + Shown(v.token[0]) + "; " + kLineForms +
+                            " (a single value is only allowed as the first line's point count)");
   return count;
 }
 
 // The point lines after the optional count line.
-Status ReadPointLines(TextLines* lines, XyzValues v, bool have_line, const std::string& name,
-                      const ReadOptions& opts, IoPointCloud* pc) {
+Status ReadPointLines(TextLines* lines, XyzValues v, bool have_line, const std::string& name, const ReadOptions& opts,
+                      IoPointCloud* pc) {
   const uint64_t limit = VertexLimit(opts);
   int columns = 0;
   int64_t first_line = 0;
@@ -136,8 +138,9 @@ StatusOr<IoPointCloud> ReadXyz(std::string_view text, const std::string& name, c
   SILK_RETURN_IF_ERROR(ReadPointLines(&lines, v, have_line, name, opts, &pc));
   const uint64_t n = pc.mesh.positions.size();
   if (declared >= 0 && static_cast<uint64_t>(declared) != n)
-    return ParseErrorAt(name, count_line_no, "the count line says " + std::to_string(declared) + " points, the file has " +
-                                                 std::to_string(n));
+    return ParseErrorAt(
+        name, count_line_no,
+        "the count line says " + std::to_string(declared) + " points, the file has " + std::to_string(n));
   if (n == 0) return ParseErrorIn(name, "no points");
   return pc;
 }

@@ -29,7 +29,9 @@ inline float Widen(int8_t q) { return static_cast<float>(q); }
 // A row of d values of E: elements to the next row, and the factor its values are multiplied by
 // (int8: the float32 scale stored after the d values; 1 otherwise, an exact no-op).
 template <typename E>
-constexpr int64_t Stride(int64_t d) { return std::is_same<E, int8_t>::value ? d + 4 : d; }
+constexpr int64_t Stride(int64_t d) {
+  return std::is_same<E, int8_t>::value ? d + 4 : d;
+}
 template <typename E>
 inline float RowScale(const E* row, int64_t d) {
   if constexpr (!std::is_same<E, int8_t>::value) {
@@ -65,8 +67,10 @@ void StoreScalar(const float* src, void* row, int64_t d) {
     StoreInt8Scalar(src, r, d);
   } else {
     for (int64_t i = 0; i < d; ++i) {
-      if constexpr (sizeof(E) == 4) r[i] = src[i];
-      else r[i] = FloatToHalf(src[i]);
+      if constexpr (sizeof(E) == 4)
+        r[i] = src[i];
+      else
+        r[i] = FloatToHalf(src[i]);
     }
   }
 }
@@ -196,7 +200,8 @@ SILK_AVX2 void StoreAvx2(const float* src, void* row, int64_t d) {
   } else {
     uint16_t* r = static_cast<uint16_t*>(row);
     for (int64_t i = 0; i < d; i += 8)
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(r + i), _mm256_cvtps_ph(_mm256_loadu_ps(src + i), _MM_FROUND_TO_NEAREST_INT));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(r + i),
+                       _mm256_cvtps_ph(_mm256_loadu_ps(src + i), _MM_FROUND_TO_NEAREST_INT));
   }
 }
 
@@ -264,11 +269,12 @@ SILK_AVX2 void DotsInt8Avx2(const float* q, const int8_t* r, int64_t n, int64_t 
   int64_t j = 0;
   for (; j + 3 < n; j += 4, r += 4 * stride) {
     PrefetchAhead(r, 4 * stride);
-    const __m256i h = _mm256_hadd_epi32(_mm256_hadd_epi32(RowDot16(r, qi, d), RowDot16(r + stride, qi, d)),
-                                        _mm256_hadd_epi32(RowDot16(r + 2 * stride, qi, d), RowDot16(r + 3 * stride, qi, d)));
+    const __m256i h =
+        _mm256_hadd_epi32(_mm256_hadd_epi32(RowDot16(r, qi, d), RowDot16(r + stride, qi, d)),
+                          _mm256_hadd_epi32(RowDot16(r + 2 * stride, qi, d), RowDot16(r + 3 * stride, qi, d)));
     const __m128i sums = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256(h, 1));
-    const __m128 scales = _mm_setr_ps(RowScale(r, d), RowScale(r + stride, d), RowScale(r + 2 * stride, d),
-                                      RowScale(r + 3 * stride, d));
+    const __m128 scales =
+        _mm_setr_ps(RowScale(r, d), RowScale(r + stride, d), RowScale(r + 2 * stride, d), RowScale(r + 3 * stride, d));
     _mm_storeu_ps(out + j, _mm_mul_ps(_mm_mul_ps(_mm_cvtepi32_ps(sums), scales), _mm_set1_ps(q16.factor())));
   }
   for (; j < n; ++j, r += stride) {
@@ -284,8 +290,10 @@ template <typename E>
 SILK_AVX2 void DotsAvx2(const float* q, const void* rows, int64_t n, int64_t d, float scale, float* out) {
   const E* r = static_cast<const E*>(rows);
   if constexpr (std::is_same<E, int8_t>::value) {
-    if (d % 16 == 0 && d <= 512) DotsInt8Avx2(q, r, n, d, scale, out);
-    else DotsInt8Scalar(q, rows, n, d, scale, out);
+    if (d % 16 == 0 && d <= 512)
+      DotsInt8Avx2(q, r, n, d, scale, out);
+    else
+      DotsInt8Scalar(q, rows, n, d, scale, out);
   } else if (d == 64) {
     Dots64(q, r, n, scale, out);
   } else {
@@ -327,7 +335,8 @@ SILK_AVX2 float ExpShiftedAvx2(float* x, int64_t n, float top) {
 // Up to 64 columns [i0, i0 + 8 * kLanes) of out accumulated in registers over every row (kLanes
 // lanes of eight; a compile-time count, so the accumulators stay in registers).
 template <typename E, int kLanes>
-SILK_AVX2 void WeightedSumLanes(const float* w, const E* rows, int64_t n, int64_t d, int64_t i0, float factor, float* out) {
+SILK_AVX2 void WeightedSumLanes(const float* w, const E* rows, int64_t n, int64_t d, int64_t i0, float factor,
+                                float* out) {
   __m256 acc[kLanes];
   for (int k = 0; k < kLanes; ++k) acc[k] = _mm256_setzero_ps();
   const E* row = rows;
@@ -356,7 +365,8 @@ SILK_AVX2 void WeightedSumAvx2(const float* w, const void* rows, int64_t n, int6
 }
 
 bool CpuHasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
+  static const bool has =
+      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
   return has;
 }
 #endif
@@ -376,9 +386,12 @@ AttentionRows RowsOf(int64_t head_dim, RowKernels kernels) {
 
 AttentionRows AttentionRowsFor(CacheElement element, int64_t head_dim, RowKernels kernels) {
   switch (element) {
-    case CacheElement::kFloat16: return RowsOf<uint16_t>(head_dim, kernels);
-    case CacheElement::kInt8: return RowsOf<int8_t>(head_dim, kernels);
-    default: return RowsOf<float>(head_dim, kernels);
+    case CacheElement::kFloat16:
+      return RowsOf<uint16_t>(head_dim, kernels);
+    case CacheElement::kInt8:
+      return RowsOf<int8_t>(head_dim, kernels);
+    default:
+      return RowsOf<float>(head_dim, kernels);
   }
 }
 

@@ -23,7 +23,8 @@ struct Job {
 
 // Row `pos` of kv head `h` of a [kv_heads, capacity] block of rows.
 const void* CacheRow(const void* block, const AttentionShape& s, CacheElement e, int64_t h, int64_t pos) {
-  return static_cast<const unsigned char*>(block) + static_cast<size_t>(h * s.capacity + pos) * CacheRowBytes(e, s.head_dim);
+  return static_cast<const unsigned char*>(block) +
+         static_cast<size_t>(h * s.capacity + pos) * CacheRowBytes(e, s.head_dim);
 }
 
 // The chunk's keys and values into rows [past, past + chunk) of the two blocks.

@@ -25,9 +25,9 @@ struct AttentionShape {
 };
 
 struct AttentionBuffers {
-  const float* q = nullptr;  // [chunk, heads * head_dim]
-  const float* k = nullptr;  // [chunk, kv_heads * head_dim], the new positions' keys
-  const float* v = nullptr;  // [chunk, kv_heads * head_dim]
+  const float* q = nullptr;     // [chunk, heads * head_dim]
+  const float* k = nullptr;     // [chunk, kv_heads * head_dim], the new positions' keys
+  const float* v = nullptr;     // [chunk, kv_heads * head_dim]
   void* key_cache = nullptr;    // [kv_heads, capacity] rows of CacheRowBytes: [0, past) are read,
   void* value_cache = nullptr;  // rows [past, past + chunk) are written
   float* out = nullptr;         // [chunk, heads * head_dim]

@@ -36,7 +36,8 @@ OrtStatus* ReadInputs(const Kernel& k, OrtKernelContext* ctx, Tensor in[7], Atte
   s->scale = k.scale != 0.0f ? k.scale : 1.0f / std::sqrt(static_cast<float>(s->head_dim));
   const std::vector<int64_t> kv = {1, s->chunk, s->kv_heads * s->head_dim};
   if (in[1].dims != kv || in[2].dims != kv)
-    return k.Fail("key/value have shapes " + DimsText(in[1].dims) + ", " + DimsText(in[2].dims) + ", expected " + DimsText(kv));
+    return k.Fail("key/value have shapes " + DimsText(in[1].dims) + ", " + DimsText(in[2].dims) + ", expected " +
+                  DimsText(kv));
   const std::vector<int64_t>& past = in[3].dims;
   const int64_t row = CacheRowElements(k.element, s->head_dim);
   if (past.size() != 4 || past[0] != 1 || past[1] != s->kv_heads || past[3] != row || in[4].dims != past)
@@ -50,8 +51,8 @@ OrtStatus* ReadInputs(const Kernel& k, OrtKernelContext* ctx, Tensor in[7], Atte
   s->capacity = past[2];
   s->past = total - s->chunk;
   if (seqlen + 1 != total || s->chunk < 1 || s->past < 0 || s->past > s->capacity)
-    return k.Fail("seqlens_k " + std::to_string(seqlen) + ", total_sequence_length " + std::to_string(total) +
-                  ", " + std::to_string(s->chunk) + " new positions and a cache of " + std::to_string(s->capacity) +
+    return k.Fail("seqlens_k " + std::to_string(seqlen) + ", total_sequence_length " + std::to_string(total) + ", " +
+                  std::to_string(s->chunk) + " new positions and a cache of " + std::to_string(s->capacity) +
                   " do not fit together");
   return nullptr;
 }
@@ -111,8 +112,9 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
 }
 
 ONNXTensorElementDataType CacheType(const OrtCustomOp* op) {
-  return static_cast<const CachedAttentionOp*>(op)->element == CacheElement::kInt8 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
-                                                                          : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
+  return static_cast<const CachedAttentionOp*>(op)->element == CacheElement::kInt8
+             ? ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8
+             : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
 }
 ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp* op, size_t i) {
   return i < 3 ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT : i < 5 ? CacheType(op) : ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;

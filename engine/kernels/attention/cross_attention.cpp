@@ -43,8 +43,13 @@ void CrossAttention(const CrossAttentionShape& s, CacheElement element, const fl
                     RowKernels kernels) {
   if (s.heads <= 0 || s.positions <= 0) return;
   const AttentionRows rows = AttentionRowsFor(element, s.head_dim, kernels);
-  Job job{&s, q, static_cast<const unsigned char*>(key), static_cast<const unsigned char*>(value),
-          CacheRowBytes(element, s.head_dim), out, &rows};
+  Job job{&s,
+          q,
+          static_cast<const unsigned char*>(key),
+          static_cast<const unsigned char*>(value),
+          CacheRowBytes(element, s.head_dim),
+          out,
+          &rows};
   RunTasks(parallel_for, parallel_context, AttendOne, &job, static_cast<size_t>(s.heads * s.positions));
 }
 

@@ -56,7 +56,7 @@ int PhysicalCoreCount() {
   cpu_set_t mask;
   CPU_ZERO(&mask);
   const bool have_mask = sched_getaffinity(0, sizeof(mask), &mask) == 0;
-  std::set<std::pair<int, int>> cores;
+  std::set<std::pair<int, int> > cores;
   int allowed = 0;
   for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
     if (have_mask && !CPU_ISSET(cpu, &mask)) continue;

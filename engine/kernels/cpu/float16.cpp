@@ -20,7 +20,10 @@ float HalfToFloat(uint16_t h) {
   } else {  // subnormal half: a normal float
     int e = -1;
     uint32_t m = man;
-    do { ++e; m <<= 1; } while (!(m & 0x400u));
+    do {
+      ++e;
+      m <<= 1;
+    } while (!(m & 0x400u));
     bits = sign | static_cast<uint32_t>(112 - e) << 23 | ((m & 0x3ffu) << 13);
   }
   float f;
@@ -34,7 +37,7 @@ uint16_t FloatToHalf(float f) {
   const uint16_t sign = static_cast<uint16_t>((x >> 16) & 0x8000u);
   const uint32_t ax = x & 0x7fffffffu;
   if (ax >= 0x7f800000u) return sign | 0x7c00u | (ax > 0x7f800000u ? 0x200u : 0u);  // inf, nan
-  if (ax >= 0x477ff000u) return sign | 0x7c00u;                                      // rounds past 65504
+  if (ax >= 0x477ff000u) return sign | 0x7c00u;                                     // rounds past 65504
   if (ax < 0x38800000u) {  // below the smallest normal half: round onto the subnormal grid
     float scaled;
     const float a = std::fabs(f);

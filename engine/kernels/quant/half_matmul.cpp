@@ -49,7 +49,8 @@ SILK_AVX2 float RowAvx2(const float* a, const uint16_t* w, int64_t k) {
 }
 
 bool CpuHasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
+  static const bool has =
+      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
   return has;
 }
 #endif
@@ -86,7 +87,8 @@ void RunTask(void* state, size_t index) {
 
 bool HalfShapeSupported(const HalfMatMulShape& s, const char** why) {
   constexpr int64_t kLimit = int64_t{1} << 31;  // keeps every index product in range
-  const char* problem = s.m < 0 || s.k <= 0 || s.n <= 0 || s.k >= kLimit || s.n >= kLimit ? "K and N must be in [1, 2^31)" : nullptr;
+  const char* problem =
+      s.m < 0 || s.k <= 0 || s.n <= 0 || s.k >= kLimit || s.n >= kLimit ? "K and N must be in [1, 2^31)" : nullptr;
   if (why) *why = problem;
   return problem == nullptr;
 }

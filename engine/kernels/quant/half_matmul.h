@@ -21,7 +21,7 @@ struct HalfMatMulShape {
 bool HalfShapeSupported(const HalfMatMulShape& shape, const char** why);
 
 // The product above; `a` is [m, k] float32, `w` [n, k] float16 bits, `out` [m, n] float32.
-void HalfMatMul(const HalfMatMulShape& shape, const float* a, const uint16_t* w, float* out,
-                ParallelForFn parallel_for, void* parallel_context, RowKernels kernels = RowKernels::kBest);
+void HalfMatMul(const HalfMatMulShape& shape, const float* a, const uint16_t* w, float* out, ParallelForFn parallel_for,
+                void* parallel_context, RowKernels kernels = RowKernels::kBest);
 
 }  // namespace silk

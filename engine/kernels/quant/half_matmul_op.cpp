@@ -16,8 +16,7 @@ namespace {
 using Kernel = OpKernelBase;
 
 OrtStatus* ReadShape(const Kernel& k, const OrtTensorView in[2], HalfMatMulShape* s) {
-  if (in[1].dims.size() != 2)
-    return k.Fail("B has shape " + DimsText(in[1].dims) + ", expected [N, K]");
+  if (in[1].dims.size() != 2) return k.Fail("B has shape " + DimsText(in[1].dims) + ", expected [N, K]");
   s->n = in[1].dims[0], s->k = in[1].dims[1];
   if (in[0].dims.empty() || in[0].dims.back() != s->k)
     return k.Fail("A has shape " + DimsText(in[0].dims) + ", expected [..., K] with K = " + std::to_string(s->k) +

@@ -25,11 +25,11 @@ constexpr int64_t kRowsPerTask = 256;  // weight rows per unit of parallel work 
 // elements of each group (which meet low nibbles) apart from the odd ones (high nibbles). A view
 // into QuantizedRows' storage.
 struct QuantizedRow {
-  int8_t* even;        // [groups * 16]
-  int8_t* odd;         // [groups * 16]
-  float* scale;        // [groups]: a ~= q * scale
-  float* lane_scale;   // [groups * 4]: the scale repeated per int32 lane of a group
-  int32_t* offset;     // [groups * 4]: lane 0 = -8 * sum(q) (the weights' zero point), others 0
+  int8_t* even;       // [groups * 16]
+  int8_t* odd;        // [groups * 16]
+  float* scale;       // [groups]: a ~= q * scale
+  float* lane_scale;  // [groups * 4]: the scale repeated per int32 lane of a group
+  int32_t* offset;    // [groups * 4]: lane 0 = -8 * sum(q) (the weights' zero point), others 0
 };
 
 // The activation rows of one call, each kind of value in one allocation (the generation loop
@@ -95,8 +95,8 @@ inline float GroupScalar(const Int4MatMulShape& s, const QuantizedRow& q, const 
   return static_cast<float>(dot) * (WeightScale(scales, s.k / s.block, r, g, s.block) * q.scale[g]);
 }
 
-void RowsScalar(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* packed, const float* scales,
-                int64_t r0, int64_t r1, float* out) {
+void RowsScalar(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* packed, const float* scales, int64_t r0,
+                int64_t r1, float* out) {
   const int64_t groups = s.k / kGroup;
   for (int64_t r = r0; r < r1; ++r) {
     const uint8_t* w = packed + r * (s.k / 2);
@@ -192,9 +192,12 @@ void RunTask(void* state, size_t index) {
 bool Int4ShapeSupported(const Int4MatMulShape& s, const char** why) {
   const char* problem = nullptr;
   constexpr int64_t kLimit = int64_t{1} << 31;  // keeps every index product in range
-  if (s.m < 0 || s.k <= 0 || s.n <= 0 || s.k >= kLimit || s.n >= kLimit) problem = "K and N must be in [1, 2^31)";
-  else if (s.block != kGroup && (s.block <= 0 || s.block % (2 * kGroup) != 0)) problem = "block_size must be 32 or a multiple of 64";
-  else if (s.k % s.block != 0) problem = "K must be a multiple of block_size";
+  if (s.m < 0 || s.k <= 0 || s.n <= 0 || s.k >= kLimit || s.n >= kLimit)
+    problem = "K and N must be in [1, 2^31)";
+  else if (s.block != kGroup && (s.block <= 0 || s.block % (2 * kGroup) != 0))
+    problem = "block_size must be 32 or a multiple of 64";
+  else if (s.k % s.block != 0)
+    problem = "K must be a multiple of block_size";
   if (why) *why = problem;
   return problem == nullptr;
 }

@@ -25,10 +25,11 @@ OrtStatus* CheckInputs(const Kernel& k, const OrtTensorView in[3], int64_t* rows
     return k.Fail("A has shape " + DimsText(in[0].dims) + ", expected [..., K] with K = " + std::to_string(s.k));
   const std::vector<int64_t> b = {s.n, s.k / s.block, s.block / 2};
   if (in[1].dims != b)
-    return k.Fail("B has shape " + DimsText(in[1].dims) + ", expected [N, K / block_size, block_size / 2] = " + DimsText(b));
+    return k.Fail("B has shape " + DimsText(in[1].dims) +
+                  ", expected [N, K / block_size, block_size / 2] = " + DimsText(b));
   if (ElementCount(in[2].dims) != s.n * (s.k / s.block))
-    return k.Fail("scales have shape " + DimsText(in[2].dims) + ", expected N * K / block_size = " +
-                  std::to_string(s.n * (s.k / s.block)) + " values");
+    return k.Fail("scales have shape " + DimsText(in[2].dims) +
+                  ", expected N * K / block_size = " + std::to_string(s.n * (s.k / s.block)) + " values");
   *rows = ElementCount(in[0].dims) / s.k;
   return nullptr;
 }

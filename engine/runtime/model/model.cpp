@@ -33,12 +33,18 @@ std::string DimsText(const std::vector<int64_t>& d) {
 
 std::string TypeName(ONNXTensorElementDataType t) {
   switch (t) {
-    case ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT: return "float32";
-    case ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16: return "float16";
-    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64: return "int64";
-    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32: return "int32";
-    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8: return "int8";
-    default: return "ONNX type " + std::to_string(static_cast<int>(t));
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT:
+      return "float32";
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16:
+      return "float16";
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT64:
+      return "int64";
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32:
+      return "int32";
+    case ONNX_TENSOR_ELEMENT_DATA_TYPE_INT8:
+      return "int8";
+    default:
+      return "ONNX type " + std::to_string(static_cast<int>(t));
   }
 }
 
@@ -51,7 +57,8 @@ Status CheckIo(Ort::Session& s, bool inputs, const std::vector<IoSpec>& want, co
     return Status(StatusCode::kUnsupported, file + ": has " + std::to_string(n) + " " + side + ", the contract has " +
                                                 std::to_string(want.size()));
   for (size_t i = 0; i < n; ++i) {
-    const std::string name = inputs ? s.GetInputNameAllocated(i, alloc).get() : s.GetOutputNameAllocated(i, alloc).get();
+    const std::string name =
+        inputs ? s.GetInputNameAllocated(i, alloc).get() : s.GetOutputNameAllocated(i, alloc).get();
     const IoSpec* spec = nullptr;
     for (const IoSpec& w : want)
       if (name == w.name) spec = &w;
@@ -122,8 +129,7 @@ StatusOr<std::string> ChooseDecoderFile(const std::string& dir, const ModelConfi
   if (config.DecoderFile(p, kv).empty())
     return Unsupported(dir + ": no " + KvPrecisionName(kv) + " KV cache variant of the " + Upper(name) +
                        " decoder in this model folder (files." + KvFilesKey(kv) + "." + key +
-                       " in model.json; add one with `silk-export " + KvExportCommand(kv) +
-                       "`)");
+                       " in model.json; add one with `silk-export " + KvExportCommand(kv) + "`)");
   return config.DecoderFile(p, kv);
 }
 
@@ -164,7 +170,8 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
   auto impl = std::make_unique<Impl>();
   impl->precision = options.decoder.value_or(config.default_decoder);
   impl->kv_precision = options.kv.value_or(config.DefaultKv(impl->precision));
-  SILK_ASSIGN_OR_RETURN(const std::string decoder_file, ChooseDecoderFile(dir, config, impl->precision, impl->kv_precision));
+  SILK_ASSIGN_OR_RETURN(const std::string decoder_file,
+                        ChooseDecoderFile(dir, config, impl->precision, impl->kv_precision));
   const std::string enc_path = dir + "/" + config.encoder_file, dec_path = dir + "/" + decoder_file;
   for (const std::string& p : {enc_path, dec_path})
     if (!IsRegularFile(p)) return IoError(p + ": missing (named in model.json)");

@@ -13,8 +13,8 @@
 namespace silk {
 
 struct ModelLoadOptions {
-  int threads = 0;             // intra-op threads of the process's shared pool (sized by the first
-                               // model loaded); 0 = physical cores; at most MaxThreads()
+  int threads = 0;  // intra-op threads of the process's shared pool (sized by the first
+                    // model loaded); 0 = physical cores; at most MaxThreads()
   // Decoder precision; unset = model.json's files.default_decoder. Error if the file is absent.
   std::optional<DecoderPrecision> decoder;
   // Self-K/V cache precision; unset = the model's (files.default_kv_precision when the chosen
@@ -32,7 +32,7 @@ class Model {
   Model& operator=(const Model&) = delete;
 
   const ModelConfig& config() const;
-  int threads() const;       // threads of the shared pool
+  int threads() const;                 // threads of the shared pool
   DecoderPrecision precision() const;  // the decoder in use
   KvPrecision kv_precision() const;    // its self-K/V cache's element type
   // The encoder graph's fixed point count (input "points" dimension 1); -1 when dynamic.

@@ -64,8 +64,8 @@ std::vector<std::string> SubfolderNames(const std::string& dir) {
   std::vector<std::string> names;
   std::error_code ec;
   int seen = 0;
-  for (std::filesystem::directory_iterator it(NativePath(dir), ec), end; !ec && it != end && seen++ < kMaxScannedEntries;
-       it.increment(ec)) {
+  for (std::filesystem::directory_iterator it(NativePath(dir), ec), end;
+       !ec && it != end && seen++ < kMaxScannedEntries; it.increment(ec)) {
     std::error_code fe;
     if (it->is_directory(fe)) names.push_back(Utf8Path(it->path().filename()));
   }

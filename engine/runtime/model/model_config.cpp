@@ -94,23 +94,26 @@ Status ParseHeader(const Json& j, const std::string& name, ModelConfig* c) {
   SILK_RETURN_IF_ERROR(GetString(j, "format", name, "", &format));
   SILK_RETURN_IF_ERROR(GetString(j, "token_format", name, "", &token_format));
   SILK_RETURN_IF_ERROR(GetString(j, "config", name, "", &c->config_name));
-  if (format != "silk-model")
-    return Bad(name, "\"format\" is not \"silk-model\" (not a Silk model folder?)");
+  if (format != "silk-model") return Bad(name, "\"format\" is not \"silk-model\" (not a Silk model folder?)");
   SILK_RETURN_IF_ERROR(GetInt(j, "model_version", name, &c->model_version));
   if (c->model_version < kOldestModelVersion || c->model_version > kSupportedModelVersion)
-    return Bad(name, "model_version " + std::to_string(c->model_version) + " is not supported (this engine reads " +
-                         std::to_string(kOldestModelVersion) + " to " + std::to_string(kSupportedModelVersion) +
-                         (c->model_version < kOldestModelVersion ? "; re-export the checkpoint with `silk-export export`)"
-                                                                  : "; a newer libsilk is needed)"));
+    return Bad(name,
+               "model_version " + std::to_string(c->model_version) + " is not supported (this engine reads " +
+                   std::to_string(kOldestModelVersion) + " to " + std::to_string(kSupportedModelVersion) +
+                   (c->model_version < kOldestModelVersion ? "; re-export the checkpoint with `silk-export export`)"
+                                                           : "; a newer libsilk is needed)"));
   if (token_format != vocab::k_token_format)
     return Bad(name, std::string("token_format is not \"") + vocab::k_token_format + "\"");
   SILK_RETURN_IF_ERROR(GetInt(j, "token_format_version", name, &c->token_format_version));
   SILK_RETURN_IF_ERROR(
       CheckEqual(name, "token_format_version", c->token_format_version, vocab::k_token_format_version));
   SILK_RETURN_IF_ERROR(GetString(j, "arch", name, c->model_version >= 3 ? "" : "silk", &arch));
-  if (arch == "silk") c->arch = ModelArch::kSilk;
-  else if (arch == "official") c->arch = ModelArch::kOfficial;
-  else return Bad(name, "arch \"" + arch + "\" is neither \"silk\" nor \"official\"");
+  if (arch == "silk")
+    c->arch = ModelArch::kSilk;
+  else if (arch == "official")
+    c->arch = ModelArch::kOfficial;
+  else
+    return Bad(name, "arch \"" + arch + "\" is neither \"silk\" nor \"official\"");
   return Status::Ok();
 }
 
@@ -152,7 +155,8 @@ Status ParseDims(const Json& j, const std::string& name, ModelDims* m) {
                                                " leaves room for fewer ids than the smallest mesh (" +
                                                std::to_string(kMinMeshTokens) + " + BOS)");
   if (m->head_dim % 8 != 0)
-    return Bad(name, "dims.head_dim " + std::to_string(m->head_dim) + " must be a multiple of 8 (docs/model_contract.md)");
+    return Bad(name,
+               "dims.head_dim " + std::to_string(m->head_dim) + " must be a multiple of 8 (docs/model_contract.md)");
   if (m->max_seq_len > vocab::k_max_seq_length + 1)
     return Bad(name, "dims.max_seq_len " + std::to_string(m->max_seq_len) + " exceeds the format's " +
                          std::to_string(vocab::k_max_seq_length) + " tokens + BOS");
@@ -175,9 +179,12 @@ Status ParsePreprocessing(const Json& j, const std::string& name, ModelConfig* c
   const std::string where = name + " preprocessing";
   std::string kind;
   SILK_RETURN_IF_ERROR(GetString(*pp, "kind", where, PreprocessingKindName(p.kind), &kind));
-  if (kind == "official") p = OfficialPreprocessing(c->dims.n_points);
-  else if (kind == "silk") p = SilkPreprocessing(bound, c->dims.n_points);
-  else return Bad(name, "preprocessing.kind \"" + kind + "\" is neither \"silk\" nor \"official\"");
+  if (kind == "official")
+    p = OfficialPreprocessing(c->dims.n_points);
+  else if (kind == "silk")
+    p = SilkPreprocessing(bound, c->dims.n_points);
+  else
+    return Bad(name, "preprocessing.kind \"" + kind + "\" is neither \"silk\" nor \"official\"");
   SILK_RETURN_IF_ERROR(GetDouble(*pp, "normalize_bound", where, &p.normalize_bound));
   SILK_RETURN_IF_ERROR(GetDouble(*pp, "merge_distance_fraction", where, &p.merge_distance_fraction));
   SILK_RETURN_IF_ERROR(GetOptionalInt(*pp, "surface_samples", where, &p.surface_samples));
@@ -204,17 +211,18 @@ Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp,
   SILK_RETURN_IF_ERROR(GetDouble(*o, "top_p_temperature", where, &sp->top_p_temperature));
   SILK_RETURN_IF_ERROR(GetOptionalInt(*o, "candidates", where, candidates));
   if (*candidates < 1 || *candidates > kMaxCandidates)
-    return Status(StatusCode::kParseError, name + ": sampling.candidates must be in [1, " +
-                                               std::to_string(kMaxCandidates) + "]");
+    return Status(StatusCode::kParseError,
+                  name + ": sampling.candidates must be in [1, " + std::to_string(kMaxCandidates) + "]");
   if (!(sp->temperature >= 0 && sp->temperature <= 100))
     return Status(StatusCode::kParseError, name + ": sampling.temperature must be in [0, 100]");
   if (sp->top_k < 0 || sp->top_k > vocab::k_model_vocab_size)
-    return Status(StatusCode::kParseError, name + ": sampling.top_k must be in [0, " +
-                                               std::to_string(vocab::k_model_vocab_size) + "]");
+    return Status(StatusCode::kParseError,
+                  name + ": sampling.top_k must be in [0, " + std::to_string(vocab::k_model_vocab_size) + "]");
   if (!(sp->top_p > 0 && sp->top_p <= 1))
     return Status(StatusCode::kParseError, name + ": sampling.top_p must be in (0, 1]");
   if (!(sp->top_p_temperature >= 0 && sp->top_p_temperature <= 100))
-    return Status(StatusCode::kParseError, name + ": sampling.top_p_temperature must be in [0, 100] (0 = the sampling temperature)");
+    return Status(StatusCode::kParseError,
+                  name + ": sampling.top_p_temperature must be in [0, 100] (0 = the sampling temperature)");
   return Status::Ok();
 }
 
@@ -250,8 +258,8 @@ Status ParseKvVariant(const Json& f, const std::string& name, KvPrecision kv, Mo
     SILK_RETURN_IF_ERROR(GetString(*obj, keys[i], name + " files." + key, "", &file));
     if (file.empty()) continue;
     if (!PlainName(file))
-      return Status(StatusCode::kParseError, name + ": file names must be plain names inside the model folder ('" +
-                                                 file + "')");
+      return Status(StatusCode::kParseError,
+                    name + ": file names must be plain names inside the model folder ('" + file + "')");
     if (c->DecoderFile(precisions[i]).empty())
       return Bad(name, "files." + key + "." + keys[i] + " is given, but files." + keys[i] + " is not");
   }
@@ -299,12 +307,16 @@ Status ParseFiles(const Json& j, const std::string& name, ModelConfig* c) {
   for (const std::string& s : c->external_data) names.push_back(&s);
   for (const std::string* s : names)
     if (!PlainName(*s))
-      return Status(StatusCode::kParseError, name + ": file names must be plain names inside the model folder ('" +
-                                                 *s + "')");
-  if (def == "decoder") c->default_decoder = DecoderPrecision::kFp32;
-  else if (def == "decoder_int8") c->default_decoder = DecoderPrecision::kInt8;
-  else if (def == "decoder_int4") c->default_decoder = DecoderPrecision::kInt4;
-  else return Bad(name, "files.default_decoder \"" + def + "\" is not decoder, decoder_int8 or decoder_int4");
+      return Status(StatusCode::kParseError,
+                    name + ": file names must be plain names inside the model folder ('" + *s + "')");
+  if (def == "decoder")
+    c->default_decoder = DecoderPrecision::kFp32;
+  else if (def == "decoder_int8")
+    c->default_decoder = DecoderPrecision::kInt8;
+  else if (def == "decoder_int4")
+    c->default_decoder = DecoderPrecision::kInt4;
+  else
+    return Bad(name, "files.default_decoder \"" + def + "\" is not decoder, decoder_int8 or decoder_int4");
   if (c->DecoderFile(c->default_decoder).empty())
     return Bad(name, "files.default_decoder is \"" + def + "\", but files." + def + " is not given");
   return ParseKvFiles(*f, name, c);
@@ -327,7 +339,9 @@ const char* DecoderPrecisionName(DecoderPrecision p) {
 }
 
 const std::string& ModelConfig::DecoderFile(DecoderPrecision p) const {
-  return p == DecoderPrecision::kInt8 ? decoder_int8_file : p == DecoderPrecision::kInt4 ? decoder_int4_file : decoder_file;
+  return p == DecoderPrecision::kInt8   ? decoder_int8_file
+         : p == DecoderPrecision::kInt4 ? decoder_int4_file
+                                        : decoder_file;
 }
 
 const char* KvPrecisionName(KvPrecision p) {

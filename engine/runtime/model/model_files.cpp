@@ -16,8 +16,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-Status Refuse(const std::string& named_by, const std::string& what, const std::string& location, const std::string& why) {
-  return ParseError(named_by + ": " + what + " '" + location + "' " + why + " (a model folder's files must stay inside it)");
+Status Refuse(const std::string& named_by, const std::string& what, const std::string& location,
+              const std::string& why) {
+  return ParseError(named_by + ": " + what + " '" + location + "' " + why +
+                    " (a model folder's files must stay inside it)");
 }
 
 // The lexical part: relative, no "..", no backslash or NUL, not empty.
@@ -25,13 +27,15 @@ Status CheckLexically(const std::string& location, const std::string& named_by, 
   if (location.empty()) return Refuse(named_by, what, location, "is empty");
   if (location.find('\0') != std::string::npos) return Refuse(named_by, what, location, "holds a NUL byte");
   if (location.find('\\') != std::string::npos) return Refuse(named_by, what, location, "holds a backslash");
-  if (location[0] == '/' || (location.size() > 1 && std::isalpha(static_cast<unsigned char>(location[0])) && location[1] == ':'))
+  if (location[0] == '/' ||
+      (location.size() > 1 && std::isalpha(static_cast<unsigned char>(location[0])) && location[1] == ':'))
     return Refuse(named_by, what, location, "is an absolute path");
   size_t begin = 0;
   while (begin <= location.size()) {
     size_t slash = location.find('/', begin);
     if (slash == std::string::npos) slash = location.size();
-    if (location.compare(begin, slash - begin, "..") == 0) return Refuse(named_by, what, location, "climbs out with '..'");
+    if (location.compare(begin, slash - begin, "..") == 0)
+      return Refuse(named_by, what, location, "climbs out with '..'");
     begin = slash + 1;
   }
   return Status::Ok();

@@ -22,20 +22,29 @@ enum class Kind { kModel, kGraph, kNode, kAttribute, kFunction, kTrainingInfo, k
 // The message kind of a length-delimited field (onnx.proto field numbers); kSkip: not entered.
 Kind ChildKind(Kind parent, uint64_t field) {
   switch (parent) {
-    case Kind::kModel: return field == 7 ? Kind::kGraph : field == 25 ? Kind::kFunction
-                            : field == 20 ? Kind::kTrainingInfo : Kind::kSkip;
-    case Kind::kGraph: return field == 1 ? Kind::kNode : field == 5 ? Kind::kTensor
-                            : field == 15 ? Kind::kSparseTensor : Kind::kSkip;
-    case Kind::kNode: return field == 5 ? Kind::kAttribute : Kind::kSkip;
+    case Kind::kModel:
+      return field == 7    ? Kind::kGraph
+             : field == 25 ? Kind::kFunction
+             : field == 20 ? Kind::kTrainingInfo
+                           : Kind::kSkip;
+    case Kind::kGraph:
+      return field == 1 ? Kind::kNode : field == 5 ? Kind::kTensor : field == 15 ? Kind::kSparseTensor : Kind::kSkip;
+    case Kind::kNode:
+      return field == 5 ? Kind::kAttribute : Kind::kSkip;
     case Kind::kAttribute:
       if (field == 5 || field == 10) return Kind::kTensor;
       if (field == 6 || field == 11) return Kind::kGraph;
       return field == 22 || field == 23 ? Kind::kSparseTensor : Kind::kSkip;
-    case Kind::kFunction: return field == 7 ? Kind::kNode : Kind::kSkip;
-    case Kind::kTrainingInfo: return field == 1 || field == 2 ? Kind::kGraph : Kind::kSkip;
-    case Kind::kSparseTensor: return field == 1 || field == 2 ? Kind::kTensor : Kind::kSkip;
-    case Kind::kTensor: return field == 13 ? Kind::kEntry : Kind::kSkip;
-    default: return Kind::kSkip;
+    case Kind::kFunction:
+      return field == 7 ? Kind::kNode : Kind::kSkip;
+    case Kind::kTrainingInfo:
+      return field == 1 || field == 2 ? Kind::kGraph : Kind::kSkip;
+    case Kind::kSparseTensor:
+      return field == 1 || field == 2 ? Kind::kTensor : Kind::kSkip;
+    case Kind::kTensor:
+      return field == 13 ? Kind::kEntry : Kind::kSkip;
+    default:
+      return Kind::kSkip;
   }
 }
 
@@ -53,8 +62,10 @@ class Walker {
       SILK_RETURN_IF_ERROR(NextField(&pos, end, &field, &delimited, &len));
       if (!delimited) continue;
       const Kind child = ChildKind(kind, field);
-      if (child == Kind::kEntry) SILK_RETURN_IF_ERROR(Entry(pos, pos + len));
-      else if (child != Kind::kSkip) SILK_RETURN_IF_ERROR(Message(child, pos, pos + len, depth + 1));
+      if (child == Kind::kEntry)
+        SILK_RETURN_IF_ERROR(Entry(pos, pos + len));
+      else if (child != Kind::kSkip)
+        SILK_RETURN_IF_ERROR(Message(child, pos, pos + len, depth + 1));
       pos += len;
     }
     return Status::Ok();
@@ -76,11 +87,20 @@ class Walker {
     *delimited = (tag & 7) == 2;
     uint64_t skip = 0;
     switch (tag & 7) {
-      case 0: return Varint(pos, end, len);
-      case 1: skip = 8; break;
-      case 5: skip = 4; break;
-      case 2: SILK_RETURN_IF_ERROR(Varint(pos, end, len)); skip = *len; break;
-      default: return Bad(at, "unsupported wire type " + std::to_string(tag & 7));
+      case 0:
+        return Varint(pos, end, len);
+      case 1:
+        skip = 8;
+        break;
+      case 5:
+        skip = 4;
+        break;
+      case 2:
+        SILK_RETURN_IF_ERROR(Varint(pos, end, len));
+        skip = *len;
+        break;
+      default:
+        return Bad(at, "unsupported wire type " + std::to_string(tag & 7));
     }
     if (skip > end - *pos) return Bad(at, "field runs past its message");
     if (!*delimited) *pos += skip;
@@ -128,7 +148,8 @@ class Walker {
       pos += len;
     }
     if (key != "location") return Status::Ok();
-    if (value_too_long) return Bad(pos, "external data location longer than " + std::to_string(kMaxLocation) + " bytes");
+    if (value_too_long)
+      return Bad(pos, "external data location longer than " + std::to_string(kMaxLocation) + " bytes");
     return visit_(value);
   }
 

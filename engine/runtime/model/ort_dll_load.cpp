@@ -23,8 +23,8 @@ Status LoadOnnxRuntimeForPlatform() {
                    WindowsErrorText(GetLastError()));
   using GetApiBase = const OrtApiBase*(ORT_API_CALL*)();
   auto get_base = reinterpret_cast<GetApiBase>(reinterpret_cast<void*>(GetProcAddress(dll, "OrtGetApiBase")));
-  Status s = get_base ? InitOrtApi(get_base(), name)
-                      : IoError(name + ": not an onnxruntime library (no OrtGetApiBase)");
+  Status s =
+      get_base ? InitOrtApi(get_base(), name) : IoError(name + ": not an onnxruntime library (no OrtGetApiBase)");
   if (!s.ok()) FreeLibrary(dll);  // unusable: let a later try load a replacement
   return s;
 }

@@ -32,8 +32,8 @@ Status InitOrtApi(const OrtApiBase* base, const std::string& library_name) {
   const int minor = OrtMinorVersion(version);
   if (minor >= 0 && minor < ORT_API_VERSION)
     return Unsupported(library_name + ": onnxruntime " + version + " is too old: Silk needs 1." +
-                       std::to_string(ORT_API_VERSION) + " or newer (C API version " +
-                       std::to_string(ORT_API_VERSION) + ")");
+                       std::to_string(ORT_API_VERSION) + " or newer (C API version " + std::to_string(ORT_API_VERSION) +
+                       ")");
   const OrtApi* api = base ? base->GetApi(ORT_API_VERSION) : nullptr;
   if (!api)
     return Unsupported(library_name + ": onnxruntime " + (base ? base->GetVersionString() : "?") +

@@ -62,8 +62,10 @@ Status LoadOnnxRuntimeForPlatform() {
     const char* err = dlerror();
     std::string why = err ? err : "unknown reason";
     if (why.rfind(path + ": ", 0) == 0) why.erase(0, path.size() + 2);  // dlerror repeats the path
-    return IoError(path + ": cannot load onnxruntime (needed for generation; the onnxruntime package "
-                   "belongs beside silk_mesh): " + why);
+    return IoError(path +
+                   ": cannot load onnxruntime (needed for generation; the onnxruntime package "
+                   "belongs beside silk_mesh): " +
+                   why);
   }
   Status s = InitFrom(lib, path);
   if (!s.ok()) dlclose(lib);  // unusable: let a later try load a replacement

@@ -42,9 +42,12 @@ int32_t NearestCell(int32_t v, int32_t scale) {
 
 const char* FaceGuidanceName(FaceGuidance g) {
   switch (g) {
-    case FaceGuidance::kOff: return "off";
-    case FaceGuidance::kHard: return "hard";
-    case FaceGuidance::kSoft: return "soft";
+    case FaceGuidance::kOff:
+      return "off";
+    case FaceGuidance::kHard:
+      return "hard";
+    case FaceGuidance::kSoft:
+      return "soft";
   }
   return "unknown";
 }
@@ -98,8 +101,7 @@ double FaceGuide::FaceDistance(const QVec& a, const QVec& b, const QVec& c) cons
   return std::max(d, Distance(a.x + b.x + c.x, a.y + b.y + c.y, a.z + b.z + c.z, 3) / tolerance_);
 }
 
-double FaceGuide::FaceScore(const QVec& a, const QVec& b, const QVec& c, int32_t n_a, int32_t n_b,
-                            int32_t n_c) const {
+double FaceGuide::FaceScore(const QVec& a, const QVec& b, const QVec& c, int32_t n_a, int32_t n_b, int32_t n_c) const {
   const double d = FaceDistance(a, b, c);
   if (d > 1) return d;  // strays by distance: the normal cannot save it (and its query is skipped)
   // The face's normal against the input normals nearest its centroid and corners, up to sign.

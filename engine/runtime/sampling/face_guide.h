@@ -70,11 +70,11 @@ class FaceGuide {
   // cell holding an input point.
   double Distance(int32_t x2, int32_t y2, int32_t z2, int32_t scale) const;
   std::shared_ptr<const SurfaceGuide> field_;
-  NearestPointIndex index_;            // the input points in grid units (cell centres at integers)
-  std::vector<Point3> normals_;        // unit normals (zero when a point had none)
-  std::vector<float> root_;            // sqrt of every squared cell distance the grid holds
+  NearestPointIndex index_;      // the input points in grid units (cell centres at integers)
+  std::vector<Point3> normals_;  // unit normals (zero when a point had none)
+  std::vector<float> root_;      // sqrt of every squared cell distance the grid holds
   double tolerance_;
-  double angle_scale_;                 // 1 / (1 - cos limit)
+  double angle_scale_;  // 1 / (1 - cos limit)
 };
 
 }  // namespace silk

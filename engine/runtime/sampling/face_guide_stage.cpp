@@ -95,10 +95,10 @@ class FaceGuideStage : public SamplerStage {
   // This step: the row's columns so far and each column's score with them.
   Columns row_;
   std::vector<double> column_;
-  std::vector<std::pair<double, int32_t>> scored_;  // (score, id) of the legal ids judged
-  std::vector<int32_t> linked_rows_, near_columns_;  // offsets: linked earlier rows, columns near the block
+  std::vector<std::pair<double, int32_t>> scored_;         // (score, id) of the legal ids judged
+  std::vector<int32_t> linked_rows_, near_columns_;        // offsets: linked earlier rows, columns near the block
   std::vector<std::pair<int32_t, int32_t>> linked_pairs_;  // offsets: linked rows linked to each other
-  int32_t blocks_vertex_ = -1;            // the row whose block scores block_score_ holds
+  int32_t blocks_vertex_ = -1;                             // the row whose block scores block_score_ holds
   std::vector<double> block_score_ = std::vector<double>(512, kUnscored);
   std::vector<std::pair<int32_t, float>> penalties_;
   TokenMask guided_;
@@ -173,7 +173,8 @@ void FaceGuideStage::PrepareVertex() {
     const int32_t a_near = guide_->NearestPoint(vs[a].pos);
     for (int32_t c = 0; c < n; ++c)
       if (cols.test(static_cast<size_t>(c)))
-        linked_[c] = std::max(linked_[c], guide_->FaceScore(u_, vs[a].pos, prev_pos_[c], u_near_, a_near, prev_near_[c]));
+        linked_[c] =
+            std::max(linked_[c], guide_->FaceScore(u_, vs[a].pos, prev_pos_[c], u_near_, a_near, prev_near_[c]));
   }
 }
 
@@ -181,8 +182,10 @@ void FaceGuideStage::PrepareVertex() {
 double FaceGuideStage::Pair(size_t entry) {
   if (pair_[entry] != kUnscored) return pair_[entry];
   const int32_t c2 = adj_[entry];
-  const int32_t c1 = static_cast<int32_t>(std::upper_bound(adj_begin_.begin(), adj_begin_.end(), static_cast<int32_t>(entry)) -
-                                          adj_begin_.begin()) - 1;
+  const int32_t c1 =
+      static_cast<int32_t>(std::upper_bound(adj_begin_.begin(), adj_begin_.end(), static_cast<int32_t>(entry)) -
+                           adj_begin_.begin()) -
+      1;
   pair_[entry] = guide_->FaceScore(u_, prev_pos_[c1], prev_pos_[c2], u_near_, prev_near_[c1], prev_near_[c2]);
   return pair_[entry];
 }
@@ -190,7 +193,8 @@ double FaceGuideStage::Pair(size_t entry) {
 // The worst face or edge id (s, case) would add, given the row's columns so far (column_);
 // work stops once it exceeds `enough`.
 double FaceGuideStage::IdScore(int32_t id, double enough) {
-  const int32_t s = (id - vocab::kBBegin) / kBetweenCases, pattern = BetweenCasePattern((id - vocab::kBBegin) % kBetweenCases);
+  const int32_t s = (id - vocab::kBBegin) / kBetweenCases,
+                pattern = BetweenCasePattern((id - vocab::kBBegin) % kBetweenCases);
   const uint32_t window = 1u | (static_cast<uint32_t>(pattern) << 1);  // bit p: column s + p
   const int32_t n = static_cast<int32_t>(prev_pos_.size());
   double worst = 0;
@@ -245,7 +249,8 @@ void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
       if (Linked(vs, linked_rows_[i], linked_rows_[j])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[j]});
   auto dist2 = [&](int32_t c) {
     const QVec& q = prev_pos_[c];
-    return (q.x - centre.x) * (q.x - centre.x) + (q.y - centre.y) * (q.y - centre.y) + (q.z - centre.z) * (q.z - centre.z);
+    return (q.x - centre.x) * (q.x - centre.x) + (q.y - centre.y) * (q.y - centre.y) +
+           (q.z - centre.z) * (q.z - centre.z);
   };
   near_columns_.resize(prev_pos_.size());
   for (size_t c = 0; c < near_columns_.size(); ++c) near_columns_[c] = static_cast<int32_t>(c);
@@ -314,7 +319,8 @@ void FaceGuideStage::ScoreBlocks(const TokenMask& mask) {
       PreparePosition(b, VertexOfTokens(id, vocab::kOBegin + 8 * 256 + 8 * 16 + 8));
       best = HUGE_VAL;
       for (int32_t r = 0; r < 8 && best > 1; ++r) {
-        const QVec q = VertexOfTokens(id, vocab::kOBegin + (4 + 8 * (r >> 2)) * 256 + (4 + 8 * ((r >> 1) & 1)) * 16 + 4 + 8 * (r & 1));
+        const QVec q = VertexOfTokens(
+            id, vocab::kOBegin + (4 + 8 * (r >> 2)) * 256 + (4 + 8 * ((r >> 1) & 1)) * 16 + 4 + 8 * (r & 1));
         if (guide_->CellDistance(q) <= reach) best = std::min(best, PositionScore(q, true, best));
       }
     }
@@ -334,7 +340,8 @@ void FaceGuideStage::Decide(SamplerCandidates* c) {
   if (mode_ == FaceGuidance::kSoft) {
     penalties_.clear();
     for (const auto& [score, id] : scored_)
-      if (score > 1) penalties_.push_back({id, static_cast<float>(std::min(kFaceSoftPenaltyMax, kFaceSoftPenalty * (score - 1)))});
+      if (score > 1)
+        penalties_.push_back({id, static_cast<float>(std::min(kFaceSoftPenaltyMax, kFaceSoftPenalty * (score - 1)))});
     c->penalties = &penalties_;
     return;
   }

@@ -27,9 +27,9 @@ enum class FaceGuidance : int32_t;
 struct GenerationStats;
 
 struct SamplingParams {
-  double temperature = 1.0;  // <= 0: greedy (largest logit, lowest id on ties; no draw)
-  int32_t top_k = 0;         // 0: off
-  double top_p = 1.0;        // >= 1: off
+  double temperature = 1.0;      // <= 0: greedy (largest logit, lowest id on ties; no draw)
+  int32_t top_k = 0;             // 0: off
+  double top_p = 1.0;            // >= 1: off
   double top_p_temperature = 0;  // > 0: top-p computed at this temperature (official chain)
   uint64_t seed = 0;
 };
@@ -41,14 +41,14 @@ struct SamplerCandidates {
   const TokenMask* mask = nullptr;  // the ids that may be chosen; null: every id but PAD
   // Soft face guidance: logit penalties (id, amount subtracted) of this step; null: none.
   const std::vector<std::pair<int32_t, float>>* penalties = nullptr;
-  const float* logits = nullptr;    // vocab::k_model_vocab_size entries
-  std::vector<int32_t> ids;         // the candidates, ascending
+  const float* logits = nullptr;                   // vocab::k_model_vocab_size entries
+  std::vector<int32_t> ids;                        // the candidates, ascending
   std::vector<std::pair<double, int32_t>> scored;  // (score, id)
-  std::vector<double> probs;        // unnormalised weights of the first `keep` of scored
-  size_t keep = 0;                  // survivors: the first `keep` of scored
-  double mass = 0;                  // the sum of probs over the survivors
-  int32_t id = -1;                  // the choice (-1: none)
-  bool done = false;                // the choice is made (or there is none): later stages are skipped
+  std::vector<double> probs;                       // unnormalised weights of the first `keep` of scored
+  size_t keep = 0;                                 // survivors: the first `keep` of scored
+  double mass = 0;                                 // the sum of probs over the survivors
+  int32_t id = -1;                                 // the choice (-1: none)
+  bool done = false;                               // the choice is made (or there is none): later stages are skipped
 };
 
 class SamplerStage {
@@ -83,12 +83,12 @@ class SamplerChain {
 // The resolved settings of one generation's chain.
 struct SamplerChainSettings {
   SamplingParams sampling;
-  Grammar* grammar = nullptr;           // the grammar mask's source; null: no mask (unconstrained)
-  const SurfaceGuide* guide = nullptr;  // surface guidance (needs the grammar); null: off
+  Grammar* grammar = nullptr;             // the grammar mask's source; null: no mask (unconstrained)
+  const SurfaceGuide* guide = nullptr;    // surface guidance (needs the grammar); null: off
   const FaceGuide* face_guide = nullptr;  // face guidance (needs the grammar); null: off
   FaceGuidance face_mode{};               // kHard or kSoft when face_guide is set
-  bool sample_then_check = false;       // measurement: draw over all ids, the masked chain if illegal
-  GenerationStats* stats = nullptr;     // counters and phase seconds of the stages; may be null
+  bool sample_then_check = false;         // measurement: draw over all ids, the masked chain if illegal
+  GenerationStats* stats = nullptr;       // counters and phase seconds of the stages; may be null
 };
 
 std::unique_ptr<SamplerChain> BuildSamplerChain(const SamplerChainSettings& settings);

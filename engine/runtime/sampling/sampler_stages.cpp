@@ -91,7 +91,8 @@ class OfficialTopPStage : public SamplerStage {
     p.resize(c->keep);
     const double top = c->logits[c->scored[0].second];
     double mass = 0;
-    for (size_t i = 0; i < c->keep; ++i) mass += (p[i] = std::exp((c->logits[c->scored[i].second] - top) / temperature_));
+    for (size_t i = 0; i < c->keep; ++i)
+      mass += (p[i] = std::exp((c->logits[c->scored[i].second] - top) / temperature_));
     double before = 0;  // normalised mass of the ids ahead of i
     for (size_t i = 0; i < c->keep; ++i) {
       if (before > top_p_) {

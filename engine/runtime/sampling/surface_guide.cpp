@@ -53,7 +53,8 @@ bool RestrictRange(TokenMask* mask, int32_t begin, int32_t end, const uint64_t* 
     return false;
   }
   int32_t best = std::numeric_limits<int32_t>::max();
-  for (int32_t id = mask->Next(begin); id >= 0 && id < end; id = mask->Next(id + 1)) best = std::min(best, distance2(id));
+  for (int32_t id = mask->Next(begin); id >= 0 && id < end; id = mask->Next(id + 1))
+    best = std::min(best, distance2(id));
   for (int32_t id = mask->Next(begin); id >= 0 && id < end; id = mask->Next(id + 1))
     if (distance2(id) != best) mask->Reset(id);
   return true;
@@ -119,7 +120,8 @@ SurfaceGuide::SurfaceGuide(const std::vector<float>& points, int32_t tolerance)
         const int32_t block = (x >> 4) * 64 + (y >> 4) * 8 + (z >> 4);
         const int32_t d2 = dist2_[Index(x, y, z)];
         block_dist2_[block] = std::min(block_dist2_[block], d2);
-        if (Within(d2)) SetBit(&offset_within_, static_cast<size_t>(block) * 4096 + (x & 15) * 256 + (y & 15) * 16 + (z & 15));
+        if (Within(d2))
+          SetBit(&offset_within_, static_cast<size_t>(block) * 4096 + (x & 15) * 256 + (y & 15) * 16 + (z & 15));
       }
   for (int32_t b = 0; b < 512; ++b)
     if (Within(block_dist2_[b])) SetBit(&block_within_, static_cast<size_t>(b));

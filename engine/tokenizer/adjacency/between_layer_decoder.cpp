@@ -10,8 +10,7 @@
 
 namespace silk {
 
-StatusOr<std::vector<std::pair<int32_t, int32_t>>> DecodeBetweenLayer(const StreamLayer& layer,
-                                                                      int32_t prev_size) {
+StatusOr<std::vector<std::pair<int32_t, int32_t>>> DecodeBetweenLayer(const StreamLayer& layer, int32_t prev_size) {
   const int32_t n = static_cast<int32_t>(layer.vertices.size());
   std::vector<std::pair<int32_t, int32_t>> pairs;
   for (int32_t i = 0; i < n; ++i) {
@@ -21,8 +20,8 @@ StatusOr<std::vector<std::pair<int32_t, int32_t>>> DecodeBetweenLayer(const Stre
       const BetweenToken& t = row[k];
       const std::string where = "between-layer row " + std::to_string(i) + ", token " + std::to_string(k);
       if (t.kase < 0 || t.kase >= kBetweenCases || t.start < 0) {
-        return ParseError(where + ": no such start/case (" + std::to_string(t.start) + ", " +
-                          std::to_string(t.kase) + ")");
+        return ParseError(where + ": no such start/case (" + std::to_string(t.start) + ", " + std::to_string(t.kase) +
+                          ")");
       }
       if (t.start + BetweenCaseLastOne(t.kase) > prev_size - 1) {
         return ParseError(where + ": segment reaches past the previous layer of " + std::to_string(prev_size) +

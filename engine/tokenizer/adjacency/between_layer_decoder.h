@@ -15,7 +15,6 @@ namespace silk {
 // Each token (s, c) sets column s and the columns s+p of case c's window (§7.2). Errors
 // (kParseError): a row without B tokens, segments reaching past the previous layer, starts
 // that break the continuation rule of §7.3, case ids out of range.
-StatusOr<std::vector<std::pair<int32_t, int32_t>>> DecodeBetweenLayer(const StreamLayer& layer,
-                                                                      int32_t prev_size);
+StatusOr<std::vector<std::pair<int32_t, int32_t>>> DecodeBetweenLayer(const StreamLayer& layer, int32_t prev_size);
 
 }  // namespace silk

@@ -12,9 +12,7 @@
 namespace silk {
 namespace {
 
-int64_t PackGrid(const QVec& q) {
-  return (static_cast<int64_t>(q.x) << 16) | (static_cast<int64_t>(q.y) << 8) | q.z;
-}
+int64_t PackGrid(const QVec& q) { return (static_cast<int64_t>(q.x) << 16) | (static_cast<int64_t>(q.y) << 8) | q.z; }
 
 }  // namespace
 
@@ -56,8 +54,7 @@ StatusOr<TokenizerProcessedMesh> QuantizeAndClean(const IoMesh& in, CleanupStats
                                " (mesh has " + std::to_string(nv) + " vertices)");
       t[c] = VertexId(rep[static_cast<size_t>(idx)]);
     }
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
-        Collinear(out.pos(t[0]), out.pos(t[1]), out.pos(t[2]))) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || Collinear(out.pos(t[0]), out.pos(t[1]), out.pos(t[2]))) {
       ++local.degenerate_faces;
       continue;
     }

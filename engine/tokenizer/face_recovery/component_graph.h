@@ -23,15 +23,15 @@ struct ComponentLayers {
 // Undirected edge graph with vertex ids in reading order (layer 0 first, then layer 1, ...).
 struct ComponentGraph {
   int32_t vertex_count = 0;
-  std::vector<int32_t> layer_of;                 // per vertex
-  std::vector<int32_t> layer_start;              // first vertex id of each layer (+ end)
-  std::vector<QVec> positions;                   // per vertex (decoded grid coordinates)
-  std::vector<std::vector<int32_t>> neighbors;   // sorted
-  std::vector<std::array<int32_t, 2>> edges;     // (a, b), a < b
+  std::vector<int32_t> layer_of;                // per vertex
+  std::vector<int32_t> layer_start;             // first vertex id of each layer (+ end)
+  std::vector<QVec> positions;                  // per vertex (decoded grid coordinates)
+  std::vector<std::vector<int32_t>> neighbors;  // sorted
+  std::vector<std::array<int32_t, 2>> edges;    // (a, b), a < b
   std::unordered_map<uint64_t, int32_t> edge_index;
-  std::vector<std::array<int32_t, 3>> triangles;            // 3-cycles, sorted corners
-  std::vector<std::vector<int32_t>> edge_triangles;         // per edge: triangle ids
-  std::vector<std::array<int32_t, 3>> triangle_edges;       // per triangle: edges (ab, bc, ac)
+  std::vector<std::array<int32_t, 3>> triangles;       // 3-cycles, sorted corners
+  std::vector<std::vector<int32_t>> edge_triangles;    // per edge: triangle ids
+  std::vector<std::array<int32_t, 3>> triangle_edges;  // per triangle: edges (ab, bc, ac)
 
   // Edge id of {a, b}, or -1.
   int32_t EdgeOf(int32_t a, int32_t b) const {

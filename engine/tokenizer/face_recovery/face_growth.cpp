@@ -251,9 +251,15 @@ class Grower {
     const auto& ny = g_.neighbors[y];
     size_t n = 0;
     for (size_t i = 0, j = 0; i < nx.size() && j < ny.size();) {
-      if (nx[i] < ny[j]) ++i;
-      else if (nx[i] > ny[j]) ++j;
-      else { ++n; ++i; ++j; }
+      if (nx[i] < ny[j])
+        ++i;
+      else if (nx[i] > ny[j])
+        ++j;
+      else {
+        ++n;
+        ++i;
+        ++j;
+      }
     }
     return n;
   }
@@ -266,8 +272,16 @@ class Grower {
       for (int32_t t : g_.edge_triangles[e]) {
         if (orient_[t] != 0 || Forbidden(t)) continue;
         const auto& k = g_.triangles[t];
-        if (CanAdd(k[0], k[2], k[1])) { Add(t, k[0], k[2], k[1]); ++stats_.seeds; return true; }
-        if (CanAdd(k[0], k[1], k[2])) { Add(t, k[0], k[1], k[2]); ++stats_.seeds; return true; }
+        if (CanAdd(k[0], k[2], k[1])) {
+          Add(t, k[0], k[2], k[1]);
+          ++stats_.seeds;
+          return true;
+        }
+        if (CanAdd(k[0], k[1], k[2])) {
+          Add(t, k[0], k[1], k[2]);
+          ++stats_.seeds;
+          return true;
+        }
       }
     }
     return false;
@@ -302,7 +316,8 @@ std::vector<std::array<int32_t, 3>> FacesOfOrientation(const ComponentGraph& g, 
   for (size_t t = 0; t < g.triangles.size(); ++t) {
     if (orient[t] == 0) continue;
     const auto& c = g.triangles[t];
-    faces.push_back(orient[t] > 0 ? std::array<int32_t, 3>{c[0], c[1], c[2]} : std::array<int32_t, 3>{c[0], c[2], c[1]});
+    faces.push_back(orient[t] > 0 ? std::array<int32_t, 3>{c[0], c[1], c[2]}
+                                  : std::array<int32_t, 3>{c[0], c[2], c[1]});
   }
   return faces;
 }

@@ -106,8 +106,7 @@ SearchCandidate Repair(const ComponentGraph& g, SearchCandidate cur, int64_t loo
 
 }  // namespace
 
-StatusOr<std::vector<std::array<int32_t, 3>>> RecoverFacesOfGraph(const ComponentGraph& g,
-                                                                   FaceRecoveryStats* stats) {
+StatusOr<std::vector<std::array<int32_t, 3>>> RecoverFacesOfGraph(const ComponentGraph& g, FaceRecoveryStats* stats) {
   FaceRecoveryStats st;
   SearchCandidate grown = EvaluateCandidate(g, {}, &st);
   const int64_t unit = static_cast<int64_t>(g.triangles.size() + g.edges.size()) + g.vertex_count + 1;
@@ -145,7 +144,7 @@ StatusOr<std::vector<std::array<int32_t, 3>>> RecoverFacesOfGraph(const Componen
 }
 
 StatusOr<std::vector<std::array<int32_t, 3>>> RecoverComponentFaces(const ComponentLayers& layers,
-                                                                     FaceRecoveryStats* stats) {
+                                                                    FaceRecoveryStats* stats) {
   SILK_ASSIGN_OR_RETURN(ComponentGraph g, BuildComponentGraph(layers));
   return RecoverFacesOfGraph(g, stats);
 }

@@ -22,10 +22,10 @@ namespace silk {
 // faces at the first failing vertex. Bounded work; kLimitExceeded for pathological graphs,
 // kInvalidArgument for shapes that do not fit (indices outside their layers).
 StatusOr<std::vector<std::array<int32_t, 3>>> RecoverComponentFaces(const ComponentLayers& layers,
-                                                                     FaceRecoveryStats* stats = nullptr);
+                                                                    FaceRecoveryStats* stats = nullptr);
 
 // Same on an already built graph.
 StatusOr<std::vector<std::array<int32_t, 3>>> RecoverFacesOfGraph(const ComponentGraph& g,
-                                                                   FaceRecoveryStats* stats = nullptr);
+                                                                  FaceRecoveryStats* stats = nullptr);
 
 }  // namespace silk

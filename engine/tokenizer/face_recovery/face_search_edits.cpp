@@ -17,7 +17,8 @@ std::array<int32_t, 3> Oriented(const ComponentGraph& g, int32_t t, int8_t o) {
 GrowConstraints Frozen(const ComponentGraph& g, const SearchCandidate& from, int32_t skip) {
   GrowConstraints c;
   for (size_t k = 0; k < from.orient.size(); ++k)
-    if (from.orient[k] != 0 && static_cast<int32_t>(k) != skip) c.forced.push_back(Oriented(g, static_cast<int32_t>(k), from.orient[k]));
+    if (from.orient[k] != 0 && static_cast<int32_t>(k) != skip)
+      c.forced.push_back(Oriented(g, static_cast<int32_t>(k), from.orient[k]));
   c.forbidden.assign(g.triangles.size(), 0);
   c.only_forced = true;
   return c;
@@ -34,8 +35,7 @@ SearchCandidate EvaluateCandidate(const ComponentGraph& g, GrowConstraints const
   return c;
 }
 
-void ApplyRegrowEdit(const ComponentGraph& g, const SearchCandidate& from, int32_t t, int variant,
-                     GrowConstraints* c) {
+void ApplyRegrowEdit(const ComponentGraph& g, const SearchCandidate& from, int32_t t, int variant, GrowConstraints* c) {
   const int8_t o = from.orient[static_cast<size_t>(t)];
   if (o != 0 && variant == 0) {
     c->forbidden.resize(g.triangles.size(), 0);

@@ -26,8 +26,7 @@ SearchCandidate EvaluateCandidate(const ComponentGraph& g, GrowConstraints const
 // Adds to `c` (a copy of from.constraints) the regrowing edit of triangle t: variant 0 drops
 // a face of `from` (forbidden) or imposes winding +1 on a triangle that is not one, variant 1
 // flips the face (forces the other winding) or imposes winding -1.
-void ApplyRegrowEdit(const ComponentGraph& g, const SearchCandidate& from, int32_t t, int variant,
-                     GrowConstraints* c);
+void ApplyRegrowEdit(const ComponentGraph& g, const SearchCandidate& from, int32_t t, int variant, GrowConstraints* c);
 
 // The single edits at vertex v of `from`, as growth constraints, per triangle at v: drop a
 // face it has (regrow), flip it (force the other winding, regrow), drop it with nothing else

@@ -14,8 +14,8 @@ namespace {
 constexpr size_t kRecentContributors = 2;
 
 struct Corner {
-  int32_t a, b;     // (v, a, b) is the face's winding rotated to start at v
-  int32_t rank;     // position of the face's sort-key class (equal keys share a rank)
+  int32_t a, b;  // (v, a, b) is the face's winding rotated to start at v
+  int32_t rank;  // position of the face's sort-key class (equal keys share a rank)
 };
 
 // R(v) of one vertex from its corners in sorted face order, plus the interior start options.
@@ -144,8 +144,7 @@ SortedCorners SortCorners(const ComponentGraph& g, const std::vector<Face>& face
     const int32_t i = sc.order[r];
     if (r == 0 || keys[sc.order[r - 1]] != keys[i]) rank = static_cast<int32_t>(r);
     const auto& f = faces[static_cast<size_t>(i)];
-    for (int k = 0; k < 3; ++k)
-      sc.corners[static_cast<size_t>(fill[f[k]]++)] = {f[(k + 1) % 3], f[(k + 2) % 3], rank};
+    for (int k = 0; k < 3; ++k) sc.corners[static_cast<size_t>(fill[f[k]]++)] = {f[(k + 1) % 3], f[(k + 2) % 3], rank};
   }
   return sc;
 }

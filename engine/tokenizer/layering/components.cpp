@@ -74,8 +74,8 @@ StatusOr<ComponentSplit> FindComponents(const TokenizerProcessedMesh& mesh, cons
     out.kept.push_back(std::move(c));
   }
   if (total > vocab::k_max_faces)
-    return Refuse(Refusal::kTooManyFaces, std::to_string(total) + " faces in kept components > " +
-                                              std::to_string(vocab::k_max_faces));
+    return Refuse(Refusal::kTooManyFaces,
+                  std::to_string(total) + " faces in kept components > " + std::to_string(vocab::k_max_faces));
   return out;
 }
 

@@ -17,7 +17,7 @@ struct Component {
 struct ComponentSplit {
   std::vector<Component> kept;  // emission order
   int32_t found = 0;
-  int32_t dropped_small = 0;    // components with < 3 faces
+  int32_t dropped_small = 0;  // components with < 3 faces
 };
 
 // Refuses no-faces (nothing survived cleanup), face-limit (> 12000 kept faces) and

@@ -16,8 +16,8 @@ struct ComponentVertexLayers {
 
 struct Layering {
   std::vector<ComponentVertexLayers> components;  // one per kept component, emission order
-  std::vector<int32_t> layer_of;            // by VertexId; -1 = not emitted
-  std::vector<int32_t> index_in_layer;      // by VertexId; -1 = not emitted
+  std::vector<int32_t> layer_of;                  // by VertexId; -1 = not emitted
+  std::vector<int32_t> index_in_layer;            // by VertexId; -1 = not emitted
 };
 
 // Root of a component: the corner with the smallest (y, z, x) of its first sorted face.

@@ -55,8 +55,8 @@ StatusOr<RotationLists> BuildRotationLists(const TokenizerProcessedMesh& mesh, c
       }
     }
     if (n_starts > 1)
-      return Refuse(Refusal::kBoundaryVertex, "vertex " + std::to_string(v) + " has " + std::to_string(n_starts) +
-                                                  " outgoing boundary edges");
+      return Refuse(Refusal::kBoundaryVertex,
+                    "vertex " + std::to_string(v) + " has " + std::to_string(n_starts) + " outgoing boundary edges");
     VertexId cur = start;
     out.items.push_back(cur);
     if (n_starts == 1) {

@@ -24,8 +24,7 @@ std::vector<Key> PathKeys(const refemu::NxGraph& g, const std::vector<int32_t>& 
   const size_t n = nodes.size();
   const size_t m = cyclic ? n : (n == 0 ? 0 : n - 1);
   for (size_t i = 0; i < m; ++i)
-    out.push_back(MakeKey(g.label[static_cast<size_t>(nodes[i])],
-                          g.label[static_cast<size_t>(nodes[(i + 1) % n])]));
+    out.push_back(MakeKey(g.label[static_cast<size_t>(nodes[i])], g.label[static_cast<size_t>(nodes[(i + 1) % n])]));
   return out;
 }
 
@@ -46,9 +45,8 @@ int32_t EdgeCount(const refemu::NxGraph& g, const std::vector<int32_t>& comp) {
 }
 
 // SELECT_CYCLE (max_cycle_rule): fewest distinct face-component roots, then longest, then first.
-Status SelectCycle(const refemu::NxGraph& g, const std::vector<int32_t>& view,
-                   const VertexEdgeGraph& eg, const std::vector<int32_t>& face_cc, UnionFind& uf,
-                   std::vector<int32_t>* chosen) {
+Status SelectCycle(const refemu::NxGraph& g, const std::vector<int32_t>& view, const VertexEdgeGraph& eg,
+                   const std::vector<int32_t>& face_cc, UnionFind& uf, std::vector<int32_t>* chosen) {
   std::vector<std::vector<int32_t>> cycles;
   for (auto& c : refemu::NxSimpleCyclesOfDirectedView(g, view))
     if (c.size() != 2) cycles.push_back(std::move(c));
@@ -138,8 +136,10 @@ void AddCycleGroups(const refemu::NxGraph& orig, const std::vector<std::vector<i
     };
     for (const Key& e : incident_keys) {
       if (Contains(cycle_keys, e)) continue;
-      if (in_cycle(e.first) && in_cycle(e.second)) kg->groups.push_back({e});  // chord
-      else kg->out_c.push_back(e);
+      if (in_cycle(e.first) && in_cycle(e.second))
+        kg->groups.push_back({e});  // chord
+      else
+        kg->out_c.push_back(e);
     }
   }
 }
@@ -200,13 +200,12 @@ Status FaceGroupsCoveringOnce(const std::vector<std::vector<Key>>& key_groups, c
 }  // namespace
 
 Status PartitionNonManifoldFan(const std::vector<std::array<int32_t, 3>>& faces, int32_t v,
-                               const std::vector<int32_t>& incident,
-                               const std::vector<int32_t>& face_cc, UnionFind& uf,
+                               const std::vector<int32_t>& incident, const std::vector<int32_t>& face_cc, UnionFind& uf,
                                std::vector<std::vector<FaceId>>* groups) {
   const VertexEdgeGraph eg = BuildVertexEdgeGraph(faces, v, incident.data(), incident.size());
   refemu::NxGraph g = refemu::NxFromEdges(eg.keys);
   const refemu::NxGraph orig = refemu::NxCopy(g);  // same locals: g has no removed nodes yet
-  PeeledFan peeled;  // locals (valid in g and orig)
+  PeeledFan peeled;                                // locals (valid in g and orig)
   SILK_RETURN_IF_ERROR(PeelCyclesAndChains(g, eg, face_cc, uf, &peeled));
   KeyGroups kg;
   AddCycleGroups(orig, peeled.cycles, &kg);

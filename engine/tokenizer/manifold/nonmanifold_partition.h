@@ -16,8 +16,7 @@ namespace silk {
 // allowed); face_cc / uf: the pass-B face components (SELECT_CYCLE rule 1).
 // On success `groups` holds every face of v exactly once; group 0 keeps v.
 Status PartitionNonManifoldFan(const std::vector<std::array<int32_t, 3>>& faces, int32_t v,
-                               const std::vector<int32_t>& incident,
-                               const std::vector<int32_t>& face_cc, UnionFind& uf,
+                               const std::vector<int32_t>& incident, const std::vector<int32_t>& face_cc, UnionFind& uf,
                                std::vector<std::vector<FaceId>>* groups);
 
 }  // namespace silk

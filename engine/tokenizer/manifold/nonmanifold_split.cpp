@@ -17,7 +17,7 @@
 namespace silk {
 namespace {
 
-constexpr size_t kMaxIncidentList = 50;   // NM_max_edge_graph
+constexpr size_t kMaxIncidentList = 50;        // NM_max_edge_graph
 constexpr int32_t kMaxNonManifoldVerts = 300;  // NM_max_nonmani_verts
 
 using RawFace = std::array<int32_t, 3>;
@@ -41,7 +41,8 @@ Incidence BuildIncidence(const std::vector<RawFace>& faces, int32_t n) {
   inc.faces.resize(faces.size() * 3);
   std::vector<int32_t> fill(inc.start.begin(), inc.start.end() - 1);
   for (size_t fi = 0; fi < faces.size(); ++fi)
-    for (int32_t c : faces[fi]) inc.faces[static_cast<size_t>(fill[static_cast<size_t>(c)]++)] = static_cast<int32_t>(fi);
+    for (int32_t c : faces[fi])
+      inc.faces[static_cast<size_t>(fill[static_cast<size_t>(c)]++)] = static_cast<int32_t>(fi);
   return inc;
 }
 
@@ -61,8 +62,10 @@ std::vector<int32_t> SplitVertex(SplitState& s, int32_t v, const std::vector<std
     ++s.copies;
     for (FaceId f : groups[k]) {
       for (int32_t& c : s.faces[static_cast<size_t>(f.get())]) {
-        if (c == v) c = copy;
-        else infl.push_back(c);
+        if (c == v)
+          c = copy;
+        else
+          infl.push_back(c);
       }
     }
   }
@@ -128,8 +131,7 @@ Status SurveyFans(const SplitState& s, const std::vector<std::vector<int32_t>>& 
       return Refuse(Refusal::kEdgeGraphLimit, std::to_string(list.size()) + " > 50 at vertex " + std::to_string(v));
     const VertexEdgeGraph eg = BuildVertexEdgeGraph(s.faces, v, list.data(), list.size());
     const EdgeGraphShape shape = InspectEdgeGraph(eg.keys);
-    if (shape.components != 1)
-      return Refuse(Refusal::kStillDisconnectedFan, "vertex " + std::to_string(v));
+    if (shape.components != 1) return Refuse(Refusal::kStillDisconnectedFan, "vertex " + std::to_string(v));
     if (shape.max_degree_le2) {
       fs->manifold[static_cast<size_t>(v)] = 1;
       continue;
@@ -154,8 +156,10 @@ FaceComponents ManifoldFaceComponents(const SplitState& s, const std::vector<cha
     int32_t first = -1;
     for (int32_t c : f) {
       if (!manifold[static_cast<size_t>(c)]) continue;
-      if (first < 0) first = c;
-      else pre.Union(first, c);
+      if (first < 0)
+        first = c;
+      else
+        pre.Union(first, c);
     }
   }
   std::vector<int32_t> comp_id(static_cast<size_t>(n), -1);
@@ -282,8 +286,7 @@ Status PassC(SplitState& s) {
     if (inc.count(v) == 0) continue;
     const VertexEdgeGraph eg = BuildVertexEdgeGraph(snapshot, v, inc.begin(v), inc.count(v));
     const EdgeGraphShape shape = InspectEdgeGraph(eg.keys);
-    if (shape.component_with_extra_edge)
-      return Refuse(Refusal::kPostNotManifold, "vertex " + std::to_string(v));
+    if (shape.component_with_extra_edge) return Refuse(Refusal::kPostNotManifold, "vertex " + std::to_string(v));
     if (shape.components <= 1) continue;
     SplitVertex(s, v, ComponentGroups(eg));
   }

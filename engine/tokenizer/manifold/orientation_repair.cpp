@@ -50,8 +50,8 @@ StatusOr<FaceAdjacency> BuildFaceAdjacency(const TokenizerProcessedMesh& mesh) {
     while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
     if (j - i >= 3)
       return Refuse(Refusal::kMeetNonManifold, "edge (" + std::to_string(edges[i].lo) + ", " +
-                                                   std::to_string(edges[i].hi) + ") has " +
-                                                   std::to_string(j - i) + " faces");
+                                                   std::to_string(edges[i].hi) + ") has " + std::to_string(j - i) +
+                                                   " faces");
     if (j - i == 2) {
       adj.nbr[static_cast<size_t>(edges[i].face)][static_cast<size_t>(edges[i].slot)] = FaceId(edges[i + 1].face);
       adj.nbr[static_cast<size_t>(edges[i + 1].face)][static_cast<size_t>(edges[i + 1].slot)] = FaceId(edges[i].face);
@@ -119,7 +119,8 @@ Status RepairOrientation(TokenizerProcessedMesh& mesh, FaceAdjacency& adj, int32
   for (int32_t f = 0; f < nf; ++f) {
     for (VertexId v : mesh.faces[static_cast<size_t>(f)]) {
       int32_t& s = vertex_set[static_cast<size_t>(v.get())];
-      if (s < 0) s = set_of[static_cast<size_t>(f)];
+      if (s < 0)
+        s = set_of[static_cast<size_t>(f)];
       else if (s != set_of[static_cast<size_t>(f)])
         return Refuse(Refusal::kVertexSharedByComponents,
                       "vertex " + std::to_string(v.get()) + " is shared by two edge-connected components");

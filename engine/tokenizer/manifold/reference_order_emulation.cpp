@@ -16,15 +16,13 @@ constexpr uint64_t kXXPrime5 = 2870177450012600261ULL;
 // CPython set table with open addressing (setobject.c: set_add_entry / set_table_resize).
 // Keys are identified by `key`, placed by `hash`; returns indices into the input of the
 // distinct keys, in iteration order.
-std::vector<int32_t> PySetOrderIndices(const std::vector<uint64_t>& hashes,
-                                       const std::vector<uint64_t>& keys) {
+std::vector<int32_t> PySetOrderIndices(const std::vector<uint64_t>& hashes, const std::vector<uint64_t>& keys) {
   constexpr size_t kLinearProbes = 9;
   size_t mask = 7;
   std::vector<int32_t> table(8, -1);  // slot -> input index of the stored key
   size_t used = 0;
 
-  auto probe_insert = [&](std::vector<int32_t>& tab, size_t msk, int32_t idx,
-                          bool check_dup) -> bool {
+  auto probe_insert = [&](std::vector<int32_t>& tab, size_t msk, int32_t idx, bool check_dup) -> bool {
     const uint64_t h = hashes[static_cast<size_t>(idx)];
     size_t i = static_cast<size_t>(h) & msk;
     uint64_t perturb = h;
@@ -84,13 +82,11 @@ std::vector<int32_t> PySetOrderInts(const std::vector<int32_t>& seq) {
   return out;
 }
 
-std::vector<std::pair<int32_t, int32_t>> PySetOrderPairs(
-    const std::vector<std::pair<int32_t, int32_t>>& seq) {
+std::vector<std::pair<int32_t, int32_t>> PySetOrderPairs(const std::vector<std::pair<int32_t, int32_t>>& seq) {
   std::vector<uint64_t> hashes(seq.size()), keys(seq.size());
   for (size_t i = 0; i < seq.size(); ++i) {
     hashes[i] = PyHashIntPair(seq[i].first, seq[i].second);
-    keys[i] = (static_cast<uint64_t>(static_cast<uint32_t>(seq[i].first)) << 32) |
-              static_cast<uint32_t>(seq[i].second);
+    keys[i] = (static_cast<uint64_t>(static_cast<uint32_t>(seq[i].first)) << 32) | static_cast<uint32_t>(seq[i].second);
   }
   std::vector<std::pair<int32_t, int32_t>> out;
   for (int32_t idx : PySetOrderIndices(hashes, keys)) out.push_back(seq[static_cast<size_t>(idx)]);
@@ -187,8 +183,7 @@ std::vector<NxNodeSet> NxConnectedComponents(const NxGraph& g) {
   return comps;
 }
 
-std::vector<std::pair<int32_t, int32_t>> NxEdges(const NxGraph& g,
-                                                 const std::vector<int32_t>& nbunch) {
+std::vector<std::pair<int32_t, int32_t>> NxEdges(const NxGraph& g, const std::vector<int32_t>& nbunch) {
   std::vector<std::pair<int32_t, int32_t>> out;
   std::vector<char> done(static_cast<size_t>(g.size()), 0);
   for (int32_t n : nbunch) {

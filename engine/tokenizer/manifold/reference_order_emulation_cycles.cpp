@@ -86,8 +86,7 @@ std::vector<std::vector<int32_t>> Tarjan(const Digraph& d, const std::vector<int
 }
 
 // _johnson_cycle_search(G restricted to ok, [start]); appends cycles (D-locals) to out.
-void Johnson(const Digraph& d, const std::vector<char>& ok, int32_t start,
-             std::vector<std::vector<int32_t>>* out) {
+void Johnson(const Digraph& d, const std::vector<char>& ok, int32_t start, std::vector<std::vector<int32_t>>* out) {
   const size_t n = d.name.size();
   std::vector<std::vector<int32_t>> nbrs(n);
   std::vector<char> cached(n, 0);
@@ -154,8 +153,8 @@ void Johnson(const Digraph& d, const std::vector<char>& ok, int32_t start,
 
 }  // namespace
 
-std::vector<std::vector<int32_t>> NxSimpleCyclesOfDirectedView(
-    const NxGraph& g, const std::vector<int32_t>& view_order) {
+std::vector<std::vector<int32_t>> NxSimpleCyclesOfDirectedView(const NxGraph& g,
+                                                               const std::vector<int32_t>& view_order) {
   std::vector<char> in_view(static_cast<size_t>(g.size()), 0);
   for (int32_t l : view_order) in_view[static_cast<size_t>(l)] = 1;
   // to_directed() keeps the view's node and adjacency order; simple_cycles then rebuilds a

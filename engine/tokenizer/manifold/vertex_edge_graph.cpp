@@ -50,7 +50,8 @@ EdgeGraphShape InspectEdgeGraph(const std::vector<std::pair<int32_t, int32_t>>& 
     return static_cast<int32_t>(names.size()) - 1;
   };
   auto find = [&](int32_t a) {
-    while (parent[static_cast<size_t>(a)] != a) a = parent[static_cast<size_t>(a)] = parent[static_cast<size_t>(parent[static_cast<size_t>(a)])];
+    while (parent[static_cast<size_t>(a)] != a)
+      a = parent[static_cast<size_t>(a)] = parent[static_cast<size_t>(parent[static_cast<size_t>(a)])];
     return a;
   };
   for (const auto& k : keys) {

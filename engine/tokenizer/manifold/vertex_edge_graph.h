@@ -25,7 +25,7 @@ VertexEdgeGraph BuildVertexEdgeGraph(const std::vector<std::array<int32_t, 3>>& 
 struct EdgeGraphShape {
   int32_t nodes = 0;
   int32_t components = 0;
-  bool max_degree_le2 = true;         // with one component: a simple path or cycle
+  bool max_degree_le2 = true;              // with one component: a simple path or cycle
   bool component_with_extra_edge = false;  // some component has |edges| > |nodes|
 };
 

@@ -73,8 +73,8 @@ class Reader {
 
   Status Step(int32_t id) {
     if (id < 0 || id >= vocab::k_format_vocab_size) {
-      return Error("not a token id of the format (valid ids are 0.." +
-                   std::to_string(vocab::k_format_vocab_size - 1) + ")");
+      return Error("not a token id of the format (valid ids are 0.." + std::to_string(vocab::k_format_vocab_size - 1) +
+                   ")");
     }
     switch (state_) {
       case State::kWantC:
@@ -158,12 +158,12 @@ class Reader {
     const int32_t e = id - vocab::kXBegin;
     auto& v = Layer().vertices.back();
     if (e < vocab::k_self_window) {
-      return Error("self-layer extra value " + std::to_string(e) + " is below " +
-                   std::to_string(vocab::k_self_window) + " (distances 1..8 belong to the S window)");
+      return Error("self-layer extra value " + std::to_string(e) + " is below " + std::to_string(vocab::k_self_window) +
+                   " (distances 1..8 belong to the S window)");
     }
     if (!v.extras.empty() && e <= v.extras.back()) {
-      return Error("self-layer extra values must increase within a vertex (" + std::to_string(e) +
-                   " after " + std::to_string(v.extras.back()) + ")");
+      return Error("self-layer extra values must increase within a vertex (" + std::to_string(e) + " after " +
+                   std::to_string(v.extras.back()) + ")");
     }
     v.extras.push_back(e);
     layer_pos_.back().x_pos.push_back(pos_);
@@ -176,7 +176,8 @@ class Reader {
     auto& v = Layer().vertices.back();
     if (LayerIndex() == 1) {
       if (!v.between.empty()) return Error("a layer-1 vertex has exactly one B token (460)");
-      if (id != vocab::kBBegin + 1) return Error("a layer-1 vertex's B token must be 460 (its only neighbour is the root)");
+      if (id != vocab::kBBegin + 1)
+        return Error("a layer-1 vertex's B token must be 460 (its only neighbour is the root)");
     }
     if (t.start + BetweenCaseLastOne(t.kase) > prev_size_ - 1) {
       return Error("between-layer segment (start " + std::to_string(t.start) + ", case " + std::to_string(t.kase) +
@@ -186,8 +187,8 @@ class Reader {
       const BetweenToken& p = v.between.back();
       const int32_t min_start = BetweenNextMinStart(p.start, p.kase);
       if (t.start < min_start) {
-        return Error("between-layer token starts at column " + std::to_string(t.start) +
-                     ", but after (start " + std::to_string(p.start) + ", case " + std::to_string(p.kase) +
+        return Error("between-layer token starts at column " + std::to_string(t.start) + ", but after (start " +
+                     std::to_string(p.start) + ", case " + std::to_string(p.kase) +
                      ") the row continues at column >= " + std::to_string(min_start));
       }
     }
@@ -203,16 +204,15 @@ class Reader {
     const int32_t n = static_cast<int32_t>(vs.size());
     for (int32_t i = 0; i < n; ++i) {
       if (n <= vocab::k_self_window && (vs[i].window >> (n - 1)) != 0) {
-        return ErrorAt(layer_pos_[i].s_pos, "window bits point past the end of a layer of " +
-                                                std::to_string(n) + " vertices (layer closed at token " +
-                                                std::to_string(pos_) + ")");
+        return ErrorAt(layer_pos_[i].s_pos, "window bits point past the end of a layer of " + std::to_string(n) +
+                                                " vertices (layer closed at token " + std::to_string(pos_) + ")");
       }
       for (size_t k = 0; k < vs[i].extras.size(); ++k) {
         if (vs[i].extras[k] > n - 10) {
-          return ErrorAt(layer_pos_[i].x_pos[k],
-                         "self-layer extra value " + std::to_string(vs[i].extras[k]) +
-                             " is out of range for a layer of " + std::to_string(n) + " vertices (max N-10 = " +
-                             std::to_string(n - 10) + "; layer closed at token " + std::to_string(pos_) + ")");
+          return ErrorAt(layer_pos_[i].x_pos[k], "self-layer extra value " + std::to_string(vs[i].extras[k]) +
+                                                     " is out of range for a layer of " + std::to_string(n) +
+                                                     " vertices (max N-10 = " + std::to_string(n - 10) +
+                                                     "; layer closed at token " + std::to_string(pos_) + ")");
         }
       }
     }

@@ -8,12 +8,8 @@
 
 namespace silk {
 
-inline int32_t BlockTokenOf(const QVec& q) {
-  return vocab::kKBegin + (q.x >> 4) * 64 + (q.y >> 4) * 8 + (q.z >> 4);
-}
-inline int32_t OffsetTokenOf(const QVec& q) {
-  return vocab::kOBegin + (q.x & 15) * 256 + (q.y & 15) * 16 + (q.z & 15);
-}
+inline int32_t BlockTokenOf(const QVec& q) { return vocab::kKBegin + (q.x >> 4) * 64 + (q.y >> 4) * 8 + (q.z >> 4); }
+inline int32_t OffsetTokenOf(const QVec& q) { return vocab::kOBegin + (q.x & 15) * 256 + (q.y & 15) * 16 + (q.z & 15); }
 // Inverse; block_id/offset_id must lie in the K/O ranges.
 inline QVec VertexOfTokens(int32_t block_id, int32_t offset_id) {
   const int32_t b = block_id - vocab::kKBegin, o = offset_id - vocab::kOBegin;

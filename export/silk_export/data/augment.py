@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Training augmentation on raw vertices (numpy): per-axis scale in [0.75, 0.95] and a rotation
 about the up axis (y) in 30° steps. Tokenization re-normalises afterwards (token_format.md §2.1)."""
+
 from __future__ import annotations
 
 import numpy as np

@@ -4,6 +4,7 @@ one shard of the sorted file list (`--shard I/N`: files I, I+N, I+2N, ...) into 
 cache (shard_store.py); merging the N shards writes dataset.json (the shard list), index.jsonl
 (one row per mesh in file order: key, file, split, faces, token count, refusal, shard, slot),
 refused.tsv and summary.json. Training streams from the shards (sharded_dataset.py)."""
+
 from __future__ import annotations
 
 import json
@@ -29,8 +30,10 @@ def dev_exclusion(dev_dir: Path | None, pmd_root: Path | None = None) -> DevExcl
     if not dev_dir:
         shared = shared_dir()
         if shared is None:
-            raise SystemExit("silk-export dataset: no dev corpus to keep out of training: pass --dev-dir DIR, set "
-                             "SILK_SHARED_DIR (its corpus/dev is used), or --all-train")
+            raise SystemExit(
+                "silk-export dataset: no dev corpus to keep out of training: pass --dev-dir DIR, set "
+                "SILK_SHARED_DIR (its corpus/dev is used), or --all-train"
+            )
         dev_dir = shared / "corpus" / "dev"
     dev_dir = Path(dev_dir)
     ex = load_dev_exclusion(dev_dir, silk_mesh.load_arrays)
@@ -54,8 +57,13 @@ def encode_one(key: str, path: Path, root: Path, dev: DevExclusion | None):
         row["split"] = TRAIN if dev is None else assign_split(key, shape_key(v, f.shape[0]), dev)
         ids, stats = silk_mesh.encode((v, f), return_stats=True)
         tokens = np.asarray(ids, dtype=np.int32)
-        row.update(tokens=int(tokens.size), processed_faces=int(stats["processed_faces"]),
-                   layers=int(stats["layers"]), max_layer_size=int(stats["max_layer_size"]), refused=None)
+        row.update(
+            tokens=int(tokens.size),
+            processed_faces=int(stats["processed_faces"]),
+            layers=int(stats["layers"]),
+            max_layer_size=int(stats["max_layer_size"]),
+            refused=None,
+        )
         arrays = (tokens, v, f)
     except silk_mesh.SilkError as e:
         refused = e.reason if e.status == silk_mesh.SILK_ERR_REFUSED else f"error:{e.name}"
@@ -65,15 +73,21 @@ def encode_one(key: str, path: Path, root: Path, dev: DevExclusion | None):
     return (row, *arrays)
 
 
-def build_shard(root: Path, out_dir: Path, shard: tuple[int, int] = (0, 1), dev_dir: Path | None = None,
-                limit: int | None = None, all_train: bool = False, progress: bool = True) -> Path:
+def build_shard(
+    root: Path,
+    out_dir: Path,
+    shard: tuple[int, int] = (0, 1),
+    dev_dir: Path | None = None,
+    limit: int | None = None,
+    all_train: bool = False,
+    progress: bool = True,
+) -> Path:
     """Encodes files shard[0], shard[0] + N, ... of the sorted listing into out_dir/shard-I-of-N."""
     root, (i, n) = Path(root), shard
     files = list_meshes(root)
     if limit:
         files = files[:limit]
-    dev = None if all_train else dev_exclusion(
-        dev_dir, pmd_root=root if (root / "art" / "meshes").is_dir() else None)
+    dev = None if all_train else dev_exclusion(dev_dir, pmd_root=root if (root / "art" / "meshes").is_dir() else None)
     writer = ShardWriter(Path(out_dir), i, n)
     t0 = time.time()
     mine = list(range(i, len(files), n))
@@ -81,8 +95,9 @@ def build_shard(root: Path, out_dir: Path, shard: tuple[int, int] = (0, 1), dev_
         key, path = files[order]
         row, tokens, v, f = encode_one(key, path, root, dev)
         writer.add({**row, "order": order}, tokens, v, f)
-    return writer.close({"root": str(root), "files_total": len(files), "all_train": all_train,
-                         "seconds": round(time.time() - t0, 1)})
+    return writer.close(
+        {"root": str(root), "files_total": len(files), "all_train": all_train, "seconds": round(time.time() - t0, 1)}
+    )
 
 
 def merge_shards(out_dir: Path) -> dict:
@@ -105,19 +120,24 @@ def merge_shards(out_dir: Path) -> dict:
         write_refused(fh, [r for r in rows if r["refused"]])
     info = Shard(out_dir / names[0]).info
     summary = {
-        "root": info["root"], "meshes": len(rows), "shards": n,
+        "root": info["root"],
+        "meshes": len(rows),
+        "shards": n,
         "splits": dict(Counter(r["split"] for r in rows)),
         "encodable_by_split": dict(Counter(r["split"] for r in rows if r["refused"] is None)),
         "refusals": dict(Counter(r["refused"] for r in rows if r["refused"])),
     }
     write_json(out_dir / "summary.json", summary, "null")
-    write_json(out_dir / "dataset.json",
-               {"format": DATASET_FORMAT, "shards": names, "meshes": len(rows), "all_train": info["all_train"]})
+    write_json(
+        out_dir / "dataset.json",
+        {"format": DATASET_FORMAT, "shards": names, "meshes": len(rows), "all_train": info["all_train"]},
+    )
     return summary
 
 
-def build_index(root: Path, out_dir: Path, dev_dir: Path | None = None, limit: int | None = None,
-                all_train: bool = False) -> dict:
+def build_index(
+    root: Path, out_dir: Path, dev_dir: Path | None = None, limit: int | None = None, all_train: bool = False
+) -> dict:
     """Unsharded build: one shard, then the merge (index.jsonl, summary.json, dataset.json)."""
     t0 = time.time()
     for old in Path(out_dir).glob("shard-*-of-*"):  # a previous build with another N

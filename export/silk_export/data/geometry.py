@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Numpy geometry shared by the data pipeline and evaluation: the token_format.md §2.1 bounding-box
 normalisation (surface sampling is libsilk's, see pointcloud.py)."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -16,4 +17,3 @@ def normalize_vertices(v: np.ndarray, bound: float = 0.95) -> np.ndarray:
     extent = float((hi - lo).max())
     scale = (2 * bound) / extent if extent > 0 else 1.0
     return (v - center) * scale
-

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Finds mesh files: the 0 A.D. art set ($SILK_DATA_DIR/0ad/art/meshes, keyed by the path
 inside public.zip) or any folder of meshes libsilk reads (keyed by the path under that folder)."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -31,4 +32,5 @@ def list_meshes(root: Path) -> list[tuple[str, Path]]:
 
 def default_0ad_root() -> Path:
     from ..paths import data_dir
+
     return data_dir() / "0ad"

@@ -2,6 +2,7 @@
 """The model's point-cloud condition [N, 6] (xyz then unit normal) through libsilk's
 pre-processing (silk_points_prepare: the code generation runs, no second copy in numpy), with
 optional Gaussian jitter as in training."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -17,16 +18,21 @@ def _seed(rng: np.random.Generator) -> int:
     return int(rng.integers(0, 2**63))
 
 
-def sample_surface(v: np.ndarray, f: np.ndarray, n: int, rng: np.random.Generator
-                   ) -> tuple[np.ndarray, np.ndarray]:
+def sample_surface(v: np.ndarray, f: np.ndarray, n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
     """n points uniformly distributed over the surface area (in v's own frame), and their faces'
     unit normals (float64 arrays [n, 3])."""
     rows, centre, scale = silk_mesh.prepare_points(v, f, "silk", n_points=n, seed=_seed(rng))
     return rows[:, :3].astype(np.float64) / scale + centre, rows[:, 3:].astype(np.float64)
 
 
-def point_cloud(v_normalized: np.ndarray, f: np.ndarray, rng: np.random.Generator,
-                n: int = N_POINTS, noise: bool = True, kind: str = "silk") -> np.ndarray:
+def point_cloud(
+    v_normalized: np.ndarray,
+    f: np.ndarray,
+    rng: np.random.Generator,
+    n: int = N_POINTS,
+    noise: bool = True,
+    kind: str = "silk",
+) -> np.ndarray:
     """float32 [n, 6] condition by the `kind` pre-processing ("silk" or "official"); with
     noise=True adds N(0, 0.01²) to xyz with probability 0.5."""
     rows, _, _ = silk_mesh.prepare_points(v_normalized, f, kind, n_points=n, seed=_seed(rng))

@@ -2,6 +2,7 @@
 """Progressive-balanced resampling (Mesh Silksong training recipe): one class per 100 faces;
 p_j(t) = (1 - t/T)·p_j^IB + (t/T)·p_j^CB, instance-balanced (class size / N) moving linearly to
 class-balanced (uniform over classes); within a class every mesh is equally likely."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -16,8 +17,7 @@ class ProgressiveBalancedSampler:
             raise ValueError("no items to sample from")
         self.total_steps = max(int(total_steps), 1)
         self.labels = faces // class_width
-        self.classes, self.inverse, self.class_sizes = np.unique(
-            self.labels, return_inverse=True, return_counts=True)
+        self.classes, self.inverse, self.class_sizes = np.unique(self.labels, return_inverse=True, return_counts=True)
         self.p_instance = self.class_sizes / faces.size
         self.p_class = np.full(self.classes.size, 1.0 / self.classes.size)
 

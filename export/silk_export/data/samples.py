@@ -2,6 +2,7 @@
 """Online per-sample pipeline: raw mesh -> (augment) -> tokens through libsilk (normalise +
 non-manifold processing) -> point cloud in the same normalised frame; plus batch collation
 (BOS + tokens as input, tokens + EOS as labels, PAD / ignored past the end)."""
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -31,17 +32,26 @@ class Sample:
     key: str = ""
 
 
-def make_sample(v: np.ndarray, f: np.ndarray, rng: np.random.Generator, max_tokens: int,
-                augment: bool = True, n_points: int = 4096, key: str = "", tokens=None,
-                points_kind: str = "silk") -> Sample:
+def make_sample(
+    v: np.ndarray,
+    f: np.ndarray,
+    rng: np.random.Generator,
+    max_tokens: int,
+    augment: bool = True,
+    n_points: int = 4096,
+    key: str = "",
+    tokens=None,
+    points_kind: str = "silk",
+) -> Sample:
     """Raises TooLong, silk_mesh.SilkError (refused, e.g. a layer over 200 vertices) or ValueError.
     tokens: the un-augmented mesh's tokens when already known (a dataset cache); augment=False only.
     points_kind: the architecture's point pre-processing (model.json `preprocessing.kind`)."""
     if augment:
         v, _ = augment_vertices(v, rng)
     if tokens is None or augment:
-        tokens = np.asarray(silk_mesh.encode((v, f), normalize=True, normalize_bound=BOUND,
-                                             nonmanifold_processing=True), dtype=np.int32)
+        tokens = np.asarray(
+            silk_mesh.encode((v, f), normalize=True, normalize_bound=BOUND, nonmanifold_processing=True), dtype=np.int32
+        )
     if tokens.size == 0 or tokens.size > max_tokens:
         raise TooLong(f"{key}: {tokens.size} tokens (max {max_tokens})")
     pts = point_cloud(normalize_vertices(v, BOUND), f, rng, n=n_points, noise=augment, kind=points_kind)
@@ -65,11 +75,13 @@ class MeshCache:
             self._arrays[i] = silk_mesh.load_arrays(self.root / self.rows[i]["file"])
         return self._arrays[i]
 
-    def sample(self, i: int, rng: np.random.Generator, max_tokens: int, augment: bool = True,
-               n_points: int = 4096) -> Sample:
+    def sample(
+        self, i: int, rng: np.random.Generator, max_tokens: int, augment: bool = True, n_points: int = 4096
+    ) -> Sample:
         v, f = self.arrays(i)
-        return make_sample(v, f, rng, max_tokens, augment, n_points, key=self.rows[i]["key"],
-                           points_kind=self.points_kind)
+        return make_sample(
+            v, f, rng, max_tokens, augment, n_points, key=self.rows[i]["key"], points_kind=self.points_kind
+        )
 
 
 def collate(samples: list[Sample]) -> dict[str, torch.Tensor]:
@@ -81,9 +93,13 @@ def collate(samples: list[Sample]) -> dict[str, torch.Tensor]:
     for r, x in enumerate(samples):
         t = torch.from_numpy(x.tokens.astype(np.int64))
         ids[r, 0] = vocab.bos_id
-        ids[r, 1:t.numel() + 1] = t
-        labels[r, :t.numel()] = t
+        ids[r, 1 : t.numel() + 1] = t
+        labels[r, : t.numel()] = t
         labels[r, t.numel()] = vocab.eos_id
     points = torch.from_numpy(np.stack([x.points for x in samples]))
-    return {"input_ids": ids, "labels": labels, "points": points,
-            "n_tokens": int(sum(x.tokens.size + 1 for x in samples))}
+    return {
+        "input_ids": ids,
+        "labels": labels,
+        "points": points,
+        "n_tokens": int(sum(x.tokens.size + 1 for x in samples)),
+    }

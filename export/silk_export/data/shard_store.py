@@ -13,6 +13,7 @@ encoded. Raw little-endian arrays, appended while the job runs (constant memory)
   shard.json    format, shard i/N, counts
 
 A shard folder appears only complete: it is written as `<name>.tmp` and renamed at the end."""
+
 from __future__ import annotations
 
 import json
@@ -84,8 +85,14 @@ class ShardWriter:
         np.save(self.dir / "offsets.npy", np.asarray(self.offsets, np.int64))
         with open(self.dir / "refused.tsv", "w") as fh:
             write_refused(fh, self.refused)
-        info = {"format": FORMAT, "shard": self.i, "of": self.n, "encoded": len(self.offsets) - 1,
-                "refused": len(self.refused), **summary}
+        info = {
+            "format": FORMAT,
+            "shard": self.i,
+            "of": self.n,
+            "encoded": len(self.offsets) - 1,
+            "refused": len(self.refused),
+            **summary,
+        }
         write_json(self.dir / "shard.json", info)
         if self.final.exists():
             shutil.rmtree(self.final)

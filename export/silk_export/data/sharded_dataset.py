@@ -2,6 +2,7 @@
 """Training's view of a merged dataset folder (dataset.json + shards): the selected index rows,
 each mesh's arrays and cached tokens read from the memory-mapped shards (no mesh files, no
 per-mesh cache in memory), with the same `sample()` as samples.MeshCache."""
+
 from __future__ import annotations
 
 import json
@@ -50,10 +51,20 @@ class ShardedSource:
         r = self.rows[i]
         return self._shard(r["shard"]).mesh_tokens(r["slot"])
 
-    def sample(self, i: int, rng: np.random.Generator, max_tokens: int, augment: bool = True,
-               n_points: int = 4096) -> Sample:
+    def sample(
+        self, i: int, rng: np.random.Generator, max_tokens: int, augment: bool = True, n_points: int = 4096
+    ) -> Sample:
         """Without augmentation the cached tokens are used (no tokenisation at all)."""
         v, f = self.arrays(i)
         cached = None if augment else self.tokens(i)
-        return make_sample(v, f, rng, max_tokens, augment, n_points, key=self.rows[i]["key"], tokens=cached,
-                           points_kind=self.points_kind)
+        return make_sample(
+            v,
+            f,
+            rng,
+            max_tokens,
+            augment,
+            n_points,
+            key=self.rows[i]["key"],
+            tokens=cached,
+            points_kind=self.points_kind,
+        )

@@ -4,6 +4,7 @@
 Split by SHA-1 of a mesh's path inside public.zip (UTF-8): first hex digit 0–d train, e val,
 f test. Dev-corpus meshes, and any mesh with the same shape (dev corpus README: same set of
 vertex positions rounded to 1e-5 and same face count), get the split "dev" and never train."""
+
 from __future__ import annotations
 
 import csv
@@ -32,6 +33,7 @@ def shape_key(positions: np.ndarray, n_faces: int) -> str:
 @dataclass
 class DevExclusion:
     """Paths (inside public.zip) and shape keys of the dev corpus."""
+
     zip_paths: set = field(default_factory=set)
     shape_keys: set = field(default_factory=set)
 

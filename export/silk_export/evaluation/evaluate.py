@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """`silk-export eval`: metrics (metrics.py) and structure (structure.py) for a generated mesh
 against a reference, or for folders of them matched by file stem; meshes read through libsilk."""
+
 from __future__ import annotations
 
 from pathlib import Path

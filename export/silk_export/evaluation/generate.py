@@ -3,6 +3,7 @@
 grammar mask) conditioned on the point cloud of each input mesh and decode them through libsilk,
 or run the C++ runtime (grammar-constrained, through libsilk's C API) on an exported model folder;
 either way write generated/<stem>.obj beside reference/<stem>.obj for `silk-export eval`."""
+
 from __future__ import annotations
 
 import json
@@ -22,8 +23,9 @@ from ..checkpoint import model_from_checkpoint
 
 
 @torch.no_grad()
-def sample_tokens(model: Architecture, points: np.ndarray, max_tokens: int, temperature: float, top_k: int,
-                  generator: torch.Generator) -> tuple[np.ndarray, bool]:
+def sample_tokens(
+    model: Architecture, points: np.ndarray, max_tokens: int, temperature: float, top_k: int, generator: torch.Generator
+) -> tuple[np.ndarray, bool]:
     """Samples at most max_tokens ids (EOS included) with a model of any registered architecture,
     one Architecture.step per id. points: float32 [N, 6] by the architecture's pre-processing.
     Returns (format ids without BOS/EOS, whether EOS was produced)."""
@@ -52,15 +54,30 @@ def sample_tokens(model: Architecture, points: np.ndarray, max_tokens: int, temp
 def pick_from_index(index: Path, root: Path, split: str, limit: int, max_tokens: int) -> list[Path]:
     """`limit` encodable meshes of one split, evenly spaced over the split sorted by token count."""
     from ..data.dataset_index import read_index
-    rows = sorted((r for r in read_index(index) if r["split"] == split and r.get("refused") is None
-                   and r.get("tokens") and r["tokens"] <= max_tokens), key=lambda r: (r["tokens"], r["key"]))
+
+    rows = sorted(
+        (
+            r
+            for r in read_index(index)
+            if r["split"] == split and r.get("refused") is None and r.get("tokens") and r["tokens"] <= max_tokens
+        ),
+        key=lambda r: (r["tokens"], r["key"]),
+    )
     if limit and len(rows) > limit:
         rows = [rows[round(i * (len(rows) - 1) / (limit - 1))] for i in range(limit)] if limit > 1 else rows[:1]
     return [Path(root) / r["file"] for r in rows]
 
 
-def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_tokens: int = 0,
-                   temperature: float = 0.5, top_k: int = 50, seed: int = 0, threads: int = 1) -> dict:
+def generate_paths(
+    checkpoint: Path,
+    inputs: list[Path],
+    out_dir: Path,
+    max_tokens: int = 0,
+    temperature: float = 0.5,
+    top_k: int = 50,
+    seed: int = 0,
+    threads: int = 1,
+) -> dict:
     if threads:
         torch.set_num_threads(threads)  # one token at a time: more threads only add sync cost
     model, _ = model_from_checkpoint(checkpoint)
@@ -88,15 +105,28 @@ def generate_paths(checkpoint: Path, inputs: list[Path], out_dir: Path, max_toke
         except silk_mesh.SilkError as e:
             row["decode_error"] = str(e)
         rows.append(row)
-    summary = {"inputs": len(rows), "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
-               "decoded_with_faces": sum(1 for r in rows if r.get("faces")), "meshes": rows}
+    summary = {
+        "inputs": len(rows),
+        "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
+        "decoded_with_faces": sum(1 for r in rows if r.get("faces")),
+        "meshes": rows,
+    }
     write_json(Path(out_dir) / "generate.json", summary, "null")
     return summary
 
 
-def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, seed: int = 0, threads: int = 1,
-                          max_tokens: int = 0, temperature: float | None = None, top_k: int | None = None,
-                          surface_tolerance: int | None = None, candidates: int | None = None) -> dict:
+def generate_with_runtime(
+    model_dir: Path,
+    inputs: list[Path],
+    out_dir: Path,
+    seed: int = 0,
+    threads: int = 1,
+    max_tokens: int = 0,
+    temperature: float | None = None,
+    top_k: int | None = None,
+    surface_tolerance: int | None = None,
+    candidates: int | None = None,
+) -> dict:
     """Runs the C++ runtime (grammar-constrained) per input with the exported model, in this
     process through libsilk's C API (the same generation silkgen and the Blender add-on run).
     temperature / top_k / candidates None: the model folder's defaults (model.json "sampling", else
@@ -114,26 +144,48 @@ def generate_with_runtime(model_dir: Path, inputs: list[Path], out_dir: Path, se
             row = {"name": stem}
             try:
                 with silk_mesh.Mesh.load(p) as src:
-                    mesh, _, st = gen.run(src, seed=seed, max_tokens=max_tokens, temperature=temperature,
-                                               top_k=top_k, surface_tolerance=surface_tolerance,
-                                               candidates=candidates)
+                    mesh, _, st = gen.run(
+                        src,
+                        seed=seed,
+                        max_tokens=max_tokens,
+                        temperature=temperature,
+                        top_k=top_k,
+                        surface_tolerance=surface_tolerance,
+                        candidates=candidates,
+                    )
                 with mesh:
                     if mesh.triangle_count:
                         mesh.save(gen_dir / f"{stem}.obj")
-                row.update(tokens=st["tokens"], eos=st["stop_reason"] == "eos", faces=st["faces"],
-                           stop_reason=st["stop_reason"], seconds=st["seconds_total"],
-                           tokens_per_second=st["tokens_per_second"], guided_tokens=st["guided_tokens"],
-                           guidance_fallbacks=st["guidance_fallbacks"], candidates=st["candidates"],
-                           chosen_candidate=st["chosen_candidate"], score=st["score"])
+                row.update(
+                    tokens=st["tokens"],
+                    eos=st["stop_reason"] == "eos",
+                    faces=st["faces"],
+                    stop_reason=st["stop_reason"],
+                    seconds=st["seconds_total"],
+                    tokens_per_second=st["tokens_per_second"],
+                    guided_tokens=st["guided_tokens"],
+                    guidance_fallbacks=st["guidance_fallbacks"],
+                    candidates=st["candidates"],
+                    chosen_candidate=st["chosen_candidate"],
+                    score=st["score"],
+                )
                 if sampling is None:  # what libsilk resolved (explicit values over the model's defaults)
                     s = json.loads(gen.report_json())["settings"]
-                    sampling = {k: s[k] for k in ("temperature", "top_k", "top_p", "surface_tolerance",
-                                                  "candidates", "orient") if k in s}
+                    sampling = {
+                        k: s[k]
+                        for k in ("temperature", "top_k", "top_p", "surface_tolerance", "candidates", "orient")
+                        if k in s
+                    }
             except silk_mesh.SilkError as e:
                 row.update(eos=False, decode_error=str(e)[-300:])
             rows.append(row)
-    summary = {"runtime": "libsilk", "inputs": len(rows), "settings": sampling or {},
-               "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
-               "decoded_with_faces": sum(1 for r in rows if r.get("faces")), "meshes": rows}
+    summary = {
+        "runtime": "libsilk",
+        "inputs": len(rows),
+        "settings": sampling or {},
+        "eos_rate": float(np.mean([r["eos"] for r in rows])) if rows else 0.0,
+        "decoded_with_faces": sum(1 for r in rows if r.get("faces")),
+        "meshes": rows,
+    }
     write_json(Path(out_dir) / "generate.json", summary, "null")
     return summary

@@ -5,6 +5,7 @@
   HD   = max(max_a d(a,B), max_b d(b,A))
   NC   = ½·(mean_a n_a·n_nn(a) + mean_b n_b·n_nn(b))   (face normals of the nearest samples)
   |NC| = the same with |n·n'| (ignores orientation)."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -19,7 +20,7 @@ def nearest(a: np.ndarray, b: np.ndarray, chunk: int = 1024) -> tuple[np.ndarray
     fast matrix form; the reported distances are recomputed exactly for the chosen pairs."""
     ta, tb = torch.from_numpy(np.asarray(a, np.float64)), torch.from_numpy(np.asarray(b, np.float64))
     fa, fb = ta.float(), tb.float()
-    idx = torch.cat([torch.cdist(fa[i:i + chunk], fb).argmin(dim=1) for i in range(0, fa.shape[0], chunk)])
+    idx = torch.cat([torch.cdist(fa[i : i + chunk], fb).argmin(dim=1) for i in range(0, fa.shape[0], chunk)])
     dist = torch.linalg.vector_norm(ta - tb[idx], dim=1)
     return dist.numpy(), idx.numpy()
 

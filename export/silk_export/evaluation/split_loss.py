@@ -5,6 +5,7 @@ for the model card — next to a context-free baseline: the cross-entropy of the
 unigram token frequencies on the same tokens, and the conditioning gap: how much worse the same
 tokens score when each mesh is given another mesh's points (zero for a model that ignores its
 input)."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -36,8 +37,17 @@ def other_points(samples: list) -> list:
     return [dataclasses.replace(s, points=samples[(i + 1) % len(samples)].points) for i, s in enumerate(samples)]
 
 
-def split_loss(checkpoint: Path, index: Path, root: Path, split: str, limit: int = 0, seed: int = 0,
-               threads: int = 1, baseline_split: str | None = "train", conditioning: bool = True) -> dict:
+def split_loss(
+    checkpoint: Path,
+    index: Path,
+    root: Path,
+    split: str,
+    limit: int = 0,
+    seed: int = 0,
+    threads: int = 1,
+    baseline_split: str | None = "train",
+    conditioning: bool = True,
+) -> dict:
     if threads:
         torch.set_num_threads(threads)
     model, ck = model_from_checkpoint(checkpoint)
@@ -48,16 +58,23 @@ def split_loss(checkpoint: Path, index: Path, root: Path, split: str, limit: int
     t0 = time.time()
     samples = fixed_val_samples(root, rows, model.cfg, len(rows), seed)
     loss = evaluate_loss(model, samples, "cpu")
-    out = {"split": split, "checkpoint_step": ck["step"], "meshes": len(samples),
-            "tokens": int(sum(s.tokens.size + 1 for s in samples)), "loss": loss,
-            "bits_per_token": loss / math.log(2), "perplexity": math.exp(loss),
-            "seconds": round(time.time() - t0, 1)}
+    out = {
+        "split": split,
+        "checkpoint_step": ck["step"],
+        "meshes": len(samples),
+        "tokens": int(sum(s.tokens.size + 1 for s in samples)),
+        "loss": loss,
+        "bits_per_token": loss / math.log(2),
+        "perplexity": math.exp(loss),
+        "seconds": round(time.time() - t0, 1),
+    }
     if conditioning and len(samples) >= 2:
         out["loss_other_points"] = evaluate_loss(model, other_points(samples), "cpu")
         out["conditioning_gap"] = out["loss_other_points"] - loss
     if baseline_split:
         eval_tokens = np.concatenate([np.append(s.tokens, model.eos_id) for s in samples])
-        out["unigram_baseline"] = unigram_baseline(root, select_rows(all_rows, baseline_split, model.cfg),
-                                                   eval_tokens, model.n_logits, model.eos_id)
+        out["unigram_baseline"] = unigram_baseline(
+            root, select_rows(all_rows, baseline_split, model.cfg), eval_tokens, model.n_logits, model.eos_id
+        )
         out["baseline_split"] = baseline_split
     return out

@@ -2,6 +2,7 @@
 """Structural figures of one mesh, measured after welding bit-identical positions (as the dev
 corpus manifest does): faces, connected components (faces sharing a vertex), edge-manifold,
 watertight, and whether the faces are consistently oriented across every 2-face edge."""
+
 from __future__ import annotations
 
 from collections import Counter
@@ -46,8 +47,9 @@ def mesh_structure(v: np.ndarray, f: np.ndarray) -> dict:
         undirected[(min(a, b), max(a, b))] += k
     manifold = all(k <= 2 for k in undirected.values())
     watertight = len(undirected) > 0 and all(k == 2 for k in undirected.values())
-    oriented = all(directed.get((a, b), 0) == 1 and directed.get((b, a), 0) == 1
-                   for (a, b), k in undirected.items() if k == 2)
+    oriented = all(
+        directed.get((a, b), 0) == 1 and directed.get((b, a), 0) == 1 for (a, b), k in undirected.items() if k == 2
+    )
     return {
         "faces": int(f.shape[0]),
         "vertices": int(v.shape[0]),

@@ -18,6 +18,7 @@ An architecture is an nn.Module subclass of `Architecture` that provides
   reads it; "kind" also picks what training and PyTorch generation feed the encoder);
 * what its exports and model card say: `name`, `model_version` (the model.json version its
   exports write), `sampling` (model.json "sampling" defaults) and `card_summary()`."""
+
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
@@ -90,8 +91,9 @@ class Architecture(nn.Module, ABC):
         empty = torch.zeros(batch, self.cfg.n_heads, 0, self.cfg.head_dim)
         return [(empty, empty) for _ in range(self.cfg.n_layers)]
 
-    def step(self, input_ids: torch.Tensor, positions: torch.Tensor, past: KVCache, cross: KVCache,
-             fused: bool = False) -> tuple[torch.Tensor, KVCache]:
+    def step(
+        self, input_ids: torch.Tensor, positions: torch.Tensor, past: KVCache, cross: KVCache, fused: bool = False
+    ) -> tuple[torch.Tensor, KVCache]:
         """Incremental decoding with a KV cache, the batch-1 layout of the ONNX decoder.
 
         input_ids, positions [1,T]; past: per layer (K, V) [1,H,P,D] (P may be 0) holding positions
@@ -104,10 +106,12 @@ class Architecture(nn.Module, ABC):
         h, scale = self.cfg.n_heads, self.cfg.qk_scale or None
         new = []
         for layer, (pk, pv), (ck, cv) in zip(self.layers, past, cross):
+
             def self_attention(y, pk=pk, pv=pv):
                 q, k, v = (split_heads(t, h) for t in layer.self_qkv(y))
-                a = attend(q, torch.cat([pk, k], dim=2), torch.cat([pv, v], dim=2), allowed=allowed, fused=fused,
-                           scale=scale)
+                a = attend(
+                    q, torch.cat([pk, k], dim=2), torch.cat([pv, v], dim=2), allowed=allowed, fused=fused, scale=scale
+                )
                 return merge_heads(a), (k, v)
 
             x, kv = layer.block(x, ck, cv, self_attention, fused)

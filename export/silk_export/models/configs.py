@@ -3,6 +3,7 @@
 issue (paper = the Mesh Silksong scale: 1024 wide, 24 layers, 16 heads). `arch` picks the network
 (silk_export/registry.py): "silk" (ours) or "official" (the released Mesh Silksong network,
 whose extra sizes are the fields after `arch`; 0 = not used by the architecture)."""
+
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
@@ -33,8 +34,10 @@ class ModelConfig:
         if self.attn_head_dim == 0 and self.d_model % self.n_heads:
             raise ValueError(f"config {self.name}: d_model must be a multiple of n_heads")
         if self.head_dim % 8:
-            raise ValueError(f"config {self.name}: the head width must be a whole multiple of 8 "
-                             "(onnxruntime's GroupQueryAttention in the exported decoder needs it)")
+            raise ValueError(
+                f"config {self.name}: the head width must be a whole multiple of 8 "
+                "(onnxruntime's GroupQueryAttention in the exported decoder needs it)"
+            )
 
     @property
     def head_dim(self) -> int:
@@ -52,17 +55,16 @@ class ModelConfig:
 CONFIGS = {
     # CPU-trainable sizes around the bundled model, compared at equal CPU time
     # (scripts/train_default_model.sh, docs: models/training/README.md).
-    "nano": ModelConfig("nano", d_model=96, n_layers=2, n_heads=2, n_latents=32, max_seq_len=2048,
-                        encoder_layers=1),
-    "micro": ModelConfig("micro", d_model=128, n_layers=3, n_heads=4, n_latents=64, max_seq_len=2048,
-                         encoder_layers=1),
-    "mini": ModelConfig("mini", d_model=192, n_layers=4, n_heads=4, n_latents=64, max_seq_len=2048,
-                        encoder_layers=1),
+    "nano": ModelConfig("nano", d_model=96, n_layers=2, n_heads=2, n_latents=32, max_seq_len=2048, encoder_layers=1),
+    "micro": ModelConfig("micro", d_model=128, n_layers=3, n_heads=4, n_latents=64, max_seq_len=2048, encoder_layers=1),
+    "mini": ModelConfig("mini", d_model=192, n_layers=4, n_heads=4, n_latents=64, max_seq_len=2048, encoder_layers=1),
     "tiny": ModelConfig("tiny", d_model=256, n_layers=6, n_heads=4, n_latents=256, max_seq_len=10241),
-    "small": ModelConfig("small", d_model=512, n_layers=12, n_heads=8, n_latents=256, max_seq_len=10241,
-                         encoder_layers=4),
-    "paper": ModelConfig("paper", d_model=1024, n_layers=24, n_heads=16, n_latents=256, max_seq_len=10241,
-                         encoder_layers=8),
+    "small": ModelConfig(
+        "small", d_model=512, n_layers=12, n_heads=8, n_latents=256, max_seq_len=10241, encoder_layers=4
+    ),
+    "paper": ModelConfig(
+        "paper", d_model=1024, n_layers=24, n_heads=16, n_latents=256, max_seq_len=10241, encoder_layers=8
+    ),
 }
 
 

@@ -2,6 +2,7 @@
 """Refuses weights holding NaN or Inf before they become a model folder: graphs computed from
 them are garbage, and figures derived from them (model.json fidelity, scores) are not even JSON.
 One check for both exporters (`silk-export export`, `silk-export import-official`)."""
+
 from __future__ import annotations
 
 from typing import Iterable
@@ -19,8 +20,10 @@ def nonfinite_summary(t: torch.Tensor) -> str | None:
 
 
 def nonfinite_message(source: str, problems: list[str]) -> str:
-    return (f"{source}: {len(problems)} tensor(s) hold non-finite weights (NaN or Inf); refusing to export "
-            "a model from them:\n  " + "\n  ".join(problems))
+    return (
+        f"{source}: {len(problems)} tensor(s) hold non-finite weights (NaN or Inf); refusing to export "
+        "a model from them:\n  " + "\n  ".join(problems)
+    )
 
 
 def check_finite(named: Iterable[tuple[str, torch.Tensor]], source: str) -> None:

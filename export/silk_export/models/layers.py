@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Transformer building blocks shared by the point encoder and the decoder: multi-head
 attention (fused SDPA for training, plain MatMul/Softmax for ONNX export) and the MLP."""
+
 from __future__ import annotations
 
 import math
@@ -10,9 +11,15 @@ import torch.nn.functional as F
 from torch import nn
 
 
-def attend(q: torch.Tensor, k: torch.Tensor, v: torch.Tensor, causal: bool = False,
-           allowed: torch.Tensor | None = None, fused: bool = True,
-           scale: float | None = None) -> torch.Tensor:
+def attend(
+    q: torch.Tensor,
+    k: torch.Tensor,
+    v: torch.Tensor,
+    causal: bool = False,
+    allowed: torch.Tensor | None = None,
+    fused: bool = True,
+    scale: float | None = None,
+) -> torch.Tensor:
     """q [B,H,T,D], k/v [B,H,S,D] -> [B,H,T,D].
 
     causal: query i sees keys 0..i (T == S). allowed: bool [T,S] mask (export path).

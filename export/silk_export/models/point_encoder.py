@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Perceiver-style point-cloud encoder: learned latent queries cross-attend to Fourier-embedded
 points + normals, then self-attention over the latents. Trained jointly with the decoder."""
+
 from __future__ import annotations
 
 import math
@@ -32,8 +33,9 @@ class PointEncoder(nn.Module):
         self.embed = FourierEmbed(cfg.fourier_freqs, cfg.d_model)
         self.latents = nn.Parameter(torch.randn(cfg.n_latents, cfg.d_model) * 0.02)
         self.cross = LatentBlock(cfg.d_model, cfg.n_heads, cfg.ff_mult)
-        self.blocks = nn.ModuleList(LatentBlock(cfg.d_model, cfg.n_heads, cfg.ff_mult)
-                                    for _ in range(cfg.encoder_layers))
+        self.blocks = nn.ModuleList(
+            LatentBlock(cfg.d_model, cfg.n_heads, cfg.ff_mult) for _ in range(cfg.encoder_layers)
+        )
         self.norm = nn.LayerNorm(cfg.d_model)
 
     def forward(self, points: torch.Tensor) -> torch.Tensor:

@@ -2,6 +2,7 @@
 """The Mesh Silksong generator: point encoder + decoder-only transformer whose pre-norm layers
 do causal self-attention, cross-attention to the point latents, then an MLP. Embeddings are
 token + type (token_format.md §9) + learned absolute position (BOS at 0, mesh token t at t + 1)."""
+
 from __future__ import annotations
 
 import torch
@@ -64,19 +65,28 @@ class DecoderLayer(nn.Module):
 
 class SilkModel(Architecture):
     """Architecture "silk" (model.json version 2)."""
+
     name = "silk"
     model_version = 2
 
     @classmethod
     def preprocessing(cls, cfg: ModelConfig) -> dict:
-        return {"kind": "silk", "normalize_bound": 0.95, "merge_distance_fraction": 0.0, "surface_samples": 0,
-                "round_float16": False, "n_points": cfg.n_points}
+        return {
+            "kind": "silk",
+            "normalize_bound": 0.95,
+            "merge_distance_fraction": 0.0,
+            "surface_samples": 0,
+            "round_float16": False,
+            "n_points": cfg.n_points,
+        }
 
     @classmethod
     def card_summary(cls) -> list[str]:
-        return ["A point-cloud-conditioned autoregressive generator of Mesh Silksong token sequences",
-                "(decoder-only transformer with cross-attention to perceiver latents of 4,096 surface",
-                "points + normals), exported for the Silk C++ runtime per `docs/model_contract.md`."]
+        return [
+            "A point-cloud-conditioned autoregressive generator of Mesh Silksong token sequences",
+            "(decoder-only transformer with cross-attention to perceiver latents of 4,096 surface",
+            "points + normals), exported for the Silk C++ runtime per `docs/model_contract.md`.",
+        ]
 
     def __init__(self, cfg: ModelConfig):
         super().__init__()
@@ -120,8 +130,7 @@ class SilkModel(Architecture):
     def logits(self, x: torch.Tensor) -> torch.Tensor:
         return self.head(self.norm(x))
 
-    def forward(self, input_ids: torch.Tensor, points: torch.Tensor,
-                labels: torch.Tensor | None = None):
+    def forward(self, input_ids: torch.Tensor, points: torch.Tensor, labels: torch.Tensor | None = None):
         """Teacher forcing. input_ids [B,S] start with BOS (PAD after the end); positions 0..S-1.
         Returns logits [B,S,10269], or (loss, logits) with labels (IGNORE_INDEX = not scored)."""
         cross = self.encode_points(points)
@@ -135,6 +144,5 @@ class SilkModel(Architecture):
         logits = self.logits(x)
         if labels is None:
             return logits
-        loss = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1),
-                               ignore_index=IGNORE_INDEX)
+        loss = F.cross_entropy(logits.reshape(-1, logits.shape[-1]), labels.reshape(-1), ignore_index=IGNORE_INDEX)
         return loss, logits

@@ -4,6 +4,7 @@ through huggingface_hub (its cache under $HF_HOME, resumed after an interruption
 $HF_ENDPOINT and $HF_TOKEN honoured), then checked against the size and SHA-256 the hub reports
 before import-official reads it. Every failure is a HubError naming the file's hub URL and what went
 wrong; a download that fails its check is removed from the cache, so a rerun fetches it again."""
+
 from __future__ import annotations
 
 import re
@@ -30,6 +31,7 @@ class HubSource:
 
     def url(self) -> str:
         from huggingface_hub import hf_hub_url
+
         return hf_hub_url(self.repo_id, self.filename, revision=self.revision)
 
     def __str__(self) -> str:
@@ -44,8 +46,7 @@ def parse_source(text: str) -> HubSource:
     """hf:ORG/NAME[@REVISION]/PATH (REVISION: a branch, tag or commit; default main)."""
     m = _SOURCE.match(text)
     if not m or ".." in m["path"].split("/") or m["path"].startswith("/"):
-        raise HubError(f"'{text}' is not a hub source: expected hf:ORG/NAME[@REVISION]/PATH, "
-                       f"e.g. {DEFAULT_SOURCE}")
+        raise HubError(f"'{text}' is not a hub source: expected hf:ORG/NAME[@REVISION]/PATH, e.g. {DEFAULT_SOURCE}")
     return HubSource(m["repo"], m["rev"] or "main", m["path"])
 
 
@@ -60,6 +61,7 @@ def _hub():
 def _reason(e: BaseException, src: HubSource) -> str:
     """What failed, in the user's terms (huggingface_hub's error classes)."""
     from huggingface_hub import errors
+
     if isinstance(e, errors.RevisionNotFoundError):
         return f"revision '{src.revision}' not found in {src.repo_id}"
     if isinstance(e, errors.RepositoryNotFoundError):
@@ -71,8 +73,11 @@ def _reason(e: BaseException, src: HubSource) -> str:
         return f"HTTP {status}: {str(e).splitlines()[0]}"
     if isinstance(e, errors.LocalEntryNotFoundError):
         cause = e.__cause__ or e.__context__
-        return ("cannot reach the hub and no copy is cached"
-                + (f" ({type(cause).__name__}: {cause})" if cause else "") + "; check HF_ENDPOINT and the network")
+        return (
+            "cannot reach the hub and no copy is cached"
+            + (f" ({type(cause).__name__}: {cause})" if cause else "")
+            + "; check HF_ENDPOINT and the network"
+        )
     text = str(e).splitlines()[0] if str(e) else type(e).__name__
     kind = type(e).__name__
     if kind in ("RemoteProtocolError", "ReadTimeout", "ReadError") or "Consistency check failed" in text:
@@ -97,14 +102,19 @@ def _check(path: Path, src: HubSource, url: str, size: int | None, etag: str | N
     got = path.stat().st_size
     if size is not None and got != size:
         _forget(path)
-        raise HubError(f"{url}: downloaded {got} bytes, the hub reports {size}; the partial file was removed, "
-                       "run the command again")
+        raise HubError(
+            f"{url}: downloaded {got} bytes, the hub reports {size}; the partial file was removed, "
+            "run the command again"
+        )
     from .state_dict_file import sha256_of
+
     digest = sha256_of(path)
     if etag and _SHA256.match(etag) and digest != etag:
         _forget(path)
-        raise HubError(f"{url}: SHA-256 {digest} of the download differs from the hub's {etag}; the file was "
-                       "removed from the cache, run the command again")
+        raise HubError(
+            f"{url}: SHA-256 {digest} of the download differs from the hub's {etag}; the file was "
+            "removed from the cache, run the command again"
+        )
     return digest
 
 
@@ -124,5 +134,10 @@ def download(source: str, progress: bool = True) -> tuple[Path, dict]:
     except Exception as e:  # noqa: BLE001 - huggingface_hub raises many kinds; each becomes one message
         raise HubError(f"{url}: {_reason(e, src)}") from e
     digest = _check(path, src, url, meta.size, meta.etag)
-    return path, {"hub": f"hf:{src.repo_id}@{meta.commit_hash or src.revision}/{src.filename}", "url": url,
-                  "commit": meta.commit_hash, "bytes": path.stat().st_size, "sha256": digest}
+    return path, {
+        "hub": f"hf:{src.repo_id}@{meta.commit_hash or src.revision}/{src.filename}",
+        "url": url,
+        "commit": meta.commit_hash,
+        "bytes": path.stat().st_size,
+        "sha256": digest,
+    }

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """The release checkpoint's key layout (official_network.md §2, §5, §6): which keys are skipped, how a
 used key maps onto OfficialModel's parameter names, and the sizes its tensor shapes reveal."""
+
 from __future__ import annotations
 
 import re
@@ -39,7 +40,7 @@ def strip_wrapper(key: str) -> tuple[str, str]:
     removed = ""
     while key.startswith(WRAPPER_PREFIXES):
         p = next(p for p in WRAPPER_PREFIXES if key.startswith(p))
-        key, removed = key[len(p):], removed + p
+        key, removed = key[len(p) :], removed + p
     return key, removed
 
 
@@ -84,24 +85,34 @@ def sizes_from_shapes(infos: dict[str, TensorInfo]) -> dict:
     rows, d = _shape(infos, "token_embed.weight", 2)
     n_layer_entries = _count(infos, r"decoder\.layers\.(\d+)\.0\.0\.weight")
     if n_layer_entries == 0 or n_layer_entries % 3:
-        raise StateDictError(f"decoder.layers: {n_layer_entries} pre-norm entries, expected a positive "
-                             "multiple of 3 (self, cross, feed-forward per block)")
+        raise StateDictError(
+            f"decoder.layers: {n_layer_entries} pre-norm entries, expected a positive "
+            "multiple of 3 (self, cross, feed-forward per block)"
+        )
     heads, slots, dh = _shape(infos, "decoder.layers.1.1.mem_k", 3)
     ctx = _shape(infos, "decoder.layers.1.1.to_k.weight", 2)[1]
     ff_inner = _shape(infos, "decoder.layers.2.1.ff.0.proj.weight", 2)[0] // 2
     queries, width = _shape(infos, ENCODER + "query", 2)
     in_features = _shape(infos, ENCODER + "input_proj.weight", 2)[1]
     if (in_features - 6) % 6 or in_features <= 6:
-        raise StateDictError(f"key '{ENCODER}input_proj.weight': {in_features} input features is not "
-                             "3 + 6·F + 3")
+        raise StateDictError(f"key '{ENCODER}input_proj.weight': {in_features} input features is not 3 + 6·F + 3")
     if ff_inner % d:
         raise StateDictError(f"feed-forward width {ff_inner} is not a multiple of the model width {d}")
-    return {"token_rows": rows, "d_model": d, "n_layers": n_layer_entries // 3, "n_heads": heads,
-            "attn_head_dim": dh, "memory_slots": slots, "context_dim": ctx, "ff_mult": ff_inner // d,
-            "n_queries": queries, "encoder_width": width,
-            "encoder_layers": _count(infos, re.escape(ENCODER) + r"self_attn\.resblocks\.(\d+)\..*"),
-            "fourier_freqs": (in_features - 6) // 6,
-            "max_seq_len": _shape(infos, "abs_pos_emb.weight", 2)[0] + 1}
+    return {
+        "token_rows": rows,
+        "d_model": d,
+        "n_layers": n_layer_entries // 3,
+        "n_heads": heads,
+        "attn_head_dim": dh,
+        "memory_slots": slots,
+        "context_dim": ctx,
+        "ff_mult": ff_inner // d,
+        "n_queries": queries,
+        "encoder_width": width,
+        "encoder_layers": _count(infos, re.escape(ENCODER) + r"self_attn\.resblocks\.(\d+)\..*"),
+        "fourier_freqs": (in_features - 6) // 6,
+        "max_seq_len": _shape(infos, "abs_pos_emb.weight", 2)[0] + 1,
+    }
 
 
 def release_name(local: str) -> str:
@@ -111,12 +122,18 @@ def release_name(local: str) -> str:
         block, part, rest = int(m.group(1)), m.group(2), m.group(3)
         if part in _NORMS:
             return f"decoder.layers.{3 * block + _NORMS.index(part)}.0.0.{rest}"
-        kind, leaf = {"self_attn": (0, rest), "cross_attn": (1, rest),
-                      "ff": (2, rest.replace("proj_in.", "ff.0.proj.").replace("proj_out.", "ff.2."))}[part]
+        kind, leaf = {
+            "self_attn": (0, rest),
+            "cross_attn": (1, rest),
+            "ff": (2, rest.replace("proj_in.", "ff.0.proj.").replace("proj_out.", "ff.2.")),
+        }[part]
         return f"decoder.layers.{3 * block + kind}.1.{leaf}"
-    for local_prefix, release_prefix in (("point_encoder.", ENCODER), ("final_norm.", "decoder.final_norm."),
-                                         ("cond_head_proj.", "conditioner.cond_head_proj."),
-                                         ("cond_proj.", "conditioner.cond_proj.")):
+    for local_prefix, release_prefix in (
+        ("point_encoder.", ENCODER),
+        ("final_norm.", "decoder.final_norm."),
+        ("cond_head_proj.", "conditioner.cond_head_proj."),
+        ("cond_proj.", "conditioner.cond_proj."),
+    ):
         if local.startswith(local_prefix):
-            return release_prefix + local[len(local_prefix):]
+            return release_prefix + local[len(local_prefix) :]
     return local

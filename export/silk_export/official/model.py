@@ -8,6 +8,7 @@ It speaks the Silk contract's token conventions (docs/model_contract.md, arch "o
 input id BOS (10269) is the learned `sos_token` with no position and no type vector, and a mesh
 token at contract position p >= 1 uses `abs_pos_emb` row p - 1, so token i of the official
 code list sits at row i as in the official implementation."""
+
 from __future__ import annotations
 
 import torch
@@ -110,6 +111,7 @@ class OfficialBlock(nn.Module):
 class OfficialModel(Architecture):
     """Architecture "official" (model.json version 3, with the official pre-processing and
     sampling defaults of official_network.md §4)."""
+
     name = "official"
     model_version = 3
     sampling = {"temperature": 0.5, "top_k": 50, "top_p": 0.95, "top_p_temperature": 1.0}
@@ -117,16 +119,24 @@ class OfficialModel(Architecture):
     @classmethod
     def preprocessing(cls, cfg: ModelConfig) -> dict:
         """official_network.md §4: the official inference pre-processing."""
-        return {"kind": "official", "normalize_bound": 0.95, "merge_distance_fraction": 0.01,
-                "surface_samples": 50000, "round_float16": True, "n_points": cfg.n_points}
+        return {
+            "kind": "official",
+            "normalize_bound": 0.95,
+            "merge_distance_fraction": 0.01,
+            "surface_samples": 50000,
+            "round_float16": True,
+            "n_points": cfg.n_points,
+        }
 
     @classmethod
     def card_summary(cls) -> list[str]:
-        return ["The released Mesh Silksong network (`arch: official`, `docs/official_network.md` §3),",
-                "re-implemented from that description: learned queries cross-attending to 4,096 surface",
-                "points + normals, conditioner projections, then a pre-norm decoder with L2 qk-norm self-",
-                "and cross-attention (learned memory slots) and GLU feed-forward, exported for the Silk C++",
-                "runtime per `docs/model_contract.md` (version 3)."]
+        return [
+            "The released Mesh Silksong network (`arch: official`, `docs/official_network.md` §3),",
+            "re-implemented from that description: learned queries cross-attending to 4,096 surface",
+            "points + normals, conditioner projections, then a pre-norm decoder with L2 qk-norm self-",
+            "and cross-attention (learned memory slots) and GLU feed-forward, exported for the Silk C++",
+            "runtime per `docs/model_contract.md` (version 3).",
+        ]
 
     def __init__(self, cfg: ModelConfig):
         super().__init__()
@@ -140,8 +150,9 @@ class OfficialModel(Architecture):
         self.sos_token = nn.Parameter(torch.zeros(d))
         self.token_embed = nn.Embedding(self.n_logits, d)
         self.abs_pos_emb = nn.Embedding(cfg.max_seq_len - 1, d)
-        self.point_encoder = OfficialPointEncoder(w, cfg.encoder_heads, cfg.encoder_layers, cfg.n_queries,
-                                                  cfg.fourier_freqs)
+        self.point_encoder = OfficialPointEncoder(
+            w, cfg.encoder_heads, cfg.encoder_layers, cfg.n_queries, cfg.fourier_freqs
+        )
         self.cond_head_proj = nn.Linear(w, cfg.context_dim)
         self.cond_proj = nn.Linear(w, cfg.context_dim)
         self.layers = nn.ModuleList(OfficialBlock(cfg) for _ in range(cfg.n_layers))
@@ -167,8 +178,9 @@ class OfficialModel(Architecture):
 
     def embed(self, ids: torch.Tensor, positions: torch.Tensor) -> torch.Tensor:
         """Contract ids/positions -> decoder input rows (module docstring)."""
-        types = torch.cat([torch.zeros_like(self.sos_token).unsqueeze(0)]
-                          + [getattr(self, n) for n in TYPE_VECTOR_NAMES], dim=0)
+        types = torch.cat(
+            [torch.zeros_like(self.sos_token).unsqueeze(0)] + [getattr(self, n) for n in TYPE_VECTOR_NAMES], dim=0
+        )
         tok = self.token_embed(ids.clamp(max=self.n_logits - 1))
         pos = self.abs_pos_emb((positions - 1).clamp(min=0))
         rows = tok + pos + types[self.type_of_id[ids]]
@@ -194,13 +206,19 @@ class OfficialModel(Architecture):
         pos = torch.arange(input_ids.shape[1], device=input_ids.device).unsqueeze(0)
         x = self.embed(input_ids, pos)
         for layer, (ck, cv) in zip(self.layers, cross):
+
             def causal(y, layer=layer):
                 q, k, v = (split_heads(t, self.cfg.n_heads) for t in layer.self_qkv(y))
                 return merge_heads(attend(q, k, v, causal=True, scale=self.cfg.qk_scale)), None
 
             if self.gradient_checkpointing and self.training:
-                x = checkpoint(lambda x, ck, cv, layer=layer, f=causal: layer.block(x, ck, cv, f)[0], x, ck, cv,
-                               use_reentrant=False)
+                x = checkpoint(
+                    lambda x, ck, cv, layer=layer, f=causal: layer.block(x, ck, cv, f)[0],
+                    x,
+                    ck,
+                    cv,
+                    use_reentrant=False,
+                )
             else:
                 x, _ = layer.block(x, ck, cv, causal)
         logits = self.logits(x)

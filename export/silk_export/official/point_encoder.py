@@ -2,6 +2,7 @@
 """The released Mesh Silksong point encoder (official_network.md §3.1): Fourier features of the points,
 learned queries cross-attending to them, self-attention blocks, final LayerNorm. Parameter names
 follow the release checkpoint's leaves so the importer maps keys by prefix only."""
+
 from __future__ import annotations
 
 import torch

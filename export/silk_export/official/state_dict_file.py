@@ -2,6 +2,7 @@
 """Reads a state dict from disk one tensor at a time, so a multi-GB checkpoint never sits in memory
 twice: `.safetensors` (header parsed here; F32/F16/BF16) and PyTorch `.pt`/`.bin` (torch.load
 with weights_only=True, memory-mapped when the file is in the zip format)."""
+
 from __future__ import annotations
 
 import hashlib
@@ -37,8 +38,7 @@ class SafetensorsFile:
                 raise StateDictError(f"{self.path}: too short for a safetensors file")
             (n,) = struct.unpack("<Q", raw)
             if n > min(MAX_HEADER_BYTES, size - 8):
-                raise StateDictError(f"{self.path}: safetensors header length {n} is impossible for a "
-                                     f"{size}-byte file")
+                raise StateDictError(f"{self.path}: safetensors header length {n} is impossible for a {size}-byte file")
             try:
                 header = json.loads(f.read(n))
             except (UnicodeDecodeError, json.JSONDecodeError) as e:
@@ -57,13 +57,17 @@ class SafetensorsFile:
         except (TypeError, KeyError, ValueError):
             raise StateDictError(f"{self.path}: tensor '{name}': malformed header entry") from None
         if dtype_name not in SAFETENSORS_DTYPES:
-            raise StateDictError(f"{self.path}: tensor '{name}': dtype {dtype_name} is not supported "
-                                 f"(expected one of {', '.join(SAFETENSORS_DTYPES)})")
+            raise StateDictError(
+                f"{self.path}: tensor '{name}': dtype {dtype_name} is not supported "
+                f"(expected one of {', '.join(SAFETENSORS_DTYPES)})"
+            )
         dtype = SAFETENSORS_DTYPES[dtype_name]
         nbytes = math.prod(shape) * dtype.itemsize
         if any(d < 0 for d in shape) or not (0 <= begin <= end <= data_size) or end - begin != nbytes:
-            raise StateDictError(f"{self.path}: tensor '{name}': data offsets [{begin}, {end}) do not fit "
-                                 f"shape {shape} {dtype_name} inside the file")
+            raise StateDictError(
+                f"{self.path}: tensor '{name}': data offsets [{begin}, {end}) do not fit "
+                f"shape {shape} {dtype_name} inside the file"
+            )
         return TensorInfo(shape, dtype), self.data_start + begin, nbytes
 
     def infos(self) -> dict[str, TensorInfo]:

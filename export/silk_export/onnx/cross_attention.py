@@ -9,6 +9,7 @@ cache variants ("silk" form) use it, with the cross_* inputs float16 when CrossA
 that reads them (half_cross_inputs: the cross K/V is a seventh of a call's reads at depth 2,000;
 the runtime converts the encoder's output once per mesh); the fp32-cache decoder files keep the
 plain operators and float32 inputs."""
+
 from __future__ import annotations
 
 import collections
@@ -19,6 +20,7 @@ from .silk_ops import SILK_CROSS, SILK_DOMAIN
 def _scalar(graph, name: str, producers: dict):
     """The float value of a one-element constant (Constant node or initializer), else None."""
     from onnx import numpy_helper
+
     node = producers.get(name)
     tensor = None
     if node is not None and node.op_type == "Constant" and node.attribute and node.attribute[0].name == "value":
@@ -35,6 +37,7 @@ def _match(graph, m2, producers: dict, users: collections.Counter, inputs: set):
     """(nodes to remove, query name, key name, scale) when MatMul `m2` ends the cross-attention
     pattern above, else None."""
     from onnx import helper
+
     if m2.op_type != "MatMul" or m2.input[1] not in inputs or not m2.input[1].startswith("cross_value"):
         return None
     sm = producers.get(m2.input[0])
@@ -64,6 +67,7 @@ def to_cross_attention(graph) -> int:
     """Rewrites, in place, each cross-attention of `graph` in the pattern above into one ai.silk
     CrossAttention node (query, cross_key_l, cross_value_l; attribute scale). Returns how many."""
     from onnx import helper
+
     producers = {o: n for n in graph.node for o in n.output}
     users = collections.Counter(i for n in graph.node for i in n.input)
     users.update(o.name for o in graph.output)
@@ -73,8 +77,14 @@ def to_cross_attention(graph) -> int:
         found = _match(graph, node, producers, users, inputs)
         if found:
             removed, query, key, scale = found
-            replace[id(node)] = helper.make_node(SILK_CROSS, [query, key, node.input[1]], [node.output[0]],
-                                                 name=f"{node.name}_cross", domain=SILK_DOMAIN, scale=scale)
+            replace[id(node)] = helper.make_node(
+                SILK_CROSS,
+                [query, key, node.input[1]],
+                [node.output[0]],
+                name=f"{node.name}_cross",
+                domain=SILK_DOMAIN,
+                scale=scale,
+            )
             drop |= {id(n) for n in removed if n is not node}
     nodes = [replace.get(id(n), n) for n in graph.node if id(n) not in drop]
     del graph.node[:]
@@ -87,6 +97,7 @@ def half_cross_inputs(graph) -> int:
     ai.silk CrossAttention (which reads float16 rows as well as float32); an input anything else
     reads stays float32. Returns how many became float16."""
     from onnx import TensorProto
+
     readers = collections.defaultdict(list)
     for n in graph.node:
         for i in n.input:
@@ -94,7 +105,11 @@ def half_cross_inputs(graph) -> int:
     count = 0
     for vi in graph.input:
         users = readers.get(vi.name, [])
-        if vi.name.startswith("cross_") and users and all(u.op_type == SILK_CROSS and u.domain == SILK_DOMAIN for u in users):
+        if (
+            vi.name.startswith("cross_")
+            and users
+            and all(u.op_type == SILK_CROSS and u.domain == SILK_DOMAIN for u in users)
+        ):
             vi.type.tensor_type.elem_type = TensorProto.FLOAT16
             count += 1
     return count

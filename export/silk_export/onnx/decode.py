@@ -2,6 +2,7 @@
 """Runs an exported model folder's graphs with onnxruntime from Python (no libsilk): encoder,
 decoder chunks over a growing KV cache, greedy decoding. Used by the importer's fidelity check
 and by the tests; the C++ runtime is the production path."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -14,6 +15,7 @@ def silk_ops_library() -> str:
     import os
     from silk_mesh import _platform_libs
     from silk_mesh._library import library_path
+
     env = os.environ.get("SILK_OPS_LIBRARY")
     if env:
         return env
@@ -25,6 +27,7 @@ def uses_silk_ops(path) -> bool:
     data). False for a file onnx cannot read: onnxruntime then names the problem."""
     import onnx
     from .silk_ops import SILK_DOMAIN
+
     try:
         model = onnx.load(str(path), load_external_data=False)
     except Exception:
@@ -35,6 +38,7 @@ def uses_silk_ops(path) -> bool:
 def session(path, threads: int = 1):
     """An onnxruntime session on the CPU; a graph with ai.silk ops gets libsilk_ops registered."""
     import onnxruntime as ort
+
     so = ort.SessionOptions()
     so.intra_op_num_threads = threads
     so.log_severity_level = 3
@@ -43,9 +47,11 @@ def session(path, threads: int = 1):
         try:
             so.register_custom_ops_library(lib)
         except Exception as e:
-            raise RuntimeError(f"{path}: uses libsilk's ai.silk ops, and libsilk_ops ('{lib}') cannot be "
-                               f"registered with onnxruntime: {e} (set SILK_LIBRARY to a built libsilk with "
-                               f"libsilk_ops beside it, or SILK_OPS_LIBRARY)") from e
+            raise RuntimeError(
+                f"{path}: uses libsilk's ai.silk ops, and libsilk_ops ('{lib}') cannot be "
+                f"registered with onnxruntime: {e} (set SILK_LIBRARY to a built libsilk with "
+                f"libsilk_ops beside it, or SILK_OPS_LIBRARY)"
+            ) from e
     return ort.InferenceSession(str(path), so, providers=["CPUExecutionProvider"])
 
 
@@ -76,9 +82,13 @@ class DecoderState:
         t = ids.shape[1]
         if positions is None:
             positions = np.arange(self.length, self.length + t)
-        feeds = {"input_ids": ids, "positions": np.asarray(positions, np.int64).reshape(1, -1),
-                 "seqlens_k": np.array([self.length + t - 1], np.int32),
-                 "total_sequence_length": np.array(self.length + t, np.int32), **self.cross}
+        feeds = {
+            "input_ids": ids,
+            "positions": np.asarray(positions, np.int64).reshape(1, -1),
+            "seqlens_k": np.array([self.length + t - 1], np.int32),
+            "total_sequence_length": np.array(self.length + t, np.int32),
+            **self.cross,
+        }
         for l in range(self.n_layers):
             feeds[f"past_key_{l}"], feeds[f"past_value_{l}"] = self.past[2 * l], self.past[2 * l + 1]
         out = self.decoder.run(None, feeds)

@@ -3,6 +3,7 @@
 encoder.onnx, decoder.onnx (dynamic T and cache length), optional INT8 (dynamic MatMul
 quantization) and INT4 (MatMulNBits) decoders, and the model.json sidecar. Graphs over the 2 GB
 protobuf limit keep their weights in one external data file `<graph>.onnx.data` beside them."""
+
 from __future__ import annotations
 
 import shutil
@@ -29,6 +30,7 @@ def gather_external_data(path: Path) -> list[str]:
     external data file names ([] for a self-contained graph)."""
     import onnx
     from onnx.external_data_helper import ExternalDataInfo, _get_all_tensors, set_external_data
+
     m = onnx.load(str(path), load_external_data=False)
     tensors = [t for t in _get_all_tensors(m) if t.data_location == onnx.TensorProto.EXTERNAL]
     if not tensors:
@@ -69,6 +71,7 @@ def write_weights_external(path: Path, module: torch.nn.Module) -> list[str]:
     module's state_dict keys): streams each weight into `<name>.data` and turns the input into an
     initializer stored there. Only one tensor is ever copied at a time."""
     import onnx
+
     m = onnx.load(str(path))
     state = module.state_dict(keep_vars=True)
     data_name = path.name + ".data"
@@ -83,8 +86,9 @@ def write_weights_external(path: Path, module: torch.nn.Module) -> list[str]:
             offset = -(-out.tell() // DATA_ALIGN) * DATA_ALIGN
             out.seek(offset)
             out.write(memoryview(arr).cast("B"))
-            tensor = onnx.TensorProto(name=inp.name, data_type=onnx.TensorProto.FLOAT, dims=arr.shape,
-                                      data_location=onnx.TensorProto.EXTERNAL)
+            tensor = onnx.TensorProto(
+                name=inp.name, data_type=onnx.TensorProto.FLOAT, dims=arr.shape, data_location=onnx.TensorProto.EXTERNAL
+            )
             for key, value in (("location", data_name), ("offset", offset), ("length", arr.nbytes)):
                 entry = tensor.external_data.add()
                 entry.key, entry.value = key, str(value)
@@ -109,8 +113,16 @@ def export_graph(module: torch.nn.Module, args: tuple, path: Path, external: boo
     try:
         with torch.no_grad(), warnings.catch_warnings():
             warnings.simplefilter("ignore")  # tracer warnings about shape-dependent Python values
-            torch.onnx.export(module, args, str(work / path.name), opset_version=OPSET,
-                              do_constant_folding=not external, export_params=not external, dynamo=False, **kwargs)
+            torch.onnx.export(
+                module,
+                args,
+                str(work / path.name),
+                opset_version=OPSET,
+                do_constant_folding=not external,
+                export_params=not external,
+                dynamo=False,
+                **kwargs,
+            )
         if external:
             data = write_weights_external(work / path.name, module)
             if len(onnx_inputs(work / path.name)) != len(kwargs["input_names"]):
@@ -150,6 +162,7 @@ def transpose_linears(model: torch.nn.Module) -> torch.nn.Module:
 
 def onnx_inputs(path: Path) -> list[str]:
     import onnx
+
     return [i.name for i in onnx.load(str(path), load_external_data=False).graph.input]
 
 
@@ -157,8 +170,14 @@ def export_encoder(model, path: Path, fixed_points: bool = False) -> list[str]:
     """fixed_points: the point count is cfg.n_points in the graph (contract v3), else dynamic."""
     n = model.cfg.n_points if fixed_points else 128
     axes = {} if fixed_points else {"points": {1: "n_points"}}
-    return export_graph(EncoderGraph(model), (torch.randn(1, n, 6),), path, input_names=["points"],
-                        output_names=["cross_kv"], dynamic_axes=axes)
+    return export_graph(
+        EncoderGraph(model),
+        (torch.randn(1, n, 6),),
+        path,
+        input_names=["points"],
+        output_names=["cross_kv"],
+        dynamic_axes=axes,
+    )
 
 
 def export_decoder(model, path: Path, external: bool = False) -> list[str]:
@@ -174,9 +193,16 @@ def export_decoder(model, path: Path, external: bool = False) -> list[str]:
     axes = {"input_ids": {1: "T"}, "positions": {1: "T"}, "logits": {1: "T"}}
     axes.update({name: {2: "C"} for name in in_names if name.startswith("past_")})
     axes.update({name: {2: "C_present"} for name in out_names if name.startswith("present_")})
-    return export_graph(DecoderGraph(model), (ids, pos, seqlens_k, total, *past, *cross), path, external,
-                        input_names=in_names, output_names=out_names, dynamic_axes=axes,
-                        custom_opsets={"com.microsoft": 1})
+    return export_graph(
+        DecoderGraph(model),
+        (ids, pos, seqlens_k, total, *past, *cross),
+        path,
+        external,
+        input_names=in_names,
+        output_names=out_names,
+        dynamic_axes=axes,
+        custom_opsets={"com.microsoft": 1},
+    )
 
 
 def int8_unsafe_matmuls(path: Path) -> list[str]:
@@ -184,15 +210,20 @@ def int8_unsafe_matmuls(path: Path) -> list[str]:
     onnxruntime 1.22.1's single-threaded MatMulInteger gets the last columns wrong for such
     widths on every 32nd row (found by the int8 parity test), so those stay fp32."""
     import onnx
+
     m = onnx.load(str(path), load_external_data=False)
     shapes = {i.name: list(i.dims) for i in m.graph.initializer}
-    return [n.name for n in m.graph.node if n.op_type == "MatMul" and n.input[1] in shapes
-            and shapes[n.input[1]][-1] % 16 != 0]
+    return [
+        n.name
+        for n in m.graph.node
+        if n.op_type == "MatMul" and n.input[1] in shapes and shapes[n.input[1]][-1] % 16 != 0
+    ]
 
 
 def logits_head_matmuls(path: Path) -> list[str]:
     """The weight MatMul(s) producing the 10269 logits."""
     import onnx
+
     m = onnx.load(str(path), load_external_data=False)
     shapes = {i.name: list(i.dims) for i in m.graph.initializer}
     width = load_vocab().model_vocab_size
@@ -202,9 +233,16 @@ def logits_head_matmuls(path: Path) -> list[str]:
 def quantize_decoder(src: Path, dst: Path) -> None:
     """Dynamic INT8 quantization of the weight MatMuls (activations quantized at run time)."""
     from onnxruntime.quantization import QuantType, quantize_dynamic
-    quantize_dynamic(str(src), str(dst), op_types_to_quantize=["MatMul"], weight_type=QuantType.QInt8,
-                     per_channel=True, nodes_to_exclude=int8_unsafe_matmuls(src),
-                     use_external_data_format=has_external_data(src))
+
+    quantize_dynamic(
+        str(src),
+        str(dst),
+        op_types_to_quantize=["MatMul"],
+        weight_type=QuantType.QInt8,
+        per_channel=True,
+        nodes_to_exclude=int8_unsafe_matmuls(src),
+        use_external_data_format=has_external_data(src),
+    )
 
 
 def quantize_decoder_int4(src: Path, dst: Path, block_size: int = 32, accuracy_level: int = 4) -> None:
@@ -215,9 +253,15 @@ def quantize_decoder_int4(src: Path, dst: Path, block_size: int = 32, accuracy_l
 
     import onnx
     from onnxruntime.quantization.matmul_nbits_quantizer import MatMulNBitsQuantizer
+
     logging.getLogger("onnxruntime.quantization.matmul_nbits_quantizer").setLevel(logging.WARNING)  # per-node INFO
-    q = MatMulNBitsQuantizer(onnx.load(str(src)), block_size=block_size, is_symmetric=True,
-                             accuracy_level=accuracy_level, nodes_to_exclude=logits_head_matmuls(src))
+    q = MatMulNBitsQuantizer(
+        onnx.load(str(src)),
+        block_size=block_size,
+        is_symmetric=True,
+        accuracy_level=accuracy_level,
+        nodes_to_exclude=logits_head_matmuls(src),
+    )
     q.process()
     q.model.save_model_to_file(str(dst), use_external_data_format=False)
 
@@ -232,6 +276,7 @@ def sidecar(cfg: ModelConfig, training: dict, files: dict, extra: dict | None = 
     import onnxruntime
 
     import silk_mesh
+
     arch = get_architecture(cfg.arch)
     vocab = load_vocab()
     try:
@@ -241,24 +286,38 @@ def sidecar(cfg: ModelConfig, training: dict, files: dict, extra: dict | None = 
     meta = {"format": "silk-model", "model_version": arch.model_version}
     if arch.model_version >= 3:
         meta["arch"] = arch.name
-    meta.update({
-        "token_format": vocab.layout["token_format"],
-        "token_format_version": vocab.layout["token_format_version"],
-        "config": cfg.name,
-        "vocab": vocab.sidecar(),
-        "dims": {"d_model": cfg.d_model, "n_layers": cfg.n_layers, "n_heads": cfg.n_heads,
-                 "head_dim": cfg.head_dim, "n_latents": cfg.n_latents, "n_points": cfg.n_points,
-                 "max_seq_len": cfg.max_seq_len},
-        "normalize_bound": 0.95,
-    })
+    meta.update(
+        {
+            "token_format": vocab.layout["token_format"],
+            "token_format_version": vocab.layout["token_format_version"],
+            "config": cfg.name,
+            "vocab": vocab.sidecar(),
+            "dims": {
+                "d_model": cfg.d_model,
+                "n_layers": cfg.n_layers,
+                "n_heads": cfg.n_heads,
+                "head_dim": cfg.head_dim,
+                "n_latents": cfg.n_latents,
+                "n_points": cfg.n_points,
+                "max_seq_len": cfg.max_seq_len,
+            },
+            "normalize_bound": 0.95,
+        }
+    )
     if arch.model_version >= 3:
         meta["preprocessing"] = arch.preprocessing(cfg)
         meta["sampling"] = dict(arch.sampling)
     meta["files"] = files
     meta.update(extra or {})
     meta["training"] = training
-    meta["versions"] = {"silk_export": __version__, "libsilk": lib_version, "torch": torch.__version__,
-                        "onnx": onnx.__version__, "onnxruntime": onnxruntime.__version__, "opset": OPSET}
+    meta["versions"] = {
+        "silk_export": __version__,
+        "libsilk": lib_version,
+        "torch": torch.__version__,
+        "onnx": onnx.__version__,
+        "onnxruntime": onnxruntime.__version__,
+        "opset": OPSET,
+    }
     return meta
 
 
@@ -284,8 +343,9 @@ def export_graphs(model, out_dir: Path, external_over: int = 1 << 30) -> dict:
     return files
 
 
-def export_model(model, out_dir: Path, training: dict | None = None, int8: bool = True,
-                 sampling: dict | None = None) -> dict:
+def export_model(
+    model, out_dir: Path, training: dict | None = None, int8: bool = True, sampling: dict | None = None
+) -> dict:
     """Exports all files into out_dir; returns the sidecar dict that was written. `sampling`: the
     model.json "sampling" defaults silkgen and the C API start from (absent: libsilk's built-in
     ones, temperature 0.5 and top-k 50). Raises ValueError before writing anything when a weight
@@ -297,7 +357,11 @@ def export_model(model, out_dir: Path, training: dict | None = None, int8: bool 
     if int8:
         quantize_decoder(out_dir / "decoder.onnx", out_dir / "decoder.int8.onnx")
         files["decoder_int8"] = "decoder.int8.onnx"
-    meta = sidecar(model.cfg, training or {"steps": 0, "data": None, "seed": None}, files,
-                   {"sampling": sampling} if sampling else None)
+    meta = sidecar(
+        model.cfg,
+        training or {"steps": 0, "data": None, "seed": None},
+        files,
+        {"sampling": sampling} if sampling else None,
+    )
     write_json(out_dir / "model.json", meta)
     return meta

@@ -3,6 +3,7 @@
 top-1 agreement and KL(fp32 || variant) on sequences the fp32 model itself decodes greedily from
 fixed probe point clouds, plus milliseconds per generated token. The importer picks the fastest
 variant that passes (`choose`)."""
+
 from __future__ import annotations
 
 import time
@@ -47,8 +48,15 @@ def _ms_per_token(decoder, cross: np.ndarray, ids: list[int]) -> float:
     return 1000.0 * (time.perf_counter() - t0) / max(1, len(ids) - 1)
 
 
-def measure(folder: Path, variants: dict[str, str], bos_id: int, eos_id: int, n_points: int,
-            n_tokens: int = 32, threads: int = 1) -> dict:
+def measure(
+    folder: Path,
+    variants: dict[str, str],
+    bos_id: int,
+    eos_id: int,
+    n_points: int,
+    n_tokens: int = 32,
+    threads: int = 1,
+) -> dict:
     """variants: name -> decoder file in folder ("decoder" = the fp32 reference must be one)."""
     folder = Path(folder)
     enc = session(folder / "encoder.onnx", threads)
@@ -67,10 +75,14 @@ def measure(folder: Path, variants: dict[str, str], bos_id: int, eos_id: int, n_
             agree.append(lp.argmax(-1) == lq.argmax(-1))
             kls.append((np.exp(lp) * (lp - lq)).sum(-1))
         agree, kls = np.concatenate(agree), np.concatenate(kls)
-        out[name] = {"file": file, "top1_agreement": round(float(agree.mean()), 4),
-                     "kl_mean": float(f"{kls.mean():.3g}"), "kl_max": float(f"{kls.max():.3g}"),
-                     "ms_per_token": round(_ms_per_token(dec, crosses[0], seqs[0]), 2),
-                     "positions": int(agree.size)}
+        out[name] = {
+            "file": file,
+            "top1_agreement": round(float(agree.mean()), 4),
+            "kl_mean": float(f"{kls.mean():.3g}"),
+            "kl_max": float(f"{kls.max():.3g}"),
+            "ms_per_token": round(_ms_per_token(dec, crosses[0], seqs[0]), 2),
+            "positions": int(agree.size),
+        }
         del dec
     return out
 

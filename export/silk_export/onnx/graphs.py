@@ -3,6 +3,7 @@
 architecture (silk_export.models.architecture).
 The decoder's self-attention is onnxruntime's GroupQueryAttention over one head-major cache per
 layer and K/V, so the runtime can share past_* and present_* and nothing is copied per step."""
+
 from __future__ import annotations
 
 import torch
@@ -53,8 +54,9 @@ class GroupQueryAttention(torch.autograd.Function):
         attrs = {"num_heads_i": n_heads, "kv_num_heads_i": n_heads}
         if scale:  # 0: onnxruntime's default 1/sqrt(D)
             attrs["scale_f"] = scale
-        out, present_k, present_v = g.op("com.microsoft::GroupQueryAttention", q, k, v, past_k, past_v, seqlens_k,
-                                         total, outputs=3, **attrs)
+        out, present_k, present_v = g.op(
+            "com.microsoft::GroupQueryAttention", q, k, v, past_k, past_v, seqlens_k, total, outputs=3, **attrs
+        )
         out.setType(q.type())  # onnx has no shape inference for the contrib op: state the shapes
         present_k.setType(past_k.type())
         present_v.setType(past_v.type())
@@ -80,13 +82,15 @@ class DecoderGraph(nn.Module):
     def forward(self, input_ids, positions, seqlens_k, total_sequence_length, *caches):
         m = self.model
         n, h, scale = m.cfg.n_layers, m.cfg.n_heads, m.cfg.qk_scale
-        past, cross = caches[:2 * n], caches[2 * n:]
+        past, cross = caches[: 2 * n], caches[2 * n :]
         x = m.embed(input_ids, positions)
         present = []
         for l, layer in enumerate(m.layers):
+
             def self_attention(y, layer=layer, l=l):
-                a, k_all, v_all = GroupQueryAttention.apply(*layer.self_qkv(y), past[2 * l], past[2 * l + 1],
-                                                            seqlens_k, total_sequence_length, h, scale)
+                a, k_all, v_all = GroupQueryAttention.apply(
+                    *layer.self_qkv(y), past[2 * l], past[2 * l + 1], seqlens_k, total_sequence_length, h, scale
+                )
                 return a, (k_all, v_all)
 
             x, kv = layer.block(x, cross[2 * l], cross[2 * l + 1], self_attention, fused=False)

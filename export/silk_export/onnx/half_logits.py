@@ -5,6 +5,7 @@ in the INT4 decoder, because the logits decide every sampled id; at depth it is 
 what each call reads. The "silk" form stores it as float16 [vocabulary, d_model] and computes it
 with libsilk's ai.silk HalfMatMul (float32 products and sums): half the bytes, a rounding of each
 weight to 11 significant bits, measured with the cache precisions (benchmarks.md, "KV precision")."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -20,6 +21,7 @@ def _logits_matmul(graph):
     initializer or a Cast to float32 of a float16 one (how a model stored in float16 keeps it);
     else None."""
     from onnx import TensorProto
+
     producers = {o: n for n in graph.node for o in n.output}
     node = producers.get(LOGITS)
     if node is not None and node.op_type == "Add":
@@ -46,13 +48,16 @@ def _weight(t, base_dir: Path):
     model folders made with `cp -l` have). Raises ValueError naming the file when that fails."""
     import numpy as np
     from onnx import TensorProto, numpy_helper
+
     if t.data_location != TensorProto.EXTERNAL:
         return numpy_helper.to_array(t)
     info = {e.key: e.value for e in t.external_data}
     location = Path(info.get("location", ""))
     count, size = int(np.prod(t.dims)), 2 if t.data_type == TensorProto.FLOAT16 else 4
     if not info.get("location") or location.is_absolute() or ".." in location.parts:
-        raise ValueError(f"{t.name}: external data location '{info.get('location', '')}' is not a file beside the graph")
+        raise ValueError(
+            f"{t.name}: external data location '{info.get('location', '')}' is not a file beside the graph"
+        )
     path, offset = Path(base_dir) / location, int(info.get("offset", 0))
     try:
         with open(path, "rb") as f:
@@ -73,6 +78,7 @@ def to_half_logits(graph, base_dir: Path) -> bool:
     constant weight makes `logits`, and nothing changed)."""
     import numpy as np
     from onnx import numpy_helper
+
     found = _logits_matmul(graph)
     if found is None:
         return False

@@ -6,6 +6,7 @@ row of activations; libsilk's Int4MatMul takes the same inputs, attributes and i
 weight is moved or copied) and reads them at memory speed. The fp16 and int8 cache variants, which
 run in libsilk (or in Python's onnxruntime with libsilk registered), use it; the fp32-cache
 decoder files keep MatMulNBits and run in any onnxruntime."""
+
 from __future__ import annotations
 
 from .silk_ops import SILK_DOMAIN, SILK_INT4
@@ -19,6 +20,7 @@ def int4_unsupported(node) -> str | None:
     without zero points, group index or bias, block_size 32 or a multiple of 64, K a multiple of
     block_size."""
     from onnx import helper
+
     at = {a.name: helper.get_attribute_value(a) for a in node.attribute}
     k, n, bits, block = at.get("K", 0), at.get("N", 0), at.get("bits", 4), at.get("block_size", 0)
     if bits != 4:

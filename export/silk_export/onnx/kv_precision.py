@@ -21,6 +21,7 @@ nodes libsilk's Int4MatMul (same weights, read at memory speed; int4_matmul.py) 
 4,901), the same results bit for bit). A graph with external data keeps pointing at the same
 `.data` file, so the variant of the 1.94 GB release decoder adds about 1 MB, plus its float16
 logits head (21 MB) in the silk form."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -41,13 +42,12 @@ DECODER_KEYS = ("decoder", "decoder_int8", "decoder_int4")
 ATTENTION_FORMS = ("silk", "ort")
 # GroupQueryAttention attributes CachedAttention implements; any other must be absent or default.
 _GQA_KEPT = {"num_heads", "kv_num_heads", "scale"}
-_GQA_DEFAULTS = {"do_rotary": 0, "rotary_interleaved": 0, "local_window_size": -1, "softcap": 0.0,
-                 "smooth_softmax": 0}
+_GQA_DEFAULTS = {"do_rotary": 0, "rotary_interleaved": 0, "local_window_size": -1, "softcap": 0.0, "smooth_softmax": 0}
 
 
 def kv_name(decoder_file: str, precision: str) -> str:
     """decoder.int4.onnx -> decoder.int4.kv16.onnx (fp16), decoder.int4.kv8.onnx (int8)"""
-    stem = decoder_file[:-len(".onnx")] if decoder_file.endswith(".onnx") else decoder_file
+    stem = decoder_file[: -len(".onnx")] if decoder_file.endswith(".onnx") else decoder_file
     return f"{stem}.{KV_SUFFIXES[precision]}.onnx"
 
 
@@ -64,6 +64,7 @@ def _check_precision(precision: str) -> None:
 def _set_cache_type(vi, precision: str) -> None:
     """A past_*/present_* input or output to the variant's element type (int8: last dim D + 4)."""
     from onnx import TensorProto
+
     t = vi.type.tensor_type
     t.elem_type = TensorProto.FLOAT16 if precision == "fp16" else TensorProto.INT8
     if precision == "int8" and len(t.shape.dim) == 4:
@@ -77,14 +78,19 @@ def _set_cache_type(vi, precision: str) -> None:
 def _to_cached_attention(node, src: Path) -> None:
     """Turns one GroupQueryAttention node into ai.silk CachedAttention in place."""
     from onnx import helper
+
     for a in node.attribute:
         if a.name not in _GQA_KEPT and helper.get_attribute_value(a) != _GQA_DEFAULTS.get(a.name, object()):
-            raise ValueError(f"{src}: GroupQueryAttention '{node.name}' has attribute {a.name}="
-                             f"{helper.get_attribute_value(a)}, which CachedAttention does not implement "
-                             f"(use --attention ort)")
+            raise ValueError(
+                f"{src}: GroupQueryAttention '{node.name}' has attribute {a.name}="
+                f"{helper.get_attribute_value(a)}, which CachedAttention does not implement "
+                f"(use --attention ort)"
+            )
     if len(node.input) != 7 or any(not n for n in node.input):
-        raise ValueError(f"{src}: GroupQueryAttention '{node.name}' has inputs {list(node.input)}; CachedAttention "
-                         "takes exactly q, k, v, past_key, past_value, seqlens_k, total_sequence_length")
+        raise ValueError(
+            f"{src}: GroupQueryAttention '{node.name}' has inputs {list(node.input)}; CachedAttention "
+            "takes exactly q, k, v, past_key, past_value, seqlens_k, total_sequence_length"
+        )
     kept = [a for a in node.attribute if a.name in _GQA_KEPT]
     del node.attribute[:]
     node.attribute.extend(kept)
@@ -94,11 +100,13 @@ def _to_cached_attention(node, src: Path) -> None:
 def _cast_around(node, rewritten: int) -> list:
     """The "ort" form: float16 casts of q, k, v before the node and of its output after it."""
     from onnx import TensorProto, helper
+
     before = []
     for i in range(3):  # q, k, v
         half = f"{node.input[i]}__kv16_{rewritten}"
-        before.append(helper.make_node("Cast", [node.input[i]], [half], to=TensorProto.FLOAT16,
-                                       name=f"{node.name}_kv16_in{i}"))
+        before.append(
+            helper.make_node("Cast", [node.input[i]], [half], to=TensorProto.FLOAT16, name=f"{node.name}_kv16_in{i}")
+        )
         node.input[i] = half
     out = node.output[0]
     node.output[0] = f"{out}__kv16"
@@ -117,14 +125,17 @@ def _check_forms(precision: str, attention: str, int4: str) -> None:
     if int4 not in INT4_FORMS:
         raise ValueError(f"INT4 form '{int4}': expected one of {', '.join(INT4_FORMS)}")
     if precision == "int8" and attention != "silk":
-        raise ValueError("the int8-cache variant exists only in the silk attention form "
-                         "(onnxruntime's GroupQueryAttention takes no int8 cache)")
+        raise ValueError(
+            "the int8-cache variant exists only in the silk attention form "
+            "(onnxruntime's GroupQueryAttention takes no int8 cache)"
+        )
     if attention == "ort" and int4 == "silk":
         raise ValueError("the ort attention form runs without libsilk: it keeps MatMulNBits (--int4 ort)")
 
 
-def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: str = "silk",
-                    int4: str | None = None) -> list[str]:
+def make_kv_decoder(
+    src: Path, dst: Path, precision: str = "fp16", attention: str = "silk", int4: str | None = None
+) -> list[str]:
     """Writes the `precision` ("fp16" or "int8") cache variant of decoder graph `src` to `dst`
     (same folder), in the given attention form ("silk" or "ort", see above; int8: "silk" only) and
     INT4 form ("silk": Int4MatMul, "ort": MatMulNBits; default: the attention form's).
@@ -133,12 +144,15 @@ def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: st
     import onnx
     from onnx import TensorProto, helper
     from onnx.external_data_helper import _get_all_tensors
+
     _check_precision(precision)
     int4 = attention if int4 is None else int4
     _check_forms(precision, attention, int4)
     src, dst = Path(src), Path(dst)
     if src.parent.resolve() != dst.parent.resolve():
-        raise ValueError(f"{dst}: the {precision}-cache variant must sit beside {src.name} (it shares its external data)")
+        raise ValueError(
+            f"{dst}: the {precision}-cache variant must sit beside {src.name} (it shares its external data)"
+        )
     m = onnx.load(str(src), load_external_data=False)
     g = m.graph
     if attention == "silk":
@@ -180,8 +194,15 @@ def make_kv_decoder(src: Path, dst: Path, precision: str = "fp16", attention: st
     kept = [vi for vi in g.value_info if vi.name not in stale and vi.name in produced]
     del g.value_info[:]
     g.value_info.extend(kept)
-    data = sorted({e.value for t in _get_all_tensors(m) if t.data_location == TensorProto.EXTERNAL
-                   for e in t.external_data if e.key == "location"})
+    data = sorted(
+        {
+            e.value
+            for t in _get_all_tensors(m)
+            if t.data_location == TensorProto.EXTERNAL
+            for e in t.external_data
+            if e.key == "location"
+        }
+    )
     onnx.save(m, str(dst))  # external tensors keep their location: the variant shares src's data file
     return data
 
@@ -191,8 +212,9 @@ def add_kv16_variants(folder: Path, files: dict, attention: str = "silk") -> dic
     return add_kv_variants(folder, files, "fp16", attention)
 
 
-def add_kv_variants(folder: Path, files: dict, precision: str, attention: str = "silk",
-                    int4: str | None = None) -> dict:
+def add_kv_variants(
+    folder: Path, files: dict, precision: str, attention: str = "silk", int4: str | None = None
+) -> dict:
     """For every decoder named in model.json `files`: writes its `precision`-cache variant (in the
     given attention and INT4 forms) beside it and records it under files["kv_fp16"] /
     files["kv_int8"]. Returns that mapping."""
@@ -220,18 +242,22 @@ def _check_default(files: dict, default: str, adding: str) -> None:
     decoder = files.get("default_decoder", "decoder")
     has = decoder in files if default == adding else decoder in files.get(KV_FILES.get(default, ""), {})
     if default != "fp32" and not has:
-        raise ValueError(f"default KV precision '{default}' needs files.{KV_FILES[default]}.{decoder} (the default "
-                         f"decoder's {default}-cache variant: run silk-export {KV_SUFFIXES[default]} first)")
+        raise ValueError(
+            f"default KV precision '{default}' needs files.{KV_FILES[default]}.{decoder} (the default "
+            f"decoder's {default}-cache variant: run silk-export {KV_SUFFIXES[default]} first)"
+        )
 
 
-def add_kv_to_folder(folder: Path, precision: str, default: str | None = None, attention: str = "silk",
-                     int4: str | None = None) -> dict:
+def add_kv_to_folder(
+    folder: Path, precision: str, default: str | None = None, attention: str = "silk", int4: str | None = None
+) -> dict:
     """`silk-export kv16` / `kv8`: the `precision`-cache variant of every decoder of an exported
     model folder, recorded in its model.json (files.kv_fp16 / files.kv_int8;
     files.default_kv_precision when `default` is given, and external data the variants share is
     already listed). Returns the new "files"."""
     import json
     import os
+
     folder = Path(folder)
     _check_precision(precision)
     path = folder / "model.json"

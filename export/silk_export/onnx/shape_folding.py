@@ -9,6 +9,7 @@ inputs allow: a Reshape target keeps the input's dim with 0 and infers at most o
 bounds become numbers, an Expand whose consumer broadcasts to the same shape anyway is dropped, and
 the nodes nothing reads any more go. An op the pass does not know ends what it can follow there; the
 graph computes exactly what it did (export/tests/test_shape_folding.py compares outputs bit for bit)."""
+
 from __future__ import annotations
 
 import itertools
@@ -18,12 +19,53 @@ import math
 # the pass cannot relate to others (equal only to itself), or (op, a, b) for arithmetic on dims.
 _fresh = itertools.count()
 _SMALL = 64  # int tensors with at most this many elements are followed as values
-_UNARY = {"Cast", "Clip", "Erf", "Sqrt", "Neg", "Relu", "Sigmoid", "Tanh", "Softmax", "LogSoftmax", "Identity",
-          "Abs", "Exp", "Log", "Reciprocal", "Not", "LayerNormalization", "Gelu", "Floor", "Ceil", "IsNaN"}
-_BROADCAST = {"Add", "Sub", "Mul", "Div", "Pow", "Max", "Min", "Equal", "Greater", "Less", "And", "Or", "Where",
-              "GreaterOrEqual", "LessOrEqual", "Mod"}
-_ARITH = {"Add": lambda a, b: a + b, "Sub": lambda a, b: a - b, "Mul": lambda a, b: a * b,
-          "Div": lambda a, b: (abs(a) // abs(b)) * (1 if (a < 0) == (b < 0) else -1) if b else None}  # truncating
+_UNARY = {
+    "Cast",
+    "Clip",
+    "Erf",
+    "Sqrt",
+    "Neg",
+    "Relu",
+    "Sigmoid",
+    "Tanh",
+    "Softmax",
+    "LogSoftmax",
+    "Identity",
+    "Abs",
+    "Exp",
+    "Log",
+    "Reciprocal",
+    "Not",
+    "LayerNormalization",
+    "Gelu",
+    "Floor",
+    "Ceil",
+    "IsNaN",
+}
+_BROADCAST = {
+    "Add",
+    "Sub",
+    "Mul",
+    "Div",
+    "Pow",
+    "Max",
+    "Min",
+    "Equal",
+    "Greater",
+    "Less",
+    "And",
+    "Or",
+    "Where",
+    "GreaterOrEqual",
+    "LessOrEqual",
+    "Mod",
+}
+_ARITH = {
+    "Add": lambda a, b: a + b,
+    "Sub": lambda a, b: a - b,
+    "Mul": lambda a, b: a * b,
+    "Div": lambda a, b: (abs(a) // abs(b)) * (1 if (a < 0) == (b < 0) else -1) if b else None,
+}  # truncating
 _REDUCE = {"ReduceL2", "ReduceSum", "ReduceMean", "ReduceMax", "ReduceMin", "ReduceProd", "ReduceL1"}
 _BIG = 1 << 62
 
@@ -114,7 +156,7 @@ def _out_shapes(node, at: dict, shapes: dict, values: dict) -> list:
         return [ins[0], None, None]
     if op == "Gather" and ins[0] and ins[1] is not None:
         axis = at.get("axis", 0) % len(ins[0])
-        return [ins[0][:axis] + ins[1] + ins[0][axis + 1:]]
+        return [ins[0][:axis] + ins[1] + ins[0][axis + 1 :]]
     if op == "Transpose" and ins[0]:
         perm = at.get("perm", list(reversed(range(len(ins[0])))))
         return [[ins[0][p] for p in perm]]
@@ -123,13 +165,13 @@ def _out_shapes(node, at: dict, shapes: dict, values: dict) -> list:
     if op == "Expand" and ins[0] is not None and known(1) is not None:
         return [_broadcast(ins[0], known(1))]
     if op == "Shape" and ins[0] is not None:
-        return [[len(ins[0][at.get("start", 0):at.get("end", len(ins[0]))])]]
+        return [[len(ins[0][at.get("start", 0) : at.get("end", len(ins[0]))])]]
     if op == "Concat" and all(s is not None for s in ins) and ins:
         axis = at["axis"] % len(ins[0])
         total = ins[0][axis]
         for s in ins[1:]:
             total = _arith("Add", total, s[axis])
-        return [ins[0][:axis] + [total] + ins[0][axis + 1:]]
+        return [ins[0][:axis] + [total] + ins[0][axis + 1 :]]
     if op in ("Unsqueeze", "Squeeze") and ins[0] is not None:
         axes = _axes(node, at, values)
         if axes is None:
@@ -164,6 +206,7 @@ def _small_ints(t, base_dir):
     """(elements, dtype, scalar) of an int tensor of at most _SMALL elements and rank <= 1, else None.
     One stored in an external file is read from `base_dir` (None, or unreadable: not followed)."""
     from onnx import TensorProto, numpy_helper
+
     if t.data_type not in (TensorProto.INT64, TensorProto.INT32) or len(t.dims) > 1 or math.prod(t.dims) > _SMALL:
         return None
     if t.data_location == TensorProto.EXTERNAL and base_dir is None:
@@ -178,13 +221,14 @@ def _small_ints(t, base_dir):
 def _out_value(node, at: dict, values: dict, shapes: dict, base_dir=None):
     """(elements, dtype, scalar) of a small int output computed from shapes and constants, else None."""
     from onnx import TensorProto
+
     op = node.op_type
     v = [values.get(i) for i in node.input if i]
     if op == "Constant":
         return _small_ints(at["value"], base_dir) if "value" in at else None
     if op == "Shape" and shapes.get(node.input[0]) is not None:
         s = shapes[node.input[0]]
-        return s[at.get("start", 0):at.get("end", len(s))], TensorProto.INT64, False
+        return s[at.get("start", 0) : at.get("end", len(s))], TensorProto.INT64, False
     if not v or any(x is None for x in v):
         return None
     if op in ("Identity", "Cast"):
@@ -217,8 +261,10 @@ def _dims(vi):
     t = vi.type.tensor_type
     if not t.HasField("shape"):
         return None
-    return [d.dim_value if d.HasField("dim_value") else (("in", d.dim_param) if d.dim_param else _new())
-            for d in t.shape.dim]
+    return [
+        d.dim_value if d.HasField("dim_value") else (("in", d.dim_param) if d.dim_param else _new())
+        for d in t.shape.dim
+    ]
 
 
 def follow(graph, base_dir=None) -> tuple[dict, dict]:
@@ -226,6 +272,7 @@ def follow(graph, base_dir=None) -> tuple[dict, dict]:
     tensor computed from shapes and constants), in one pass over the (topologically sorted) nodes.
     `base_dir`: where the graph's external data lies (small int constants stored there are read)."""
     from onnx import helper
+
     shapes = {vi.name: _dims(vi) for vi in graph.input}
     values = {}
     for t in graph.initializer:
@@ -255,8 +302,7 @@ def _reshape_target(data, target):
     """A Reshape target with symbols as a constant (0 = the input's dim there, one -1), else None."""
     if data is None:
         return None
-    out = [d if isinstance(d, int) else (0 if i < len(data) and data[i] == d else None)
-           for i, d in enumerate(target)]
+    out = [d if isinstance(d, int) else (0 if i < len(data) and data[i] == d else None) for i, d in enumerate(target)]
     if out.count(None) > 1 or (None in out and -1 in out):
         return None
     return [-1 if d is None else d for d in out]
@@ -271,6 +317,7 @@ def _constant_inputs(graph, shapes: dict, values: dict) -> int:
     """Each input of a data node (one whose output is not a followed value) that shape arithmetic
     computes becomes an initializer. Returns how many."""
     from onnx import helper
+
     computed = {o for n in graph.node if n.op_type != "Constant" for o in n.output}
     made = 0
     for node in graph.node:
@@ -302,12 +349,20 @@ def _drop_expands(graph, shapes: dict) -> int:
     bypassed = 0
     for node in graph.node:
         e = node.output[0] if node.op_type == "Expand" else None
-        if e is None or e in outputs or shapes.get(e) is None or any(isinstance(d, tuple) and d[0] == "new"
-                                                                      for d in shapes[e]):
+        if (
+            e is None
+            or e in outputs
+            or shapes.get(e) is None
+            or any(isinstance(d, tuple) and d[0] == "new" for d in shapes[e])
+        ):
             continue
         users = readers.get(e, [])
-        if not users or any(u.op_type not in ("Add", "Sub", "Mul", "Div") or list(u.input).count(e) != 1 or
-                            shapes.get(u.input[1 - list(u.input).index(e)]) != shapes[e] for u in users):
+        if not users or any(
+            u.op_type not in ("Add", "Sub", "Mul", "Div")
+            or list(u.input).count(e) != 1
+            or shapes.get(u.input[1 - list(u.input).index(e)]) != shapes[e]
+            for u in users
+        ):
             continue
         for u in users:
             u.input[list(u.input).index(e)] = node.input[0]

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """`silk-export bench`: training throughput (tokens/s, forward + backward + AdamW step) per model
 config on synthetic sequences of one length, to size training runs on a given machine."""
+
 from __future__ import annotations
 
 import platform
@@ -35,15 +36,26 @@ def bench_config(name: str, steps: int, seq_len: int, batch_size: int, seed: int
         if i:
             times.append(time.perf_counter() - t0)
     per_step = sum(times) / len(times)
-    return {"config": name, "parameters": model.num_parameters(), "seq_len": s, "batch_size": batch_size,
-            "steps_timed": len(times), "seconds_per_step": round(per_step, 3),
-            "tokens_per_s": round(batch_size * s / per_step, 1)}
+    return {
+        "config": name,
+        "parameters": model.num_parameters(),
+        "seq_len": s,
+        "batch_size": batch_size,
+        "steps_timed": len(times),
+        "seconds_per_step": round(per_step, 3),
+        "tokens_per_s": round(batch_size * s / per_step, 1),
+    }
 
 
 def bench_configs(names, steps=3, seq_len=1024, batch_size=1, threads=0, seed=0) -> dict:
     if threads:
         torch.set_num_threads(threads)
-    return {"machine": {"cpu": platform.processor() or platform.machine(), "threads": torch.get_num_threads(),
-                        "torch": torch.__version__,
-                        "device": "cpu"},
-            "results": [bench_config(n, steps, seq_len, batch_size, seed) for n in names]}
+    return {
+        "machine": {
+            "cpu": platform.processor() or platform.machine(),
+            "threads": torch.get_num_threads(),
+            "torch": torch.__version__,
+            "device": "cpu",
+        },
+        "results": [bench_config(n, steps, seq_len, batch_size, seed) for n in names],
+    }

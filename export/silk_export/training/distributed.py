@@ -5,6 +5,7 @@ effects, and full (unsharded) state dicts so checkpoints are the same file at ev
 
 Without torchrun's environment (WORLD_SIZE unset or 1) nothing is initialised and every
 collective is a no-op, so the same training loop runs as a plain single process."""
+
 from __future__ import annotations
 
 import contextlib
@@ -89,6 +90,7 @@ def wrap_model(model: torch.nn.Module, env: DistEnv) -> torch.nn.Module:
     if env.fsdp:
         from torch.distributed.device_mesh import init_device_mesh
         from torch.distributed.fsdp import fully_shard, register_fsdp_forward_method
+
         mesh = init_device_mesh(env.device.type, (env.world,))
         for block in shardable_blocks(model):
             fully_shard(block, mesh=mesh)
@@ -97,6 +99,7 @@ def wrap_model(model: torch.nn.Module, env: DistEnv) -> torch.nn.Module:
         fully_shard(model, mesh=mesh)
         return model
     from torch.nn.parallel import DistributedDataParallel
+
     ids = [env.device.index] if env.device.type == "cuda" else None
     return DistributedDataParallel(model, device_ids=ids)
 
@@ -124,6 +127,7 @@ def full_state(model: torch.nn.Module, optimizer) -> tuple[dict, dict]:
     """Unsharded CPU (model, optimizer) state dicts with the plain model's parameter names; only
     rank 0 gets them under FSDP (others get empty dicts). The same layout at every world size."""
     from torch.distributed.checkpoint.state_dict import StateDictOptions, get_state_dict
+
     opts = StateDictOptions(full_state_dict=True, cpu_offload=True)
     return get_state_dict(model, optimizer, options=opts)
 
@@ -131,6 +135,7 @@ def full_state(model: torch.nn.Module, optimizer) -> tuple[dict, dict]:
 def load_full_state(model: torch.nn.Module, optimizer, model_state: dict, optim_state: dict | None) -> None:
     """Loads full_state()'s dicts (every rank passes the whole dicts) into a wrapped model."""
     from torch.distributed.checkpoint.state_dict import StateDictOptions, set_state_dict
+
     opts = StateDictOptions(full_state_dict=True)
     if optim_state is None:
         set_state_dict(model, [], model_state_dict=model_state, optim_state_dict={}, options=opts)

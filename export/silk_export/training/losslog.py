@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Training log: JSONL (every record) + CSV (step, kind, loss, lr, tokens/s, elapsed) and a PNG
 plot of train/val loss (matplotlib, Agg backend, no display needed)."""
+
 from __future__ import annotations
 
 import csv
@@ -45,6 +46,7 @@ def read_log(path: Path) -> list[dict]:
 
 def plot_losses(log_path: Path, png_path: Path, title: str = "") -> None:
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -56,7 +58,7 @@ def plot_losses(log_path: Path, png_path: Path, title: str = "") -> None:
         s, l = zip(*tr)
         ax.plot(s, l, lw=0.6, alpha=0.35, color="tab:blue")
         k = max(3, len(l) // 20)
-        sm = [sum(l[max(0, i - k + 1):i + 1]) / len(l[max(0, i - k + 1):i + 1]) for i in range(len(l))]
+        sm = [sum(l[max(0, i - k + 1) : i + 1]) / len(l[max(0, i - k + 1) : i + 1]) for i in range(len(l))]
         ax.plot(s, sm, lw=1.5, color="tab:blue", label="train (moving mean)")
     if va:
         s, l = zip(*va)

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Learning-rate schedule: linear warm-up, then cosine from the peak LR down to the final LR
 (Mesh Silksong: 1e-4 -> 5e-5)."""
+
 from __future__ import annotations
 
 import math

@@ -3,6 +3,7 @@
 index of mesh files), online augmentation and tokenization through libsilk, progressive-balanced
 resampling, periodic validation, checkpoint/resume, loss log and plot. CPU or CUDA, one process
 or many under torchrun (DDP, or FSDP with --fsdp; distributed.py)."""
+
 from __future__ import annotations
 
 import contextlib
@@ -89,8 +90,15 @@ def resolved_args(a: TrainArgs) -> dict:
 
 
 def select_rows(rows: list[dict], split: str, cfg: ModelConfig, keys=None) -> list[dict]:
-    out = [r for r in rows if r["split"] == split and r.get("refused") is None and r.get("tokens")
-           and r["tokens"] <= cfg.max_tokens and r.get("processed_faces", 0) <= MAX_FACES]
+    out = [
+        r
+        for r in rows
+        if r["split"] == split
+        and r.get("refused") is None
+        and r.get("tokens")
+        and r["tokens"] <= cfg.max_tokens
+        and r.get("processed_faces", 0) <= MAX_FACES
+    ]
     if keys is not None:
         keys = set(keys)
         out = [r for r in out if r["key"] in keys]
@@ -138,7 +146,7 @@ def distributed_loss(model, samples, env: DistEnv, amp) -> float:
     """evaluate_loss over all ranks: rank r scores samples r, r + W, ...; ranks with one fewer
     run a padding forward that is not counted (FSDP needs the same number of forwards)."""
     per = -(-len(samples) // env.world)
-    mine = samples[env.rank::env.world]
+    mine = samples[env.rank :: env.world]
     model.eval()
     total = count = 0.0
     for k, s in enumerate(mine + samples[:1] * (per - len(mine))):
@@ -159,7 +167,7 @@ def train_step(model, opt, samples, env: DistEnv, micro: int, amp, grad_clip: fl
     batch's token-mean cross-entropy at any world size. Returns (this rank's token-weighted loss
     sum, global token count)."""
     n_global = env.all_reduce_sum([sum(s.tokens.size + 1 for s in samples)])[0]
-    chunks = [samples[i:i + micro] for i in range(0, len(samples), micro)]
+    chunks = [samples[i : i + micro] for i in range(0, len(samples), micro)]
     opt.zero_grad(set_to_none=True)
     loss_sum = 0.0
     for k, chunk in enumerate(chunks):
@@ -200,8 +208,10 @@ def open_data(a: TrainArgs, env: DistEnv, cfg: ModelConfig, out: Path) -> Traini
     if a.data:
         path = Path(a.data)
         if not is_dataset(path) and (path / "index.jsonl").is_file():
-            raise SystemExit(f"--data {path}: an index without dataset.json (an older `silk-export dataset`); "
-                             "rebuild it, or pass it as --index with --root")
+            raise SystemExit(
+                f"--data {path}: an index without dataset.json (an older `silk-export dataset`); "
+                "rebuild it, or pass it as --index with --root"
+            )
         if not is_dataset(path):
             path = out / "data"
             if env.is_main and not is_dataset(path):
@@ -218,7 +228,7 @@ def open_data(a: TrainArgs, env: DistEnv, cfg: ModelConfig, out: Path) -> Traini
     if not train_rows:
         raise SystemExit("no training meshes in the data fit this config")
     val_rows = select_rows(rows, "val", cfg)
-    return TrainingData(make(train_rows), make(val_rows[:a.val_meshes]) if val_rows else None, desc)
+    return TrainingData(make(train_rows), make(val_rows[: a.val_meshes]) if val_rows else None, desc)
 
 
 def model_config(a: TrainArgs) -> ModelConfig:
@@ -247,8 +257,10 @@ def initial_model(a: TrainArgs, env: DistEnv):
         torch.manual_seed(a.seed)  # the same initial weights on every rank
         return architecture_model(model_config(a))
     from ..official.checkpoint import load_official
-    model, _ = load_official(Path(a.init_from), Path(a.init_config) if a.init_config else None,
-                             progress=a.progress and env.is_main)
+
+    model, _ = load_official(
+        Path(a.init_from), Path(a.init_config) if a.init_config else None, progress=a.progress and env.is_main
+    )
     if a.max_seq_len and a.max_seq_len != model.cfg.max_seq_len:
         raise SystemExit(f"--max-seq-len: the checkpoint's positions fix it at {model.cfg.max_seq_len}")
     return model
@@ -262,8 +274,9 @@ def build_model(a: TrainArgs, env: DistEnv):
     plain.to(env.device)
     model = wrap_model(plain, env)
     lr, _, _ = a.schedule()
-    opt = torch.optim.AdamW([p for p in model.parameters() if p.requires_grad], lr=lr, betas=(0.9, 0.99),
-                            weight_decay=a.weight_decay)
+    opt = torch.optim.AdamW(
+        [p for p in model.parameters() if p.requires_grad], lr=lr, betas=(0.9, 0.99), weight_decay=a.weight_decay
+    )
     return model, plain, opt
 
 
@@ -289,17 +302,27 @@ class Trainer:
         self.amp = autocast_for(env.device, a.precision)
         self.micro = a.micro_batch or (1 if env.device.type == "cpu" else a.batch_size // env.world)
         self.slots = rank_slots(a.batch_size, env.rank, env.world)
-        self.val = val_samples(self.data.val, self.cfg, a.val_meshes, a.seed) \
-            if a.val_every and self.data.val is not None else []
+        self.val = (
+            val_samples(self.data.val, self.cfg, a.val_meshes, a.seed)
+            if a.val_every and self.data.val is not None
+            else []
+        )
         self.ckpt_path = self.out / "checkpoint.pt"
         self.step, self.elapsed0 = self.resume()
         self.log = LossLog(self.out) if env.is_main else None
         if self.log and self.step:
             self.log.truncate_after(self.step)
-        self.meta = {"train_meshes": len(self.data.train), "val_meshes": len(self.val),
-                     "parameters": self.plain.num_parameters(), "device": str(env.device),
-                     "world_size": env.world, "fsdp": a.fsdp, "threads": torch.get_num_threads(),
-                     "config": self.cfg.to_dict(), "args": resolved_args(a)}
+        self.meta = {
+            "train_meshes": len(self.data.train),
+            "val_meshes": len(self.val),
+            "parameters": self.plain.num_parameters(),
+            "device": str(env.device),
+            "world_size": env.world,
+            "fsdp": a.fsdp,
+            "threads": torch.get_num_threads(),
+            "config": self.cfg.to_dict(),
+            "args": resolved_args(a),
+        }
         if env.is_main:
             write_json(self.out / "run.json", self.meta, "null")
 
@@ -313,10 +336,20 @@ class Trainer:
     def checkpoint(self, step: int, elapsed: float) -> None:
         model_state, optim_state = full_state(self.model, self.opt)  # a collective under FSDP
         if self.env.is_main:
-            save_state(self.ckpt_path, self.cfg.to_dict(), model_state, optim_state, step, {
-                "elapsed_s": elapsed, "total_steps": self.a.steps, "args": resolved_args(self.a),
-                "world_size": self.env.world,
-                "data": {"index": self.data.description, "train_meshes": len(self.data.train)}})
+            save_state(
+                self.ckpt_path,
+                self.cfg.to_dict(),
+                model_state,
+                optim_state,
+                step,
+                {
+                    "elapsed_s": elapsed,
+                    "total_steps": self.a.steps,
+                    "args": resolved_args(self.a),
+                    "world_size": self.env.world,
+                    "data": {"index": self.data.description, "train_meshes": len(self.data.train)},
+                },
+            )
             if (self.out / "log.jsonl").exists():
                 plot_losses(self.out / "log.jsonl", self.out / "loss.png", f"{self.cfg.name}: step {step}")
 
@@ -324,24 +357,34 @@ class Trainer:
         a, env = self.a, self.env
         lr_max, lr_min, warm = a.schedule()
         sampler = ProgressiveBalancedSampler([r["processed_faces"] for r in self.data.train.rows], a.steps)
-        batches = iter(step_loader(StepSamples(self.data.train, sampler, a.seed, self.cfg, a.augment,
-                                               self.slots, a.steps), self.step, a.workers))
+        batches = iter(
+            step_loader(
+                StepSamples(self.data.train, sampler, a.seed, self.cfg, a.augment, self.slots, a.steps),
+                self.step,
+                a.workers,
+            )
+        )
         step, t_start, cpu_start = self.step, time.time(), time.process_time()
         last_ckpt, window_tokens, window_t = t_start, 0, t_start
-        bar = tqdm(total=a.steps, initial=step, desc=f"train {self.cfg.name}", unit="step",
-                   disable=not (a.progress and env.is_main))
+        bar = tqdm(
+            total=a.steps,
+            initial=step,
+            desc=f"train {self.cfg.name}",
+            unit="step",
+            disable=not (a.progress and env.is_main),
+        )
         first_loss = last_loss = None
         self.model.train()
         while step < a.steps:
             lr = cosine_lr(step, a.steps, lr_max, lr_min, warm)
             for g in self.opt.param_groups:
                 g["lr"] = lr
-            loss_sum, n_tokens = train_step(self.model, self.opt, next(batches), env, self.micro, self.amp,
-                                            a.grad_clip)
+            loss_sum, n_tokens = train_step(self.model, self.opt, next(batches), env, self.micro, self.amp, a.grad_clip)
             step += 1
             now = time.time()
-            out_of_time = (bool(a.max_minutes) and now - t_start > a.max_minutes * 60) or \
-                (bool(a.max_cpu_minutes) and time.process_time() - cpu_start > a.max_cpu_minutes * 60)
+            out_of_time = (bool(a.max_minutes) and now - t_start > a.max_minutes * 60) or (
+                bool(a.max_cpu_minutes) and time.process_time() - cpu_start > a.max_cpu_minutes * 60
+            )
             ckpt_due = now - last_ckpt > a.ckpt_minutes * 60
             loss_sum, out_of_time, ckpt_due = env.all_reduce_sum([loss_sum, out_of_time, ckpt_due])
             lv = loss_sum / n_tokens
@@ -353,8 +396,17 @@ class Trainer:
             bar.update(1)
             bar.set_postfix(loss=f"{lv:.3f}", lr=f"{lr:.2e}")
             if self.log and (step % a.log_every == 0 or step == a.steps):
-                self.log.write({"step": step, "kind": "train", "loss": lv, "lr": lr, "tokens": int(window_tokens),
-                                "tokens_per_s": window_tokens / max(now - window_t, 1e-9), "elapsed_s": elapsed})
+                self.log.write(
+                    {
+                        "step": step,
+                        "kind": "train",
+                        "loss": lv,
+                        "lr": lr,
+                        "tokens": int(window_tokens),
+                        "tokens_per_s": window_tokens / max(now - window_t, 1e-9),
+                        "elapsed_s": elapsed,
+                    }
+                )
                 window_tokens, window_t = 0, now
             if self.val and a.val_every and (step % a.val_every == 0 or step == a.steps):
                 vl = distributed_loss(self.model, self.val, env, self.amp)
@@ -366,6 +418,11 @@ class Trainer:
             if out_of_time:
                 break
         bar.close()
-        return {"step": step, "first_loss": first_loss, "last_loss": last_loss, "world_size": env.world,
-                "elapsed_s": self.elapsed0 + time.time() - t_start,
-                **{k: self.meta[k] for k in ("train_meshes", "parameters")}}
+        return {
+            "step": step,
+            "first_loss": first_loss,
+            "last_loss": last_loss,
+            "world_size": env.world,
+            "elapsed_s": self.elapsed0 + time.time() - t_start,
+            **{k: self.meta[k] for k in ("train_meshes", "parameters")},
+        }

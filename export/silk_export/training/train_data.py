@@ -5,6 +5,7 @@ augmentation and the point cloud, redrawing when libsilk refuses or the sequence
 So the global batch is the same at every world size, rank r takes the contiguous slots
 [r·B/W, (r+1)·B/W), and a resumed run needs no data state. DataLoader workers (optional)
 prepare whole steps ahead of the trainer, tokenising through libsilk in their own processes."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -18,8 +19,7 @@ TRIES_PER_SLOT = 50
 
 def rank_slots(batch_size: int, rank: int, world: int) -> range:
     if batch_size % world:
-        raise ValueError(f"--batch-size {batch_size} (the global batch) must be a multiple of the "
-                         f"{world} ranks")
+        raise ValueError(f"--batch-size {batch_size} (the global batch) must be a multiple of the {world} ranks")
     per = batch_size // world
     return range(rank * per, (rank + 1) * per)
 
@@ -46,8 +46,7 @@ class StepSamples(torch.utils.data.Dataset):
         return self.steps
 
     def __getitem__(self, step: int):
-        return [draw_sample(self.source, self.sampler, self.seed, step, s, self.cfg, self.augment)
-                for s in self.slots]
+        return [draw_sample(self.source, self.sampler, self.seed, step, s, self.cfg, self.augment) for s in self.slots]
 
 
 def _as_is(item):
@@ -56,6 +55,11 @@ def _as_is(item):
 
 def step_loader(data: StepSamples, start_step: int, workers: int):
     """Yields data[start_step], data[start_step + 1], ... in order (workers prefetch)."""
-    return torch.utils.data.DataLoader(data, batch_size=None, sampler=range(start_step, data.steps),
-                                       num_workers=workers, collate_fn=_as_is,
-                                       prefetch_factor=2 if workers else None)
+    return torch.utils.data.DataLoader(
+        data,
+        batch_size=None,
+        sampler=range(start_step, data.steps),
+        num_workers=workers,
+        collate_fn=_as_is,
+        prefetch_factor=2 if workers else None,
+    )

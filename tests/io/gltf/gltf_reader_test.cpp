@@ -49,19 +49,21 @@ std::string GltfJson(const std::string& buffer_json, const std::string& nodes_js
                      const std::string& scenes_json = R"("scene": 0, "scenes": [{"nodes": [0]}],)",
                      const std::string& mode = "4") {
   return std::string(R"({"asset": {"version": "2.0"}, )") + scenes_json + R"( "nodes": )" + nodes_json + R"(,
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": )" + mode + R"(},
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": )" +
+         mode + R"(},
                                {"attributes": {"POSITION": 0}}]}],
     "accessors": [
       {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
       {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}],
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
                     {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
-    "buffers": [)" + buffer_json + "]}";
+    "buffers": [)" +
+         buffer_json + "]}";
 }
 
 std::string EmbeddedBuffer(const std::string& bytes) {
-  return R"({"byteLength": )" + std::to_string(bytes.size()) +
-         R"(, "uri": "data:application/octet-stream;base64,)" + Base64(bytes) + R"("})";
+  return R"({"byteLength": )" + std::to_string(bytes.size()) + R"(, "uri": "data:application/octet-stream;base64,)" +
+         Base64(bytes) + R"("})";
 }
 
 std::string Glb(std::string json, const std::string& bin) {
@@ -110,8 +112,8 @@ TEST(GltfReader, NonIndexedPrimitiveWithFourCornersIsAnError) {
 }
 
 TEST(GltfReader, TriangleStripAndNonIndexedFan) {
-  std::string json = GltfJson(EmbeddedBuffer(GeometryBuffer()), R"([{"mesh": 0}])",
-                              R"("scene": 0, "scenes": [{"nodes": [0]}],)", "5");
+  std::string json =
+      GltfJson(EmbeddedBuffer(GeometryBuffer()), R"([{"mesh": 0}])", R"("scene": 0, "scenes": [{"nodes": [0]}],)", "5");
   const std::string second = R"({"attributes": {"POSITION": 0}})";
   json.replace(json.find(second), second.size(), R"({"attributes": {"POSITION": 0}, "mode": 6})");
   auto m = ReadGltf(json, false, "s.gltf", "", true);
@@ -171,8 +173,8 @@ TEST(GltfReader, ExternalBufferFileAndMissingBuffer) {
   ASSERT_TRUE(m.ok()) << m.status().ToString();
   EXPECT_EQ(m->triangles.size(), 2u);
   // From memory, external files are never opened.
-  auto mem = ReadMeshFromMemory(reinterpret_cast<const uint8_t*>(json.data()), json.size(), MeshFormat::kGltf,
-                                "mem.gltf");
+  auto mem =
+      ReadMeshFromMemory(reinterpret_cast<const uint8_t*>(json.data()), json.size(), MeshFormat::kGltf, "mem.gltf");
   ASSERT_FALSE(mem.ok());
   EXPECT_NE(mem.status().message().find("cannot be loaded (mesh read from memory)"), std::string::npos);
 }

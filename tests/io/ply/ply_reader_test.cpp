@@ -43,8 +43,10 @@ std::string BinaryCube(bool big_endian, bool truncate_last_face = false) {
                   "element face 2\nproperty uchar flag\nproperty list int uint vertex_index\n"
                   "end_header\n";
   auto put = [&](auto v) {
-    if (big_endian) AppendBE(&h, v);
-    else AppendLE(&h, v);
+    if (big_endian)
+      AppendBE(&h, v);
+    else
+      AppendLE(&h, v);
   };
   const double xs[4] = {0, 1, 0, 0.1};
   const float ys[4] = {0, 0, 1, 0}, zs[4] = {0, 0, 0, 1};
@@ -93,8 +95,7 @@ TEST(PlyReader, BinaryLittleAndBigEndian) {
 TEST(PlyReader, TruncatedBodyNamesElementAndIndex) {
   auto m = ReadPly(BinaryCube(false, true), "t.ply");
   ASSERT_FALSE(m.ok());
-  EXPECT_NE(m.status().message().find("t.ply: truncated body: face 1 of 2"), std::string::npos)
-      << m.status().message();
+  EXPECT_NE(m.status().message().find("t.ply: truncated body: face 1 of 2"), std::string::npos) << m.status().message();
 }
 
 TEST(PlyReader, HugeHeaderCountFailsWithoutAllocating) {
@@ -163,7 +164,8 @@ TEST(PlyPointCloud, NormalsAndNoFaces) {
   EXPECT_EQ(pc->mesh.positions[1], (std::array<double, 3>{1, 2, 3}));
   EXPECT_FALSE(ReadPly(ply, "p.ply").ok());  // the mesh reader still wants faces
   const std::string no_normals =
-      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 1 1\n";
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n1 1 "
+      "1\n";
   auto pn = ReadPlyPointCloud(no_normals, "q.ply");
   ASSERT_TRUE(pn.ok());
   EXPECT_TRUE(pn->normals.empty());

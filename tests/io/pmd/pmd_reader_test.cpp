@@ -142,8 +142,8 @@ TEST(PmdReader, DispatchByExtensionMagicAndMemory) {
   testing::TempDir dir;
   ExpectQuad(ReadMeshFile(dir.Write("quad.PMD", bytes)));
   ExpectQuad(ReadMeshFile(dir.Write("quad.model", bytes)));  // unknown extension: "PSMD" magic
-  ExpectQuad(ReadMeshFromMemory(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(),
-                                MeshFormat::kPmd, "mem.pmd"));
+  ExpectQuad(
+      ReadMeshFromMemory(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), MeshFormat::kPmd, "mem.pmd"));
   EXPECT_EQ(MeshFormatFromPath("a/b/house.dae.cached.pmd"), MeshFormat::kPmd);
   EXPECT_STREQ(MeshFormatName(MeshFormat::kPmd), "PMD");
 }
@@ -156,13 +156,38 @@ TEST(PmdReader, ErrorsNameFileAndField) {
       {"", "e.pmd: not a PMD file (no 'PSMD' magic)"},
       {"PSMX" + good.substr(4), "e.pmd: not a PMD file"},
       {"PSMD", "e.pmd: truncated at byte 4 reading version (needs 4 bytes, 0 left)"},
-      {[&] { std::string b = good; PatchU32(&b, 4, 5); return b; }(), "e.pmd: PMD version 5 not supported"},
-      {[&] { std::string b = good; PatchU32(&b, 4, 0); return b; }(), "e.pmd: PMD version 0 not supported"},
+      {[&] {
+         std::string b = good;
+         PatchU32(&b, 4, 5);
+         return b;
+       }(),
+       "e.pmd: PMD version 5 not supported"},
+      {[&] {
+         std::string b = good;
+         PatchU32(&b, 4, 0);
+         return b;
+       }(),
+       "e.pmd: PMD version 0 not supported"},
       {good + "x", "e.pmd: header data size"},
       {FixDataSize(good + "xyz"), "e.pmd: 3 unexpected bytes after the prop points"},
-      {[&] { std::string b = good; PatchU32(&b, 12, 0xFFFFFFFFu); return b; }(), "e.pmd: vertex count 4294967295 needs"},
-      {[&] { std::string b = good; PatchU32(&b, 12, 0); return b; }(), "e.pmd: "},
-      {[&] { std::string b = good; PatchU32(&b, 16, 0x7FFFFFFFu); return b; }(), "e.pmd: UV set count 2147483647 does not fit"},
+      {[&] {
+         std::string b = good;
+         PatchU32(&b, 12, 0xFFFFFFFFu);
+         return b;
+       }(),
+       "e.pmd: vertex count 4294967295 needs"},
+      {[&] {
+         std::string b = good;
+         PatchU32(&b, 12, 0);
+         return b;
+       }(),
+       "e.pmd: "},
+      {[&] {
+         std::string b = good;
+         PatchU32(&b, 16, 0x7FFFFFFFu);
+         return b;
+       }(),
+       "e.pmd: UV set count 2147483647 does not fit"},
   };
   for (const Case& c : cases) {
     auto m = ReadPmd(c.bytes, "e.pmd");
@@ -292,8 +317,7 @@ TEST(PmdDevCorpus, MatchesObjSourcesSkippedUnlessSILK_0AD_MESHESIsSet) {
     ++compared;
   }
   EXPECT_EQ(compared, 160);
-  std::printf("compared %d dev meshes with their PMD sources, max |position difference| %.3g\n", compared,
-              max_diff);
+  std::printf("compared %d dev meshes with their PMD sources, max |position difference| %.3g\n", compared, max_diff);
 }
 
 }  // namespace

@@ -93,10 +93,11 @@ TEST(PointCloudFiles, DispatchByExtensionAndGzip) {
   EXPECT_NE(as_mesh.status().message().find("s.xyz: no faces (an XYZ file is a point cloud of 3 points)"),
             std::string::npos)
       << as_mesh.status().message();
-  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                          "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
-                          "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                          "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
   auto mesh = ReadMeshOrPointCloudFile(dir.Write("m.ply", ply));  // a PLY mesh: normals dropped
   ASSERT_TRUE(mesh.ok());
   EXPECT_EQ(mesh->mesh.triangles.size(), 1u);
@@ -111,8 +112,9 @@ TEST(PointCloudFiles, DispatchByExtensionAndGzip) {
   auto gz = ReadMeshOrPointCloudFile(dir.Write("s.xyz.gz", testing::Gzip("0 0 0 0 0 1\n1 0 0 0 0 1\n")));
   ASSERT_TRUE(gz.ok()) << gz.status().ToString();
   EXPECT_EQ(gz->normals.size(), 2u);
-  const std::string cloud_ply = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
-                                "property float z\nend_header\n0 0 0\n1 1 1\n";
+  const std::string cloud_ply =
+      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n0 0 0\n1 1 1\n";
   auto plygz = ReadMeshOrPointCloudFile(dir.Write("c.ply.gz", testing::Gzip(cloud_ply)));
   ASSERT_TRUE(plygz.ok()) << plygz.status().ToString();
   EXPECT_EQ(plygz->mesh.positions.size(), 2u);

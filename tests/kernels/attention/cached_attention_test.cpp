@@ -57,8 +57,12 @@ std::vector<unsigned char> RowOf(const float* x, int64_t d, CacheElement e) {
   if (e == CacheElement::kInt8) return Int8Row(x, d);
   std::vector<unsigned char> row(CacheRowBytes(e, d));
   for (int64_t i = 0; i < d; ++i) {
-    if (e == CacheElement::kFloat32) std::memcpy(row.data() + 4 * i, &x[i], 4);
-    else { const uint16_t bits = Ort::Float16_t(x[i]).val; std::memcpy(row.data() + 2 * i, &bits, 2); }
+    if (e == CacheElement::kFloat32)
+      std::memcpy(row.data() + 4 * i, &x[i], 4);
+    else {
+      const uint16_t bits = Ort::Float16_t(x[i]).val;
+      std::memcpy(row.data() + 2 * i, &bits, 2);
+    }
   }
   return row;
 }
@@ -83,8 +87,10 @@ Case MakeCase(AttentionShape s, CacheElement e, uint32_t seed) {
   Case c;
   c.shape = s;
   const int64_t qn = s.chunk * s.heads * s.head_dim, kn = s.chunk * s.kv_heads * s.head_dim;
-  for (auto* vec : {&c.q}) for (int64_t i = 0; i < qn; ++i) vec->push_back(n(rng) * 0.3f);
-  for (auto* vec : {&c.k, &c.v}) for (int64_t i = 0; i < kn; ++i) vec->push_back(n(rng));
+  for (auto* vec : {&c.q})
+    for (int64_t i = 0; i < qn; ++i) vec->push_back(n(rng) * 0.3f);
+  for (auto* vec : {&c.k, &c.v})
+    for (int64_t i = 0; i < kn; ++i) vec->push_back(n(rng));
   c.out.assign(static_cast<size_t>(qn), std::nanf(""));
   const size_t rb = CacheRowBytes(e, s.head_dim);
   std::vector<float> x(static_cast<size_t>(s.head_dim));
@@ -133,8 +139,7 @@ std::vector<double> Reference(const Case& c, CacheElement e) {
       for (double& x : w) sum += (x = std::exp(x - top));
       for (int64_t d = 0; d < s.head_dim; ++d) {
         double acc = 0;
-        for (int64_t j = 0; j < len; ++j)
-          acc += w[j] * Widen(c.value_cache, e, s.head_dim, kvh * s.capacity + j, d);
+        for (int64_t j = 0; j < len; ++j) acc += w[j] * Widen(c.value_cache, e, s.head_dim, kvh * s.capacity + j, d);
         out[(t * s.heads + h) * s.head_dim + d] = acc / sum;
       }
     }
@@ -175,10 +180,10 @@ void ExpectMatchesReference(AttentionShape s, CacheElement e, RowKernels kernels
 constexpr CacheElement kElements[] = {CacheElement::kFloat32, CacheElement::kFloat16, CacheElement::kInt8};
 
 const AttentionShape kShapes[] = {
-    {4, 2, 64, 3, 37, 50, 0.125f},    // grouped heads, a chunk after a prefix
-    {2, 2, 12, 1, 0, 5, 0.3f},        // head_dim not a multiple of 8: the scalar rows
+    {4, 2, 64, 3, 37, 50, 0.125f},       // grouped heads, a chunk after a prefix
+    {2, 2, 12, 1, 0, 5, 0.3f},           // head_dim not a multiple of 8: the scalar rows
     {16, 16, 64, 1, 1000, 1001, 10.0f},  // the release network's heads and scale, deep
-    {3, 1, 24, 5, 0, 5, 1.0f},        // the first chunk, one kv head
+    {3, 1, 24, 5, 0, 5, 1.0f},           // the first chunk, one kv head
 };
 
 TEST(CachedAttention, MatchesReferenceWithEveryRowKernel) {
@@ -246,9 +251,23 @@ TEST(CachedAttention, SharpSoftmaxIsFinite) {
 
 // float16 rounding of new rows: ties to even, subnormals, overflow, NaN, as onnxruntime converts.
 TEST(CachedAttention, Float16RowsRoundLikeOnnxRuntime) {
-  std::vector<float> xs = {0.0f, -0.0f, 1.0f, 1.0f + 1.0f / 2048, 1.0f + 3.0f / 2048, 65504.0f, 65519.0f, 65520.0f,
-                           -70000.0f, 6.0e-8f, 3.0e-8f, 2.9e-8f, 1.0e-5f, -6.1e-5f, 6.103515625e-05f,
-                           std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()};
+  std::vector<float> xs = {0.0f,
+                           -0.0f,
+                           1.0f,
+                           1.0f + 1.0f / 2048,
+                           1.0f + 3.0f / 2048,
+                           65504.0f,
+                           65519.0f,
+                           65520.0f,
+                           -70000.0f,
+                           6.0e-8f,
+                           3.0e-8f,
+                           2.9e-8f,
+                           1.0e-5f,
+                           -6.1e-5f,
+                           6.103515625e-05f,
+                           std::numeric_limits<float>::infinity(),
+                           std::numeric_limits<float>::quiet_NaN()};
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> mant(1.0f, 2.0f);
   std::uniform_int_distribution<int> ex(-30, 17);
@@ -259,8 +278,10 @@ TEST(CachedAttention, Float16RowsRoundLikeOnnxRuntime) {
     rows.store(xs.data(), got.data(), static_cast<int64_t>(xs.size()));
     for (size_t i = 0; i < xs.size(); ++i) {
       const uint16_t want = Ort::Float16_t(xs[i]).val;
-      if (std::isnan(xs[i])) EXPECT_TRUE(Ort::Float16_t::FromBits(got[i]).IsNaN());
-      else ASSERT_EQ(got[i], want) << "x = " << xs[i] << (k == RowKernels::kBest ? " (vectorized)" : " (scalar)");
+      if (std::isnan(xs[i]))
+        EXPECT_TRUE(Ort::Float16_t::FromBits(got[i]).IsNaN());
+      else
+        ASSERT_EQ(got[i], want) << "x = " << xs[i] << (k == RowKernels::kBest ? " (vectorized)" : " (scalar)");
     }
   }
 }
@@ -269,9 +290,9 @@ TEST(CachedAttention, Float16RowsRoundLikeOnnxRuntime) {
 TEST(CachedAttention, Int8RowsQuantizeByTheContract) {
   const int64_t d = 16;
   std::vector<std::vector<float>> rows = {
-      std::vector<float>(d, 0.0f),                                          // all zeros: scale 0
+      std::vector<float>(d, 0.0f),                                                     // all zeros: scale 0
       {127, 2.5f, -3.5f, 0.5f, -0.5f, 1.5f, 126.5f, -127, 0, 64, -64, 3, 4, 5, 6, 7},  // scale 1: exact ties
-      {1e-30f, -2e-30f, 5e-31f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1e-31f},  // tiny scale
+      {1e-30f, -2e-30f, 5e-31f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1e-31f},           // tiny scale
   };
   std::mt19937 rng(9);
   std::normal_distribution<float> n(0.0f, 3.0f);

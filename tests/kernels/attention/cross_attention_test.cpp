@@ -40,7 +40,9 @@ std::vector<float> Random(size_t n, std::mt19937& rng) {
 struct Rows {
   std::vector<float> f32;
   std::vector<uint16_t> f16;
-  const void* data(CacheElement e) const { return e == CacheElement::kFloat16 ? static_cast<const void*>(f16.data()) : f32.data(); }
+  const void* data(CacheElement e) const {
+    return e == CacheElement::kFloat16 ? static_cast<const void*>(f16.data()) : f32.data();
+  }
 };
 Rows Store(const std::vector<float>& x, CacheElement e, std::vector<float>* values) {
   Rows r;

@@ -96,7 +96,8 @@ TEST(HalfMatMul, RefusesShapesOutOfRange) {
   EXPECT_TRUE(HalfShapeSupported(HalfMatMulShape{0, 8, 5}, &why));
   EXPECT_EQ(why, nullptr);
   std::vector<float> out(5, 1.0f);
-  HalfMatMul(HalfMatMulShape{0, 8, 5}, nullptr, nullptr, out.data(), Serial, nullptr);  // no rows: nothing read or written
+  HalfMatMul(HalfMatMulShape{0, 8, 5}, nullptr, nullptr, out.data(), Serial,
+             nullptr);  // no rows: nothing read or written
   EXPECT_EQ(out, std::vector<float>(5, 1.0f));
 }
 

@@ -56,7 +56,7 @@ void Backwards(void*, void (*work)(void*, size_t), void* state, size_t count) {
 }
 
 std::vector<float> Multiply(const Case& c, const std::vector<float>& a, const Weights& w, RowKernels kernels,
-                       ParallelForFn pool = Serial) {
+                            ParallelForFn pool = Serial) {
   std::vector<float> out(static_cast<size_t>(c.m * c.n), std::numeric_limits<float>::quiet_NaN());
   const Int4MatMulShape s{c.m, c.k, c.n, c.block};
   Int4MatMul(s, a.data(), w.packed.data(), w.scales.data(), out.data(), pool, nullptr, kernels);

@@ -67,7 +67,8 @@ class TorusLayerFour : public ::testing::Test {
   }
   std::set<int32_t> PrevColumns(const Pairs& p, int32_t i) {
     std::set<int32_t> n;
-    for (auto [a, b] : p) if (a == i) n.insert(b);
+    for (auto [a, b] : p)
+      if (a == i) n.insert(b);
     return n;
   }
   StreamLayer layer;

@@ -104,21 +104,26 @@ TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
         os = scores[c].second;
       }
       const char* cls;
-      if (proven) cls = "proven token-equivalent (component re-encodes to its stream)", ++proven_comp;
-      else if (ts >= 0 && ts < os) cls = "search stopped early (truth scores better)", ++early;
-      else if (near) cls = "near unencodable faces", ++near_unenc;
-      else cls = "not token-equivalent, truth not scorable (coincident or unmapped corners)", ++other;
+      if (proven)
+        cls = "proven token-equivalent (component re-encodes to its stream)", ++proven_comp;
+      else if (ts >= 0 && ts < os)
+        cls = "search stopped early (truth scores better)", ++early;
+      else if (near)
+        cls = "near unencodable faces", ++near_unenc;
+      else
+        cls = "not token-equivalent, truth not scorable (coincident or unmapped corners)", ++other;
       std::printf("  %-40s %s (%d,%d,%d)(%d,%d,%d)(%d,%d,%d) comps", name.c_str(), reversed ? "reversed" : "missing ",
                   f[0].x, f[0].y, f[0].z, f[1].x, f[1].y, f[1].z, f[2].x, f[2].y, f[2].z);
       for (int32_t c : cs) std::printf(" %d", c);
       std::printf(" scores truth %d ours %d: %s\n", ts, os, cls);
     }
   }
-  std::printf("decode ambiguity: %d meshes, %d components; decoded faces re-encode to the component's stream in %d; "
-              "official faces (checkable components) in %d of %d; %lld missing/reversed faces: proven token-equivalent "
-              "%lld, search stopped early %lld, near unencodable %lld, truth not scorable %lld\n",
-              meshes, components, equal_components, truth_equal, truth_checked, (long long)wrong,
-              (long long)proven_comp, (long long)early, (long long)near_unenc, (long long)other);
+  std::printf(
+      "decode ambiguity: %d meshes, %d components; decoded faces re-encode to the component's stream in %d; "
+      "official faces (checkable components) in %d of %d; %lld missing/reversed faces: proven token-equivalent "
+      "%lld, search stopped early %lld, near unencodable %lld, truth not scorable %lld\n",
+      meshes, components, equal_components, truth_equal, truth_checked, (long long)wrong, (long long)proven_comp,
+      (long long)early, (long long)near_unenc, (long long)other);
 }
 
 }  // namespace

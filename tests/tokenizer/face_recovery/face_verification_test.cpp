@@ -46,14 +46,15 @@ TEST(GoldenDevVerifySlow, TruthReplaysAndRecoveryScoresNoWorse) {
       ours_score += os;
       if (os > ts) {
         ++worse;
-        std::printf("  %s comp %zu: truth score %d, recovered score %d (%d evaluations%s)\n", name.c_str(), ci, ts,
-                    os, st.search_evaluations, st.search_budget_exhausted ? ", budget exhausted" : "");
+        std::printf("  %s comp %zu: truth score %d, recovered score %d (%d evaluations%s)\n", name.c_str(), ci, ts, os,
+                    st.search_evaluations, st.search_budget_exhausted ? ", budget exhausted" : "");
       }
     }
   }
-  std::printf("golden-dev verify: %d components; truth replays exactly in %d (defects %d), recovery in %d "
-              "(defects %d); recovery worse than truth in %d\n",
-              comps, truth_exact, truth_score, ours_exact, ours_score, worse);
+  std::printf(
+      "golden-dev verify: %d components; truth replays exactly in %d (defects %d), recovery in %d "
+      "(defects %d); recovery worse than truth in %d\n",
+      comps, truth_exact, truth_score, ours_exact, ours_score, worse);
   // Measured (docs/decoder.md): 8,997 components replay exactly; the search ends above
   // the truth's score in 4 components (a repair needs two simultaneous changes). Regression
   // bounds, not the goal (worse = 0).

@@ -15,8 +15,8 @@ namespace silk {
 namespace {
 
 // Tetrahedron golden: C root U three layer-1 vertices (K O S B) E.
-const std::vector<int32_t> kTetra = {0, 5659, 6990, 1, 5659 + 448, 9294, 206, 460, 5666, 6999,
-                                     206, 460, 5715, 7134, 206, 460, 2};
+const std::vector<int32_t> kTetra = {0,    5659, 6990, 1,    5659 + 448, 9294, 206, 460, 5666,
+                                     6999, 206,  460,  5715, 7134,       206,  460, 2};
 
 TEST(TokenReader, ParsesTetrahedron) {
   auto s = ReadTokenStream(kTetra);
@@ -30,9 +30,9 @@ TEST(TokenReader, ParsesTetrahedron) {
 }
 
 TEST(TokenReader, ParsesEveryGolden) {
-  for (const char* name : {"tetrahedron", "cube", "octahedron", "torus", "grid", "two_components",
-                           "nonmanifold_book", "cylinder_capped", "open_tube", "cube_one_flipped", "dirty_cube",
-                           "icosphere2", "torus_24x6", "torus_12x8"}) {
+  for (const char* name :
+       {"tetrahedron", "cube", "octahedron", "torus", "grid", "two_components", "nonmanifold_book", "cylinder_capped",
+        "open_tube", "cube_one_flipped", "dirty_cube", "icosphere2", "torus_24x6", "torus_12x8"}) {
     auto ids = testing::ReadIds(testing::SharedPath(std::string("spec/golden/") + name + ".tokens.txt"));
     auto s = ReadTokenStream(ids);
     EXPECT_TRUE(s.ok()) << name << ": " << s.status().ToString();
@@ -71,22 +71,29 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"starts with U", {1}, "token 0 (id 1): layer end U where C"},
         BadCase{"negative id", Edit(kTetra, 5, -1), "token 5 (id -1): not a token id"},
         BadCase{"id past vocabulary", Edit(kTetra, 9, 10267), "token 9 (id 10267): not a token id"},
-        BadCase{"B before S", Edit(kTetra, 6, 460), "token 6 (id 460): between-layer token before the vertex's S token"},
+        BadCase{"B before S", Edit(kTetra, 6, 460),
+                "token 6 (id 460): between-layer token before the vertex's S token"},
         BadCase{"X before S", Edit(kTetra, 6, 11), "token 6 (id 11): self-layer extra token before the vertex's S"},
         BadCase{"E after root", Edit(kTetra, 3, 2), "token 3 (id 2): component end E where U"},
         BadCase{"second root vertex", Edit(kTetra, 3, 5659), "token 3 (id 5659): block token K where U"},
-        BadCase{"O without K", Edit(kTetra, 4, 6171), "token 4 (id 6171): offset token O where a vertex's block token K"},
-        BadCase{"layer 1 B other than 460", Edit(kTetra, 7, 459), "token 7 (id 459): a layer-1 vertex's B token must be 460"},
+        BadCase{"O without K", Edit(kTetra, 4, 6171),
+                "token 4 (id 6171): offset token O where a vertex's block token K"},
+        BadCase{"layer 1 B other than 460", Edit(kTetra, 7, 459),
+                "token 7 (id 459): a layer-1 vertex's B token must be 460"},
         BadCase{"second B in layer 1", Insert(kTetra, 8, 460), "token 8 (id 460): a layer-1 vertex has exactly one B"},
         BadCase{"vertex without B", Edit(kTetra, 7, 5666), "token 7 (id 5666): block token K where an X or B token"},
-        BadCase{"window bit past layer end", Edit(kTetra, 6, 203 + 4), "token 6 (id 207): window bits point past the end"},
+        BadCase{"window bit past layer end", Edit(kTetra, 6, 203 + 4),
+                "token 6 (id 207): window bits point past the end"},
         BadCase{"X value below 8", Insert(kTetra, 7, 3 + 7), "token 7 (id 10): self-layer extra value 7 is below 8"},
-        BadCase{"X value past small layer", Insert(kTetra, 7, 3 + 8), "token 7 (id 11): self-layer extra value 8 is out of range"},
-        BadCase{"X after B", Insert(kTetra, 8, 11), "token 8 (id 11): self-layer extra token after the vertex's B tokens"},
+        BadCase{"X value past small layer", Insert(kTetra, 7, 3 + 8),
+                "token 7 (id 11): self-layer extra value 8 is out of range"},
+        BadCase{"X after B", Insert(kTetra, 8, 11),
+                "token 8 (id 11): self-layer extra token after the vertex's B tokens"},
         BadCase{"two S", Insert(kTetra, 7, 206), "token 7 (id 206): second S token"},
         BadCase{"missing E", std::vector<int32_t>(kTetra.begin(), kTetra.end() - 1), "ends inside component 0"},
         BadCase{"garbage after E", Insert(kTetra, 17, 5659), "token 17 (id 5659): block token K where C or the end"},
-        BadCase{"E right after U", Insert(kTetra, 16, 1), "token 17 (id 2): component end E where a vertex's block token K"},
+        BadCase{"E right after U", Insert(kTetra, 16, 1),
+                "token 17 (id 2): component end E where a vertex's block token K"},
         BadCase{"layer 1 of one vertex",
                 {0, 5659, 6990, 1, 6107, 9294, 203, 460, 2},
                 "token 8 (id 2): layer 1 has 1 vertex"},
@@ -104,7 +111,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "token 21 (id 512): between-layer token starts at column 2"}),
     [](const ::testing::TestParamInfo<BadCase>& info) {
       std::string n = info.param.what;
-      for (char& c : n) if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+      for (char& c : n)
+        if (!isalnum(static_cast<unsigned char>(c))) c = '_';
       return n;
     });
 
