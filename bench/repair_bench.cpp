@@ -113,6 +113,51 @@ IoMesh Cylinder(int segs, int rows) {
   return m;
 }
 
+// Every single-token corruption of one base stream (a window bit cleared, an extra dropped, a
+// between-layer column dropped), each measured into the corruption's tally and its family's.
+void CorruptAndMeasure(const std::string& family, const LayeredStream& base,
+                       std::map<std::string, Tally>* tallies_out) {
+  std::map<std::string, Tally>& tallies = *tallies_out;
+  for (size_t c = 0; c < base.components.size(); ++c)
+    for (size_t l = 1; l < base.components[c].layers.size(); ++l) {
+      const auto& layer = base.components[c].layers[l];
+      const int32_t prev_n = static_cast<int32_t>(base.components[c].layers[l - 1].vertices.size());
+      for (size_t v = 0; v < layer.vertices.size(); ++v) {
+        const auto& vx = layer.vertices[v];
+        for (int bit = 0; bit < 8; ++bit)
+          if ((vx.window >> bit) & 1) {
+            LayeredStream s = base;
+            s.components[c].layers[l].vertices[v].window &= ~(1 << bit);
+            Measure(s, &tallies["S window bit"]);
+            Measure(s, &tallies[family + " / S window bit"]);
+          }
+        for (size_t x = 0; x < vx.extras.size(); ++x) {
+          LayeredStream s = base;
+          auto& ex = s.components[c].layers[l].vertices[v].extras;
+          ex.erase(ex.begin() + static_cast<long>(x));
+          Measure(s, &tallies["X value"]);
+          Measure(s, &tallies[family + " / X value"]);
+        }
+        if (l < 2) continue;  // layer-1 rows are the single root bit
+        StreamLayer one;
+        one.vertices.push_back(vx);
+        auto pairs = DecodeBetweenLayer(one, prev_n);
+        if (!pairs.ok() || pairs->size() < 2) continue;
+        for (size_t drop = 0; drop < pairs->size(); ++drop) {
+          std::vector<int32_t> cols;
+          for (size_t k = 0; k < pairs->size(); ++k)
+            if (k != drop) cols.push_back((*pairs)[k].second);
+          LayeredStream s = base;
+          auto& bt = s.components[c].layers[l].vertices[v].between;
+          bt.clear();
+          EncodeBetweenLayerRow(prev_n, cols, &bt);
+          Measure(s, &tallies["B column"]);
+          Measure(s, &tallies[family + " / B column"]);
+        }
+      }
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -148,46 +193,7 @@ int main(int argc, char** argv) {
     }
     bases.emplace_back(family, enc->stream);
   }
-  for (const auto& [family, base] : bases) {
-    for (size_t c = 0; c < base.components.size(); ++c)
-      for (size_t l = 1; l < base.components[c].layers.size(); ++l) {
-        const auto& layer = base.components[c].layers[l];
-        const int32_t prev_n = static_cast<int32_t>(base.components[c].layers[l - 1].vertices.size());
-        for (size_t v = 0; v < layer.vertices.size(); ++v) {
-          const auto& vx = layer.vertices[v];
-          for (int bit = 0; bit < 8; ++bit)
-            if ((vx.window >> bit) & 1) {
-              LayeredStream s = base;
-              s.components[c].layers[l].vertices[v].window &= ~(1 << bit);
-              Measure(s, &tallies["S window bit"]);
-              Measure(s, &tallies[family + " / S window bit"]);
-            }
-          for (size_t x = 0; x < vx.extras.size(); ++x) {
-            LayeredStream s = base;
-            auto& ex = s.components[c].layers[l].vertices[v].extras;
-            ex.erase(ex.begin() + static_cast<long>(x));
-            Measure(s, &tallies["X value"]);
-            Measure(s, &tallies[family + " / X value"]);
-          }
-          if (l < 2) continue;  // layer-1 rows are the single root bit
-          StreamLayer one;
-          one.vertices.push_back(vx);
-          auto pairs = DecodeBetweenLayer(one, prev_n);
-          if (!pairs.ok() || pairs->size() < 2) continue;
-          for (size_t drop = 0; drop < pairs->size(); ++drop) {
-            std::vector<int32_t> cols;
-            for (size_t k = 0; k < pairs->size(); ++k)
-              if (k != drop) cols.push_back((*pairs)[k].second);
-            LayeredStream s = base;
-            auto& bt = s.components[c].layers[l].vertices[v].between;
-            bt.clear();
-            EncodeBetweenLayerRow(prev_n, cols, &bt);
-            Measure(s, &tallies["B column"]);
-            Measure(s, &tallies[family + " / B column"]);
-          }
-        }
-      }
-  }
+  for (const auto& [family, base] : bases) CorruptAndMeasure(family, base, &tallies);
   std::printf("%-26s %7s %9s %12s %15s\n", "corruption", "streams", "accepted", "tight(off)", "tight(repair)");
   for (const auto& [k, t] : tallies)
     std::printf("%-26s %7d %9d %5d (%4.1f%%) %7d (%4.1f%%)\n", k.c_str(), t.total, t.accepted, t.tight_off,

@@ -126,151 +126,163 @@ int Usage() {
   return 2;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   int threads = 2, top = 5;
   std::vector<std::string> inputs;
+};
+
+// -j N, --top K and the paths; false on a bad argument.
+bool ParseArgs(int argc, char** argv, Options* o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if ((a == "-j" || a == "--top") && i + 1 < argc) {
       const int v = std::atoi(argv[++i]);
-      if (v < (a == "-j" ? 1 : 0)) return Usage();
-      (a == "-j" ? threads : top) = v;
+      if (v < (a == "-j" ? 1 : 0)) return false;
+      (a == "-j" ? o->threads : o->top) = v;
     } else if (a == "-h" || a == "--help" || (!a.empty() && a[0] == '-')) {
-      return Usage();
+      return false;
     } else {
-      inputs.push_back(a);
+      o->inputs.push_back(a);
     }
   }
-  if (inputs.empty()) return Usage();
-  const auto t_all = Clock::now();
-  std::vector<MeshRun> runs;
-  for (const std::string& p : CollectMeshFiles(inputs)) runs.emplace_back().path = p;
-  if (runs.empty()) {
-    std::fprintf(stderr, "tokenizer_bench: no mesh files found\n");
-    return 1;
-  }
-  const size_t n = runs.size();
-  std::printf("tokenizer_bench: %zu meshes, %d threads, %u hardware threads, load average at start %s\n", n, threads,
-              std::thread::hardware_concurrency(), LoadAverage().c_str());
+  return !o->inputs.empty();
+}
 
-  // Warm the page cache so the read pass measures parsing, not the disk (untimed).
+// Pass 1 (the baseline) on one mesh: read + normalise.
+void ReadAndNormalize(MeshRun& r) {
+  auto t0 = Clock::now();
+  auto raw = silk::ReadMeshFile(r.path);
+  r.read_s = Since(t0);
+  if (!raw.ok()) {
+    r.failure = FailureName(raw.status(), "read");
+    return;
+  }
+  r.faces = static_cast<int64_t>(raw->triangles.size());
+  r.vertices = static_cast<int64_t>(raw->positions.size());
+  t0 = Clock::now();
+  auto norm = silk::NormalizeMesh(*raw);
+  r.normalize_s = Since(t0);
+  if (!norm.ok()) {
+    r.failure = FailureName(norm.status(), "normalize");
+    return;
+  }
+  r.normalized = std::move(*norm);
+}
+
+// Pass 2 on one mesh: encode (then drop the normalised mesh to keep memory flat for the decode pass).
+void Encode(MeshRun& r) {
+  if (!r.failure.empty()) return;
+  const auto t0 = Clock::now();
+  try {
+    auto enc = silk::EncodeMesh(r.normalized);
+    r.encode_s = Since(t0);
+    if (!enc.ok()) {
+      r.failure = FailureName(enc.status(), "encode");
+    } else {
+      r.tokens = std::move(enc->tokens);
+      r.stats = enc->stats;
+    }
+  } catch (const std::exception& e) {
+    r.encode_s = Since(t0);
+    r.failure = "encode threw (bug)";
+  }
+  r.normalized = silk::IoMesh();
+}
+
+// Pass 3 on one mesh: decode its tokens.
+void Decode(MeshRun& r) {
+  if (!r.failure.empty()) return;
+  const auto t0 = Clock::now();
+  try {
+    auto dec = silk::DecodeTokens(r.tokens);
+    r.decode_s = Since(t0);
+    if (!dec.ok()) {
+      r.failure = FailureName(dec.status(), "decode");
+    } else {
+      r.decoded = true;
+      r.decoded_faces = static_cast<int64_t>(dec->faces.size());
+    }
+  } catch (const std::exception& e) {
+    r.decode_s = Since(t0);
+    r.failure = "decode threw (bug)";
+  }
+}
+
+struct Passes {
+  PassTime read, encode, decode;
+  double total_wall = 0;
+};
+
+// The page cache warmed (untimed), then the three passes, each over every mesh on `threads` workers.
+Passes RunPasses(std::vector<MeshRun>& runs, int threads, Clock::time_point t_all) {
+  const size_t n = runs.size();
   ParallelFor(n, threads, [&](size_t i) {
     std::ifstream f(runs[i].path, std::ios::binary);
     std::vector<char> buf(1 << 16);
     while (f.read(buf.data(), buf.size()) || f.gcount() > 0) {
     }
   });
+  Passes p;
+  p.read = ParallelFor(n, threads, [&](size_t i) { ReadAndNormalize(runs[i]); });
+  p.encode = ParallelFor(n, threads, [&](size_t i) { Encode(runs[i]); });
+  p.decode = ParallelFor(n, threads, [&](size_t i) { Decode(runs[i]); });
+  p.total_wall = Since(t_all);
+  return p;
+}
 
-  // Pass 1 (baseline): read + normalise.
-  const PassTime pass_read = ParallelFor(n, threads, [&](size_t i) {
-    MeshRun& r = runs[i];
-    auto t0 = Clock::now();
-    auto raw = silk::ReadMeshFile(r.path);
-    r.read_s = Since(t0);
-    if (!raw.ok()) {
-      r.failure = FailureName(raw.status(), "read");
-      return;
-    }
-    r.faces = static_cast<int64_t>(raw->triangles.size());
-    r.vertices = static_cast<int64_t>(raw->positions.size());
-    t0 = Clock::now();
-    auto norm = silk::NormalizeMesh(*raw);
-    r.normalize_s = Since(t0);
-    if (!norm.ok()) {
-      r.failure = FailureName(norm.status(), "normalize");
-      return;
-    }
-    r.normalized = std::move(*norm);
-  });
-
-  // Pass 2: encode.
-  const PassTime pass_encode = ParallelFor(n, threads, [&](size_t i) {
-    MeshRun& r = runs[i];
-    if (!r.failure.empty()) return;
-    const auto t0 = Clock::now();
-    try {
-      auto enc = silk::EncodeMesh(r.normalized);
-      r.encode_s = Since(t0);
-      if (!enc.ok()) {
-        r.failure = FailureName(enc.status(), "encode");
-      } else {
-        r.tokens = std::move(enc->tokens);
-        r.stats = enc->stats;
-      }
-    } catch (const std::exception& e) {
-      r.encode_s = Since(t0);
-      r.failure = "encode threw (bug)";
-    }
-    r.normalized = silk::IoMesh();  // keep memory flat for the decode pass
-  });
-
-  // Pass 3: decode the tokens of every encoded mesh.
-  const PassTime pass_decode = ParallelFor(n, threads, [&](size_t i) {
-    MeshRun& r = runs[i];
-    if (!r.failure.empty()) return;
-    const auto t0 = Clock::now();
-    try {
-      auto dec = silk::DecodeTokens(r.tokens);
-      r.decode_s = Since(t0);
-      if (!dec.ok()) {
-        r.failure = FailureName(dec.status(), "decode");
-      } else {
-        r.decoded = true;
-        r.decoded_faces = static_cast<int64_t>(dec->faces.size());
-      }
-    } catch (const std::exception& e) {
-      r.decode_s = Since(t0);
-      r.failure = "decode threw (bug)";
-    }
-  });
-  const double wall_total = Since(t_all);
-  const double wall_read = pass_read.wall, wall_encode = pass_encode.wall, wall_decode = pass_decode.wall;
-
-  // Totals.
+struct Totals {
   int64_t read_ok = 0, faces_read = 0, encode_tried = 0, encoded = 0, faces_encoded = 0, decoded = 0, faces_decoded = 0,
           tokens = 0, encodable_faces = 0;
   double sum_read = 0, sum_norm = 0, sum_enc = 0, sum_dec = 0, sum_enc_ok = 0;
   silk::EncodePhaseTimes ph;
   std::map<std::string, std::pair<int, double>> failures;  // count, encode+decode thread time
+};
+
+void AddPhases(const silk::EncodePhaseTimes& t, silk::EncodePhaseTimes* ph) {
+  ph->quantize_cleanup += t.quantize_cleanup;
+  ph->nonmanifold += t.nonmanifold;
+  ph->orientation += t.orientation;
+  ph->components += t.components;
+  ph->layering += t.layering;
+  ph->codecs += t.codecs;
+  ph->packing += t.packing;
+}
+
+Totals Summarize(const std::vector<MeshRun>& runs) {
+  Totals s;
   for (const MeshRun& r : runs) {
-    sum_read += r.read_s;
-    sum_norm += r.normalize_s;
-    sum_enc += r.encode_s;
-    sum_dec += r.decode_s;
+    s.sum_read += r.read_s;
+    s.sum_norm += r.normalize_s;
+    s.sum_enc += r.encode_s;
+    s.sum_dec += r.decode_s;
     if (r.failure.rfind("read", 0) != 0) {
-      ++read_ok;
-      faces_read += r.faces;
+      ++s.read_ok;
+      s.faces_read += r.faces;
     }
     if (!r.failure.empty()) {
-      failures[r.failure].first++;
-      failures[r.failure].second += r.encode_s + r.decode_s;
+      s.failures[r.failure].first++;
+      s.failures[r.failure].second += r.encode_s + r.decode_s;
     }
     if (r.encode_s > 0 || r.stats.tokens > 0) {
-      ++encode_tried;
-      faces_encoded += r.faces;
+      ++s.encode_tried;
+      s.faces_encoded += r.faces;
     }
     if (!r.tokens.empty() || r.decoded) {
-      ++encoded;
-      tokens += r.stats.tokens;
-      sum_enc_ok += r.encode_s;
-      encodable_faces += r.stats.encodable_faces;
-      const auto& t = r.stats.times;
-      ph.quantize_cleanup += t.quantize_cleanup;
-      ph.nonmanifold += t.nonmanifold;
-      ph.orientation += t.orientation;
-      ph.components += t.components;
-      ph.layering += t.layering;
-      ph.codecs += t.codecs;
-      ph.packing += t.packing;
+      ++s.encoded;
+      s.tokens += r.stats.tokens;
+      s.sum_enc_ok += r.encode_s;
+      s.encodable_faces += r.stats.encodable_faces;
+      AddPhases(r.stats.times, &s.ph);
     }
     if (r.decoded) {
-      ++decoded;
-      faces_decoded += r.decoded_faces;
+      ++s.decoded;
+      s.faces_decoded += r.decoded_faces;
     }
   }
+  return s;
+}
 
+void PrintPasses(const Passes& p, const Totals& s, size_t n, int threads) {
   std::printf("\n== passes (wall clock, %d threads) ==\n", threads);
   std::printf("%-26s %7s %9s %9s %10s %12s %13s %11s\n", "pass", "meshes", "wall s", "cpu s", "meshes/s", "faces/s",
               "thread-s/mesh", "cpu-s/mesh");
@@ -279,24 +291,27 @@ int main(int argc, char** argv) {
                 t.wall > 0 ? m / t.wall : 0.0, t.wall > 0 ? faces / t.wall : 0.0, m ? thread_s / m : 0.0,
                 m ? t.cpu / m : 0.0);
   };
-  row("read+normalize (baseline)", static_cast<int64_t>(n), pass_read, faces_read, sum_read + sum_norm);
-  row("encode", encode_tried, pass_encode, faces_encoded, sum_enc);
-  row("decode", decoded, pass_decode, faces_decoded, sum_dec);
-  row("encode+decode", encode_tried, {wall_encode + wall_decode, pass_encode.cpu + pass_decode.cpu}, faces_encoded,
-      sum_enc + sum_dec);
+  row("read+normalize (baseline)", static_cast<int64_t>(n), p.read, s.faces_read, s.sum_read + s.sum_norm);
+  row("encode", s.encode_tried, p.encode, s.faces_encoded, s.sum_enc);
+  row("decode", s.decoded, p.decode, s.faces_decoded, s.sum_dec);
+  row("encode+decode", s.encode_tried, {p.encode.wall + p.decode.wall, p.encode.cpu + p.decode.cpu}, s.faces_encoded,
+      s.sum_enc + s.sum_dec);
   std::printf(
       "(faces/s: input faces for read and encode, decoded faces for decode; thread-s: wall time inside\n"
       " each call summed over threads; cpu s: process CPU time of the pass)\n");
-  std::printf("read alone: %.3f thread-s, normalize alone: %.3f thread-s\n", sum_read, sum_norm);
+  std::printf("read alone: %.3f thread-s, normalize alone: %.3f thread-s\n", s.sum_read, s.sum_norm);
   std::printf(
       "encode+decode wall = %.2fx the read+normalize baseline; total wall (with file walk and "
       "cache warm-up) %.3f s\n",
-      wall_read > 0 ? (wall_encode + wall_decode) / wall_read : 0.0, wall_total);
+      p.read.wall > 0 ? (p.encode.wall + p.decode.wall) / p.read.wall : 0.0, p.total_wall);
+}
 
+void PrintPhases(const Totals& s) {
   std::printf(
       "\n== encode phases (EncodeStats::times summed over %lld encoded meshes, %% of all encode thread time %.3f s) "
       "==\n",
-      static_cast<long long>(encoded), sum_enc);
+      static_cast<long long>(s.encoded), s.sum_enc);
+  const silk::EncodePhaseTimes& ph = s.ph;
   const std::pair<const char*, double> phases[] = {{"quantize+cleanup", ph.quantize_cleanup},
                                                    {"non-manifold", ph.nonmanifold},
                                                    {"orientation", ph.orientation},
@@ -304,37 +319,62 @@ int main(int argc, char** argv) {
                                                    {"layering", ph.layering},
                                                    {"codecs", ph.codecs},
                                                    {"packing", ph.packing}};
+  const double sum_enc = s.sum_enc;
   double phase_sum = 0;
   for (const auto& p : phases) {
     phase_sum += p.second;
     std::printf("  %-18s %9.3f s %6.1f%%\n", p.first, p.second, sum_enc > 0 ? 100 * p.second / sum_enc : 0.0);
   }
-  std::printf("  %-18s %9.3f s %6.1f%%  (encoded meshes, time outside the phases)\n", "other", sum_enc_ok - phase_sum,
-              sum_enc > 0 ? 100 * (sum_enc_ok - phase_sum) / sum_enc : 0.0);
+  std::printf("  %-18s %9.3f s %6.1f%%  (encoded meshes, time outside the phases)\n", "other", s.sum_enc_ok - phase_sum,
+              sum_enc > 0 ? 100 * (s.sum_enc_ok - phase_sum) / sum_enc : 0.0);
   std::printf("  %-18s %9.3f s %6.1f%%  (meshes refused by the encoder; no phase split returned)\n", "refused meshes",
-              sum_enc - sum_enc_ok, sum_enc > 0 ? 100 * (sum_enc - sum_enc_ok) / sum_enc : 0.0);
+              sum_enc - s.sum_enc_ok, sum_enc > 0 ? 100 * (sum_enc - s.sum_enc_ok) / sum_enc : 0.0);
+}
 
+void PrintOutcome(const Totals& s, const Passes& p, size_t n) {
   std::printf("\n== outcome ==\n");
   std::printf("encoded %lld / %zu meshes, decoded %lld; tokens %lld; faces: read %lld, encodable %lld, decoded %lld\n",
-              static_cast<long long>(encoded), n, static_cast<long long>(decoded), static_cast<long long>(tokens),
-              static_cast<long long>(faces_read), static_cast<long long>(encodable_faces),
-              static_cast<long long>(faces_decoded));
-  for (const auto& [why, f] : failures)
+              static_cast<long long>(s.encoded), n, static_cast<long long>(s.decoded), static_cast<long long>(s.tokens),
+              static_cast<long long>(s.faces_read), static_cast<long long>(s.encodable_faces),
+              static_cast<long long>(s.faces_decoded));
+  for (const auto& [why, f] : s.failures)
     std::printf("  %-34s %6d meshes  %8.3f thread-s spent before the refusal\n", why.c_str(), f.first, f.second);
 
   std::printf("\n== baseline and reference ==\n");
-  std::printf("I/O baseline (read+normalize, same run): %.3f s wall for %zu meshes\n", wall_read, n);
+  std::printf("I/O baseline (read+normalize, same run): %.3f s wall for %zu meshes\n", p.read.wall, n);
   std::printf(
       "official Python tokenizer (reference from the issue, not measured): ~%.2f s/mesh -> ~%.0f s "
       "single-threaded for these %zu meshes; ours: %.4f s/mesh encode, %.4f s/mesh encode+decode "
       "(thread time)\n",
-      kPythonSecondsPerMesh, kPythonSecondsPerMesh * n, n, encode_tried ? sum_enc / encode_tried : 0.0,
-      encode_tried ? (sum_enc + sum_dec) / encode_tried : 0.0);
+      kPythonSecondsPerMesh, kPythonSecondsPerMesh * n, n, s.encode_tried ? s.sum_enc / s.encode_tried : 0.0,
+      s.encode_tried ? (s.sum_enc + s.sum_dec) / s.encode_tried : 0.0);
   std::printf("peak RSS: %.1f MiB (all normalized meshes are held between passes); load average at end %s\n\n",
               PeakRssMiB(), LoadAverage().c_str());
-  if (top > 0) {
-    PrintSlowest(runs, &MeshRun::encode_s, "encode", top);
-    PrintSlowest(runs, &MeshRun::decode_s, "decode", top);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (!ParseArgs(argc, argv, &o)) return Usage();
+  const auto t_all = Clock::now();
+  std::vector<MeshRun> runs;
+  for (const std::string& p : CollectMeshFiles(o.inputs)) runs.emplace_back().path = p;
+  if (runs.empty()) {
+    std::fprintf(stderr, "tokenizer_bench: no mesh files found\n");
+    return 1;
+  }
+  const size_t n = runs.size();
+  std::printf("tokenizer_bench: %zu meshes, %d threads, %u hardware threads, load average at start %s\n", n, o.threads,
+              std::thread::hardware_concurrency(), LoadAverage().c_str());
+  const Passes passes = RunPasses(runs, o.threads, t_all);
+  const Totals totals = Summarize(runs);
+  PrintPasses(passes, totals, n, o.threads);
+  PrintPhases(totals);
+  PrintOutcome(totals, passes, n);
+  if (o.top > 0) {
+    PrintSlowest(runs, &MeshRun::encode_s, "encode", o.top);
+    PrintSlowest(runs, &MeshRun::decode_s, "decode", o.top);
   }
   return 0;
 }

@@ -130,6 +130,53 @@ bool Judged(Grammar& g, int32_t id) {
   }
 }
 
+// The walk's own vertices as input points (x y z nx ny nz rows), so some faces pass.
+std::vector<float> WalkPoints(const Grammar& g) {
+  std::vector<float> rows;
+  for (const auto& comp : g.stream().components)
+    for (const auto& layer : comp.layers)
+      for (const auto& v : layer.vertices)
+        rows.insert(rows.end(),
+                    {static_cast<float>((v.pos.x + 0.5) / 64 - 1), static_cast<float>((v.pos.y + 0.5) / 64 - 1),
+                     static_cast<float>((v.pos.z + 0.5) / 64 - 1), 0.f, 0.f, 1.f});
+  return rows;
+}
+
+struct WalkTally {
+  int64_t exact_steps = 0, removed = 0, passing = 0, penalised = 0;
+};
+
+// Where only B ids are judged (a row's first B): the stage's mask (hard) or penalties (soft) equal
+// the brute-force scores' verdicts exactly.
+void CheckFirstBExactly(const Grammar& replay, const TokenMask& legal, const SamplerCandidates& c, FaceGuidance mode,
+                        const FaceGuide& guide, WalkTally* t) {
+  std::vector<std::pair<double, int32_t>> brute;
+  double best = HUGE_VAL;
+  for (int32_t b = legal.Next(vocab::kBBegin); b >= 0 && b < vocab::kBEnd; b = legal.Next(b + 1)) {
+    brute.push_back({BruteScore(replay, b, guide), b});
+    best = std::min(best, brute.back().first);
+  }
+  if (mode == FaceGuidance::kHard) {
+    const double keep = best <= 1 ? 1.0 : best * 1.25;
+    for (const auto& [score, b] : brute) {
+      if (std::fabs(score - keep) < 1e-9) continue;  // a rounding tie: either answer is right
+      ASSERT_EQ(c.mask->Test(b), score <= keep) << "id " << b << " score " << score << " best " << best;
+      t->removed += score <= keep ? 0 : 1;
+    }
+    t->passing += best <= 1 ? 1 : 0;
+    return;
+  }
+  size_t k = 0;
+  for (const auto& [score, b] : brute) {
+    if (score <= 1 + 1e-9) continue;
+    ASSERT_LT(k, c.penalties->size());
+    EXPECT_EQ((*c.penalties)[k].first, b);
+    EXPECT_NEAR((*c.penalties)[k].second, std::min(40.0, 4.0 * (score - 1)), 1e-4);
+    ++k, ++t->penalised;
+  }
+  EXPECT_EQ(k, c.penalties->size());
+}
+
 // Every step of random legal walks. Where only B ids are judged (a row's first B), the stage's
 // mask (hard) or penalties (soft) equal the brute-force scores' verdicts exactly; everywhere
 // (positions and blocks too): ids not judged untouched, the mask never empty, and the counters.
@@ -138,18 +185,13 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
   RandomWalkOptions walk;
   walk.max_layers = 5;
   walk.max_layer_size = 14;
-  int64_t exact_steps = 0, removed = 0, passing = 0, penalised = 0, fallbacks = 0, narrowed_positions = 0;
+  WalkTally t;
+  int64_t fallbacks = 0, narrowed_positions = 0;
   for (int trial = 0; trial < 12; ++trial) {
     Grammar g;
     const std::vector<int32_t> ids = RandomLegalWalk(&g, &rng, walk);
     // Input points: the walk's own vertices (so some faces pass), tolerance 2..24 cells.
-    std::vector<float> rows;
-    for (const auto& comp : g.stream().components)
-      for (const auto& layer : comp.layers)
-        for (const auto& v : layer.vertices)
-          rows.insert(rows.end(),
-                      {static_cast<float>((v.pos.x + 0.5) / 64 - 1), static_cast<float>((v.pos.y + 0.5) / 64 - 1),
-                       static_cast<float>((v.pos.z + 0.5) / 64 - 1), 0.f, 0.f, 1.f});
+    const std::vector<float> rows = WalkPoints(g);
     const double tolerance = 2.0 + 22.0 * static_cast<double>(rng() % 1000) / 1000.0;
     const auto guide = MakeGuide(rows, tolerance);
     const FaceGuidance mode = trial % 2 ? FaceGuidance::kSoft : FaceGuidance::kHard;
@@ -185,32 +227,8 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
         }
       }
       if (any_judged && replay.phase() == GrammarPhase::kAfterS) {  // B ids alone: exact
-        ++exact_steps;
-        std::vector<std::pair<double, int32_t>> brute;
-        double best = HUGE_VAL;
-        for (int32_t b = legal.Next(vocab::kBBegin); b >= 0 && b < vocab::kBEnd; b = legal.Next(b + 1)) {
-          brute.push_back({BruteScore(replay, b, *guide), b});
-          best = std::min(best, brute.back().first);
-        }
-        if (mode == FaceGuidance::kHard) {
-          const double keep = best <= 1 ? 1.0 : best * 1.25;
-          for (const auto& [score, b] : brute) {
-            if (std::fabs(score - keep) < 1e-9) continue;  // a rounding tie: either answer is right
-            ASSERT_EQ(c.mask->Test(b), score <= keep) << "id " << b << " score " << score << " best " << best;
-            removed += score <= keep ? 0 : 1;
-          }
-          passing += best <= 1 ? 1 : 0;
-        } else {
-          size_t k = 0;
-          for (const auto& [score, b] : brute) {
-            if (score <= 1 + 1e-9) continue;
-            ASSERT_LT(k, c.penalties->size());
-            EXPECT_EQ((*c.penalties)[k].first, b);
-            EXPECT_NEAR((*c.penalties)[k].second, std::min(40.0, 4.0 * (score - 1)), 1e-4);
-            ++k, ++penalised;
-          }
-          EXPECT_EQ(k, c.penalties->size());
-        }
+        ++t.exact_steps;
+        CheckFirstBExactly(replay, legal, c, mode, *guide, &t);
       }
       ASSERT_TRUE(replay.Accept(id).ok());
     }
@@ -219,9 +237,9 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
     fallbacks += stats.face_fallbacks;
   }
   EXPECT_GT(exact_steps, 30);  // enough first-B steps in layers >= 2
-  EXPECT_GT(removed, 0);       // ids removed,
-  EXPECT_GT(passing, 0);       // steps where some id passed,
-  EXPECT_GT(penalised, 0);
+  EXPECT_GT(t.removed, 0);     // ids removed,
+  EXPECT_GT(t.passing, 0);     // steps where some id passed,
+  EXPECT_GT(t.penalised, 0);
   EXPECT_GT(fallbacks, 0);  // and steps where none did
   EXPECT_GT(narrowed_positions, 0);
 }
@@ -279,7 +297,7 @@ TEST(FaceGuide, GenerationsOffHardSoft) {
   }
   EXPECT_GT(guided, 0);
   EXPECT_GT(narrowed, 0);
-  EXPECT_GT(penalised, 0);
+  EXPECT_GT(t.penalised, 0);
 }
 
 TEST(FaceGuide, BadValuesAreRefusedByName) {

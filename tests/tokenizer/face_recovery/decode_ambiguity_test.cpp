@@ -33,9 +33,40 @@ using testing::CoordFace;
 using Coord = std::tuple<int32_t, int32_t, int32_t>;
 Coord C(const QVec& q) { return {q.x, q.y, q.z}; }
 
+struct ComponentCounts {
+  int components = 0, equal_components = 0, truth_checked = 0, truth_equal = 0;
+};
+
+// Per decoded component: whether its faces re-encode to its own stream, and the sanity of the method: the
+// official faces of a component without unencodable faces or coincident vertices, mapped by coordinates,
+// must re-encode to the same stream.
+template <typename Stream, typename Faces>
+void CountComponents(const IoMesh& mesh, const Stream& stream, const std::vector<CoordFace>& processed,
+                     const std::vector<CoordFace>& unencodable, const Faces& official_faces,
+                     const std::vector<char>& comp_equal, ComponentCounts* n) {
+  std::vector<int32_t> base(static_cast<size_t>(mesh.components) + 1, 0);
+  for (int32_t c : mesh.vertex_component) ++base[static_cast<size_t>(c) + 1];
+  for (size_t c = 0; c + 1 < base.size(); ++c) base[c + 1] += base[c];
+  for (size_t c = 0; c < comp_equal.size(); ++c) {
+    ++n->components;
+    n->equal_components += comp_equal[c];
+    std::vector<QVec> pos(mesh.positions.begin() + base[c], mesh.positions.begin() + base[c + 1]);
+    auto g = BuildComponentGraph(testing::LayersOfComponent(stream.components[c]));
+    ASSERT_TRUE(g.ok());
+    const auto truth = testing::TruthOnGraph(*g, processed, unencodable);
+    std::set<Coord> distinct;
+    for (const QVec& q : pos) distinct.insert(C(q));
+    if (unencodable.empty() && distinct.size() == pos.size()) {
+      ++n->truth_checked;
+      n->truth_equal += testing::ComponentReencodesTo(pos, truth, official_faces, stream.components[c]);
+    }
+  }
+}
+
 TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
   int64_t wrong = 0, proven_comp = 0, early = 0, near_unenc = 0, other = 0;
-  int meshes = 0, components = 0, equal_components = 0, truth_checked = 0, truth_equal = 0;
+  int meshes = 0;
+  ComponentCounts cc;
   for (const auto& name : testing::GoldenDevOkNames()) {
     const std::string base = testing::SharedPath("spec/golden-dev/" + name);
     const auto ids = testing::ReadIds(base + ".tokens.txt");
@@ -59,29 +90,8 @@ TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
     ASSERT_TRUE(norm.ok());
     auto official = EncodeMesh(*norm);
     ASSERT_TRUE(official.ok());
-    // Per decoded component: its faces re-encode to its own stream (token-equivalent).
     const std::vector<char> comp_equal = testing::ComponentsReencoding(*mesh, *stream, official->processed_faces);
-    {
-      std::vector<int32_t> base(static_cast<size_t>(mesh->components) + 1, 0);
-      for (int32_t c : mesh->vertex_component) ++base[static_cast<size_t>(c) + 1];
-      for (size_t c = 0; c + 1 < base.size(); ++c) base[c + 1] += base[c];
-      for (size_t c = 0; c < comp_equal.size(); ++c) {
-        ++components;
-        equal_components += comp_equal[c];
-        // Sanity of the method: the official faces of a component without unencodable faces
-        // or coincident vertices, mapped by coordinates, must re-encode to the same stream.
-        std::vector<QVec> pos(mesh->positions.begin() + base[c], mesh->positions.begin() + base[c + 1]);
-        auto g = BuildComponentGraph(testing::LayersOfComponent(stream->components[c]));
-        ASSERT_TRUE(g.ok());
-        const auto truth = testing::TruthOnGraph(*g, processed, unencodable);
-        std::set<Coord> distinct;
-        for (const QVec& q : pos) distinct.insert(C(q));
-        if (unencodable.empty() && distinct.size() == pos.size()) {
-          ++truth_checked;
-          truth_equal += testing::ComponentReencodesTo(pos, truth, official->processed_faces, stream->components[c]);
-        }
-      }
-    }
+    CountComponents(*mesh, *stream, processed, unencodable, official->processed_faces, comp_equal, &cc);
     if (bad.empty()) continue;
     std::map<int32_t, std::pair<int, int>> scores;  // component -> (truth, ours)
     for (const auto& [f, reversed] : bad) {
@@ -122,8 +132,8 @@ TEST(DecodeAmbiguitySlow, ClassifiesEveryMissingOrReversedFace) {
       "decode ambiguity: %d meshes, %d components; decoded faces re-encode to the component's stream in %d; "
       "official faces (checkable components) in %d of %d; %lld missing/reversed faces: proven token-equivalent "
       "%lld, search stopped early %lld, near unencodable %lld, truth not scorable %lld\n",
-      meshes, components, equal_components, truth_equal, truth_checked, (long long)wrong, (long long)proven_comp,
-      (long long)early, (long long)near_unenc, (long long)other);
+      meshes, cc.components, cc.equal_components, cc.truth_equal, cc.truth_checked, (long long)wrong,
+      (long long)proven_comp, (long long)early, (long long)near_unenc, (long long)other);
 }
 
 }  // namespace
