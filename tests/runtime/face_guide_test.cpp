@@ -236,7 +236,7 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
     EXPECT_LE(stats.face_fallbacks, judged_steps);
     fallbacks += stats.face_fallbacks;
   }
-  EXPECT_GT(exact_steps, 30);  // enough first-B steps in layers >= 2
+  EXPECT_GT(t.exact_steps, 30);  // enough first-B steps in layers >= 2
   EXPECT_GT(t.removed, 0);     // ids removed,
   EXPECT_GT(t.passing, 0);     // steps where some id passed,
   EXPECT_GT(t.penalised, 0);
@@ -297,7 +297,7 @@ TEST(FaceGuide, GenerationsOffHardSoft) {
   }
   EXPECT_GT(guided, 0);
   EXPECT_GT(narrowed, 0);
-  EXPECT_GT(t.penalised, 0);
+  EXPECT_GT(penalised, 0);
 }
 
 TEST(FaceGuide, BadValuesAreRefusedByName) {

@@ -69,7 +69,7 @@ struct MissTally {
 };
 
 // Each miss of one mesh must be proven token-equivalent by re-encoding its component.
-void ProveMisses(const std::string& name, const std::vector<int32_t>& ids, const IoMesh& mesh,
+void ProveMisses(const std::string& name, const std::vector<int32_t>& ids, const TokenizerDecodedMesh& mesh,
                  const std::vector<testing::CoordFace>& target, const std::vector<testing::CoordFace>& processed,
                  const std::vector<testing::CoordFace>& unencodable, MissTally* t) {
   auto stream = ReadTokens(ids);

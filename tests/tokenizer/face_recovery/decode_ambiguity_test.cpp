@@ -40,10 +40,10 @@ struct ComponentCounts {
 // Per decoded component: whether its faces re-encode to its own stream, and the sanity of the method: the
 // official faces of a component without unencodable faces or coincident vertices, mapped by coordinates,
 // must re-encode to the same stream.
-template <typename Stream, typename Faces>
-void CountComponents(const IoMesh& mesh, const Stream& stream, const std::vector<CoordFace>& processed,
-                     const std::vector<CoordFace>& unencodable, const Faces& official_faces,
-                     const std::vector<char>& comp_equal, ComponentCounts* n) {
+void CountComponents(const TokenizerDecodedMesh& mesh, const LayeredStream& stream,
+                     const std::vector<CoordFace>& processed, const std::vector<CoordFace>& unencodable,
+                     const std::vector<std::array<QVec, 3>>& official_faces, const std::vector<char>& comp_equal,
+                     ComponentCounts* n) {
   std::vector<int32_t> base(static_cast<size_t>(mesh.components) + 1, 0);
   for (int32_t c : mesh.vertex_component) ++base[static_cast<size_t>(c) + 1];
   for (size_t c = 0; c + 1 < base.size(); ++c) base[c + 1] += base[c];
