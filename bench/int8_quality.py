@@ -30,8 +30,8 @@ sys.path.insert(0, str(REPO / "export"))
 import numpy as np  # noqa: E402
 import onnxruntime as ort  # noqa: E402
 
-from silk_export.binding import libsilk  # noqa: E402
-from silk_export.data.geometry import normalize_vertices  # noqa: E402
+import silk_export  # noqa: E402,F401  (puts bindings/python on the path)
+import silk_mesh  # noqa: E402
 from silk_export.import_official import INT4_ACCURACY_LEVEL, INT4_BLOCK_SIZE  # noqa: E402
 from silk_export.onnx.export import quantize_decoder_int4  # noqa: E402
 from silk_export.data.pointcloud import point_cloud  # noqa: E402
@@ -73,8 +73,8 @@ def load_inputs(shared: Path, n_meshes: int) -> list:
     rng = np.random.default_rng(0)
     inputs = []
     for n in names:
-        v, f = libsilk.load_arrays(shared / "corpus/dev" / f"{n}.obj")
-        pts = point_cloud(normalize_vertices(v), f, rng, noise=False)
+        v, f = silk_mesh.load_arrays(shared / "corpus/dev" / f"{n}.obj")
+        pts = point_cloud(v, f, rng, noise=False)
         toks = np.loadtxt(shared / "spec/golden-dev" / f"{n}.tokens.txt", dtype=np.int64).ravel()
         inputs.append((n, pts, toks))
     return inputs

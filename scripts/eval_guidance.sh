@@ -29,7 +29,7 @@ run() {  # name tolerance candidates [temperature]
   local dir="$out/$1" temp=()
   [ -n "${4:-}" ] && temp=(--temperature "$4")
   [ -f "$dir/generate.json" ] ||
-    silk_export generate --runtime --model "$model" --out "$dir" --seed 0 --threads 1 --max-tokens "${MAX_TOKENS:-512}" \
+    silk_export generate --model "$model" --out "$dir" --seed 0 --threads 1 --max-tokens "${MAX_TOKENS:-512}" \
       --surface-tolerance "$2" --candidates "$3" "${temp[@]}" "${inputs[@]}" >/dev/null 2>"$dir.log" || { cat "$dir.log"; exit 1; }
   silk_export eval "$dir/generated" "$dir/reference" --points "${POINTS:-2000}" --out "$dir/eval.json" >/dev/null
   python3 - "$dir" "$2" "$3" <<'PY'

@@ -472,27 +472,24 @@ def _cmd_bench(a) -> int:
 
 
 def _add_generate(sub) -> None:
-    g = sub.add_parser("generate", help="sample meshes from point clouds of input meshes (PyTorch, KV cache)")
-    g.add_argument("--model", required=True, help="checkpoint.pt, or with --runtime an exported model folder")
-    g.add_argument(
-        "--runtime",
-        nargs="?",
-        const="libsilk",
-        help="generate with the C++ runtime through libsilk (grammar-constrained); a value (the "
-        "former silkgen path) is accepted and ignored",
+    g = sub.add_parser(
+        "generate", help="generate meshes from the point clouds of input meshes with libsilk's runtime (as silkgen)"
     )
+    g.add_argument(
+        "--model", required=True, help="an exported model folder, or a checkpoint.pt (exported to a temporary folder)"
+    )
+    g.add_argument("--runtime", nargs="?", const="libsilk", help=argparse.SUPPRESS)  # before 1.2: picked libsilk
     g.add_argument("--out", required=True)
-    g.add_argument("--max-tokens", type=int, default=0)
+    g.add_argument("--max-tokens", type=int, default=0, help="most ids per generation (0: the model's maximum)")
     g.add_argument(
-        "--temperature", type=float, help="default: with --runtime the model folder's (model.json sampling), else 0.5"
+        "--temperature", type=float, help="default: the model folder's (model.json sampling), else libsilk's"
     )
-    g.add_argument("--top-k", type=int, help="default: with --runtime the model folder's, else 50")
-    g.add_argument("--seed", type=int, default=0)
+    g.add_argument("--top-k", type=int, help="default: the model folder's, else libsilk's")
+    g.add_argument("--top-p", type=float, help="default: the model folder's, else libsilk's")
+    g.add_argument("--seed", type=int, default=0, help="silkgen --seed with the same value gives the same ids")
     g.add_argument("--threads", type=int, default=1)
-    g.add_argument("--surface-tolerance", type=int, help="--runtime: surface guidance in cells (default: libsilk's)")
-    g.add_argument(
-        "--candidates", type=int, help="--runtime: best of N (default: the model's, model.json sampling.candidates)"
-    )
+    g.add_argument("--surface-tolerance", type=int, help="surface guidance in cells (default: libsilk's)")
+    g.add_argument("--candidates", type=int, help="best of N (default: the model's, model.json sampling.candidates)")
     g.add_argument("--index", help="take inputs from an index (evenly spaced over one split)")
     g.add_argument("--root", help="folder the index's paths are relative to (default: 0 A.D. cache)")
     g.add_argument("--split", default="test")
@@ -506,6 +503,8 @@ def _cmd_generate(a) -> int:
     from .data.mesh_files import default_0ad_root
     from .evaluation.generate import generate_paths, pick_from_index
 
+    if a.runtime is not None:
+        print("silk-export generate: note: --runtime is ignored (generation always runs libsilk)", file=sys.stderr)
     inputs = [Path(p) for p in a.inputs]
     if a.index:
         inputs += pick_from_index(
@@ -513,26 +512,23 @@ def _cmd_generate(a) -> int:
         )
     if not inputs:
         raise SystemExit("generate: no input meshes (give files or --index)")
-    if a.runtime:
-        from .evaluation.generate import generate_with_runtime
-
-        res = generate_with_runtime(
+    try:  # a missing or unreadable model, NaN weights, a model libsilk refuses
+        res = generate_paths(
             Path(a.model),
             inputs,
             Path(a.out),
             a.seed,
             a.threads,
-            a.max_tokens,
-            a.temperature,
-            a.top_k,
-            a.surface_tolerance,
-            a.candidates,
+            max_tokens=a.max_tokens,
+            temperature=a.temperature,
+            top_k=a.top_k,
+            top_p=a.top_p,
+            surface_tolerance=a.surface_tolerance,
+            candidates=a.candidates,
         )
-    else:
-        given = {k: v for k, v in (("temperature", a.temperature), ("top_k", a.top_k)) if v is not None}
-        res = generate_paths(
-            Path(a.model), inputs, Path(a.out), a.max_tokens, seed=a.seed, threads=a.threads, **given
-        )  # else generate_paths' defaults
+    except (OSError, ValueError, RuntimeError) as e:
+        print(f"silk-export generate: error: {e}", file=sys.stderr)
+        return 2
     print(dumps(res, "null", indent=2))
     return 0
 

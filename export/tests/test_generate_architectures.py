@@ -1,19 +1,21 @@
 # SPDX-License-Identifier: MIT
-"""PyTorch generation (evaluation/generate.py) for every registered architecture, through the
-Architecture interface only: Architecture.step's KV-cache decoding gives the teacher-forced
-forward pass's logits, sample_tokens and `silk-export generate` produce ids from a tiny random
-model of each architecture, and with the official fixture's weights (official-fixture/) the
-PyTorch loop reproduces the official implementation's 100 greedy ids."""
+"""Every registered architecture through the Architecture interface only: Architecture.step's
+KV-cache decoding gives the teacher-forced forward pass's logits, `silk-export generate` runs a
+checkpoint of each through libsilk (exported first) with silkgen's ids for the same seed, and with
+the official fixture's weights (official-fixture/) greedy steps reproduce the official
+implementation's 100 greedy ids."""
 
 from __future__ import annotations
 
 import json
+import subprocess
 
 import numpy as np
 import pytest
 import torch
 
-from silk_export.evaluation.generate import generate_paths, sample_tokens
+import silk_mesh
+from silk_export.evaluation.generate import export_checkpoint, generate_paths
 from silk_export.models.architecture import Architecture
 from silk_export.checkpoint import model_from_checkpoint, save_state
 from silk_export.models.configs import ModelConfig
@@ -88,37 +90,52 @@ def test_step_with_a_kv_cache_gives_the_teacher_forced_logits(name):
     assert past[0][0].shape == (1, model.cfg.n_heads, 9, model.cfg.head_dim)
 
 
+@pytest.mark.skipif(not silk_mesh.generation_available(), reason="libsilk without onnxruntime")
 @pytest.mark.parametrize("name", sorted(TINY))
-def test_sample_tokens_generates_with_each_architecture(name):
-    model = tiny_model(name)
-    toks, eos = sample_tokens(model, random_points(model.cfg), 12, 1.0, 50, torch.Generator().manual_seed(3))
-    assert toks.dtype == np.int32 and (len(toks) == 12 or eos)
-    assert all(0 <= t < model.n_logits and t not in (model.pad_id, model.eos_id) for t in toks)
-
-
-@pytest.mark.parametrize("name", sorted(TINY))
-def test_generate_command_runs_a_checkpoint_of_each_architecture(name, lib_path, dev_dir, tmp_path):
-    """`silk-export generate --model CHECKPOINT` end to end: the architecture's point pre-processing
-    through libsilk, sampling, decoding through libsilk, generate.json."""
+def test_generate_command_runs_a_checkpoint_of_each_architecture(name, dev_dir, silkgen, tmp_path):
+    """`silk-export generate --model CHECKPOINT` end to end: the checkpoint exported, the
+    architecture's point pre-processing, grammar-constrained sampling and decoding all in libsilk,
+    generate.json; the ids are silkgen's on the same export with the same seed (one sampling chain)."""
     model = tiny_model(name)
     save_state(tmp_path / "checkpoint.pt", model.cfg.to_dict(), model.state_dict(), None, 0, {})
     loaded, _ = model_from_checkpoint(tmp_path / "checkpoint.pt")
     assert type(loaded) is type(model)
     mesh = sorted(dev_dir.glob("*.obj"))[0]
-    res = generate_paths(tmp_path / "checkpoint.pt", [mesh], tmp_path / "gen", max_tokens=6, seed=4)
-    assert res["inputs"] == 1 and res["meshes"][0]["tokens"] + res["meshes"][0]["eos"] <= 6
+    res = generate_paths(tmp_path / "checkpoint.pt", [mesh], tmp_path / "gen", seed=4, max_tokens=40)
+    row = res["meshes"][0]
+    assert res["inputs"] == 1 and res["runtime"] == "libsilk" and "error" not in row, row
+    assert 0 < row["tokens"] <= 40 and row["stop_reason"] in ("eos", "max_tokens")
     assert json.loads((tmp_path / "gen" / "generate.json").read_text()) == res
     assert (tmp_path / "gen" / "reference" / f"{mesh.name.split('.')[0]}.obj").exists()
+    export_checkpoint(tmp_path / "checkpoint.pt", tmp_path / "exported")
+    tokens = tmp_path / "silkgen.tokens.txt"
+    run = [silkgen, mesh, "--model", tmp_path / "exported", "--seed", "4", "--max-tokens", "40"]
+    subprocess.run([*map(str, run), "--tokens", str(tokens), "-o", str(tmp_path / "silkgen.obj")], check=True)
+    with silk_mesh.Model(tmp_path / "exported", threads=1) as m, silk_mesh.Generator(m) as gen:
+        _, ids, _ = gen.run(mesh, seed=4, max_tokens=40)
+    assert [int(x) for x in tokens.read_text().split()] == list(ids) and len(ids) == row["tokens"]
+
+
+def greedy_ids(model: Architecture, points: np.ndarray, n: int) -> list[int]:
+    """n argmax ids (PAD excluded) by Architecture.step with its KV cache, from BOS."""
+    with torch.no_grad():
+        cross = model.encode_points(torch.from_numpy(points).unsqueeze(0))
+        past, ids, out = model.empty_cache(), torch.tensor([[model.bos_id]]), []
+        for pos in range(n):
+            logits, new = model.step(ids, torch.tensor([[pos]]), past, cross, fused=False)
+            past = [(torch.cat([pk, kn], 2), torch.cat([pv, vn], 2)) for (pk, pv), (kn, vn) in zip(past, new)]
+            row = logits[0, -1].clone()
+            row[model.pad_id] = float("-inf")
+            out.append(int(row.argmax()))
+            ids = torch.tensor([[out[-1]]])
+    return out
 
 
 def test_official_fixture_greedy_ids_through_step(shared):
-    """Top-k 1 sampling from the fixture's weights and points = the official loop's greedy.txt."""
+    """Greedy steps from the fixture's weights and points = the official loop's greedy.txt."""
     fixture = shared / "official-fixture"
     if not (fixture / "model.safetensors").exists():
         pytest.skip(f"no official fixture in {fixture}")
     model, _ = load_official(fixture / "model.safetensors", fixture / "config.json", progress=False)
     want = [int(x) for x in (fixture / "greedy.txt").read_text().split()]
-    toks, eos = sample_tokens(
-        model, np.load(fixture / "points.npy"), len(want), 1.0, 1, torch.Generator().manual_seed(0)
-    )
-    assert not eos and toks.tolist() == want
+    assert greedy_ids(model, np.load(fixture / "points.npy"), len(want)) == want

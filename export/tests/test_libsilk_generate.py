@@ -193,7 +193,7 @@ def test_orientation_reverses_whole_parts_in_the_preview_and_the_result():
 def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
     """model.json "sampling" (written by `silk-export export --temperature`) is where a model's
     sampling defaults live; explicit parameters still win, and generate.json records the result."""
-    from silk_export.evaluation.generate import generate_with_runtime
+    from silk_export.evaluation.generate import generate_paths
 
     greedy = tmp_path / "greedy"
     shutil.copytree(TINY, greedy)
@@ -216,16 +216,16 @@ def test_model_json_sampling_defaults_apply_unless_overridden(tmp_path):
         gen.run(src, seed=5, max_tokens=120, temperature=0.7)
         assert json.loads(gen.report_json())["settings"]["temperature"] == 0.7
     assert np.array_equal(from_json, explicit)
-    res = generate_with_runtime(greedy, [KNOT], tmp_path / "gen", seed=5, max_tokens=120)
+    res = generate_paths(greedy, [KNOT], tmp_path / "gen", seed=5, max_tokens=120)
     assert res["settings"]["temperature"] == 0.0 and res["settings"]["top_k"] == 1
-    res = generate_with_runtime(greedy, [KNOT], tmp_path / "gen2", seed=5, max_tokens=120, temperature=0.9)
+    res = generate_paths(greedy, [KNOT], tmp_path / "gen2", seed=5, max_tokens=120, temperature=0.9)
     assert res["settings"]["temperature"] == 0.9
 
 
 def test_model_json_candidates_is_the_default_best_of_n(tmp_path):
     """model.json sampling.candidates (`silk-export export --candidates`) is the N a caller gets
     when it names none; an explicit N wins; generate.json lists every candidate that ran."""
-    from silk_export.evaluation.generate import generate_with_runtime
+    from silk_export.evaluation.generate import generate_paths
 
     three = tmp_path / "three"
     shutil.copytree(TINY, three)
@@ -241,7 +241,7 @@ def test_model_json_candidates_is_the_default_best_of_n(tmp_path):
         assert st["candidates"] == 3 and json.loads(gen.report_json())["settings"]["candidates"] == 3
         _, _, st = gen.run(src, seed=5, max_tokens=120, candidates=1)
         assert st["candidates"] == 1
-    res = generate_with_runtime(three, [KNOT], tmp_path / "gen", seed=5, max_tokens=120)
+    res = generate_paths(three, [KNOT], tmp_path / "gen", seed=5, max_tokens=120)
     assert res["settings"]["candidates"] == 3 and res["meshes"][0]["candidates"] == 3
-    res = generate_with_runtime(TINY, [KNOT], tmp_path / "gen1", seed=5, max_tokens=120)
+    res = generate_paths(TINY, [KNOT], tmp_path / "gen1", seed=5, max_tokens=120)
     assert res["settings"]["candidates"] == 1  # a model that names no N: one generation

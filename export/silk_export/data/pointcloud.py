@@ -26,16 +26,17 @@ def sample_surface(v: np.ndarray, f: np.ndarray, n: int, rng: np.random.Generato
 
 
 def point_cloud(
-    v_normalized: np.ndarray,
+    v: np.ndarray,
     f: np.ndarray,
     rng: np.random.Generator,
     n: int = N_POINTS,
     noise: bool = True,
     kind: str = "silk",
 ) -> np.ndarray:
-    """float32 [n, 6] condition by the `kind` pre-processing ("silk" or "official"); with
-    noise=True adds N(0, 0.01²) to xyz with probability 0.5."""
-    rows, _, _ = silk_mesh.prepare_points(v_normalized, f, kind, n_points=n, seed=_seed(rng))
+    """float32 [n, 6] condition by the `kind` pre-processing ("silk" or "official"), which
+    normalises v itself (no caller normalises first); with noise=True adds N(0, 0.01²) to xyz
+    with probability 0.5. Raises silk_mesh.SilkError as libsilk refuses (e.g. a zero extent)."""
+    rows, _, _ = silk_mesh.prepare_points(v, f, kind, n_points=n, seed=_seed(rng))
     if noise and rng.random() < NOISE_PROBABILITY:
         rows[:, :3] = rows[:, :3] + rng.normal(0.0, NOISE_STD, size=(rows.shape[0], 3))
     return rows

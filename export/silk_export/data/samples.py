@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: MIT
 """Online per-sample pipeline: raw mesh -> (augment) -> tokens through libsilk (normalise +
-non-manifold processing) -> point cloud in the same normalised frame; plus batch collation
+non-manifold processing) -> point cloud through libsilk (the same normalisation, done once there,
+so points and tokens share one frame); plus batch collation
 (BOS + tokens as input, tokens + EOS as labels, PAD / ignored past the end)."""
 
 from __future__ import annotations
@@ -15,10 +16,8 @@ import silk_mesh
 from ..models.architecture import IGNORE_INDEX
 from ..vocab import load_vocab
 from .augment import augment_vertices
-from .geometry import normalize_vertices
+from .normalization import BOUND
 from .pointcloud import point_cloud
-
-BOUND = 0.95
 
 
 class TooLong(ValueError):
@@ -54,7 +53,7 @@ def make_sample(
         )
     if tokens.size == 0 or tokens.size > max_tokens:
         raise TooLong(f"{key}: {tokens.size} tokens (max {max_tokens})")
-    pts = point_cloud(normalize_vertices(v, BOUND), f, rng, n=n_points, noise=augment, kind=points_kind)
+    pts = point_cloud(v, f, rng, n=n_points, noise=augment, kind=points_kind)
     return Sample(tokens, pts, key)
 
 

@@ -11,8 +11,7 @@ from __future__ import annotations
 import numpy as np
 import torch
 
-from ..data.geometry import normalize_vertices
-from ..data.pointcloud import sample_surface
+from ..data.pointcloud import point_cloud, sample_surface
 
 
 def nearest(a: np.ndarray, b: np.ndarray, chunk: int = 1024) -> tuple[np.ndarray, np.ndarray]:
@@ -25,9 +24,14 @@ def nearest(a: np.ndarray, b: np.ndarray, chunk: int = 1024) -> tuple[np.ndarray
     return dist.numpy(), idx.numpy()
 
 
-def surface_samples(v, f, n: int, seed: int, normalize: bool = True):
-    v = normalize_vertices(v, 0.95) if normalize else np.asarray(v, np.float64)
-    return sample_surface(v, f, n, np.random.default_rng(seed))
+def surface_samples(v, f, n: int, seed: int, normalize: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """n area-weighted surface samples and their face normals (float64 [n, 3] each), in libsilk's
+    normalised frame (±0.95, normalised there once) or, with normalize=False, in the mesh's own."""
+    rng = np.random.default_rng(seed)
+    if not normalize:
+        return sample_surface(v, f, n, rng)
+    rows = point_cloud(v, f, rng, n=n, noise=False)
+    return rows[:, :3].astype(np.float64), rows[:, 3:].astype(np.float64)
 
 
 def compare_meshes(v_a, f_a, v_b, f_b, n_points: int = 10000, seed: int = 0, normalize: bool = True) -> dict:

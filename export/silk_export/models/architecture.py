@@ -107,7 +107,7 @@ class Architecture(nn.Module, ABC):
         new = []
         for layer, (pk, pv), (ck, cv) in zip(self.layers, past, cross):
 
-            def self_attention(y, pk=pk, pv=pv):
+            def self_attention(y, pk=pk, pv=pv, layer=layer):
                 q, k, v = (split_heads(t, h) for t in layer.self_qkv(y))
                 a = attend(
                     q, torch.cat([pk, k], dim=2), torch.cat([pv, v], dim=2), allowed=allowed, fused=fused, scale=scale

@@ -226,36 +226,19 @@ def _runtime_generation(gen: dict) -> list[str]:
     ]
 
 
-def _torch_generation(gen: dict) -> list[str]:
-    """One paragraph on a PyTorch `silk-export generate` summary."""
-    L = [
-        "Unconstrained sampling with the PyTorch model (top-k 50, temperature 0.5, no grammar mask),",
-        f"decoded by libsilk: {gen['inputs']} input meshes, EOS reached for {gen['eos_rate']:.0%},",
-        f"{gen['decoded_with_faces']} decoded to a mesh with at least one face.",
-        "",
-    ]
-    errs = [m.get("decode_error", "") for m in gen["meshes"] if m.get("decode_error")]
-    if errs:
-        L += [f"First decode error: `{errs[0][:160]}`", ""]
-    return L
-
-
 def _generation(c: RunFigures) -> list[str]:
     """A section per generation run under eval/ (generate.json) and its metrics (eval JSON)."""
     L = []
     for sp, title in (
         ("test", "test split, C++ runtime"),
         ("dev", "dev corpus, C++ runtime"),
-        ("torch_test", "test split, PyTorch without grammar mask"),
     ):
         ev, gen = c.eval_json(f"{sp}.json"), c.eval_json(sp, "generate.json")
         if not (ev or gen):
             continue
         L += [f"## Generation ({title})", ""]
-        if gen and gen.get("runtime") in ("silkgen", "libsilk"):
+        if gen:
             L += _runtime_generation(gen)
-        elif gen:
-            L += _torch_generation(gen)
         if ev and ev["summary"].get("evaluated"):
             L += ["| metric | value |", "|---|---|"] + [f"| {k} | {_fmt(v)} |" for k, v in ev["summary"].items()]
             L += [
