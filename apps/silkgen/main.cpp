@@ -72,8 +72,8 @@ std::string PointsPly(const std::vector<double>& rows) {
 }
 
 struct Args {
-  std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path,
-                                        save_points;
+  std::string input, output, model_dir, seed_text = "0", repair = silk_hole_policy_name(SILK_HOLES_OFF), stats_path,
+                                        tokens_path, trace_path, save_points;
   int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
   // Sampling, pre-processing and decoder precision default to model.json's; these sentinels
   // (SILK_MODEL_VALUE / empty) mean "not given"; the options' ranges refuse any other negative.

@@ -17,7 +17,7 @@ namespace {
 struct RepairArgs {
   std::string input, output;
   bool json = false;
-  std::string policy = "repair";
+  std::string policy = silk_hole_policy_name(SILK_HOLES_REPAIR);
   int32_t max_loop = 8;
 };
 
