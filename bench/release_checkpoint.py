@@ -14,9 +14,13 @@ import argparse
 import json
 import os
 import struct
+import sys
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "export"))  # this checkout's silk_export
+from silk_export.paths import shared_dir  # noqa: E402  (the one shared-folder rule)
 
 
 def layout(shared: Path) -> list[tuple[str, list[int]]]:
@@ -46,8 +50,11 @@ def write(path: Path, keys, seed: int = 0) -> int:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out", type=Path)
-    ap.add_argument("--shared", type=Path, default=Path(os.environ.get("SILK_SHARED_DIR", "../shared")))
+    ap.add_argument(
+        "--shared", type=Path, help="the shared material folder (default: $SILK_SHARED_DIR, else ../shared)"
+    )
     a = ap.parse_args()
+    a.shared = a.shared or shared_dir(required=True)
     keys = layout(a.shared)
     data = write(a.out, keys)
     print(f"{a.out}: {len(keys)} F32 tensors, {data:,} bytes of data, {a.out.stat().st_size:,} bytes")

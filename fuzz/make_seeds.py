@@ -3,7 +3,7 @@
 """Writes the reader fuzzers' seed corpora under fuzz/corpus/<target>/: small valid meshes
 in every encoding (generated here) plus the project's own small golden and bad inputs; also
 point-cloud PLYs and model.json files. Only the folders of the targets below are replaced.
-Usage: fuzz/make_seeds.py [path/to/shared]   (default: ../shared beside the repo)"""
+Usage: fuzz/make_seeds.py [path/to/shared]   (default: the shared folder, silk_export.paths)"""
 
 import base64
 import json
@@ -13,7 +13,10 @@ import struct
 import sys
 
 repo = pathlib.Path(__file__).resolve().parent.parent
-shared = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else repo.parent / "shared"
+sys.path.insert(0, str(repo / "export"))  # this checkout's silk_export
+from silk_export.paths import shared_dir  # noqa: E402  (the one shared-folder rule)
+
+shared = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else shared_dir(required=True)
 out = repo / "fuzz" / "corpus"
 
 CUBE_V = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]

@@ -7,7 +7,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/dev_generation}"; max_tokens="${2:-512}"
-shared="${SILK_SHARED_DIR:-../shared}"
+source scripts/shared_dir.sh
+shared=$(silk_shared_dir) || exit 2
 silkgen="${BUILD_DIR:-build}/apps/silkgen"
 [ -x "$silkgen" ] || { echo "$silkgen not built (run scripts/build.sh)" >&2; exit 1; }
 for mode in grammar unconstrained; do

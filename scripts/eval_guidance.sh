@@ -15,7 +15,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-out/guidance}"; tolerances="${2-0 1 2 3 4}"; candidates="${3-1 2 4 8}"; best="${4-2}"
-shared="${SILK_SHARED_DIR:-../shared}"
+source scripts/shared_dir.sh
+shared=$(silk_shared_dir) || exit 2
 index="${SILK_DATA_DIR:-/tmp/silk-data}/index/0ad/index.jsonl"
 if [ -f "$index" ]; then
   inputs=(--index "$index" --split val --limit "${LIMIT:-40}")

@@ -17,7 +17,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:?usage: eval_quality.sh OUT_DIR [silkgen options ...]}
 shift
-shared=${SILK_SHARED_DIR:-../shared}
+source scripts/shared_dir.sh
+shared=$(silk_shared_dir) || exit 2
 data=${SILK_DATA_DIR:-/tmp/silk-data}
 index=${INDEX:-$data/index/0ad/index.jsonl}
 silkgen=${BUILD_DIR:-build}/apps/silkgen

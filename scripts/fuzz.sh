@@ -22,7 +22,8 @@ if [[ ${#targets[@]} -eq 0 ]]; then
   for src in "$repo"/fuzz/*_fuzzer.cpp; do targets+=("$(basename "$src" .cpp)"); done  # every target
 fi
 build="${BUILD_DIR:-$repo/build-fuzz}"
-shared="${SILK_SHARED_DIR:-$repo/../shared}"
+source "$repo/scripts/shared_dir.sh"
+shared=$(silk_shared_dir) || exit 2
 work=/tmp/fuzzwork
 logs=/tmp/fuzzlogs
 mkdir -p "$work" "$logs"

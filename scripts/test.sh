@@ -6,15 +6,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 JOBS=${JOBS:-$(nproc)}
 
-# The shared material (spec/, corpus/) every stage reads: $SILK_SHARED_DIR, else ../shared beside
-# this checkout, else beside the checkout it was cloned from (`git clone . /tmp/x` leaves it behind).
-if [ -z "${SILK_SHARED_DIR:-}" ]; then
-  for candidate in ../shared "$(git config --get remote.origin.url 2>/dev/null || true)/../shared"; do
-    if [ -d "$candidate/spec/golden" ]; then SILK_SHARED_DIR=$(cd "$candidate" && pwd); break; fi
-  done
-fi
-if [ ! -d "${SILK_SHARED_DIR:-../shared}/spec/golden" ] || [ ! -d "${SILK_SHARED_DIR:-../shared}/corpus/dev" ]; then
-  echo "test: no shared material (spec/golden, corpus/dev) in ${SILK_SHARED_DIR:-../shared, nor beside the origin checkout}: set SILK_SHARED_DIR to the folder that holds it" >&2
+# The shared material (spec/, corpus/) every stage reads (scripts/shared_dir.sh: $SILK_SHARED_DIR,
+# else ../shared beside this checkout, else beside the checkout it was cloned from).
+source scripts/shared_dir.sh
+SILK_SHARED_DIR=$(silk_shared_dir) || exit 2
+if [ ! -d "$SILK_SHARED_DIR/spec/golden" ] || [ ! -d "$SILK_SHARED_DIR/corpus/dev" ]; then
+  echo "test: no shared material (spec/golden, corpus/dev) in $SILK_SHARED_DIR: set SILK_SHARED_DIR to the folder that holds it" >&2
   exit 2
 fi
 export SILK_SHARED_DIR

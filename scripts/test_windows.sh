@@ -11,7 +11,8 @@ cd "$(dirname "$0")/.."
 ROOT="$PWD"
 B=build-windows
 DIST="$B/dist/silk-windows-x64"
-SHARED="${SILK_SHARED_DIR:-$ROOT/../shared}"
+source scripts/shared_dir.sh
+SHARED=$(silk_shared_dir) || exit 2
 WINE="$(command -v wine64 || true)"
 [ -n "$WINE" ] || { [ -x /usr/lib/wine/wine64 ] && WINE=/usr/lib/wine/wine64; }
 if [ -z "$WINE" ] || ! command -v x86_64-w64-mingw32-g++-posix >/dev/null; then

@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "silk/silk.hpp"
+
 namespace silkgen {
 
 void AddBatchOptions(CLI::App& app, BatchArgs& b) {
@@ -16,7 +18,7 @@ void AddBatchOptions(CLI::App& app, BatchArgs& b) {
       ->group(group)
       ->type_name("LIST_OR_DIR");
   app.add_option("--format", b.format, "--batch output format")
-      ->check(CLI::IsMember({"glb", "obj", "ply"}))
+      ->check(CLI::IsMember(silk_cpp::EnumNames(silk_mesh_format_name, SILK_FORMAT_OBJ)))  // not by_extension
       ->capture_default_str()
       ->group(group);
   app.add_option(

@@ -103,7 +103,7 @@ void Generate(silk_cpp::Generator& generator, const BatchSettings& s, const Batc
   silk_cpp::Mesh result = generator.Generate(input, s.generate, &st);
   Fill(st, result, r);
   silk_save_params sp = s.save;
-  sp.format = format == "obj" ? SILK_FORMAT_OBJ : format == "ply" ? SILK_FORMAT_PLY : SILK_FORMAT_GLB;
+  sp.format = silk_cpp::EnumValue(silk_mesh_format_from_name, format);
   result.Save(r->output, sp);
 }
 

@@ -72,16 +72,15 @@ std::string PointsPly(const std::vector<double>& rows) {
 }
 
 struct Args {
-  std::string input, output, model_dir, seed_text = "0", repair = "off", stats_path, tokens_path, trace_path,
-                                        save_points;
+  std::string input, output, model_dir, seed_text = "0", repair = silk_hole_policy_name(SILK_HOLES_OFF), stats_path,
+                                        tokens_path, trace_path, save_points;
   int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
   // Sampling, pre-processing and decoder precision default to model.json's; these sentinels
   // (SILK_MODEL_VALUE / empty) mean "not given"; the options' ranges refuse any other negative.
   double temperature = SILK_MODEL_VALUE, top_p = SILK_MODEL_VALUE, top_p_temperature = SILK_MODEL_VALUE;
   int top_k = SILK_MODEL_VALUE;
   int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
-  std::string decoder, kv_precision, preprocessing,
-      orient = SILK_DEFAULT_ORIENT == SILK_ORIENT_INPUT ? "input" : "tokens";
+  std::string decoder, kv_precision, preprocessing, orient = silk_orientation_name(SILK_DEFAULT_ORIENT);
   std::string face_guidance;                 // empty: the model's (model.json sampling.face_guidance)
   double face_tolerance = SILK_MODEL_VALUE;  // the model's
   bool list_models = false, unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
@@ -133,7 +132,7 @@ void AddSamplingOptions(CLI::App& app, Args& a) {
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   app.add_option("--repair", a.repair, "Holes in the result: off, report, or repair (close small ones)")
-      ->check(CLI::IsMember({"off", "report", "repair"}))
+      ->check(CLI::IsMember(silk_cpp::EnumNames(silk_hole_policy_name, SILK_HOLES_OFF)))
       ->capture_default_str();
   app.add_flag("--unconstrained", a.unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
   app.add_option("--surface-tolerance", a.surface_tolerance,
@@ -151,13 +150,13 @@ void AddSamplingOptions(CLI::App& app, Args& a) {
   app.add_option("--orient", a.orient,
                  "Which side of each part faces out: input (reverse every part whose winding disagrees with the "
                  "input's normals) or tokens (the winding the ids carry, as silktok decode gives it)")
-      ->check(CLI::IsMember({"input", "tokens"}))
+      ->check(CLI::IsMember(silk_cpp::EnumNames(silk_orientation_name, SILK_ORIENT_TOKENS)))
       ->capture_default_str();
   app.add_option("--face-guidance", a.face_guidance,
                  "Face guidance: off, hard (between-layer ids whose faces stray from the input's surface are removed; "
                  "the best-scoring kept when none passes) or soft (their logits lowered); default: the model's "
                  "(model.json sampling.face_guidance), else libsilk's (docs/runtime.md)")
-      ->check(CLI::IsMember({"off", "hard", "soft"}));
+      ->check(CLI::IsMember(silk_cpp::EnumNames(silk_face_guidance_name, SILK_FACE_GUIDANCE_OFF)));
   app.add_option("--face-tolerance", a.face_tolerance,
                  "Face guidance: how far (cells of 128) a face's corners, edge midpoints and centroid may lie from the "
                  "input's points; default: the model's, else libsilk's")
@@ -176,15 +175,16 @@ void AddRunOptions(CLI::App& app, Args& a) {
                  "Write the generated ids, one per line (EOS 10267 last when one was generated)");
   app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")
       ->check(CLI::Range(0, 1 << 20));
-  app.add_option("--decoder", a.decoder, "Decoder precision: fp32, int8 or int4; default: model.json's default_decoder")
-      ->check(CLI::IsMember({"fp32", "int8", "int4"}));
+  app.add_option("--decoder", a.decoder,
+                 "Decoder precision: fp32, int8 or int4; default (also when not given): model.json's default_decoder")
+      ->check(CLI::IsMember(silk_cpp::EnumNames(silk_decoder_precision_name, SILK_DECODER_DEFAULT)));
   app.add_flag("--int8", a.int8, "Same as --decoder int8");
   app.add_option("--kv-precision", a.kv_precision,
-                 "Self-attention K/V cache: fp32, fp16 or int8; default: the model's "
+                 "Self-attention K/V cache: fp32, fp16 or int8; default (also when not given): the model's "
                  "(model.json files.default_kv_precision)")
-      ->check(CLI::IsMember({"fp32", "fp16", "int8"}));
+      ->check(CLI::IsMember(silk_cpp::EnumNames(silk_kv_precision_name, SILK_KV_DEFAULT)));
   app.add_option("--preprocessing", a.preprocessing, "Point pre-processing: silk or official; default: model.json's")
-      ->check(CLI::IsMember({"silk", "official"}));
+      ->check(CLI::IsMember(silk_cpp::EnumNames(silk_preprocess_kind_name, SILK_PREPROCESS_SILK)));
   app.add_flag("--raw-points", a.raw_points,
                "The input is the encoder's point cloud, used exactly as given (x y z nx ny nz PLY with the model's "
                "point count; no normalisation, resampling or rounding); the output stays in the model's frame");
@@ -220,6 +220,11 @@ bool ParseSeed(const std::string& text, uint64_t* seed) {
   }
 }
 
+// An enum option's value (its name checked by the option's IsMember); `unset` when not given.
+int32_t OptionValue(silk_status (*from_name)(const char*, int32_t*), const std::string& name, int32_t unset) {
+  return name.empty() ? unset : silk_cpp::EnumValue(from_name, name);
+}
+
 silk_generate_params ToParams(const Args& a, uint64_t seed) {
   silk_generate_params p = silk_generate_default_params();
   p.seed = seed;
@@ -227,22 +232,17 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.top_k = a.top_k;
   p.top_p = a.top_p;
   p.top_p_temperature = a.top_p_temperature;
-  p.preprocessing = a.preprocessing.empty()         ? SILK_MODEL_VALUE
-                    : a.preprocessing == "official" ? SILK_PREPROCESS_OFFICIAL
-                                                    : SILK_PREPROCESS_SILK;
+  p.preprocessing = OptionValue(silk_preprocess_kind_from_name, a.preprocessing, SILK_MODEL_VALUE);
   p.raw_points = a.raw_points ? 1 : 0;
   p.max_tokens = a.max_tokens;
   p.max_faces = a.max_faces;
-  p.holes = a.repair == "repair" ? SILK_HOLES_REPAIR : a.repair == "report" ? SILK_HOLES_REPORT : SILK_HOLES_OFF;
+  p.holes = silk_cpp::EnumValue(silk_hole_policy_from_name, a.repair);
   p.unconstrained = a.unconstrained ? 1 : 0;
   p.point_count = a.n_points;
   p.surface_tolerance = a.surface_tolerance;
   p.candidates = a.candidates;
-  p.orient = a.orient == "input" ? SILK_ORIENT_INPUT : SILK_ORIENT_TOKENS;
-  p.face_guidance = a.face_guidance == "off"    ? SILK_FACE_GUIDANCE_OFF
-                    : a.face_guidance == "hard" ? SILK_FACE_GUIDANCE_HARD
-                    : a.face_guidance == "soft" ? SILK_FACE_GUIDANCE_SOFT
-                                                : SILK_MODEL_VALUE;
+  p.orient = silk_cpp::EnumValue(silk_orientation_from_name, a.orient);
+  p.face_guidance = OptionValue(silk_face_guidance_from_name, a.face_guidance, SILK_MODEL_VALUE);
   p.face_tolerance = a.face_tolerance;
   p.debug_flags = (a.no_skip_forced ? SILK_DEBUG_NO_SKIP_FORCED : 0) | (a.kv_copy ? SILK_DEBUG_KV_COPY : 0) |
                   (a.sample_then_check ? SILK_DEBUG_SAMPLE_THEN_CHECK : 0);
@@ -253,15 +253,9 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
 silk_model_params ToModelParams(const Args& a) {
   silk_model_params mo = silk_model_default_params();
   mo.threads = a.threads;
-  const std::string decoder = a.int8 ? "int8" : a.decoder;
-  mo.decoder = decoder == "int8"   ? SILK_DECODER_INT8
-               : decoder == "int4" ? SILK_DECODER_INT4
-               : decoder == "fp32" ? SILK_DECODER_FP32
-                                   : SILK_DECODER_DEFAULT;
-  mo.kv_precision = a.kv_precision == "fp16"   ? SILK_KV_FP16
-                    : a.kv_precision == "int8" ? SILK_KV_INT8
-                    : a.kv_precision == "fp32" ? SILK_KV_FP32
-                                               : SILK_KV_DEFAULT;
+  mo.decoder =
+      a.int8 ? SILK_DECODER_INT8 : OptionValue(silk_decoder_precision_from_name, a.decoder, SILK_DECODER_DEFAULT);
+  mo.kv_precision = OptionValue(silk_kv_precision_from_name, a.kv_precision, SILK_KV_DEFAULT);
   return mo;
 }
 
@@ -279,29 +273,23 @@ int Run(const Args& a, uint64_t seed) {
   if (!a.quiet) {
     // Sampling values not given on the command line are the model's (model.json "sampling").
     auto given = [](double v) { return v >= 0 ? std::to_string(v).substr(0, 6) : std::string("model"); };
-    std::fprintf(stderr,
-                 "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
-                 "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  "
-                 "repair %s%s\n"
-                 "  points  %s\n  surface tolerance %d  candidates %s  orient %s  face guidance %s (tolerance %s)\n",
-                 silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
-                 input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
-                 info.config, info.threads,
-                 info.decoder == SILK_DECODER_INT8   ? "INT8"
-                 : info.decoder == SILK_DECODER_INT4 ? "INT4"
-                                                     : "fp32",
-                 info.kv_precision == SILK_KV_FP16   ? "fp16"
-                 : info.kv_precision == SILK_KV_INT8 ? "int8"
-                                                     : "fp32",
-                 static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
-                 a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens,
-                 a.max_faces, a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
-                 a.raw_points              ? "raw (used as given, model frame)"
-                 : a.preprocessing.empty() ? "the model's pre-processing"
-                                           : a.preprocessing.c_str(),
-                 a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model",
-                 a.orient.c_str(), a.face_guidance.empty() ? "model" : a.face_guidance.c_str(),
-                 given(a.face_tolerance).c_str());
+    std::fprintf(
+        stderr,
+        "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
+        "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  "
+        "repair %s%s\n"
+        "  points  %s\n  surface tolerance %d  candidates %s  orient %s  face guidance %s (tolerance %s)\n",
+        silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
+        input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(), info.config,
+        info.threads, silk_decoder_precision_name(info.decoder), silk_kv_precision_name(info.kv_precision),
+        static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
+        a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens, a.max_faces,
+        a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
+        a.raw_points              ? "raw (used as given, model frame)"
+        : a.preprocessing.empty() ? "the model's pre-processing"
+                                  : a.preprocessing.c_str(),
+        a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model", a.orient.c_str(),
+        a.face_guidance.empty() ? "model" : a.face_guidance.c_str(), given(a.face_tolerance).c_str());
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) {

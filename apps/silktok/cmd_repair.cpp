@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../common/app_files.h"
+#include "silk/silk.hpp"
 #include "commands.h"
 #include "cli_errors.h"
 #include "output_checks.h"
@@ -16,7 +17,7 @@ namespace {
 struct RepairArgs {
   std::string input, output;
   bool json = false;
-  std::string policy = "repair";
+  std::string policy = silk_hole_policy_name(SILK_HOLES_REPAIR);
   int32_t max_loop = 8;
 };
 
@@ -38,7 +39,7 @@ void PrintText(const std::string& input, const silk_repair_stats& st, const nloh
 int Run(const RepairArgs& a) {
   if (int rc = CheckOutputs({a.input}, {a.output}); rc != kExitOk) return rc;
   silk_repair_params p = silk_repair_default_params();
-  p.holes = a.policy == "off" ? SILK_HOLES_OFF : a.policy == "report" ? SILK_HOLES_REPORT : SILK_HOLES_REPAIR;
+  p.holes = silk_cpp::EnumValue(silk_hole_policy_from_name, a.policy);
   p.max_fill_loop = a.max_loop;
   silk_repair_stats st = silk_cpp::Sized<silk_repair_stats>();
   nlohmann::json report;
@@ -87,7 +88,7 @@ void RegisterRepairCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Output OBJ file")->required();
   cmd->add_flag("--json", args->json, "Print the report as JSON (default: text)");
   cmd->add_option("--policy", args->policy, "off | report | repair (default: repair)")
-      ->check(CLI::IsMember({"off", "report", "repair"}));
+      ->check(CLI::IsMember(silk_cpp::EnumNames(silk_hole_policy_name, SILK_HOLES_OFF)));
   cmd->add_option("--max-loop", args->max_loop, "Longest hole loop that is triangulated (default: 8)");
   cmd->callback([args] { ExitCode() = Run(*args); });
 }

@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: MIT
-// C API: per-thread error messages, status and stop-reason names, version, the log callback,
+// C API: per-thread error messages, status names, version, the log callback,
 // vocabulary, and the two boundary rules every call shares: the size query of copies and the
 // struct_size check.
 #include <atomic>
 #include <mutex>
 
 #include "capi/capi_internal.h"
-#include "runtime/stop_reason.h"
 #include "tokenizer/vocabulary_layout.h"
 #ifdef SILK_HAVE_RUNTIME
 #include "runtime/model/ort_support.h"
@@ -134,12 +133,6 @@ const char* silk_status_name(silk_status s) {
       return "generator busy";
   }
   return "unknown";
-}
-
-// silk_stop_reason and StopReason agree value for value (static_assert in capi_report_json.cpp).
-const char* silk_stop_reason_name(int32_t reason) {
-  if (reason < SILK_STOP_NONE || reason > SILK_STOP_CANCELLED) return "unknown";
-  return silk::StopReasonName(static_cast<silk::StopReason>(reason));
 }
 
 const char* silk_version(void) { return SILK_VERSION_STRING; }

@@ -18,10 +18,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-const char* HolesName(int32_t h) {
-  return h == SILK_HOLES_REPAIR ? "repair" : h == SILK_HOLES_REPORT ? "report" : "off";
-}
-
 Json SettingsJson(const silk_generator& g) {
   const silk_generate_params& p = g.settings.params;
   const GenerationPlan& plan = g.session.plan();  // resolved: model.json defaults applied
@@ -38,11 +34,11 @@ Json SettingsJson(const silk_generator& g) {
               {"preprocessing", plan.preprocessing_name()},
               {"max_tokens", p.max_tokens},
               {"max_faces", p.max_faces},
-              {"repair", HolesName(p.holes)},
+              {"repair", silk_hole_policy_name(p.holes)},
               {"unconstrained", p.unconstrained != 0},
               {"surface_tolerance", p.surface_tolerance},
               {"candidates", plan.options.candidates},  // resolved: the model's N applied
-              {"orient", p.orient == SILK_ORIENT_INPUT ? "input" : "tokens"},
+              {"orient", silk_orientation_name(p.orient)},
               {"face_guidance", FaceGuidanceName(plan.options.face_guidance)},  // resolved: the model's applied
               {"face_tolerance", plan.options.face_tolerance}};
 }

@@ -26,7 +26,7 @@ if(Python3_FOUND AND TARGET silkgen)
     # = the official loop's (tests/tools/official_fixture_check.py; skipped without its deps).
     add_test(NAME official_fixture_greedy
              COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/official_fixture_check.py
-                     $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR} ${SILK_SHARED_DIR})
+                     $<TARGET_FILE:silkgen> ${PROJECT_SOURCE_DIR} ${SILK_SHARED_DIR_ABS})
     set_tests_properties(official_fixture_greedy PROPERTIES SKIP_RETURN_CODE 77 LABELS slow
                          ENVIRONMENT "SILK_LIBRARY=$<TARGET_FILE:silk>")
     if(CMAKE_SYSTEM_NAME STREQUAL "Linux")  # ELF symbol versions: the 1.0 ABI still served

@@ -7,6 +7,7 @@ caller puts bindings/python (silk_mesh) on sys.path first."""
 from __future__ import annotations
 
 import os
+import sys
 from pathlib import Path
 
 import pytest
@@ -14,6 +15,8 @@ import pytest
 import silk_mesh
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "export"))  # this checkout's silk_export (an installed one may be older)
+from silk_export.paths import shared_dir  # noqa: E402  (the one shared-folder rule of Python)
 
 
 @pytest.fixture(scope="session")
@@ -24,9 +27,9 @@ def lib_path() -> Path:
 
 @pytest.fixture(scope="session")
 def shared() -> Path:
-    """$SILK_SHARED_DIR, else ../shared beside the checkout (as silk_export.paths.shared_dir)."""
-    env = os.environ.get("SILK_SHARED_DIR")
-    return Path(env) if env else ROOT.parent / "shared"
+    """The shared material folder by the one rule (silk_export.paths.shared_dir); an error naming
+    the places looked in when there is none."""
+    return shared_dir(required=True)
 
 
 def tool_beside_library(lib_path: Path, name: str) -> Path:

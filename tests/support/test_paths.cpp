@@ -8,6 +8,7 @@
 #include <fstream>
 
 namespace silk::testing {
+// The C++ side of the one shared-folder rule: the run-time variable wins over CMake's finding.
 std::string SharedDir() {
   if (const char* e = std::getenv("SILK_SHARED_DIR"); e && *e) return e;
   return SILK_SHARED_DIR;

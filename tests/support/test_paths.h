@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Where tests find the shared spec/corpus data (../shared beside the repo, or $SILK_SHARED_DIR).
+// Where tests find the shared spec/corpus data: $SILK_SHARED_DIR at run time, else the folder CMake
+// found by the one shared-folder rule (cmake/SilkSharedDir.cmake), compiled in.
 #pragma once
 #include <string>
 

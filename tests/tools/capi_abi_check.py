@@ -6,7 +6,8 @@ no kv_precision), silk_model_load and silk_model_get_info accept the 1.0 sizes a
 past them, and the current symbol returns today's size. The same for silk_generate_default_params
 (@SILK_1.0: the struct before 1.3's face guidance fields; @SILK_1.3: today's): its 1.0 bytes equal
 the first bytes of today's defaults, and silk_generator_run accepts the 1.0 params and stats sizes
-without writing past them. The functions 1.3 added are bound to the SILK_1.3 node alone. Linux
+without writing past them. The functions 1.3 added are bound to the SILK_1.3 node alone, those 1.4
+added (the enum names) to SILK_1.4 alone. Linux
 (ELF symbol versions) only.
 
     capi_abi_check.py LIBSILK MODEL_DIR
@@ -25,6 +26,23 @@ class Params11(ctypes.Structure):
 
 
 SILK_1_3 = ("silk_models_dir", "silk_model_default_dir", "silk_model_find", "silk_models_list")
+# C API 1.4: silk_<enum>_name and silk_<enum>_from_name (silk_stop_reason_name is 1.0's).
+SILK_1_4_ENUMS = (
+    "log_level",
+    "mesh_format",
+    "window_rule",
+    "hole_policy",
+    "preprocess_kind",
+    "decoder_precision",
+    "kv_precision",
+    "arch",
+    "orientation",
+    "face_guidance",
+    "advance_until",
+)
+SILK_1_4 = tuple(f"silk_{e}_{kind}" for e in SILK_1_4_ENUMS for kind in ("name", "from_name")) + (
+    "silk_stop_reason_from_name",
+)
 INFO_INTS = (
     "d_model",
     "n_layers",
@@ -91,9 +109,11 @@ def main(lib_path, model_dir):
     failures += check_generate(lib, libc, model)
     lib.silk_model_destroy.argtypes = [ctypes.c_void_p]
     lib.silk_model_destroy(model)
-    for fn in SILK_1_3:  # added in 1.3: bound to that node alone, so an older libsilk is refused by name
-        if not libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.3") or libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.0"):
-            failures.append(f"{fn}: must be exported as {fn}@@SILK_1.3 only (engine/libsilk.map)")
+    # Added in 1.3 / 1.4: bound to that node alone, so an older libsilk is refused by name.
+    for node, functions in ((b"SILK_1.3", SILK_1_3), (b"SILK_1.4", SILK_1_4)):
+        for fn in functions:
+            if not libc.dlvsym(lib._handle, fn.encode(), node) or libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.0"):
+                failures.append(f"{fn}: must be exported as {fn}@@{node.decode()} only (engine/libsilk.map)")
     return failures
 
 

@@ -12,7 +12,12 @@ import bpy
 from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from . import blender_mesh, run_progress, silk_mesh  # silk_mesh: bindings/python/silk_mesh, vendored unchanged
+from . import (
+    blender_mesh,
+    enum_items,
+    run_progress,
+    silk_mesh,
+)  # silk_mesh: bindings/python/silk_mesh, vendored unchanged
 
 PREVIEW_NAME = "Silk preview"
 
@@ -67,17 +72,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
     )
     face_guidance: EnumProperty(
         name="Face guidance",
-        items=[
-            ("MODEL", "Model default", "The model's (model.json sampling), else libsilk's measured default"),
-            (
-                "HARD",
-                "Hard",
-                "Connections whose faces stray from the source's surface "
-                "are never made (the closest ones when none fits)",
-            ),
-            ("SOFT", "Soft", "Such connections are made less likely"),
-            ("OFF", "Off", "Connections as the model draws them"),
-        ],
+        items=enum_items.FACE_GUIDANCE,
         default="MODEL",
     )
     face_tolerance: FloatProperty(
@@ -97,10 +92,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
     )
     orient: EnumProperty(
         name="Orientation",
-        items=[
-            ("INPUT", "Face the input", "Reverse every part whose winding disagrees with the source's normals"),
-            ("TOKENS", "As generated", "The winding the generated ids carry"),
-        ],
+        items=enum_items.ORIENTATION,
         default="INPUT",
     )
     model_dir: StringProperty(
@@ -112,11 +104,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
     )
     repair: EnumProperty(
         name="Holes",
-        items=[
-            ("OFF", "Off", "Keep holes"),
-            ("REPORT", "Report", "Count holes"),
-            ("REPAIR", "Repair", "Close small holes"),
-        ],
+        items=enum_items.HOLE_POLICY,
         default="OFF",
     )
     cancel_after_steps: IntProperty(

@@ -18,7 +18,7 @@ from bpy.props import (
     StringProperty,
 )
 
-from . import silk_mesh
+from . import enum_items, silk_mesh
 
 # Blender keeps no reference to a dynamic enum's strings: they must live here (refreshed on demand,
 # not on every redraw, since listing reads every model.json).
@@ -84,25 +84,12 @@ class SilkSettings(bpy.types.PropertyGroup):
     orient: EnumProperty(
         name="Orientation",
         default="INPUT",
-        items=[
-            ("INPUT", "Face the input", "Reverse parts whose winding disagrees with the source"),
-            ("TOKENS", "As generated", "The winding the generated ids carry"),
-        ],
+        items=enum_items.ORIENTATION,
     )
     face_guidance: EnumProperty(
         name="Face guidance",
         default="MODEL",
-        items=[
-            ("MODEL", "Model default", "The model's (model.json sampling), else libsilk's measured default"),
-            (
-                "HARD",
-                "Hard",
-                "Connections whose faces stray from the source's surface "
-                "are never made (the closest ones when none fits)",
-            ),
-            ("SOFT", "Soft", "Such connections are made less likely"),
-            ("OFF", "Off", "Connections as the model draws them"),
-        ],
+        items=enum_items.FACE_GUIDANCE,
     )
     face_tolerance: FloatProperty(
         name="Face tolerance",

@@ -24,7 +24,7 @@ from ._capi import (
     SILK_OK,
 )
 from ._library import SilkError, library_path, load_library
-from . import _native
+from . import _capi, _native
 from .codec import decode, encode, read_ids, write_ids
 from .generation import Generator, Model, Result, generate
 from .models import bundled_model_dir, find_model, list_models, models_dir
@@ -53,6 +53,7 @@ __all__ = [
     "version",
     "vocab",
     "generation_available",
+    "enum_names",
 ]
 
 
@@ -66,6 +67,14 @@ def vocab() -> dict:
     from ._params import as_dict
 
     return as_dict(_native.vocab())
+
+
+def enum_names(enum: str) -> dict:
+    """{name: value} of a silk.h enum as libsilk names it (C API 1.4): enum is the part of its
+    silk_<enum>_name function, e.g. "hole_policy", "decoder_precision", "stop_reason"."""
+    if enum not in _capi.ENUM_FIRST:
+        raise ValueError(f"enum_names: unknown enum {enum!r} (one of: {', '.join(_capi.ENUM_FIRST)})")
+    return dict(_native.enum_names(enum))
 
 
 def generation_available() -> bool:

@@ -20,9 +20,22 @@ SILK_ERR_BUFFER_TOO_SMALL = 9
 SILK_ERR_BUSY = 10
 MODEL_VALUE = -1  # SILK_MODEL_VALUE: "the model's value" of a sampling field (any other negative is refused)
 MODEL_VALUE = -1  # SILK_MODEL_VALUE: "the model's value" of a sampling field (any other negative is refused)
-STOP_REASONS = {-1: "running", 0: "eos", 1: "max_tokens", 2: "max_faces", 3: "grammar_dead_end", 4: "cancelled"}
-HOLES = {"off": 0, "report": 1, "repair": 2}
-ORIENT = {"tokens": 0, "input": 1}  # silk_orientation
+# The silk.h enums libsilk names (C API 1.4: silk_<enum>_name / silk_<enum>_from_name), each with its
+# first value; the names themselves come from the library (_native.enum_names), never from here.
+ENUM_FIRST = {
+    "log_level": 0,
+    "mesh_format": 0,
+    "window_rule": 0,
+    "hole_policy": 0,
+    "preprocess_kind": 0,
+    "decoder_precision": 0,
+    "kv_precision": 0,
+    "arch": 0,
+    "orientation": 0,
+    "face_guidance": 0,
+    "advance_until": 0,
+    "stop_reason": -1,
+}
 
 
 class _Sized(ctypes.Structure):
@@ -226,11 +239,6 @@ class PreprocessParams(_Sized):
     ]
 
 
-PREPROCESS_KINDS = {"silk": 0, "official": 1}
-DECODERS = {"default": 0, "int8": 1, "fp32": 2, "int4": 3}  # silk_decoder_precision
-KV_PRECISIONS = {"default": 0, "fp32": 1, "fp16": 2, "int8": 3}  # silk_kv_precision
-
-
 class ModelParams(_Sized):
     _fields_ = _SIZE + [
         ("threads", ctypes.c_int32),
@@ -312,9 +320,6 @@ class GenerateParams(_Sized):
     ]
 
 
-FACE_GUIDANCE = {"off": 0, "hard": 1, "soft": 2}  # silk_face_guidance
-
-
 class GenerateStats(_Sized):
     _fields_ = (
         _SIZE
@@ -367,11 +372,6 @@ class GenerateStats(_Sized):
         + [("seconds_face_guidance", ctypes.c_double)]
     )
 
-    def as_dict(self) -> dict:
-        d = super().as_dict()
-        d["stop_reason"] = STOP_REASONS.get(self.stop_reason, str(self.stop_reason))
-        return d
-
 
 class GenerateInput(_Sized):
     _fields_ = _SIZE + [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("point_rows", ctypes.c_size_t)]
@@ -380,8 +380,6 @@ class GenerateInput(_Sized):
 class SaveParams(_Sized):
     _fields_ = _SIZE + [("part_colors", ctypes.c_int32), ("obj_comment", ctypes.c_char_p), ("format", ctypes.c_int32)]
 
-
-SAVE_FORMATS = {"by_extension": 0, "obj": 1, "ply": 2, "glb": 3}  # silk_mesh_format
 
 SIGNATURES = {
     "silk_last_error": (ctypes.c_char_p, []),
@@ -505,6 +503,11 @@ SIGNATURES = {
     "silk_model_find": (ctypes.c_int, [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t, _c_size_p]),
     "silk_models_list": (ctypes.c_int, [ctypes.POINTER(ctypes.c_void_p)]),
 }
+
+
+for _enum in ENUM_FIRST:
+    SIGNATURES[f"silk_{_enum}_name"] = (ctypes.c_char_p, [ctypes.c_int32])
+    SIGNATURES[f"silk_{_enum}_from_name"] = (ctypes.c_int, [ctypes.c_char_p, _c_int32_p])
 
 
 def declare(lib: ctypes.CDLL) -> None:

@@ -6,6 +6,7 @@ this file alone. Handles are ctypes.c_void_p, arrays ctypes arrays; nothing Pyth
 from __future__ import annotations
 
 import ctypes
+import functools
 from ctypes import byref, c_void_p
 
 from . import _capi
@@ -47,6 +48,30 @@ def vocab() -> _capi.VocabInfo:
 
 def generation_available() -> bool:
     return bool(lib().silk_generation_available())
+
+
+@functools.lru_cache(maxsize=None)
+def enum_names(enum: str) -> dict[str, int]:
+    """{name: value} of silk_<enum> (_capi.ENUM_FIRST) as libsilk spells it: silk_<enum>_name from
+    the enum's first value on, until it says "unknown"."""
+    name_of = getattr(lib(), f"silk_{enum}_name")
+    names, value = {}, _capi.ENUM_FIRST[enum]
+    while (name := name_of(value).decode()) != "unknown":
+        names[name] = value
+        value += 1
+    return names
+
+
+def enum_name(enum: str, value: int) -> str:
+    """libsilk's name of one value ("unknown" out of range)."""
+    return getattr(lib(), f"silk_{enum}_name")(value).decode()
+
+
+def stats_dict(st: _capi.GenerateStats) -> dict:
+    """silk_generate_stats by field name, the stop reason by libsilk's name ("none" while running)."""
+    d = st.as_dict()
+    d["stop_reason"] = enum_name("stop_reason", st.stop_reason)
+    return d
 
 
 # -- meshes ----------------------------------------------------------------------------------

@@ -15,11 +15,12 @@ from ._library import SilkError, _Owned, preload_onnxruntime
 from .mesh import Mesh, _Borrowed
 from .models import find_model
 
-_ENUMS = {
-    "holes": _capi.HOLES,
-    "orient": _capi.ORIENT,
-    "preprocessing": _capi.PREPROCESS_KINDS,
-    "face_guidance": _capi.FACE_GUIDANCE,
+# silk_generate_params' enum fields: the enum libsilk names each one's values with.
+_ENUM_FIELDS = {
+    "holes": "hole_policy",
+    "orient": "orientation",
+    "preprocessing": "preprocess_kind",
+    "face_guidance": "face_guidance",
 }
 _HIDDEN = ("progress", "cancel", "user_data")  # set from Python callables, not keywords
 
@@ -42,16 +43,15 @@ class Model(_Owned):
         kv_precision: str = "default",
     ):
         dir = find_model(dir)  # libsilk's rule: bundled, a folder, or a name
-        if decoder not in _capi.DECODERS:
-            raise ValueError(f"Model: decoder must be one of {sorted(_capi.DECODERS)}, not {decoder!r}")
-        if kv_precision not in _capi.KV_PRECISIONS:
-            raise ValueError(f"Model: kv_precision must be one of {sorted(_capi.KV_PRECISIONS)}, not {kv_precision!r}")
+        decoders, kv_precisions = _native.enum_names("decoder_precision"), _native.enum_names("kv_precision")
+        if decoder not in decoders:
+            raise ValueError(f"Model: decoder must be one of {sorted(decoders)}, not {decoder!r}")
+        if kv_precision not in kv_precisions:
+            raise ValueError(f"Model: kv_precision must be one of {sorted(kv_precisions)}, not {kv_precision!r}")
         self.dir = os.fspath(dir)
         preload_onnxruntime()  # the pip wheel's libsilk: the onnxruntime package's library
         threads = _checks.integer(threads, ctypes.c_int32, "Model: threads")
-        self._h = _native.model_load(
-            os.fsencode(self.dir), threads, _capi.DECODERS[decoder], _capi.KV_PRECISIONS[kv_precision]
-        )
+        self._h = _native.model_load(os.fsencode(self.dir), threads, decoders[decoder], kv_precisions[kv_precision])
 
     def info(self) -> dict:
         """model.json figures and the options in use (d_model, default_points, decoder, ...)."""
@@ -72,7 +72,7 @@ class Model(_Owned):
 class Result(NamedTuple):
     mesh: Mesh  # the generated mesh (input frame); Mesh.parts: each triangle's part
     ids: list  # the generated token ids (format ids, EOS included when generated)
-    stats: dict  # silk_generate_stats by field name; stop_reason as a name ("eos", ...)
+    stats: dict  # silk_generate_stats by field name; stop_reason as libsilk's name ("eos", ...)
 
 
 def _progress_dict(p) -> dict:
@@ -111,7 +111,8 @@ class Generator(_Owned):
 
     def _prepare(self, source, points, progress, cancel, params: dict):
         """(GenerateInput, GenerateParams); their Python-side objects stay in self._keep."""
-        p = _params.fill(_native.generate_defaults(), params, "generate", _ENUMS, _HIDDEN)
+        enums = {field: _native.enum_names(enum) for field, enum in _ENUM_FIELDS.items()}
+        p = _params.fill(_native.generate_defaults(), params, "generate", enums, _HIDDEN)
         callbacks = []
         if progress is not None:
             callbacks.append(_capi.PROGRESS_FN(lambda pr, _u: self._guard(progress, _progress_dict(pr))))
@@ -158,7 +159,7 @@ class Generator(_Owned):
             self._release()
             raise
         self._release()
-        return Result(Mesh._adopt(mh), _native.tokens_take(th), st.as_dict())
+        return Result(Mesh._adopt(mh), _native.tokens_take(th), _native.stats_dict(st))
 
     def start(self, input=None, *, points=None, progress=None, cancel=None, **params) -> None:
         """Prepares the points and runs the encoder; then advance() adds ids."""
@@ -191,7 +192,7 @@ class Generator(_Owned):
         return _native.tokens_take(_native.generator_tokens(self.handle))
 
     def stats(self) -> dict:
-        return _native.generator_stats(self.handle).as_dict()
+        return _native.stats_dict(_native.generator_stats(self.handle))
 
     def finish(self) -> Result:
         """Ends the generation (cancelling it first when not done): the final mesh, ids, stats."""
@@ -200,7 +201,7 @@ class Generator(_Owned):
         finally:
             self._keep = ()
         self.done = True
-        return Result(Mesh._adopt(mh), _native.tokens_take(th), st.as_dict())
+        return Result(Mesh._adopt(mh), _native.tokens_take(th), _native.stats_dict(st))
 
     def cancel(self) -> None:
         """Thread-safe, any time: cancels the run in progress (nothing when none is)."""

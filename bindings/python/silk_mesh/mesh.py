@@ -7,7 +7,7 @@ from __future__ import annotations
 import ctypes
 import os
 
-from . import _arrays, _capi, _native, _params
+from . import _arrays, _native, _params
 from ._library import _Owned
 
 
@@ -38,7 +38,7 @@ class Mesh(_Owned):
     def save(self, path: str | os.PathLike, **params) -> None:
         """By extension (.obj, .ply, .glb: one node per part) or `format` ("obj", "ply", "glb");
         part_colors (.glb), obj_comment (.obj header text). Written atomically."""
-        p = _params.fill(_native.save_defaults(), params, "Mesh.save", {"format": _capi.SAVE_FORMATS})
+        p = _params.fill(_native.save_defaults(), params, "Mesh.save", {"format": _native.enum_names("mesh_format")})
         _native.mesh_save(self.handle, os.fsencode(path), p)
 
     @property

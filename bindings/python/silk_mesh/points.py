@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import ctypes
 
-from . import _arrays, _capi, _checks, _native, _params
+from . import _arrays, _checks, _native, _params
 from .mesh import _Borrowed
 
 
@@ -16,10 +16,11 @@ def prepare_points(source, triangles=None, kind: str = "silk", n_points: int = 4
     source: a Mesh, a path, positions (with `triangles`), or, with triangles None and not a Mesh or
     path, a point cloud of rows x y z nx ny nz. kind "silk" or "official" picks the defaults;
     params: normalize_bound, merge_distance_fraction, surface_samples, round_float16."""
-    if kind not in _capi.PREPROCESS_KINDS:
-        raise ValueError(f"prepare_points: kind must be one of {sorted(_capi.PREPROCESS_KINDS)}, not {kind!r}")
+    kinds = _native.enum_names("preprocess_kind")
+    if kind not in kinds:
+        raise ValueError(f"prepare_points: kind must be one of {sorted(kinds)}, not {kind!r}")
     p = _params.fill(
-        _native.preprocess_defaults(_capi.PREPROCESS_KINDS[kind]),
+        _native.preprocess_defaults(kinds[kind]),
         params,
         "prepare_points",
         hidden=("struct_size", "kind", "point_count"),

@@ -20,7 +20,7 @@
  * PATCH fixes. silk_version() is the library's own string (compare it with SILK_VERSION_STRING
  * to detect a header/library mismatch). */
 #define SILK_VERSION_MAJOR 1
-#define SILK_VERSION_MINOR 3
+#define SILK_VERSION_MINOR 4
 #define SILK_VERSION_PATCH 0
 #define SILK_STR_(x) #x
 #define SILK_STR(x) SILK_STR_(x)
@@ -713,6 +713,39 @@ SILK_API silk_status silk_generator_copy_points(silk_generator* generator, doubl
 SILK_API silk_status silk_generator_run(silk_generator* generator, const silk_generate_input* input,
                                         const silk_generate_params* params, silk_mesh** out_mesh,
                                         silk_tokens** out_tokens, silk_generate_stats* stats);
+
+/* ---- names of the enums (C API 1.4) ------------------------------------------------------
+ * The one spelling of each enum's values: the names silkgen's options, model.json, the reports
+ * and the Python binding use. silk_<enum>_name(value) returns a static string, "unknown" for a
+ * value out of range (never NULL). Each enum's values are contiguous from its first one (-1 for
+ * silk_stop_reason, else 0): a client lists the names by counting up until "unknown".
+ * silk_<enum>_from_name(name, out) sets *out to the value of that exact (lower-case) name, or
+ * returns SILK_ERR_INVALID_ARGUMENT naming the text and the accepted names (*out unchanged).
+ * silk_status_name (above) stays the status's readable text. */
+SILK_API const char* silk_log_level_name(int32_t level); /* "debug", "info", "warn", "error" */
+SILK_API silk_status silk_log_level_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_mesh_format_name(int32_t format); /* "by_extension", "obj", "ply", "glb" */
+SILK_API silk_status silk_mesh_format_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_window_rule_name(int32_t rule); /* "canonical", "union" */
+SILK_API silk_status silk_window_rule_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_hole_policy_name(int32_t policy); /* "off", "report", "repair" */
+SILK_API silk_status silk_hole_policy_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_preprocess_kind_name(int32_t kind); /* "silk", "official" */
+SILK_API silk_status silk_preprocess_kind_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_decoder_precision_name(int32_t precision); /* "default", "int8", "fp32", "int4" */
+SILK_API silk_status silk_decoder_precision_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_kv_precision_name(int32_t precision); /* "default", "fp32", "fp16", "int8" */
+SILK_API silk_status silk_kv_precision_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_arch_name(int32_t arch); /* silk_model_info.arch: "silk", "official" */
+SILK_API silk_status silk_arch_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_orientation_name(int32_t orient); /* "tokens", "input" */
+SILK_API silk_status silk_orientation_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_face_guidance_name(int32_t guidance); /* "off", "hard", "soft" */
+SILK_API silk_status silk_face_guidance_from_name(const char* name, int32_t* out);
+SILK_API const char* silk_advance_until_name(int32_t until); /* "ids", "layer" */
+SILK_API silk_status silk_advance_until_from_name(const char* name, int32_t* out);
+/* silk_stop_reason_name is declared beside silk_stop_reason ("none" ... "cancelled"). */
+SILK_API silk_status silk_stop_reason_from_name(const char* name, int32_t* out);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -63,6 +63,19 @@ inline silk_vocab_info Vocab() {
   return v;
 }
 
+// Enum names (silk.h 1.4): every name of an enum, counting up from its first value until the
+// library says "unknown" (an option's accepted values), and the value of a name.
+inline std::vector<std::string> EnumNames(const char* (*name)(int32_t), int32_t first) {
+  std::vector<std::string> names;
+  for (int32_t v = first; std::string(name(v)) != "unknown"; ++v) names.emplace_back(name(v));
+  return names;
+}
+inline int32_t EnumValue(silk_status (*from_name)(const char*, int32_t*), const std::string& name) {
+  int32_t value = 0;
+  Check(from_name(name.c_str(), &value));
+  return value;
+}
+
 // Files (silk.h "files"): an output path checked before long work, the atomic writer, the
 // regular-file reader.
 inline void CheckOutputPath(const std::string& path) { Check(silk_file_check_output(path.c_str())); }

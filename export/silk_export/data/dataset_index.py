@@ -32,7 +32,7 @@ def dev_exclusion(dev_dir: Path | None, pmd_root: Path | None = None) -> DevExcl
         if shared is None:
             raise SystemExit(
                 "silk-export dataset: no dev corpus to keep out of training: pass --dev-dir DIR, set "
-                "SILK_SHARED_DIR (its corpus/dev is used), or --all-train"
+                "SILK_SHARED_DIR (its corpus/dev is used; from a checkout, ../shared beside it), or --all-train"
             )
         dev_dir = shared / "corpus" / "dev"
     dev_dir = Path(dev_dir)
