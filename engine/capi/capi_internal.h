@@ -52,6 +52,9 @@ std::unique_ptr<silk_mesh> MeshHandle(std::vector<std::array<double, 3>> positio
 // silk_encode_params (NULL: defaults) for silk_mesh_encode and silk_mesh_roundtrip: struct_size,
 // flags and normalize_bound, failures prefixed with `function`.
 silk_status CheckEncodeParams(const char* function, const silk_encode_params* params);
+// The one encode path of silk_mesh_encode and silk_mesh_roundtrip: `params` (NULL: defaults;
+// CheckEncodeParams has passed them) read, the mesh normalised when they ask, then encoded.
+StatusOr<EncodeResult> EncodeWithParams(const silk_mesh& mesh, const silk_encode_params* params);
 
 // Field checks of the params structs (capi_params.cpp): Ok, or an InvalidArgument naming the
 // field and the value given ("round_float16 2 takes 0 or 1").
