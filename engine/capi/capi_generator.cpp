@@ -39,7 +39,6 @@ silk::Status CheckParams(const silk_generate_params& p) {
                                    "silk_face_guidance (or SILK_MODEL_VALUE, -1)"));
   if (p.debug_flags & ~kAllDebugFlags)
     return silk::InvalidArgument("debug_flags " + std::to_string(p.debug_flags) + " has unknown bits");
-  if (p.point_count < 0) return silk::InvalidArgument("point_count " + std::to_string(p.point_count) + " is negative");
   if (p.report_flags & ~kAllReportFlags)
     return silk::InvalidArgument("report_flags " + std::to_string(p.report_flags) + " has unknown bits");
   return silk::Status::Ok();

@@ -12,6 +12,8 @@ silk_status NoRuntime() { return silk::capi::SetError(SILK_ERR_UNSUPPORTED, kNoR
 extern "C" {
 
 int32_t silk_generation_available(void) { return 0; }
+silk_status silk_param_range(const char*, double*, double*, int32_t*) { return NoRuntime(); }
+silk_status silk_param_check(const char*, double) { return NoRuntime(); }
 silk_status silk_model_load(const char*, const silk_model_params*, silk_model** out) {
   if (out) *out = nullptr;
   return NoRuntime();

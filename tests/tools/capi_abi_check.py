@@ -24,7 +24,14 @@ class Params11(ctypes.Structure):
     _fields_ = Params10._fields_ + [("kv_precision", ctypes.c_int32)]
 
 
-SILK_1_3 = ("silk_models_dir", "silk_model_default_dir", "silk_model_find", "silk_models_list")
+SILK_1_3 = (
+    "silk_models_dir",
+    "silk_model_default_dir",
+    "silk_model_find",
+    "silk_models_list",
+    "silk_param_range",
+    "silk_param_check",
+)
 INFO_INTS = (
     "d_model",
     "n_layers",
