@@ -540,14 +540,9 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
 // Issue 32: the generation settings' ranges are one table (runtime/sampling/generation_ranges.h):
 // past each upper end the generation is refused with a message naming the setting, the value and
 // the range, the message silk_param_check gives (silkgen's answer too).
-TEST(CapiMisuse, ValuesPastTheRangeTableAreRefusedWithTheRange) {
-  if (!silk_generation_available()) GTEST_SKIP();
-  silk_mesh* m = nullptr;
-  ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), nullptr, &m), SILK_OK);
-  silk_model* model = nullptr;
-  ASSERT_EQ(silk_model_load(TinyModel().c_str(), nullptr, &model), SILK_OK) << silk_last_error();
+TEST_F(CapiGeneration, ValuesPastTheRangeTableAreRefusedWithTheRange) {
   silk_generator* g = nullptr;
-  ASSERT_EQ(silk_generator_create(model, &g), SILK_OK);
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
   const ParamsCase bad[] = {{"temperature 150", [](silk_generate_params* p) { p->temperature = 150; }},
                             {"top_k 10270", [](silk_generate_params* p) { p->top_k = 10270; }},
                             {"top_p_temperature 101", [](silk_generate_params* p) { p->top_p_temperature = 101; }},
@@ -557,19 +552,17 @@ TEST(CapiMisuse, ValuesPastTheRangeTableAreRefusedWithTheRange) {
                             {"face_tolerance 0.2", [](silk_generate_params* p) { p->face_tolerance = 0.2; }},
                             {"max_tokens 13", [](silk_generate_params* p) { p->max_tokens = 13; }},
                             {"point_count 1048577", [](silk_generate_params* p) { p->point_count = (1 << 20) + 1; }}};
-  ExpectRefusedByName(g, m, bad);
+  ExpectRefusedByName(g, mesh_, bad);
   // The generation's message is silk_param_check's (one rule, one text), naming the range.
   silk_generate_params hot = silk_generate_default_params();
   hot.temperature = 150;
   silk_mesh* none = nullptr;
-  ASSERT_EQ(silk::testing::GenerateFromMesh(g, m, &hot, &none, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT);
+  ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &hot, &none, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT);
   const std::string generate_message = silk_last_error();
   ASSERT_EQ(silk_param_check("temperature", 150), SILK_ERR_INVALID_ARGUMENT);
   EXPECT_NE(generate_message.find(silk_last_error()), std::string::npos) << generate_message;
   EXPECT_NE(generate_message.find("[0, 100]"), std::string::npos) << generate_message;
   silk_generator_destroy(g);
-  silk_model_destroy(model);
-  silk_mesh_destroy(m);
 }
 
 // Issue 20, finding 3: silk_points_prepare refuses an out-of-range flag or kind.
