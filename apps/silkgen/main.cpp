@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "../common/app_errors.h"
@@ -76,7 +77,7 @@ struct Args {
                                         tokens_path, trace_path, save_points;
   int threads = 0, max_tokens = 0, max_faces = 0, n_points = 0;
   // Sampling, pre-processing and decoder precision default to model.json's; these sentinels
-  // (SILK_MODEL_VALUE / empty) mean "not given"; the options' ranges refuse any other negative.
+  // (SILK_MODEL_VALUE / empty) mean "not given"; a given value is checked by libsilk (CheckSettings).
   double temperature = SILK_MODEL_VALUE, top_p = SILK_MODEL_VALUE, top_p_temperature = SILK_MODEL_VALUE;
   int top_k = SILK_MODEL_VALUE;
   int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
@@ -87,6 +88,20 @@ struct Args {
   bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
   silkgen::BatchArgs batch;
 };
+
+// A setting's valid values from libsilk's range table (silk_param_range), for --help: " [0..100]",
+// " [0, 14 or more]"; "" in a libsilk without generation.
+std::string Valid(const char* name) {
+  double lo = 0, hi = 0;
+  int32_t zero_too = 0;
+  if (silk_param_range(name, &lo, &hi, &zero_too) != SILK_OK) return "";
+  char text[64];
+  if (hi >= INT32_MAX)
+    std::snprintf(text, sizeof text, " [%s%.10g or more]", zero_too ? "0, " : "", lo);
+  else
+    std::snprintf(text, sizeof text, " [%s%.10g..%.10g]", zero_too ? "0, " : "", lo, hi);
+  return text;
+}
 
 // Input, output and model: what silkgen reads and writes.
 void AddFileOptions(CLI::App& app, Args& a) {
@@ -107,29 +122,28 @@ void AddFileOptions(CLI::App& app, Args& a) {
 // The sampler chain: seed, temperature, truncation, guidance, best of N.
 void AddSamplingOptions(CLI::App& app, Args& a) {
   app.add_option("--seed", a.seed_text, "Random seed (integer) or 'random'")->capture_default_str();
-  app.add_option("--threads", a.threads, "onnxruntime threads (0 = physical cores)")
-      ->check(CLI::Range(0, 1024))
+  app.add_option("--threads", a.threads, "onnxruntime threads (0 = physical cores)" + Valid("threads"))
       ->capture_default_str();
-  app.add_option("--temperature", a.temperature, "Sampling temperature (0 = greedy); default: model.json's")
-      ->check(CLI::Range(0.0, 100.0));
-  app.add_option("--top-k", a.top_k, "Keep the k most likely legal ids (0 = off); default: model.json's")
-      ->check(CLI::Range(0, 10269));
+  app.add_option("--temperature", a.temperature,
+                 "Sampling temperature (0 = greedy); default: model.json's" + Valid("temperature"));
+  app.add_option("--top-k", a.top_k,
+                 "Keep the k most likely legal ids (0 = off); default: model.json's" + Valid("top_k"));
   app.add_option("--top-p", a.top_p,
                  "Nucleus: keep the smallest set with this much probability (1 = off); default: "
-                 "model.json's")
-      ->check(CLI::Range(0.0, 1.0));
+                 "model.json's" +
+                     Valid("top_p"));
   app.add_option("--top-p-temperature", a.top_p_temperature,
                  "Compute top-p at this temperature on the top-k logits (official chain; 0 = at --temperature); "
-                 "default: model.json's")
-      ->check(CLI::Range(0.0, 100.0));
-  app.add_option("--max-tokens", a.max_tokens, "Cap on generated ids incl. EOS (0 = the model's limit)")
-      ->check(CLI::Range(0, 10240))
+                 "default: model.json's" +
+                     Valid("top_p_temperature"));
+  app.add_option("--max-tokens", a.max_tokens,
+                 "Cap on generated ids incl. EOS (0 = the model's limit)" + Valid("max_tokens"))
       ->capture_default_str();
   app.add_option(
          "--max-faces", a.max_faces,
          "Hard cap on the output's faces: stop at the first layer end with at least this many, keep at most this many "
-         "(a valid subset of that layer; 0 = off)")
-      ->check(CLI::Range(0, 1000000))
+         "(a valid subset of that layer; 0 = off)" +
+             Valid("max_faces"))
       ->capture_default_str();
   app.add_option("--repair", a.repair, "Holes in the result: off, report, or repair (close small ones)")
       ->check(CLI::IsMember(silk_cpp::EnumNames(silk_hole_policy_name, SILK_HOLES_OFF)))
@@ -137,15 +151,15 @@ void AddSamplingOptions(CLI::App& app, Args& a) {
   app.add_flag("--unconstrained", a.unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
   app.add_option("--surface-tolerance", a.surface_tolerance,
                  "Surface guidance: new vertices only on grid cells within CELLS (of 128) of an input point's cell, "
-                 "nearest legal cells when none is (0 = off; ignored with --unconstrained)")
-      ->check(CLI::Range(0, 127))
+                 "nearest legal cells when none is (0 = off; ignored with --unconstrained)" +
+                     Valid("surface_tolerance"))
       ->capture_default_str()
       ->type_name("CELLS");
   app.add_option("--candidates", a.candidates,
                  "Best of N: N generations with seeds derived from --seed, the one closest to the input (Chamfer "
                  "distance to the encoder's points) written; every score goes into --stats (default: the model's "
-                 "N, model.json sampling.candidates; 1 when it names none)")
-      ->check(CLI::Range(1, 64))
+                 "N, model.json sampling.candidates; 1 when it names none)" +
+                     Valid("candidates"))
       ->type_name("N");
   app.add_option("--orient", a.orient,
                  "Which side of each part faces out: input (reverse every part whose winding disagrees with the "
@@ -159,8 +173,8 @@ void AddSamplingOptions(CLI::App& app, Args& a) {
       ->check(CLI::IsMember(silk_cpp::EnumNames(silk_face_guidance_name, SILK_FACE_GUIDANCE_OFF)));
   app.add_option("--face-tolerance", a.face_tolerance,
                  "Face guidance: how far (cells of 128) a face's corners, edge midpoints and centroid may lie from the "
-                 "input's points; default: the model's, else libsilk's")
-      ->check(CLI::Range(0.5, 64.0))
+                 "input's points; default: the model's, else libsilk's" +
+                     Valid("face_tolerance"))
       ->type_name("CELLS");
 }
 
@@ -171,10 +185,12 @@ void AddRunOptions(CLI::App& app, Args& a) {
                  "Write the points the encoder saw, with their normals (estimated ones for a cloud without), in the "
                  "input's frame, as an ascii PLY point cloud")
       ->type_name("FILE.ply");
-  app.add_option("--tokens", a.tokens_path,
-                 "Write the generated ids, one per line (EOS 10267 last when one was generated)");
-  app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)")
-      ->check(CLI::Range(0, 1 << 20));
+  silk_vocab_info vocab = silk_cpp::Sized<silk_vocab_info>();
+  silk_vocab_get_info(&vocab);  // the ids come from libsilk's vocabulary, not a constant here
+  app.add_option(
+      "--tokens", a.tokens_path,
+      "Write the generated ids, one per line (EOS " + std::to_string(vocab.eos_id) + " last when one was generated)");
+  app.add_option("--points", a.n_points, "Encoder points to sample (0 = the model's n_points)" + Valid("point_count"));
   app.add_option("--decoder", a.decoder,
                  "Decoder precision: fp32, int8 or int4; default (also when not given): model.json's default_decoder")
       ->check(CLI::IsMember(silk_cpp::EnumNames(silk_decoder_precision_name, SILK_DECODER_DEFAULT)));
@@ -202,6 +218,31 @@ void AddOptions(CLI::App& app, Args& a) {
   app.add_flag("--kv-copy", a.kv_copy, "Naive KV cache handling (copy per step)")->group("");
   app.add_flag("--sample-then-check", a.sample_then_check, "Sample unmasked, fall back to the mask")->group("");
   silkgen::AddBatchOptions(app, a.batch);
+}
+
+// The numeric settings given on the command line, each checked by libsilk's one range table
+// (silk_param_check) before any work: a usage error naming the flag, with libsilk's message.
+int CheckSettings(const CLI::App& app, const Args& a) {
+  const std::tuple<const char*, const char*, double> given[] = {
+      {"--threads", "threads", a.threads},
+      {"--temperature", "temperature", a.temperature},
+      {"--top-k", "top_k", a.top_k},
+      {"--top-p", "top_p", a.top_p},
+      {"--top-p-temperature", "top_p_temperature", a.top_p_temperature},
+      {"--max-tokens", "max_tokens", a.max_tokens},
+      {"--max-faces", "max_faces", a.max_faces},
+      {"--surface-tolerance", "surface_tolerance", a.surface_tolerance},
+      {"--candidates", "candidates", a.candidates},
+      {"--face-tolerance", "face_tolerance", a.face_tolerance},
+      {"--points", "point_count", a.n_points}};
+  for (const auto& [flag, name, value] : given) {
+    if (app.count(flag) == 0) continue;
+    const silk_status s = silk_param_check(name, value);
+    if (s != SILK_OK)
+      return Fail(s, std::string(flag) + ": " + silk_last_error(),
+                  s == SILK_ERR_INVALID_ARGUMENT ? kExitUsage : kExitFail);
+  }
+  return kExitOk;
 }
 
 // --seed: an unsigned integer or "random"; false if neither.
@@ -418,6 +459,7 @@ int main(int argc, char** argv) {
       std::fputs(silkgen::ModelListText(silk_cpp::ModelsListJson()).c_str(), stdout);
       return kExitOk;
     }
+    if (int rc = CheckSettings(app, a); rc != kExitOk) return rc;
     if (app.count("--batch")) return Batch(a);
   } catch (const silk_cpp::Error& e) {
     return Fail(e);

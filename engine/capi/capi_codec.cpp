@@ -64,6 +64,17 @@ silk_status silk::capi::CheckEncodeParams(const char* function, const silk_encod
   return SILK_OK;
 }
 
+silk::StatusOr<silk::EncodeResult> silk::capi::EncodeWithParams(const silk_mesh& mesh,
+                                                                const silk_encode_params* params) {
+  const silk_encode_params p = ReadParams(params, silk_encode_default_params());
+  silk::EncodeOptions opt;
+  opt.nonmanifold_processing = p.nonmanifold_processing != 0;
+  if (!p.normalize) return silk::EncodeMesh(mesh.mesh, opt);
+  auto normalized = silk::NormalizeMesh(mesh.mesh, p.normalize_bound);
+  if (!normalized.ok()) return normalized.status();
+  return silk::EncodeMesh(*normalized, opt);
+}
+
 extern "C" {
 
 silk_status silk_tokens_create(const int32_t* ids, size_t count, silk_tokens** out) {
@@ -127,17 +138,8 @@ silk_status silk_mesh_encode(const silk_mesh* mesh, const silk_encode_params* pa
     *out = nullptr;
     SILK_CAPI_TRY(silk::capi::CheckEncodeParams("silk_mesh_encode", params));
     SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_mesh_encode", "silk_encode_stats", stats));
-    const silk_encode_params p = silk::capi::ReadParams(params, silk_encode_default_params());
     const auto t0 = std::chrono::steady_clock::now();
-    silk::IoMesh normalized;
-    if (p.normalize) {
-      auto n = silk::NormalizeMesh(mesh->mesh, p.normalize_bound);
-      if (!n.ok()) return SetError(n.status());
-      normalized = std::move(*n);
-    }
-    silk::EncodeOptions opt;
-    opt.nonmanifold_processing = p.nonmanifold_processing != 0;
-    auto r = silk::EncodeMesh(p.normalize ? normalized : mesh->mesh, opt);
+    auto r = silk::capi::EncodeWithParams(*mesh, params);
     if (!r.ok()) return SetError(r.status());
     if (stats) silk::capi::StoreOut(stats, EncodeStatsOf(r->stats, t0));
     auto t = std::make_unique<silk_tokens>();

@@ -3,7 +3,6 @@
 // silk_generator_run (start + advance to the end + finish), both over the runtime's GenerationSession:
 // here only the C structs <-> runtime types, argument checks, errors and the call state.
 #if defined(SILK_HAVE_RUNTIME)
-#include <cstring>
 #include <memory>
 
 #include "capi/capi_generator.h"
@@ -40,7 +39,6 @@ silk::Status CheckParams(const silk_generate_params& p) {
                                    "silk_face_guidance (or SILK_MODEL_VALUE, -1)"));
   if (p.debug_flags & ~kAllDebugFlags)
     return silk::InvalidArgument("debug_flags " + std::to_string(p.debug_flags) + " has unknown bits");
-  if (p.point_count < 0) return silk::InvalidArgument("point_count " + std::to_string(p.point_count) + " is negative");
   if (p.report_flags & ~kAllReportFlags)
     return silk::InvalidArgument("report_flags " + std::to_string(p.report_flags) + " has unknown bits");
   return silk::Status::Ok();
@@ -265,26 +263,6 @@ silk_status CheckSizes(const char* function, const silk_generate_input* input, c
 }  // namespace
 
 extern "C" {
-
-silk_generate_params silk_generate_default_params(void) {
-  silk_generate_params p;
-  std::memset(&p, 0, sizeof(p));
-  p.struct_size = sizeof(p);
-  p.seed = 0;
-  p.temperature = SILK_MODEL_VALUE;  // the model's (model.json "sampling")
-  p.top_k = SILK_MODEL_VALUE;
-  p.top_p = SILK_MODEL_VALUE;
-  p.top_p_temperature = SILK_MODEL_VALUE;
-  p.preprocessing = SILK_MODEL_VALUE;  // the model's (model.json "preprocessing")
-  p.holes = SILK_HOLES_OFF;
-  p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
-  p.candidates = SILK_DEFAULT_CANDIDATES;
-  p.orient = SILK_DEFAULT_ORIENT;
-  p.face_guidance = SILK_MODEL_VALUE;  // the model's (model.json "sampling"), else libsilk's
-  p.face_tolerance = SILK_MODEL_VALUE;
-  return p;
-}
-SILK_CAPI_GENERATE_PARAMS_1_0
 
 silk_status silk_generator_create(const silk_model* model, silk_generator** out) {
   return Guard([&] {

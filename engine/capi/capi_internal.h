@@ -52,6 +52,9 @@ std::unique_ptr<silk_mesh> MeshHandle(std::vector<std::array<double, 3>> positio
 // silk_encode_params (NULL: defaults) for silk_mesh_encode and silk_mesh_roundtrip: struct_size,
 // flags and normalize_bound, failures prefixed with `function`.
 silk_status CheckEncodeParams(const char* function, const silk_encode_params* params);
+// The one encode path of silk_mesh_encode and silk_mesh_roundtrip: `params` (NULL: defaults;
+// CheckEncodeParams has passed them) read, the mesh normalised when they ask, then encoded.
+StatusOr<EncodeResult> EncodeWithParams(const silk_mesh& mesh, const silk_encode_params* params);
 
 // Field checks of the params structs (capi_params.cpp): Ok, or an InvalidArgument naming the
 // field and the value given ("round_float16 2 takes 0 or 1").
@@ -98,47 +101,6 @@ inline constexpr size_t kSize10<silk_generate_params> = offsetof(silk_generate_p
 template <>
 inline constexpr size_t kSize10<silk_generate_stats> = offsetof(silk_generate_stats, face_guided_tokens);
 
-// silk_model_default_params as libsilk 1.0 exported it (its struct ended before kv_precision): a
-// caller built against 1.0 receives the 1.0 size by value, so it must keep getting that layout.
-// On ELF it stays bound as silk_model_default_params@SILK_1.0 (engine/libsilk.map), the current
-// one is @@SILK_1.1; elsewhere (no symbol versions) only the current one exists. Expanded inside
-// extern "C" once per build (capi_model.cpp, or capi_no_runtime.cpp without onnxruntime).
-struct ModelParams10 {
-  uint32_t struct_size;
-  int32_t threads, decoder;
-};
-#if defined(__ELF__)
-#define SILK_CAPI_MODEL_PARAMS_1_0                                                                       \
-  __attribute__((visibility("default"))) silk::capi::ModelParams10 capi_model_default_params_1_0(void) { \
-    return {sizeof(silk::capi::ModelParams10), 0, SILK_DECODER_DEFAULT};                                 \
-  }                                                                                                      \
-  __asm__(".symver capi_model_default_params_1_0,silk_model_default_params@SILK_1.0");
-#else
-#define SILK_CAPI_MODEL_PARAMS_1_0
-#endif
-static_assert(sizeof(ModelParams10) == kSize10<silk_model_params>, "the 1.0 layout of silk_model_params");
-
-// silk_generate_default_params as libsilk 1.0-1.2 exported it (the struct ended before
-// face_guidance; 1.3 appended two fields): the current defaults cut to the old size, bound as
-// silk_generate_default_params@SILK_1.0 (the current one is @@SILK_1.3). The struct is returned in
-// memory the caller provides (larger than 16 bytes), so bytes of the old size and alignment are
-// that layout exactly.
-struct alignas(silk_generate_params) GenerateParams10 {
-  unsigned char bytes[kSize10<silk_generate_params>];
-};
-#if defined(__ELF__)
-#define SILK_CAPI_GENERATE_PARAMS_1_0                                                                          \
-  __attribute__((visibility("default"))) silk::capi::GenerateParams10 capi_generate_default_params_1_0(void) { \
-    silk_generate_params p = silk_generate_default_params();                                                   \
-    p.struct_size = static_cast<uint32_t>(sizeof(silk::capi::GenerateParams10));                               \
-    silk::capi::GenerateParams10 old;                                                                          \
-    std::memcpy(old.bytes, &p, sizeof(old.bytes));                                                             \
-    return old;                                                                                                \
-  }                                                                                                            \
-  __asm__(".symver capi_generate_default_params_1_0,silk_generate_default_params@SILK_1.0");
-#else
-#define SILK_CAPI_GENERATE_PARAMS_1_0
-#endif
 // A params struct (NULL: fine, the defaults apply) and a struct the library fills (NULL: fine
 // where optional; the caller checks required ones).
 template <typename T>

@@ -15,17 +15,6 @@ extern "C" {
 
 int32_t silk_generation_available(void) { return 1; }
 
-silk_model_params silk_model_default_params(void) {
-  silk_model_params o;
-  o.struct_size = sizeof(o);
-  o.threads = 0;
-  o.decoder = SILK_DECODER_DEFAULT;
-  o.kv_precision = SILK_KV_DEFAULT;
-  return o;
-}
-
-SILK_CAPI_MODEL_PARAMS_1_0
-
 silk_status silk_model_load(const char* dir, const silk_model_params* params, silk_model** out) {
   return Guard([&] {
     SILK_CAPI_REQUIRE(out, "silk_model_load: out is NULL");

@@ -2,8 +2,6 @@
 // C API generation entry points of a libsilk built without onnxruntime: they exist (the ABI is
 // the same) and answer SILK_ERR_UNSUPPORTED.
 #if !defined(SILK_HAVE_RUNTIME)
-#include <cstring>
-
 #include "capi/capi_internal.h"
 
 namespace {
@@ -14,27 +12,8 @@ silk_status NoRuntime() { return silk::capi::SetError(SILK_ERR_UNSUPPORTED, kNoR
 extern "C" {
 
 int32_t silk_generation_available(void) { return 0; }
-silk_model_params silk_model_default_params(void) {
-  return silk_model_params{sizeof(silk_model_params), 0, SILK_DECODER_DEFAULT, SILK_KV_DEFAULT};
-}
-SILK_CAPI_MODEL_PARAMS_1_0
-silk_generate_params silk_generate_default_params(void) {
-  silk_generate_params p;
-  std::memset(&p, 0, sizeof(p));
-  p.struct_size = sizeof(p);
-  p.temperature = SILK_MODEL_VALUE;
-  p.top_k = SILK_MODEL_VALUE;
-  p.top_p = SILK_MODEL_VALUE;
-  p.top_p_temperature = SILK_MODEL_VALUE;
-  p.preprocessing = SILK_MODEL_VALUE;
-  p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
-  p.candidates = SILK_DEFAULT_CANDIDATES;
-  p.orient = SILK_DEFAULT_ORIENT;
-  p.face_guidance = SILK_MODEL_VALUE;  // the model's (model.json "sampling"), else libsilk's
-  p.face_tolerance = SILK_MODEL_VALUE;
-  return p;
-}
-SILK_CAPI_GENERATE_PARAMS_1_0
+silk_status silk_param_range(const char*, double*, double*, int32_t*) { return NoRuntime(); }
+silk_status silk_param_check(const char*, double) { return NoRuntime(); }
 silk_status silk_model_load(const char*, const silk_model_params*, silk_model** out) {
   if (out) *out = nullptr;
   return NoRuntime();

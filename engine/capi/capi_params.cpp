@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // C API: the shared field checks of the params structs, so every flag and enum is refused the
 // same way, with a message naming the field and the value given (issue 20). Value ranges of the
-// generation's settings are the runtime's (runtime/generation_request.h).
+// generation's settings are the runtime's one table (runtime/sampling/generation_ranges.h).
 #include <string>
 
 #include "capi/capi_internal.h"

@@ -1,10 +1,7 @@
 // SPDX-License-Identifier: MIT
 // C API: the round-trip check (encode, decode, compare faces with the encoder's processed mesh),
 // the tokenizer's exactness measure as one call.
-#include <cstring>
-
 #include "capi/capi_internal.h"
-#include "mesh/normalize.h"
 #include "tokenizer/roundtrip_check.h"
 #include "tokenizer/tokenizer.h"
 
@@ -20,16 +17,7 @@ silk_status silk_mesh_roundtrip(const silk_mesh* mesh, const silk_encode_params*
     SILK_CAPI_TRY(silk::capi::CheckOutSize("silk_mesh_roundtrip", "silk_roundtrip_report", out));
     silk::capi::StoreOut(out, silk::capi::Blank<silk_roundtrip_report>());
     SILK_CAPI_TRY(silk::capi::CheckEncodeParams("silk_mesh_roundtrip", params));
-    const silk_encode_params p = silk::capi::ReadParams(params, silk_encode_default_params());
-    silk::IoMesh normalized;
-    if (p.normalize) {
-      auto n = silk::NormalizeMesh(mesh->mesh, p.normalize_bound);
-      if (!n.ok()) return SetError(n.status());
-      normalized = std::move(*n);
-    }
-    silk::EncodeOptions opt;
-    opt.nonmanifold_processing = p.nonmanifold_processing != 0;
-    auto enc = silk::EncodeMesh(p.normalize ? normalized : mesh->mesh, opt);
+    auto enc = silk::capi::EncodeWithParams(*mesh, params);
     if (!enc.ok()) return SetError(enc.status());
     auto dec = silk::DecodeTokens(enc->tokens);
     if (!dec.ok()) return SetError(dec.status().WithContext("decoding our own tokens: "));

@@ -15,7 +15,6 @@ namespace silk {
 
 namespace {
 
-constexpr int32_t kMaxPoints = 1 << 20;
 constexpr int32_t kMaxSurfaceSamples = 10000000;
 
 // "preprocessing.FIELD VALUE WHAT": the field and the value given.
@@ -80,8 +79,8 @@ Status ValidatePreprocessing(const PreprocessingParams& p) {
     return BadField("merge_distance_fraction", p.merge_distance_fraction, "must be in [0, 0.5]");
   if (p.surface_samples < 0 || p.surface_samples > kMaxSurfaceSamples)
     return BadField("surface_samples", p.surface_samples, "must be in [0, " + std::to_string(kMaxSurfaceSamples) + "]");
-  if (p.n_points <= 0 || p.n_points > kMaxPoints)
-    return BadField("n_points", p.n_points, "must be in [1, " + std::to_string(kMaxPoints) + "]");
+  if (p.n_points <= 0 || p.n_points > kMaxPreprocessingPoints)
+    return BadField("n_points", p.n_points, "must be in [1, " + std::to_string(kMaxPreprocessingPoints) + "]");
   return Status::Ok();
 }
 

@@ -29,6 +29,9 @@ struct PreprocessingParams {
   int32_t n_points = 4096;
 };
 
+// The most encoder points a pre-processing draws (PreprocessingParams::n_points).
+inline constexpr int32_t kMaxPreprocessingPoints = 1 << 20;
+
 // Silk's own (what PrepareModelPoints always did) and the official one, with `n_points`.
 PreprocessingParams SilkPreprocessing(double normalize_bound, int32_t n_points);
 PreprocessingParams OfficialPreprocessing(int32_t n_points);

@@ -2,43 +2,38 @@
 // Resolution of a GenerationRequest against the model's config, with its range checks.
 #include "runtime/generation_request.h"
 
-#include <cmath>
 #include <string>
 #include <utility>
 
-#include "core/value_text.h"
+#include "runtime/sampling/generation_ranges.h"
 
 namespace silk {
 
 namespace {
 
-// Unset, or a finite value in [0, hi] (hi infinite: any finite value >= 0).
-Status CheckUnsetOr(const char* field, const std::optional<double>& value, double hi) {
-  if (!value || (std::isfinite(*value) && *value >= 0 && *value <= hi)) return Status::Ok();
-  const std::string range = std::isinf(hi) ? "a finite value >= 0" : "a value in [0, " + ValueText(hi) + "]";
-  return InvalidArgument(std::string(field) + " " + ValueText(*value) +
-                         " is neither SILK_MODEL_VALUE (-1: the model's) nor " + range);
+// A value the caller gave, by the settings' range table; the message adds that -1 takes the
+// model's value.
+Status CheckGiven(const SettingRange& range, double value) {
+  const Status s = CheckSetting(range, value);
+  return s.ok() ? s : InvalidArgument(s.message() + "; SILK_MODEL_VALUE (-1) takes the model's");
 }
 
+// Each value the request sets, by the settings' range table (unset values are the model's, which
+// model.json's parse has checked by the same table).
 Status CheckRequest(const GenerationRequest& r) {
-  SILK_RETURN_IF_ERROR(CheckUnsetOr("temperature", r.temperature, HUGE_VAL));
-  const std::optional<double> top_k = r.top_k ? std::optional<double>(*r.top_k) : std::nullopt;
-  SILK_RETURN_IF_ERROR(CheckUnsetOr("top_k", top_k, INT32_MAX));
-  SILK_RETURN_IF_ERROR(CheckUnsetOr("top_p", r.top_p, 1.0));
-  SILK_RETURN_IF_ERROR(CheckUnsetOr("top_p_temperature", r.top_p_temperature, HUGE_VAL));
-  if (r.candidates && (*r.candidates < 1 || *r.candidates > kMaxCandidates))
-    return InvalidArgument("candidates " + std::to_string(*r.candidates) +
-                           " is neither SILK_MODEL_VALUE (-1: the model's) nor in 1.." +
-                           std::to_string(kMaxCandidates));
-  if (r.face_tolerance && !(*r.face_tolerance >= kMinFaceTolerance && *r.face_tolerance <= kMaxFaceTolerance))
-    return InvalidArgument("face_tolerance " + ValueText(*r.face_tolerance) +
-                           " is neither SILK_MODEL_VALUE (-1: the model's) nor in " + ValueText(kMinFaceTolerance) +
-                           ".." + ValueText(kMaxFaceTolerance) + " (cells)");
-  if (r.n_points && *r.n_points < 1)
-    return InvalidArgument("n_points " + std::to_string(*r.n_points) + (*r.n_points < 0 ? " is negative" : " is zero"));
-  for (const auto& [field, value] :
-       {std::pair<const char*, int32_t>{"max_tokens", r.max_tokens}, {"max_faces", r.max_faces}})
-    if (value < 0) return InvalidArgument(std::string(field) + " " + std::to_string(value) + " is negative");
+  auto given = [](const auto& v) { return v ? std::optional<double>(*v) : std::nullopt; };
+  for (const auto& [range, value] : {std::pair{ranges::kTemperature, r.temperature},
+                                     {ranges::kTopK, given(r.top_k)},
+                                     {ranges::kTopP, r.top_p},
+                                     {ranges::kTopPTemperature, r.top_p_temperature},
+                                     {ranges::kCandidates, given(r.candidates)},
+                                     {ranges::kFaceTolerance, r.face_tolerance}})
+    if (value) SILK_RETURN_IF_ERROR(CheckGiven(range, *value));
+  if (r.n_points) SILK_RETURN_IF_ERROR(CheckSetting(ranges::kPointCount, *r.n_points));
+  for (const auto& [range, value] : {std::pair{ranges::kMaxTokens, r.max_tokens},
+                                     {ranges::kMaxFaces, r.max_faces},
+                                     {ranges::kSurfaceTolerance, r.surface_tolerance}})
+    SILK_RETURN_IF_ERROR(CheckSetting(range, value));
   return Status::Ok();
 }
 

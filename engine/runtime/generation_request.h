@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // What a caller asks of one generation (silk_generate_params in the runtime's terms), with "the
 // model's value" left unset, and its one resolution against the model (model.json "sampling",
-// "preprocessing"): every unset value filled in, every value range-checked with a message that
-// names the field and the value.
+// "preprocessing"): every unset value filled in, every value range-checked by the one range table
+// (runtime/sampling/generation_ranges.h) with a message that names the field, the value and the range.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -19,7 +19,7 @@ struct GenerationRequest {
   // Unset: the model's (model.json "sampling"; DefaultSamplingParams for a v2 model).
   std::optional<double> temperature, top_p, top_p_temperature;
   std::optional<int32_t> top_k;
-  std::optional<int32_t> candidates;               // best of N, 1..kMaxCandidates; unset: the model's N
+  std::optional<int32_t> candidates;               // best of N (ranges::kCandidates); unset: the model's N
   std::optional<PreprocessingKind> preprocessing;  // unset: model.json "preprocessing"
   std::optional<int32_t> n_points;                 // encoder points; unset: the model's pre-processing's
   bool raw_points = false;                         // the input's points are the encoder input as given (RawModelPoints)
@@ -33,7 +33,7 @@ struct GenerationRequest {
   bool orient_to_input = false;
   // Unset: the model's (model.json sampling.face_guidance / face_tolerance, else libsilk's).
   std::optional<FaceGuidance> face_guidance;
-  std::optional<double> face_tolerance;  // cells, kMinFaceTolerance..kMaxFaceTolerance
+  std::optional<double> face_tolerance;  // cells (ranges::kFaceTolerance)
 };
 
 // A request resolved: what the session runs.

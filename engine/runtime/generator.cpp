@@ -18,6 +18,7 @@
 #include "runtime/decoder_runner.h"
 #include "runtime/input_orientation.h"
 #include "runtime/model/model_impl.h"
+#include "runtime/sampling/generation_ranges.h"
 #include "runtime/sampling/surface_guide.h"
 #include "tokenizer/vocabulary_layout.h"
 
@@ -73,27 +74,21 @@ SamplerChainSettings ChainSettings(const GenerateOptions& o, Grammar* grammar, c
 }  // namespace
 
 Status CheckGenerateOptions(const GenerateOptions& options) {
-  if (options.max_tokens < 0 || options.max_faces < 0) return InvalidArgument("generate: negative cap");
-  if (options.max_tokens > 0 && options.max_tokens < kMinMeshTokens)
-    return InvalidArgument("generate: max_tokens " + std::to_string(options.max_tokens) + " is below " +
-                           std::to_string(kMinMeshTokens) + ", the ids of the smallest mesh (one triangle)");
   const SamplingParams& sp = options.sampling;
-  if (!std::isfinite(sp.temperature) || sp.temperature < 0 || sp.top_k < 0 || !(sp.top_p >= 0 && sp.top_p <= 1) ||
-      !(sp.top_p_temperature >= 0 && std::isfinite(sp.top_p_temperature)))
-    return InvalidArgument("generate: need temperature >= 0, top_k >= 0, top_p in [0, 1] and top_p_temperature >= 0");
-  if (options.surface_tolerance < 0 || options.surface_tolerance > kMaxSurfaceTolerance)
-    return InvalidArgument("generate: surface_tolerance " + std::to_string(options.surface_tolerance) +
-                           " is outside 0.." + std::to_string(kMaxSurfaceTolerance) + " (cells; 0 = off)");
-  if (!(options.face_tolerance >= kMinFaceTolerance && options.face_tolerance <= kMaxFaceTolerance))
-    return InvalidArgument("generate: face_tolerance " + ValueText(options.face_tolerance) + " is outside " +
-                           ValueText(kMinFaceTolerance) + ".." + ValueText(kMaxFaceTolerance) + " (cells)");
+  for (const auto& [range, value] : {std::pair{ranges::kMaxTokens, double(options.max_tokens)},
+                                     {ranges::kMaxFaces, double(options.max_faces)},
+                                     {ranges::kTemperature, sp.temperature},
+                                     {ranges::kTopK, double(sp.top_k)},
+                                     {ranges::kTopP, sp.top_p},
+                                     {ranges::kTopPTemperature, sp.top_p_temperature},
+                                     {ranges::kSurfaceTolerance, double(options.surface_tolerance)},
+                                     {ranges::kFaceTolerance, options.face_tolerance},
+                                     {ranges::kCandidates, double(options.candidates)}})
+    SILK_RETURN_IF_ERROR(CheckSetting(range, value).WithContext("generate: "));
   if (options.face_guidance != FaceGuidance::kOff && options.face_guidance != FaceGuidance::kHard &&
       options.face_guidance != FaceGuidance::kSoft)
     return InvalidArgument("generate: face_guidance " + std::to_string(static_cast<int32_t>(options.face_guidance)) +
                            " is not off (0), hard (1) or soft (2)");
-  if (options.candidates < 1 || options.candidates > kMaxCandidates)
-    return InvalidArgument("generate: candidates " + std::to_string(options.candidates) + " is outside 1.." +
-                           std::to_string(kMaxCandidates));
   return Status::Ok();
 }
 

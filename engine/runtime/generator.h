@@ -66,8 +66,6 @@ struct GenerateOptions {
   double face_tolerance = 2.0;
 };
 
-constexpr int32_t kMaxSurfaceTolerance = 127;
-
 struct GenerateProgress {
   int64_t tokens = 0, max_tokens = 0;
   int32_t components = 0;                 // started so far
@@ -100,8 +98,8 @@ struct GenerateResult {
   std::vector<TraceStep> trace;
 };
 
-// Checks options against the model's limits before any work (negative caps, max_tokens below
-// kMinMeshTokens, sampling values).
+// Checks options before any work: every value by the settings' range table
+// (runtime/sampling/generation_ranges.h) and the face guidance mode.
 Status CheckGenerateOptions(const GenerateOptions& options);
 
 class Generator {

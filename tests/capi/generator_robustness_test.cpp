@@ -453,6 +453,27 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
   silk_mesh_destroy(m);
 }
 
+// A params edit and the words ("field value") the refusal of it must name.
+struct ParamsCase {
+  const char* what;
+  void (*set)(silk_generate_params*);
+};
+
+// Each edit of the default params (max_tokens 60) is refused before any work, naming `what`.
+template <size_t N>
+void ExpectRefusedByName(silk_generator* g, silk_mesh* m, const ParamsCase (&bad)[N]) {
+  for (const ParamsCase& c : bad) {
+    silk_generate_params p = silk_generate_default_params();
+    p.max_tokens = 60;
+    c.set(&p);
+    silk_mesh* out = nullptr;
+    EXPECT_EQ(silk::testing::GenerateFromMesh(g, m, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << c.what;
+    EXPECT_NE(std::string(silk_last_error()).find(c.what), std::string::npos) << c.what << ": " << silk_last_error();
+    EXPECT_EQ(out, nullptr);
+    silk_mesh_destroy(out);
+  }
+}
+
 // Issue 20, finding 3: SILK_MODEL_VALUE (-1) is the one "the model's value"; any other NaN,
 // infinite or negative sampling value, and an out-of-range flag, is refused, naming the field
 // and its value (before, NaN and every negative silently became the model's value).
@@ -464,49 +485,38 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
   ASSERT_EQ(silk_model_load(TinyModel().c_str(), nullptr, &model), SILK_OK) << silk_last_error();
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(model, &g), SILK_OK);
-  struct Case {
-    const char* what;
-    void (*set)(silk_generate_params*);
-  };
-  const Case bad[] = {{"temperature nan", [](silk_generate_params* p) { p->temperature = std::nan(""); }},
-                      {"temperature -2", [](silk_generate_params* p) { p->temperature = -2; }},
-                      {"temperature -0.5", [](silk_generate_params* p) { p->temperature = -0.5; }},
-                      {"temperature -inf", [](silk_generate_params* p) { p->temperature = -INFINITY; }},
-                      {"temperature inf", [](silk_generate_params* p) { p->temperature = INFINITY; }},
-                      {"top_p nan", [](silk_generate_params* p) { p->top_p = std::nan(""); }},
-                      {"top_p -3", [](silk_generate_params* p) { p->top_p = -3; }},
-                      {"top_p 1.5", [](silk_generate_params* p) { p->top_p = 1.5; }},
-                      {"top_p_temperature nan", [](silk_generate_params* p) { p->top_p_temperature = std::nan(""); }},
-                      {"top_p_temperature -0.25", [](silk_generate_params* p) { p->top_p_temperature = -0.25; }},
-                      {"top_k -2", [](silk_generate_params* p) { p->top_k = -2; }},
-                      {"candidates -2", [](silk_generate_params* p) { p->candidates = -2; }},
-                      {"preprocessing -2", [](silk_generate_params* p) { p->preprocessing = -2; }},
-                      {"max_tokens -5", [](silk_generate_params* p) { p->max_tokens = -5; }},
-                      {"max_faces -1", [](silk_generate_params* p) { p->max_faces = -1; }},
-                      {"point_count -3", [](silk_generate_params* p) { p->point_count = -3; }},
-                      {"unconstrained 2", [](silk_generate_params* p) { p->unconstrained = 2; }},
-                      {"raw_points -1", [](silk_generate_params* p) { p->raw_points = -1; }},
-                      {"holes 3", [](silk_generate_params* p) { p->holes = 3; }},
-                      {"orient -1", [](silk_generate_params* p) { p->orient = -1; }}};
-  for (const Case& c : bad) {
-    silk_generate_params p = silk_generate_default_params();
-    p.max_tokens = 60;
-    c.set(&p);
-    silk_mesh* out = nullptr;
-    EXPECT_EQ(silk::testing::GenerateFromMesh(g, m, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << c.what;
-    EXPECT_NE(std::string(silk_last_error()).find(c.what), std::string::npos) << c.what << ": " << silk_last_error();
-    EXPECT_EQ(out, nullptr);
-    silk_mesh_destroy(out);
-  }
+  const ParamsCase bad[] = {
+      {"temperature nan", [](silk_generate_params* p) { p->temperature = std::nan(""); }},
+      {"temperature -2", [](silk_generate_params* p) { p->temperature = -2; }},
+      {"temperature -0.5", [](silk_generate_params* p) { p->temperature = -0.5; }},
+      {"temperature -inf", [](silk_generate_params* p) { p->temperature = -INFINITY; }},
+      {"temperature inf", [](silk_generate_params* p) { p->temperature = INFINITY; }},
+      {"top_p nan", [](silk_generate_params* p) { p->top_p = std::nan(""); }},
+      {"top_p -3", [](silk_generate_params* p) { p->top_p = -3; }},
+      {"top_p 1.5", [](silk_generate_params* p) { p->top_p = 1.5; }},
+      {"top_p_temperature nan", [](silk_generate_params* p) { p->top_p_temperature = std::nan(""); }},
+      {"top_p_temperature -0.25", [](silk_generate_params* p) { p->top_p_temperature = -0.25; }},
+      {"top_k -2", [](silk_generate_params* p) { p->top_k = -2; }},
+      {"candidates -2", [](silk_generate_params* p) { p->candidates = -2; }},
+      {"preprocessing -2", [](silk_generate_params* p) { p->preprocessing = -2; }},
+      {"max_tokens -5", [](silk_generate_params* p) { p->max_tokens = -5; }},
+      {"max_faces -1", [](silk_generate_params* p) { p->max_faces = -1; }},
+      {"point_count -3", [](silk_generate_params* p) { p->point_count = -3; }},
+      {"unconstrained 2", [](silk_generate_params* p) { p->unconstrained = 2; }},
+      {"raw_points -1", [](silk_generate_params* p) { p->raw_points = -1; }},
+      {"holes 3", [](silk_generate_params* p) { p->holes = 3; }},
+      {"orient -1", [](silk_generate_params* p) { p->orient = -1; }}};
+  ExpectRefusedByName(g, m, bad);
   // The sentinel and the documented ranges' ends still run.
-  const Case good[] = {{"sentinel",
-                        [](silk_generate_params* p) {
-                          p->temperature = p->top_p = p->top_p_temperature = SILK_MODEL_VALUE;
-                          p->top_k = p->candidates = p->preprocessing = SILK_MODEL_VALUE;
-                        }},
-                       {"zeros", [](silk_generate_params* p) { p->temperature = p->top_p = p->top_p_temperature = 0; }},
-                       {"top_p 1", [](silk_generate_params* p) { p->top_p = 1; }}};
-  for (const Case& c : good) {
+  const ParamsCase good[] = {
+      {"sentinel",
+       [](silk_generate_params* p) {
+         p->temperature = p->top_p = p->top_p_temperature = SILK_MODEL_VALUE;
+         p->top_k = p->candidates = p->preprocessing = SILK_MODEL_VALUE;
+       }},
+      {"zeros", [](silk_generate_params* p) { p->temperature = p->top_p = p->top_p_temperature = 0; }},
+      {"top_p 1", [](silk_generate_params* p) { p->top_p = 1; }}};
+  for (const ParamsCase& c : good) {
     silk_generate_params p = silk_generate_default_params();
     p.max_tokens = 60;
     c.set(&p);
@@ -525,6 +535,34 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
   silk_generator_destroy(g);
   silk_model_destroy(model);
   silk_mesh_destroy(m);
+}
+
+// Issue 32: the generation settings' ranges are one table (runtime/sampling/generation_ranges.h):
+// past each upper end the generation is refused with a message naming the setting, the value and
+// the range, the message silk_param_check gives (silkgen's answer too).
+TEST_F(CapiGeneration, ValuesPastTheRangeTableAreRefusedWithTheRange) {
+  silk_generator* g = nullptr;
+  ASSERT_EQ(silk_generator_create(model_, &g), SILK_OK);
+  const ParamsCase bad[] = {{"temperature 150", [](silk_generate_params* p) { p->temperature = 150; }},
+                            {"top_k 10270", [](silk_generate_params* p) { p->top_k = 10270; }},
+                            {"top_p_temperature 101", [](silk_generate_params* p) { p->top_p_temperature = 101; }},
+                            {"candidates 65", [](silk_generate_params* p) { p->candidates = 65; }},
+                            {"surface_tolerance 128", [](silk_generate_params* p) { p->surface_tolerance = 128; }},
+                            {"face_tolerance 65", [](silk_generate_params* p) { p->face_tolerance = 65; }},
+                            {"face_tolerance 0.2", [](silk_generate_params* p) { p->face_tolerance = 0.2; }},
+                            {"max_tokens 13", [](silk_generate_params* p) { p->max_tokens = 13; }},
+                            {"point_count 1048577", [](silk_generate_params* p) { p->point_count = (1 << 20) + 1; }}};
+  ExpectRefusedByName(g, mesh_, bad);
+  // The generation's message is silk_param_check's (one rule, one text), naming the range.
+  silk_generate_params hot = silk_generate_default_params();
+  hot.temperature = 150;
+  silk_mesh* none = nullptr;
+  ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &hot, &none, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT);
+  const std::string generate_message = silk_last_error();
+  ASSERT_EQ(silk_param_check("temperature", 150), SILK_ERR_INVALID_ARGUMENT);
+  EXPECT_NE(generate_message.find(silk_last_error()), std::string::npos) << generate_message;
+  EXPECT_NE(generate_message.find("[0, 100]"), std::string::npos) << generate_message;
+  silk_generator_destroy(g);
 }
 
 // Issue 20, finding 3: silk_points_prepare refuses an out-of-range flag or kind.

@@ -195,6 +195,21 @@ def test_errors_name_the_file(tmp_path, lib_path):
         silk_mesh.encode(KNOT, bogus=1)
 
 
+def test_out_of_range_settings_get_libsilks_message(generation):
+    """The binding keeps no range of its own (issue 32): values go to libsilk as given and its one
+    range table's message, naming the setting, the value and the range, is raised."""
+    with silk_mesh.Generator(str(TINY)) as gen:
+        for kw, text in [
+            ({"temperature": 150}, "temperature 150 is not in [0, 100]"),
+            ({"top_k": 10270}, "top_k 10270 is not in [0, 10269]"),
+            ({"candidates": 65}, "candidates 65 is not in [1, 64]"),
+            ({"max_tokens": 13}, "max_tokens 13 is not 0 or at least 14"),
+        ]:
+            with pytest.raises(silk_mesh.SilkError) as e:
+                gen.run(KNOT, seed=3, **kw)
+            assert text in e.value.message, (kw, e.value.message)
+
+
 def test_model_errors_name_the_folder_and_the_value(tmp_path, generation):
     with pytest.raises(silk_mesh.SilkError) as e:
         silk_mesh.Model(tmp_path)

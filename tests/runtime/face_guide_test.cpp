@@ -237,8 +237,8 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
     fallbacks += stats.face_fallbacks;
   }
   EXPECT_GT(t.exact_steps, 30);  // enough first-B steps in layers >= 2
-  EXPECT_GT(t.removed, 0);     // ids removed,
-  EXPECT_GT(t.passing, 0);     // steps where some id passed,
+  EXPECT_GT(t.removed, 0);       // ids removed,
+  EXPECT_GT(t.passing, 0);       // steps where some id passed,
   EXPECT_GT(t.penalised, 0);
   EXPECT_GT(fallbacks, 0);  // and steps where none did
   EXPECT_GT(narrowed_positions, 0);

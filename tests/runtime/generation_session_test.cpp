@@ -219,7 +219,8 @@ TEST(GenerationRequest, UnsetValuesAreTheModelsAndBadValuesAreNamed) {
                       {"top_k -2", [](GenerationRequest* q) { q->top_k = -2; }},
                       {"candidates 0", [](GenerationRequest* q) { q->candidates = 0; }},
                       {"candidates 65", [](GenerationRequest* q) { q->candidates = 65; }},
-                      {"n_points -3", [](GenerationRequest* q) { q->n_points = -3; }},
+                      {"temperature 150", [](GenerationRequest* q) { q->temperature = 150; }},
+                      {"point_count -3", [](GenerationRequest* q) { q->n_points = -3; }},
                       {"max_faces -1", [](GenerationRequest* q) { q->max_faces = -1; }},
                       {"max_tokens 13", [](GenerationRequest* q) { q->max_tokens = 13; }},
                       {"surface_tolerance 128", [](GenerationRequest* q) { q->surface_tolerance = 128; }}};

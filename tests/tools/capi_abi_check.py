@@ -26,7 +26,8 @@ class Params11(ctypes.Structure):
 
 
 SILK_1_3 = ("silk_models_dir", "silk_model_default_dir", "silk_model_find", "silk_models_list")
-# C API 1.4: silk_<enum>_name and silk_<enum>_from_name (silk_stop_reason_name is 1.0's).
+# C API 1.4: silk_<enum>_name and silk_<enum>_from_name (silk_stop_reason_name is 1.0's), and the
+# generation settings' ranges (silk_param_range, silk_param_check).
 SILK_1_4_ENUMS = (
     "log_level",
     "mesh_format",
@@ -42,6 +43,8 @@ SILK_1_4_ENUMS = (
 )
 SILK_1_4 = tuple(f"silk_{e}_{kind}" for e in SILK_1_4_ENUMS for kind in ("name", "from_name")) + (
     "silk_stop_reason_from_name",
+    "silk_param_range",
+    "silk_param_check",
 )
 INFO_INTS = (
     "d_model",

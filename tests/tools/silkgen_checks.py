@@ -234,6 +234,15 @@ def check_bad(silkgen, repo):
             ([sample, "-o", tmp / "o.obj", "--model", model, "--face-tolerance", "0.2"], 2, ["face-tolerance"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "0"], 2, ["candidates"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "65"], 2, ["candidates"]),
+            # libsilk's one range table answers, naming the flag (issue 32): the C API's own message.
+            (
+                [sample, "-o", tmp / "o.obj", "--model", model, "--temperature", "150"],
+                2,
+                ["--temperature", "temperature 150 is not in [0, 100]"],
+            ),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--top-k", "10270"], 2, ["--top-k", "top_k 10270"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--max-tokens", "13"], 2, ["--max-tokens", "at least 14"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--threads", "-1"], 2, ["--threads", "threads -1"]),
             ([sample, "-o", tmp / "nodir" / "o.obj", "--model", model, "--max-tokens", "40"], 1, ["nodir"]),
         ]
         for args, want_rc, words in cases:

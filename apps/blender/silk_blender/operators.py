@@ -28,6 +28,11 @@ def _model_dir(path: str) -> str | None:
     return bpy.path.abspath(path) if path else None
 
 
+def _given(value):
+    """None for -1 (the properties' "libsilk's / the model's default"), else the value for libsilk to check."""
+    return None if value == -1 else value
+
+
 def _cancel_requested(context) -> bool:
     """The Silk tab's Cancel button (sidebar.py)."""
     s = getattr(context.window_manager, "silk_run", None)
@@ -36,6 +41,10 @@ def _cancel_requested(context) -> bool:
 
 class SILK_OT_generate_mesh(bpy.types.Operator):
     """Generate an artist-style mesh (one object per part) from the active object's surface or points"""
+
+    # The numeric settings' soft_min / soft_max are slider limits only (UI): the valid ranges are
+    # libsilk's one table (silk_param_range); a value typed outside it reaches libsilk, whose error
+    # naming the setting and its range is reported.
 
     bl_idname = "silk.generate_mesh"
     bl_label = "Silk: Generate Artist Mesh"
@@ -46,29 +55,29 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         name="Temperature",
         description="-1 = the model's default (model.json sampling, else 0.5); 0 = greedy",
         default=-1.0,
-        min=-1.0,
-        max=10.0,
+        soft_min=-1.0,
+        soft_max=10.0,
     )
     top_k: IntProperty(
-        name="Top-k", description="-1 = the model's default (else 50); 0 = off", default=-1, min=-1, max=10269
+        name="Top-k", description="-1 = the model's default (else 50); 0 = off", default=-1, soft_min=-1, soft_max=200
     )
     max_faces: IntProperty(
         name="Max faces",
         description="At most this many faces: stop at the first layer end with this many, "
         "keep a valid subset (0 = off)",
         default=0,
-        min=0,
+        soft_min=0,
     )
     max_tokens: IntProperty(
-        name="Max tokens", description="Cap on generated ids (0 = the model's limit; else >= 14)", default=0, min=0
+        name="Max tokens", description="Cap on generated ids (0 = the model's limit; else >= 14)", default=0, soft_min=0
     )
     surface_tolerance: IntProperty(
         name="Surface tolerance",
         description="New vertices only within this many grid cells (of 128) of the "
         "input surface (0 = off, -1 = libsilk's measured default)",
         default=-1,
-        min=-1,
-        max=127,
+        soft_min=-1,
+        soft_max=127,
     )
     face_guidance: EnumProperty(
         name="Face guidance",
@@ -79,16 +88,16 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         name="Face tolerance",
         description="How far (grid cells of 128) a face may stray from the source's surface (-1 = the model's default)",
         default=-1.0,
-        min=-1.0,
-        max=64.0,
+        soft_min=-1.0,
+        soft_max=64.0,
     )
     candidates: IntProperty(
         name="Candidates",
         description="Best of N: generate N meshes one after another and "
         "keep the one closest to the input (-1 = the model's N, model.json sampling)",
         default=-1,
-        min=-1,
-        max=64,
+        soft_min=-1,
+        soft_max=64,
     )
     orient: EnumProperty(
         name="Orientation",
@@ -124,19 +133,20 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
     def _start(self, context):
         src = context.active_object
         dg = context.evaluated_depsgraph_get()
-        # None (a negative property): libsilk's default (sampling: the model's own values).
+        # None (a property at -1): libsilk's default (sampling: the model's own values). Any other value
+        # goes to libsilk as it is, which checks it by its one range table and names it in the error.
         settings = dict(
             seed=self.seed,
-            temperature=None if self.temperature < 0 else self.temperature,
-            top_k=None if self.top_k < 0 else self.top_k,
+            temperature=_given(self.temperature),
+            top_k=_given(self.top_k),
             max_faces=self.max_faces,
             max_tokens=self.max_tokens,
             holes=self.repair,
             orient=self.orient,
-            candidates=None if self.candidates <= 0 else self.candidates,
-            surface_tolerance=None if self.surface_tolerance < 0 else self.surface_tolerance,
+            candidates=_given(self.candidates),
+            surface_tolerance=_given(self.surface_tolerance),
             face_guidance=None if self.face_guidance == "MODEL" else self.face_guidance,
-            face_tolerance=None if self.face_tolerance < 0 else self.face_tolerance,
+            face_tolerance=_given(self.face_tolerance),
         )
         job = silk_mesh.Generator(_model_dir(self.model_dir))
         cap = job.model.info()["max_seq_len"] - 1  # max_seq_len counts BOS: the ids libsilk allows after it

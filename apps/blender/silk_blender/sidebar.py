@@ -64,6 +64,8 @@ class SilkCandidateScore(bpy.types.PropertyGroup):
 
 
 class SilkSettings(bpy.types.PropertyGroup):
+    # soft_min / soft_max: slider limits only (UI); libsilk checks every value by its one range table
+    # (silk_param_range) and its error is reported.
     model: EnumProperty(
         name="Model",
         items=_model_enum,
@@ -72,15 +74,19 @@ class SilkSettings(bpy.types.PropertyGroup):
     candidates: IntProperty(
         name="Candidates",
         default=0,
-        min=0,
-        max=64,
+        soft_min=0,
+        soft_max=64,
         description="Best of N: keep the one closest to the input (0 = the model's N)",
     )
     seed: IntProperty(name="Seed", default=0, min=0)
     temperature: FloatProperty(
-        name="Temperature", default=-1.0, min=-1.0, max=10.0, description="-1 = the model's default; 0 = greedy"
+        name="Temperature",
+        default=-1.0,
+        soft_min=-1.0,
+        soft_max=10.0,
+        description="-1 = the model's default; 0 = greedy",
     )
-    max_faces: IntProperty(name="Face limit", default=0, min=0, description="At most this many faces (0 = off)")
+    max_faces: IntProperty(name="Face limit", default=0, soft_min=0, description="At most this many faces (0 = off)")
     orient: EnumProperty(
         name="Orientation",
         default="INPUT",
@@ -94,8 +100,8 @@ class SilkSettings(bpy.types.PropertyGroup):
     face_tolerance: FloatProperty(
         name="Face tolerance",
         default=-1.0,
-        min=-1.0,
-        max=64.0,
+        soft_min=-1.0,
+        soft_max=64.0,
         description="How far (grid cells of 128) a face may stray from the source's surface (-1 = the model's default)",
     )
 

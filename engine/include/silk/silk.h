@@ -528,8 +528,8 @@ typedef enum silk_face_guidance {
 
 /* temperature, top_k, top_p, top_p_temperature and preprocessing default to SILK_MODEL_VALUE (-1):
  * the model's (model.json "sampling" / "preprocessing"; v2 models: 0.5, 50, 1.0, 0, Silk's kind).
- * Any other negative, NaN or infinite value, top_p > 1, and a flag or enum out of its range is
- * SILK_ERR_INVALID_ARGUMENT naming the field and its value. */
+ * Any other value outside its range (silk_param_range below), NaN, and a flag or enum out of its
+ * range is SILK_ERR_INVALID_ARGUMENT naming the field, its value and the range. */
 typedef struct silk_generate_params {
   uint32_t struct_size;      /* set by silk_generate_default_params() */
   uint64_t seed;             /* default 0 */
@@ -588,6 +588,19 @@ typedef struct silk_generate_params {
   double face_tolerance; /* cells, 0.5..64; default SILK_MODEL_VALUE (-1): the model's, else libsilk's */
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
+
+/* The valid values of a numeric generation setting, from the one table the generation calls check
+ * against (C API 1.4). `name` is the field's name in silk_generate_params or silk_model_params:
+ * "temperature", "top_k", "top_p", "top_p_temperature", "max_tokens", "max_faces",
+ * "surface_tolerance", "face_tolerance", "candidates", "point_count", "threads".
+ * silk_param_range: *lo..*hi inclusive (*hi = INT32_MAX: no upper bound); *zero_too = 1 where 0
+ * is valid as well though below *lo (max_tokens, point_count: "the model's"); any out may be NULL.
+ * silk_param_check: SILK_OK when `value` is valid, else SILK_ERR_INVALID_ARGUMENT with the message
+ * the generation calls give ("temperature 150 is not in [0, 100] (0 = greedy)"); SILK_MODEL_VALUE
+ * is not a value here. Both: SILK_ERR_INVALID_ARGUMENT for an unknown name, SILK_ERR_UNSUPPORTED
+ * without generation (silk_generation_available() == 0). */
+SILK_API silk_status silk_param_range(const char* name, double* lo, double* hi, int32_t* zero_too);
+SILK_API silk_status silk_param_check(const char* name, double value);
 
 typedef enum silk_stop_reason {
   SILK_STOP_NONE = -1, /* still running */

@@ -14,6 +14,7 @@
 #ifdef SILK_ORT_RUNTIME_LOAD
 #include "runtime/model/ort_dll_load.h"
 #endif
+#include "runtime/sampling/generation_ranges.h"
 
 namespace silk {
 
@@ -161,9 +162,7 @@ int64_t Model::encoder_points() const { return impl_->encoder_points; }
 StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const ModelLoadOptions& options) {
   if (!IsDirectory(dir)) return IoError(dir + ": model folder not found");
   SILK_ASSIGN_OR_RETURN(ModelConfig config, LoadModelConfig(dir));
-  if (options.threads < 0 || options.threads > MaxThreads())
-    return InvalidArgument("threads " + std::to_string(options.threads) + " is outside 0.." +
-                           std::to_string(MaxThreads()) + " (0 = physical cores)");
+  SILK_RETURN_IF_ERROR(CheckSetting(ranges::Threads(), options.threads));
 #ifdef SILK_ORT_RUNTIME_LOAD
   SILK_RETURN_IF_ERROR(LoadOnnxRuntimeLibrary());  // before any Ort object; names the library file
 #endif

@@ -14,7 +14,7 @@ namespace silk {
 
 struct ModelLoadOptions {
   int threads = 0;  // intra-op threads of the process's shared pool (sized by the first
-                    // model loaded); 0 = physical cores; at most MaxThreads()
+                    // model loaded); 0 = physical cores; ranges::Threads() bounds it
   // Decoder precision; unset = model.json's files.default_decoder. Error if the file is absent.
   std::optional<DecoderPrecision> decoder;
   // Self-K/V cache precision; unset = the model's (files.default_kv_precision when the chosen

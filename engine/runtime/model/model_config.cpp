@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -198,6 +199,13 @@ Status ParsePreprocessing(const Json& j, const std::string& name, ModelConfig* c
   return Status::Ok();
 }
 
+// A model.json "sampling" value by the generation settings' one range table: a parse error
+// "model.json: sampling.temperature 150 is not in [0, 100] (0 = greedy)".
+Status SamplingSetting(const std::string& name, const SettingRange& range, double value) {
+  const Status s = CheckSetting(range, value);
+  return s.ok() ? s : Status(StatusCode::kParseError, name + ": sampling." + s.message());
+}
+
 Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp, int32_t* candidates) {
   *sp = DefaultSamplingParams();
   *candidates = 1;
@@ -210,19 +218,12 @@ Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp,
   SILK_RETURN_IF_ERROR(GetDouble(*o, "top_p", where, &sp->top_p));
   SILK_RETURN_IF_ERROR(GetDouble(*o, "top_p_temperature", where, &sp->top_p_temperature));
   SILK_RETURN_IF_ERROR(GetOptionalInt(*o, "candidates", where, candidates));
-  if (*candidates < 1 || *candidates > kMaxCandidates)
-    return Status(StatusCode::kParseError,
-                  name + ": sampling.candidates must be in [1, " + std::to_string(kMaxCandidates) + "]");
-  if (!(sp->temperature >= 0 && sp->temperature <= 100))
-    return Status(StatusCode::kParseError, name + ": sampling.temperature must be in [0, 100]");
-  if (sp->top_k < 0 || sp->top_k > vocab::k_model_vocab_size)
-    return Status(StatusCode::kParseError,
-                  name + ": sampling.top_k must be in [0, " + std::to_string(vocab::k_model_vocab_size) + "]");
-  if (!(sp->top_p > 0 && sp->top_p <= 1))
-    return Status(StatusCode::kParseError, name + ": sampling.top_p must be in (0, 1]");
-  if (!(sp->top_p_temperature >= 0 && sp->top_p_temperature <= 100))
-    return Status(StatusCode::kParseError,
-                  name + ": sampling.top_p_temperature must be in [0, 100] (0 = the sampling temperature)");
+  for (const auto& [range, value] : {std::pair{ranges::kCandidates, double(*candidates)},
+                                     {ranges::kTemperature, sp->temperature},
+                                     {ranges::kTopK, double(sp->top_k)},
+                                     {ranges::kTopP, sp->top_p},
+                                     {ranges::kTopPTemperature, sp->top_p_temperature}})
+    SILK_RETURN_IF_ERROR(SamplingSetting(name, range, value));
   return Status::Ok();
 }
 
@@ -240,9 +241,7 @@ Status ParseFaceGuidance(const Json& j, const std::string& name, ModelConfig* c)
   if (!ParseFaceGuidanceName(mode, &c->face_guidance))
     return Status(StatusCode::kParseError, name + ": sampling.face_guidance \"" + mode + "\" is not off, hard or soft");
   SILK_RETURN_IF_ERROR(GetDouble(*o, "face_tolerance", where, &c->face_tolerance));
-  if (!(c->face_tolerance >= kMinFaceTolerance && c->face_tolerance <= kMaxFaceTolerance))
-    return Status(StatusCode::kParseError, name + ": sampling.face_tolerance must be in [0.5, 64] (cells)");
-  return Status::Ok();
+  return SamplingSetting(name, ranges::kFaceTolerance, c->face_tolerance);
 }
 
 // files.kv_fp16 / files.kv_int8 {"decoder": ..., "decoder_int8": ..., "decoder_int4": ...}: each

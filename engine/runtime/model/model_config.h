@@ -10,6 +10,7 @@
 #include "core/status.h"
 #include "mesh/point_preprocessing.h"
 #include "runtime/sampling/face_guide.h"
+#include "runtime/sampling/generation_ranges.h"
 #include "runtime/sampling/sampler.h"
 
 namespace silk {
@@ -37,10 +38,6 @@ const char* KvExportCommand(KvPrecision p);
 // "fp32" / "fp16" / "int8" to the precision; false for anything else.
 bool ParseKvPrecision(const std::string& name, KvPrecision* out);
 
-// The fewest ids a complete mesh takes (one triangle with its layer ends and EOS); a smaller
-// max_tokens or max_seq_len - 1 can only end in an empty mesh and is refused up front.
-inline constexpr int32_t kMinMeshTokens = 14;
-
 struct ModelDims {
   int32_t d_model = 0, n_layers = 0, n_heads = 0, head_dim = 0, n_latents = 0;
   int32_t n_points = 4096;
@@ -49,9 +46,6 @@ struct ModelDims {
   int64_t kv_row_floats() const { return int64_t{n_layers} * 2 * n_heads * head_dim; }
   int64_t cross_kv_floats() const { return int64_t{n_layers} * 2 * n_heads * n_latents * head_dim; }
 };
-
-// Best of N's bound (GenerateOptions::candidates, model.json sampling.candidates).
-constexpr int32_t kMaxCandidates = 64;
 
 struct ModelConfig {
   std::string dir;  // folder holding model.json

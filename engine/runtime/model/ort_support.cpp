@@ -10,6 +10,7 @@
 
 #include "kernels/silk_ops.h"
 #include "kernels/cpu/cpu_info.h"
+#include "runtime/sampling/generation_ranges.h"
 
 namespace silk {
 
@@ -33,7 +34,7 @@ void SetOrtLogSink(OrtLogSink sink, void* user_data) {
 
 Ort::Env& OrtEnvironment(int threads, bool allow_spinning) {
   static Ort::Env env = [&] {
-    g_pool_threads = std::clamp(threads > 0 ? threads : PhysicalCoreCount(), 1, MaxThreads());
+    g_pool_threads = std::clamp(threads > 0 ? threads : PhysicalCoreCount(), 1, static_cast<int>(ranges::Threads().hi));
     Ort::ThreadingOptions to;
     to.SetGlobalIntraOpNumThreads(g_pool_threads);
     to.SetGlobalInterOpNumThreads(1);
@@ -44,8 +45,6 @@ Ort::Env& OrtEnvironment(int threads, bool allow_spinning) {
 }
 
 int SharedPoolThreads() { return g_pool_threads; }
-
-int MaxThreads() { return std::max(64, static_cast<int>(std::thread::hardware_concurrency())); }
 
 Ort::SessionOptions MakeOrtSessionOptions() {
   Ort::SessionOptions so;

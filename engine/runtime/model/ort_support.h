@@ -19,8 +19,6 @@ namespace silk {
 // what the pool has).
 Ort::Env& OrtEnvironment(int threads = 0, bool allow_spinning = true);
 int SharedPoolThreads();
-// Upper bound for a requested thread count: the larger of 64 and the hardware's threads.
-int MaxThreads();
 
 // onnxruntime's own log lines (warnings and errors; their text also reaches the caller inside
 // the returned Status) go to this sink instead of stderr. Default: none, nothing is printed.

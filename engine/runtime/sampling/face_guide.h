@@ -36,8 +36,6 @@ inline constexpr double kFaceAngleLimitDegrees = 60.0;
 // Soft form: logit penalty per unit of score past 1 (score 1 = at the tolerance), capped.
 inline constexpr double kFaceSoftPenalty = 4.0;
 inline constexpr double kFaceSoftPenaltyMax = 40.0;
-// --face-tolerance range, in grid cells.
-inline constexpr double kMinFaceTolerance = 0.5, kMaxFaceTolerance = 64.0;
 
 // Built once per generation (best of N: once per input) from the encoder's points (rows of 6
 // floats in the model frame: xyz, normal) and the distance field of their grid cells. Scores are
