@@ -28,7 +28,7 @@ silk_generate_params silk_generate_default_params(void) {
   p.top_p_temperature = SILK_MODEL_VALUE;
   p.preprocessing = SILK_MODEL_VALUE;
   p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
-  p.candidates = SILK_DEFAULT_CANDIDATES;
+  p.candidates = SILK_MODEL_VALUE;
   p.orient = SILK_DEFAULT_ORIENT;
   p.face_guidance = SILK_MODEL_VALUE;  // the model's (model.json "sampling"), else libsilk's
   p.face_tolerance = SILK_MODEL_VALUE;

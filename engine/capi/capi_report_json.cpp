@@ -39,7 +39,7 @@ Json SettingsJson(const silk_generator& g) {
               {"max_tokens", p.max_tokens},
               {"max_faces", p.max_faces},
               {"repair", HolesName(p.holes)},
-              {"unconstrained", p.unconstrained != 0},
+              {"unconstrained", g.settings.unconstrained},
               {"surface_tolerance", p.surface_tolerance},
               {"candidates", plan.options.candidates},  // resolved: the model's N applied
               {"orient", p.orient == SILK_ORIENT_INPUT ? "input" : "tokens"},
@@ -101,8 +101,7 @@ Json StatsJson(const silk_generator& g) {
   }
   j["candidates"] = cands;
   j["chosen_candidate"] = st.chosen_candidate;
-  if (g.settings.params.unconstrained)
-    j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};
+  if (g.settings.unconstrained) j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};
   return j;
 }
 

@@ -21,7 +21,7 @@ _ENUMS = {
     "preprocessing": _capi.PREPROCESS_KINDS,
     "face_guidance": _capi.FACE_GUIDANCE,
 }
-_HIDDEN = ("progress", "cancel", "user_data")  # set from Python callables, not keywords
+_HIDDEN = ("progress", "cancel", "user_data", "reserved")  # callables (set from Python ones); reserved: 0
 
 
 class Model(_Owned):
