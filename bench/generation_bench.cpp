@@ -5,8 +5,8 @@
 // decode steps), fp32, INT8 and INT4, with peak RSS and each variant's fidelity to fp32 (from
 // model.json "import.fidelity") — printed beside the official implementation's figures and beside
 // the memory-bandwidth bound measured in the same run (bytes read per token / read bandwidth of a
-// streaming loop over a buffer of that many bytes). Also: in-place vs copying KV cache, and the
-// generation loop's mask-first vs sample-then-check and forced-token skipping (tiny only).
+// streaming loop over a buffer of that many bytes). (Its former comparisons of the copying KV cache,
+// sample-then-check and running the model for forced ids went with those modes: docs/benchmarks.md.)
 //
 //   generation_bench --models DIR [--configs tiny,small,paper,official] [--precisions fp32,int8,int4]
 //                    [--threads 2] [--steps 64] [--budget 20] [--no-int8]
@@ -33,7 +33,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "decoder/grammar.h"
 #include "io/files/file_system.h"
 #include "runtime/decoder_runner.h"
 #include "runtime/generator.h"
@@ -74,7 +73,6 @@ struct Result {
   double prefill_tps = 0, tps_deep = 0;
   double bound_shallow = 0, bound_deep = 0;
   double rss_mib = 0;
-  double copy_ms = -1, inplace_ms = -1;  // per step at depth ~4,096 (tiny only)
 };
 
 // Depth of the deep window: 4,096, or less where the model's positions end sooner.
@@ -168,26 +166,6 @@ std::pair<int, double> FeedSteps(Session& s, silk::DecoderRunner& runner, int n,
   return {done, Since(ts)};
 }
 
-// In-place vs naive copy KV cache at the current depth, interleaved; ms per step.
-bool CompareKvModes(Session& s, Result* r) {
-  double sec[2] = {0, 0};
-  const int64_t depth = s.cache.length();
-  for (int round = 0; round < 4; ++round)
-    for (int m = 0; m < 2; ++m) {
-      silk::DecoderRunner r2(s.model->impl(), &s.cache, s.cross, m ? silk::KvMode::kInPlace : silk::KvMode::kCopy);
-      auto tm = Clock::now();
-      for (int k = 0; k < 8; ++k) {
-        const int32_t id = s.Token();
-        if (!r2.Feed(&id, 1).ok()) return false;
-      }
-      sec[m] += Since(tm);
-      s.cache.Truncate(depth);  // same depth for every round
-    }
-  r->copy_ms = sec[0] / 32 * 1e3;
-  r->inplace_ms = sec[1] / 32 * 1e3;
-  return true;
-}
-
 // Everything for one model + precision; runs in a child process (separate peak RSS).
 // bandwidth[0] / [1]: GB/s measured for the step's working set at depth 256 / DeepDepth.
 bool Measure(const Args& a, const std::string& name, DecoderPrecision p, const double bandwidth[2], Result* r) {
@@ -218,154 +196,8 @@ bool Measure(const Args& a, const std::string& name, DecoderPrecision p, const d
   auto [n, sec] = FeedSteps(s, runner, a.steps, 0, deep);
   r->tps_deep = n / sec;
   r->bound_deep = bound(static_cast<double>(deep), bandwidth[1]);
-  if (name == "tiny" && p == DecoderPrecision::kFp32 && !CompareKvModes(s, r)) return false;
   r->rss_mib = PeakRssMiB();
   return true;
-}
-
-void SamplerMicro(const silk::Model& model, const std::vector<float>& pts);
-
-// The generation loop on the tiny model (random weights, grammar on): sampling order and
-// forced-token skipping compared on identical runs.
-void CompareLoop(const Args& a) {
-  silk::ModelLoadOptions lo;
-  lo.threads = a.threads;
-  auto model = silk::Model::Load(a.models + "/tiny", lo);
-  if (!model.ok()) return;
-  const int n = (*model)->config().dims.n_points;
-  std::vector<float> pts(static_cast<size_t>(n) * 6);
-  std::mt19937 rng(2);
-  std::normal_distribution<float> g;
-  for (int i = 0; i < n; ++i) {  // unit sphere with outward normals
-    float v[3] = {g(rng), g(rng), g(rng)};
-    const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int k = 0; k < 3; ++k) pts[6 * i + k] = pts[6 * i + 3 + k] = v[k] / len;
-  }
-  SamplerMicro(**model, pts);
-  silk::Generator gen(**model);
-  {  // warm-up: first-run allocations and page faults are not any variant's cost
-    silk::GenerateOptions o;
-    o.max_tokens = 256;
-    (void)gen.Run(pts, o);
-  }
-  struct Variant {
-    const char* name;
-    silk::SampleOrder order;
-    bool skip;
-  };
-  std::printf("\nGeneration loop, tiny random model, grammar on, 3 seeds x max 1,024 ids:\n");
-  std::printf("  %-34s %8s %8s %9s %11s %11s %9s\n", "variant", "ids", "forced", "calls", "sample us/id",
-              "grammar us/id", "tok/s");
-  const Variant variants[3] = {{"mask-first, skip forced (default)", silk::SampleOrder::kMaskFirst, true},
-                               {"mask-first, model for forced ids", silk::SampleOrder::kMaskFirst, false},
-                               {"sample-then-check, skip forced", silk::SampleOrder::kSampleThenCheck, true}};
-  struct Sum {
-    int64_t ids = 0, forced = 0, calls = 0, resampled = 0;
-    double samp = 0, gram = 0, loop = 0;
-  } sums[3];
-  for (uint64_t seed = 0; seed < 3; ++seed)  // interleaved, so load changes hit every variant
-    for (int k = 0; k < 3; ++k) {
-      silk::GenerateOptions o;
-      o.sampling.seed = seed;
-      o.sampling.temperature = 0.5;
-      o.sampling.top_k = 50;
-      o.max_tokens = 1024;
-      o.order = variants[k].order;
-      o.skip_forced = variants[k].skip;
-      auto r = gen.Run(pts, o);
-      if (!r.ok()) continue;
-      Sum& s = sums[k];
-      s.ids += r->stats.tokens;
-      s.forced += r->stats.forced_tokens;
-      s.calls += r->stats.model_calls;
-      s.resampled += r->stats.resampled;
-      s.samp += r->stats.seconds.sampling;
-      s.gram += r->stats.seconds.grammar;
-      s.loop += r->stats.tokens / std::max(1e-9, r->stats.tokens_per_second);
-    }
-  for (int k = 0; k < 3; ++k) {
-    const Sum& s = sums[k];
-    if (!s.ids) continue;
-    std::printf("  %-34s %8lld %8lld %9lld %11.1f %11.1f %9.1f", variants[k].name, static_cast<long long>(s.ids),
-                static_cast<long long>(s.forced), static_cast<long long>(s.calls), s.samp / s.ids * 1e6,
-                s.gram / s.ids * 1e6, s.ids / s.loop);
-    if (variants[k].order == silk::SampleOrder::kSampleThenCheck)
-      std::printf("  (%lld of %lld draws illegal)", static_cast<long long>(s.resampled),
-                  static_cast<long long>(s.ids - s.forced));
-    std::printf("\n");
-  }
-}
-
-double ThreadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-// Sampling-order micro-benchmark on real (logits, legal mask) pairs recorded from a constrained
-// run of the tiny model; thread CPU time, so other processes' load does not enter.
-void SamplerMicro(const silk::Model& model, const std::vector<float>& pts) {
-  const silk::ModelConfig& c = model.config();
-  auto cross = silk::RunEncoder(model.impl(), pts.data(), c.dims.n_points);
-  if (!cross.ok()) return;
-  silk::KvCache cache;
-  if (!cache.Reserve(600, silk::ModelKvShape(model.impl())).ok()) return;
-  silk::GrammarOptions go;
-  go.max_length = 599;
-  silk::SamplingParams sp;
-  sp.temperature = 0.5;
-  sp.top_k = 50;
-  auto sampler = silk::BuildSamplerChain({sp});
-  std::vector<std::vector<float>> logits;
-  std::vector<silk::TokenMask> masks;
-  double mask_cpu = 0;
-  int64_t mask_calls = 0;
-  for (int sequence = 0; sequence < 20 && logits.size() < 400; ++sequence) {  // until 400 sampled steps
-    cache.Clear();
-    silk::DecoderRunner runner(model.impl(), &cache, cross->GetTensorMutableData<void>());
-    silk::Grammar grammar(go);
-    std::vector<int32_t> pending = {c.bos_id};
-    while (!grammar.Ended() && logits.size() < 400) {
-      double t0 = ThreadCpuSeconds();
-      const int32_t forced = grammar.Forced();
-      const silk::TokenMask& m = grammar.LegalMask();
-      mask_cpu += ThreadCpuSeconds() - t0;
-      ++mask_calls;
-      if (m.Empty()) break;
-      int32_t id = forced;
-      if (forced < 0) {
-        if (!runner.Feed(pending.data(), static_cast<int64_t>(pending.size())).ok()) return;
-        pending.clear();
-        logits.emplace_back(runner.last_logits(), runner.last_logits() + c.model_vocab_size);
-        masks.push_back(m);
-        id = sampler->Sample(runner.last_logits(), &m);
-      }
-      if (!grammar.Accept(id).ok() || id == c.eos_id) break;
-      pending.push_back(id);
-    }
-  }
-  if (logits.empty()) return;
-  const int reps = 20;
-  double cpu[2] = {0, 0};
-  silk::GenerationStats stats;
-  for (int order = 0; order < 2; ++order) {
-    silk::SamplerChainSettings settings{sp};
-    settings.sample_then_check = order == 1;
-    settings.stats = &stats;
-    auto s = silk::BuildSamplerChain(settings);
-    const double t0 = ThreadCpuSeconds();
-    for (int r = 0; r < reps; ++r)
-      for (size_t i = 0; i < logits.size(); ++i) (void)s->Sample(logits[i].data(), &masks[i]);
-    cpu[order] = (ThreadCpuSeconds() - t0) / (reps * logits.size());
-  }
-  const int64_t illegal = stats.resampled / reps;
-  std::printf(
-      "\nSampling order on %zu recorded steps of the tiny model (thread CPU time per sampled id):\n"
-      "  legal mask (grammar, needed by both): %.1f us per id\n"
-      "  mask-first:        %.1f us\n  sample-then-check: %.1f us (%lld of %zu unmasked draws illegal -> "
-      "second, masked draw)\n",
-      logits.size(), mask_cpu / mask_calls * 1e6, cpu[0] * 1e6, cpu[1] * 1e6, static_cast<long long>(illegal),
-      logits.size());
 }
 
 bool ParsePrecisions(const std::string& list, std::vector<DecoderPrecision>* out) {
@@ -456,9 +288,6 @@ void PrintRow(const std::string& name, DecoderPrecision p, const Result& r, cons
     std::snprintf(deep, sizeof(deep), "official %.1f", off.second);
     std::printf("%27s | %-32s | %-40s |\n", "", shallow, deep);
   }
-  if (r.copy_ms >= 0)
-    std::printf("         KV cache at depth ~4096: naive copy %.2f ms/step, in place %.2f ms/step (%.1fx)\n", r.copy_ms,
-                r.inplace_ms, r.copy_ms / r.inplace_ms);
 }
 
 // Every requested precision the model in <models>/<name> has; the bandwidth notes go to `notes`.
@@ -525,8 +354,5 @@ int main(int argc, char** argv) {
       "(decoder weights as stored for the precision + cross K/V + self K/V at that depth); top-1, KL = "
       "the exporter's fidelity to fp32, model.json \"import.fidelity\"), per model:)\n%s",
       notes.c_str());
-  if (std::find(a.configs.begin(), a.configs.end(), "tiny") != a.configs.end() &&
-      silk::IsRegularFile(a.models + "/tiny/model.json"))
-    CompareLoop(a);
   return 0;
 }

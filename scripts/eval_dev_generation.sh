@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Generates from every dev-corpus mesh with the bundled model, grammar on vs --unconstrained
-# (same weights, seed 0, 1 thread, 512-token cap), summarises silkgen's verdicts and runs
-# `silk-export eval` (CD/HD/NC/|NC| + structure) on the grammar outputs.
+# Generates from every dev-corpus mesh with the bundled model, grammar on (silkgen) vs off
+# (tests/tools/generate_unconstrained, a test build's; same weights, seed 0, 1 thread, 512-token
+# cap), summarises the reports' verdicts and runs `silk-export eval` (CD/HD/NC/|NC| + structure)
+# on the grammar outputs.
 # Usage: [BUILD_DIR=build] scripts/eval_dev_generation.sh [OUT_DIR=out/dev_generation] [MAX_TOKENS=512]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,14 +11,17 @@ out="${1:-out/dev_generation}"; max_tokens="${2:-512}"
 source scripts/shared_dir.sh
 shared=$(silk_shared_dir) || exit 2
 silkgen="${BUILD_DIR:-build}/apps/silkgen"
+unconstrained="${BUILD_DIR:-build}/tests/generate_unconstrained"
 [ -x "$silkgen" ] || { echo "$silkgen not built (run scripts/build.sh)" >&2; exit 1; }
+[ -x "$unconstrained" ] ||
+  { echo "$unconstrained not built (run scripts/build.sh -DSILK_BUILD_TESTS=ON)" >&2; exit 1; }
 for mode in grammar unconstrained; do
   mkdir -p "$out/$mode"
-  extra=(); [ "$mode" = unconstrained ] && extra=(--unconstrained)
+  tool=("$silkgen"); [ "$mode" = unconstrained ] && tool=("$unconstrained")
   for f in "$shared"/corpus/dev/*.obj; do
     n=$(basename "$f" .obj)
-    "$silkgen" "$f" -o "$out/$mode/$n.obj" --seed 0 --threads 1 --max-tokens "$max_tokens" \
-      "${extra[@]}" --stats "$out/$mode/$n.json" >/dev/null 2>"$out/$mode/$n.err" || true
+    "${tool[@]}" "$f" -o "$out/$mode/$n.obj" --seed 0 --threads 1 --max-tokens "$max_tokens" \
+      --stats "$out/$mode/$n.json" >/dev/null 2>"$out/$mode/$n.err" || true
   done
 done
 python3 - "$out" <<'PY'

@@ -80,12 +80,11 @@ struct Args {
   // (SILK_MODEL_VALUE / empty) mean "not given"; a given value is checked by libsilk (CheckSettings).
   double temperature = SILK_MODEL_VALUE, top_p = SILK_MODEL_VALUE, top_p_temperature = SILK_MODEL_VALUE;
   int top_k = SILK_MODEL_VALUE;
-  int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_DEFAULT_CANDIDATES;
+  int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_MODEL_VALUE;
   std::string decoder, kv_precision, preprocessing, orient = silk_orientation_name(SILK_DEFAULT_ORIENT);
   std::string face_guidance;                 // empty: the model's (model.json sampling.face_guidance)
   double face_tolerance = SILK_MODEL_VALUE;  // the model's
-  bool list_models = false, unconstrained = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
-  bool no_skip_forced = false, kv_copy = false, sample_then_check = false;
+  bool list_models = false, int8 = false, part_colors = false, quiet = false, raw_points = false;
   silkgen::BatchArgs batch;
 };
 
@@ -148,10 +147,9 @@ void AddSamplingOptions(CLI::App& app, Args& a) {
   app.add_option("--repair", a.repair, "Holes in the result: off, report, or repair (close small ones)")
       ->check(CLI::IsMember(silk_cpp::EnumNames(silk_hole_policy_name, SILK_HOLES_OFF)))
       ->capture_default_str();
-  app.add_flag("--unconstrained", a.unconstrained, "Sample without the grammar mask (the mesh is the legal prefix)");
   app.add_option("--surface-tolerance", a.surface_tolerance,
                  "Surface guidance: new vertices only on grid cells within CELLS (of 128) of an input point's cell, "
-                 "nearest legal cells when none is (0 = off; ignored with --unconstrained)" +
+                 "nearest legal cells when none is (0 = off)" +
                      Valid("surface_tolerance"))
       ->capture_default_str()
       ->type_name("CELLS");
@@ -194,7 +192,7 @@ void AddRunOptions(CLI::App& app, Args& a) {
   app.add_option("--decoder", a.decoder,
                  "Decoder precision: fp32, int8 or int4; default (also when not given): model.json's default_decoder")
       ->check(CLI::IsMember(silk_cpp::EnumNames(silk_decoder_precision_name, SILK_DECODER_DEFAULT)));
-  app.add_flag("--int8", a.int8, "Same as --decoder int8");
+  app.add_flag("--int8", a.int8, "Deprecated (removed in 2.0): --decoder int8");
   app.add_option("--kv-precision", a.kv_precision,
                  "Self-attention K/V cache: fp32, fp16 or int8; default (also when not given): the model's "
                  "(model.json files.default_kv_precision)")
@@ -212,11 +210,8 @@ void AddOptions(CLI::App& app, Args& a) {
   AddFileOptions(app, a);
   AddSamplingOptions(app, a);
   AddRunOptions(app, a);
-  // Measurement switches (docs/runtime.md), not needed for normal use.
+  // The reference check's trace (tests/models/reference_loop.py), not needed for normal use.
   app.add_option("--trace", a.trace_path, "Write points + every id with its legal set (reference check)")->group("");
-  app.add_flag("--no-skip-forced", a.no_skip_forced, "Run the model for forced ids too")->group("");
-  app.add_flag("--kv-copy", a.kv_copy, "Naive KV cache handling (copy per step)")->group("");
-  app.add_flag("--sample-then-check", a.sample_then_check, "Sample unmasked, fall back to the mask")->group("");
   silkgen::AddBatchOptions(app, a.batch);
 }
 
@@ -278,15 +273,12 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.max_tokens = a.max_tokens;
   p.max_faces = a.max_faces;
   p.holes = silk_cpp::EnumValue(silk_hole_policy_from_name, a.repair);
-  p.unconstrained = a.unconstrained ? 1 : 0;
   p.point_count = a.n_points;
   p.surface_tolerance = a.surface_tolerance;
   p.candidates = a.candidates;
   p.orient = silk_cpp::EnumValue(silk_orientation_from_name, a.orient);
   p.face_guidance = OptionValue(silk_face_guidance_from_name, a.face_guidance, SILK_MODEL_VALUE);
   p.face_tolerance = a.face_tolerance;
-  p.debug_flags = (a.no_skip_forced ? SILK_DEBUG_NO_SKIP_FORCED : 0) | (a.kv_copy ? SILK_DEBUG_KV_COPY : 0) |
-                  (a.sample_then_check ? SILK_DEBUG_SAMPLE_THEN_CHECK : 0);
   p.report_flags = a.trace_path.empty() ? 0 : SILK_GENERATE_RECORD_TRACE;
   return p;
 }
@@ -314,23 +306,23 @@ int Run(const Args& a, uint64_t seed) {
   if (!a.quiet) {
     // Sampling values not given on the command line are the model's (model.json "sampling").
     auto given = [](double v) { return v >= 0 ? std::to_string(v).substr(0, 6) : std::string("model"); };
-    std::fprintf(
-        stderr,
-        "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
-        "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  "
-        "repair %s%s\n"
-        "  points  %s\n  surface tolerance %d  candidates %s  orient %s  face guidance %s (tolerance %s)\n",
-        silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
-        input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(), info.config,
-        info.threads, silk_decoder_precision_name(info.decoder), silk_kv_precision_name(info.kv_precision),
-        static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
-        a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens, a.max_faces,
-        a.repair.c_str(), a.unconstrained ? "  UNCONSTRAINED" : "",
-        a.raw_points              ? "raw (used as given, model frame)"
-        : a.preprocessing.empty() ? "the model's pre-processing"
-                                  : a.preprocessing.c_str(),
-        a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model", a.orient.c_str(),
-        a.face_guidance.empty() ? "model" : a.face_guidance.c_str(), given(a.face_tolerance).c_str());
+    std::fprintf(stderr,
+                 "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
+                 "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  "
+                 "repair %s\n"
+                 "  points  %s\n  surface tolerance %d  candidates %s  orient %s  face guidance %s (tolerance %s)\n",
+                 silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
+                 input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
+                 info.config, info.threads, silk_decoder_precision_name(info.decoder),
+                 silk_kv_precision_name(info.kv_precision), static_cast<unsigned long long>(seed),
+                 given(a.temperature).c_str(), a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model",
+                 given(a.top_p).c_str(), a.max_tokens, a.max_faces, a.repair.c_str(),
+                 a.raw_points              ? "raw (used as given, model frame)"
+                 : a.preprocessing.empty() ? "the model's pre-processing"
+                                           : a.preprocessing.c_str(),
+                 a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model",
+                 a.orient.c_str(), a.face_guidance.empty() ? "model" : a.face_guidance.c_str(),
+                 given(a.face_tolerance).c_str());
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) {
@@ -452,6 +444,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
+  if (a.int8)  // deprecated (silk.h: silk_model_info.int8 and this option go in 2.0); also with -q
+    std::fputs("silkgen: note: --int8 is deprecated and removed in 2.0; use --decoder int8\n", stderr);
   try {
     a.batch.shard_given = app.count("--shard") > 0;
     a.batch.report_given = app.count("--report") > 0;

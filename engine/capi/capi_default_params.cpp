@@ -52,7 +52,7 @@ silk_generate_params silk_generate_default_params(void) {
   p.preprocessing = SILK_MODEL_VALUE;  // the model's (model.json "preprocessing")
   p.holes = SILK_HOLES_OFF;
   p.surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE;
-  p.candidates = SILK_DEFAULT_CANDIDATES;
+  p.candidates = SILK_MODEL_VALUE;
   p.orient = SILK_DEFAULT_ORIENT;
   p.face_guidance = SILK_MODEL_VALUE;  // the model's (model.json "sampling"), else libsilk's
   p.face_tolerance = SILK_MODEL_VALUE;

@@ -47,7 +47,8 @@ constexpr EnumNames kHolePolicy = Table("silk_hole_policy", SILK_HOLES_OFF, kHol
 constexpr EnumNames kPreprocessKind = Table("silk_preprocess_kind", SILK_PREPROCESS_SILK, kPreprocessKinds);
 constexpr EnumNames kDecoderPrecision = Table("silk_decoder_precision", SILK_DECODER_DEFAULT, kDecoderPrecisions);
 constexpr EnumNames kKvPrecision = Table("silk_kv_precision", SILK_KV_DEFAULT, kKvPrecisions);
-constexpr EnumNames kArch = Table("silk_arch", 0, kArchs);  // silk_model_info.arch
+constexpr EnumNames kArch = Table("silk_arch", SILK_ARCH_SILK, kArchs);  // silk_model_info.arch
+static_assert(SILK_ARCH_OFFICIAL == SILK_ARCH_SILK + 1, "kArchs lists silk_arch by value");
 constexpr EnumNames kOrientation = Table("silk_orientation", SILK_ORIENT_TOKENS, kOrientations);
 constexpr EnumNames kFaceGuidance = Table("silk_face_guidance", SILK_FACE_GUIDANCE_OFF, kFaceGuidances);
 constexpr EnumNames kAdvanceUntil = Table("silk_advance_until", SILK_ADVANCE_IDS, kAdvanceUntils);

@@ -14,7 +14,6 @@ using silk::capi::SetError;
 
 namespace {
 
-constexpr int32_t kAllDebugFlags = SILK_DEBUG_NO_SKIP_FORCED | SILK_DEBUG_KV_COPY | SILK_DEBUG_SAMPLE_THEN_CHECK;
 constexpr int32_t kAllReportFlags = SILK_GENERATE_RECORD_TRACE;
 
 silk_status Busy(const char* function) {
@@ -22,13 +21,12 @@ silk_status Busy(const char* function) {
                   std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
 }
 
-// The C-only checks of the params: flags 0/1, enums in range, no unknown debug bit. Value ranges
+// The C-only checks of the params: flags 0/1, enums in range, reserved slots 0. Value ranges
 // are the runtime's (ResolveRequest).
 silk::Status CheckParams(const silk_generate_params& p) {
   using silk::capi::CheckEnum;
   using silk::capi::CheckFlag;
   SILK_RETURN_IF_ERROR(CheckEnum("holes", p.holes, SILK_HOLES_OFF, SILK_HOLES_REPAIR, "silk_hole_policy"));
-  SILK_RETURN_IF_ERROR(CheckFlag("unconstrained", p.unconstrained));
   SILK_RETURN_IF_ERROR(CheckFlag("raw_points", p.raw_points));
   SILK_RETURN_IF_ERROR(CheckEnum("orient", p.orient, SILK_ORIENT_TOKENS, SILK_ORIENT_INPUT, "silk_orientation"));
   if (p.preprocessing != SILK_MODEL_VALUE)
@@ -37,16 +35,20 @@ silk::Status CheckParams(const silk_generate_params& p) {
   if (p.face_guidance != SILK_MODEL_VALUE)
     SILK_RETURN_IF_ERROR(CheckEnum("face_guidance", p.face_guidance, SILK_FACE_GUIDANCE_OFF, SILK_FACE_GUIDANCE_SOFT,
                                    "silk_face_guidance (or SILK_MODEL_VALUE, -1)"));
-  if (p.debug_flags & ~kAllDebugFlags)
-    return silk::InvalidArgument("debug_flags " + std::to_string(p.debug_flags) + " has unknown bits");
+  for (int i = 0; i < 2; ++i)  // 1.0-1.3: unconstrained, debug_flags (measurement switches, no longer public)
+    if (p.reserved[i] != 0)
+      return silk::InvalidArgument("reserved[" + std::to_string(i) + "] is " + std::to_string(p.reserved[i]) +
+                                   ", not 0 (C API 1.0-1.3's " + (i == 0 ? "unconstrained" : "debug_flags") +
+                                   ", a measurement switch that is no longer part of the API)");
   if (p.report_flags & ~kAllReportFlags)
     return silk::InvalidArgument("report_flags " + std::to_string(p.report_flags) + " has unknown bits");
   return silk::Status::Ok();
 }
 
 // The C params as the runtime's request: SILK_MODEL_VALUE (and point_count 0) become "unset", the
-// model's value; anything else is passed on as given, for the runtime to check.
-silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p) {
+// model's value; anything else is passed on as given, for the runtime to check. `unconstrained`:
+// the generator's measurement mode (capi/capi_measurement.h), never a params field.
+silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p, bool unconstrained) {
   SILK_RETURN_IF_ERROR(CheckParams(p));
   silk::GenerationRequest r;
   r.seed = p.seed;
@@ -65,11 +67,7 @@ silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p)
   r.holes = p.holes == SILK_HOLES_REPAIR   ? silk::HolePolicy::kRepair
             : p.holes == SILK_HOLES_REPORT ? silk::HolePolicy::kReport
                                            : silk::HolePolicy::kOff;
-  r.unconstrained = p.unconstrained != 0;
-  r.skip_forced = !(p.debug_flags & SILK_DEBUG_NO_SKIP_FORCED);
-  r.kv_in_place = !(p.debug_flags & SILK_DEBUG_KV_COPY);
-  r.order = (p.debug_flags & SILK_DEBUG_SAMPLE_THEN_CHECK) ? silk::SampleOrder::kSampleThenCheck
-                                                           : silk::SampleOrder::kMaskFirst;
+  r.unconstrained = unconstrained;
   r.record_trace = (p.report_flags & SILK_GENERATE_RECORD_TRACE) != 0;
   r.surface_tolerance = p.surface_tolerance;
   r.orient_to_input = p.orient == SILK_ORIENT_INPUT;
@@ -142,7 +140,7 @@ silk_status Start(silk_generator* g, const silk_generate_input& input, const sil
     g->has_result = false;
     return SetError(SILK_ERR_CANCELLED, "generation cancelled");
   }
-  auto request = ToRequest(p);
+  auto request = ToRequest(p, g->unconstrained);
   if (!request.ok()) return SetError(request.status().WithContext("silk_generator_start: "));
   auto in = ToInput(input, FlagCheck(g));  // its problems, like the session's, name the input's file
   if (!in.ok())
@@ -156,6 +154,7 @@ silk_status Start(silk_generator* g, const silk_generate_input& input, const sil
   s.input_vertices = static_cast<int32_t>(in->mesh.positions.size());
   s.input_faces = static_cast<int32_t>(in->mesh.triangles.size());
   s.params = p;
+  s.unconstrained = g->unconstrained;
   return SetError(g->session.Start(*request, *in, cb, FlagCheck(g)));
 }
 

@@ -28,6 +28,7 @@ struct GenerationSettings {
   bool point_cloud = false;
   int32_t input_vertices = 0, input_faces = 0;
   silk_generate_params params{};
+  bool unconstrained = false;  // the generator's measurement mode at the start (capi/capi_measurement.h)
 };
 
 struct silk_generator {
@@ -44,6 +45,9 @@ struct silk_generator {
   std::mutex cancel_mu;
   bool cancelled() const { return (state.load() & kCancel) != 0; }
   GenerationSettings settings;
+  // Measurement mode, no part of silk.h: generations without the grammar mask (in-tree tools and
+  // tests set it through capi/capi_measurement.h).
+  bool unconstrained = false;
   bool has_result = false;      // a finished generation (for the report)
   silk::GenerateResult result;  // tokens, stats, trace of the last finished (or cancelled) one
 };

@@ -78,7 +78,7 @@ silk_status silk_model_get_info(const silk_model* model, silk_model_info* out) {
     o->decoder = d == silk::DecoderPrecision::kInt8   ? SILK_DECODER_INT8
                  : d == silk::DecoderPrecision::kInt4 ? SILK_DECODER_INT4
                                                       : SILK_DECODER_FP32;
-    o->arch = c.arch == silk::ModelArch::kOfficial ? 1 : 0;
+    o->arch = c.arch == silk::ModelArch::kOfficial ? SILK_ARCH_OFFICIAL : SILK_ARCH_SILK;
     o->encoder_points = static_cast<int32_t>(model->model->encoder_points());
     const silk::KvPrecision kv = model->model->kv_precision();
     o->kv_precision = kv == silk::KvPrecision::kFp16   ? SILK_KV_FP16

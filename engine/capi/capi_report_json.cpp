@@ -35,7 +35,7 @@ Json SettingsJson(const silk_generator& g) {
               {"max_tokens", p.max_tokens},
               {"max_faces", p.max_faces},
               {"repair", silk_hole_policy_name(p.holes)},
-              {"unconstrained", p.unconstrained != 0},
+              {"unconstrained", g.settings.unconstrained},
               {"surface_tolerance", p.surface_tolerance},
               {"candidates", plan.options.candidates},  // resolved: the model's N applied
               {"orient", silk_orientation_name(p.orient)},
@@ -97,8 +97,7 @@ Json StatsJson(const silk_generator& g) {
   }
   j["candidates"] = cands;
   j["chosen_candidate"] = st.chosen_candidate;
-  if (g.settings.params.unconstrained)
-    j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};
+  if (g.settings.unconstrained) j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};
   return j;
 }
 

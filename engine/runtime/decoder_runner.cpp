@@ -1,21 +1,19 @@
 // SPDX-License-Identifier: MIT
 // One decoder.onnx call per chunk of known tokens, with the per-layer cache blocks shared between
-// past_* and present_* (or copied, in the baseline mode).
+// past_* and present_*.
 #include "runtime/decoder_runner.h"
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 
 namespace silk {
 
 KvShape ModelKvShape(const Model::Impl& model) { return KvShapeOf(model.config.dims, model.kv_precision); }
 
-DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, KvMode mode, int64_t max_chunk)
+DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, int64_t max_chunk)
     : model_(model),
       cache_(cache),
       cross_kv_(cross_kv),
-      mode_(mode),
       max_chunk_(std::max<int64_t>(1, max_chunk)),
       vocab_(model.config.model_vocab_size),
       in_names_(DecoderInputNames(model.config.dims.n_layers)),
@@ -44,16 +42,11 @@ Status DecoderRunner::Feed(const int32_t* ids, int64_t n) {
 Status DecoderRunner::RunChunk(const int32_t* ids, int64_t n) {
   StageInputs(ids, n);
   return OrtGuard("decoder", [&]() -> Status {
-    // Values 0..3 change every call; the per-layer cache and cross views (and, in place, the
-    // present outputs over the same blocks) are made once and reused.
-    const bool in_place = mode_ == KvMode::kInPlace;
-    if (!in_place || in_values_.empty() || views_of_ != cache_->block(0, 0) || views_capacity_ != cache_->capacity())
-      MakeViews();
+    // Values 0..3 change every call; the per-layer cache and cross views (and the present
+    // outputs over the same blocks) are made once and reused.
+    if (in_values_.empty() || views_of_ != cache_->block(0, 0) || views_capacity_ != cache_->capacity()) MakeViews();
     BindChunkInputs(n);
-    if (in_place)
-      RunInPlace(n);
-    else
-      SILK_RETURN_IF_ERROR(RunCopying(n));
+    RunInPlace(n);
     cache_->Extend(n);
     ++calls_;
     return Status::Ok();
@@ -75,16 +68,15 @@ void DecoderRunner::StageInputs(const int32_t* ids, int64_t n) {
   if (logits_.size() < static_cast<size_t>(max_chunk_ * vocab_)) logits_.resize(max_chunk_ * vocab_);
 }
 
-// Inputs 4.. (per layer: past key and value, then the cross views) and, in place, the present
-// outputs over the same cache blocks; inputs 0..3 and output 0 are placeholders.
+// Inputs 4.. (per layer: past key and value, then the cross views) and the present outputs over
+// the same cache blocks; inputs 0..3 and output 0 are placeholders.
 void DecoderRunner::MakeViews() {
   const Ort::MemoryInfo& mem = model_.cpu_memory;
   const ModelDims& d = model_.config.dims;
-  const int64_t P = cache_->length(), C = cache_->capacity();
+  const int64_t C = cache_->capacity();
   const int64_t L = d.n_layers, H = d.n_heads, D = d.head_dim, M = d.n_latents;
-  const bool in_place = mode_ == KvMode::kInPlace;
   const KvShape& ks = cache_->shape();
-  const std::array<int64_t, 4> cache_shape = {1, H, in_place ? C : P, ks.row_dims()};
+  const std::array<int64_t, 4> cache_shape = {1, H, C, ks.row_dims()};
   const std::array<int64_t, 4> cross_shape = {1, H, M, D};
   views_of_ = cache_->block(0, 0);  // a re-reserved cache gets fresh views
   views_capacity_ = C;
@@ -92,19 +84,13 @@ void DecoderRunner::MakeViews() {
   out_values_.clear();
   for (int i = 0; i < 4; ++i) in_values_.emplace_back(nullptr);
   out_values_.emplace_back(nullptr);
-  compact_.clear();  // kCopy: fresh prefix copies, [H, P, D] each
   const int64_t row = ks.row_bytes();
   const auto type = KvOnnxType(ks.precision);
   for (int64_t l = 0; l < L; ++l)
     for (int kv = 0; kv < 2; ++kv) {
       void* past = cache_->block(l, kv);
-      size_t bytes = static_cast<size_t>(H * C * row);
-      if (!in_place) {
-        past = CompactPrefix(past);
-        bytes = static_cast<size_t>(H * P * row);
-      } else {
-        out_values_.push_back(Ort::Value::CreateTensor(mem, past, bytes, cache_shape.data(), 4, type));
-      }
+      const size_t bytes = static_cast<size_t>(H * C * row);
+      out_values_.push_back(Ort::Value::CreateTensor(mem, past, bytes, cache_shape.data(), 4, type));
       in_values_.push_back(Ort::Value::CreateTensor(mem, past, bytes, cache_shape.data(), 4, type));
     }
   const bool half = model_.cross_type == ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16;
@@ -114,18 +100,6 @@ void DecoderRunner::MakeViews() {
     for (int kv = 0; kv < 2; ++kv)
       in_values_.push_back(Ort::Value::CreateTensor(mem, cross + (l * 2 + kv) * cross_bytes, cross_bytes,
                                                     cross_shape.data(), 4, model_.cross_type));
-}
-
-// kCopy: a fresh compact [H, P, row] copy of the cached prefix of one [H, C, row] block.
-void* DecoderRunner::CompactPrefix(const void* block) {
-  const ModelDims& d = model_.config.dims;
-  const int64_t P = cache_->length(), C = cache_->capacity(), H = d.n_heads;
-  const int64_t row = cache_->shape().row_bytes();  // bytes of one position of one head
-  compact_.emplace_back(static_cast<size_t>(std::max<int64_t>(1, H * P * row)));
-  for (int64_t h = 0; h < H; ++h)
-    std::memcpy(compact_.back().data() + h * P * row, static_cast<const unsigned char*>(block) + h * C * row,
-                static_cast<size_t>(P * row));
-  return compact_.back().data();
 }
 
 // Inputs 0..3: ids, positions, seqlens_k, total length (remade every call).
@@ -139,7 +113,7 @@ void DecoderRunner::BindChunkInputs(int64_t n) {
   in_values_[3] = Ort::Value::CreateTensor<int32_t>(mem, &total_, 1, nullptr, 0);
 }
 
-// kInPlace: logits into logits_, present_* written straight into the cache blocks.
+// Logits into logits_, present_* written straight into the cache blocks.
 void DecoderRunner::RunInPlace(int64_t n) {
   const std::array<int64_t, 3> logit_shape = {1, n, vocab_};
   out_values_[0] = Ort::Value::CreateTensor<float>(model_.cpu_memory, logits_.data(), static_cast<size_t>(n * vocab_),
@@ -147,32 +121,6 @@ void DecoderRunner::RunInPlace(int64_t n) {
   model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(), out_ptrs_.data(),
                       out_values_.data(), out_values_.size());
   last_logits_ = logits_.data() + (n - 1) * vocab_;
-}
-
-// kCopy: onnxruntime allocates the outputs; the chunk's new cache rows and the last logits row
-// are copied back.
-Status DecoderRunner::RunCopying(int64_t n) {
-  const ModelDims& d = model_.config.dims;
-  const int64_t P = cache_->length(), C = cache_->capacity();
-  const int64_t L = d.n_layers, H = d.n_heads;
-  auto outs = model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
-                                  out_ptrs_.data(), out_ptrs_.size());
-  for (int64_t l = 0; l < L; ++l)
-    for (int kv = 0; kv < 2; ++kv) {
-      const Ort::Value& present = outs[1 + l * 2 + kv];
-      const std::vector<int64_t> shape = present.GetTensorTypeAndShapeInfo().GetShape();
-      if (shape != std::vector<int64_t>{1, H, P + n, cache_->shape().row_dims()})
-        return InternalError("decoder: " + out_names_[1 + l * 2 + kv] + " has an unexpected shape");
-      const int64_t row = cache_->shape().row_bytes();
-      const unsigned char* src = static_cast<const unsigned char*>(present.GetTensorRawData());
-      for (int64_t h = 0; h < H; ++h)
-        std::memcpy(static_cast<unsigned char*>(cache_->block(l, kv)) + (h * C + P) * row,
-                    src + (h * (P + n) + P) * row, static_cast<size_t>(n * row));
-    }
-  std::memcpy(logits_.data(), outs[0].GetTensorData<float>() + (n - 1) * vocab_,
-              static_cast<size_t>(vocab_) * sizeof(float));
-  last_logits_ = logits_.data();
-  return Status::Ok();
 }
 
 }  // namespace silk

@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
-// DecoderRunner: feeds known tokens to decoder.onnx and keeps the KV cache. In kInPlace mode each
-// layer's past_key/past_value is a tensor over its whole cache block and present_* is bound to
-// the same memory, so onnxruntime's GroupQueryAttention reads the prefix in place and writes only
-// the new rows (no copy, no allocation per step); kCopy is the naive baseline (fresh compact
-// prefix copies in, onnxruntime-allocated outputs copied back) kept for docs/runtime.md.
+// DecoderRunner: feeds known tokens to decoder.onnx and keeps the KV cache. Each layer's
+// past_key/past_value is a tensor over its whole cache block and present_* is bound to the same
+// memory, so the attention reads the prefix in place and writes only the new rows (no copy, no
+// allocation per step).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -14,16 +13,13 @@
 
 namespace silk {
 
-enum class KvMode { kInPlace, kCopy };
-
 class DecoderRunner {
  public:
   // `cross_kv` ([L, 2, H, M, D] of the model's cross_type, from RunEncoder) must outlive the
   // runner; each layer's cross_key/cross_value input is a view into it. The cache must have been reserved with the
   // model's KvShape. `max_chunk` bounds the tokens per decoder call (the logits buffer holds
   // max_chunk rows).
-  DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, KvMode mode = KvMode::kInPlace,
-                int64_t max_chunk = 256);
+  DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, int64_t max_chunk = 256);
 
   // Feeds n ids at positions cache.length() .. +n-1 (BOS first, at position 0), in chunks.
   // Afterwards last_logits() holds the next-token logits after the last id.
@@ -33,19 +29,15 @@ class DecoderRunner {
 
  private:
   Status RunChunk(const int32_t* ids, int64_t n);
-  // RunChunk's phases: stage the chunk, (re)make the cache views, bind the per-call inputs,
-  // run (in place, or copying the outputs back).
+  // RunChunk's phases: stage the chunk, (re)make the cache views, bind the per-call inputs, run.
   void StageInputs(const int32_t* ids, int64_t n);
   void MakeViews();
-  void* CompactPrefix(const void* block);
   void BindChunkInputs(int64_t n);
   void RunInPlace(int64_t n);
-  Status RunCopying(int64_t n);
 
   const Model::Impl& model_;
   KvCache* cache_;
   void* cross_kv_;
-  KvMode mode_;
   int64_t max_chunk_;
   int64_t vocab_;
   std::vector<std::string> in_names_, out_names_;
@@ -53,14 +45,13 @@ class DecoderRunner {
   std::vector<int64_t> ids_, positions_;
   int32_t seqlens_k_ = 0, total_ = 0;
   // Tensors over ids_/positions_/seqlens_k_/total_ (remade per call), then the per-layer cache
-  // and cross views; out: logits, then (kInPlace) present views over the same cache blocks.
-  // kInPlace builds the views once (again if the cache is re-reserved); the cross buffer must
-  // stay where it is for the runner's life.
+  // and cross views; out: logits, then the present views over the same cache blocks. The views
+  // are built once (again if the cache is re-reserved); the cross buffer must stay where it is
+  // for the runner's life.
   std::vector<Ort::Value> in_values_, out_values_;
   const void* views_of_ = nullptr;
   int64_t views_capacity_ = 0;
-  std::vector<std::vector<unsigned char>> compact_;  // kCopy only
-  std::vector<float> logits_;                        // [max_chunk, V] (kInPlace: the bound output)
+  std::vector<float> logits_;  // [max_chunk, V], the bound output
   const float* last_logits_ = nullptr;
   int64_t calls_ = 0;
 };

@@ -67,9 +67,6 @@ StatusOr<GenerationPlan> ResolveRequest(const GenerationRequest& r, const ModelC
   o.max_faces = r.max_faces;
   o.holes = r.holes;
   o.unconstrained = r.unconstrained;
-  o.skip_forced = r.skip_forced;
-  o.kv_in_place = r.kv_in_place;
-  o.order = r.order;
   o.record_trace = r.record_trace;
   o.surface_tolerance = r.surface_tolerance;
   o.candidates = r.candidates.value_or(config.candidates);

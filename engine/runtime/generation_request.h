@@ -25,9 +25,7 @@ struct GenerationRequest {
   bool raw_points = false;                         // the input's points are the encoder input as given (RawModelPoints)
   int32_t max_tokens = 0, max_faces = 0;           // GenerateOptions' caps
   HolePolicy holes = HolePolicy::kOff;
-  bool unconstrained = false;
-  bool skip_forced = true, kv_in_place = true;  // measurement switches (GenerateOptions)
-  SampleOrder order = SampleOrder::kMaskFirst;
+  bool unconstrained = false;  // GenerateOptions::unconstrained (no public params field)
   bool record_trace = false;
   int32_t surface_tolerance = 0;
   bool orient_to_input = false;

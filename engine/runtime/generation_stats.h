@@ -39,7 +39,6 @@ struct GenerationStats {
   int64_t sampled_tokens = 0;
   int64_t model_calls = 0;                     // decoder.onnx runs
   int64_t fed_positions = 0;                   // positions written to the KV cache (BOS included)
-  int64_t resampled = 0;                       // sample-then-check order: draws that were illegal
   StopReason stop_reason = StopReason::kNone;  // kNone while running
   std::string dead_end;                        // grammar_dead_end: where (a grammar bug; reported, not fatal)
   int32_t faces = 0, vertices = 0, components = 0;

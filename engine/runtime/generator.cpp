@@ -57,7 +57,7 @@ int64_t FirstNonFinite(const float* logits, int64_t n) {
 }
 
 // The sampling chain of one generation: the grammar mask unless unconstrained, then the guide
-// (set only when constrained), the measurement order, the sampling values.
+// (set only when constrained), the sampling values.
 SamplerChainSettings ChainSettings(const GenerateOptions& o, Grammar* grammar, const SurfaceGuide* guide,
                                    const FaceGuide* face_guide, GenerationStats* stats) {
   SamplerChainSettings c;
@@ -66,7 +66,6 @@ SamplerChainSettings ChainSettings(const GenerateOptions& o, Grammar* grammar, c
   c.guide = guide;
   c.face_guide = face_guide;
   c.face_mode = o.face_guidance;
-  c.sample_then_check = o.order == SampleOrder::kSampleThenCheck;
   c.stats = stats;
   return c;
 }
@@ -101,7 +100,7 @@ struct Generator::Session {
         callbacks(cb),
         cap(cap),
         cross(std::move(cross_kv)),
-        runner(m, cache, cross.GetTensorMutableData<void>(), o.kv_in_place ? KvMode::kInPlace : KvMode::kCopy),
+        runner(m, cache, cross.GetTensorMutableData<void>()),
         grammar(MakeGrammarOptions(cap)) {}
   static GrammarOptions MakeGrammarOptions(int32_t cap) {
     GrammarOptions g;
@@ -255,7 +254,7 @@ Status Generator::StepOnce() {
   }
   StepChoice c;
   if (!s.options.unconstrained && !ConsultGrammar(&c)) return Status::Ok();  // dead end: stop reason set
-  if (!c.forced || !s.options.skip_forced) SILK_RETURN_IF_ERROR(FeedPending());
+  if (!c.forced) SILK_RETURN_IF_ERROR(FeedPending());                        // a forced id needs no logits
   ChooseId(&c);
   RecordTrace(c);
   SILK_RETURN_IF_ERROR(AcceptId(c.id));

@@ -33,20 +33,14 @@ class SurfaceGuide;
 class FaceGuide;
 class OrientedPointSet;
 
-enum class SampleOrder {
-  kMaskFirst,        // sample among legal ids (default)
-  kSampleThenCheck,  // sample over all ids, fall back to the masked chain if illegal
-};
-
 struct GenerateOptions {
   SamplingParams sampling;
   int32_t max_tokens = 0;  // ids incl. EOS; 0 = the model's max_seq_len - 1
   int32_t max_faces = 0;   // stop at the first layer close with at least this many faces; 0 = off
   HolePolicy holes = HolePolicy::kOff;
-  bool unconstrained = false;  // no grammar mask (the grammar only watches; mesh = legal prefix)
-  bool skip_forced = true;     // false: run the model for forced ids too (measurement)
-  bool kv_in_place = true;     // false: naive copying cache (measurement)
-  SampleOrder order = SampleOrder::kMaskFirst;
+  // No grammar mask: ids as the model draws them, as the official network's own loop does (the
+  // grammar only watches; mesh = legal prefix). In-tree comparisons only (capi/capi_measurement.h).
+  bool unconstrained = false;
   bool record_trace = false;  // fill GenerateResult::trace (golden test reference check)
   // Surface guidance (runtime/sampling/surface_guide.h): vertex ids only on grid cells within this many
   // cells of an input point's cell; 0 = off. Constrained mode only: with `unconstrained` there

@@ -20,7 +20,7 @@ import torch  # noqa: E402
 import silk_export  # noqa: E402,F401  (export/silk_mesh links to the binding)
 
 torch.set_num_threads(1)  # deterministic, and fast on a shared machine (no thread oversubscription)
-from silk_test_fixtures import lib_path, shared, silkgen, silktok  # noqa: E402,F401  (fixtures, registered here)
+from silk_test_fixtures import generate_unconstrained, lib_path, shared, silkgen, silktok  # noqa: E402,F401
 
 
 @pytest.fixture(scope="session")

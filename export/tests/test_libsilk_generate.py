@@ -92,8 +92,8 @@ def test_nan_weights_fail_naming_the_model(tmp_path):
     assert str(bad) in e.value.message and "non-finite" in e.value.message
 
 
-def _c_struct_fields(name: str) -> list[tuple[str, str]]:
-    """(field, C type) of `typedef struct NAME { ... } NAME;` in silk.h, in order."""
+def _c_struct_fields(name: str) -> list[tuple[str, str, int]]:
+    """(field, C type, array length or 0) of `typedef struct NAME { ... } NAME;` in silk.h, in order."""
     import re
 
     text = (REPO_ROOT / "engine/include/silk/silk.h").read_text()
@@ -105,7 +105,9 @@ def _c_struct_fields(name: str) -> list[tuple[str, str]]:
         if not decl:
             continue
         ctype, names = decl.split(" ", 1)
-        out += [(n.strip(), ctype) for n in names.split(",")]
+        for n in names.split(","):
+            array = re.fullmatch(r"(\w+)\[(\d+)\]", n.strip())
+            out.append((array.group(1), ctype, int(array.group(2))) if array else (n.strip(), ctype, 0))
     return out
 
 
@@ -124,9 +126,11 @@ def test_ctypes_declarations_follow_silk_h(c_name, py_struct):
     }
     want = _c_struct_fields(c_name)
     got = getattr(silk_c, py_struct)._fields_
-    assert [n for n, _ in got] == [n for n, _ in want]
-    for (n, t), (_, ct) in zip(got, want):
-        if ct in scalar:
+    assert [n for n, _ in got] == [n for n, _, _ in want]
+    for (n, t), (_, ct, length) in zip(got, want):
+        if ct in scalar and length:  # e.g. int32_t reserved[2]
+            assert t._type_ is scalar[ct] and t._length_ == length, f"{py_struct}.{n}: {t} for C {ct}[{length}]"
+        elif ct in scalar:
             assert t is scalar[ct], f"{py_struct}.{n}: {t} for C {ct}"
 
 

@@ -203,7 +203,7 @@ def write_cloud_ply(path, points: np.ndarray) -> None:
 @pytest.mark.parametrize(
     "decoder,kv", [("fp32", "fp32"), ("fp32", "fp16"), ("fp32", "int8"), ("int4", "fp32"), ("int4", "int8")]
 )
-def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp_path, decoder, kv):
+def test_libsilk_generates_64_tokens_like_the_python_loop(imported, generate_unconstrained, tmp_path, decoder, kv):
     """The C++ runtime on the imported release-layout model: 64 greedy ids from raw points, equal
     to the Python onnxruntime loop over the same graph (the fp32 or INT4 decoder, or its
     fp16/int8-cache variant, whose ai.silk ops Python's onnxruntime runs from libsilk; the INT4
@@ -216,12 +216,11 @@ def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp
     out = tmp_path / "ids.txt"
     r = subprocess.run(
         [
-            str(silkgen),
+            str(generate_unconstrained),
             str(tmp_path / "points.ply"),
             "--model",
             str(imported),
             "--raw-points",
-            "--unconstrained",
             "--temperature",
             "0",
             "--max-tokens",
@@ -234,7 +233,6 @@ def test_silkgen_generates_64_tokens_like_the_python_loop(imported, silkgen, tmp
             "1",
             "--tokens",
             str(out),
-            "-q",
         ],
         capture_output=True,
         text=True,

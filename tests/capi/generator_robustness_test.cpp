@@ -427,8 +427,9 @@ TEST(CapiMisuse, OutOfRangeEnumsAndFlagsAreRejected) {
       void (*set)(silk_generate_params*);
     };
     const Case cases[] = {{"holes", [](silk_generate_params* p) { p->holes = 7; }},
-                          {"unconstrained", [](silk_generate_params* p) { p->unconstrained = 2; }},
-                          {"debug_flags", [](silk_generate_params* p) { p->debug_flags = 64; }},
+                          // 1.0-1.3's measurement switches: refused, named, never silently ignored
+                          {"unconstrained", [](silk_generate_params* p) { p->reserved[0] = 1; }},
+                          {"debug_flags", [](silk_generate_params* p) { p->reserved[1] = 2; }},
                           {"report_flags", [](silk_generate_params* p) { p->report_flags = 2; }},
                           {"surface_tolerance -1", [](silk_generate_params* p) { p->surface_tolerance = -1; }},
                           {"surface_tolerance 128", [](silk_generate_params* p) { p->surface_tolerance = 128; }},
@@ -502,7 +503,7 @@ TEST(CapiMisuse, SamplingValuesOtherThanTheModelSentinelAreRefused) {
       {"max_tokens -5", [](silk_generate_params* p) { p->max_tokens = -5; }},
       {"max_faces -1", [](silk_generate_params* p) { p->max_faces = -1; }},
       {"point_count -3", [](silk_generate_params* p) { p->point_count = -3; }},
-      {"unconstrained 2", [](silk_generate_params* p) { p->unconstrained = 2; }},
+      {"reserved[0] is 2", [](silk_generate_params* p) { p->reserved[0] = 2; }},
       {"raw_points -1", [](silk_generate_params* p) { p->raw_points = -1; }},
       {"holes 3", [](silk_generate_params* p) { p->holes = 3; }},
       {"orient -1", [](silk_generate_params* p) { p->orient = -1; }}};
@@ -886,11 +887,11 @@ TEST_F(CapiGeneration, CandidatesReportEveryScoreAndReturnTheLowest) {
   silk_generator_destroy(g);
 }
 
-// candidates = SILK_MODEL_CANDIDATES (the default) runs the model's N; an explicit N overrides
+// candidates = SILK_MODEL_VALUE (the default) runs the model's N; an explicit N overrides
 // it, and the report's settings give the N that ran.
 TEST(CapiModel, DefaultCandidatesAreTheModels) {
   if (!silk_generation_available()) GTEST_SKIP();
-  EXPECT_EQ(silk_generate_default_params().candidates, SILK_MODEL_CANDIDATES);
+  EXPECT_EQ(silk_generate_default_params().candidates, SILK_MODEL_VALUE);
   // The tiny model with its own best of N (sampling.candidates 3).
   const fs::path dir = TinyModelCopy("model_n", [](std::string& json) {
     EXPECT_EQ(json.find("\"sampling\""), std::string::npos) << "the tiny model names no sampling defaults";
@@ -904,7 +905,7 @@ TEST(CapiModel, DefaultCandidatesAreTheModels) {
   ASSERT_EQ(silk_mesh_load(silk::testing::SourcePath("samples/torus_knot.obj").c_str(), nullptr, &mesh), SILK_OK);
   silk_generator* g = nullptr;
   ASSERT_EQ(silk_generator_create(m, &g), SILK_OK);
-  for (int32_t asked : {SILK_MODEL_CANDIDATES, 1, 2}) {
+  for (int32_t asked : {SILK_MODEL_VALUE, 1, 2}) {
     silk_generate_params p = silk_generate_default_params();
     p.max_tokens = 120;
     p.candidates = asked;
@@ -912,7 +913,7 @@ TEST(CapiModel, DefaultCandidatesAreTheModels) {
     silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
     ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh, &p, &out, nullptr, &st), SILK_OK) << silk_last_error();
     silk_mesh_destroy(out);
-    const int32_t want = asked == SILK_MODEL_CANDIDATES ? 3 : asked;
+    const int32_t want = asked == SILK_MODEL_VALUE ? 3 : asked;
     EXPECT_EQ(st.candidates, want) << "asked " << asked;
     std::string json;
     ASSERT_EQ(silk::testing::GeneratorReport(g, 0, &json), SILK_OK);

@@ -32,11 +32,11 @@ def shared() -> Path:
     return shared_dir(required=True)
 
 
-def tool_beside_library(lib_path: Path, name: str) -> Path:
-    """$<NAME> (e.g. $SILKGEN), else apps/<name> of the build folder holding lib_path; skips the
-    test when neither is there."""
+def tool_beside_library(lib_path: Path, name: str, folder: str = "apps") -> Path:
+    """$<NAME> (e.g. $SILKGEN), else <folder>/<name> of the build folder holding lib_path; skips
+    the test when neither is there."""
     env = os.environ.get(name.upper())
-    exe = Path(env) if env else lib_path.resolve().parents[1] / "apps" / name
+    exe = Path(env) if env else lib_path.resolve().parents[1] / folder / name
     if not exe.is_file():
         pytest.skip(f"{name} not built beside {lib_path} (set {name.upper()})")
     return exe
@@ -50,3 +50,9 @@ def silkgen(lib_path) -> Path:
 @pytest.fixture(scope="session")
 def silktok(lib_path) -> Path:
     return tool_beside_library(lib_path, "silktok")
+
+
+@pytest.fixture(scope="session")
+def generate_unconstrained(lib_path) -> Path:
+    """tests/tools/generate_unconstrained.cpp (a test build's): generation without the grammar mask."""
+    return tool_beside_library(lib_path, "generate_unconstrained", "tests")

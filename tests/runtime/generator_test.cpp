@@ -93,23 +93,6 @@ TEST_F(GeneratorTest, EveryResultIsALegalSequenceAndAGoodMesh) {
   EXPECT_GE(ended, 3);
 }
 
-TEST_F(GeneratorTest, OptimisedPathsGiveTheSameTokens) {
-  const auto base = Run(Options(2));
-  GenerateOptions o = Options(2);
-  o.skip_forced = false;
-  const auto no_skip = Run(o);
-  EXPECT_EQ(base.tokens, no_skip.tokens);
-  EXPECT_GT(no_skip.stats.model_calls, base.stats.model_calls);
-  o = Options(2);
-  o.kv_in_place = false;
-  EXPECT_EQ(base.tokens, Run(o).tokens);
-  o = Options(2);
-  o.order = SampleOrder::kSampleThenCheck;
-  const auto stc = Run(o);
-  EXPECT_EQ(stc.tokens.back(), vocab::k_eos_id);
-  EXPECT_GT(stc.stats.resampled, 0);  // a random model proposes illegal ids
-}
-
 TEST_F(GeneratorTest, ThreadsDoNotChangeTokensOfTheTinyModel) {
   auto two = testing::LoadTinyModel(2);
   ASSERT_TRUE(two);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The sampling chain: only legal ids, greedy/top-k/top-p semantics, seeded determinism, draws
-// that follow the softmax of the logits, and the sample-then-check arrangement.
+// The sampling chain: only legal ids, greedy/top-k/top-p semantics, seeded determinism, and draws
+// that follow the softmax of the logits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,7 +8,6 @@
 #include <map>
 #include <vector>
 
-#include "runtime/generation_stats.h"
 #include "runtime/sampling/sampler.h"
 #include "tokenizer/vocabulary_layout.h"
 
@@ -195,40 +194,6 @@ TEST(Sampler, OfficialTopPKeepsTheCrossingIdAndUsesItsOwnTemperature) {
   p.top_p = 0.4;
   auto only_top = BuildSamplerChain({p});
   for (int i = 0; i < 200; ++i) EXPECT_EQ(only_top->Sample(l.data(), &m), 20);
-}
-
-// Sample-then-check: an unmasked draw first; an illegal one is counted and redrawn from the mask.
-TEST(Sampler, SampleThenCheckRedrawsIllegalIdsFromTheMask) {
-  const auto l = Logits();
-  const TokenMask m = Legal();
-  GenerationStats stats;
-  SamplerChainSettings greedy;
-  greedy.sampling.temperature = 0;
-  greedy.sample_then_check = true;
-  greedy.stats = &stats;
-  auto s = BuildSamplerChain(greedy);
-  EXPECT_EQ(s->Sample(l.data(), &m), 10);  // 13 first (illegal), then the masked best
-  EXPECT_EQ(stats.resampled, 1);
-  TokenMask with13 = m;
-  with13.Set(13);
-  EXPECT_EQ(s->Sample(l.data(), &with13), 13);  // legal: the first draw stands
-  EXPECT_EQ(stats.resampled, 1);
-  // Drawing: always legal; with every id legal, one draw per step, as the unmasked chain draws.
-  SamplerChainSettings drawn = greedy;
-  drawn.sampling = SamplingParams{};
-  drawn.sampling.seed = 21;
-  stats.resampled = 0;
-  auto d = BuildSamplerChain(drawn);
-  for (int i = 0; i < 200; ++i) EXPECT_TRUE(m.Test(d->Sample(l.data(), &m)));
-  EXPECT_GT(stats.resampled, 0);
-  EXPECT_LE(stats.resampled, 200);
-  TokenMask all;
-  all.SetRange(0, vocab::k_model_vocab_size);
-  all.Reset(vocab::k_pad_id);
-  auto checked = BuildSamplerChain(drawn), plain = BuildSamplerChain({drawn.sampling});
-  stats.resampled = 0;
-  for (int i = 0; i < 200; ++i) EXPECT_EQ(checked->Sample(l.data(), &all), plain->Sample(l.data(), nullptr));
-  EXPECT_EQ(stats.resampled, 0);
 }
 
 TEST(Sampler, EmptyOrSingleCandidate) {

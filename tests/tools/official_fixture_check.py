@@ -1,16 +1,18 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""The released Mesh Silksong architecture end to end through silkgen (ctest official_fixture_greedy):
+"""The released Mesh Silksong architecture end to end through libsilk (ctest official_fixture_greedy):
 imports ../shared/official-fixture/model.safetensors with `python3 -m silk_export import-official`
 (at test time, nothing committed), writes the fixture's conditioning points (points.npy, float32
 [4096, 6]) as a point-cloud PLY, and requires
 
-  silkgen points.ply --model IMPORTED --raw-points --unconstrained --temperature 0 --max-tokens 100
+  generate_unconstrained points.ply --model IMPORTED --raw-points --temperature 0 --max-tokens 100
           --tokens out.txt
+
+(tests/tools/generate_unconstrained.cpp: the official loop has no grammar mask, so neither may this run)
 
 to print exactly greedy.txt, the official implementation's 100 greedy ids (README of the fixture),
 once with the fp32 decoder and once with the importer's default decoder.
-Usage: official_fixture_check.py SILKGEN REPO SHARED_DIR. Exit 77 (ctest SKIP) when the fixture or
+Usage: official_fixture_check.py GENERATE_UNCONSTRAINED REPO SHARED_DIR. Exit 77 (ctest SKIP) when the fixture or
 the Python packages the importer needs (numpy, torch, onnx, onnxruntime) are missing."""
 
 import importlib.util
@@ -40,7 +42,7 @@ def main():
     if len(sys.argv) != 4:
         print(__doc__)
         return 2
-    silkgen, repo, shared = (pathlib.Path(a).resolve() for a in sys.argv[1:])
+    tool, repo, shared = (pathlib.Path(a).resolve() for a in sys.argv[1:])
     fixture = shared / "official-fixture"
     if not (fixture / "model.safetensors").exists():
         return skip(f"no official fixture in {fixture}")
@@ -81,19 +83,17 @@ def main():
         for label, extra in (("fp32", ["--decoder", "fp32"]), ("default decoder", [])):
             out = tmp / "out.txt"
             cmd = [
-                str(silkgen),
+                str(tool),
                 str(tmp / "points.ply"),
                 "--model",
                 str(tmp / "model"),
                 "--raw-points",
-                "--unconstrained",
                 "--temperature",
                 "0",
                 "--max-tokens",
                 "100",
                 "--tokens",
                 str(out),
-                "-q",
                 *extra,
             ]
             r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
@@ -101,7 +101,7 @@ def main():
             same = sum(a == b for a, b in zip(got, want))
             print(
                 f"{label}: {len(got)} ids, {same} of {len(want)} equal to greedy.txt"
-                + ("" if r.returncode == 0 else f" (silkgen exit {r.returncode}: {r.stderr.strip()})")
+                + ("" if r.returncode == 0 else f" (generate_unconstrained exit {r.returncode}: {r.stderr.strip()})")
             )
             if got != want:
                 first = next((i for i, (a, b) in enumerate(zip(got, want)) if a != b), min(len(got), len(want)))

@@ -227,7 +227,9 @@ def check_bad(silkgen, repo):
             ([sample, "-o", tmp / "o.obj", "--model", model, "--seed", "abc"], 2, ["seed"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--repair", "maybe"], 2, ["repair"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--top-p", "1.5"], 2, ["top-p"]),
-            ([sample, "-o", tmp / "o.obj", "--model", model, "--int8"], 1, ["INT8"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--int8"], 1, ["--decoder int8", "deprecated", "INT8"]),
+            # measurement switches that left silkgen and silk.h (issue 32): unknown options now
+            *[([sample, "-o", tmp / "o.obj", "--model", model, gone], 2, [gone]) for gone in REMOVED_OPTIONS],
             ([sample, "-o", tmp / "o.obj", "--model", model, "--surface-tolerance", "-1"], 2, ["surface-tolerance"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--surface-tolerance", "128"], 2, ["surface-tolerance"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--face-guidance", "strong"], 2, ["face-guidance"]),
@@ -311,14 +313,15 @@ def check_formats(silkgen, repo):
         faces = sum(1 for line in (tmp / "m.obj").read_text().splitlines() if line.startswith("f "))
         if faces < stats["faces"]:
             failures.append(f"obj with --repair repair has {faces} faces < {stats['faces']}")
-        p = run([silkgen, *base, "-o", tmp / "u.obj", "--unconstrained", "--stats", tmp / "u.json"])
-        u = json.loads((tmp / "u.json").read_text())
-        if "grammar" not in u or u["forced_tokens"] != 0:
-            failures.append(f"unconstrained stats: {u.get('grammar')}, forced {u.get('forced_tokens')}")
         p = run([silkgen, *base, "-o", tmp / "r.obj", "--seed", "random"], check=False)
         if p.returncode != 0:
             failures.append(f"--seed random failed: {p.stderr}")
     return failures
+
+
+# silkgen's measurement switches removed in issue 32 (generation without the grammar mask:
+# tests/tools/generate_unconstrained.cpp).
+REMOVED_OPTIONS = ("--unconstrained", "--kv-copy", "--sample-then-check", "--no-skip-forced")
 
 
 def glb_parts(path):

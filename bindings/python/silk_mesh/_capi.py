@@ -311,9 +311,8 @@ class GenerateParams(_Sized):
         ("surface_tolerance", ctypes.c_int32),
         ("candidates", ctypes.c_int32),
         ("orient", ctypes.c_int32),
-        # measurement only (docs/runtime.md): may change in a minor version
-        ("unconstrained", ctypes.c_int32),
-        ("debug_flags", ctypes.c_int32),
+        # reserved, 0 (1.0-1.3: the measurement switches unconstrained, debug_flags; silk.h)
+        ("reserved", ctypes.c_int32 * 2),
         # C API 1.3: face guidance (silk_face_guidance or -1: the model's; cells or -1)
         ("face_guidance", ctypes.c_int32),
         ("face_tolerance", ctypes.c_double),

@@ -22,7 +22,7 @@ _ENUM_FIELDS = {
     "preprocessing": "preprocess_kind",
     "face_guidance": "face_guidance",
 }
-_HIDDEN = ("progress", "cancel", "user_data")  # set from Python callables, not keywords
+_HIDDEN = ("progress", "cancel", "user_data", "reserved")  # callables (set from Python ones); reserved: 0
 
 
 class Model(_Owned):

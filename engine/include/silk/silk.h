@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* silk.h — the one public C API of libsilk (Mesh Silksong engine), version 1.0.
+/* silk.h — the one public C API of libsilk (Mesh Silksong engine); its version: SILK_VERSION_* below.
  * Opaque handles, create/destroy pairs, one silk_<x>_default_params() per params struct, status
  * codes plus a per-thread error message, one size-query rule for every copy, one way to return
  * JSON (silk_report); no exception ever crosses this boundary. The rules: docs/c_api.md. */
@@ -9,10 +9,29 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* SILK_API: on Windows, libsilk's own build (SILK_BUILDING_LIBRARY) exports the functions, a
+ * client of libsilk.dll imports them, and a client of the static library (SILK_STATIC, set by the
+ * silk_static target) does neither. Elsewhere only SILK_API symbols leave libsilk.so. */
 #if defined(_WIN32)
+#if defined(SILK_BUILDING_LIBRARY)
 #define SILK_API __declspec(dllexport)
+#elif defined(SILK_STATIC)
+#define SILK_API
+#else
+#define SILK_API __declspec(dllimport)
+#endif
 #else
 #define SILK_API __attribute__((visibility("default")))
+#endif
+
+/* SILK_DEPRECATED(why): marks what is removed in 2.0 (a compiler warning where supported; never
+ * inside libsilk, which still fills those fields). */
+#if defined(SILK_BUILDING_LIBRARY) || defined(SILK_NO_DEPRECATION_WARNINGS)
+#define SILK_DEPRECATED(why)
+#elif defined(__GNUC__) || defined(__clang__)
+#define SILK_DEPRECATED(why) __attribute__((deprecated(why)))
+#else
+#define SILK_DEPRECATED(why)
 #endif
 
 /* ---- version (the one source: CMake reads these three lines) ------------------------------
@@ -72,7 +91,7 @@ typedef enum silk_status {
 SILK_API const char* silk_last_error(void);
 /* Static strings (never freed). */
 SILK_API const char* silk_status_name(silk_status s);
-/* The library's version, SILK_VERSION_STRING as it was built ("1.0.0"); a static string. */
+/* The library's version, SILK_VERSION_STRING as it was built (e.g. "1.3.0"); a static string. */
 SILK_API const char* silk_version(void);
 
 /* ---- logging: the library prints nothing itself ------------------------------------ */
@@ -419,15 +438,23 @@ SILK_API silk_model_params silk_model_default_params(void);
 SILK_API silk_status silk_model_load(const char* dir, const silk_model_params* params, silk_model** out);
 SILK_API void silk_model_destroy(silk_model* model);
 
+/* The network a model folder holds (model.json "arch"; silk_model_info.arch). */
+typedef enum silk_arch {
+  SILK_ARCH_SILK = 0,    /* "silk": Silk's own architecture */
+  SILK_ARCH_OFFICIAL = 1 /* "official": the released Mesh Silksong network's (docs/official_network.md) */
+} silk_arch;
+
 typedef struct silk_model_info {
   uint32_t struct_size; /* set by the caller: sizeof(silk_model_info) */
   char config[32];      /* model.json "config" (truncated) */
   int32_t d_model, n_layers, n_heads, head_dim, n_latents;
   int32_t default_points; /* encoder points per generation by default (model.json dims.n_points) */
   int32_t max_seq_len;
-  int32_t threads, int8;
+  int32_t threads;
+  /* Deprecated, removed in 2.0: 1 when decoder == SILK_DECODER_INT8 (read .decoder). */
+  int32_t int8 SILK_DEPRECATED("silk_model_info.int8 is removed in 2.0: read .decoder");
   int32_t decoder;        /* silk_decoder_precision in use (never DEFAULT) */
-  int32_t arch;           /* 0 = "silk", 1 = "official" */
+  int32_t arch;           /* silk_arch */
   int32_t encoder_points; /* the encoder graph's fixed point count; -1 = any */
   int32_t kv_precision;   /* silk_kv_precision in use (never DEFAULT) */
 } silk_model_info;
@@ -495,24 +522,17 @@ typedef int32_t (*silk_cancel_fn)(void* user_data);
 enum {
   SILK_GENERATE_RECORD_TRACE = 1 /* keep the encoder points and every id's legal set (report trace 1) */
 };
-/* silk_generate_params.debug_flags: measurement switches (docs/runtime.md), 0 for normal use;
- * measurement only: they may change in a minor version. */
-enum {
-  SILK_DEBUG_NO_SKIP_FORCED = 1,   /* run the model for forced ids too */
-  SILK_DEBUG_KV_COPY = 2,          /* naive KV cache handling */
-  SILK_DEBUG_SAMPLE_THEN_CHECK = 4 /* sample unmasked, fall back to the mask */
-};
-
 /* "Use the model's value" (model.json "sampling" / "preprocessing"): the one sentinel of
- * silk_generate_params.temperature, top_k, top_p, top_p_temperature, preprocessing and
- * candidates (their default). Exactly -1 (the value these fields always took); any other
- * negative, NaN or infinite value is SILK_ERR_INVALID_ARGUMENT naming the field and value. */
+ * silk_generate_params.temperature, top_k, top_p, top_p_temperature, preprocessing, candidates,
+ * face_guidance and face_tolerance (their default). Exactly -1 (the value these fields always
+ * took); any other negative, NaN or infinite value is SILK_ERR_INVALID_ARGUMENT naming the field
+ * and value. (SILK_STOP_NONE, also -1, is a stop reason, not this.) */
 #define SILK_MODEL_VALUE (-1)
-/* The measured default of silk_generate_params.surface_tolerance; .candidates defaults to
- * SILK_MODEL_CANDIDATES, the model's own N (model.json "sampling.candidates", 1 when absent). */
+/* The measured default of silk_generate_params.surface_tolerance. */
 #define SILK_DEFAULT_SURFACE_TOLERANCE 2
+/* Deprecated aliases of SILK_MODEL_VALUE for .candidates, removed in 2.0. */
 #define SILK_MODEL_CANDIDATES SILK_MODEL_VALUE
-#define SILK_DEFAULT_CANDIDATES SILK_MODEL_CANDIDATES
+#define SILK_DEFAULT_CANDIDATES SILK_MODEL_VALUE
 /* Part orientation (silk_generate_params.orient). */
 typedef enum silk_orientation {
   SILK_ORIENT_TOKENS = 0, /* the winding the ids carry (what decoding the token file gives) */
@@ -557,7 +577,7 @@ typedef struct silk_generate_params {
   /* Surface guidance: each new vertex's block and offset ids are restricted to grid cells (of the
    * model's 128^3 grid) within this many cells (Euclidean) of a cell holding an encoder point;
    * when no legal id is that close, the nearest legal ones are kept (a "fallback" in the stats),
-   * so the mask never empties. 0 = off; 0..127. Ignored when unconstrained (below).
+   * so the mask never empties. 0 = off; 0..127.
    * Default: SILK_DEFAULT_SURFACE_TOLERANCE (chosen by measurement, docs/runtime.md). */
   int32_t surface_tolerance;
   /* Best of N, 1..64: a generation runs N candidates one after another on the same encoder
@@ -566,7 +586,7 @@ typedef struct silk_generate_params {
    * surface is closest to the input (symmetric Chamfer distance to the encoder's points; one with
    * faces always beats one without). silk_generator_run and the step-wise API alike (the same ids and
    * mesh for the same params): step-wise, advance runs the candidates in turn, silk_generator_get_mesh
-   * shows the one in progress and finish returns the chosen one. Default: SILK_MODEL_CANDIDATES (-1), the model's N
+   * shows the one in progress and finish returns the chosen one. Default: SILK_MODEL_VALUE (-1), the model's N
    * (model.json "sampling.candidates", chosen by measurement for that model: docs/runtime.md;
    * 1 when the model names none). */
   int32_t candidates;
@@ -575,15 +595,16 @@ typedef struct silk_generate_params {
    * nearest point) is negative) has all its faces reversed, in the final mesh and in
    * silk_generator_get_mesh; the ids are unchanged. Default: SILK_DEFAULT_ORIENT (docs/runtime.md). */
   int32_t orient;
-  /* ---- measurement only (docs/runtime.md): may change in a minor version ---- */
-  int32_t unconstrained; /* 1: no grammar mask (mesh = legal prefix); default 0 */
-  int32_t debug_flags;   /* SILK_DEBUG_* bits; default 0 */
+  /* Reserved, 0 (the default). C API 1.0-1.3 had two measurement switches here ("unconstrained",
+   * "debug_flags"); they left the public API, and a non-zero value is SILK_ERR_INVALID_ARGUMENT
+   * naming the slot, so a caller that set one never silently gets a different generation. */
+  int32_t reserved[2];
   /* ---- appended in C API 1.3 (a 1.0-1.2 caller's shorter struct gets the defaults) ---- */
   /* Face guidance: each legal between-layer id is judged by the faces it would close (their
    * corners, edge midpoints and centroid within face_tolerance cells of the input's points, their
    * normals within 60 degrees of the nearby input normals, up to sign); silk_face_guidance.
    * Default SILK_MODEL_VALUE (-1): the model's (model.json "sampling.face_guidance"), else
-   * libsilk's measured default (docs/runtime.md "Face guidance"). Ignored when unconstrained. */
+   * libsilk's measured default (docs/runtime.md "Face guidance"). */
   int32_t face_guidance;
   double face_tolerance; /* cells, 0.5..64; default SILK_MODEL_VALUE (-1): the model's, else libsilk's */
 } silk_generate_params;
@@ -623,7 +644,8 @@ typedef struct silk_generate_stats {
   int32_t faces, vertices, components;
   int32_t holes_found, holes_repaired, faces_added;
   int32_t edge_manifold, watertight, consistently_oriented, open_edges;
-  int64_t illegal_at; /* unconstrained: index of the first id the grammar rejects, else -1 */
+  int64_t illegal_at; /* -1: every id is legal (the grammar mask guarantees it; in-tree measurement
+                        runs without the mask give the index of the first id it rejects) */
   /* vertex_manifold: the faces around every vertex of the output form one fan; the decoder's
    * vertex-fan rule closed fan_gaps_closed gaps (repair policy) and split vertices_split vertices */
   int32_t vertex_manifold, nonmanifold_vertices, fan_gaps_closed, vertices_split;

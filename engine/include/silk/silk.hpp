@@ -276,6 +276,7 @@ class Generator {
     Check(silk_generator_create(model.get(), &g));
     h_.reset(g);
   }
+  silk_generator* get() const { return h_.get(); }
   // silk_generator_run. stats (may be NULL): its struct_size set by the caller (silk.h).
   Mesh Generate(const silk_generate_input& input, const silk_generate_params& p = silk_generate_default_params(),
                 silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {

@@ -211,12 +211,4 @@ void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed,
   RunTasks(parallel_for, parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
 }
 
-bool Int4MatMulVectorized() {
-#if SILK_INT4_AVX2
-  return CpuHasAvx2();
-#else
-  return false;
-#endif
-}
-
 }  // namespace silk

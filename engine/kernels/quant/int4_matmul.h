@@ -32,7 +32,4 @@ bool Int4ShapeSupported(const Int4MatMulShape& shape, const char** why);
 void Int4MatMul(const Int4MatMulShape& shape, const float* a, const uint8_t* packed, const float* scales, float* out,
                 ParallelForFn parallel_for, void* parallel_context, RowKernels kernels = RowKernels::kBest);
 
-// Whether this CPU runs the vectorized rows (AVX2 + FMA); otherwise plain C++.
-bool Int4MatMulVectorized();
-
 }  // namespace silk

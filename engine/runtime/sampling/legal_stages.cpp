@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The grammar mask, surface guidance and sample-then-check stages (runtime/sampling/legal_stages.h).
+// The grammar mask and surface guidance stages (runtime/sampling/legal_stages.h).
 #include "runtime/sampling/legal_stages.h"
 
 #include <chrono>
@@ -71,25 +71,6 @@ class SurfaceGuideStage : public SamplerStage {
   TokenMask guided_;  // the legal mask after guidance (what is sampled from)
 };
 
-class SampleThenCheckStage : public SamplerStage {
- public:
-  SampleThenCheckStage(std::unique_ptr<SamplerChain> unmasked, int64_t* resampled)
-      : unmasked_(std::move(unmasked)), resampled_(resampled) {}
-  void Apply(SamplerCandidates* c) override {
-    const int32_t id = unmasked_->Sample(c->logits, nullptr);
-    if (!c->mask || c->mask->Test(id)) {
-      c->id = id;
-      c->done = true;
-    } else if (resampled_) {
-      ++*resampled_;
-    }
-  }
-
- private:
-  std::unique_ptr<SamplerChain> unmasked_;
-  int64_t* resampled_;
-};
-
 }  // namespace
 
 std::unique_ptr<SamplerStage> MakeGrammarMaskStage(Grammar* grammar, GenerationStats* stats) {
@@ -99,10 +80,6 @@ std::unique_ptr<SamplerStage> MakeGrammarMaskStage(Grammar* grammar, GenerationS
 std::unique_ptr<SamplerStage> MakeSurfaceGuideStage(const SurfaceGuide* guide, const Grammar* grammar,
                                                     GenerationStats* stats) {
   return std::make_unique<SurfaceGuideStage>(guide, grammar, stats);
-}
-
-std::unique_ptr<SamplerStage> MakeSampleThenCheckStage(std::unique_ptr<SamplerChain> unmasked, int64_t* resampled) {
-  return std::make_unique<SampleThenCheckStage>(std::move(unmasked), resampled);
 }
 
 }  // namespace silk

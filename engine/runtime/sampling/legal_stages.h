@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The legality stages of the sampling chain (runtime/sampling/sampler.h): which ids may be chosen. The
-// grammar mask and surface guidance narrow the mask before the decoder runs; sample-then-check
-// (a measurement order) draws over every id first and lets the masked chain redraw an illegal id.
+// grammar mask and surface guidance narrow the mask before the decoder runs.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -19,9 +18,5 @@ std::unique_ptr<SamplerStage> MakeGrammarMaskStage(Grammar* grammar, GenerationS
 // is within it count as stats->guidance_fallbacks. Time: stats->seconds.guidance.
 std::unique_ptr<SamplerStage> MakeSurfaceGuideStage(const SurfaceGuide* guide, const Grammar* grammar,
                                                     GenerationStats* stats);
-
-// First on the logits: `unmasked` draws over every id but PAD; a legal draw is the choice, an
-// illegal one is counted (*resampled) and the rest of the chain draws from the mask.
-std::unique_ptr<SamplerStage> MakeSampleThenCheckStage(std::unique_ptr<SamplerChain> unmasked, int64_t* resampled);
 
 }  // namespace silk

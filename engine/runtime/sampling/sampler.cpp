@@ -45,11 +45,6 @@ std::unique_ptr<SamplerChain> BuildSamplerChain(const SamplerChainSettings& s) {
       if (s.face_mode == FaceGuidance::kSoft) chain->Add(MakeFacePenaltyStage());
     }
   }
-  if (s.sample_then_check) {
-    auto unmasked = std::make_unique<SamplerChain>(rng);
-    AddSamplingStages(unmasked.get(), s.sampling);
-    chain->Add(MakeSampleThenCheckStage(std::move(unmasked), s.stats ? &s.stats->resampled : nullptr));
-  }
   AddSamplingStages(chain.get(), s.sampling);
   return chain;
 }

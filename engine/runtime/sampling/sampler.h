@@ -2,8 +2,8 @@
 // The sampling chain, built as llama.cpp builds one: small stages behind one interface, each
 // narrowing the candidate ids of one step or choosing among them, assembled once per generation
 // by BuildSamplerChain from the resolved settings and run per step by Generator:
-//   grammar mask -> surface guidance -> face guidance | (face penalties) -> (sample-then-check)
-//   -> candidates -> temperature -> top-k
+//   grammar mask -> surface guidance -> face guidance | (face penalties) -> candidates
+//   -> temperature -> top-k
 //   -> (official top-p) -> softmax -> (top-p) -> draw; greedy (temperature <= 0): candidates ->
 //   greedy draw. Stages: runtime/sampling/sampler_stages.h (numeric), runtime/sampling/legal_stages.h (legality).
 // Every draw comes from one seeded SplitMix64, so tests/models/reference_loop.py reproduces the
@@ -59,7 +59,7 @@ class SamplerStage {
 
 class SamplerChain {
  public:
-  // `rng` is shared with any nested chain (sample-then-check draws twice from one stream).
+  // `rng`: the generation's one seeded stream, every draw of every stage.
   explicit SamplerChain(std::shared_ptr<SplitMix64> rng) : rng_(std::move(rng)) {}
 
   // Stages that need no logits (grammar mask, surface guidance), run by Narrow, in order.
@@ -87,7 +87,6 @@ struct SamplerChainSettings {
   const SurfaceGuide* guide = nullptr;    // surface guidance (needs the grammar); null: off
   const FaceGuide* face_guide = nullptr;  // face guidance (needs the grammar); null: off
   FaceGuidance face_mode{};               // kHard or kSoft when face_guide is set
-  bool sample_then_check = false;         // measurement: draw over all ids, the masked chain if illegal
   GenerationStats* stats = nullptr;       // counters and phase seconds of the stages; may be null
 };
 

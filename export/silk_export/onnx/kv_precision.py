@@ -51,11 +51,6 @@ def kv_name(decoder_file: str, precision: str) -> str:
     return f"{stem}.{KV_SUFFIXES[precision]}.onnx"
 
 
-def kv16_name(decoder_file: str) -> str:
-    """decoder.int4.onnx -> decoder.int4.kv16.onnx"""
-    return kv_name(decoder_file, "fp16")
-
-
 def _check_precision(precision: str) -> None:
     if precision not in KV_FILES:
         raise ValueError(f"cache variant precision '{precision}': expected one of {', '.join(KV_FILES)}")
@@ -205,11 +200,6 @@ def make_kv_decoder(
     )
     onnx.save(m, str(dst))  # external tensors keep their location: the variant shares src's data file
     return data
-
-
-def add_kv16_variants(folder: Path, files: dict, attention: str = "silk") -> dict:
-    """The fp16 variants (add_kv_variants with precision "fp16")."""
-    return add_kv_variants(folder, files, "fp16", attention)
 
 
 def add_kv_variants(
