@@ -62,7 +62,9 @@ std::string AttentionBatch::ResolveLengths(const AttentionInputs& in) {
     longest = std::max(longest, seqlen + 1);
   }
   if (longest != in.total_length)
-    return "seqlens_k " + std::string(s.batch == 1 ? std::to_string(in.seqlens[0]) : "(longest row " + std::to_string(longest - 1) + ")") +
+    return "seqlens_k " +
+           std::string(s.batch == 1 ? std::to_string(in.seqlens[0])
+                                    : "(longest row " + std::to_string(longest - 1) + ")") +
            ", total_sequence_length " + std::to_string(in.total_length) + ", " + std::to_string(s.chunk) +
            " new positions and a cache of " + std::to_string(s.capacity) + " do not fit together";
   total_ = longest;

@@ -17,8 +17,8 @@ struct AttentionInputs {
   float scale = 0.0f;               // the node's scale (0: 1 / sqrt(head_dim))
   CacheElement element = CacheElement::kFloat16;
   std::vector<int64_t> query, key, value, past_key, past_value, seqlens_k, total;  // shapes
-  const int32_t* seqlens = nullptr;                                                 // seqlens_k's values
-  int32_t total_length = 0;                                                         // total_sequence_length
+  const int32_t* seqlens = nullptr;                                                // seqlens_k's values
+  int32_t total_length = 0;                                                        // total_sequence_length
   bool has_new_positions = false;  // the optional eighth input (contract v4)
   std::vector<int64_t> new_positions_shape;
   const int32_t* new_positions = nullptr;

@@ -59,9 +59,9 @@ void ExpectRowsAsAlone(AttentionShape s, const Batch& rows, CacheElement e) {
     std::vector<unsigned char> k1(key0.begin() + r * block, key0.begin() + (r + 1) * block);
     std::vector<unsigned char> v1(value0.begin() + r * block, value0.begin() + (r + 1) * block);
     std::vector<float> o1(static_cast<size_t>(one.chunk * qw), NAN);
-    CachedAttention(one, e, {q.data() + r * T * qw, k.data() + r * T * kw, v.data() + r * T * kw, k1.data(), v1.data(),
-                             o1.data()},
-                    Backwards, nullptr);
+    CachedAttention(
+        one, e, {q.data() + r * T * qw, k.data() + r * T * kw, v.data() + r * T * kw, k1.data(), v1.data(), o1.data()},
+        Backwards, nullptr);
     const std::string where = "row " + std::to_string(r) + " (past " + std::to_string(rows.past[r]) + ", " +
                               std::to_string(rows.chunk[r]) + " new), element " + std::to_string(int(e));
     EXPECT_EQ(std::memcmp(out.data() + r * T * qw, o1.data(), o1.size() * 4), 0) << where << ": output differs";
@@ -174,8 +174,9 @@ TEST(AttentionBatch, InputsThatDoNotFitTogetherAreRefusedWithAMessage) {
       {Inputs(2, 1, 8, {3, 40}, {}, 41), "row 1: seqlens_k 40, 1 new positions (of 1) and a cache of 8 do not fit"},
       {Inputs(2, 1, 8, {3, -5}, {}, 4), "row 1: seqlens_k -5"},
       {Inputs(2, 1, 8, {3, 4}, {}, 9), "total_sequence_length 9"},
-      {short_cache, "past_key/past_value have shapes [1, 2, 8, 8], [1, 2, 8, 8], expected [R, kv_heads, capacity, "
-                    "head_dim] = [2, 2, C, 8] (one cache block per row of the batch)"},
+      {short_cache,
+       "past_key/past_value have shapes [1, 2, 8, 8], [1, 2, 8, 8], expected [R, kv_heads, capacity, "
+       "head_dim] = [2, 2, C, 8] (one cache block per row of the batch)"},
       {bad_new_shape, "new_positions has shape [3], expected [2] (one per row)"},
       {bad_query, "query has shape [2, 1, 30]"},
   };

@@ -52,8 +52,8 @@ TEST(MatMulRows, Int4EveryRowOfABatchIsBitIdenticalToItAlone) {
         std::vector<float> scales = Normal(static_cast<size_t>(sh.n * sh.k / sh.block), 5, 0.02f);
         const std::vector<float> a = Normal(static_cast<size_t>(rows * sh.k), static_cast<uint32_t>(rows), 2.0f);
         std::vector<float> out(static_cast<size_t>(rows * sh.n), NAN);
-        Int4MatMul({rows, sh.k, sh.n, sh.block}, a.data(), packed.data(), scales.data(), out.data(), Backwards,
-                   nullptr, kernels);
+        Int4MatMul({rows, sh.k, sh.n, sh.block}, a.data(), packed.data(), scales.data(), out.data(), Backwards, nullptr,
+                   kernels);
         ExpectRowsAsAlone(
             out, rows, sh.n,
             [&](int64_t r) {
