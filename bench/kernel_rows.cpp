@@ -6,7 +6,8 @@
 // mesh) or each row's own, and the float16 logits head; the rest of a call (norms, GELU, adds) is
 // elementwise and left out. Prints ms per call, rows x calls per second and bytes per call
 // (weights once, each row's cache, the cross K/V once per mesh) beside the R = 1 figures of the
-// same run and the read-bandwidth bound for those bytes (bench_memory.h).
+// same run and the read-bandwidth bound for those bytes (bench_memory.h), and the process's CPU
+// ms per call (with --threads 1 the figure a busy shared machine does not distort).
 //
 //   kernel_rows [--rows 1,2,4,8] [--depths 500,2000] [--calls 30] [--threads 2] [--cross shared|per-row]
 //
@@ -14,6 +15,8 @@
 // feed-forward 4096 with GLU, 10,269 logits), INT4 block 32. Weights are random: the kernels'
 // cost does not depend on their values. Built with -DSILK_KERNEL_ROWS_ONE_ROW against a tree
 // before contract v4 (bench/kernel_rows_baseline.py) it runs R = 1 alone: that tree's cost.
+#include <time.h>
+
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -93,6 +96,14 @@ class SpinPool {
   std::atomic<bool> stop_{false};
 };
 
+// CPU seconds of the whole process (every thread; the pool's workers spin between jobs, so with
+// --threads 1 it is the kernels' own time, unaffected by other processes on a shared machine).
+double ProcessCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 struct Int4Weight {
   int64_t n, k;
   std::vector<uint8_t> packed;
@@ -109,9 +120,9 @@ Int4Weight RandomInt4(int64_t n, int64_t k, std::mt19937& rng) {
 
 // Every weight of the network, the caches of `rows` rows at `depth`, one call's activations.
 struct Network {
-  std::vector<Int4Weight> matmuls;        // per layer: q, k, v, out, cross q, cross out, ff in, ff out
-  std::vector<uint16_t> logits;           // [vocab, model] float16
-  std::vector<std::vector<uint16_t>> cross;  // per layer: key then value [sources, heads, 261, 64]
+  std::vector<Int4Weight> matmuls;                // per layer: q, k, v, out, cross q, cross out, ff in, ff out
+  std::vector<uint16_t> logits;                   // [vocab, model] float16
+  std::vector<std::vector<uint16_t>> cross;       // per layer: key then value [sources, heads, 261, 64]
   std::vector<std::vector<unsigned char>> cache;  // per layer: key then value [rows, heads, depth + 1, 68]
   int64_t rows = 1, depth = 0, sources = 1;
   std::vector<float> x, wide, q, out, scores;
@@ -175,8 +186,12 @@ void Call(Network& net, SpinPool* pool) {
 #ifndef SILK_KERNEL_ROWS_ONE_ROW
     s.batch = R, s.row_past = past.data(), s.row_chunk = fresh.data();
 #endif
-    silk::AttentionBuffers b{q, wide, wide + R * kModel, net.cache[static_cast<size_t>(2 * l)].data(),
-                             net.cache[static_cast<size_t>(2 * l + 1)].data(), out};
+    silk::AttentionBuffers b{q,
+                             wide,
+                             wide + R * kModel,
+                             net.cache[static_cast<size_t>(2 * l)].data(),
+                             net.cache[static_cast<size_t>(2 * l + 1)].data(),
+                             out};
     silk::CachedAttention(s, silk::CacheElement::kInt8, b, SpinPool::For, pool);
     Product(w[3], out, x, R, pool);
     Product(w[4], x, q, R, pool);
@@ -212,12 +227,18 @@ bool Parse(int argc, char** argv, Args* a) {
     const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
     if (!v) return false;
     ++i;
-    if (k == "--rows") a->rows = List(v);
-    else if (k == "--depths") a->depths = List(v);
-    else if (k == "--calls") a->calls = std::atoi(v);
-    else if (k == "--threads") a->threads = std::atoi(v);
-    else if (k == "--cross") a->per_row_cross = std::string(v) == "per-row";
-    else return false;
+    if (k == "--rows")
+      a->rows = List(v);
+    else if (k == "--depths")
+      a->depths = List(v);
+    else if (k == "--calls")
+      a->calls = std::atoi(v);
+    else if (k == "--threads")
+      a->threads = std::atoi(v);
+    else if (k == "--cross")
+      a->per_row_cross = std::string(v) == "per-row";
+    else
+      return false;
   }
   for (int64_t r : a->rows)
     if (r < 1 || r > 64) return false;
@@ -242,8 +263,8 @@ int main(int argc, char** argv) {
   SpinPool pool(a.threads);
   std::printf("release-size INT4 decoder kernels, int8 cache, float16 cross K/V %s, %d threads, %d calls\n",
               a.per_row_cross ? "per row" : "shared by the rows", a.threads, a.calls);
-  std::printf("%6s %5s %9s %7s %12s %7s %9s %9s %6s\n", "depth", "rows", "ms/call", "xR=1", "rows*calls/s", "xR=1",
-              "MB/call", "bound ms", "%bound");
+  std::printf("%6s %5s %9s %7s %12s %7s %9s %9s %6s %8s\n", "depth", "rows", "ms/call", "xR=1", "rows*calls/s", "xR=1",
+              "MB/call", "bound ms", "%bound", "cpu ms");
   for (int64_t depth : a.depths) {
     double base_ms = 0, base_rate = 0;  // the first --rows entry's (1 by default)
     for (int64_t rows : a.rows) {
@@ -252,13 +273,14 @@ int main(int argc, char** argv) {
       const double bandwidth = silk::bench::ReadBandwidth(a.threads, net.Bytes());
       for (int i = 0; i < 3; ++i) Call(net, &pool);  // warm-up
       const auto t0 = Clock::now();
+      const double cpu0 = ProcessCpuSeconds();
       for (int i = 0; i < a.calls; ++i) Call(net, &pool);
-      const double ms = 1e3 * Since(t0) / a.calls;
+      const double ms = 1e3 * Since(t0) / a.calls, cpu_ms = 1e3 * (ProcessCpuSeconds() - cpu0) / a.calls;
       const double rate = rows * 1e3 / ms, bound = net.Bytes() / bandwidth / 1e6;
       if (base_ms == 0) base_ms = ms, base_rate = rate;
-      std::printf("%6lld %5lld %9.2f %7.2f %12.1f %7.2f %9.1f %9.2f %5.0f%%\n", static_cast<long long>(depth),
+      std::printf("%6lld %5lld %9.2f %7.2f %12.1f %7.2f %9.1f %9.2f %5.0f%% %8.2f\n", static_cast<long long>(depth),
                   static_cast<long long>(rows), ms, ms / base_ms, rate, rate / base_rate, net.Bytes() / 1e6, bound,
-                  100.0 * bound / ms);
+                  100.0 * bound / ms, cpu_ms);
       std::fflush(stdout);
     }
   }
