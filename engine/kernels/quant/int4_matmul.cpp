@@ -113,42 +113,66 @@ constexpr int64_t kPrefetchBytes = 4096;  // ahead in the weight stream (measure
 
 // Two groups per step: 32 packed bytes against 32 even and 32 odd activations; maddubs + madd
 // give one int32 per 4 bytes (lanes 0-3 group 2p, 4-7 group 2p + 1), scaled per lane. An odd
-// last group (K = 32 modulo 64) is added in plain C++.
+// last group (K = 32 modulo 64) is added in plain C++. The step's pieces below are shared by the
+// one-row and the many-row kernels, so both do the same operations in the same order.
+
+// Step p of a weight row: its low and high nibbles.
+SILK_AVX2 inline void StepNibbles(const uint8_t* w, int64_t p, __m256i* lo, __m256i* hi) {
+  _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
+  const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32));
+  const __m256i low4 = _mm256_set1_epi8(0x0f);
+  *lo = _mm256_and_si256(x, low4), *hi = _mm256_and_si256(_mm256_srli_epi16(x, 4), low4);
+}
+
+// Step p's weight scale per lane (ws: the weight row's scales).
+template <bool kScalePerGroup>
+SILK_AVX2 inline __m256 StepScale(const float* ws, int64_t p, int64_t groups_per_block) {
+  if constexpr (kScalePerGroup) {
+    double two;  // the two groups' weight scales
+    std::memcpy(&two, ws + 2 * p, 8);
+    const __m256i pick = _mm256_set_epi32(1, 1, 1, 1, 0, 0, 0, 0);
+    return _mm256_permutevar8x32_ps(_mm256_castps128_ps256(_mm_castpd_ps(_mm_set_sd(two))), pick);
+  } else {
+    (void)groups_per_block;
+    return _mm256_set1_ps(ws[2 * p / groups_per_block]);
+  }
+}
+
+// acc + step p of one activation row: the int32 dots (zero point included) times both scales.
+SILK_AVX2 inline __m256 StepAccumulate(__m256i lo, __m256i hi, __m256 wscale, const QuantizedRow& q, int64_t p,
+                                       __m256 acc) {
+  const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.even + p * 32));
+  const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.odd + p * 32));
+  const __m256i pairs16 = _mm256_add_epi16(_mm256_maddubs_epi16(lo, e), _mm256_maddubs_epi16(hi, o));
+  const __m256i dot = _mm256_add_epi32(_mm256_madd_epi16(pairs16, _mm256_set1_epi16(1)),
+                                       _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.offset + p * 8)));
+  const __m256 lane = _mm256_mul_ps(wscale, _mm256_loadu_ps(q.lane_scale + p * 8));
+  return _mm256_fmadd_ps(_mm256_cvtepi32_ps(dot), lane, acc);
+}
+
+// The row's output: the eight lanes summed, plus an odd last group.
+SILK_AVX2 inline float RowSum(__m256 acc, const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* w,
+                              const float* scales, int64_t r) {
+  __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc), _mm256_extractf128_ps(acc, 1));
+  h = _mm_add_ps(h, _mm_movehl_ps(h, h));
+  float sum = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
+  if (s.k % (2 * kGroup)) sum += GroupScalar(s, q, w, scales, r, s.k / (2 * kGroup) * 2);
+  return sum;
+}
+
 template <bool kScalePerGroup>
 SILK_AVX2 void RowsAvx2(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* packed, const float* scales,
                         int64_t r0, int64_t r1, float* out) {
   const int64_t pairs = s.k / (2 * kGroup), blocks = s.k / s.block, groups_per_block = s.block / kGroup;
-  const __m256i low4 = _mm256_set1_epi8(0x0f), ones = _mm256_set1_epi16(1);
-  const __m256i pick = _mm256_set_epi32(1, 1, 1, 1, 0, 0, 0, 0);
   for (int64_t r = r0; r < r1; ++r) {
     const uint8_t* w = packed + r * (s.k / 2);
-    const float* ws = scales + r * blocks;
     __m256 acc = _mm256_setzero_ps();
     for (int64_t p = 0; p < pairs; ++p) {
-      _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
-      const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32));
-      const __m256i lo = _mm256_and_si256(x, low4), hi = _mm256_and_si256(_mm256_srli_epi16(x, 4), low4);
-      const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.even + p * 32));
-      const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.odd + p * 32));
-      const __m256i pairs16 = _mm256_add_epi16(_mm256_maddubs_epi16(lo, e), _mm256_maddubs_epi16(hi, o));
-      const __m256i dot = _mm256_add_epi32(_mm256_madd_epi16(pairs16, ones),
-                                           _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.offset + p * 8)));
-      __m256 wscale;
-      if constexpr (kScalePerGroup) {
-        double two;  // the two groups' weight scales
-        std::memcpy(&two, ws + 2 * p, 8);
-        wscale = _mm256_permutevar8x32_ps(_mm256_castps128_ps256(_mm_castpd_ps(_mm_set_sd(two))), pick);
-      } else {
-        wscale = _mm256_set1_ps(ws[2 * p / groups_per_block]);
-      }
-      const __m256 lane = _mm256_mul_ps(wscale, _mm256_loadu_ps(q.lane_scale + p * 8));
-      acc = _mm256_fmadd_ps(_mm256_cvtepi32_ps(dot), lane, acc);
+      __m256i lo, hi;
+      StepNibbles(w, p, &lo, &hi);
+      acc = StepAccumulate(lo, hi, StepScale<kScalePerGroup>(scales + r * blocks, p, groups_per_block), q, p, acc);
     }
-    __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc), _mm256_extractf128_ps(acc, 1));
-    h = _mm_add_ps(h, _mm_movehl_ps(h, h));
-    float sum = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
-    if (s.k % (2 * kGroup)) sum += GroupScalar(s, q, w, scales, r, 2 * pairs);
-    out[r] = sum;
+    out[r] = RowSum(acc, s, q, w, scales, r);
   }
 }
 
@@ -160,42 +184,17 @@ template <bool kScalePerGroup, int kRows>
 SILK_AVX2 void RowsAvx2Batch(const Int4MatMulShape& s, const QuantizedRow* q, const uint8_t* packed,
                              const float* scales, int64_t r0, int64_t r1, float* out) {
   const int64_t pairs = s.k / (2 * kGroup), blocks = s.k / s.block, groups_per_block = s.block / kGroup;
-  const __m256i low4 = _mm256_set1_epi8(0x0f), ones = _mm256_set1_epi16(1);
-  const __m256i pick = _mm256_set_epi32(1, 1, 1, 1, 0, 0, 0, 0);
   for (int64_t r = r0; r < r1; ++r) {
     const uint8_t* w = packed + r * (s.k / 2);
-    const float* ws = scales + r * blocks;
     __m256 acc[kRows];
     for (int i = 0; i < kRows; ++i) acc[i] = _mm256_setzero_ps();
     for (int64_t p = 0; p < pairs; ++p) {
-      _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
-      const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32));
-      const __m256i lo = _mm256_and_si256(x, low4), hi = _mm256_and_si256(_mm256_srli_epi16(x, 4), low4);
-      __m256 wscale;
-      if constexpr (kScalePerGroup) {
-        double two;  // the two groups' weight scales
-        std::memcpy(&two, ws + 2 * p, 8);
-        wscale = _mm256_permutevar8x32_ps(_mm256_castps128_ps256(_mm_castpd_ps(_mm_set_sd(two))), pick);
-      } else {
-        wscale = _mm256_set1_ps(ws[2 * p / groups_per_block]);
-      }
-      for (int i = 0; i < kRows; ++i) {
-        const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q[i].even + p * 32));
-        const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q[i].odd + p * 32));
-        const __m256i pairs16 = _mm256_add_epi16(_mm256_maddubs_epi16(lo, e), _mm256_maddubs_epi16(hi, o));
-        const __m256i dot = _mm256_add_epi32(_mm256_madd_epi16(pairs16, ones),
-                                             _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q[i].offset + p * 8)));
-        const __m256 lane = _mm256_mul_ps(wscale, _mm256_loadu_ps(q[i].lane_scale + p * 8));
-        acc[i] = _mm256_fmadd_ps(_mm256_cvtepi32_ps(dot), lane, acc[i]);
-      }
+      __m256i lo, hi;
+      StepNibbles(w, p, &lo, &hi);
+      const __m256 wscale = StepScale<kScalePerGroup>(scales + r * blocks, p, groups_per_block);
+      for (int i = 0; i < kRows; ++i) acc[i] = StepAccumulate(lo, hi, wscale, q[i], p, acc[i]);
     }
-    for (int i = 0; i < kRows; ++i) {
-      __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc[i]), _mm256_extractf128_ps(acc[i], 1));
-      h = _mm_add_ps(h, _mm_movehl_ps(h, h));
-      float sum = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
-      if (s.k % (2 * kGroup)) sum += GroupScalar(s, q[i], w, scales, r, 2 * pairs);
-      out[i * s.n + r] = sum;
-    }
+    for (int i = 0; i < kRows; ++i) out[i * s.n + r] = RowSum(acc[i], s, q[i], w, scales, r);
   }
 }
 
