@@ -125,7 +125,7 @@ struct Network {
   std::vector<std::vector<uint16_t>> cross;       // per layer: key then value [sources, heads, 261, 64]
   std::vector<std::vector<unsigned char>> cache;  // per layer: key then value [rows, heads, depth + 1, 68]
   int64_t rows = 1, depth = 0, sources = 1;
-  std::vector<float> x, wide, q, out, scores;
+  std::vector<float> x, q, kv, wide, out, scores;
 
   Network(int64_t rows_, int64_t depth_, bool per_row_cross, std::mt19937& rng)
       : rows(rows_), depth(depth_), sources(per_row_cross ? rows_ : 1) {
@@ -148,10 +148,13 @@ struct Network {
     logits.resize(static_cast<size_t>(kVocab * kModel));
     for (uint16_t& h : logits) h = static_cast<uint16_t>(0x2000 + rng() % 0x1000);
     std::normal_distribution<float> normal;
-    x.resize(static_cast<size_t>(rows * kFeedForward));
+    x.resize(static_cast<size_t>(rows * kFeedForward));  // activations: [rows, up to 4096]
     for (float& v : x) v = normal(rng);
+    q.resize(static_cast<size_t>(rows * kModel));  // queries: unit length per head of 64
+    for (float& v : q) v = normal(rng) * 0.125f;
+    kv.resize(static_cast<size_t>(2 * rows * kModel));  // the new position's key and value
+    for (float& v : kv) v = normal(rng);
     wide.resize(static_cast<size_t>(rows * 2 * kFeedForward));
-    q.resize(static_cast<size_t>(rows * kModel));
     out.resize(static_cast<size_t>(rows * kModel));
     scores.resize(static_cast<size_t>(rows * kVocab));
   }
@@ -171,41 +174,44 @@ void Product(const Int4Weight& w, const float* a, float* y, int64_t rows, SpinPo
 }
 
 // One decoder call of the network's rows, each one position at the network's depth.
+// One decoder call of the network's rows, each one position at the network's depth. Every kernel
+// reads fixed inputs of a decoder's magnitudes (activations ~N(0, 1), queries of unit length per
+// head) and writes a scratch output: chained through 24 layers without the norms the products
+// would drift to denormal or infinite values, whose arithmetic costs differ.
 void Call(Network& net, SpinPool* pool) {
   const int64_t R = net.rows;
   std::vector<int64_t> past(static_cast<size_t>(R), net.depth), fresh(static_cast<size_t>(R), 1);
   std::vector<int32_t> source(static_cast<size_t>(R), 0);
   for (int64_t r = 0; r < R && net.sources == R; ++r) source[static_cast<size_t>(r)] = static_cast<int32_t>(r);
+  const float *x = net.x.data(), *q = net.q.data(), *kv = net.kv.data();
+  float *out = net.out.data(), *wide = net.wide.data();
   for (int64_t l = 0; l < kLayers; ++l) {
     const Int4Weight* w = &net.matmuls[static_cast<size_t>(l * 8)];
-    float *x = net.x.data(), *q = net.q.data(), *out = net.out.data(), *wide = net.wide.data();
-    Product(w[0], x, q, R, pool);
-    Product(w[1], x, wide, R, pool);
-    Product(w[2], x, wide + R * kModel, R, pool);
+    for (int i = 0; i < 3; ++i) Product(w[i], x, wide + i * R * kModel, R, pool);  // q, k, v
     silk::AttentionShape s{kHeads, kHeads, kHeadDim, 1, net.depth, net.depth + 1, 10.0f};
 #ifndef SILK_KERNEL_ROWS_ONE_ROW
     s.batch = R, s.row_past = past.data(), s.row_chunk = fresh.data();
 #endif
     silk::AttentionBuffers b{q,
-                             wide,
-                             wide + R * kModel,
+                             kv,
+                             kv + R * kModel,
                              net.cache[static_cast<size_t>(2 * l)].data(),
                              net.cache[static_cast<size_t>(2 * l + 1)].data(),
                              out};
     silk::CachedAttention(s, silk::CacheElement::kInt8, b, SpinPool::For, pool);
-    Product(w[3], out, x, R, pool);
-    Product(w[4], x, q, R, pool);
+    Product(w[3], x, wide, R, pool);  // self out
+    Product(w[4], x, wide, R, pool);  // cross q
     silk::CrossAttentionShape c{kHeads, 1, kCrossRows, kHeadDim, 10.0f};
 #ifndef SILK_KERNEL_ROWS_ONE_ROW
     c.batch = R, c.source = source.data();
 #endif
     silk::CrossAttention(c, silk::CacheElement::kFloat16, q, net.cross[static_cast<size_t>(2 * l)].data(),
                          net.cross[static_cast<size_t>(2 * l + 1)].data(), out, SpinPool::For, pool);
-    Product(w[5], out, x, R, pool);
-    Product(w[6], x, wide, R, pool);
-    Product(w[7], wide, x, R, pool);  // the GLU's value half stands in for its product with the gate
+    Product(w[5], x, wide, R, pool);  // cross out
+    Product(w[6], x, wide, R, pool);  // feed-forward in (value and gate halves)
+    Product(w[7], x, wide, R, pool);  // feed-forward out (K = 4096)
   }
-  silk::HalfMatMul({R, kModel, kVocab}, net.x.data(), net.logits.data(), net.scores.data(), SpinPool::For, pool);
+  silk::HalfMatMul({R, kModel, kVocab}, x, net.logits.data(), net.scores.data(), SpinPool::For, pool);
 }
 
 std::vector<int64_t> List(const char* text) {
