@@ -19,8 +19,9 @@ from silk_export.onnx.decode import session  # noqa: E402
 H, KVH, D = 4, 2, 16
 
 
-def _graph(path, op="CachedAttention", domain="ai.silk", cache=TensorProto.FLOAT16, **attrs):
-    # Symbolic dims, so onnxruntime passes shapes that do not fit through to the op's own checks.
+def _graph(path, op="CachedAttention", domain="ai.silk", cache=TensorProto.FLOAT16, new_positions=False, **attrs):
+    # Symbolic dims, so onnxruntime passes shapes that do not fit through to the op's own checks;
+    # new_positions: contract v4's optional eighth input.
     row = D + 4 if cache == TensorProto.INT8 else D
     io = [
         ("q", TensorProto.FLOAT, ["B", "T", "QD"]),
@@ -28,13 +29,13 @@ def _graph(path, op="CachedAttention", domain="ai.silk", cache=TensorProto.FLOAT
         ("v", TensorProto.FLOAT, ["B", "T", "KD"]),
         ("past_key", cache, ["B", "KV", "C", "D"]),
         ("past_value", cache, ["B", "KV", "C", "D"]),
-        ("seqlens_k", TensorProto.INT32, [1]),
+        ("seqlens_k", TensorProto.INT32, ["R"]),
         ("total_sequence_length", TensorProto.INT32, []),
-    ]
+    ] + ([("new_positions", TensorProto.INT32, ["R"])] if new_positions else [])
     outs = [
-        ("out", TensorProto.FLOAT, [1, "T", H * D]),
-        ("present_key", cache, [1, KVH, "P", row]),
-        ("present_value", cache, [1, KVH, "P", row]),
+        ("out", TensorProto.FLOAT, ["B", "T", H * D]),
+        ("present_key", cache, ["B", KVH, "P", row]),
+        ("present_value", cache, ["B", KVH, "P", row]),
     ]
     node = helper.make_node(
         op,
@@ -116,13 +117,9 @@ def test_copying_matches_reference(tmp_path, T, P):
     np.testing.assert_array_equal(pv[0].astype(np.float64), vals)
 
 
-def _in_place_and_copying(s, x, past: int):
-    """Runs `x` once copying (past_* cut to `past` rows) and once in place (present_* bound to
-    past_*'s own buffers, libsilk's cache); asserts equal outputs and that the in-place buffer
-    holds the copying run's present rows. Returns (copying outputs, the in-place key buffer)."""
-    copy = s.run(
-        None, {**x, "past_key": x["past_key"][:, :, :past].copy(), "past_value": x["past_value"][:, :, :past].copy()}
-    )
+def _run_in_place(s, x):
+    """Runs `x` with present_* bound to past_*'s own buffers (libsilk's cache); returns the attention
+    output and the key and value buffers after the call."""
     b = s.io_binding()
     vals = {n: ort.OrtValue.ortvalue_from_numpy(a) for n, a in x.items()}
     for n, v in vals.items():
@@ -131,8 +128,18 @@ def _in_place_and_copying(s, x, past: int):
     b.bind_ortvalue_output("present_key", vals["past_key"])
     b.bind_ortvalue_output("present_value", vals["past_value"])
     s.run_with_iobinding(b)
-    np.testing.assert_array_equal(b.copy_outputs_to_cpu()[0], copy[0])
-    in_place = vals["past_key"].numpy()
+    return b.copy_outputs_to_cpu()[0], vals["past_key"].numpy(), vals["past_value"].numpy()
+
+
+def _in_place_and_copying(s, x, past: int):
+    """Runs `x` once copying (past_* cut to `past` rows) and once in place (present_* bound to
+    past_*'s own buffers, libsilk's cache); asserts equal outputs and that the in-place buffer
+    holds the copying run's present rows. Returns (copying outputs, the in-place key buffer)."""
+    copy = s.run(
+        None, {**x, "past_key": x["past_key"][:, :, :past].copy(), "past_value": x["past_value"][:, :, :past].copy()}
+    )
+    out, in_place, _ = _run_in_place(s, x)
+    np.testing.assert_array_equal(out, copy[0])
     np.testing.assert_array_equal(in_place[:, :, : copy[1].shape[2]], copy[1])
     return copy, in_place
 
@@ -179,12 +186,74 @@ def _expect_refused(s, x, change, message):
             "do not fit together",
         ),
         (lambda x: x.update(past_key=np.zeros((1, KVH + 1, 8, D), np.float16)), "past_key/past_value have shapes"),
-        (lambda x: x.update(q=np.zeros((2, 1, H * D), np.float32)), "batch 1"),
+        (lambda x: x.update(q=np.zeros((2, 1, H * D), np.float32)), r"key/value have shapes .*expected \[2, 1, 32\]"),
         (lambda x: x.update(k=np.zeros((1, 2, KVH * D), np.float32)), "key/value have shapes"),
     ],
 )
 def test_inputs_that_do_not_fit_are_refused_naming_the_node(tmp_path, change, message):
     _expect_refused(session(_graph(tmp_path / "a.onnx")), _inputs(1, 8, 8), change, message)
+
+
+def _batch(pasts, news, T, C, seed=0):
+    """Contract v4 inputs: one row per entry of `pasts` (its cache depth) and `news` (its count of new
+    positions, padded to T), each row's cache block of C rows."""
+    rows = [_inputs(T, p, C, seed=seed + i) for i, p in enumerate(pasts)]
+    x = {n: np.concatenate([r[n] for r in rows]) for n in ("q", "k", "v", "past_key", "past_value")}
+    x["seqlens_k"] = np.array([p + n - 1 for p, n in zip(pasts, news)], np.int32)
+    x["total_sequence_length"] = np.array(max(p + n for p, n in zip(pasts, news)), np.int32)
+    x["new_positions"] = np.array(news, np.int32)
+    return x
+
+
+def _alone(s, x, r, past, new):
+    """Row r of batch inputs `x` run alone through the contract-v3 graph (no new_positions), copying."""
+    one = {n: x[n][r : r + 1, :new].copy() for n in ("q", "k", "v")}
+    one.update({n: x[n][r : r + 1, :, :past].copy() for n in ("past_key", "past_value")})
+    one.update(seqlens_k=np.array([past + new - 1], np.int32), total_sequence_length=np.array(past + new, np.int32))
+    return s.run(None, one)
+
+
+@pytest.mark.parametrize("cache", [TensorProto.FLOAT16, TensorProto.INT8])
+def test_batch_rows_are_bit_identical_to_each_row_alone(tmp_path, cache):
+    """Contract v4: rows at depths 0, 5 and 9 taking 1, 3 (a forced run: the whole chunk) and 2 new
+    positions in one call, copying and in place: each row's output and cache rows are those of the row
+    run alone; padding positions give zeros."""
+    batched = session(_graph(tmp_path / "b.onnx", cache=cache, new_positions=True, scale=0.7))
+    single = session(_graph(tmp_path / "a.onnx", cache=cache, scale=0.7))
+    pasts, news = [0, 5, 9], [1, 3, 2]
+    x = _batch(pasts, news, 3, 12)
+    if cache == TensorProto.INT8:  # int8 rows of the contract's layout: D values, then a float32 scale
+        for n in ("past_key", "past_value"):
+            x[n] = np.concatenate([x[n].astype(np.int8), np.zeros(x[n].shape[:3] + (4,), np.int8)], -1)
+            x[n][..., D:] = np.frombuffer(np.float32(0.01).tobytes(), np.int8)
+    cut = {n: x[n][:, :, : max(pasts)].copy() for n in ("past_key", "past_value")}
+    copy = batched.run(None, {**x, **cut})  # each row's past copied into a new present of 11 rows
+    out_in_place, key_in_place, value_in_place = _run_in_place(batched, x)
+    np.testing.assert_array_equal(out_in_place, copy[0])
+    for r, (p, n) in enumerate(zip(pasts, news)):
+        out, pk, pv = _alone(single, x, r, p, n)
+        np.testing.assert_array_equal(copy[0][r, :n], out[0], err_msg=f"row {r}")
+        assert not copy[0][r, n:].any(), f"row {r}: padding positions must be zeros"
+        np.testing.assert_array_equal(copy[1][r, :, : p + n], pk[0], err_msg=f"row {r} keys")
+        np.testing.assert_array_equal(copy[2][r, :, : p + n], pv[0], err_msg=f"row {r} values")
+        np.testing.assert_array_equal(key_in_place[r, :, : p + n], pk[0], err_msg=f"row {r} keys in place")
+        np.testing.assert_array_equal(value_in_place[r, :, : p + n], pv[0], err_msg=f"row {r} values in place")
+
+
+@pytest.mark.parametrize(
+    "change,message",
+    [
+        (lambda x: x.update(new_positions=np.array([1, 4, 2], np.int32)), "row 1: seqlens_k 7, 4 new positions"),
+        (lambda x: x.update(new_positions=np.array([1, 3], np.int32)), r"new_positions has shape \[2\]"),
+        (lambda x: x.update(seqlens_k=np.array([0, 7], np.int32)), r"seqlens_k must have shape \[3\]"),
+        (lambda x: x.update(total_sequence_length=np.array(12, np.int32)), "total_sequence_length 12"),
+        (lambda x: x.update(past_key=x["past_key"][:2]), r"expected \[R, kv_heads, capacity, head_dim\]"),
+    ],
+)
+def test_batch_inputs_that_do_not_fit_are_refused_naming_the_node(tmp_path, change, message):
+    _expect_refused(
+        session(_graph(tmp_path / "b.onnx", new_positions=True)), _batch([0, 5, 9], [1, 3, 2], 3, 12), change, message
+    )
 
 
 def test_attributes_it_does_not_implement_are_refused(tmp_path):
@@ -272,7 +341,7 @@ def test_int8_in_place_writes_the_past_buffer_and_matches_copying(tmp_path):
             lambda x: x.update(
                 past_key=np.zeros((1, KVH, 8, D), np.int8), past_value=np.zeros((1, KVH, 8, D), np.int8)
             ),
-            rf"expected \[1, kv_heads, capacity, head_dim \+ 4\] = \[1, {KVH}, C, {D + 4}\]",
+            rf"expected \[R, kv_heads, capacity, head_dim \+ 4\] = \[1, {KVH}, C, {D + 4}\]",
         ),
         (lambda x: x.update(past_key=np.zeros((1, KVH, 8, D + 4), np.int8)), "past_key/past_value have shapes"),
         (lambda x: x.update(seqlens_k=np.array([40], np.int32)), "do not fit together"),

@@ -125,3 +125,49 @@ def test_shapes_that_do_not_fit_are_refused_naming_the_node(tmp_path):
         s.run(None, x)
     with pytest.raises(Exception, match="M >= 1"):
         s.run(None, _inputs(rows=0))
+
+
+def _direct(path, source: bool):
+    """One CrossAttention node: q [R,H,T,D], key/value [S,H,M,D] and, for contract v4, source [R]."""
+    ins = [
+        helper.make_tensor_value_info("q", TensorProto.FLOAT, ["R", H, "T", D]),
+        helper.make_tensor_value_info("key", TensorProto.FLOAT, ["S", H, "M", D]),
+        helper.make_tensor_value_info("value", TensorProto.FLOAT, ["S", H, "M", D]),
+    ] + ([helper.make_tensor_value_info("source", TensorProto.INT32, ["R"])] if source else [])
+    node = helper.make_node("CrossAttention", [i.name for i in ins], ["out"], name="cross", domain="ai.silk", scale=0.5)
+    out = [helper.make_tensor_value_info("out", TensorProto.FLOAT, None)]
+    g = helper.make_graph([node], "g", ins, out)
+    ops = [helper.make_opsetid("", 17), helper.make_opsetid("ai.silk", 1)]
+    onnx.save(helper.make_model(g, opset_imports=ops, ir_version=8), str(path))
+    return session(path)
+
+
+@pytest.mark.parametrize("sources,of_row", [(1, None), (4, None), (2, [1, 0, 1, 1])])
+def test_batch_rows_are_bit_identical_to_each_row_alone(tmp_path, sources, of_row):
+    """Contract v4: four rows reading cross K/V shared by all (S = 1), each its own (S = R), or of two
+    meshes chosen by `source`: each row's output is that of the row alone with its own K/V."""
+    r = np.random.default_rng(3)
+    q = r.normal(size=(4, H, 2, D)).astype(np.float32)
+    key, value = (r.normal(size=(sources, H, M, D)).astype(np.float32) for _ in range(2))
+    x = {"q": q, "key": key, "value": value}
+    if of_row is not None:
+        x["source"] = np.array(of_row, np.int32)
+    out = _direct(tmp_path / "b.onnx", of_row is not None).run(None, x)[0]
+    alone = _direct(tmp_path / "a.onnx", False)
+    for b in range(4):
+        s = of_row[b] if of_row is not None else (0 if sources == 1 else b)
+        one = alone.run(None, {"q": q[b : b + 1], "key": key[s : s + 1], "value": value[s : s + 1]})[0]
+        np.testing.assert_array_equal(out[b : b + 1], one, err_msg=f"row {b}")
+
+
+def test_batch_sources_that_do_not_fit_are_refused_naming_the_node(tmp_path):
+    r = np.random.default_rng(4)
+    q = r.normal(size=(2, H, 1, D)).astype(np.float32)
+    kv = r.normal(size=(3, H, M, D)).astype(np.float32)
+    with pytest.raises(Exception, match=r"CrossAttention 'cross': .*S = R or 1 \(or a source input\)"):
+        _direct(tmp_path / "a.onnx", False).run(None, {"q": q, "key": kv, "value": kv})
+    s = _direct(tmp_path / "b.onnx", True)
+    with pytest.raises(Exception, match=r"CrossAttention 'cross': source\[1\] is 3, not one of the 3 key/value"):
+        s.run(None, {"q": q, "key": kv, "value": kv, "source": np.array([0, 3], np.int32)})
+    with pytest.raises(Exception, match=r"CrossAttention 'cross': source has shape \[3\], expected \[2\]"):
+        s.run(None, {"q": q, "key": kv, "value": kv, "source": np.array([0, 1, 2], np.int32)})

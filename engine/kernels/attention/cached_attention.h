@@ -18,24 +18,30 @@ struct AttentionShape {
   int64_t heads = 0;     // query heads
   int64_t kv_heads = 0;  // key/value heads (heads is a multiple of it)
   int64_t head_dim = 0;
-  int64_t chunk = 0;     // new positions this call (T)
-  int64_t past = 0;      // positions already in the cache before this call
+  int64_t chunk = 0;     // new positions this call (T); in a batch, the longest row's count
+  int64_t past = 0;      // positions already in the cache before this call (every row, unless row_past)
   int64_t capacity = 0;  // positions each [kv_heads, capacity, row] cache block has room for
   float scale = 1.0f;    // score = scale * q.k
+  // A batch of rows (decoder contract v4): sequences at their own depths, each with its own
+  // [kv_heads, capacity] blocks, computed exactly as each row alone.
+  int64_t batch = 1;
+  const int64_t* row_past = nullptr;   // [batch]: row r's past (nullptr: `past` for every row)
+  const int64_t* row_chunk = nullptr;  // [batch]: row r's new positions, 1..chunk (nullptr: `chunk`);
+                                       // positions beyond them are padding: output zeros, nothing stored
 };
 
 struct AttentionBuffers {
-  const float* q = nullptr;     // [chunk, heads * head_dim]
-  const float* k = nullptr;     // [chunk, kv_heads * head_dim], the new positions' keys
-  const float* v = nullptr;     // [chunk, kv_heads * head_dim]
-  void* key_cache = nullptr;    // [kv_heads, capacity] rows of CacheRowBytes: [0, past) are read,
-  void* value_cache = nullptr;  // rows [past, past + chunk) are written
-  float* out = nullptr;         // [chunk, heads * head_dim]
+  const float* q = nullptr;     // [batch, chunk, heads * head_dim]
+  const float* k = nullptr;     // [batch, chunk, kv_heads * head_dim], the new positions' keys
+  const float* v = nullptr;     // [batch, chunk, kv_heads * head_dim]
+  void* key_cache = nullptr;    // [batch, kv_heads, capacity] rows of CacheRowBytes: [0, past) of
+  void* value_cache = nullptr;  // each row are read, rows [past, past + its chunk) are written
+  float* out = nullptr;         // [batch, chunk, heads * head_dim]
 };
 
-// Writes the chunk's keys and values into the cache rows [past, past + chunk), then for each new
-// position i and head attends causally over rows [0, past + i]. The caller has checked the shape
-// (past + chunk <= capacity, heads % kv_heads == 0).
+// For each row: writes its new keys and values into its cache rows [past, past + chunk), then for
+// each new position i and head attends causally over rows [0, past + i]. The caller has checked
+// the shape (each row's past + chunk <= capacity, heads % kv_heads == 0).
 void CachedAttention(const AttentionShape& shape, CacheElement element, const AttentionBuffers& buffers,
                      ParallelForFn parallel_for, void* parallel_context, RowKernels kernels = RowKernels::kBest);
 

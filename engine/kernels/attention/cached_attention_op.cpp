@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/attention/attention_batch.h"
 #include "kernels/attention/cached_attention.h"
 
 namespace silk {
@@ -25,45 +26,39 @@ struct Kernel : OpKernelBase {
 
 using Tensor = OrtTensorView;
 
-// Inputs q, k, v, past_key, past_value, seqlens_k, total_sequence_length, checked against each
-// other; fills the shape (capacity = past's) and returns nullptr, or a status naming the input.
-OrtStatus* ReadInputs(const Kernel& k, OrtKernelContext* ctx, Tensor in[7], AttentionShape* s) {
-  for (size_t i = 0; i < 7; ++i) SILK_ORT_TRY(ReadInput(k.api, ctx, i, &in[i]));
-  const std::vector<int64_t>& q = in[0].dims;
-  if (q.size() != 3 || q[0] != 1 || q[2] % k.heads != 0)
-    return k.Fail("query has shape " + DimsText(q) + ", expected [1, T, heads * head_dim] with batch 1");
-  s->heads = k.heads, s->kv_heads = k.kv_heads, s->head_dim = q[2] / k.heads, s->chunk = q[1];
-  s->scale = k.scale != 0.0f ? k.scale : 1.0f / std::sqrt(static_cast<float>(s->head_dim));
-  const std::vector<int64_t> kv = {1, s->chunk, s->kv_heads * s->head_dim};
-  if (in[1].dims != kv || in[2].dims != kv)
-    return k.Fail("key/value have shapes " + DimsText(in[1].dims) + ", " + DimsText(in[2].dims) + ", expected " +
-                  DimsText(kv));
-  const std::vector<int64_t>& past = in[3].dims;
-  const int64_t row = CacheRowElements(k.element, s->head_dim);
-  if (past.size() != 4 || past[0] != 1 || past[1] != s->kv_heads || past[3] != row || in[4].dims != past)
-    return k.Fail("past_key/past_value have shapes " + DimsText(past) + ", " + DimsText(in[4].dims) + ", expected " +
-                  (k.element == CacheElement::kInt8 ? "[1, kv_heads, capacity, head_dim + 4] = [1, "
-                                                    : "[1, kv_heads, capacity, head_dim] = [1, ") +
-                  std::to_string(s->kv_heads) + ", C, " + std::to_string(row) + "]");
-  if (in[5].dims != std::vector<int64_t>{1} || in[6].dims.size() > 1 || (in[6].dims.size() == 1 && in[6].dims[0] != 1))
-    return k.Fail("seqlens_k must have shape [1] and total_sequence_length one element");
-  const int64_t total = static_cast<const int32_t*>(in[6].data)[0], seqlen = static_cast<const int32_t*>(in[5].data)[0];
-  s->capacity = past[2];
-  s->past = total - s->chunk;
-  if (seqlen + 1 != total || s->chunk < 1 || s->past < 0 || s->past > s->capacity)
-    return k.Fail("seqlens_k " + std::to_string(seqlen) + ", total_sequence_length " + std::to_string(total) + ", " +
-                  std::to_string(s->chunk) + " new positions and a cache of " + std::to_string(s->capacity) +
-                  " do not fit together");
-  return nullptr;
+constexpr size_t kInputs = 8;  // the eighth, new_positions (contract v4), is optional
+
+// Inputs q, k, v, past_key, past_value, seqlens_k, total_sequence_length [, new_positions], checked
+// against each other (attention_batch.h); fills the batch and returns nullptr, or a status naming
+// the input.
+OrtStatus* ReadInputs(const Kernel& k, OrtKernelContext* ctx, Tensor in[kInputs], AttentionBatch* batch) {
+  size_t count = 0;
+  SILK_ORT_TRY(k.api->KernelContext_GetInputCount(ctx, &count));
+  for (size_t i = 0; i + 1 < kInputs; ++i) SILK_ORT_TRY(ReadInput(k.api, ctx, i, &in[i]));
+  const OrtValue* fresh = nullptr;  // an optional input left out: absent or null
+  if (count >= kInputs) SILK_ORT_TRY(k.api->KernelContext_GetInput(ctx, kInputs - 1, &fresh));
+  if (fresh) SILK_ORT_TRY(DescribeValue(k.api, const_cast<OrtValue*>(fresh), &in[kInputs - 1]));
+  AttentionInputs a;
+  a.heads = k.heads, a.kv_heads = k.kv_heads, a.scale = k.scale, a.element = k.element;
+  a.query = in[0].dims, a.key = in[1].dims, a.value = in[2].dims, a.past_key = in[3].dims, a.past_value = in[4].dims;
+  a.seqlens_k = in[5].dims, a.total = in[6].dims;
+  a.seqlens = static_cast<const int32_t*>(in[5].data);
+  a.total_length = ElementCount(in[6].dims) == 1 ? static_cast<const int32_t*>(in[6].data)[0] : 0;
+  a.has_new_positions = fresh != nullptr;
+  if (a.has_new_positions)
+    a.new_positions_shape = in[7].dims, a.new_positions = static_cast<const int32_t*>(in[7].data);
+  const std::string problem = batch->Resolve(a);
+  return problem.empty() ? nullptr : k.Fail(problem);
 }
 
-// Outputs: attention [1, T, hidden] and the two present blocks, each the past block itself when
-// the caller bound them to the same memory (in place), else a longer copy of it.
-OrtStatus* MakeOutputs(const Kernel& k, OrtKernelContext* ctx, const Tensor in[7], AttentionShape* s,
+// Outputs: attention [R, T, hidden] and the two present blocks, each the past block itself when
+// the caller bound them to the same memory (in place), else a longer copy of it (each row's past).
+OrtStatus* MakeOutputs(const Kernel& k, OrtKernelContext* ctx, const Tensor in[kInputs], AttentionBatch* batch,
                        AttentionBuffers* b) {
-  SILK_ORT_TRY(FloatOutput(k.api, ctx, 0, {1, s->chunk, s->heads * s->head_dim}, &b->out));
-  const int64_t present = std::max(s->capacity, s->past + s->chunk);
-  const int64_t present_dims[4] = {1, s->kv_heads, present, CacheRowElements(k.element, s->head_dim)};
+  AttentionShape* s = batch->mutable_shape();
+  SILK_ORT_TRY(FloatOutput(k.api, ctx, 0, {s->batch, s->chunk, s->heads * s->head_dim}, &b->out));
+  const int64_t present = std::max(s->capacity, batch->total());
+  const int64_t present_dims[4] = {s->batch, s->kv_heads, present, CacheRowElements(k.element, s->head_dim)};
   void* blocks[2] = {nullptr, nullptr};
   for (int kv = 0; kv < 2; ++kv) {
     OrtValue* v = nullptr;
@@ -71,10 +66,11 @@ OrtStatus* MakeOutputs(const Kernel& k, OrtKernelContext* ctx, const Tensor in[7
     SILK_ORT_TRY(k.api->GetTensorMutableData(v, &blocks[kv]));
     if (blocks[kv] == in[3 + kv].data) continue;  // in place
     const size_t row = CacheRowBytes(k.element, s->head_dim);
-    for (int64_t h = 0; h < s->kv_heads; ++h)
-      std::memcpy(static_cast<unsigned char*>(blocks[kv]) + h * present * row,
-                  static_cast<const unsigned char*>(in[3 + kv].data) + h * s->capacity * row,
-                  static_cast<size_t>(s->past) * row);
+    for (int64_t r = 0; r < s->batch; ++r)
+      for (int64_t h = 0, block = r * s->kv_heads; h < s->kv_heads; ++h)
+        std::memcpy(static_cast<unsigned char*>(blocks[kv]) + (block + h) * present * row,
+                    static_cast<const unsigned char*>(in[3 + kv].data) + (block + h) * s->capacity * row,
+                    static_cast<size_t>(batch->past(r)) * row);
   }
   s->capacity = present;
   b->key_cache = blocks[0];
@@ -84,16 +80,16 @@ OrtStatus* MakeOutputs(const Kernel& k, OrtKernelContext* ctx, const Tensor in[7
 
 OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
   const Kernel& k = *static_cast<const Kernel*>(kernel);
-  Tensor in[7];
-  AttentionShape s;
-  SILK_ORT_TRY(ReadInputs(k, ctx, in, &s));
+  Tensor in[kInputs];
+  AttentionBatch batch;
+  SILK_ORT_TRY(ReadInputs(k, ctx, in, &batch));
   AttentionBuffers b;
   b.q = static_cast<const float*>(in[0].data);
   b.k = static_cast<const float*>(in[1].data);
   b.v = static_cast<const float*>(in[2].data);
-  SILK_ORT_TRY(MakeOutputs(k, ctx, in, &s, &b));
+  SILK_ORT_TRY(MakeOutputs(k, ctx, in, &batch, &b));
   OrtPool pool{k.api, ctx};
-  CachedAttention(s, k.element, b, OrtPoolFor, &pool);
+  CachedAttention(batch.shape(), k.element, b, OrtPoolFor, &pool);
   return nullptr;
 }
 
@@ -126,8 +122,11 @@ ONNXTensorElementDataType ORT_API_CALL OutputType(const OrtCustomOp* op, size_t 
 }  // namespace
 
 void InitCachedAttentionOp(CachedAttentionOp* op, const OrtApi* api, CacheElement element) {
-  FillOpTable(op, api, kCachedAttentionOp, 7, 3);
+  FillOpTable(op, api, kCachedAttentionOp, kInputs, 3);
   op->element = element;
+  op->GetInputCharacteristic = [](const OrtCustomOp*, size_t i) {
+    return i + 1 == kInputs ? INPUT_OUTPUT_OPTIONAL : INPUT_OUTPUT_REQUIRED;
+  };
   op->GetInputType = InputType;
   op->GetOutputType = OutputType;
   SetKernel<Kernel>(op, CreateKernel, Compute);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// onnxruntime custom-op glue for CrossAttention: inputs query [B, H, T, D] float32, key and value
-// [B, H, M, D] (float32 or float16: the op table's element), attribute scale; output [B, H, T, D]
-// float32. Shapes that do not fit give a status naming the node, never a crash.
+// onnxruntime custom-op glue for CrossAttention: inputs query [R, H, T, D] float32, key and value
+// [S, H, M, D] (float32 or float16: the op table's element), optionally source int32 [R] (which
+// of the S each row reads; absent: S = R or 1), attribute scale; output [R, H, T, D] float32.
+// Shapes that do not fit give a status naming the node, never a crash.
 #include "kernels/attention/cross_attention_op.h"
 
 #include <memory>
@@ -19,23 +20,23 @@ struct Kernel : OpKernelBase {
   float scale = 1.0f;
 };
 
-OrtStatus* CheckShapes(const Kernel& k, const OrtTensorView in[3], CrossAttentionShape* s) {
-  const std::vector<int64_t>& q = in[0].dims;
-  const std::vector<int64_t>& key = in[1].dims;
-  if (q.size() != 4 || key.size() != 4 || in[2].dims != key || key[0] != q[0] || key[1] != q[1] || key[3] != q[3] ||
-      key[2] < 1 || q[3] < 1)
-    return k.Fail("query " + DimsText(q) + ", key " + DimsText(key) + " and value " + DimsText(in[2].dims) +
-                  " do not fit: expected [B, H, T, D] and [B, H, M, D] with M >= 1");
-  s->heads = q[0] * q[1], s->positions = q[2], s->rows = key[2], s->head_dim = q[3], s->scale = k.scale;
-  return nullptr;
-}
+constexpr size_t kInputs = 4;  // the fourth, source (contract v4), is optional
 
 OrtStatus* ORT_API_CALL Compute(void* kernel, OrtKernelContext* ctx) {
   const Kernel& k = *static_cast<const Kernel*>(kernel);
-  OrtTensorView in[3];
-  for (size_t i = 0; i < 3; ++i) SILK_ORT_TRY(ReadInput(k.api, ctx, i, &in[i]));
+  OrtTensorView in[kInputs];
+  for (size_t i = 0; i + 1 < kInputs; ++i) SILK_ORT_TRY(ReadInput(k.api, ctx, i, &in[i]));
+  size_t count = 0;
+  const OrtValue* source = nullptr;  // an optional input left out: absent or null
+  SILK_ORT_TRY(k.api->KernelContext_GetInputCount(ctx, &count));
+  if (count >= kInputs) SILK_ORT_TRY(k.api->KernelContext_GetInput(ctx, kInputs - 1, &source));
+  if (source) SILK_ORT_TRY(DescribeValue(k.api, const_cast<OrtValue*>(source), &in[kInputs - 1]));
+  const CrossAttentionInputs inputs{in[0].dims, in[1].dims,        in[2].dims,
+                                    in[3].dims, source != nullptr, static_cast<const int32_t*>(in[3].data)};
   CrossAttentionShape s;
-  SILK_ORT_TRY(CheckShapes(k, in, &s));
+  std::vector<int32_t> sources;
+  const std::string problem = ResolveCrossAttention(inputs, k.scale, &s, &sources);
+  if (!problem.empty()) return k.Fail(problem);
   float* y = nullptr;
   SILK_ORT_TRY(FloatOutput(k.api, ctx, 0, in[0].dims, &y));
   OrtPool pool{k.api, ctx};
@@ -54,6 +55,7 @@ OrtStatus* ORT_API_CALL CreateKernel(const OrtCustomOp* op, const OrtApi* api, c
 }
 
 ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp* op, size_t i) {
+  if (i + 1 == kInputs) return ONNX_TENSOR_ELEMENT_DATA_TYPE_INT32;
   return i > 0 && static_cast<const CrossAttentionOp*>(op)->element == CacheElement::kFloat16
              ? ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT16
              : ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
@@ -62,8 +64,11 @@ ONNXTensorElementDataType ORT_API_CALL InputType(const OrtCustomOp* op, size_t i
 }  // namespace
 
 void InitCrossAttentionOp(CrossAttentionOp* op, const OrtApi* api, CacheElement element) {
-  FillOpTable(op, api, kCrossAttentionOp, 3, 1);
+  FillOpTable(op, api, kCrossAttentionOp, kInputs, 1);
   op->element = element;
+  op->GetInputCharacteristic = [](const OrtCustomOp*, size_t i) {
+    return i + 1 == kInputs ? INPUT_OUTPUT_OPTIONAL : INPUT_OUTPUT_REQUIRED;
+  };
   op->GetInputType = InputType;
   op->GetOutputType = [](const OrtCustomOp*, size_t) { return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT; };
   SetKernel<Kernel>(op, CreateKernel, Compute);

@@ -113,42 +113,88 @@ constexpr int64_t kPrefetchBytes = 4096;  // ahead in the weight stream (measure
 
 // Two groups per step: 32 packed bytes against 32 even and 32 odd activations; maddubs + madd
 // give one int32 per 4 bytes (lanes 0-3 group 2p, 4-7 group 2p + 1), scaled per lane. An odd
-// last group (K = 32 modulo 64) is added in plain C++.
+// last group (K = 32 modulo 64) is added in plain C++. The step's pieces below are shared by the
+// one-row and the many-row kernels, so both do the same operations in the same order.
+
+// Step p of a weight row: its low and high nibbles.
+SILK_AVX2 inline void StepNibbles(const uint8_t* w, int64_t p, __m256i* lo, __m256i* hi) {
+  _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
+  const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32));
+  const __m256i low4 = _mm256_set1_epi8(0x0f);
+  *lo = _mm256_and_si256(x, low4), *hi = _mm256_and_si256(_mm256_srli_epi16(x, 4), low4);
+}
+
+// Step p's weight scale per lane (ws: the weight row's scales).
+template <bool kScalePerGroup>
+SILK_AVX2 inline __m256 StepScale(const float* ws, int64_t p, int64_t groups_per_block) {
+  if constexpr (kScalePerGroup) {
+    double two;  // the two groups' weight scales
+    std::memcpy(&two, ws + 2 * p, 8);
+    const __m256i pick = _mm256_set_epi32(1, 1, 1, 1, 0, 0, 0, 0);
+    return _mm256_permutevar8x32_ps(_mm256_castps128_ps256(_mm_castpd_ps(_mm_set_sd(two))), pick);
+  } else {
+    (void)groups_per_block;
+    return _mm256_set1_ps(ws[2 * p / groups_per_block]);
+  }
+}
+
+// acc + step p of one activation row: the int32 dots (zero point included) times both scales.
+SILK_AVX2 inline __m256 StepAccumulate(__m256i lo, __m256i hi, __m256 wscale, const QuantizedRow& q, int64_t p,
+                                       __m256 acc) {
+  const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.even + p * 32));
+  const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.odd + p * 32));
+  const __m256i pairs16 = _mm256_add_epi16(_mm256_maddubs_epi16(lo, e), _mm256_maddubs_epi16(hi, o));
+  const __m256i dot = _mm256_add_epi32(_mm256_madd_epi16(pairs16, _mm256_set1_epi16(1)),
+                                       _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.offset + p * 8)));
+  const __m256 lane = _mm256_mul_ps(wscale, _mm256_loadu_ps(q.lane_scale + p * 8));
+  return _mm256_fmadd_ps(_mm256_cvtepi32_ps(dot), lane, acc);
+}
+
+// The row's output: the eight lanes summed, plus an odd last group.
+SILK_AVX2 inline float RowSum(__m256 acc, const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* w,
+                              const float* scales, int64_t r) {
+  __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc), _mm256_extractf128_ps(acc, 1));
+  h = _mm_add_ps(h, _mm_movehl_ps(h, h));
+  float sum = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
+  if (s.k % (2 * kGroup)) sum += GroupScalar(s, q, w, scales, r, s.k / (2 * kGroup) * 2);
+  return sum;
+}
+
 template <bool kScalePerGroup>
 SILK_AVX2 void RowsAvx2(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* packed, const float* scales,
                         int64_t r0, int64_t r1, float* out) {
   const int64_t pairs = s.k / (2 * kGroup), blocks = s.k / s.block, groups_per_block = s.block / kGroup;
-  const __m256i low4 = _mm256_set1_epi8(0x0f), ones = _mm256_set1_epi16(1);
-  const __m256i pick = _mm256_set_epi32(1, 1, 1, 1, 0, 0, 0, 0);
   for (int64_t r = r0; r < r1; ++r) {
     const uint8_t* w = packed + r * (s.k / 2);
-    const float* ws = scales + r * blocks;
     __m256 acc = _mm256_setzero_ps();
     for (int64_t p = 0; p < pairs; ++p) {
-      _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
-      const __m256i x = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32));
-      const __m256i lo = _mm256_and_si256(x, low4), hi = _mm256_and_si256(_mm256_srli_epi16(x, 4), low4);
-      const __m256i e = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.even + p * 32));
-      const __m256i o = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.odd + p * 32));
-      const __m256i pairs16 = _mm256_add_epi16(_mm256_maddubs_epi16(lo, e), _mm256_maddubs_epi16(hi, o));
-      const __m256i dot = _mm256_add_epi32(_mm256_madd_epi16(pairs16, ones),
-                                           _mm256_loadu_si256(reinterpret_cast<const __m256i*>(q.offset + p * 8)));
-      __m256 wscale;
-      if constexpr (kScalePerGroup) {
-        double two;  // the two groups' weight scales
-        std::memcpy(&two, ws + 2 * p, 8);
-        wscale = _mm256_permutevar8x32_ps(_mm256_castps128_ps256(_mm_castpd_ps(_mm_set_sd(two))), pick);
-      } else {
-        wscale = _mm256_set1_ps(ws[2 * p / groups_per_block]);
-      }
-      const __m256 lane = _mm256_mul_ps(wscale, _mm256_loadu_ps(q.lane_scale + p * 8));
-      acc = _mm256_fmadd_ps(_mm256_cvtepi32_ps(dot), lane, acc);
+      __m256i lo, hi;
+      StepNibbles(w, p, &lo, &hi);
+      acc = StepAccumulate(lo, hi, StepScale<kScalePerGroup>(scales + r * blocks, p, groups_per_block), q, p, acc);
     }
-    __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc), _mm256_extractf128_ps(acc, 1));
-    h = _mm_add_ps(h, _mm_movehl_ps(h, h));
-    float sum = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
-    if (s.k % (2 * kGroup)) sum += GroupScalar(s, q, w, scales, r, 2 * pairs);
-    out[r] = sum;
+    out[r] = RowSum(acc, s, q, w, scales, r);
+  }
+}
+
+// RowsAvx2 for kRows activation rows at once (a batch of sequences, or a chunk of positions):
+// each 32-byte step of the weight stream is loaded and split into nibbles once and applied to
+// every row, each row accumulated in its own register by exactly RowsAvx2's operations in
+// RowsAvx2's order, so each row's outputs are those of RowsAvx2 alone, bit for bit.
+template <bool kScalePerGroup, int kRows>
+SILK_AVX2 void RowsAvx2Batch(const Int4MatMulShape& s, const QuantizedRow* q, const uint8_t* packed,
+                             const float* scales, int64_t r0, int64_t r1, float* out) {
+  const int64_t pairs = s.k / (2 * kGroup), blocks = s.k / s.block, groups_per_block = s.block / kGroup;
+  for (int64_t r = r0; r < r1; ++r) {
+    const uint8_t* w = packed + r * (s.k / 2);
+    __m256 acc[kRows];
+    for (int i = 0; i < kRows; ++i) acc[i] = _mm256_setzero_ps();
+    for (int64_t p = 0; p < pairs; ++p) {
+      __m256i lo, hi;
+      StepNibbles(w, p, &lo, &hi);
+      const __m256 wscale = StepScale<kScalePerGroup>(scales + r * blocks, p, groups_per_block);
+      for (int i = 0; i < kRows; ++i) acc[i] = StepAccumulate(lo, hi, wscale, q[i], p, acc[i]);
+    }
+    for (int i = 0; i < kRows; ++i) out[i * s.n + r] = RowSum(acc[i], s, q[i], w, scales, r);
   }
 }
 
@@ -169,6 +215,26 @@ RowsFn PickRows(const Int4MatMulShape& s, RowKernels kernels) {
   return RowsScalar;
 }
 
+// kRows activation rows at once (1..kMaxBatchRows) against weight rows [r0, r1); out is row 0's.
+using BatchFn = void (*)(const Int4MatMulShape&, const QuantizedRow*, const uint8_t*, const float*, int64_t, int64_t,
+                         float*);
+constexpr int kMaxBatchRows = 4;  // activation rows per pass over a tile (measured: bench/kernel_rows)
+
+BatchFn PickBatch(const Int4MatMulShape& s, RowKernels kernels, int64_t rows) {
+#if SILK_INT4_AVX2
+  if (kernels == RowKernels::kBest && CpuHasAvx2()) {
+    static constexpr BatchFn kGroupScale[kMaxBatchRows] = {RowsAvx2Batch<true, 1>, RowsAvx2Batch<true, 2>,
+                                                           RowsAvx2Batch<true, 3>, RowsAvx2Batch<true, 4>};
+    static constexpr BatchFn kBlockScale[kMaxBatchRows] = {RowsAvx2Batch<false, 1>, RowsAvx2Batch<false, 2>,
+                                                           RowsAvx2Batch<false, 3>, RowsAvx2Batch<false, 4>};
+    const BatchFn* table = s.block == kGroup ? kGroupScale : kBlockScale;
+    return table[std::min<int64_t>(rows, kMaxBatchRows) - 1];
+  }
+#endif
+  (void)s, (void)kernels, (void)rows;
+  return nullptr;
+}
+
 struct Job {
   const Int4MatMulShape* shape;
   const QuantizedRows* rows;
@@ -176,6 +242,7 @@ struct Job {
   const float* scales;
   float* out;
   RowsFn fn;
+  BatchFn batch[kMaxBatchRows];  // by rows - 1; null: one activation row at a time with fn
 };
 
 // Weight rows [i * kRowsPerTask, ...) against every activation row: the rows' bytes are read
@@ -184,7 +251,14 @@ void RunTask(void* state, size_t index) {
   const Job& job = *static_cast<const Job*>(state);
   const Int4MatMulShape& s = *job.shape;
   const int64_t r0 = static_cast<int64_t>(index) * kRowsPerTask, r1 = std::min(s.n, r0 + kRowsPerTask);
-  for (int64_t m = 0; m < s.m; ++m) job.fn(s, (*job.rows)[m], job.packed, job.scales, r0, r1, job.out + m * s.n);
+  if (!job.batch[0]) {
+    for (int64_t m = 0; m < s.m; ++m) job.fn(s, (*job.rows)[m], job.packed, job.scales, r0, r1, job.out + m * s.n);
+    return;
+  }
+  for (int64_t m = 0; m < s.m; m += kMaxBatchRows) {
+    const int64_t rows = std::min<int64_t>(s.m - m, kMaxBatchRows);
+    job.batch[rows - 1](s, &(*job.rows)[m], job.packed, job.scales, r0, r1, job.out + m * s.n);
+  }
 }
 
 }  // namespace
@@ -207,7 +281,9 @@ void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed,
   if (s.m == 0) return;
   QuantizedRows rows(s.m, s.k);
   for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, rows.row(m));
-  Job job{&s, &rows, packed, scales, out, PickRows(s, kernels)};
+  Job job{&s, &rows, packed, scales, out, PickRows(s, kernels), {}};
+  if (s.m > 1)  // one row (a single sequence's step) keeps the one-row kernel
+    for (int64_t r = 1; r <= kMaxBatchRows; ++r) job.batch[r - 1] = PickBatch(s, kernels, r);
   RunTasks(parallel_for, parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
 }
 

@@ -19,7 +19,7 @@ constexpr int64_t kInt4ActivationGroup = 32;
 // MatMulNBits' layout for bits 4 without zero points. q is packed [n, k / block, block / 2]
 // bytes, element 2i of a block in the low nibble of byte i and 2i + 1 in the high one.
 struct Int4MatMulShape {
-  int64_t m = 0;       // rows of activations (new positions)
+  int64_t m = 0;       // rows of activations (each batch row's new positions)
   int64_t k = 0;       // inner dimension, a multiple of block
   int64_t n = 0;       // output columns (weight rows)
   int64_t block = 32;  // weights per scale: 32 or a multiple of 64
