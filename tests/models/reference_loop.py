@@ -89,6 +89,81 @@ def sample(logits, candidates, temperature, top_k, top_p, rng: SplitMix64) -> in
     return scored[keep - 1][1]
 
 
+class Decoder:
+    """The model's encoder run once on the trace's points, and decoder.onnx with its KV cache."""
+
+    def __init__(self, model: str, meta: dict, points):
+        d = meta["dims"]
+        so = ort.SessionOptions()
+        so.intra_op_num_threads = 1
+        enc = ort.InferenceSession(f"{model}/{meta['files']['encoder']}", so, providers=["CPUExecutionProvider"])
+        self.dec = ort.InferenceSession(f"{model}/{meta['files']['decoder']}", so, providers=["CPUExecutionProvider"])
+        cross = enc.run(None, {"points": np.asarray(points, dtype=np.float32).reshape(1, -1, 6)})[0]  # [L, 2, H, M, D]
+        self.kv_names = [f"{kv}_{l}" for l in range(d["n_layers"]) for kv in ("key", "value")]
+        self.cross_feeds = {
+            f"cross_{name}": np.ascontiguousarray(cross[i // 2, i % 2][None]) for i, name in enumerate(self.kv_names)
+        }
+        empty = np.zeros((1, d["n_heads"], 0, d["head_dim"]), np.float32)
+        self.empty = [empty] * len(self.kv_names)
+
+    def run(self, ids_, first, past_):
+        """decoder.onnx on ids_ at positions first..; returns (logits, the grown per-layer cache)."""
+        n = len(ids_)
+        feeds = {
+            "input_ids": np.asarray([ids_], np.int64),
+            "positions": np.arange(first, first + n, dtype=np.int64)[None, :],
+            "seqlens_k": np.asarray([first + n - 1], np.int32),
+            "total_sequence_length": np.asarray(first + n, np.int32),
+            **self.cross_feeds,
+        }
+        feeds.update({f"past_{name}": past_[i] for i, name in enumerate(self.kv_names)})
+        outs = self.dec.run(None, feeds)
+        return outs[0], outs[1:]
+
+
+def replay(trace: dict, dec: Decoder, bos: int):
+    """Every sampled id of the trace drawn again from the model's logits through the reference chain:
+    (ids, [(position, logits row)]) or an error message."""
+    s = trace["settings"]
+    past = dec.empty
+    rng = SplitMix64(int(s["seed"]))
+    pending = [bos]
+    fed = []  # all ids fed so far, BOS first
+    checked = []  # (position index in fed+pending sequence, logits row as the model gave it)
+    ids = []
+    for k, step in enumerate(trace["steps"]):
+        if step["forced"]:
+            ids.append(step["id"])
+            pending.append(step["id"])
+            continue
+        logits, past = dec.run(pending, len(fed), past)
+        fed += pending
+        row = logits[0, -1]
+        checked.append((len(fed) - 1, row))
+        if step.get("penalties"):  # soft face guidance: the logits the chain sampled from
+            row = row.copy()
+            for i, amount in step["penalties"]:
+                row[i] = np.float32(row[i]) - np.float32(amount)
+        candidates = [i for b, e in step["legal"] for i in range(b, e)]
+        got = sample(row, candidates, float(s["temperature"]), int(s["top_k"]), float(s["top_p"]), rng)
+        if got != step["id"]:
+            return f"reference_loop: MISMATCH at id {k}: C++ sampled {step['id']}, reference {got}"
+        ids.append(got)
+        pending = [got]
+    return ids, checked
+
+
+def worst_uncached_difference(dec: Decoder, ids, checked, bos: int, eos: int) -> float:
+    """One pass over the whole sequence without a cache: the largest logit difference to the cached rows."""
+    full = [bos] + ids[:-1] if ids and ids[-1] == eos else [bos] + ids
+    full = full[: max(p for p, _ in checked) + 1] if checked else full
+    logits, _ = dec.run(full, 0, dec.empty)
+    worst = 0.0
+    for p, row in checked:
+        worst = max(worst, float(np.abs(logits[0, p] - row).max()))
+    return worst
+
+
 def main() -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("model")
@@ -106,81 +181,23 @@ def main() -> int:
     if float(s.get("top_p_temperature", 0)) > 0:
         print("reference_loop: the official top-p chain (top_p_temperature > 0) is not reproduced here")
         return 1
-    d = meta["dims"]
-    bos = meta["vocab"]["bos_id"]
-    so = ort.SessionOptions()
-    so.intra_op_num_threads = 1
-    enc = ort.InferenceSession(f"{a.model}/{meta['files']['encoder']}", so, providers=["CPUExecutionProvider"])
-    dec = ort.InferenceSession(f"{a.model}/{meta['files']['decoder']}", so, providers=["CPUExecutionProvider"])
-
-    points = np.asarray(trace["points"], dtype=np.float32).reshape(1, -1, 6)
-    cross = enc.run(None, {"points": points})[0]  # [L, 2, H, M, D]
-    n_layers = d["n_layers"]
-    kv_names = [f"{kv}_{l}" for l in range(n_layers) for kv in ("key", "value")]
-    cross_feeds = {f"cross_{name}": np.ascontiguousarray(cross[i // 2, i % 2][None]) for i, name in enumerate(kv_names)}
-    empty = np.zeros((1, d["n_heads"], 0, d["head_dim"]), np.float32)
-
-    def run(ids_, first, past_):
-        """decoder.onnx on ids_ at positions first..; returns (logits, the grown per-layer cache)."""
-        n = len(ids_)
-        feeds = {
-            "input_ids": np.asarray([ids_], np.int64),
-            "positions": np.arange(first, first + n, dtype=np.int64)[None, :],
-            "seqlens_k": np.asarray([first + n - 1], np.int32),
-            "total_sequence_length": np.asarray(first + n, np.int32),
-            **cross_feeds,
-        }
-        feeds.update({f"past_{name}": past_[i] for i, name in enumerate(kv_names)})
-        outs = dec.run(None, feeds)
-        return outs[0], outs[1:]
-
-    past = [empty] * len(kv_names)
-
-    rng = SplitMix64(int(s["seed"]))
-    pending = [bos]
-    fed = []  # all ids fed so far, BOS first
-    checked = []  # (position index in fed+pending sequence, logits row as the model gave it)
-    ids = []
-    for k, step in enumerate(trace["steps"]):
-        if step["forced"]:
-            ids.append(step["id"])
-            pending.append(step["id"])
-            continue
-        logits, past = run(pending, len(fed), past)
-        fed += pending
-        row = logits[0, -1]
-        checked.append((len(fed) - 1, row))
-        if step.get("penalties"):  # soft face guidance: the logits the chain sampled from
-            row = row.copy()
-            for i, amount in step["penalties"]:
-                row[i] = np.float32(row[i]) - np.float32(amount)
-        candidates = [i for b, e in step["legal"] for i in range(b, e)]
-        got = sample(row, candidates, float(s["temperature"]), int(s["top_k"]), float(s["top_p"]), rng)
-        if got != step["id"]:
-            print(f"reference_loop: MISMATCH at id {k}: C++ sampled {step['id']}, reference {got}")
-            return 1
-        ids.append(got)
-        pending = [got]
+    bos, eos = meta["vocab"]["bos_id"], meta["vocab"]["eos_id"]
+    dec = Decoder(a.model, meta, trace["points"])
+    replayed = replay(trace, dec, bos)
+    if isinstance(replayed, str):
+        print(replayed)
+        return 1
+    ids, checked = replayed
     if ids != trace["tokens"]:
         print("reference_loop: trace steps and trace tokens differ")
         return 1
-
-    # One pass over the whole sequence without a cache.
-    full = [bos] + ids[:-1] if ids and ids[-1] == meta["vocab"]["eos_id"] else [bos] + ids
-    full = full[: max(p for p, _ in checked) + 1] if checked else full
-    logits, _ = run(full, 0, [empty] * len(kv_names))
-    worst = 0.0
-    for p, row in checked:
-        worst = max(worst, float(np.abs(logits[0, p] - row).max()))
+    worst = worst_uncached_difference(dec, ids, checked, bos, eos)
     if worst > a.logit_tol:
         print(f"reference_loop: cached and uncached logits differ by {worst:.3g} (> {a.logit_tol})")
         return 1
-
-    if a.tokens:
-        file_ids = [int(x) for x in open(a.tokens).read().split()]
-        if file_ids != ids:
-            print("reference_loop: token file differs from the trace")
-            return 1
+    if a.tokens and [int(x) for x in open(a.tokens).read().split()] != ids:
+        print("reference_loop: token file differs from the trace")
+        return 1
     forced = sum(1 for st in trace["steps"] if st["forced"])
     print(
         f"reference_loop: OK: {len(ids)} ids ({forced} forced, {len(checked)} sampled) reproduced; "

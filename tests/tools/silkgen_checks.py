@@ -178,35 +178,41 @@ def check_reference(silkgen, repo):
     return failures
 
 
+def bad_inputs(tmp, model):
+    """Inputs and model folders silkgen must refuse, written under tmp."""
+    nonormals = tmp / "nonormals.ply"  # too few points to estimate normals from (3 or more since issue 22)
+    nonormals.write_text(
+        "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+        "property float z\nend_header\n0 0 0\n1 0 0\n"
+    )
+    colours = tmp / "colours.xyz"
+    colours.write_text("0 0 0 255 0 0\n1 0 0 0 255 0\n")
+    garbage = tmp / "garbage.obj"
+    garbage.write_text("v 0 0 0\nf 1 2 3\n")
+    flat = tmp / "flat.obj"
+    flat.write_text("v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n")
+    newer = tmp / "newer_model"
+    shutil.copytree(model, newer)
+    meta = json.loads((newer / "model.json").read_text())
+    meta["model_version"] = 99
+    (newer / "model.json").write_text(json.dumps(meta, allow_nan=False))
+    other_tf = tmp / "other_tf_model"
+    shutil.copytree(model, other_tf)
+    meta = json.loads((other_tf / "model.json").read_text())
+    meta["token_format_version"] = 2
+    (other_tf / "model.json").write_text(json.dumps(meta, allow_nan=False))
+    broken = tmp / "broken_model"
+    shutil.copytree(model, broken)
+    (broken / "decoder.onnx").write_bytes(b"not an onnx file")
+    return nonormals, colours, garbage, flat, newer, other_tf, broken
+
+
 def check_bad(silkgen, repo):
     failures = []
     model = repo / "tests/models/tiny"
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
-        nonormals = tmp / "nonormals.ply"  # too few points to estimate normals from (3 or more since issue 22)
-        nonormals.write_text(
-            "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
-            "property float z\nend_header\n0 0 0\n1 0 0\n"
-        )
-        colours = tmp / "colours.xyz"
-        colours.write_text("0 0 0 255 0 0\n1 0 0 0 255 0\n")
-        garbage = tmp / "garbage.obj"
-        garbage.write_text("v 0 0 0\nf 1 2 3\n")
-        flat = tmp / "flat.obj"
-        flat.write_text("v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\n")
-        newer = tmp / "newer_model"
-        shutil.copytree(model, newer)
-        meta = json.loads((newer / "model.json").read_text())
-        meta["model_version"] = 99
-        (newer / "model.json").write_text(json.dumps(meta, allow_nan=False))
-        other_tf = tmp / "other_tf_model"
-        shutil.copytree(model, other_tf)
-        meta = json.loads((other_tf / "model.json").read_text())
-        meta["token_format_version"] = 2
-        (other_tf / "model.json").write_text(json.dumps(meta, allow_nan=False))
-        broken = tmp / "broken_model"
-        shutil.copytree(model, broken)
-        (broken / "decoder.onnx").write_bytes(b"not an onnx file")
+        nonormals, colours, garbage, flat, newer, other_tf, broken = bad_inputs(tmp, model)
         sample = repo / "samples/torus_knot.obj"
         cases = [  # args, expected exit, words expected in stderr
             ([tmp / "missing.obj", "-o", tmp / "o.obj", "--model", model], 2, ["missing.obj"]),
@@ -354,26 +360,60 @@ def glb_parts(path):
     return parts
 
 
-def check_orient(silkgen, repo):
-    """--orient input vs tokens with the bundled model (several parts per mesh), per GLB node."""
+def surface_samples(src):
+    """20,000 area-weighted samples of an OBJ's surface with their face normals (numpy's generator,
+    not libsilk's)."""
     import numpy as np
 
-    failures, flipped_total = [], 0
-    src = repo / "samples/torus_knot.obj"
     lines = src.read_text().splitlines()
     sv = np.array([[float(x) for x in l.split()[1:4]] for l in lines if l.startswith("v ")])
     sf = np.array([[int(x.split("/")[0]) - 1 for x in l.split()[1:4]] for l in lines if l.startswith("f ")])
     s_cross = np.cross(sv[sf[:, 1]] - sv[sf[:, 0]], sv[sf[:, 2]] - sv[sf[:, 0]])
     s_area = 0.5 * np.linalg.norm(s_cross, axis=1)
     s_unit = s_cross / np.maximum(2 * s_area[:, None], 1e-300)
-    # 20,000 area-weighted samples of the input's surface (numpy's generator, not libsilk's).
     rng = np.random.default_rng(0)
     pick = rng.choice(len(sf), 20000, p=s_area / s_area.sum())
     uv = rng.random((20000, 2))
     uv[uv.sum(1) > 1] = 1 - uv[uv.sum(1) > 1]
     a0 = sv[sf[pick, 0]]
-    s_points = a0 + uv[:, :1] * (sv[sf[pick, 1]] - a0) + uv[:, 1:] * (sv[sf[pick, 2]] - a0)
-    s_normal = s_unit[pick]
+    return a0 + uv[:, :1] * (sv[sf[pick, 1]] - a0) + uv[:, 1:] * (sv[sf[pick, 2]] - a0), s_unit[pick]
+
+
+def compare_parts(tag, tparts, iparts, s_points, s_normal, failures):
+    """Each part of the --orient input run against the same part of the --orient tokens run: kept or
+    wholly reversed. Returns (parts reversed, each part's area-weighted vote against the input's normals)."""
+    import numpy as np
+
+    reversed_parts, votes = 0, []
+    for k, ((tv, tf), (iv, i_f)) in enumerate(zip(tparts, iparts)):
+        if tf.shape != i_f.shape:
+            failures.append(f"{tag}: part {k}: face count differs")
+            continue
+        # The GLB numbers each part's vertices by first use, so compare corner positions.
+        pt, pi = tv[tf], iv[i_f]  # [faces, 3 corners, xyz]
+
+        def cyclic_equal(x, y):  # every face of x is the same face of y up to a rotation of corners
+            return bool(np.all(np.any([np.all(np.roll(y, r, axis=1) == x, axis=(1, 2)) for r in range(3)], axis=0)))
+
+        same = cyclic_equal(pi, pt)
+        rev = cyclic_equal(pi, pt[:, [0, 2, 1]])
+        if not (same or rev):
+            failures.append(f"{tag}: part {k} is neither kept nor wholly reversed")
+        reversed_parts += int(rev and not same)
+        # Independent vote: area-weighted agreement with the normal of the input surface
+        # sample nearest to each face's centroid.
+        cross = np.cross(iv[i_f[:, 1]] - iv[i_f[:, 0]], iv[i_f[:, 2]] - iv[i_f[:, 0]])
+        cen = iv[i_f].mean(axis=1)
+        near = np.argmin(((cen[:, None, :] - s_points[None, :, :]) ** 2).sum(-1), axis=1)
+        votes.append(0.5 * float(np.einsum("ij,ij->i", cross, s_normal[near]).sum()))
+    return reversed_parts, votes
+
+
+def check_orient(silkgen, repo):
+    """--orient input vs tokens with the bundled model (several parts per mesh), per GLB node."""
+    failures, flipped_total = [], 0
+    src = repo / "samples/torus_knot.obj"
+    s_points, s_normal = surface_samples(src)
     plain = [a for a in COMMON if a not in ("--orient", "tokens", "--max-tokens", "300")]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
@@ -413,30 +453,7 @@ def check_orient(silkgen, repo):
                 continue
             if ts["parts_flipped"] != 0 or ist["settings"]["orient"] != "input":
                 failures.append(f"{tag}: --orient tokens reversed {ts['parts_flipped']} parts")
-            reversed_parts, votes = 0, []
-            for k, ((tv, tf), (iv, i_f)) in enumerate(zip(tparts, iparts)):
-                if tf.shape != i_f.shape:
-                    failures.append(f"{tag}: part {k}: face count differs")
-                    continue
-                # The GLB numbers each part's vertices by first use, so compare corner positions.
-                pt, pi = tv[tf], iv[i_f]  # [faces, 3 corners, xyz]
-
-                def cyclic_equal(x, y):  # every face of x is the same face of y up to a rotation of corners
-                    return bool(
-                        np.all(np.any([np.all(np.roll(y, r, axis=1) == x, axis=(1, 2)) for r in range(3)], axis=0))
-                    )
-
-                same = cyclic_equal(pi, pt)
-                rev = cyclic_equal(pi, pt[:, [0, 2, 1]])
-                if not (same or rev):
-                    failures.append(f"{tag}: part {k} is neither kept nor wholly reversed")
-                reversed_parts += int(rev and not same)
-                # Independent vote: area-weighted agreement with the normal of the input surface
-                # sample nearest to each face's centroid.
-                cross = np.cross(iv[i_f[:, 1]] - iv[i_f[:, 0]], iv[i_f[:, 2]] - iv[i_f[:, 0]])
-                cen = iv[i_f].mean(axis=1)
-                near = np.argmin(((cen[:, None, :] - s_points[None, :, :]) ** 2).sum(-1), axis=1)
-                votes.append(0.5 * float(np.einsum("ij,ij->i", cross, s_normal[near]).sum()))
+            reversed_parts, votes = compare_parts(tag, tparts, iparts, s_points, s_normal, failures)
             if reversed_parts != ist["parts_flipped"]:
                 failures.append(f"{tag}: {reversed_parts} parts reversed, stats say {ist['parts_flipped']}")
             flipped_total += reversed_parts
