@@ -4,6 +4,7 @@
 #include "runtime/sampling/face_guide_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <bitset>
 #include <chrono>
 #include <cmath>
@@ -77,6 +78,9 @@ class FaceGuideStage : public SamplerStage {
   void ScoreOffsets(const TokenMask& mask);
   void ScoreBlocks(const TokenMask& mask);
   void PreparePosition(int32_t b, const QVec& centre);
+  void PrepareInLayerFolds(int32_t b);
+  double InLayerFolds(const QVec& p, double enough) const;
+  double ColumnFaces(const QVec& p, int32_t c, double enough) const;
   double PositionScore(const QVec& p, bool interior_only, double enough);
   void Decide(SamplerCandidates* c);
 
@@ -110,7 +114,19 @@ class FaceGuideStage : public SamplerStage {
   std::vector<std::pair<double, int32_t>> scored_;         // (score, id) of the legal ids judged
   std::vector<int32_t> linked_rows_, near_columns_;        // offsets: linked earlier rows, columns near the block
   std::vector<std::pair<int32_t, int32_t>> linked_pairs_;  // offsets: linked rows linked to each other
-  int32_t blocks_vertex_ = -1;                             // the row whose block scores block_score_ holds
+  // Positions, per new vertex (row folds_vertex_): the earlier rows' columns; for each linked
+  // pair, the third corners of the triangles already on its edge (CSR); the pairs of linked
+  // pairs that share a row s, as (s, x, y): faces (s, x, p) and (s, y, p) share edge (s, p).
+  int32_t folds_vertex_ = -1;
+  std::vector<Columns> pos_rows_;
+  std::vector<int32_t> pair_apex_begin_;
+  std::vector<QVec> pair_apex_;
+  std::vector<std::array<int32_t, 3>> fan_pairs_;
+  // For each linked row a and column c it joins (face (p, a, w_c) if p's first B joins c): the
+  // third corners of the triangles already on edge (a, w_c), CSR over the (a, c) entries.
+  std::vector<std::array<int32_t, 3>> col_faces_;  // (a, c, end of its apexes in col_apex_)
+  std::vector<QVec> col_apex_;
+  int32_t blocks_vertex_ = -1;  // the row whose block scores block_score_ holds
   std::vector<double> block_score_ = std::vector<double>(512, kUnscored);
   std::vector<std::pair<int32_t, float>> penalties_;
   TokenMask guided_;
@@ -134,6 +150,7 @@ bool FaceGuideStage::PrepareLayer() {
   layer_count_ = layers;
   vertex_ = -1;
   blocks_vertex_ = -1;
+  folds_vertex_ = -1;
   LoadPreviousLayer();
   return layer_ok_;
 }
@@ -362,6 +379,7 @@ void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
   for (size_t i = 0; i < linked_rows_.size(); ++i)
     for (size_t j = i + 1; j < linked_rows_.size(); ++j)
       if (Linked(vs, linked_rows_[i], linked_rows_[j])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[j]});
+  if (b != folds_vertex_) PrepareInLayerFolds(b);
   auto dist2 = [&](int32_t c) {
     const QVec& q = prev_pos_[c];
     return (q.x - centre.x) * (q.x - centre.x) + (q.y - centre.y) * (q.y - centre.y) +
@@ -373,6 +391,86 @@ void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
   std::partial_sort(near_columns_.begin(), near_columns_.begin() + near, near_columns_.end(),
                     [&](int32_t x, int32_t y) { return dist2(x) < dist2(y) || (dist2(x) == dist2(y) && x < y); });
   near_columns_.resize(near);
+}
+
+// The in-layer faces (a1, a2, p) a position p closes with each linked pair can fold onto the
+// triangles already on edge (a1, a2) (a row next to both, a previous-layer vertex both rows
+// join) and onto each other around p. Their parts that do not depend on p, once per vertex.
+void FaceGuideStage::PrepareInLayerFolds(int32_t b) {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  auto next_to = [&](int32_t x, int32_t y) { return x < y ? Linked(vs, x, y) : Linked(vs, y, x); };
+  folds_vertex_ = b;
+  pos_rows_.resize(static_cast<size_t>(b));
+  for (int32_t a = 0; a < b; ++a) {
+    pos_rows_[a].reset();
+    AddRowColumns(vs[a].between, &pos_rows_[a]);
+  }
+  pair_apex_begin_.assign(1, 0);
+  pair_apex_.clear();
+  fan_pairs_.clear();
+  for (size_t k = 0; k < linked_pairs_.size(); ++k) {
+    const auto [a1, a2] = linked_pairs_[k];
+    for (int32_t a3 = 0; a3 < b; ++a3)
+      if (a3 != a1 && a3 != a2 && next_to(a3, a1) && next_to(a3, a2)) pair_apex_.push_back(vs[a3].pos);
+    const Columns common = pos_rows_[a1] & pos_rows_[a2];
+    for (size_t c = 0; c < prev_pos_.size() && c < common.size(); ++c)
+      if (common.test(c)) pair_apex_.push_back(prev_pos_[c]);
+    pair_apex_begin_.push_back(static_cast<int32_t>(pair_apex_.size()));
+    for (size_t j = k + 1; j < linked_pairs_.size(); ++j) {
+      const auto [b1, b2] = linked_pairs_[j];
+      if (a1 == b1 || a1 == b2) fan_pairs_.push_back({a1, a2, a1 == b1 ? b2 : b1});
+      if (a2 == b1 || a2 == b2) fan_pairs_.push_back({a2, a1, a2 == b1 ? b2 : b1});
+    }
+  }
+  col_faces_.clear();
+  col_apex_.clear();
+  for (int32_t a : linked_rows_)
+    for (int32_t c = 0; c < static_cast<int32_t>(prev_pos_.size()); ++c) {
+      if (!pos_rows_[a].test(static_cast<size_t>(c))) continue;
+      for (int32_t a2 = 0; a2 < b; ++a2)
+        if (a2 != a && next_to(a2, a) && pos_rows_[a2].test(static_cast<size_t>(c))) col_apex_.push_back(vs[a2].pos);
+      for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e)
+        if (pos_rows_[a].test(static_cast<size_t>(adj_[e]))) col_apex_.push_back(prev_pos_[adj_[e]]);
+      col_faces_.push_back({a, c, static_cast<int32_t>(col_apex_.size())});
+    }
+}
+
+// Faces (p, a, w_c) that p's first B closes if it joins column c, with each linked row a that
+// joins c: their distance part and folds onto the triangles on edge (a, w_c), onto each other
+// around edge (p, w_c), and onto the in-layer faces (p, a, a2) around edge (p, a).
+double FaceGuideStage::ColumnFaces(const QVec& p, int32_t c, double enough) const {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  const QVec& w = prev_pos_[c];
+  double worst = 0;
+  for (size_t k = 0; k < col_faces_.size() && worst <= enough; ++k) {
+    const auto [a, kc, end] = col_faces_[k];
+    if (kc != c) continue;
+    const QVec& pa = vs[a].pos;
+    worst = std::max(worst, guide_->FaceDistance(p, pa, w));
+    for (int32_t i = k == 0 ? 0 : col_faces_[k - 1][2]; i < end; ++i)
+      worst = std::max(worst, guide_->FoldScore(pa, w, p, col_apex_[static_cast<size_t>(i)]));
+    for (size_t j = k + 1; j < col_faces_.size(); ++j)
+      if (col_faces_[j][1] == c) worst = std::max(worst, guide_->FoldScore(p, w, pa, vs[col_faces_[j][0]].pos));
+    for (const auto& [a1, a2] : linked_pairs_)
+      if (a1 == a || a2 == a) worst = std::max(worst, guide_->FoldScore(p, pa, w, vs[a1 == a ? a2 : a1].pos));
+  }
+  return worst;
+}
+
+// The worst fold of the faces position p closes with the linked pairs (PrepareInLayerFolds).
+double FaceGuideStage::InLayerFolds(const QVec& p, double enough) const {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  double worst = 0;
+  for (size_t k = 0; k < linked_pairs_.size() && worst <= enough; ++k) {
+    const QVec &p1 = vs[linked_pairs_[k].first].pos, &p2 = vs[linked_pairs_[k].second].pos;
+    for (int32_t i = pair_apex_begin_[k]; i < pair_apex_begin_[k + 1]; ++i)
+      worst = std::max(worst, guide_->FoldScore(p1, p2, p, pair_apex_[static_cast<size_t>(i)]));
+  }
+  for (const auto& [s, x, y] : fan_pairs_) {
+    if (worst > enough) break;
+    worst = std::max(worst, guide_->FoldScore(vs[s].pos, p, vs[x].pos, vs[y].pos));
+  }
+  return worst;
 }
 
 // A position fixes the vertex's edges to the linked rows, the faces among them, and where its
@@ -388,10 +486,13 @@ double FaceGuideStage::PositionScore(const QVec& p, bool interior_only, double e
     if (worst > enough) return worst;
     worst = std::max(worst, guide_->FaceDistance(vs[a1].pos, vs[a2].pos, p));
   }
+  if (worst <= enough) worst = std::max(worst, InLayerFolds(p, enough));
   if (worst > enough || near_columns_.empty()) return worst;
   double column = HUGE_VAL;
   for (int32_t c : near_columns_) {
-    column = std::min(column, edge(prev_pos_[c]));
+    double cs = edge(prev_pos_[c]);
+    if (cs < column) cs = std::max(cs, ColumnFaces(p, c, std::min(column, enough)));
+    column = std::min(column, cs);
     if (column <= worst) break;  // the linked part decides
   }
   return std::max(worst, column);
