@@ -66,18 +66,22 @@ TEST(FaceGuide, ScoresDistanceAndAngle) {
   EXPECT_NEAR(Score(*MakeGuide(no_normals, 3.0), {10, 64, 10}, {10, 64, 12}, {11, 66, 11}), std::sqrt(6.0) / 3, 1e-6);
 }
 
-// Two faces on edge (x, y): side by side (flat), at the limit angle, on top of each other.
+// Two faces on edge (x, y): side by side (flat), at the limit angle (90 deg), past it, on top of
+// each other.
 TEST(FaceGuide, FoldScoreIsTheAngleInsideThePair) {
+  static_assert(kFaceFoldLimitDegrees == 90.0, "the figures below are for a 90 deg limit");
   const auto guide = MakeGuide(PlanePoints(), 2.0);
   const QVec x{10, 64, 10}, y{20, 64, 10}, p{15, 64, 20};
-  EXPECT_NEAR(guide->FoldScore(x, y, p, {15, 64, 0}), 0.0, 1e-12);                         // 180 deg: flat
-  EXPECT_NEAR(guide->FoldScore(x, y, p, {15, 74, 10}), 1.0 / (1 + std::sqrt(0.5)), 1e-9);  // 90 deg
-  EXPECT_NEAR(guide->FoldScore(x, y, p, {12, 74, 20}), 1.0, 1e-9);                         // 45 deg: the limit
-  EXPECT_NEAR(guide->FoldScore(x, y, p, {25, 64, 30}), 1.0 + kFaceFoldSpan, 1e-9);         // 0 deg: folded
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {15, 64, 0}), 0.0, 1e-12);                     // 180 deg: flat
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {12, 74, 0}), 1 - std::sqrt(0.5), 1e-9);       // 135 deg
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {15, 74, 10}), 1.0, 1e-9);                     // 90 deg: the limit
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {12, 74, 20}), 1 + 3 * std::sqrt(0.5), 1e-9);  // 45 deg
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {25, 64, 30}), 1.0 + kFaceFoldSpan, 1e-9);     // 0 deg: folded
   // A fold is a fold whichever face came first, and wherever along the edge the corners lie.
-  EXPECT_NEAR(guide->FoldScore(x, y, {15, 74, 10}, p), guide->FoldScore(x, y, p, {15, 74, 10}), 1e-12);
-  EXPECT_NEAR(guide->FoldScore(y, x, p, {15, 74, 10}), guide->FoldScore(x, y, p, {15, 74, 10}), 1e-12);
-  EXPECT_GT(guide->FoldScore(x, y, p, {15, 66, 20}), 1.0);  // 11 deg apart: past the limit
+  EXPECT_NEAR(guide->FoldScore(x, y, {12, 74, 20}, p), guide->FoldScore(x, y, p, {12, 74, 20}), 1e-12);
+  EXPECT_NEAR(guide->FoldScore(y, x, p, {12, 74, 20}), guide->FoldScore(x, y, p, {12, 74, 20}), 1e-12);
+  EXPECT_GT(guide->FoldScore(x, y, p, {15, 75, 11}), 1.0);  // 85 deg: just past a right angle
+  EXPECT_LT(guide->FoldScore(x, y, p, {15, 75, 9}), 1.0);   // 95 deg: just short of it
   // Degenerate: a corner on the edge's line, or no edge.
   EXPECT_EQ(guide->FoldScore(x, y, p, {30, 64, 10}), 0.0);
   EXPECT_EQ(guide->FoldScore(x, x, p, {15, 74, 10}), 0.0);
