@@ -66,48 +66,108 @@ TEST(FaceGuide, ScoresDistanceAndAngle) {
   EXPECT_NEAR(Score(*MakeGuide(no_normals, 3.0), {10, 64, 10}, {10, 64, 12}, {11, 66, 11}), std::sqrt(6.0) / 3, 1e-6);
 }
 
-// The previous-layer columns (and current-layer rows) adjacent to vertex b of the current layer
-// once `id` is accepted, from the decoders of whole layers: the edge graph, built independently
-// of the stage's per-column bookkeeping.
-double BruteScore(const Grammar& g, int32_t id, const FaceGuide& guide) {
+// Two faces on edge (x, y): side by side (flat), at the limit angle (90 deg), past it, on top of
+// each other.
+TEST(FaceGuide, FoldScoreIsTheAngleInsideThePair) {
+  static_assert(kFaceFoldLimitDegrees == 90.0, "the figures below are for a 90 deg limit");
+  const auto guide = MakeGuide(PlanePoints(), 2.0);
+  const QVec x{10, 64, 10}, y{20, 64, 10}, p{15, 64, 20};
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {15, 64, 0}), 0.0, 1e-12);                     // 180 deg: flat
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {12, 74, 0}), 1 - std::sqrt(0.5), 1e-9);       // 135 deg
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {15, 74, 10}), 1.0, 1e-9);                     // 90 deg: the limit
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {12, 74, 20}), 1 + 3 * std::sqrt(0.5), 1e-9);  // 45 deg
+  EXPECT_NEAR(guide->FoldScore(x, y, p, {25, 64, 30}), 1.0 + kFaceFoldSpan, 1e-9);     // 0 deg: folded
+  // A fold is a fold whichever face came first, and wherever along the edge the corners lie.
+  EXPECT_NEAR(guide->FoldScore(x, y, {12, 74, 20}, p), guide->FoldScore(x, y, p, {12, 74, 20}), 1e-12);
+  EXPECT_NEAR(guide->FoldScore(y, x, p, {12, 74, 20}), guide->FoldScore(x, y, p, {12, 74, 20}), 1e-12);
+  EXPECT_GT(guide->FoldScore(x, y, p, {15, 75, 11}), 1.0);  // 85 deg: just past a right angle
+  EXPECT_LT(guide->FoldScore(x, y, p, {15, 75, 9}), 1.0);   // 95 deg: just short of it
+  // Degenerate: a corner on the edge's line, or no edge.
+  EXPECT_EQ(guide->FoldScore(x, y, p, {30, 64, 10}), 0.0);
+  EXPECT_EQ(guide->FoldScore(x, x, p, {15, 74, 10}), 0.0);
+}
+
+// The edge graph once `id` is accepted, from the decoders of whole layers (built independently
+// of the stage's per-column bookkeeping): the previous layer 0..n-1, the current layer's rows
+// n..n+b (u = n+b, the vertex being written), then the layer before the previous one.
+struct BruteGraph {
+  int32_t n = 0, u = 0, total = 0;
+  std::vector<char> adj;
+  std::vector<QVec> pos;
+  bool Edge(int32_t x, int32_t y) const { return adj[static_cast<size_t>(x) * total + y] != 0; }
+};
+
+BruteGraph GraphAfter(const Grammar& g, int32_t id) {
   Grammar h = g.Clone();
   EXPECT_TRUE(h.Accept(id).ok());
   const auto& layers = h.stream().components.back().layers;
   const StreamLayer &prev = layers[layers.size() - 2], &cur = layers.back();
-  const int32_t n = static_cast<int32_t>(prev.vertices.size()), b = static_cast<int32_t>(cur.vertices.size()) - 1;
-  const int32_t total = n + b + 1;  // previous layer 0..n-1, then the current layer's rows 0..b
-  std::vector<char> adj(static_cast<size_t>(total) * total, 0);
-  auto link = [&](int32_t x, int32_t y) { adj[x * total + y] = adj[y * total + x] = 1; };
-  if (layers.size() > 2) {
+  const StreamLayer* before = layers.size() > 2 ? &layers[layers.size() - 3] : nullptr;
+  BruteGraph gr;
+  gr.n = static_cast<int32_t>(prev.vertices.size());
+  const int32_t b = static_cast<int32_t>(cur.vertices.size()) - 1;
+  gr.u = gr.n + b;
+  gr.total = gr.n + b + 1 + (before ? static_cast<int32_t>(before->vertices.size()) : 0);
+  gr.adj.assign(static_cast<size_t>(gr.total) * gr.total, 0);
+  for (const auto& v : prev.vertices) gr.pos.push_back(v.pos);
+  for (const auto& v : cur.vertices) gr.pos.push_back(v.pos);
+  if (before)
+    for (const auto& v : before->vertices) gr.pos.push_back(v.pos);
+  auto link = [&](int32_t x, int32_t y) { gr.adj[x * gr.total + y] = gr.adj[y * gr.total + x] = 1; };
+  if (before) {
     auto self = DecodeSelfLayer(prev);
     EXPECT_TRUE(self.ok());
     for (const auto& [x, y] : *self) link(x, y);
+    auto down = DecodeBetweenLayer(prev, static_cast<int32_t>(before->vertices.size()));
+    EXPECT_TRUE(down.ok()) << down.status().ToString();
+    for (const auto& [row, col] : *down) link(row, gr.n + b + 1 + col);
   }
-  auto between = DecodeBetweenLayer(cur, n);
+  auto between = DecodeBetweenLayer(cur, gr.n);
   EXPECT_TRUE(between.ok()) << between.status().ToString();
-  for (const auto& [row, col] : *between) link(n + row, col);
+  for (const auto& [row, col] : *between) link(gr.n + row, col);
   for (int32_t a = 0; a < b; ++a)
     for (int32_t j = a + 1; j <= b; ++j) {
       const int32_t d = j - a;
       const auto& ex = cur.vertices[a].extras;
       if (d <= 8 ? (cur.vertices[a].window >> (d - 1)) & 1 : std::count(ex.begin(), ex.end(), d - 1) > 0)
-        link(n + a, n + j);
+        link(gr.n + a, gr.n + j);
     }
-  auto pos = [&](int32_t v) { return v < n ? prev.vertices[v].pos : cur.vertices[v - n].pos; };
-  // The id's own columns: the row after the id minus the row before it (a continuation's
-  // columns may repeat none of the earlier ones: starts only increase).
-  const int32_t s = (id - vocab::kBBegin) / 26, c = (id - vocab::kBBegin) % 26;
-  const int32_t pattern = BetweenCasePattern(c);
-  const int32_t u = n + b;
+  return gr;
+}
+
+// Triangle (p, q, r) of the graph against every other triangle (p, q, y) on its edge (p, q).
+double BruteFolds(const BruteGraph& gr, int32_t p, int32_t q, int32_t r, const FaceGuide& guide) {
   double worst = 0;
+  for (int32_t y = 0; y < gr.total; ++y)
+    if (y != p && y != q && y != r && gr.Edge(p, y) && gr.Edge(q, y))
+      worst = std::max(worst, guide.FoldScore(gr.pos[p], gr.pos[q], gr.pos[r], gr.pos[y]));
+  return worst;
+}
+
+// The id's score by brute force: every triangle of the graph through one of its new edges
+// (u, w), scored, and against every other triangle on each of its three edges (folds).
+struct Brute {
+  double score = 0, without_folds = 0;
+};
+
+Brute BruteScore(const Grammar& g, int32_t id, const FaceGuide& guide) {
+  const BruteGraph gr = GraphAfter(g, id);
+  // The id's own columns (a continuation's columns repeat none of the earlier ones).
+  const int32_t s = (id - vocab::kBBegin) / 26, c = (id - vocab::kBBegin) % 26;
+  const int32_t pattern = BetweenCasePattern(c), u = gr.u;
+  Brute worst;
   for (int32_t p = 0; p <= 5; ++p) {
     if (p > 0 && !((pattern >> (p - 1)) & 1)) continue;
     const int32_t w = s + p;
-    worst = std::max(worst, guide.EdgeScore(pos(u), pos(w)));
-    for (int32_t x = 0; x < total; ++x)
-      if (x != u && x != w && adj[u * total + x] && adj[w * total + x])
-        worst = std::max(worst, Score(guide, pos(u), pos(w), pos(x)));
+    worst.without_folds = std::max(worst.without_folds, guide.EdgeScore(gr.pos[u], gr.pos[w]));
+    for (int32_t x = 0; x < gr.total; ++x) {
+      if (x == u || x == w || !gr.Edge(u, x) || !gr.Edge(w, x)) continue;
+      worst.without_folds = std::max(worst.without_folds, Score(guide, gr.pos[u], gr.pos[w], gr.pos[x]));
+      worst.score = std::max({worst.score, BruteFolds(gr, u, w, x, guide), BruteFolds(gr, w, x, u, guide),
+                              BruteFolds(gr, u, x, w, guide)});
+    }
   }
+  worst.score = std::max(worst.score, worst.without_folds);
   return worst;
 }
 
@@ -144,6 +204,7 @@ std::vector<float> WalkPoints(const Grammar& g) {
 
 struct WalkTally {
   int64_t exact_steps = 0, removed = 0, passing = 0, penalised = 0;
+  int64_t folded = 0;  // ids a fold scores worst, past 1
 };
 
 // Where only B ids are judged (a row's first B): the stage's mask (hard) or penalties (soft) equal
@@ -153,8 +214,10 @@ void CheckFirstBExactly(const Grammar& replay, const TokenMask& legal, const Sam
   std::vector<std::pair<double, int32_t>> brute;
   double best = HUGE_VAL;
   for (int32_t b = legal.Next(vocab::kBBegin); b >= 0 && b < vocab::kBEnd; b = legal.Next(b + 1)) {
-    brute.push_back({BruteScore(replay, b, guide), b});
-    best = std::min(best, brute.back().first);
+    const Brute s = BruteScore(replay, b, guide);
+    brute.push_back({s.score, b});
+    best = std::min(best, s.score);
+    t->folded += s.score > std::max(1.0, s.without_folds) ? 1 : 0;
   }
   if (mode == FaceGuidance::kHard) {
     const double keep = best <= 1 ? 1.0 : best * 1.25;
@@ -215,7 +278,9 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
         ASSERT_NE(c.mask, nullptr);
         EXPECT_FALSE(c.mask->Empty());
         for (int32_t x = 0; x < TokenMask::kBits; ++x) {
-          if (!Judged(replay, x) || !legal.Test(x)) ASSERT_EQ(c.mask->Test(x), legal.Test(x)) << x;
+          if (!Judged(replay, x) || !legal.Test(x)) {
+            ASSERT_EQ(c.mask->Test(x), legal.Test(x)) << x;
+          }
         }
         narrowed_positions += replay.phase() == GrammarPhase::kWantO && c.mask->Count() < legal.Count() ? 1 : 0;
       } else {
@@ -240,6 +305,7 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
   EXPECT_GT(t.removed, 0);       // ids removed,
   EXPECT_GT(t.passing, 0);       // steps where some id passed,
   EXPECT_GT(t.penalised, 0);
+  EXPECT_GT(t.folded, 0);   // folds decide some ids
   EXPECT_GT(fallbacks, 0);  // and steps where none did
   EXPECT_GT(narrowed_positions, 0);
 }

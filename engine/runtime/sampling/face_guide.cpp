@@ -70,7 +70,8 @@ FaceGuide::FaceGuide(std::shared_ptr<const SurfaceGuide> field, const std::vecto
       normals_(UnitNormals(points)),
       root_(3 * 127 * 127 + 1),
       tolerance_(tolerance),
-      angle_scale_(1.0 / (1.0 - std::cos(kFaceAngleLimitDegrees * kPi / 180.0))) {
+      angle_scale_(1.0 / (1.0 - std::cos(kFaceAngleLimitDegrees * kPi / 180.0))),
+      fold_cos_(std::cos(kFaceFoldLimitDegrees * kPi / 180.0)) {
   for (size_t i = 0; i < root_.size(); ++i) root_[i] = static_cast<float>(std::sqrt(static_cast<double>(i)));
 }
 
@@ -94,6 +95,23 @@ double FaceGuide::EdgeInterior(const QVec& a, const QVec& b) const {
 double FaceGuide::EdgeScore(const QVec& a, const QVec& b) const {
   const double ends = std::max(Distance(a.x, a.y, a.z, 1), Distance(b.x, b.y, b.z, 1)) / tolerance_;
   return std::max(ends, EdgeInterior(a, b));
+}
+
+double FaceGuide::FoldScore(const QVec& x, const QVec& y, const QVec& p, const QVec& q) const {
+  const double ex = y.x - x.x, ey = y.y - x.y, ez = y.z - x.z, e2 = ex * ex + ey * ey + ez * ez;
+  if (e2 == 0) return 0;
+  // The parts of p - x and q - x perpendicular to the edge; the angle between them.
+  auto perp = [&](const QVec& r, double* o) {
+    const double rx = r.x - x.x, ry = r.y - x.y, rz = r.z - x.z, t = (rx * ex + ry * ey + rz * ez) / e2;
+    o[0] = rx - t * ex, o[1] = ry - t * ey, o[2] = rz - t * ez;
+    return o[0] * o[0] + o[1] * o[1] + o[2] * o[2];
+  };
+  double a[3], b[3];
+  const double la = perp(p, a), lb = perp(q, b);
+  if (la == 0 || lb == 0) return 0;
+  const double cos_t = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / std::sqrt(la * lb);
+  if (cos_t <= fold_cos_) return (1 + cos_t) / (1 + fold_cos_);
+  return 1 + kFaceFoldSpan * (cos_t - fold_cos_) / (1 - fold_cos_);
 }
 
 double FaceGuide::FaceDistance(const QVec& a, const QVec& b, const QVec& c) const {

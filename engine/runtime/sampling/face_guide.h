@@ -33,6 +33,15 @@ inline constexpr double kDefaultFaceTolerance = 4.0;
 
 // A face's normal may turn this far from the input's normals (up to sign) before it strays.
 inline constexpr double kFaceAngleLimitDegrees = 60.0;
+// Two faces on one edge fold (turn their wound normals more than a right angle apart, the
+// surface doubling back) when the angle between them, measured inside the pair (180 deg: flat,
+// 0: one on top of the other), is below this. Reference meshes rarely do (none of about 10,000
+// interior edges of 9 dev meshes below 45 deg, at most 4 % of a mesh's below 90: a blade, the
+// tiger); the bundled model's unguided outputs fold at 61 % of theirs (test subset of 10). 90
+// beat 45 on that subset on every figure (docs/runtime.md, "Folds").
+inline constexpr double kFaceFoldLimitDegrees = 90.0;
+// A full fold (0 deg) scores 1 + kFaceFoldSpan, rising linearly in the cosine from 1 at the limit.
+inline constexpr double kFaceFoldSpan = 3.0;
 // Soft form: logit penalty per unit of score past 1 (score 1 = at the tolerance), capped.
 inline constexpr double kFaceSoftPenalty = 4.0;
 inline constexpr double kFaceSoftPenaltyMax = 40.0;
@@ -58,6 +67,10 @@ class FaceGuide {
   double FaceScore(const QVec& a, const QVec& b, const QVec& c, int32_t n_a, int32_t n_b, int32_t n_c) const;
   // Distance part alone of FaceScore (no normal: for positions judged in bulk).
   double FaceDistance(const QVec& a, const QVec& b, const QVec& c) const;
+  // Fold score of faces (x, y, p) and (x, y, q) sharing edge (x, y), orientation-free: p and q
+  // on opposite sides of the edge (a flat pair) score 0, at kFaceFoldLimitDegrees 1, on top of
+  // each other 1 + kFaceFoldSpan. A degenerate face (p or q on the edge's line) scores 0.
+  double FoldScore(const QVec& x, const QVec& y, const QVec& p, const QVec& q) const;
   // Score of an edge alone (distance only: its ends, midpoint and quarter points).
   double EdgeScore(const QVec& a, const QVec& b) const;
   // The same without its ends (a position still to be chosen: surface guidance judges that).
@@ -73,6 +86,7 @@ class FaceGuide {
   std::vector<float> root_;      // sqrt of every squared cell distance the grid holds
   double tolerance_;
   double angle_scale_;  // 1 / (1 - cos limit)
+  double fold_cos_;     // cos kFaceFoldLimitDegrees
 };
 
 }  // namespace silk

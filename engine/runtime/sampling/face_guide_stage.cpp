@@ -4,6 +4,7 @@
 #include "runtime/sampling/face_guide_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <bitset>
 #include <chrono>
 #include <cmath>
@@ -67,12 +68,19 @@ class FaceGuideStage : public SamplerStage {
   bool PrepareLayer();
   void LoadPreviousLayer();
   void PrepareVertex();
+  void LoadApexes(const StreamLayer& prev, const StreamLayer* before);
+  double LinkedFace(int32_t a, int32_t c);
   double Pair(size_t entry);
+  double FanFolds(const Columns& cols, int32_t c_new);
+  double LinkedPairFolds(const Columns& cols, int32_t c_new);
   double IdScore(int32_t id, double enough);
   void ScoreBetween(const TokenMask& mask);
   void ScoreOffsets(const TokenMask& mask);
   void ScoreBlocks(const TokenMask& mask);
   void PreparePosition(int32_t b, const QVec& centre);
+  void PrepareInLayerFolds(int32_t b);
+  double InLayerFolds(const QVec& p, double enough) const;
+  double ColumnFaces(const QVec& p, int32_t c, double enough) const;
   double PositionScore(const QVec& p, bool interior_only, double enough);
   void Decide(SamplerCandidates* c);
 
@@ -86,19 +94,39 @@ class FaceGuideStage : public SamplerStage {
   bool layer_ok_ = false;
   std::vector<QVec> prev_pos_;
   std::vector<int32_t> prev_near_, adj_begin_, adj_;
+  // Per adjacency entry (c, c'): the apexes of the triangles already on edge (w_c, w_c') (the
+  // layer before the previous one, or the previous layer itself), CSR.
+  std::vector<int32_t> apex_begin_;
+  std::vector<QVec> apex_;
   // The vertex being written (per vertex): its edge and linked-face scores per column, the
   // scores of the triangles it makes with previous-layer edges (lazy, per adjacency entry).
   int32_t vertex_ = -1;
   QVec u_;
   int32_t u_near_ = -1;
   std::vector<double> edge_, linked_, pair_;
+  // The earlier rows of the vertex's layer: their columns, and whether they are linked to it.
+  std::vector<Columns> rows_;
+  std::vector<char> row_linked_;
+  std::vector<std::pair<int32_t, int32_t>> linked_list_;  // (linked row, column it joins)
   // This step: the row's columns so far and each column's score with them.
   Columns row_;
   std::vector<double> column_;
   std::vector<std::pair<double, int32_t>> scored_;         // (score, id) of the legal ids judged
   std::vector<int32_t> linked_rows_, near_columns_;        // offsets: linked earlier rows, columns near the block
   std::vector<std::pair<int32_t, int32_t>> linked_pairs_;  // offsets: linked rows linked to each other
-  int32_t blocks_vertex_ = -1;                             // the row whose block scores block_score_ holds
+  // Positions, per new vertex (row folds_vertex_): the earlier rows' columns; for each linked
+  // pair, the third corners of the triangles already on its edge (CSR); the pairs of linked
+  // pairs that share a row s, as (s, x, y): faces (s, x, p) and (s, y, p) share edge (s, p).
+  int32_t folds_vertex_ = -1;
+  std::vector<Columns> pos_rows_;
+  std::vector<int32_t> pair_apex_begin_;
+  std::vector<QVec> pair_apex_;
+  std::vector<std::array<int32_t, 3>> fan_pairs_;
+  // For each linked row a and column c it joins (face (p, a, w_c) if p's first B joins c): the
+  // third corners of the triangles already on edge (a, w_c), CSR over the (a, c) entries.
+  std::vector<std::array<int32_t, 3>> col_faces_;  // (a, c, end of its apexes in col_apex_)
+  std::vector<QVec> col_apex_;
+  int32_t blocks_vertex_ = -1;  // the row whose block scores block_score_ holds
   std::vector<double> block_score_ = std::vector<double>(512, kUnscored);
   std::vector<std::pair<int32_t, float>> penalties_;
   TokenMask guided_;
@@ -122,6 +150,7 @@ bool FaceGuideStage::PrepareLayer() {
   layer_count_ = layers;
   vertex_ = -1;
   blocks_vertex_ = -1;
+  folds_vertex_ = -1;
   LoadPreviousLayer();
   return layer_ok_;
 }
@@ -138,6 +167,8 @@ void FaceGuideStage::LoadPreviousLayer() {
   }
   adj_begin_.assign(static_cast<size_t>(n) + 1, 0);
   adj_.clear();
+  apex_begin_.assign(1, 0);
+  apex_.clear();
   layer_ok_ = true;
   if (layers.size() == 2) return;  // the previous layer is the root: no self-layer edges
   auto edges = DecodeSelfLayer(prev);
@@ -150,10 +181,33 @@ void FaceGuideStage::LoadPreviousLayer() {
   adj_.resize(static_cast<size_t>(adj_begin_[n]));
   std::vector<int32_t> fill(adj_begin_.begin(), adj_begin_.end() - 1);
   for (const auto& [a, b] : *edges) adj_[fill[a]++] = b, adj_[fill[b]++] = a;
+  LoadApexes(prev, &layers[layers.size() - 3]);
 }
 
-// The vertex's new edges alone, and the faces (u, v, w_c) with an earlier vertex v of its layer
-// it is linked to (v's window or X reached it) whose row joins column c.
+// For each adjacency entry (c, c') of the previous layer, the third corners of the triangles
+// already on edge (w_c, w_c'): vertices of the layer before whose columns both rows join, and
+// previous-layer vertices adjacent to both. A new face on that edge must not fold onto them.
+void FaceGuideStage::LoadApexes(const StreamLayer& prev, const StreamLayer* before) {
+  const int32_t n = static_cast<int32_t>(prev_pos_.size());
+  std::vector<Columns> cols(static_cast<size_t>(n));
+  for (int32_t i = 0; i < n; ++i) AddRowColumns(prev.vertices[i].between, &cols[i]);
+  apex_begin_.assign(adj_.size() + 1, 0);
+  apex_.clear();
+  for (int32_t c = 0; c < n; ++c)
+    for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e) {
+      const int32_t c2 = adj_[e];
+      const Columns common = cols[c] & cols[c2];
+      for (size_t z = 0; z < before->vertices.size() && z < common.size(); ++z)
+        if (common.test(z)) apex_.push_back(before->vertices[z].pos);
+      for (int32_t f = adj_begin_[c]; f < adj_begin_[c + 1]; ++f)
+        for (int32_t g = adj_begin_[c2]; g < adj_begin_[c2 + 1]; ++g)
+          if (adj_[f] == adj_[g]) apex_.push_back(prev_pos_[adj_[f]]);
+      apex_begin_[e + 1] = static_cast<int32_t>(apex_.size());
+    }
+}
+
+// The vertex's new edges alone, and the faces (u, a, w_c) with an earlier vertex a of its layer
+// it is linked to (a's window or X reached it) whose row joins column c.
 void FaceGuideStage::PrepareVertex() {
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   const int32_t b = static_cast<int32_t>(vs.size()) - 1, n = static_cast<int32_t>(prev_pos_.size());
@@ -165,17 +219,40 @@ void FaceGuideStage::PrepareVertex() {
   linked_.assign(static_cast<size_t>(n), 0);
   pair_.assign(adj_.size(), kUnscored);
   column_.resize(static_cast<size_t>(n));
+  rows_.resize(static_cast<size_t>(b));
+  row_linked_.resize(static_cast<size_t>(b));
+  linked_list_.clear();
   for (int32_t c = 0; c < n; ++c) edge_[c] = guide_->EdgeScore(u_, prev_pos_[c]);
   for (int32_t a = 0; a < b; ++a) {
-    if (!Linked(vs, a, b)) continue;
-    Columns cols;
-    AddRowColumns(vs[a].between, &cols);
-    const int32_t a_near = guide_->NearestPoint(vs[a].pos);
+    rows_[a].reset();
+    AddRowColumns(vs[a].between, &rows_[a]);
+    row_linked_[a] = Linked(vs, a, b);
+    if (!row_linked_[a]) continue;
     for (int32_t c = 0; c < n; ++c)
-      if (cols.test(static_cast<size_t>(c)))
-        linked_[c] =
-            std::max(linked_[c], guide_->FaceScore(u_, vs[a].pos, prev_pos_[c], u_near_, a_near, prev_near_[c]));
+      if (rows_[a].test(static_cast<size_t>(c))) linked_list_.push_back({a, c});
   }
+  for (const auto& [a, c] : linked_list_) linked_[c] = std::max(linked_[c], LinkedFace(a, c));
+}
+
+// Face (u, a, w_c) of linked row a joining column c: its own score and its folds onto the faces
+// already on its edges: (a, w_c) with a's faces (a, w_c, w_m) and rows a' next to a joining c;
+// (u, w_c) with another linked row's face (u, a', w_c); (u, a) with faces (u, a, a').
+double FaceGuideStage::LinkedFace(int32_t a, int32_t c) {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  const int32_t b = static_cast<int32_t>(rows_.size());
+  const QVec &pa = vs[a].pos, &w = prev_pos_[c];
+  double s = guide_->FaceScore(u_, pa, w, u_near_, guide_->NearestPoint(pa), prev_near_[c]);
+  for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e)
+    if (rows_[a].test(static_cast<size_t>(adj_[e]))) s = std::max(s, guide_->FoldScore(pa, w, u_, prev_pos_[adj_[e]]));
+  for (int32_t a2 = 0; a2 < b; ++a2) {
+    if (a2 == a) continue;
+    const bool next_to_a = a2 < a ? Linked(vs, a2, a) : Linked(vs, a, a2);
+    const QVec& p2 = vs[a2].pos;
+    if (next_to_a && rows_[a2].test(static_cast<size_t>(c))) s = std::max(s, guide_->FoldScore(pa, w, u_, p2));
+    if (row_linked_[a2] && rows_[a2].test(static_cast<size_t>(c))) s = std::max(s, guide_->FoldScore(u_, w, pa, p2));
+    if (row_linked_[a2] && next_to_a) s = std::max(s, guide_->FoldScore(u_, pa, w, p2));
+  }
+  return s;
 }
 
 // Triangle (u, w_c, w_c') of adjacency entry `entry` (c' = adj_[entry]), computed once.
@@ -186,8 +263,57 @@ double FaceGuideStage::Pair(size_t entry) {
       static_cast<int32_t>(std::upper_bound(adj_begin_.begin(), adj_begin_.end(), static_cast<int32_t>(entry)) -
                            adj_begin_.begin()) -
       1;
-  pair_[entry] = guide_->FaceScore(u_, prev_pos_[c1], prev_pos_[c2], u_near_, prev_near_[c1], prev_near_[c2]);
-  return pair_[entry];
+  const QVec &w1 = prev_pos_[c1], &w2 = prev_pos_[c2];
+  double s = guide_->FaceScore(u_, w1, w2, u_near_, prev_near_[c1], prev_near_[c2]);
+  // Folds: onto the faces already on edge (w1, w2); onto an earlier row's face there (a third
+  // face); onto a linked row's face (u, w, a) on edge (u, w1) or (u, w2).
+  for (int32_t k = apex_begin_[entry]; k < apex_begin_[entry + 1]; ++k)
+    s = std::max(s, guide_->FoldScore(w1, w2, u_, apex_[static_cast<size_t>(k)]));
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  for (size_t a = 0; a < rows_.size(); ++a) {
+    const bool has1 = rows_[a].test(static_cast<size_t>(c1)), has2 = rows_[a].test(static_cast<size_t>(c2));
+    if (has1 && has2) s = std::max(s, guide_->FoldScore(w1, w2, u_, vs[a].pos));
+    if (!row_linked_[a]) continue;
+    if (has1) s = std::max(s, guide_->FoldScore(u_, w1, w2, vs[a].pos));
+    if (has2) s = std::max(s, guide_->FoldScore(u_, w2, w1, vs[a].pos));
+  }
+  pair_[entry] = s;
+  return s;
+}
+
+// Folds among the vertex's own faces (u, w_c, w_m) around edge (u, w_c) that new column c_new
+// takes part in, given all the columns `cols` the row would join: as the middle c, or as one
+// side with a neighbour m of it in the middle.
+double FaceGuideStage::FanFolds(const Columns& cols, int32_t c_new) {
+  double worst = 0;
+  auto around = [&](int32_t c, int32_t must) {  // pairs of c's neighbours in cols (one of them `must`, if >= 0)
+    for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e) {
+      const int32_t m1 = adj_[e];
+      if (!cols.test(static_cast<size_t>(m1))) continue;
+      for (int32_t f = e + 1; f < adj_begin_[c + 1]; ++f) {
+        const int32_t m2 = adj_[f];
+        if (!cols.test(static_cast<size_t>(m2)) || (must >= 0 && m1 != must && m2 != must)) continue;
+        worst = std::max(worst, guide_->FoldScore(u_, prev_pos_[c], prev_pos_[m1], prev_pos_[m2]));
+      }
+    }
+  };
+  around(c_new, -1);
+  for (int32_t e = adj_begin_[c_new]; e < adj_begin_[c_new + 1]; ++e)
+    if (cols.test(static_cast<size_t>(adj_[e]))) around(adj_[e], c_new);
+  return worst;
+}
+
+// Folds on edge (u, a) between the faces (u, a, w_c) and (u, a, w_m) of a linked row a joining
+// both columns, c = c_new, m any column in `cols`.
+double FaceGuideStage::LinkedPairFolds(const Columns& cols, int32_t c_new) {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  double worst = 0;
+  for (const auto& [a, c] : linked_list_)
+    if (c == c_new)
+      for (const auto& [a2, m] : linked_list_)
+        if (a2 == a && m != c && cols.test(static_cast<size_t>(m)))
+          worst = std::max(worst, guide_->FoldScore(u_, vs[a].pos, prev_pos_[c], prev_pos_[m]));
+  return worst;
 }
 
 // The worst face or edge id (s, case) would add, given the row's columns so far (column_);
@@ -198,6 +324,9 @@ double FaceGuideStage::IdScore(int32_t id, double enough) {
   const uint32_t window = 1u | (static_cast<uint32_t>(pattern) << 1);  // bit p: column s + p
   const int32_t n = static_cast<int32_t>(prev_pos_.size());
   double worst = 0;
+  Columns cols = row_;
+  for (int32_t p = 0; p <= kBetweenWindow; ++p)
+    if (((window >> p) & 1) && s + p < n) cols.set(static_cast<size_t>(s + p));
   for (int32_t p = 0; p <= kBetweenWindow; ++p) {
     const int32_t c = s + p;
     if (!((window >> p) & 1) || c >= n) continue;
@@ -207,6 +336,9 @@ double FaceGuideStage::IdScore(int32_t id, double enough) {
       const int32_t q = adj_[e] - s;  // a neighbour inside this id's own segment
       if (q > p && q <= kBetweenWindow && ((window >> q) & 1)) worst = std::max(worst, Pair(static_cast<size_t>(e)));
     }
+    if (worst > enough) return worst;
+    worst = std::max(worst, FanFolds(cols, c));
+    worst = std::max(worst, LinkedPairFolds(cols, c));
   }
   return worst;
 }
@@ -247,6 +379,7 @@ void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
   for (size_t i = 0; i < linked_rows_.size(); ++i)
     for (size_t j = i + 1; j < linked_rows_.size(); ++j)
       if (Linked(vs, linked_rows_[i], linked_rows_[j])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[j]});
+  if (b != folds_vertex_) PrepareInLayerFolds(b);
   auto dist2 = [&](int32_t c) {
     const QVec& q = prev_pos_[c];
     return (q.x - centre.x) * (q.x - centre.x) + (q.y - centre.y) * (q.y - centre.y) +
@@ -258,6 +391,86 @@ void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
   std::partial_sort(near_columns_.begin(), near_columns_.begin() + near, near_columns_.end(),
                     [&](int32_t x, int32_t y) { return dist2(x) < dist2(y) || (dist2(x) == dist2(y) && x < y); });
   near_columns_.resize(near);
+}
+
+// The in-layer faces (a1, a2, p) a position p closes with each linked pair can fold onto the
+// triangles already on edge (a1, a2) (a row next to both, a previous-layer vertex both rows
+// join) and onto each other around p. Their parts that do not depend on p, once per vertex.
+void FaceGuideStage::PrepareInLayerFolds(int32_t b) {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  auto next_to = [&](int32_t x, int32_t y) { return x < y ? Linked(vs, x, y) : Linked(vs, y, x); };
+  folds_vertex_ = b;
+  pos_rows_.resize(static_cast<size_t>(b));
+  for (int32_t a = 0; a < b; ++a) {
+    pos_rows_[a].reset();
+    AddRowColumns(vs[a].between, &pos_rows_[a]);
+  }
+  pair_apex_begin_.assign(1, 0);
+  pair_apex_.clear();
+  fan_pairs_.clear();
+  for (size_t k = 0; k < linked_pairs_.size(); ++k) {
+    const auto [a1, a2] = linked_pairs_[k];
+    for (int32_t a3 = 0; a3 < b; ++a3)
+      if (a3 != a1 && a3 != a2 && next_to(a3, a1) && next_to(a3, a2)) pair_apex_.push_back(vs[a3].pos);
+    const Columns common = pos_rows_[a1] & pos_rows_[a2];
+    for (size_t c = 0; c < prev_pos_.size() && c < common.size(); ++c)
+      if (common.test(c)) pair_apex_.push_back(prev_pos_[c]);
+    pair_apex_begin_.push_back(static_cast<int32_t>(pair_apex_.size()));
+    for (size_t j = k + 1; j < linked_pairs_.size(); ++j) {
+      const auto [b1, b2] = linked_pairs_[j];
+      if (a1 == b1 || a1 == b2) fan_pairs_.push_back({a1, a2, a1 == b1 ? b2 : b1});
+      if (a2 == b1 || a2 == b2) fan_pairs_.push_back({a2, a1, a2 == b1 ? b2 : b1});
+    }
+  }
+  col_faces_.clear();
+  col_apex_.clear();
+  for (int32_t a : linked_rows_)
+    for (int32_t c = 0; c < static_cast<int32_t>(prev_pos_.size()); ++c) {
+      if (!pos_rows_[a].test(static_cast<size_t>(c))) continue;
+      for (int32_t a2 = 0; a2 < b; ++a2)
+        if (a2 != a && next_to(a2, a) && pos_rows_[a2].test(static_cast<size_t>(c))) col_apex_.push_back(vs[a2].pos);
+      for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e)
+        if (pos_rows_[a].test(static_cast<size_t>(adj_[e]))) col_apex_.push_back(prev_pos_[adj_[e]]);
+      col_faces_.push_back({a, c, static_cast<int32_t>(col_apex_.size())});
+    }
+}
+
+// Faces (p, a, w_c) that p's first B closes if it joins column c, with each linked row a that
+// joins c: their distance part and folds onto the triangles on edge (a, w_c), onto each other
+// around edge (p, w_c), and onto the in-layer faces (p, a, a2) around edge (p, a).
+double FaceGuideStage::ColumnFaces(const QVec& p, int32_t c, double enough) const {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  const QVec& w = prev_pos_[c];
+  double worst = 0;
+  for (size_t k = 0; k < col_faces_.size() && worst <= enough; ++k) {
+    const auto [a, kc, end] = col_faces_[k];
+    if (kc != c) continue;
+    const QVec& pa = vs[a].pos;
+    worst = std::max(worst, guide_->FaceDistance(p, pa, w));
+    for (int32_t i = k == 0 ? 0 : col_faces_[k - 1][2]; i < end; ++i)
+      worst = std::max(worst, guide_->FoldScore(pa, w, p, col_apex_[static_cast<size_t>(i)]));
+    for (size_t j = k + 1; j < col_faces_.size(); ++j)
+      if (col_faces_[j][1] == c) worst = std::max(worst, guide_->FoldScore(p, w, pa, vs[col_faces_[j][0]].pos));
+    for (const auto& [a1, a2] : linked_pairs_)
+      if (a1 == a || a2 == a) worst = std::max(worst, guide_->FoldScore(p, pa, w, vs[a1 == a ? a2 : a1].pos));
+  }
+  return worst;
+}
+
+// The worst fold of the faces position p closes with the linked pairs (PrepareInLayerFolds).
+double FaceGuideStage::InLayerFolds(const QVec& p, double enough) const {
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  double worst = 0;
+  for (size_t k = 0; k < linked_pairs_.size() && worst <= enough; ++k) {
+    const QVec &p1 = vs[linked_pairs_[k].first].pos, &p2 = vs[linked_pairs_[k].second].pos;
+    for (int32_t i = pair_apex_begin_[k]; i < pair_apex_begin_[k + 1]; ++i)
+      worst = std::max(worst, guide_->FoldScore(p1, p2, p, pair_apex_[static_cast<size_t>(i)]));
+  }
+  for (const auto& [s, x, y] : fan_pairs_) {
+    if (worst > enough) break;
+    worst = std::max(worst, guide_->FoldScore(vs[s].pos, p, vs[x].pos, vs[y].pos));
+  }
+  return worst;
 }
 
 // A position fixes the vertex's edges to the linked rows, the faces among them, and where its
@@ -273,10 +486,13 @@ double FaceGuideStage::PositionScore(const QVec& p, bool interior_only, double e
     if (worst > enough) return worst;
     worst = std::max(worst, guide_->FaceDistance(vs[a1].pos, vs[a2].pos, p));
   }
+  if (worst <= enough) worst = std::max(worst, InLayerFolds(p, enough));
   if (worst > enough || near_columns_.empty()) return worst;
   double column = HUGE_VAL;
   for (int32_t c : near_columns_) {
-    column = std::min(column, edge(prev_pos_[c]));
+    double cs = edge(prev_pos_[c]);
+    if (cs < column) cs = std::max(cs, ColumnFaces(p, c, std::min(column, enough)));
+    column = std::min(column, cs);
     if (column <= worst) break;  // the linked part decides
   }
   return std::max(worst, column);
