@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # Cross-builds Silk for Windows x64 with MinGW-w64 into build-windows/ and assembles
 # build-windows/dist/silk-windows-x64/ (+ .zip): silkgen.exe, silktok.exe, libsilk.dll,
-# onnxruntime.dll, the bundled model, README.txt, LICENSE.txt. Installs nothing: scripts/setup_windows.sh does.
+# onnxruntime.dll with its licence and notices, the bundled model, README.txt, LICENSE.txt. Installs nothing: scripts/setup_windows.sh does.
 # Usage: scripts/build_windows.sh [extra cmake args]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,6 +29,14 @@ cp "$B/apps/silktok.exe" "$B/engine/libsilk.dll" "$DIST/"
 x86_64-w64-mingw32-strip "$DIST"/*.exe "$DIST/libsilk.dll"
 cp engine/include/silk/silk.h engine/include/silk/silk.hpp "$DIST/"
 cp LICENSE "$DIST/LICENSE.txt"  # MIT; the bundled model's data licence is models/default/LICENSE.md
+if [ -f "$DIST/onnxruntime.dll" ]; then  # onnxruntime's own licence (MIT) and notices travel with its DLL
+  for f in LICENSE ThirdPartyNotices.txt; do
+    [ -f "$ORT_DLL_DIR/$f" ] ||
+      { echo "build_windows: $ORT_DLL_DIR/$f not found (rerun scripts/setup_windows.sh)" >&2; exit 1; }
+  done
+  cp "$ORT_DLL_DIR/LICENSE" "$DIST/onnxruntime-LICENSE.txt"
+  cp "$ORT_DLL_DIR/ThirdPartyNotices.txt" "$DIST/onnxruntime-ThirdPartyNotices.txt"
+fi
 cp "$B/engine/libsilk.dll.a" "$DIST/"
 sed "s/@ORT_VERSION@/$(cat "$ORT_DLL_DIR/VERSION" 2>/dev/null || echo ?)/" scripts/windows_readme.txt > "$DIST/README.txt"
 

@@ -55,6 +55,7 @@ PY
 if [ "$WINDOWS" = 1 ]; then
   # silk_mesh loads onnxruntime.dll first, then libsilk.dll, both by full path from lib/.
   cp "$DIST/libsilk.dll" "$DIST/onnxruntime.dll" "$BINDING/lib/"
+  cp "$DIST/onnxruntime-LICENSE.txt" "$DIST/onnxruntime-ThirdPartyNotices.txt" "$BINDING/lib/"  # its licence travels with it
   sed -i 's/^platforms = .*/platforms = ["windows-x64"]/' "$ADDON/blender_manifest.toml"
 else
 command -v patchelf >/dev/null || { echo "make_blender_addon: patchelf is needed (apt-get install patchelf)" >&2; exit 1; }

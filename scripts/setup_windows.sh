@@ -4,7 +4,8 @@
 # scripts/test_windows.sh) on Debian bookworm, on top of scripts/setup.sh (run it first: the
 # header-only libraries, GoogleTest's sources and onnxruntime's headers come from there):
 # MinGW-w64 (posix threads), zlib for MinGW, Wine 8 (64-bit), zip; and onnxruntime.dll from
-# PyPI's win_amd64 wheel (the Linux library's pinned version) into .deps/onnxruntime-windows.
+# PyPI's win_amd64 wheel (the Linux library's pinned version) into .deps/onnxruntime-windows, with its
+# licence and third-party notices (shipped beside it in the zip).
 # Idempotent and quick when everything is there (no apt, no network); network only through apt
 # and pip. Usage: scripts/setup_windows.sh [dest for onnxruntime.dll]
 set -euo pipefail
@@ -20,7 +21,8 @@ done
 bash "$REPO/scripts/fetch_onnxruntime.sh"
 ORT_VERSION="$(sed -n 's/^ORT_VERSION=//p' "$REPO/scripts/fetch_onnxruntime.sh")"
 DEST="${1:-$REPO/.deps/onnxruntime-windows}"
-if [ -f "$DEST/onnxruntime.dll" ] && [ "$(cat "$DEST/VERSION" 2>/dev/null)" = "$ORT_VERSION" ]; then
+if [ -f "$DEST/onnxruntime.dll" ] && [ -f "$DEST/ThirdPartyNotices.txt" ] &&
+  [ "$(cat "$DEST/VERSION" 2>/dev/null)" = "$ORT_VERSION" ]; then
   echo "setup_windows: $DEST already holds onnxruntime.dll $ORT_VERSION"
   exit 0
 fi
@@ -33,11 +35,14 @@ mkdir -p "$DEST"
 python3 - "$TMP"/onnxruntime-"$ORT_VERSION"-*.whl "$DEST" <<'PY'
 import os, sys, zipfile
 whl, dest = sys.argv[1:3]
+# The DLL and, to ship beside it, onnxruntime's licence (MIT) and its third-party notices.
+parts = {"onnxruntime/capi/onnxruntime.dll": "onnxruntime.dll", "onnxruntime/LICENSE": "LICENSE",
+         "onnxruntime/ThirdPartyNotices.txt": "ThirdPartyNotices.txt"}
 with zipfile.ZipFile(whl) as z:
-    data = z.read("onnxruntime/capi/onnxruntime.dll")
-with open(os.path.join(dest, "onnxruntime.dll.part"), "wb") as f:
-    f.write(data)
-os.replace(os.path.join(dest, "onnxruntime.dll.part"), os.path.join(dest, "onnxruntime.dll"))
+    for member, name in parts.items():
+        with open(os.path.join(dest, name + ".part"), "wb") as f:
+            f.write(z.read(member))
+        os.replace(os.path.join(dest, name + ".part"), os.path.join(dest, name))
 PY
 echo "$ORT_VERSION" > "$DEST/VERSION"
 echo "setup_windows: onnxruntime.dll $ORT_VERSION in $DEST"
