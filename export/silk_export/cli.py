@@ -12,6 +12,7 @@ from pathlib import Path
 from .json_io import dumps
 from .model_names import add_output_arguments, output_folder
 from .models.configs import CONFIGS
+from .onnx.kv_precision import KV_PRECISIONS
 
 # One pair per sub-command: _add_<command> declares its arguments, _cmd_<command> runs it.
 
@@ -264,7 +265,7 @@ def _add_import_official(sub) -> None:
     i.add_argument(
         "--kv-precision",
         default="fp16",
-        choices=["fp32", "fp16", "int8"],
+        choices=KV_PRECISIONS,
         help="the model's self-K/V cache precision (files.default_kv_precision; all are written)",
     )
     i.add_argument("--no-progress", action="store_true")
@@ -322,7 +323,7 @@ def _add_kv16(sub) -> None:
     k.add_argument("folder", help="model folder (model.json + decoder*.onnx)")
     k.add_argument(
         "--default",
-        choices=["fp32", "fp16", "int8"],
+        choices=KV_PRECISIONS,
         help="also set files.default_kv_precision (int8 needs the kv8 variants)",
     )
     k.add_argument(
@@ -349,7 +350,7 @@ def _add_kv16(sub) -> None:
     k8.add_argument("folder", help="model folder (model.json + decoder*.onnx)")
     k8.add_argument(
         "--default",
-        choices=["fp32", "fp16", "int8"],
+        choices=KV_PRECISIONS,
         help="also set files.default_kv_precision (fp16 needs the kv16 variants)",
     )
     k8.add_argument(

@@ -183,3 +183,14 @@ def test_cli_kv8_adds_int8_variants_and_default(tmp_path):
         cwd=REPO / "export",
     )
     assert p.returncode == 2 and "silk-export kv16: error" in p.stderr and "silk-export kv8 first" in p.stderr
+
+
+def test_the_exported_precisions_are_libsilks_names():
+    """The precisions the exporter writes (and silk-export's --kv-precision choices) are spelled as
+    libsilk spells silk_kv_precision, "default" (the model's) aside: one spelling, libsilk's."""
+    import silk_mesh
+
+    from silk_export.onnx.kv_precision import KV_PRECISIONS
+
+    libsilk = set(silk_mesh.enum_names("kv_precision")) - {"default"}
+    assert set(KV_PRECISIONS) == libsilk, (KV_PRECISIONS, sorted(libsilk))
