@@ -16,6 +16,7 @@ from . import (
     blender_mesh,
     enum_items,
     run_progress,
+    shared_settings,
     silk_mesh,
 )  # silk_mesh: bindings/python/silk_mesh, vendored unchanged
 
@@ -79,18 +80,8 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         soft_min=-1,
         soft_max=127,
     )
-    face_guidance: EnumProperty(
-        name="Face guidance",
-        items=enum_items.FACE_GUIDANCE,
-        default="MODEL",
-    )
-    face_tolerance: FloatProperty(
-        name="Face tolerance",
-        description="How far (grid cells of 128) a face may stray from the source's surface (-1 = the model's default)",
-        default=-1.0,
-        soft_min=-1.0,
-        soft_max=64.0,
-    )
+    face_guidance: shared_settings.face_guidance_property()
+    face_tolerance: shared_settings.face_tolerance_property()
     candidates: IntProperty(
         name="Candidates",
         description="Best of N: generate N meshes one after another and "
@@ -99,11 +90,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         soft_min=-1,
         soft_max=64,
     )
-    orient: EnumProperty(
-        name="Orientation",
-        items=enum_items.ORIENTATION,
-        default="INPUT",
-    )
+    orient: shared_settings.orient_property()
     model_dir: StringProperty(
         name="Model",
         description="A model folder, or the name of a model in the models folder "

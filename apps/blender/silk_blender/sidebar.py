@@ -18,7 +18,7 @@ from bpy.props import (
     StringProperty,
 )
 
-from . import enum_items, silk_mesh
+from . import shared_settings, silk_mesh
 
 # Blender keeps no reference to a dynamic enum's strings: they must live here (refreshed on demand,
 # not on every redraw, since listing reads every model.json).
@@ -87,23 +87,9 @@ class SilkSettings(bpy.types.PropertyGroup):
         description="-1 = the model's default; 0 = greedy",
     )
     max_faces: IntProperty(name="Face limit", default=0, soft_min=0, description="At most this many faces (0 = off)")
-    orient: EnumProperty(
-        name="Orientation",
-        default="INPUT",
-        items=enum_items.ORIENTATION,
-    )
-    face_guidance: EnumProperty(
-        name="Face guidance",
-        default="MODEL",
-        items=enum_items.FACE_GUIDANCE,
-    )
-    face_tolerance: FloatProperty(
-        name="Face tolerance",
-        default=-1.0,
-        soft_min=-1.0,
-        soft_max=64.0,
-        description="How far (grid cells of 128) a face may stray from the source's surface (-1 = the model's default)",
-    )
+    orient: shared_settings.orient_property()
+    face_guidance: shared_settings.face_guidance_property()
+    face_tolerance: shared_settings.face_tolerance_property()
 
 
 class SilkRunState(bpy.types.PropertyGroup):
