@@ -352,6 +352,12 @@ PairsFn PickPairs(const Int4MatMulShape& s, RowKernels kernels, int64_t pairs) {
   return nullptr;
 }
 
+// Pairs per pass over a weight tile: as many as keep their activations (256 bytes per pair per
+// 64 weights) within half of a 48 KB L1 data cache, between 1 and kMaxPairs.
+int64_t PairsPerPass(int64_t k) {
+  return std::clamp<int64_t>(int64_t{24 * 1024} / (k / (2 * kGroup) * 256), 1, kMaxPairs);
+}
+
 struct Job {
   const Int4MatMulShape* shape;
   const QuantizedRows* rows;
@@ -371,10 +377,10 @@ void RunTask(void* state, size_t index) {
   const Int4MatMulShape& s = *job.shape;
   const int64_t r0 = static_cast<int64_t>(index) * kRowsPerTask, r1 = std::min(s.n, r0 + kRowsPerTask);
   if (job.paired) {
-    const int64_t pairs = (s.m + 1) / 2;
-    for (int64_t j = 0; j < pairs; j += kMaxPairs)
-      job.pair_fns[std::min<int64_t>(pairs - j, kMaxPairs) - 1](s, *job.rows, *job.paired, j, job.packed, job.scales,
-                                                                r0, r1, job.out);
+    const int64_t pairs = (s.m + 1) / 2, per_pass = PairsPerPass(s.k);
+    for (int64_t j = 0; j < pairs; j += per_pass)
+      job.pair_fns[std::min(pairs - j, per_pass) - 1](s, *job.rows, *job.paired, j, job.packed, job.scales, r0, r1,
+                                                      job.out);
     return;
   }
   if (!job.batch[0]) {
