@@ -45,12 +45,16 @@ double MinMs(const Shape& sh, int64_t rows, int calls) {
 int main(int argc, char** argv) {
   int calls = 60;
   for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--calls") == 0 && i + 1 < argc && std::atoi(argv[i + 1]) > 0) {
-      calls = std::atoi(argv[++i]);
-    } else {
-      std::fprintf(stderr, "int4_rows: unknown or invalid argument '%s' (usage: int4_rows [--calls N>0])\n", argv[i]);
+    if (std::strcmp(argv[i], "--calls") != 0) {
+      std::fprintf(stderr, "int4_rows: unknown argument '%s' (usage: int4_rows [--calls N])\n", argv[i]);
       return 2;
     }
+    if (i + 1 >= argc || std::atoi(argv[i + 1]) <= 0 || std::atoi(argv[i + 1]) > 100000) {
+      std::fprintf(stderr, "int4_rows: --calls needs a count in [1, 100000], got '%s'\n",
+                   i + 1 < argc ? argv[i + 1] : "");
+      return 2;
+    }
+    calls = std::atoi(argv[++i]);
   }
   std::printf("Int4MatMul, block 32, 1 thread, minimum of %d calls\n", calls);
   std::printf("    K      N  rows     ms  ms/row  x R=1 rows*calls/s\n");
