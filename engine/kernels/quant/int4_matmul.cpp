@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
@@ -106,6 +107,44 @@ void RowsScalar(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* 
   }
 }
 
+// The activation rows of a call two by two, interleaved per step (32 bytes of row 2j, then 32
+// of row 2j + 1; likewise the offsets and lane scales), so one 512-bit load, 64-byte aligned,
+// feeds both halves. An odd last row is paired with itself.
+class PairedRows {
+ public:
+  PairedRows(const QuantizedRows& rows, int64_t m, int64_t k)
+      : steps_(k / (2 * kGroup)), pairs_((m + 1) / 2), bytes_(Size(128) + 64), words_(Size(32) + 16) {
+    bytes0_ = bytes_.data() + (64 - reinterpret_cast<uintptr_t>(bytes_.data()) % 64) % 64;
+    words0_ = words_.data() + (64 - reinterpret_cast<uintptr_t>(words_.data()) % 64) % 64 / 4;
+    for (int64_t j = 0; j < pairs_; ++j)
+      for (int h = 0; h < 2; ++h) {
+        const QuantizedRow& q = rows[std::min(2 * j + h, m - 1)];
+        for (int64_t p = 0; p < steps_; ++p) {
+          int8_t* b = Bytes(j, p) + 32 * h;
+          std::memcpy(b, q.even + p * 32, 32);
+          std::memcpy(b + 64, q.odd + p * 32, 32);
+          int32_t* w = Words(j, p) + 8 * h;
+          std::memcpy(w, q.offset + p * 8, 32);
+          std::memcpy(w + 16, q.lane_scale + p * 8, 32);  // floats, stored as their bits
+        }
+      }
+  }
+  // Step p of pair j: even[64], odd[64]; and offsets[16], lane scales[16].
+  const int8_t* Bytes(int64_t j, int64_t p) const { return bytes0_ + (j * steps_ + p) * 128; }
+  const int32_t* Words(int64_t j, int64_t p) const { return words0_ + (j * steps_ + p) * 32; }
+  int64_t pairs() const { return pairs_; }
+
+ private:
+  int8_t* Bytes(int64_t j, int64_t p) { return bytes0_ + (j * steps_ + p) * 128; }
+  int32_t* Words(int64_t j, int64_t p) { return words0_ + (j * steps_ + p) * 32; }
+  size_t Size(int64_t per_step) const { return static_cast<size_t>(pairs_ * steps_ * per_step); }
+  int64_t steps_, pairs_;
+  std::vector<int8_t> bytes_;  // 64 bytes over, for the alignment
+  std::vector<int32_t> words_;
+  int8_t* bytes0_;
+  int32_t* words0_;
+};
+
 #if SILK_INT4_AVX2
 #define SILK_AVX2 __attribute__((target("avx2,fma")))
 
@@ -202,6 +241,64 @@ bool CpuHasAvx2() {
   static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   return has;
 }
+
+// Two activation rows per 512-bit register: each row in its own 256-bit half doing RowsAvx2's
+// float operations in RowsAvx2's order, so each row is still bit-identical to it alone. The
+// integer dot products use VNNI (vpdpbusd), which gives the same exact int32 sums as
+// maddubs + madd (no product or partial sum of 4-bit weights and int8 activations saturates).
+#define SILK_AVX512 __attribute__((target("avx2,fma,avx512f,avx512bw,avx512vl,avx512vnni")))
+
+bool CpuHasAvx512Vnni() {
+  static const bool has = CpuHasAvx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                          __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vnni");
+  return has;
+}
+
+// Step p of every pair of activation rows against one weight row's step: acc[j] as StepAccumulate
+// computes it, for both rows of pair j at once.
+template <int kPairs>
+SILK_AVX512 inline void StepPairs(__m512i lo, __m512i hi, __m512 wscale, const PairedRows& a, int64_t j0, int64_t p,
+                                  __m512* acc) {
+  for (int j = 0; j < kPairs; ++j) {
+    const int8_t* b = a.Bytes(j0 + j, p);
+    const int32_t* w = a.Words(j0 + j, p);
+    __m512i dot = _mm512_loadu_si512(w);
+    dot = _mm512_dpbusd_epi32(dot, lo, _mm512_loadu_si512(b));
+    dot = _mm512_dpbusd_epi32(dot, hi, _mm512_loadu_si512(b + 64));
+    const __m512 lane = _mm512_mul_ps(wscale, _mm512_loadu_ps(reinterpret_cast<const float*>(w + 16)));
+    acc[j] = _mm512_fmadd_ps(_mm512_cvtepi32_ps(dot), lane, acc[j]);
+  }
+}
+
+// Pairs [j0, j0 + kPairs) (activation rows 2 * j0 ...) against weight rows [r0, r1); out is
+// activation row 0's, rows past m are not written.
+template <bool kScalePerGroup, int kPairs>
+SILK_AVX512 void RowsAvx512Pairs(const Int4MatMulShape& s, const QuantizedRows& q, const PairedRows& a, int64_t j0,
+                                 const uint8_t* packed, const float* scales, int64_t r0, int64_t r1, float* out) {
+  const int64_t pairs = s.k / (2 * kGroup), blocks = s.k / s.block, groups_per_block = s.block / kGroup;
+  const __m512i low4 = _mm512_set1_epi8(0x0f);
+  for (int64_t r = r0; r < r1; ++r) {
+    const uint8_t* w = packed + r * (s.k / 2);
+    __m512 acc[kPairs];
+    for (int j = 0; j < kPairs; ++j) acc[j] = _mm512_setzero_ps();
+    for (int64_t p = 0; p < pairs; ++p) {
+      _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
+      const __m512i x = _mm512_broadcast_i64x4(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32)));
+      const __m512i lo = _mm512_and_si512(x, low4), hi = _mm512_and_si512(_mm512_srli_epi16(x, 4), low4);
+      const __m256 ws = StepScale<kScalePerGroup>(scales + r * blocks, p, groups_per_block);
+      const __m512 wscale = _mm512_castpd_ps(_mm512_broadcast_f64x4(_mm256_castps_pd(ws)));
+      StepPairs<kPairs>(lo, hi, wscale, a, j0, p, acc);
+    }
+    for (int j = 0; j < kPairs; ++j)
+      for (int h = 0; h < 2; ++h) {
+        const int64_t m = 2 * (j0 + j) + h;
+        if (m >= s.m) break;
+        const __m512d both = _mm512_castps_pd(acc[j]);
+        const __m256 half = _mm256_castpd_ps(h ? _mm512_extractf64x4_pd(both, 1) : _mm512_castpd512_pd256(both));
+        out[m * s.n + r] = RowSum(half, s, q[m], w, scales, r);
+      }
+  }
+}
 #endif
 
 using RowsFn = void (*)(const Int4MatMulShape&, const QuantizedRow&, const uint8_t*, const float*, int64_t, int64_t,
@@ -235,6 +332,32 @@ BatchFn PickBatch(const Int4MatMulShape& s, RowKernels kernels, int64_t rows) {
   return nullptr;
 }
 
+// kPairs pairs of activation rows at once (1..kMaxPairs), from pair j0, against weight rows [r0, r1).
+using PairsFn = void (*)(const Int4MatMulShape&, const QuantizedRows&, const PairedRows&, int64_t, const uint8_t*,
+                         const float*, int64_t, int64_t, float*);
+constexpr int kMaxPairs = 4;  // pairs of activation rows per pass over a tile (8 rows)
+
+PairsFn PickPairs(const Int4MatMulShape& s, RowKernels kernels, int64_t pairs) {
+#if SILK_INT4_AVX2
+  if (kernels == RowKernels::kBest && CpuHasAvx512Vnni()) {
+    static constexpr PairsFn kGroupScale[kMaxPairs] = {RowsAvx512Pairs<true, 1>, RowsAvx512Pairs<true, 2>,
+                                                       RowsAvx512Pairs<true, 3>, RowsAvx512Pairs<true, 4>};
+    static constexpr PairsFn kBlockScale[kMaxPairs] = {RowsAvx512Pairs<false, 1>, RowsAvx512Pairs<false, 2>,
+                                                       RowsAvx512Pairs<false, 3>, RowsAvx512Pairs<false, 4>};
+    const PairsFn* table = s.block == kGroup ? kGroupScale : kBlockScale;
+    return table[std::min<int64_t>(pairs, kMaxPairs) - 1];
+  }
+#endif
+  (void)s, (void)kernels, (void)pairs;
+  return nullptr;
+}
+
+// Pairs per pass over a weight tile: as many as keep their activations (256 bytes per pair per
+// 64 weights) within half of a 48 KB L1 data cache, between 1 and kMaxPairs.
+int64_t PairsPerPass(int64_t k) {
+  return std::clamp<int64_t>(int64_t{24 * 1024} / (k / (2 * kGroup) * 256), 1, kMaxPairs);
+}
+
 struct Job {
   const Int4MatMulShape* shape;
   const QuantizedRows* rows;
@@ -243,6 +366,8 @@ struct Job {
   float* out;
   RowsFn fn;
   BatchFn batch[kMaxBatchRows];  // by rows - 1; null: one activation row at a time with fn
+  const PairedRows* paired;      // with pair_fns: the 512-bit kernels instead of batch
+  PairsFn pair_fns[kMaxPairs];   // by pairs - 1
 };
 
 // Weight rows [i * kRowsPerTask, ...) against every activation row: the rows' bytes are read
@@ -251,6 +376,13 @@ void RunTask(void* state, size_t index) {
   const Job& job = *static_cast<const Job*>(state);
   const Int4MatMulShape& s = *job.shape;
   const int64_t r0 = static_cast<int64_t>(index) * kRowsPerTask, r1 = std::min(s.n, r0 + kRowsPerTask);
+  if (job.paired) {
+    const int64_t pairs = (s.m + 1) / 2, per_pass = PairsPerPass(s.k);
+    for (int64_t j = 0; j < pairs; j += per_pass)
+      job.pair_fns[std::min(pairs - j, per_pass) - 1](s, *job.rows, *job.paired, j, job.packed, job.scales, r0, r1,
+                                                      job.out);
+    return;
+  }
   if (!job.batch[0]) {
     for (int64_t m = 0; m < s.m; ++m) job.fn(s, (*job.rows)[m], job.packed, job.scales, r0, r1, job.out + m * s.n);
     return;
@@ -281,9 +413,15 @@ void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed,
   if (s.m == 0) return;
   QuantizedRows rows(s.m, s.k);
   for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, rows.row(m));
-  Job job{&s, &rows, packed, scales, out, PickRows(s, kernels), {}};
-  if (s.m > 1)  // one row (a single sequence's step) keeps the one-row kernel
+  Job job{&s, &rows, packed, scales, out, PickRows(s, kernels), {}, nullptr, {}};
+  std::unique_ptr<PairedRows> paired;
+  if (s.m > 1 && PickPairs(s, kernels, 1)) {  // the 512-bit kernels, two activation rows per register
+    paired = std::make_unique<PairedRows>(rows, s.m, s.k);
+    job.paired = paired.get();
+    for (int64_t j = 1; j <= kMaxPairs; ++j) job.pair_fns[j - 1] = PickPairs(s, kernels, j);
+  } else if (s.m > 1) {  // one row (a single sequence's step) keeps the one-row kernel
     for (int64_t r = 1; r <= kMaxBatchRows; ++r) job.batch[r - 1] = PickBatch(s, kernels, r);
+  }
   RunTasks(parallel_for, parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
 }
 
