@@ -29,6 +29,7 @@ from pathlib import Path
 from .cross_attention import half_cross_inputs, to_cross_attention
 from .half_logits import to_half_logits
 from .int4_matmul import INT4_FORMS, to_int4_matmul
+from .rows import batch_dims, wire_rows
 from .shape_folding import fold_shapes
 from .silk_ops import SILK_ATTENTION, SILK_DOMAIN
 
@@ -129,11 +130,17 @@ def _check_forms(precision: str, attention: str, int4: str) -> None:
 
 
 def make_kv_decoder(
-    src: Path, dst: Path, precision: str = "fp16", attention: str = "silk", int4: str | None = None
+    src: Path,
+    dst: Path,
+    precision: str = "fp16",
+    attention: str = "silk",
+    int4: str | None = None,
+    rows: bool = False,
 ) -> list[str]:
     """Writes the `precision` ("fp16" or "int8") cache variant of decoder graph `src` to `dst`
     (same folder), in the given attention form ("silk" or "ort", see above; int8: "silk" only) and
     INT4 form ("silk": Int4MatMul, "ort": MatMulNBits; default: the attention form's).
+    rows: a contract v4 graph (R rows per call, rows.py; the silk attention form only).
     Returns the external data files it references (those of `src`; none are copied). Raises
     ValueError when `src` has no GroupQueryAttention over past_*/present_* (not a contract decoder)."""
     import onnx
@@ -143,6 +150,8 @@ def make_kv_decoder(
     _check_precision(precision)
     int4 = attention if int4 is None else int4
     _check_forms(precision, attention, int4)
+    if rows and attention != "silk":
+        raise ValueError("contract v4 (R rows) exists only in the silk attention form")
     src, dst = Path(src), Path(dst)
     if src.parent.resolve() != dst.parent.resolve():
         raise ValueError(
@@ -150,6 +159,8 @@ def make_kv_decoder(
         )
     m = onnx.load(str(src), load_external_data=False)
     g = m.graph
+    if rows:
+        batch_dims(g)  # before folding: the folded Reshape targets keep R and S dynamic
     if attention == "silk":
         fold_shapes(g, src.parent)
     cache_names = {i.name for i in g.input if i.name.startswith("past_")}
@@ -178,6 +189,8 @@ def make_kv_decoder(
         to_int4_matmul(g)  # nodes it does not compute stay MatMulNBits
     if attention == "silk":
         to_half_logits(g, src.parent)
+    if rows:
+        wire_rows(g, src)
     if attention == "silk" and not any(o.domain == SILK_DOMAIN for o in m.opset_import):
         m.opset_import.append(helper.make_opsetid(SILK_DOMAIN, 1))
     for vi in list(g.input) + list(g.output):
@@ -186,7 +199,8 @@ def make_kv_decoder(
     # Intermediate type annotations of the rewritten values would now be wrong: drop them.
     stale = set(cache_names) | {n.output[0] for n in g.node if n.op_type in ("GroupQueryAttention", SILK_ATTENTION)}
     produced = {o for n in g.node for o in n.output}  # the rewrites remove some intermediate values
-    kept = [vi for vi in g.value_info if vi.name not in stale and vi.name in produced]
+    # A v4 graph's intermediate shapes were traced with batch 1: dropped as well.
+    kept = [vi for vi in g.value_info if vi.name not in stale and vi.name in produced and not rows]
     del g.value_info[:]
     g.value_info.extend(kept)
     data = sorted(
