@@ -7,22 +7,31 @@ run alone through the same graph, and a row alone gives what the contract v3 gra
 
 from __future__ import annotations
 
+import json
+import shutil
+
 import numpy as np
 import pytest
+
+import silk_mesh
 
 onnx = pytest.importorskip("onnx")
 pytest.importorskip("onnxruntime")
 
-from silk_export.onnx.decode import session  # noqa: E402
-from silk_export.onnx.export import export_graphs, quantize_decoder_int4  # noqa: E402
-from silk_export.onnx.kv_precision import make_kv_decoder  # noqa: E402
+from silk_export.onnx.decode import DecoderState, session  # noqa: E402
+from silk_export.onnx.export import export_graphs, quantize_decoder_int4, sidecar  # noqa: E402
+from silk_export.onnx.kv_precision import add_kv_to_folder, make_kv_decoder  # noqa: E402
 from silk_export.onnx.rows import CROSS_SOURCE, NEW_POSITIONS  # noqa: E402
 
 from test_generate_architectures import random_points, tiny_model  # noqa: E402
 
 PAD = 10268
 # Three rows: (ids already in its cache, ids it takes this call); depths 0, 5 and 9, taking 1, 3 and 2.
-ROWS = [([], [10269]), ([10269, 0, 5835, 8758, 1], [6112, 9420, 220]), ([10269, 3, 250, 700, 5700, 6200, 9000, 40, 4000], [460, 5803])]
+ROWS = [
+    ([], [10269]),
+    ([10269, 0, 5835, 8758, 1], [6112, 9420, 220]),
+    ([10269, 3, 250, 700, 5700, 6200, 9000, 40, 4000], [460, 5803]),
+]
 SOURCE = [1, 0, 1]  # the mesh each row attends to
 
 
@@ -61,7 +70,9 @@ def _feeds(graph, ids, pasts, news, past, cross, source):
 
 def _cross(graph, meshes):
     """cross_* [S, H, M, D] in the graph's type from each mesh's encoder output [L, 2, H, M, D]."""
-    dtype = np.float16 if {i.name: i.type for i in graph.get_inputs()}["cross_key_0"] == "tensor(float16)" else np.float32
+    dtype = (
+        np.float16 if {i.name: i.type for i in graph.get_inputs()}["cross_key_0"] == "tensor(float16)" else np.float32
+    )
     return [np.stack([m[l, kv] for m in meshes]).astype(dtype) for l in range(meshes[0].shape[0]) for kv in (0, 1)]
 
 
@@ -94,7 +105,9 @@ def test_each_row_of_a_batch_is_the_row_alone_bit_for_bit(folder, precision):
     ids = np.array([new + [PAD] * (t - len(new)) for _, new in ROWS])
     past = []
     for k in range(len(alone[0][2])):
-        block = np.zeros((len(ROWS),) + alone[0][2][k].shape[:1] + (c,) + alone[0][2][k].shape[2:], alone[0][2][k].dtype)
+        block = np.zeros(
+            (len(ROWS),) + alone[0][2][k].shape[:1] + (c,) + alone[0][2][k].shape[2:], alone[0][2][k].dtype
+        )
         for r, (_, _, before) in enumerate(alone):
             block[r, :, : pasts[r]] = before[k]
         past.append(block)
@@ -119,6 +132,9 @@ def test_one_row_is_the_contract_v3_graph(folder, precision):
     np.testing.assert_array_equal(a[0], b[0])
     for x, y in zip(a[1], b[1]):
         np.testing.assert_array_equal(x, y)
+    ids = done + new  # the Python decoding loop (decode.py) feeds a v4 graph one row
+    want = DecoderState(session(v3), meshes[0]).run(ids)
+    np.testing.assert_array_equal(DecoderState(session(v4), meshes[0]).run(ids), want)
 
 
 def test_refusals_name_the_graph(folder):
@@ -130,3 +146,27 @@ def test_refusals_name_the_graph(folder):
         from silk_export.onnx.rows import wire_rows
 
         wire_rows(onnx.load(str(out / "v4.onnx")).graph, out / "v4.onnx")
+
+
+@pytest.mark.skipif(not silk_mesh.generation_available(), reason="libsilk without onnxruntime")
+@pytest.mark.parametrize("precision", ["fp16", "int8"])
+def test_libsilk_runs_a_v4_folder_with_one_row_as_the_v3_folder(folder, dev_dir, precision, tmp_path):
+    """model_version 4 with v4 cache variants loads in libsilk and, one row, gives the v3 folder's
+    ids (INT4 decoder, sampled with a seed); the v3 folder keeps loading."""
+    out, _ = folder
+    ids = {}
+    for version in (3, 4):
+        m = tmp_path / f"v{version}"
+        m.mkdir()
+        for name in ("encoder.onnx", "decoder.onnx", "decoder.int4.onnx"):
+            shutil.copy(out / name, m / name)
+        meta = sidecar(tiny_model("official").cfg, {"steps": 0, "data": None, "seed": None}, {})
+        meta["files"] = {"encoder": "encoder.onnx", "decoder": "decoder.onnx", "decoder_int4": "decoder.int4.onnx"}
+        (m / "model.json").write_text(json.dumps(meta))
+        add_kv_to_folder(m, precision, rows=version == 4)
+        assert json.loads((m / "model.json").read_text())["model_version"] == version
+        mesh = sorted(dev_dir.glob("*.obj"))[0]
+        with silk_mesh.Model(m, threads=1, decoder="int4", kv_precision=precision) as model:
+            with silk_mesh.Generator(model) as gen:
+                ids[version] = list(gen.run(mesh, seed=4, max_tokens=60)[1])
+    assert len(ids[3]) > 10 and ids[4] == ids[3]

@@ -60,7 +60,9 @@ def wire_rows(graph, src) -> None:
                 "attention in libsilk's CachedAttention / CrossAttention)"
             )
     if not counts[SILK_ATTENTION] or counts[SILK_ATTENTION] != counts[SILK_CROSS]:
-        raise ValueError(f"{src}: {counts[SILK_ATTENTION]} CachedAttention and {counts[SILK_CROSS]} CrossAttention nodes")
+        raise ValueError(
+            f"{src}: {counts[SILK_ATTENTION]} CachedAttention and {counts[SILK_CROSS]} CrossAttention nodes"
+        )
     at = names.index("total_sequence_length") + 1
     added = [helper.make_tensor_value_info(n, TensorProto.INT32, ["R"]) for n in (NEW_POSITIONS, CROSS_SOURCE)]
     inputs = list(graph.input)
