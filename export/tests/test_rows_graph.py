@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import shutil
+import subprocess
 
 import numpy as np
 import pytest
@@ -150,9 +151,10 @@ def test_refusals_name_the_graph(folder):
 
 @pytest.mark.skipif(not silk_mesh.generation_available(), reason="libsilk without onnxruntime")
 @pytest.mark.parametrize("precision", ["fp16", "int8"])
-def test_libsilk_runs_a_v4_folder_with_one_row_as_the_v3_folder(folder, dev_dir, precision, tmp_path):
+def test_libsilk_runs_a_v4_folder_with_one_row_as_the_v3_folder(folder, dev_dir, silkgen, precision, tmp_path):
     """model_version 4 with v4 cache variants loads in libsilk and, one row, gives the v3 folder's
-    ids (INT4 decoder, sampled with a seed); the v3 folder keeps loading."""
+    ids (INT4 decoder, sampled with a seed); the v3 folder keeps loading. silkgen --stats names the
+    folder's model_version and its decoder's contract, and for v3 how to re-export it."""
     out, _ = folder
     ids = {}
     for version in (3, 4):
@@ -169,4 +171,11 @@ def test_libsilk_runs_a_v4_folder_with_one_row_as_the_v3_folder(folder, dev_dir,
         with silk_mesh.Model(m, threads=1, decoder="int4", kv_precision=precision) as model:
             with silk_mesh.Generator(model) as gen:
                 ids[version] = list(gen.run(mesh, seed=4, max_tokens=60)[1])
+        run = [silkgen, mesh, "--model", m, "--decoder", "int4", "--kv-precision", precision, "--seed", "4"]
+        run += ["--max-tokens", "60", "-o", tmp_path / f"{version}.obj", "--stats", tmp_path / f"{version}.json"]
+        subprocess.run([str(x) for x in run], check=True, capture_output=True)
+        stats = json.loads((tmp_path / f"{version}.json").read_text())
+        assert stats["model_version"] == stats["decoder_contract"] == version and stats["tokens"] == len(ids[version])
+        note = "re-exports it as model_version 4"
+        assert (note in stats.get("model_version_note", "")) == (version == 3), stats.get("model_version_note")
     assert len(ids[3]) > 10 and ids[4] == ids[3]

@@ -23,6 +23,9 @@ namespace silk {
 // cross_source inputs); libsilk runs them with one row.
 inline constexpr int32_t kOldestModelVersion = 2;
 inline constexpr int32_t kSupportedModelVersion = 4;
+inline constexpr int32_t kRowsModelVersion = 4;  // the first with decoder contract v4
+// The report's one line on a folder older than kRowsModelVersion (how to get contract v4), else "".
+std::string ModelVersionNote(int32_t model_version);
 
 enum class ModelArch { kSilk, kOfficial };
 enum class DecoderPrecision { kFp32, kInt8, kInt4 };
