@@ -179,3 +179,26 @@ def test_libsilk_runs_a_v4_folder_with_one_row_as_the_v3_folder(folder, dev_dir,
         note = "re-exports it as model_version 4"
         assert (note in stats.get("model_version_note", "")) == (version == 3), stats.get("model_version_note")
     assert len(ids[3]) > 10 and ids[4] == ids[3]
+
+
+def test_kv_commands_keep_a_v4_folder_v4(folder, tmp_path):
+    """silk-export kv16 / kv8 on a model_version 4 folder write v4 variants (no mixed contracts);
+    on a v3 folder v3 ones unless asked; a v2 folder cannot take v4 variants."""
+    out, _ = folder
+    for version in (2, 3, 4):
+        m = tmp_path / f"v{version}"
+        m.mkdir()
+        shutil.copy(out / "decoder.int4.onnx", m / "decoder.int4.onnx")
+        shutil.copy(out / "decoder.onnx", m / "decoder.onnx")
+        meta = sidecar(tiny_model("official").cfg, {"steps": 0, "data": None, "seed": None}, {}, None, version)
+        meta["files"] = {"encoder": "encoder.onnx", "decoder": "decoder.onnx", "decoder_int4": "decoder.int4.onnx"}
+        (m / "model.json").write_text(json.dumps(meta))
+        if version == 2:
+            with pytest.raises(ValueError, match="model_version 2: contract v4 needs a version 3 folder"):
+                add_kv_to_folder(m, "fp16", rows=True)
+            assert not (m / "decoder.kv16.onnx").exists()  # refused before writing
+            continue
+        add_kv_to_folder(m, "int8")
+        inputs = [i.name for i in onnx.load(str(m / "decoder.int4.kv8.onnx")).graph.input]
+        assert (NEW_POSITIONS in inputs) == (version == 4)
+        assert json.loads((m / "model.json").read_text())["model_version"] == version

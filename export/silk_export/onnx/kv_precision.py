@@ -265,13 +265,14 @@ def add_kv_to_folder(
     default: str | None = None,
     attention: str = "silk",
     int4: str | None = None,
-    rows: bool = False,
+    rows: bool | None = None,
 ) -> dict:
     """`silk-export kv16` / `kv8`: the `precision`-cache variant of every decoder of an exported
     model folder, recorded in its model.json (files.kv_fp16 / files.kv_int8;
     files.default_kv_precision when `default` is given, and external data the variants share is
     already listed). `rows`: the variants in decoder contract v4 (R rows per call) and model.json
-    model_version 4 (ROWS_CONTRACT). Returns the new "files"."""
+    model_version 4 (ROWS_CONTRACT); None: as the folder is (v4 for a model_version 4 folder, so
+    its variants never mix contracts). Returns the new "files"."""
     import json
     import os
 
@@ -285,11 +286,13 @@ def add_kv_to_folder(
     files = meta.setdefault("files", {"encoder": "encoder.onnx", "decoder": "decoder.onnx"})
     if default is not None:
         _check_default(files, default, precision)
-    add_kv_variants(folder, files, precision, attention, int4, rows)
+    if rows is None:
+        rows = meta.get("model_version", 0) >= ROWS_CONTRACT
     if rows and meta.get("model_version", 0) < 3:
         raise ValueError(
             f"{path}: model_version {meta.get('model_version')}: contract v4 needs a version 3 folder (arch, preprocessing)"
         )
+    add_kv_variants(folder, files, precision, attention, int4, rows)
     if rows:
         meta["model_version"] = ROWS_CONTRACT
     if default is not None:
