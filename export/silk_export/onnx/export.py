@@ -350,12 +350,19 @@ def export_graphs(model, out_dir: Path, external_over: int = 1 << 30) -> dict:
 
 
 def export_model(
-    model, out_dir: Path, training: dict | None = None, int8: bool = True, sampling: dict | None = None
+    model,
+    out_dir: Path,
+    training: dict | None = None,
+    int8: bool = True,
+    sampling: dict | None = None,
+    rows: bool = True,
 ) -> dict:
     """Exports all files into out_dir; returns the sidecar dict that was written. `sampling`: the
     model.json "sampling" defaults silkgen and the C API start from (absent: libsilk's built-in
-    ones, temperature 0.5 and top-k 50). Raises ValueError before writing anything when a weight
-    is NaN / Inf (naming its key) or a sampling value is not finite."""
+    ones, temperature 0.5 and top-k 50). `rows`: model_version 4, with the fp16- and int8-cache
+    variants of every decoder in contract v4 (rows.py); False: the architecture's version and no
+    variants (the committed test model's form). Raises ValueError before writing anything when a
+    weight is NaN / Inf (naming its key) or a sampling value is not finite."""
     out_dir = Path(out_dir)
     check_finite(model.state_dict().items(), "model")
     dumps({"sampling": sampling}, what="model.json")  # a NaN default: refused before the graphs
@@ -363,14 +370,14 @@ def export_model(
     if int8:
         quantize_decoder(out_dir / "decoder.onnx", out_dir / "decoder.int8.onnx")
         files["decoder_int8"] = "decoder.int8.onnx"
-    for precision in ("fp16", "int8"):  # contract v4: R rows per call (the default stays the fp32 cache)
+    for precision in ("fp16", "int8") if rows else ():  # contract v4 (the default stays the fp32 cache)
         add_kv_variants(out_dir, files, precision, rows=True)
     meta = sidecar(
         model.cfg,
         training or {"steps": 0, "data": None, "seed": None},
         files,
         {"sampling": sampling} if sampling else None,
-        ROWS_CONTRACT,
+        ROWS_CONTRACT if rows else None,
     )
     write_json(out_dir / "model.json", meta)
     return meta
