@@ -26,13 +26,14 @@ def _set_batch(vi, symbol: str) -> None:
 
 
 def batch_dims(graph) -> None:
-    """Makes dim 0 of the row inputs/outputs R and of cross_* S, in place (call before
-    fold_shapes, which then keeps them symbolic)."""
+    """Makes dim 0 of the row inputs/outputs and of cross_* R, in place (call before fold_shapes,
+    which then keeps it symbolic). cross_* are R while folding: the traced cross-attention's
+    q·kᵀ broadcasts its batch against theirs, and with a second symbol the folding would lose
+    track of R after it (and keep each layer's qk-norm Expand); wire_rows, after the rewrite into
+    CrossAttention (which takes S against R), names them S."""
     for vi in list(graph.input) + list(graph.output):
-        if vi.name.startswith(_ROW_NAMES):
+        if vi.name.startswith(_ROW_NAMES) or vi.name.startswith("cross_"):
             _set_batch(vi, "R")
-        elif vi.name.startswith("cross_"):
-            _set_batch(vi, "S")
 
 
 def wire_rows(graph, src) -> None:
@@ -63,6 +64,9 @@ def wire_rows(graph, src) -> None:
         raise ValueError(
             f"{src}: {counts[SILK_ATTENTION]} CachedAttention and {counts[SILK_CROSS]} CrossAttention nodes"
         )
+    for vi in graph.input:
+        if vi.name.startswith("cross_"):
+            _set_batch(vi, "S")
     at = names.index("total_sequence_length") + 1
     added = [helper.make_tensor_value_info(n, TensorProto.INT32, ["R"]) for n in (NEW_POSITIONS, CROSS_SOURCE)]
     inputs = list(graph.input)
