@@ -11,6 +11,7 @@
 
 #include "capi/capi_generator.h"
 #include "core/json_number.h"
+#include "runtime/model/model_config.h"
 
 namespace silk::capi {
 
@@ -66,6 +67,10 @@ Json StatsJson(const silk_generator& g) {
   j["decoder"] = st.decoder;
   j["kv_precision"] = st.kv_precision;
   j["kv_cache_bytes"] = st.kv_cache_bytes;
+  j["model_version"] = st.model_version;
+  j["decoder_contract"] = st.decoder_contract;
+  const std::string note = silk::ModelVersionNote(st.model_version);
+  if (!note.empty()) j["model_version_note"] = note;
   j["seconds"] = {
       {"load_input", st.seconds.load_input}, {"encoder", st.seconds.encoder},   {"decoder", st.seconds.decoder},
       {"grammar", st.seconds.grammar},       {"sampling", st.seconds.sampling}, {"build_mesh", st.seconds.build_mesh},

@@ -16,7 +16,7 @@ DecoderRunner::DecoderRunner(const Model::Impl& model, KvCache* cache, void* cro
       cross_kv_(cross_kv),
       max_chunk_(std::max<int64_t>(1, max_chunk)),
       vocab_(model.config.model_vocab_size),
-      in_names_(DecoderInputNames(model.config.dims.n_layers)),
+      in_names_(DecoderInputNames(model.config.dims.n_layers, model.rows_contract)),
       out_names_(DecoderOutputNames(model.config.dims.n_layers)) {
   for (const std::string& s : in_names_) in_ptrs_.push_back(s.c_str());
   for (const std::string& s : out_names_) out_ptrs_.push_back(s.c_str());
@@ -65,11 +65,12 @@ void DecoderRunner::StageInputs(const int32_t* ids, int64_t n) {
   }
   seqlens_k_ = static_cast<int32_t>(P + n - 1);
   total_ = static_cast<int32_t>(P + n);
+  new_positions_ = static_cast<int32_t>(n);
   if (logits_.size() < static_cast<size_t>(max_chunk_ * vocab_)) logits_.resize(max_chunk_ * vocab_);
 }
 
-// Inputs 4.. (per layer: past key and value, then the cross views) and the present outputs over
-// the same cache blocks; inputs 0..3 and output 0 are placeholders.
+// Inputs after the per-call ones (per layer: past key and value, then the cross views) and the
+// present outputs over the same cache blocks; the per-call inputs and output 0 are placeholders.
 void DecoderRunner::MakeViews() {
   const Ort::MemoryInfo& mem = model_.cpu_memory;
   const ModelDims& d = model_.config.dims;
@@ -82,7 +83,7 @@ void DecoderRunner::MakeViews() {
   views_capacity_ = C;
   in_values_.clear();
   out_values_.clear();
-  for (int i = 0; i < 4; ++i) in_values_.emplace_back(nullptr);
+  for (size_t i = 0; i < PerCallInputs(); ++i) in_values_.emplace_back(nullptr);
   out_values_.emplace_back(nullptr);
   const int64_t row = ks.row_bytes();
   const auto type = KvOnnxType(ks.precision);
@@ -102,7 +103,8 @@ void DecoderRunner::MakeViews() {
                                                     cross_shape.data(), 4, model_.cross_type));
 }
 
-// Inputs 0..3: ids, positions, seqlens_k, total length (remade every call).
+// Inputs 0..3: ids, positions, seqlens_k, total length (remade every call); contract v4's
+// new_positions (n) and cross_source (0: the one mesh) for its one row.
 void DecoderRunner::BindChunkInputs(int64_t n) {
   const Ort::MemoryInfo& mem = model_.cpu_memory;
   const std::array<int64_t, 2> tok_shape = {1, n};
@@ -111,6 +113,9 @@ void DecoderRunner::BindChunkInputs(int64_t n) {
   in_values_[1] = Ort::Value::CreateTensor<int64_t>(mem, positions_.data(), n, tok_shape.data(), 2);
   in_values_[2] = Ort::Value::CreateTensor<int32_t>(mem, &seqlens_k_, 1, one.data(), 1);
   in_values_[3] = Ort::Value::CreateTensor<int32_t>(mem, &total_, 1, nullptr, 0);
+  if (!model_.rows_contract) return;
+  in_values_[4] = Ort::Value::CreateTensor<int32_t>(mem, &new_positions_, 1, one.data(), 1);
+  in_values_[5] = Ort::Value::CreateTensor<int32_t>(mem, &cross_source_, 1, one.data(), 1);
 }
 
 // Logits into logits_, present_* written straight into the cache blocks.

@@ -34,6 +34,7 @@ class DecoderRunner {
   void MakeViews();
   void BindChunkInputs(int64_t n);
   void RunInPlace(int64_t n);
+  size_t PerCallInputs() const { return model_.rows_contract ? 6 : 4; }
 
   const Model::Impl& model_;
   KvCache* cache_;
@@ -43,11 +44,10 @@ class DecoderRunner {
   std::vector<std::string> in_names_, out_names_;
   std::vector<const char*> in_ptrs_, out_ptrs_;
   std::vector<int64_t> ids_, positions_;
-  int32_t seqlens_k_ = 0, total_ = 0;
-  // Tensors over ids_/positions_/seqlens_k_/total_ (remade per call), then the per-layer cache
-  // and cross views; out: logits, then the present views over the same cache blocks. The views
-  // are built once (again if the cache is re-reserved); the cross buffer must stay where it is
-  // for the runner's life.
+  int32_t seqlens_k_ = 0, total_ = 0, new_positions_ = 0, cross_source_ = 0;
+  // Tensors over ids_/positions_/seqlens_k_/total_ (and new_positions_/cross_source_; remade per call), then the
+  // per-layer cache and cross views; out: logits, then the present views over the same cache blocks. The views are
+  // built once (again if the cache is re-reserved); the cross buffer must stay where it is for the runner's life.
   std::vector<Ort::Value> in_values_, out_values_;
   const void* views_of_ = nullptr;
   int64_t views_capacity_ = 0;

@@ -58,6 +58,8 @@ struct GenerationStats {
   bool int8 = false;
   std::string decoder = "fp32";       // decoder precision in use: fp32, int8, int4
   std::string kv_precision = "fp32";  // self-K/V cache element type: fp32, fp16
+  int32_t model_version = 0;          // model.json model_version of the folder
+  int32_t decoder_contract = 3;       // the decoder graph in use: 3 (one row), 4 (R rows per call)
   // Surface guidance: vertex ids sampled under it, and vertex ids (sampled or forced) taken
   // outside the tolerance because no legal id was within it.
   int64_t guided_tokens = 0, guidance_fallbacks = 0;

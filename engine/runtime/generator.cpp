@@ -191,6 +191,8 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   st.decoder = DecoderPrecisionName(m.precision);
   st.seconds.encoder = encoder_seconds;
   st.kv_precision = KvPrecisionName(m.kv_precision);
+  st.model_version = m.config.model_version;
+  st.decoder_contract = m.rows_contract ? kRowsModelVersion : 3;
   st.kv_cache_bytes = cap * ModelKvShape(m).position_bytes();
   CacheInput(points);
   if (options.surface_tolerance > 0 && !options.unconstrained) {

@@ -27,6 +27,7 @@ from .onnx.export import (
     transpose_linears,
 )
 from .onnx.kv_precision import KV_PRECISIONS, add_kv_variants
+from .onnx.rows import ROWS_CONTRACT
 from .vocab import load_vocab
 
 PRECISIONS = ("fp32", "int8", "int4", "auto")
@@ -90,8 +91,8 @@ def write_variants(
     if kv_precision not in KV_PRECISIONS:
         raise ValueError(f"KV precision '{kv_precision}': expected one of {', '.join(KV_PRECISIONS)}")
     _say("fp16 and int8 self-K/V cache variants of every decoder (silk-export kv16, kv8)")
-    add_kv_variants(folder, files, "fp16")
-    add_kv_variants(folder, files, "int8")
+    add_kv_variants(folder, files, "fp16", rows=True)  # contract v4 (R rows per call)
+    add_kv_variants(folder, files, "int8", rows=True)
     files["default_kv_precision"] = kv_precision
     return figures
 
@@ -156,7 +157,7 @@ def import_official(
             },
         }
         training = {"steps": None, "data": "released checkpoint (official training)", "seed": None}
-        meta = sidecar(cfg, training, files, extra)
+        meta = sidecar(cfg, training, files, extra, ROWS_CONTRACT)
         meta["import"]["seconds"] = round(time.time() - t0, 1)
         write_json(tmp / "model.json", meta)  # a NaN figure: an error naming the field, not invalid JSON
         write_official_card(tmp, meta)

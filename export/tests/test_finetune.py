@@ -90,7 +90,7 @@ def test_export_of_the_fine_tuned_model_runs_in_silkgen(run, silkgen, dev_dir, t
         main(["export", "--checkpoint", str(out / "checkpoint.pt"), "--out", str(tmp_path / "model"), "--no-int8"]) == 0
     )
     meta = json.loads((tmp_path / "model" / "model.json").read_text())
-    assert meta["arch"] == "official" and meta["model_version"] == 3 and meta["training"]["steps"] == STEPS
+    assert meta["arch"] == "official" and meta["model_version"] == 4 and meta["training"]["steps"] == STEPS
     r = subprocess.run(
         [
             str(silkgen),

@@ -66,9 +66,13 @@ def fixture_tokens(fixture_dir, name):
     return [int(x) for x in (fixture_dir / name).read_text().split()]
 
 
-def test_model_json_is_contract_v3(imported):
+def test_model_json_is_contract_v4(imported):
     meta = json.loads((imported / "model.json").read_text())
-    assert meta["model_version"] == 3 and meta["arch"] == "official"
+    assert meta["model_version"] == 4 and meta["arch"] == "official"
+    for key in ("kv_fp16", "kv_int8"):  # the cache variants take R rows (new_positions, cross_source)
+        for name in meta["files"][key].values():
+            inputs = [i.name for i in onnx.load(str(imported / name), load_external_data=False).graph.input]
+            assert inputs[4:6] == ["new_positions", "cross_source"], name
     assert meta["dims"] == {
         "d_model": 32,
         "n_layers": 2,

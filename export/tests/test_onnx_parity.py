@@ -53,7 +53,7 @@ def test_sidecar_follows_contract(exported):
     v = load_vocab()
     on_disk = json.loads((out / "model.json").read_text())
     assert on_disk == meta
-    assert meta["format"] == "silk-model" and meta["model_version"] == 2
+    assert meta["format"] == "silk-model" and meta["model_version"] == 4
     assert meta["token_format"] == v.layout["token_format"] and meta["token_format_version"] == 1
     assert meta["vocab"] == {
         "format_vocab_size": 10267,
@@ -73,7 +73,15 @@ def test_sidecar_follows_contract(exported):
         "n_points": 4096,
         "max_seq_len": c.max_seq_len,
     }
-    assert meta["files"] == {"encoder": "encoder.onnx", "decoder": "decoder.onnx", "decoder_int8": "decoder.int8.onnx"}
+    assert meta["arch"] == "silk"
+    assert meta["files"] == {
+        "encoder": "encoder.onnx",
+        "decoder": "decoder.onnx",
+        "decoder_int8": "decoder.int8.onnx",
+        # contract v4 cache variants; the default stays the fp32 cache
+        "kv_fp16": {"decoder": "decoder.kv16.onnx", "decoder_int8": "decoder.int8.kv16.onnx"},
+        "kv_int8": {"decoder": "decoder.kv8.onnx", "decoder_int8": "decoder.int8.kv8.onnx"},
+    }
     assert meta["normalize_bound"] == 0.95 and meta["config"] == "micro"
     assert "sampling" not in meta  # libsilk's built-in sampling defaults unless export is told otherwise
 
@@ -83,7 +91,7 @@ def test_sidecar_carries_chosen_sampling_defaults(exported):
 
     model, _, meta, *_ = exported
     chosen = {"temperature": 1.3, "top_k": 50}
-    with_sampling = sidecar(model.cfg, meta["training"], meta["files"], {"sampling": chosen})
+    with_sampling = sidecar(model.cfg, meta["training"], meta["files"], {"sampling": chosen}, meta["model_version"])
     assert with_sampling["sampling"] == chosen
     assert {k: v for k, v in with_sampling.items() if k != "sampling"} == meta
 

@@ -48,7 +48,7 @@ TEST(ModelConfig, RefusesMismatches) {
   const std::vector<Case> cases = {
       {"format", [](auto& j) { j["format"] = "other"; }, "silk-model"},
       {"older model version", [](auto& j) { j["model_version"] = 1; }, "re-export"},
-      {"newer model version", [](auto& j) { j["model_version"] = 4; }, "newer libsilk"},
+      {"newer model version", [](auto& j) { j["model_version"] = 5; }, "newer libsilk"},
       {"token format", [](auto& j) { j["token_format"] = "meshgpt"; }, "token_format"},
       {"token format version", [](auto& j) { j["token_format_version"] = 2; }, "token_format_version"},
       {"eos", [](auto& j) { j["vocab"]["eos_id"] = 5; }, "eos_id"},

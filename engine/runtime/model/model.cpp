@@ -91,6 +91,14 @@ ONNXTensorElementDataType CrossType(Ort::Session& s) {
   return ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
 }
 
+// Whether the decoder takes contract v4's per-row inputs (new_positions names them).
+bool HasRowsInputs(Ort::Session& s) {
+  Ort::AllocatorWithDefaultOptions alloc;
+  for (size_t i = 0; i < s.GetInputCount(); ++i)
+    if (std::string(s.GetInputNameAllocated(i, alloc).get()) == "new_positions") return true;
+  return false;
+}
+
 // The float32 cross_kv as a float16 tensor of the same shape (rounded to nearest even).
 Ort::Value HalfCopy(Ort::Value& cross) {
   const std::vector<int64_t> shape = cross.GetTensorTypeAndShapeInfo().GetShape();
@@ -136,8 +144,9 @@ StatusOr<std::string> ChooseDecoderFile(const std::string& dir, const ModelConfi
 
 }  // namespace
 
-std::vector<std::string> DecoderInputNames(int64_t n_layers) {
+std::vector<std::string> DecoderInputNames(int64_t n_layers, bool rows) {
   std::vector<std::string> names = {"input_ids", "positions", "seqlens_k", "total_sequence_length"};
+  if (rows) names.insert(names.end(), {"new_positions", "cross_source"});
   for (const char* group : {"past_", "cross_"})
     for (int64_t l = 0; l < n_layers; ++l)
       for (const char* kv : {"key_", "value_"}) names.push_back(group + std::string(kv) + std::to_string(l));
@@ -203,8 +212,11 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
     impl->encoder = std::make_unique<Ort::Session>(env, NativePath(enc_path).c_str(), so);
     impl->decoder = std::make_unique<Ort::Session>(env, NativePath(dec_path).c_str(), so);
     impl->cross_type = CrossType(*impl->decoder);
+    impl->rows_contract = HasRowsInputs(*impl->decoder);
+    if (impl->rows_contract)  // one row: R = S = 1
+      dec_in.insert(dec_in.begin() + 4, {{"new_positions", kI32, {1}}, {"cross_source", kI32, {1}}});
     for (IoSpec& spec : dec_in)
-      if (spec.name.rfind("cross_", 0) == 0) spec.type = impl->cross_type;
+      if (spec.name.rfind("cross_", 0) == 0 && spec.name != "cross_source") spec.type = impl->cross_type;
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, true, {{"points", kF, {1, -1, 6}}}, enc_path));
     SILK_ASSIGN_OR_RETURN(impl->encoder_points, EncoderPoints(*impl->encoder, config.dims.n_points, enc_path));
     SILK_RETURN_IF_ERROR(CheckIo(*impl->encoder, false, {{"cross_kv", kF, cross}}, enc_path));

@@ -399,6 +399,13 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   return c;
 }
 
+std::string ModelVersionNote(int32_t model_version) {
+  if (model_version >= kRowsModelVersion) return "";
+  return "model_version " + std::to_string(model_version) +
+         ": decoder contract v3 (one row per call); `silk-export export` (or `silk-export import-official`) "
+         "re-exports it as model_version 4 (R rows per call)";
+}
+
 StatusOr<ModelConfig> LoadModelConfig(const std::string& dir) {
   const std::string path = dir + "/model.json";
   SILK_ASSIGN_OR_RETURN(std::string text, ReadFileBytes(path, uint64_t{1} << 20));

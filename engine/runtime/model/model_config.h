@@ -19,8 +19,13 @@ namespace silk {
 // (GroupQueryAttention); 1 had one time-major past_kv tensor and is refused (re-export it).
 // 3: same graphs, plus arch, preprocessing, sampling, INT4 and external-data files in
 // model.json (docs/model_contract.md); 2 still loads with the defaults of Silk's own model.
+// 4: as 3, with the cache variants' decoders in contract v4 (R rows per call: new_positions and
+// cross_source inputs); libsilk runs them with one row.
 inline constexpr int32_t kOldestModelVersion = 2;
-inline constexpr int32_t kSupportedModelVersion = 3;
+inline constexpr int32_t kSupportedModelVersion = 4;
+inline constexpr int32_t kRowsModelVersion = 4;  // the first with decoder contract v4
+// The report's one line on a folder older than kRowsModelVersion (how to get contract v4), else "".
+std::string ModelVersionNote(int32_t model_version);
 
 enum class ModelArch { kSilk, kOfficial };
 enum class DecoderPrecision { kFp32, kInt8, kInt4 };

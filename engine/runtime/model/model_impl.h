@@ -20,6 +20,9 @@ struct Model::Impl {
   // The decoder's cross_* inputs: float32, or float16 in the silk form of the cache variants
   // (RunEncoder then converts the encoder's float32 cross_kv once).
   ONNXTensorElementDataType cross_type = ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
+  // Decoder contract v4 (R rows per call): the decoder also takes new_positions and cross_source
+  // (int32 [R]); the runtime runs it with one row (R = S = 1).
+  bool rows_contract = false;
   std::unique_ptr<Ort::Session> encoder, decoder;
   Ort::MemoryInfo cpu_memory = Ort::MemoryInfo::CreateCpu(OrtArenaAllocator, OrtMemTypeDefault);
 };
@@ -32,9 +35,9 @@ inline ONNXTensorElementDataType KvOnnxType(KvPrecision p) {
 }
 
 // decoder.onnx's input and output names in contract order (docs/model_contract.md):
-// input_ids, positions, seqlens_k, total_sequence_length, past_{key,value}_l, cross_{key,value}_l;
-// logits, present_{key,value}_l.
-std::vector<std::string> DecoderInputNames(int64_t n_layers);
+// input_ids, positions, seqlens_k, total_sequence_length, [new_positions, cross_source: contract v4
+// `rows`,] past_{key,value}_l, cross_{key,value}_l; logits, present_{key,value}_l.
+std::vector<std::string> DecoderInputNames(int64_t n_layers, bool rows = false);
 std::vector<std::string> DecoderOutputNames(int64_t n_layers);
 
 // Runs encoder.onnx on `n_points` rows of 6 floats (normalised xyz, unit normal); the result

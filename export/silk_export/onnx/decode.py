@@ -63,6 +63,7 @@ class DecoderState:
         self.n_layers, _, h, _, d = cross_kv.shape
         # cross_* are float16 in the silk form of the cache variants (converted once, as libsilk does).
         types = {i.name: i.type for i in decoder.get_inputs()}
+        self.rows = "new_positions" in types  # contract v4: run as one row (R = S = 1)
         cross_dtype = np.float16 if types.get("cross_key_0") == "tensor(float16)" else np.float32
         self.cross = {}
         for l in range(self.n_layers):
@@ -89,6 +90,8 @@ class DecoderState:
             "total_sequence_length": np.array(self.length + t, np.int32),
             **self.cross,
         }
+        if self.rows:
+            feeds.update(new_positions=np.array([t], np.int32), cross_source=np.array([0], np.int32))
         for l in range(self.n_layers):
             feeds[f"past_key_{l}"], feeds[f"past_value_{l}"] = self.past[2 * l], self.past[2 * l + 1]
         out = self.decoder.run(None, feeds)

@@ -18,6 +18,8 @@ from ..models.configs import ModelConfig
 from ..models.finite import check_finite
 from ..registry import get_architecture
 from ..vocab import load_vocab
+from .kv_precision import add_kv_variants
+from .rows import ROWS_CONTRACT
 from .graphs import DecoderGraph, EncoderGraph, decoder_input_names, decoder_output_names
 
 OPSET = 17
@@ -270,8 +272,11 @@ def has_external_data(path: Path) -> bool:
     return (path.parent / (path.name + ".data")).exists()
 
 
-def sidecar(cfg: ModelConfig, training: dict, files: dict, extra: dict | None = None) -> dict:
-    """model.json: version 2 for "silk", version 3 (arch, preprocessing, sampling) for "official"."""
+def sidecar(
+    cfg: ModelConfig, training: dict, files: dict, extra: dict | None = None, model_version: int | None = None
+) -> dict:
+    """model.json: version 2 for "silk", version 3 (arch, preprocessing, sampling) for "official";
+    `model_version` 4 (contract v4 cache variants, rows.py): as the architecture's, with "arch"."""
     import onnx
     import onnxruntime
 
@@ -283,8 +288,9 @@ def sidecar(cfg: ModelConfig, training: dict, files: dict, extra: dict | None = 
         lib_version = silk_mesh.version()
     except OSError:
         lib_version = None
-    meta = {"format": "silk-model", "model_version": arch.model_version}
-    if arch.model_version >= 3:
+    version = model_version or arch.model_version
+    meta = {"format": "silk-model", "model_version": version}
+    if version >= 3:
         meta["arch"] = arch.name
     meta.update(
         {
@@ -304,7 +310,7 @@ def sidecar(cfg: ModelConfig, training: dict, files: dict, extra: dict | None = 
             "normalize_bound": 0.95,
         }
     )
-    if arch.model_version >= 3:
+    if arch.model_version >= 3:  # a "silk" folder keeps its defaults (docs/model_contract.md)
         meta["preprocessing"] = arch.preprocessing(cfg)
         meta["sampling"] = dict(arch.sampling)
     meta["files"] = files
@@ -344,12 +350,19 @@ def export_graphs(model, out_dir: Path, external_over: int = 1 << 30) -> dict:
 
 
 def export_model(
-    model, out_dir: Path, training: dict | None = None, int8: bool = True, sampling: dict | None = None
+    model,
+    out_dir: Path,
+    training: dict | None = None,
+    int8: bool = True,
+    sampling: dict | None = None,
+    rows: bool = True,
 ) -> dict:
     """Exports all files into out_dir; returns the sidecar dict that was written. `sampling`: the
     model.json "sampling" defaults silkgen and the C API start from (absent: libsilk's built-in
-    ones, temperature 0.5 and top-k 50). Raises ValueError before writing anything when a weight
-    is NaN / Inf (naming its key) or a sampling value is not finite."""
+    ones, temperature 0.5 and top-k 50). `rows`: model_version 4, with the fp16- and int8-cache
+    variants of every decoder in contract v4 (rows.py); False: the architecture's version and no
+    variants (the committed test model's form). Raises ValueError before writing anything when a
+    weight is NaN / Inf (naming its key) or a sampling value is not finite."""
     out_dir = Path(out_dir)
     check_finite(model.state_dict().items(), "model")
     dumps({"sampling": sampling}, what="model.json")  # a NaN default: refused before the graphs
@@ -357,11 +370,14 @@ def export_model(
     if int8:
         quantize_decoder(out_dir / "decoder.onnx", out_dir / "decoder.int8.onnx")
         files["decoder_int8"] = "decoder.int8.onnx"
+    for precision in ("fp16", "int8") if rows else ():  # contract v4 (the default stays the fp32 cache)
+        add_kv_variants(out_dir, files, precision, rows=True)
     meta = sidecar(
         model.cfg,
         training or {"steps": 0, "data": None, "seed": None},
         files,
         {"sampling": sampling} if sampling else None,
+        ROWS_CONTRACT if rows else None,
     )
     write_json(out_dir / "model.json", meta)
     return meta

@@ -29,6 +29,7 @@ from pathlib import Path
 from .cross_attention import half_cross_inputs, to_cross_attention
 from .half_logits import to_half_logits
 from .int4_matmul import INT4_FORMS, to_int4_matmul
+from .rows import ROWS_CONTRACT, batch_dims, wire_rows
 from .shape_folding import fold_shapes
 from .silk_ops import SILK_ATTENTION, SILK_DOMAIN
 
@@ -128,21 +129,44 @@ def _check_forms(precision: str, attention: str, int4: str) -> None:
         raise ValueError("the ort attention form runs without libsilk: it keeps MatMulNBits (--int4 ort)")
 
 
+def _external_files(m) -> list[str]:
+    """The external data files graph `m`'s tensors point at."""
+    from onnx import TensorProto
+    from onnx.external_data_helper import _get_all_tensors
+
+    return sorted(
+        {
+            e.value
+            for t in _get_all_tensors(m)
+            if t.data_location == TensorProto.EXTERNAL
+            for e in t.external_data
+            if e.key == "location"
+        }
+    )
+
+
 def make_kv_decoder(
-    src: Path, dst: Path, precision: str = "fp16", attention: str = "silk", int4: str | None = None
+    src: Path,
+    dst: Path,
+    precision: str = "fp16",
+    attention: str = "silk",
+    int4: str | None = None,
+    rows: bool = False,
 ) -> list[str]:
     """Writes the `precision` ("fp16" or "int8") cache variant of decoder graph `src` to `dst`
     (same folder), in the given attention form ("silk" or "ort", see above; int8: "silk" only) and
     INT4 form ("silk": Int4MatMul, "ort": MatMulNBits; default: the attention form's).
+    rows: a contract v4 graph (R rows per call, rows.py; the silk attention form only).
     Returns the external data files it references (those of `src`; none are copied). Raises
     ValueError when `src` has no GroupQueryAttention over past_*/present_* (not a contract decoder)."""
     import onnx
-    from onnx import TensorProto, helper
-    from onnx.external_data_helper import _get_all_tensors
+    from onnx import helper
 
     _check_precision(precision)
     int4 = attention if int4 is None else int4
     _check_forms(precision, attention, int4)
+    if rows and attention != "silk":
+        raise ValueError("contract v4 (R rows) exists only in the silk attention form")
     src, dst = Path(src), Path(dst)
     if src.parent.resolve() != dst.parent.resolve():
         raise ValueError(
@@ -150,6 +174,8 @@ def make_kv_decoder(
         )
     m = onnx.load(str(src), load_external_data=False)
     g = m.graph
+    if rows:
+        batch_dims(g)  # before folding: the folded Reshape targets keep R and S dynamic
     if attention == "silk":
         fold_shapes(g, src.parent)
     cache_names = {i.name for i in g.input if i.name.startswith("past_")}
@@ -178,6 +204,8 @@ def make_kv_decoder(
         to_int4_matmul(g)  # nodes it does not compute stay MatMulNBits
     if attention == "silk":
         to_half_logits(g, src.parent)
+    if rows:
+        wire_rows(g, src)
     if attention == "silk" and not any(o.domain == SILK_DOMAIN for o in m.opset_import):
         m.opset_import.append(helper.make_opsetid(SILK_DOMAIN, 1))
     for vi in list(g.input) + list(g.output):
@@ -186,34 +214,27 @@ def make_kv_decoder(
     # Intermediate type annotations of the rewritten values would now be wrong: drop them.
     stale = set(cache_names) | {n.output[0] for n in g.node if n.op_type in ("GroupQueryAttention", SILK_ATTENTION)}
     produced = {o for n in g.node for o in n.output}  # the rewrites remove some intermediate values
-    kept = [vi for vi in g.value_info if vi.name not in stale and vi.name in produced]
+    # A v4 graph's intermediate shapes were traced with batch 1: dropped as well.
+    kept = [vi for vi in g.value_info if vi.name not in stale and vi.name in produced and not rows]
     del g.value_info[:]
     g.value_info.extend(kept)
-    data = sorted(
-        {
-            e.value
-            for t in _get_all_tensors(m)
-            if t.data_location == TensorProto.EXTERNAL
-            for e in t.external_data
-            if e.key == "location"
-        }
-    )
+    data = _external_files(m)
     onnx.save(m, str(dst))  # external tensors keep their location: the variant shares src's data file
     return data
 
 
 def add_kv_variants(
-    folder: Path, files: dict, precision: str, attention: str = "silk", int4: str | None = None
+    folder: Path, files: dict, precision: str, attention: str = "silk", int4: str | None = None, rows: bool = False
 ) -> dict:
     """For every decoder named in model.json `files`: writes its `precision`-cache variant (in the
-    given attention and INT4 forms) beside it and records it under files["kv_fp16"] /
-    files["kv_int8"]. Returns that mapping."""
+    given attention and INT4 forms; `rows`: contract v4) beside it and records it under
+    files["kv_fp16"] / files["kv_int8"]. Returns that mapping."""
     _check_precision(precision)
     variants = {}
     for key in DECODER_KEYS:
         if key in files:
             name = kv_name(files[key], precision)
-            make_kv_decoder(Path(folder) / files[key], Path(folder) / name, precision, attention, int4)
+            make_kv_decoder(Path(folder) / files[key], Path(folder) / name, precision, attention, int4, rows)
             variants[key] = name
     files[KV_FILES[precision]] = variants
     return variants
@@ -239,12 +260,19 @@ def _check_default(files: dict, default: str, adding: str) -> None:
 
 
 def add_kv_to_folder(
-    folder: Path, precision: str, default: str | None = None, attention: str = "silk", int4: str | None = None
+    folder: Path,
+    precision: str,
+    default: str | None = None,
+    attention: str = "silk",
+    int4: str | None = None,
+    rows: bool | None = None,
 ) -> dict:
     """`silk-export kv16` / `kv8`: the `precision`-cache variant of every decoder of an exported
     model folder, recorded in its model.json (files.kv_fp16 / files.kv_int8;
     files.default_kv_precision when `default` is given, and external data the variants share is
-    already listed). Returns the new "files"."""
+    already listed). `rows`: the variants in decoder contract v4 (R rows per call) and model.json
+    model_version 4 (ROWS_CONTRACT); None: as the folder is (v4 for a model_version 4 folder, so
+    its variants never mix contracts). Returns the new "files"."""
     import json
     import os
 
@@ -258,7 +286,15 @@ def add_kv_to_folder(
     files = meta.setdefault("files", {"encoder": "encoder.onnx", "decoder": "decoder.onnx"})
     if default is not None:
         _check_default(files, default, precision)
-    add_kv_variants(folder, files, precision, attention, int4)
+    if rows is None:
+        rows = meta.get("model_version", 0) >= ROWS_CONTRACT
+    if rows and meta.get("model_version", 0) < 3:
+        raise ValueError(
+            f"{path}: model_version {meta.get('model_version')}: contract v4 needs a version 3 folder (arch, preprocessing)"
+        )
+    add_kv_variants(folder, files, precision, attention, int4, rows)
+    if rows:
+        meta["model_version"] = ROWS_CONTRACT
     if default is not None:
         files["default_kv_precision"] = default
     tmp = path.with_name(f".model.json.{os.getpid()}")
