@@ -355,7 +355,8 @@ PairsFn PickPairs(const Int4MatMulShape& s, RowKernels kernels, int64_t pairs) {
 // Pairs per pass over a weight tile: as many as keep their activations (256 bytes per pair per
 // 64 weights) within half of a 48 KB L1 data cache, between 1 and kMaxPairs.
 int64_t PairsPerPass(int64_t k) {
-  return std::clamp<int64_t>(int64_t{24 * 1024} / (k / (2 * kGroup) * 256), 1, kMaxPairs);
+  const int64_t steps = std::max<int64_t>(1, (k + 2 * kGroup - 1) / (2 * kGroup));  // K below 64 too
+  return std::clamp<int64_t>(int64_t{24 * 1024} / (steps * 256), 1, kMaxPairs);
 }
 
 struct Job {

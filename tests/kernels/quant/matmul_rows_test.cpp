@@ -45,7 +45,7 @@ TEST(MatMulRows, Int4EveryRowOfABatchIsBitIdenticalToItAlone) {
   // N not a multiple of the 256-row tile; K 2048 and 4160 take fewer pairs of rows per pass over a
   // tile (3 and 1) in the 512-bit kernel.
   for (const Shape& sh : {Shape{1024, 300, 32}, Shape{256, 513, 64}, Shape{96, 40, 32}, Shape{384, 77, 128},
-                          Shape{2048, 70, 32}, Shape{4160, 9, 64}})
+                          Shape{2048, 70, 32}, Shape{4160, 9, 64}, Shape{32, 33, 32}})
     for (int64_t rows : {2, 3, 4, 5, 8, 9})
       for (RowKernels kernels : {RowKernels::kBest, RowKernels::kScalar}) {
         std::mt19937 rng(static_cast<uint32_t>(sh.k + sh.n + rows));
