@@ -180,7 +180,7 @@ rc=$?; echo "  silkgen_batch_windows_names: $([ $rc = 0 ] && echo "case-variant 
 result silkgen_batch_windows_names $rc
 
 # 6. The Blender add-on's windows-x64 zip (scripts/make_blender_addon.sh --windows): libsilk.dll and
-#    onnxruntime.dll in silk_mesh/lib as PE x86-64 files silk_mesh's loader accepts on Windows, the
+#    onnxruntime.dll (with onnxruntime's licence and notices) in silk_mesh/lib as PE x86-64 files silk_mesh's loader accepts on Windows, the
 #    binding byte for byte, the manifest's platform. (Blender's Windows Python cannot run here.)
 bash scripts/make_blender_addon.sh --windows "$DIST" "$T/silk_blender-windows-x64.zip" > "$T/addon.log" 2>&1 &&
 python3 - "$T/silk_blender-windows-x64.zip" <<'PY' > "$T/addon_check.log" 2>&1
@@ -190,14 +190,15 @@ from silk_mesh import _platform_libs as P
 with tempfile.TemporaryDirectory() as tmp, zipfile.ZipFile(sys.argv[1]) as z:
     z.extractall(tmp)
     b = pathlib.Path(tmp, "silk_blender", "silk_mesh")
-    assert sorted(p.name for p in (b / "lib").iterdir()) == ["libsilk.dll", "onnxruntime.dll"]
-    for f in (b / "lib").iterdir():
+    notices = ["onnxruntime-LICENSE.txt", "onnxruntime-ThirdPartyNotices.txt"]  # its licence travels with it
+    assert sorted(p.name for p in (b / "lib").iterdir()) == ["libsilk.dll", *notices, "onnxruntime.dll"]
+    for f in (b / "lib").glob("*.dll"):
         assert P.binary_kind(str(f)) == ("PE", "x86-64") and P.diagnose(str(f), plat="win32", machine="x86-64") == "", f
     for f in pathlib.Path("bindings/python/silk_mesh").glob("*.py"):
         assert (b / f.name).read_bytes() == f.read_bytes(), f.name
     assert 'platforms = ["windows-x64"]' in (b.parent / "blender_manifest.toml").read_text()
     assert (b / "model" / "model.json").is_file() or not pathlib.Path("models/default/model.json").is_file()
-    print(f"{sys.argv[1]}: {len(z.namelist())} files, lib/ = libsilk.dll + onnxruntime.dll (PE x86-64)")
+    print(f"{sys.argv[1]}: {len(z.namelist())} files, lib/ = libsilk.dll + onnxruntime.dll (PE x86-64) + its licence")
 PY
 rc=$?; echo "  blender_addon_windows_zip: $(tail -1 "$T/addon_check.log")"
 result blender_addon_windows_zip $rc
