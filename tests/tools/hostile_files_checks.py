@@ -384,7 +384,10 @@ def check_signals(ctx):
             ],
             stderr=subprocess.PIPE,
         )
-        time.sleep(1.5)
+        deadline = time.monotonic() + 30  # signalled mid-run: once a mesh is written, not after a fixed wait
+        while p.poll() is None and time.monotonic() < deadline and not any(out.glob("*.glb")):
+            time.sleep(0.002)
+        time.sleep(0.2)
         t0 = time.monotonic()
         p.send_signal(sig)
         try:
@@ -398,7 +401,9 @@ def check_signals(ctx):
         if left:
             ctx.failures.append(f"{sig.name}: temporaries left: {left}")
     # Two signals 20 ms apart: the second ends the process at once (as SIGTERM), after removing the
-    # temporary of a save in progress; repeated so some land during a save.
+    # temporary of a save in progress; repeated so some land during a save. The first signal goes once
+    # the run has written its first mesh (not after a fixed wait: on an idle machine 40 meshes of 400
+    # ids can all be done within a second), a few milliseconds later each attempt.
     for attempt in range(5):
         out = ctx.tmp / f"twice{attempt}"
         p = subprocess.Popen(
@@ -411,14 +416,17 @@ def check_signals(ctx):
                 "--model",
                 str(ctx.model),
                 "--max-tokens",
-                "400",
+                "2000",
                 "--threads",
                 "1",
                 "-q",
             ],
             stderr=subprocess.DEVNULL,
         )
-        time.sleep(1.0 + 0.05 * attempt)
+        deadline = time.monotonic() + 30
+        while p.poll() is None and time.monotonic() < deadline and not any(out.glob("*.glb")):
+            time.sleep(0.002)
+        time.sleep(0.007 * attempt)
         if p.poll() is not None:  # the work must outlast the wait, or the signals test nothing
             ctx.failures.append(f"two SIGTERMs: the run ended (exit {p.returncode}) before the first signal")
             continue
