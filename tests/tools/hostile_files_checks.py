@@ -357,6 +357,20 @@ def check_files(ctx):
         case(ctx)
 
 
+def start_batch(ctx, lst, out, stderr):
+    """silkgen --batch over the list, 2,000 ids a mesh on one thread (long enough to signal mid-run)."""
+    args = ["--batch", lst, "-o", out, "--model", ctx.model, "--max-tokens", "2000", "--threads", "1", "-q"]
+    return subprocess.Popen([str(ctx.silkgen), *map(str, args)], stderr=stderr)
+
+
+def wait_for_first_mesh(p, out):
+    """Until the run has written its first mesh (or ended): signals then land mid-run on a quiet
+    machine too, where a fixed wait can outlast the whole run."""
+    deadline = time.monotonic() + 30
+    while p.poll() is None and time.monotonic() < deadline and not any(out.glob("*.glb")):
+        time.sleep(0.002)
+
+
 def check_signals(ctx):
     lst = ctx.tmp / "many.txt"
     copies = []
@@ -367,26 +381,8 @@ def check_signals(ctx):
     lst.write_text("".join(f"{c}\n" for c in copies))
     for sig, rc in ((signal.SIGTERM, 143), (signal.SIGINT, 130)):
         out = ctx.tmp / f"sig{sig}"
-        p = subprocess.Popen(
-            [
-                str(ctx.silkgen),
-                "--batch",
-                str(lst),
-                "-o",
-                str(out),
-                "--model",
-                str(ctx.model),
-                "--max-tokens",
-                "2000",
-                "--threads",
-                "1",
-                "-q",
-            ],
-            stderr=subprocess.PIPE,
-        )
-        deadline = time.monotonic() + 30  # signalled mid-run: once a mesh is written, not after a fixed wait
-        while p.poll() is None and time.monotonic() < deadline and not any(out.glob("*.glb")):
-            time.sleep(0.002)
+        p = start_batch(ctx, lst, out, subprocess.PIPE)
+        wait_for_first_mesh(p, out)
         time.sleep(0.2)
         t0 = time.monotonic()
         p.send_signal(sig)
@@ -400,32 +396,17 @@ def check_signals(ctx):
         left = [f.name for f in out.iterdir() if ".tmp" in f.name] if out.exists() else []
         if left:
             ctx.failures.append(f"{sig.name}: temporaries left: {left}")
-    # Two signals 20 ms apart: the second ends the process at once (as SIGTERM), after removing the
-    # temporary of a save in progress; repeated so some land during a save. The first signal goes once
-    # the run has written its first mesh (not after a fixed wait: on an idle machine 40 meshes of 400
-    # ids can all be done within a second), a few milliseconds later each attempt.
+    check_two_sigterms(ctx, lst)
+
+
+def check_two_sigterms(ctx, lst):
+    """Two signals 20 ms apart: the second ends the process at once (as SIGTERM), after removing the
+    temporary of a save in progress; repeated, a few milliseconds later each time, so some land
+    during a save."""
     for attempt in range(5):
         out = ctx.tmp / f"twice{attempt}"
-        p = subprocess.Popen(
-            [
-                str(ctx.silkgen),
-                "--batch",
-                str(lst),
-                "-o",
-                str(out),
-                "--model",
-                str(ctx.model),
-                "--max-tokens",
-                "2000",
-                "--threads",
-                "1",
-                "-q",
-            ],
-            stderr=subprocess.DEVNULL,
-        )
-        deadline = time.monotonic() + 30
-        while p.poll() is None and time.monotonic() < deadline and not any(out.glob("*.glb")):
-            time.sleep(0.002)
+        p = start_batch(ctx, lst, out, subprocess.DEVNULL)
+        wait_for_first_mesh(p, out)
         time.sleep(0.007 * attempt)
         if p.poll() is not None:  # the work must outlast the wait, or the signals test nothing
             ctx.failures.append(f"two SIGTERMs: the run ended (exit {p.returncode}) before the first signal")
