@@ -13,13 +13,17 @@
 
 namespace silk {
 
+// The most known ids one decoder call takes per sequence (longer runs go in chunks of this many);
+// DecoderRunner and RowsDecoder alike, so a row is fed exactly as it is alone.
+inline constexpr int64_t kDecoderChunk = 256;
+
 class DecoderRunner {
  public:
   // `cross_kv` ([L, 2, H, M, D] of the model's cross_type, from RunEncoder) must outlive the
   // runner; each layer's cross_key/cross_value input is a view into it. The cache must have been reserved with the
   // model's KvShape. `max_chunk` bounds the tokens per decoder call (the logits buffer holds
   // max_chunk rows).
-  DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, int64_t max_chunk = 256);
+  DecoderRunner(const Model::Impl& model, KvCache* cache, void* cross_kv, int64_t max_chunk = kDecoderChunk);
 
   // Feeds n ids at positions cache.length() .. +n-1 (BOS first, at position 0), in chunks.
   // Afterwards last_logits() holds the next-token logits after the last id.

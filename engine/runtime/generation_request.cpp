@@ -70,6 +70,7 @@ StatusOr<GenerationPlan> ResolveRequest(const GenerationRequest& r, const ModelC
   o.record_trace = r.record_trace;
   o.surface_tolerance = r.surface_tolerance;
   o.candidates = r.candidates.value_or(config.candidates);
+  o.rows = r.rows.value_or(1);  // TEMP until the rows setting lands (r-plumb)
   o.orient_to_input = r.orient_to_input;
   o.face_guidance = r.face_guidance.value_or(config.face_guidance);
   o.face_tolerance = r.face_tolerance.value_or(config.face_tolerance);

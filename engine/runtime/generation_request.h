@@ -19,7 +19,8 @@ struct GenerationRequest {
   // Unset: the model's (model.json "sampling"; DefaultSamplingParams for a v2 model).
   std::optional<double> temperature, top_p, top_p_temperature;
   std::optional<int32_t> top_k;
-  std::optional<int32_t> candidates;               // best of N (ranges::kCandidates); unset: the model's N
+  std::optional<int32_t> candidates;  // best of N (ranges::kCandidates); unset: the model's N
+  std::optional<int32_t> rows;
   std::optional<PreprocessingKind> preprocessing;  // unset: model.json "preprocessing"
   std::optional<int32_t> n_points;                 // encoder points; unset: the model's pre-processing's
   bool raw_points = false;                         // the input's points are the encoder input as given (RawModelPoints)

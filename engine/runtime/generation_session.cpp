@@ -4,6 +4,7 @@
 // caller stepping by layers sees each candidate's last layer before the next begins.
 #include "runtime/generation_session.h"
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <utility>
@@ -17,13 +18,16 @@ using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
-GenerationSession::GenerationSession(const Model& model) : model_(model), generator_(model) {}
+GenerationSession::GenerationSession(const Model& model) : model_(model), generator_(model), rows_(model) {}
 
 void GenerationSession::Reset() {
   active_ = cancelled_ = failed_ = false;
   candidate_ = 0;
   choice_ = CandidateChoice{};
   ended_.reset();
+  rows_.Abandon();
+  by_rows_ = false;
+  waiting_.clear();
 }
 
 Status GenerationSession::Start(const GenerationRequest& request, const GenerationInput& input,
@@ -35,7 +39,16 @@ Status GenerationSession::Start(const GenerationRequest& request, const Generati
   if (Status s = PreparePoints(request, input, callbacks.cancel); !s.ok()) return s.WithContext(context);
   callbacks_ = callbacks;
   flag_ = flag;
-  SILK_RETURN_IF_ERROR(StartCandidate());
+  by_rows_ = plan_.options.rows > 1 && plan_.options.candidates > 1;
+  if (by_rows_) {
+    started_ = Clock::now();
+    waiting_.assign(static_cast<size_t>(candidates()), std::nullopt);
+    SILK_RETURN_IF_ERROR(rows_.Start(
+        points_, plan_.options, plan_.options.rows, [this](int32_t i) { return CandidateCallbacks(i); },
+        callbacks.cancel));
+  } else {
+    SILK_RETURN_IF_ERROR(StartCandidate());
+  }
   active_ = true;
   return Status::Ok();
 }
@@ -53,21 +66,26 @@ Status GenerationSession::PreparePoints(const GenerationRequest& request, const 
   return Status::Ok();
 }
 
-// Candidate candidate_ on the generator: its derived seed, progress reports tagged with its index.
-Status GenerationSession::StartCandidate() {
-  GenerateOptions o = plan_.options;
-  o.sampling.seed = CandidateSeed(plan_.options.sampling.seed, candidate_);
+// Candidate `index`'s callbacks: the caller's cancel, progress reports tagged with its index.
+GenerateCallbacks GenerationSession::CandidateCallbacks(int32_t index) {
   GenerateCallbacks cb;
   cb.cancel = callbacks_.cancel;
   if (callbacks_.progress) {
-    cb.progress = [this](const GenerateProgress& p) {
+    cb.progress = [this, index](const GenerateProgress& p) {
       GenerateProgress tagged = p;
-      tagged.candidate = candidate_;
+      tagged.candidate = index;
       tagged.candidates = candidates();
       callbacks_.progress(tagged);
     };
   }
-  return generator_.Start(points_, o, cb);
+  return cb;
+}
+
+// Candidate candidate_ on the generator, with its derived seed.
+Status GenerationSession::StartCandidate() {
+  GenerateOptions o = plan_.options;
+  o.sampling.seed = CandidateSeed(plan_.options.sampling.seed, candidate_);
+  return generator_.Start(points_, o, CandidateCallbacks(candidate_));
 }
 
 // The candidate that has ended (or is ended now: Generator::Finish cancels one in progress):
@@ -82,11 +100,14 @@ Status GenerationSession::CloseCandidate(const CancelCheck& cancel) {
   return Status::Ok();
 }
 
+// Scoring polls the caller's flag and the callbacks' cancel: with a million encoder points it runs
+// for seconds between two ids.
+CancelCheck GenerationSession::ScoringCheck() const {
+  return [this] { return CancelRequested(flag_) || CancelRequested(callbacks_.cancel); };
+}
+
 Status GenerationSession::NextCandidate() {
-  // Scoring polls the caller's flag and the callbacks' cancel: with a million encoder points it
-  // runs for seconds between two ids.
-  const CancelCheck scoring = [this] { return CancelRequested(flag_) || CancelRequested(callbacks_.cancel); };
-  SILK_RETURN_IF_ERROR(CloseCandidate(scoring));
+  SILK_RETURN_IF_ERROR(CloseCandidate(ScoringCheck()));
   ++candidate_;
   return StartCandidate();
 }
@@ -100,11 +121,30 @@ Status GenerationSession::Note(Status status) {
 }
 
 bool GenerationSession::done() const {
+  if (by_rows_) return active_ && (cancelled_ || rows_.done());
   return active_ && (cancelled_ || (candidate_ + 1 >= candidates() && generator_.finished()));
+}
+
+int32_t GenerationSession::candidate() const { return by_rows_ ? std::max(rows_.lead_candidate(), 0) : candidate_; }
+
+Status GenerationSession::ScoreEnded(const CancelCheck& cancel) {
+  for (auto& [index, result] : rows_.TakeEnded()) waiting_[static_cast<size_t>(index)] = std::move(result);
+  for (size_t i = static_cast<size_t>(choice_.size()); i < waiting_.size() && waiting_[i]; ++i) {
+    SILK_RETURN_IF_ERROR(choice_.Add(&*waiting_[i], CandidateSeed(plan_.options.sampling.seed, static_cast<int32_t>(i)),
+                                     points_, cancel));
+    waiting_[i].reset();
+  }
+  return Status::Ok();
+}
+
+Status GenerationSession::AdvanceRows(int32_t max_ids, AdvanceUntil until) {
+  SILK_RETURN_IF_ERROR(Note(rows_.Advance(max_ids, until == AdvanceUntil::kLayer, ScoringCheck())));
+  return Note(ScoreEnded(ScoringCheck()));
 }
 
 Status GenerationSession::Advance(int32_t max_ids, AdvanceUntil until) {
   if (!active_ || failed_) return InvalidArgument("generate: no generation in progress (Start first)");
+  if (by_rows_) return done() ? Status::Ok() : AdvanceRows(max_ids, until);
   int64_t layers = generator_.layers_closed();
   for (int32_t ids = 0; ids < max_ids && !done();) {
     if (generator_.finished()) {  // a candidate before the last has ended
@@ -126,6 +166,7 @@ StatusOr<SessionResult> GenerationSession::Finish(const CancelCheck& scoring) {
     Reset();
     return InvalidArgument("generate: no generation to finish (it failed)");
   }
+  if (by_rows_) return FinishRows(scoring);
   const bool complete = done() && !cancelled_;
   if (generator_.active() || ended_) {
     if (Status s = CloseCandidate(scoring); !s.ok()) {
@@ -133,10 +174,33 @@ StatusOr<SessionResult> GenerationSession::Finish(const CancelCheck& scoring) {
       return s;
     }
   }
+  return Conclude(complete);
+}
+
+// Rows mode: every candidate still in progress ended now (a cancelled run), all scored in order.
+StatusOr<SessionResult> GenerationSession::FinishRows(const CancelCheck& scoring) {
+  const bool complete = done() && !cancelled_;
+  Status s = rows_.done() ? Status::Ok() : rows_.EndLive(scoring);
+  if (s.ok()) s = ScoreEnded(scoring);
+  if (!s.ok()) {
+    if (s.code() != StatusCode::kCancelled) Reset();
+    return s;
+  }
+  return Conclude(complete);
+}
+
+// The chosen candidate in the input frame, with the whole run's times; ends the run.
+SessionResult GenerationSession::Conclude(bool complete) {
   SessionResult out;
   out.generation = choice_.Take();
   GenerationStats& st = out.generation.stats;
   if (!complete) st.stop_reason = StopReason::kCancelled;
+  if (by_rows_) {  // the candidates overlapped: wall time, and the feeds' time once
+    st.rows = rows_.rows();
+    st.kv_cache_bytes = rows_.cache_bytes();
+    st.seconds.decoder = rows_.decoder_seconds();
+    st.generation_seconds = std::max(0.0, Since(started_) - st.seconds.build_mesh - st.seconds.scoring);
+  }
   out.output = FinishOutput(&out.generation, transform_);  // verdicts into the stats
   st.seconds.load_input += prepare_seconds_;
   st.seconds.total = st.seconds.load_input + st.generation_seconds + st.seconds.build_mesh + st.seconds.scoring;
@@ -149,9 +213,16 @@ void GenerationSession::Abandon() {
   Reset();
 }
 
+const Generator* GenerationSession::Shown() const {
+  if (!active_) return nullptr;
+  if (by_rows_) return rows_.lead();
+  return generator_.active() ? &generator_ : nullptr;
+}
+
 const std::vector<int32_t>& GenerationSession::tokens() const {
   static const std::vector<int32_t> kNone;
   if (!active_) return kNone;
+  if (by_rows_) return rows_.lead() ? rows_.lead()->tokens() : kNone;
   if (generator_.active()) return generator_.tokens();
   return ended_ ? ended_->tokens : kNone;
 }
@@ -159,6 +230,7 @@ const std::vector<int32_t>& GenerationSession::tokens() const {
 const GenerationStats& GenerationSession::stats() const {
   static const GenerationStats kNone;
   if (!active_) return kNone;
+  if (by_rows_) return rows_.lead() ? rows_.lead()->stats() : kNone;
   if (generator_.active()) return generator_.stats();
   return ended_ ? ended_->stats : kNone;
 }
@@ -166,9 +238,9 @@ const GenerationStats& GenerationSession::stats() const {
 GenerationStats GenerationSession::CancelledStats() const {
   GenerationStats st = stats();
   st.candidates = choice_.scored();
-  if (active_ && (generator_.active() || ended_)) {
+  if (active_ && (Shown() || ended_)) {
     CandidateScore c;
-    c.seed = CandidateSeed(plan_.options.sampling.seed, candidate_);
+    c.seed = CandidateSeed(plan_.options.sampling.seed, candidate());
     c.faces = st.faces;
     c.tokens = st.tokens;
     c.seconds = st.generation_seconds;
@@ -182,8 +254,8 @@ GenerationStats GenerationSession::CancelledStats() const {
 StatusOr<SessionPreview> GenerationSession::Preview() const {
   if (!active_) return InvalidArgument("generate: no generation in progress");
   SessionPreview p;
-  if (generator_.active()) {
-    SILK_ASSIGN_OR_RETURN(p.grid, generator_.MeshSoFar());
+  if (const Generator* g = Shown()) {
+    SILK_ASSIGN_OR_RETURN(p.grid, g->MeshSoFar());
   } else if (ended_) {
     p.grid = ended_->mesh;
   }

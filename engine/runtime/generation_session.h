@@ -2,9 +2,12 @@
 // GenerationSession: one generation as a caller runs it, step by step; the C API's step-wise
 // generator and silk_generator_run are both loops over it. Start resolves the request against the
 // model and prepares the input into the encoder's points; Advance generates ids, running best of
-// N's candidates one after another on one Generator; Preview shows the candidate in progress;
+// N's candidates one after another on one Generator (rows 1), or up to `rows` of them at once
+// (CandidateRows: the same ids, one decoder call per step for all); Preview shows the candidate in
+// progress (with rows: the one furthest along);
 // Finish scores and returns the chosen candidate in the input frame with verdicts and stats.
 #pragma once
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -13,6 +16,7 @@
 #include "core/status.h"
 #include "io/io_mesh.h"
 #include "mesh/normalize.h"
+#include "runtime/candidate_rows.h"
 #include "runtime/candidates.h"
 #include "runtime/generation_input.h"
 #include "runtime/generation_request.h"
@@ -67,11 +71,15 @@ class GenerationSession {
   // Ends the run without a result.
   void Abandon();
   // Thread-safe, any time: stops an encoder run in progress (Generator::InterruptEncoder).
-  void InterruptEncoder() { generator_.InterruptEncoder(); }
+  void InterruptEncoder() {
+    generator_.InterruptEncoder();
+    rows_.InterruptEncoder();
+  }
 
-  bool active() const { return active_; }           // started, not yet finished or abandoned
-  bool done() const;                                // every candidate has ended, or a cancel ended the run
-  int32_t candidate() const { return candidate_; }  // the one in progress (0-based)
+  bool active() const { return active_; }  // started, not yet finished or abandoned
+  bool done() const;                       // every candidate has ended, or a cancel ended the run
+  int32_t candidate() const;               // the one in progress (0-based; with rows, the one furthest along)
+  int32_t rows() const { return by_rows_ ? rows_.rows() : 1; }  // candidates decoded together
   int32_t candidates() const { return plan_.options.candidates; }
   // The candidate in progress (or ended, awaiting its score); empty when there is none.
   const std::vector<int32_t>& tokens() const;
@@ -90,9 +98,18 @@ class GenerationSession {
 
  private:
   Status PreparePoints(const GenerationRequest& request, const GenerationInput& input, const CancelCheck& cancel);
+  GenerateCallbacks CandidateCallbacks(int32_t index);
   Status StartCandidate();
   Status CloseCandidate(const CancelCheck& cancel);
   Status NextCandidate();
+  // Rows mode: the ended candidates, scored into the choice in candidate order (as one after another).
+  Status ScoreEnded(const CancelCheck& cancel);
+  Status AdvanceRows(int32_t max_ids, AdvanceUntil until);
+  StatusOr<SessionResult> FinishRows(const CancelCheck& scoring);
+  SessionResult Conclude(bool complete);
+  CancelCheck ScoringCheck() const;
+  // The generator a preview, tokens() and stats() show: the one in progress, or none.
+  const Generator* Shown() const;
   // A failed step: kCancelled ends the run (finishable), anything else fails it.
   Status Note(Status status);
   void Reset();
@@ -107,6 +124,10 @@ class GenerationSession {
   CancelCheck flag_;
   CandidateChoice choice_;
   std::optional<GenerateResult> ended_;  // a finished candidate whose scoring was cancelled
+  CandidateRows rows_;
+  bool by_rows_ = false;
+  std::chrono::steady_clock::time_point started_;       // rows mode: the run's start (wall time)
+  std::vector<std::optional<GenerateResult>> waiting_;  // rows mode: ended, by index, not yet scored
   int32_t candidate_ = 0;
   bool active_ = false, cancelled_ = false, failed_ = false;
 };

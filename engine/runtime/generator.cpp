@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -91,17 +92,20 @@ Status CheckGenerateOptions(const GenerateOptions& options) {
   return Status::Ok();
 }
 
-// One generation in progress: the encoder output, the decoder runner over the KV cache, the
-// grammar and the sampling chain, the ids so far.
+// What one step decides: the id, whether the grammar forced it, and the legal set it is sampled
+// from (null when unconstrained).
+struct Generator::StepChoice {
+  int32_t id = -1;
+  bool forced = false;
+  const TokenMask* mask = nullptr;
+  const std::vector<std::pair<int32_t, float>>* penalties = nullptr;  // soft face guidance
+};
+
+// One generation in progress: the encoder output and the decoder runner over the KV cache (none in
+// rows mode: the caller feeds the decoder), the grammar and the sampling chain, the ids so far.
 struct Generator::Session {
-  Session(const Model::Impl& m, KvCache* cache, Ort::Value cross_kv, const GenerateOptions& o,
-          const GenerateCallbacks& cb, int32_t cap)
-      : options(o),
-        callbacks(cb),
-        cap(cap),
-        cross(std::move(cross_kv)),
-        runner(m, cache, cross.GetTensorMutableData<void>()),
-        grammar(MakeGrammarOptions(cap)) {}
+  Session(const GenerateOptions& o, const GenerateCallbacks& cb, int32_t cap)
+      : options(o), callbacks(cb), cap(cap), grammar(MakeGrammarOptions(cap)) {}
   static GrammarOptions MakeGrammarOptions(int32_t cap) {
     GrammarOptions g;
     g.max_length = cap;
@@ -110,8 +114,10 @@ struct Generator::Session {
   GenerateOptions options;
   GenerateCallbacks callbacks;
   int32_t cap;
-  Ort::Value cross;
-  DecoderRunner runner;
+  Ort::Value cross{nullptr};
+  std::unique_ptr<DecoderRunner> runner;  // null in rows mode
+  std::optional<StepChoice> held;         // rows mode: a step waiting for its logits
+  int64_t row_calls = 0, row_fed = 0;     // rows mode: decoder runs taken part in, positions fed
   Grammar grammar;
   std::unique_ptr<SamplerChain> chain;  // built in Start, once the guide is known
   GenerateResult res;
@@ -155,27 +161,32 @@ void Generator::CacheInput(const std::vector<float>& points) {
   orientation_.reset();
 }
 
-Status Generator::Start(const std::vector<float>& points, const GenerateOptions& options,
-                        const GenerateCallbacks& callbacks) {
-  session_.reset();
-  const Model::Impl& m = model_.impl();
-  const ModelConfig& cfg = m.config;
+// The token cap of a generation (ids incl. EOS after BOS), after checking its points and options.
+StatusOr<int32_t> Generator::CheckStart(const std::vector<float>& points, const GenerateOptions& options) const {
+  const ModelConfig& cfg = model_.impl().config;
   if (points.empty() || points.size() % 6 != 0)
     return InvalidArgument("generate: points must be a non-empty array of rows of 6 floats");
   SILK_RETURN_IF_ERROR(CheckGenerateOptions(options));
-  const int32_t model_cap = cfg.dims.max_seq_len - 1;  // ids incl. EOS after BOS
+  const int32_t model_cap = cfg.dims.max_seq_len - 1;
   const int32_t cap = options.max_tokens > 0 ? std::min(options.max_tokens, model_cap) : model_cap;
   if (cap < kMinMeshTokens)
     return InvalidArgument(cfg.dir + "/model.json: max_seq_len " + std::to_string(cfg.dims.max_seq_len) +
                            " leaves room for fewer ids than the smallest mesh (" + std::to_string(kMinMeshTokens) +
                            ")");
+  return cap;
+}
+
+Status Generator::Start(const std::vector<float>& points, const GenerateOptions& options,
+                        const GenerateCallbacks& callbacks) {
+  session_.reset();
+  const Model::Impl& m = model_.impl();
+  SILK_ASSIGN_OR_RETURN(const int32_t cap, CheckStart(points, options));
   // A terminate request left from an earlier run is dropped before the poll; one made after the
   // poll stops the encoder run below (InterruptEncoder).
   encoder_run_->UnsetTerminate();
   if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
-  const auto t_start = Clock::now();
   // Encoder: cross-attention K/V once per input.
-  auto t0 = Clock::now();
+  const auto t0 = Clock::now();
   auto encoded = RunEncoder(m, points.data(), static_cast<int64_t>(points.size() / 6), *encoder_run_);
   if (!encoded.ok() && callbacks.cancel && callbacks.cancel())
     return Status(StatusCode::kCancelled, "generation cancelled during the encoder run");
@@ -183,8 +194,35 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   const double encoder_seconds = Since(t0);
   // Cache: BOS + every id but the last (EOS is never fed).
   SILK_RETURN_IF_ERROR(cache_.Reserve(cap, ModelKvShape(m)));
-  session_ = std::make_unique<Session>(m, &cache_, std::move(cross), options, callbacks, cap);
+  SILK_RETURN_IF_ERROR(Begin(points, options, callbacks, cap, encoder_seconds));
+  session_->cross = std::move(cross);
+  session_->runner = std::make_unique<DecoderRunner>(m, &cache_, session_->cross.GetTensorMutableData<void>());
+  return Status::Ok();
+}
+
+Status Generator::StartRow(const std::vector<float>& points, const GenerateOptions& options,
+                           const GenerateCallbacks& callbacks, double encoder_seconds) {
+  session_.reset();
+  SILK_ASSIGN_OR_RETURN(const int32_t cap, CheckStart(points, options));
+  if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
+  return Begin(points, options, callbacks, cap, encoder_seconds);
+}
+
+void Generator::ShareInput(const Generator& other, const std::vector<float>& points) {
+  if (&other == this || other.input_points_ != points) return;
+  input_points_ = other.input_points_;
+  guide_ = other.guide_;
+  face_guide_ = other.face_guide_;
+  orientation_ = other.orientation_;
+}
+
+Status Generator::Begin(const std::vector<float>& points, const GenerateOptions& options,
+                        const GenerateCallbacks& callbacks, int32_t cap, double encoder_seconds) {
+  const Model::Impl& m = model_.impl();
+  session_ = std::make_unique<Session>(options, callbacks, cap);
   Session& s = *session_;
+  s.t_start =
+      Clock::now() - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(encoder_seconds));
   GenerationStats& st = s.res.stats;
   st.threads = m.threads;
   st.int8 = m.precision == DecoderPrecision::kInt8;
@@ -194,16 +232,31 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   st.model_version = m.config.model_version;
   st.decoder_contract = m.rows_contract ? kRowsModelVersion : 3;
   st.kv_cache_bytes = cap * ModelKvShape(m).position_bytes();
+  if (Status guided = AttachInput(points, options, callbacks); !guided.ok()) {
+    session_.reset();
+    return guided;
+  }
+  s.chain = BuildSamplerChain(ChainSettings(options, &s.grammar, s.guide.get(), s.face_guide.get(), &st));
+  s.pending = {m.config.bos_id};
+  s.t_loop = Clock::now();
+  return Status::Ok();
+}
+
+// The per-input state the options ask for (built once per input, kept for the next run on it).
+Status Generator::AttachInput(const std::vector<float>& points, const GenerateOptions& options,
+                              const GenerateCallbacks& callbacks) {
+  Session& s = *session_;
+  GenerationStats& st = s.res.stats;
   CacheInput(points);
   if (options.surface_tolerance > 0 && !options.unconstrained) {
-    t0 = Clock::now();
+    const auto t0 = Clock::now();
     if (!guide_ || guide_->tolerance() != options.surface_tolerance)
       guide_ = std::make_shared<const SurfaceGuide>(points, options.surface_tolerance);
     s.guide = guide_;
     st.seconds.guidance += Since(t0);
   }
   if (options.face_guidance != FaceGuidance::kOff && !options.unconstrained) {
-    t0 = Clock::now();
+    const auto t0 = Clock::now();
     if (!face_guide_ || face_guide_->tolerance() != options.face_tolerance) {
       // The distance field is surface guidance's; its tolerance does not matter here.
       auto field = guide_ ? guide_ : std::make_shared<const SurfaceGuide>(points, 1);
@@ -214,19 +267,10 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   }
   if (options.orient_to_input) {
     if (!orientation_) {
-      auto made = MakeInputOrientation(points, callbacks.cancel);
-      if (!made.ok()) {
-        session_.reset();
-        return made.status();
-      }
-      orientation_ = std::move(*made);
+      SILK_ASSIGN_OR_RETURN(orientation_, MakeInputOrientation(points, callbacks.cancel));
     }
     s.orientation = orientation_;
   }
-  s.chain = BuildSamplerChain(ChainSettings(options, &s.grammar, s.guide.get(), s.face_guide.get(), &st));
-  s.pending = {cfg.bos_id};
-  s.t_start = t_start;
-  s.t_loop = Clock::now();
   return Status::Ok();
 }
 
@@ -239,15 +283,6 @@ Status Generator::Step() {
   return status;
 }
 
-// What one step decides: the id, whether the grammar forced it, and the legal set it is sampled
-// from (null when unconstrained).
-struct Generator::StepChoice {
-  int32_t id = -1;
-  bool forced = false;
-  const TokenMask* mask = nullptr;
-  const std::vector<std::pair<int32_t, float>>* penalties = nullptr;  // soft face guidance
-};
-
 Status Generator::StepOnce() {
   Session& s = *session_;
   if (s.callbacks.cancel && s.callbacks.cancel()) {
@@ -256,13 +291,69 @@ Status Generator::StepOnce() {
   }
   StepChoice c;
   if (!s.options.unconstrained && !ConsultGrammar(&c)) return Status::Ok();  // dead end: stop reason set
-  if (!c.forced) SILK_RETURN_IF_ERROR(FeedPending());                        // a forced id needs no logits
-  ChooseId(&c);
-  RecordTrace(c);
-  SILK_RETURN_IF_ERROR(AcceptId(c.id));
-  AppendId(c.id);
+  if (c.forced) return TakeId(&c, nullptr);                                  // a forced id needs no logits
+  SILK_RETURN_IF_ERROR(FeedPending());
+  return TakeId(&c, s.runner->last_logits());
+}
+
+Status Generator::TakeId(StepChoice* c, const float* logits) {
+  ChooseId(c, logits);
+  RecordTrace(*c);
+  SILK_RETURN_IF_ERROR(AcceptId(c->id));
+  AppendId(c->id);
   ReportProgress();
   return Status::Ok();
+}
+
+StatusOr<Generator::RowStep> Generator::StepWithoutLogits() {
+  if (!session_ || session_->failed) return InvalidArgument("generate: no generation in progress (Start first)");
+  if (finished()) return RowStep::kEnded;
+  Session& s = *session_;
+  if (s.held) return RowStep::kNeedsLogits;
+  if (s.callbacks.cancel && s.callbacks.cancel()) {
+    s.res.stats.stop_reason = StopReason::kCancelled;
+    return Status(StatusCode::kCancelled, "generation cancelled");
+  }
+  StepChoice c;
+  if (!s.options.unconstrained && !ConsultGrammar(&c)) return RowStep::kEnded;  // dead end: stop reason set
+  if (!c.forced) {
+    s.held = c;
+    return RowStep::kNeedsLogits;
+  }
+  Status status = TakeId(&c, nullptr);
+  if (!status.ok()) {
+    s.failed = status.code() != StatusCode::kCancelled;
+    return status;
+  }
+  return RowStep::kStepped;
+}
+
+const std::vector<int32_t>& Generator::pending() const {
+  static const std::vector<int32_t> kNone;
+  return session_ ? session_->pending : kNone;
+}
+
+bool Generator::waiting_for_logits() const { return session_ && session_->held.has_value(); }
+
+void Generator::NoteFed(double seconds, int64_t calls) {
+  if (!session_) return;
+  Session& s = *session_;
+  s.res.stats.seconds.decoder += seconds;
+  s.row_calls += calls;
+  s.row_fed += static_cast<int64_t>(s.pending.size());
+  s.pending.clear();
+}
+
+Status Generator::StepWithLogits(const float* logits) {
+  if (!session_ || session_->failed || !session_->held || !session_->pending.empty())
+    return InvalidArgument("generate: no step is waiting for logits");
+  Session& s = *session_;
+  StepChoice c = *s.held;
+  s.held.reset();
+  Status status = CheckLogits(logits);
+  if (status.ok()) status = TakeId(&c, logits);
+  if (!status.ok()) s.failed = true;
+  return status;
 }
 
 // The chain's stages before the logits: the grammar's forced id (or -1) and legal mask, guided
@@ -289,19 +380,23 @@ bool Generator::ConsultGrammar(StepChoice* c) {
 Status Generator::FeedPending() {
   Session& s = *session_;
   const auto t0 = Clock::now();
-  SILK_RETURN_IF_ERROR(s.runner.Feed(s.pending.data(), static_cast<int64_t>(s.pending.size())));
+  SILK_RETURN_IF_ERROR(s.runner->Feed(s.pending.data(), static_cast<int64_t>(s.pending.size())));
   s.res.stats.seconds.decoder += Since(t0);
   s.pending.clear();
-  const int64_t bad = FirstNonFinite(s.runner.last_logits(), model_.config().model_vocab_size);
+  return CheckLogits(s.runner->last_logits());
+}
+
+Status Generator::CheckLogits(const float* logits) const {
+  const int64_t bad = FirstNonFinite(logits, model_.config().model_vocab_size);
   if (bad >= 0)
     return InternalError(model_.config().dir + ": the decoder produced a non-finite logit (id " + std::to_string(bad) +
-                         ") after " + std::to_string(s.res.tokens.size()) +
+                         ") after " + std::to_string(session_->res.tokens.size()) +
                          " ids; the model's weights are corrupt (NaN or infinite)");
   return Status::Ok();
 }
 
 // Samples the id unless the grammar forced it: the chain's stages on the logits.
-void Generator::ChooseId(StepChoice* c) {
+void Generator::ChooseId(StepChoice* c, const float* logits) {
   Session& s = *session_;
   GenerationStats& st = s.res.stats;
   if (c->forced) {
@@ -309,7 +404,7 @@ void Generator::ChooseId(StepChoice* c) {
     return;
   }
   const auto t0 = Clock::now();
-  c->id = s.chain->Sample(s.runner.last_logits(), c->mask);
+  c->id = s.chain->Sample(logits, c->mask);
   st.seconds.sampling += Since(t0);
   ++st.sampled_tokens;
 }
@@ -410,8 +505,8 @@ StatusOr<GenerateResult> Generator::Finish(const CancelCheck& cancel) {
   GenerationStats& st = res.stats;
   const double loop_seconds = Since(s.t_loop);
   st.tokens = static_cast<int64_t>(res.tokens.size());
-  st.model_calls = s.runner.calls();
-  st.fed_positions = cache_.length();
+  st.model_calls = s.runner ? s.runner->calls() : s.row_calls;
+  st.fed_positions = s.runner ? cache_.length() : s.row_fed;
   st.tokens_per_second = loop_seconds > 0 ? st.tokens / loop_seconds : 0;
   st.generation_seconds = Since(s.t_start);
 

@@ -1,0 +1,253 @@
+// SPDX-License-Identifier: MIT
+// Rows (issue 34): many sequences per decoder call must give each sequence exactly what it gets
+// alone. RowsDecoder's per-row logits and caches against DecoderRunner fed the same chunks (bit for
+// bit with the ai.silk kernels of a contract v4 folder, and with a batch-1 folder run row by row);
+// CandidateRows' candidates against plain Generator runs with their seeds; GenerationSession with
+// rows against rows 1 (the same choice, scores and ids), stepped by ids and layers, and cancelled.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "runtime/candidate_rows.h"
+#include "runtime/candidates.h"
+#include "runtime/decoder_runner.h"
+#include "runtime/generation_session.h"
+#include "runtime/rows_decoder.h"
+#include "runtime_test_util.h"
+
+namespace silk {
+namespace {
+
+struct Variant {
+  const char* folder;  // under tests/models
+  std::optional<DecoderPrecision> decoder;
+  KvPrecision kv;
+  bool rows_contract;
+};
+
+std::string Name(const Variant& v) {
+  std::string folder = v.folder;
+  for (char& c : folder)
+    if (c == '-') c = '_';
+  return folder + "_" + (v.decoder ? DecoderPrecisionName(*v.decoder) : "default") + "_" +
+         KvPrecisionName(v.kv);
+}
+
+std::unique_ptr<Model> Load(const Variant& v) {
+  ModelLoadOptions o;
+  o.threads = 1;
+  o.decoder = v.decoder;
+  o.kv = v.kv;
+  auto m = Model::Load(testing::SourcePath(std::string("tests/models/") + v.folder), o);
+  EXPECT_TRUE(m.ok()) << m.status().ToString();
+  return m.ok() ? std::move(*m) : nullptr;
+}
+
+// The v4 folder's INT4 decoder with its fp16 and int8 caches (ai.silk kernels), and the batch-1
+// tiny model (fp32 cache: onnxruntime's own attention), which runs its rows one after another.
+const Variant kVariants[] = {
+    {"tiny-rows", DecoderPrecision::kInt4, KvPrecision::kFp16, true},
+    {"tiny-rows", DecoderPrecision::kInt4, KvPrecision::kInt8, true},
+    {"tiny", std::nullopt, KvPrecision::kFp32, false},
+};
+
+class RowsTest : public ::testing::TestWithParam<Variant> {
+ protected:
+  void SetUp() override {
+    model_ = Load(GetParam());
+    ASSERT_TRUE(model_);
+    ASSERT_EQ(model_->impl().rows_contract, GetParam().rows_contract);
+    points_ = testing::SamplePoints(*model_);
+    ASSERT_FALSE(points_.empty());
+  }
+  std::unique_ptr<Model> model_;
+  std::vector<float> points_;
+};
+
+// Each row's feeds: chunks of ids (BOS first); row 2 takes a run longer than one decoder chunk.
+std::vector<std::vector<std::vector<int32_t>>> Feeds() {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int32_t> id(0, 10266);
+  auto run = [&](int n) {
+    std::vector<int32_t> v(static_cast<size_t>(n));
+    for (int32_t& x : v) x = id(rng);
+    return v;
+  };
+  std::vector<std::vector<std::vector<int32_t>>> rows(3);
+  rows[0] = {{10269}, run(1), run(4), run(1), run(1), run(2)};
+  rows[1] = {{10269}, run(3), run(1), run(1)};
+  rows[2] = {{10269}, run(300), run(1), run(2), run(1), run(1)};
+  for (auto& r : rows)
+    for (size_t i = 1; i < r.size(); ++i) r[i].insert(r[i].begin(), 0);  // "the last id" sits in each feed
+  return rows;
+}
+
+TEST_P(RowsTest, EachRowOfAFeedIsTheRowAlone) {
+  const Model::Impl& m = model_->impl();
+  auto cross = RunEncoder(m, points_.data(), static_cast<int64_t>(points_.size() / 6));
+  ASSERT_TRUE(cross.ok());
+  const auto feeds = Feeds();
+  const int64_t V = model_->config().model_vocab_size;
+  RowsKvCache rows_cache;
+  ASSERT_TRUE(rows_cache.Reserve(3, 1023, ModelKvShape(m), /*first=*/4).ok());  // grows while fed
+  RowsDecoder rows(m, &rows_cache);
+  rows.SetSources(1);
+  rows.SetSource(0, cross->GetTensorMutableData<void>());
+  std::vector<KvCache> alone_cache(3);
+  std::vector<std::unique_ptr<DecoderRunner>> alone;
+  for (auto& c : alone_cache) {
+    ASSERT_TRUE(c.Reserve(1023, ModelKvShape(m)).ok());
+    alone.push_back(std::make_unique<DecoderRunner>(m, &c, cross->GetTensorMutableData<void>()));
+  }
+  for (size_t step = 0; step < 6; ++step) {
+    std::vector<RowFeed> call;
+    for (int32_t r = 0; r < 3; ++r) {
+      if (step >= feeds[r].size()) continue;
+      const auto& ids = feeds[static_cast<size_t>(r)][step];
+      call.push_back(RowFeed{r, ids.data(), static_cast<int64_t>(ids.size()), 0});
+      ASSERT_TRUE(alone[static_cast<size_t>(r)]->Feed(ids.data(), static_cast<int64_t>(ids.size())).ok());
+    }
+    const Status s = rows.Feed(call);
+    ASSERT_TRUE(s.ok()) << s.ToString();
+    for (const RowFeed& f : call) {
+      const float* a = alone[static_cast<size_t>(f.slot)]->last_logits();
+      ASSERT_EQ(0, std::memcmp(a, rows.logits(f.slot), static_cast<size_t>(V) * sizeof(float)))
+          << "row " << f.slot << " feed " << step << " differs from the row alone";
+    }
+  }
+  for (int32_t r = 0; r < 3; ++r) {
+    const KvCache& c = alone_cache[static_cast<size_t>(r)];
+    ASSERT_EQ(rows_cache.length(r), c.length());
+    std::vector<float> a(static_cast<size_t>(c.length() * c.shape().position_values())), b(a.size());
+    c.CopyTimeMajor(a.data());
+    rows_cache.CopyTimeMajor(r, b.data());
+    EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float))) << "row " << r << "'s cache";
+  }
+  EXPECT_GE(rows_cache.capacity(), 301);  // grew from 4
+}
+
+GenerateOptions Options(double temperature, int32_t candidates, int32_t rows) {
+  GenerateOptions o;
+  o.sampling.temperature = temperature;
+  o.sampling.top_k = 50;
+  o.sampling.seed = 7;
+  o.max_tokens = 300;
+  o.surface_tolerance = 3;
+  o.candidates = candidates;
+  o.rows = rows;
+  return o;
+}
+
+TEST_P(RowsTest, CandidatesAreTheirRunsAlone) {
+  for (const double temperature : {0.0, 0.9}) {
+    const GenerateOptions o = Options(temperature, 5, 3);
+    CandidateRows rows(*model_);
+    ASSERT_TRUE(rows.Start(points_, o, 3, nullptr, {}).ok());
+    std::map<int32_t, GenerateResult> got;
+    while (!rows.done()) {
+      const Status s = rows.Advance(1 << 20, false, {});
+      ASSERT_TRUE(s.ok()) << s.ToString();
+      for (auto& [i, r] : rows.TakeEnded()) got[i] = std::move(r);
+    }
+    ASSERT_EQ(got.size(), 5u);
+    int64_t calls_alone = 0;
+    for (const auto& [i, r] : got) calls_alone += r.stats.model_calls;
+    // Contract v4: one decoder run serves every row waiting; batch 1: one run per row and chunk.
+    if (GetParam().rows_contract)
+      EXPECT_LT(rows.decoder_calls() * 2, calls_alone);
+    else
+      EXPECT_EQ(rows.decoder_calls(), calls_alone);
+    Generator alone(*model_);
+    for (int32_t i = 0; i < 5; ++i) {
+      GenerateOptions one = o;
+      one.sampling.seed = CandidateSeed(o.sampling.seed, i);
+      auto run = alone.Run(points_, one);
+      ASSERT_TRUE(run.ok()) << run.status().ToString();
+      EXPECT_EQ(got[i].tokens, run->tokens) << "candidate " << i << " at temperature " << temperature;
+      EXPECT_EQ(got[i].mesh.faces, run->mesh.faces);
+      EXPECT_EQ(got[i].stats.stop_reason, run->stats.stop_reason);
+      EXPECT_EQ(got[i].stats.model_calls, run->stats.model_calls);
+      EXPECT_EQ(got[i].stats.fed_positions, run->stats.fed_positions);
+      EXPECT_GT(run->tokens.size(), 14u);
+    }
+    if (temperature > 0) EXPECT_NE(got[0].tokens, got[1].tokens);  // the seeds differ
+  }
+}
+
+GenerationRequest Request(int32_t candidates, int32_t rows) {
+  GenerationRequest r;
+  r.seed = 3;
+  r.temperature = 0.9;
+  r.top_k = 50;
+  r.max_tokens = 250;
+  r.candidates = candidates;
+  r.rows = rows;
+  r.surface_tolerance = 2;
+  return r;
+}
+
+SessionResult RunSession(GenerationSession* s, const GenerationRequest& r, int32_t max_ids, AdvanceUntil until) {
+  const Status started = s->Start(r, testing::SampleMeshInput());
+  EXPECT_TRUE(started.ok()) << started.ToString();
+  while (started.ok() && !s->done()) {
+    const Status st = s->Advance(max_ids, until);
+    EXPECT_TRUE(st.ok()) << st.ToString();
+    if (!st.ok()) break;
+  }
+  auto out = s->Finish();
+  EXPECT_TRUE(out.ok()) << out.status().ToString();
+  return out.ok() ? std::move(*out) : SessionResult{};
+}
+
+void ExpectSameChoice(const SessionResult& a, const SessionResult& b, const std::string& what) {
+  EXPECT_EQ(a.generation.tokens, b.generation.tokens) << what;
+  EXPECT_EQ(a.output.triangles, b.output.triangles) << what;
+  EXPECT_EQ(a.generation.stats.chosen_candidate, b.generation.stats.chosen_candidate) << what;
+  ASSERT_EQ(a.generation.stats.candidates.size(), b.generation.stats.candidates.size()) << what;
+  for (size_t i = 0; i < a.generation.stats.candidates.size(); ++i) {
+    const CandidateScore &x = a.generation.stats.candidates[i], &y = b.generation.stats.candidates[i];
+    EXPECT_EQ(x.seed, y.seed) << what << " candidate " << i;
+    EXPECT_EQ(x.score, y.score) << what << " candidate " << i;
+    EXPECT_EQ(x.tokens, y.tokens) << what << " candidate " << i;
+    EXPECT_EQ(x.faces, y.faces) << what << " candidate " << i;
+  }
+}
+
+TEST_P(RowsTest, SessionWithRowsChoosesAsOneAfterAnother) {
+  GenerationSession session(*model_);
+  const SessionResult one = RunSession(&session, Request(6, 1), 1 << 30, AdvanceUntil::kIds);
+  EXPECT_EQ(one.generation.stats.rows, 1);
+  const SessionResult four = RunSession(&session, Request(6, 4), 1 << 30, AdvanceUntil::kIds);
+  EXPECT_EQ(four.generation.stats.rows, 4);
+  ExpectSameChoice(one, four, "rows 4");
+  // Stepped by a few ids (logits kept across calls) and by layers.
+  ExpectSameChoice(one, RunSession(&session, Request(6, 4), 3, AdvanceUntil::kIds), "rows 4, 3 ids a call");
+  ExpectSameChoice(one, RunSession(&session, Request(6, 8), 50, AdvanceUntil::kLayer), "rows 8 (6 used), by layer");
+}
+
+TEST_P(RowsTest, ACancelledSessionWithRowsFinishesWithTheCandidatesStarted) {
+  GenerationSession session(*model_);
+  int reports = 0;
+  GenerateCallbacks cb;
+  cb.progress = [&](const GenerateProgress&) { ++reports; };
+  cb.cancel = [&] { return reports >= 120; };
+  ASSERT_TRUE(session.Start(Request(6, 3), testing::SampleMeshInput(), cb).ok());
+  Status st;
+  while (!session.done() && st.ok()) st = session.Advance(1 << 20);
+  EXPECT_EQ(st.code(), StatusCode::kCancelled);
+  EXPECT_TRUE(session.done());
+  auto out = session.Finish();
+  ASSERT_TRUE(out.ok()) << out.status().ToString();
+  EXPECT_EQ(out->generation.stats.stop_reason, StopReason::kCancelled);
+  EXPECT_EQ(out->generation.stats.candidates.size(), 3u);  // the three rows started
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, RowsTest, ::testing::ValuesIn(kVariants),
+                         [](const auto& info) { return Name(info.param); });
+
+}  // namespace
+}  // namespace silk
