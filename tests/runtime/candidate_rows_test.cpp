@@ -52,6 +52,7 @@ std::unique_ptr<Model> Load(const Variant& v) {
 const Variant kVariants[] = {
     {"tiny-rows", DecoderPrecision::kInt4, KvPrecision::kFp16, true},
     {"tiny-rows", DecoderPrecision::kInt4, KvPrecision::kInt8, true},
+    {"tiny-rows", DecoderPrecision::kFp32, KvPrecision::kFp16, true},
     {"tiny", std::nullopt, KvPrecision::kFp32, false},
 };
 
