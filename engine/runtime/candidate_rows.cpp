@@ -18,8 +18,7 @@ double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 int64_t ChunksOf(int64_t n) { return (n + kDecoderChunk - 1) / kDecoderChunk; }
 }  // namespace
 
-CandidateRows::CandidateRows(const Model& model)
-    : model_(model), encoder_run_(std::make_unique<Ort::RunOptions>()) {}
+CandidateRows::CandidateRows(const Model& model) : model_(model), encoder_run_(std::make_unique<Ort::RunOptions>()) {}
 CandidateRows::~CandidateRows() = default;
 
 void CandidateRows::InterruptEncoder() { encoder_run_->SetTerminate(); }
@@ -66,8 +65,8 @@ Status CandidateRows::StartNext(int32_t slot) {
   r.candidate = next_;
   r.ready = false;
   // Only the first candidate's stats count the encoder run (the others share it).
-  SILK_RETURN_IF_ERROR(
-      r.generator->StartRow(points_, o, callbacks_ ? callbacks_(next_) : GenerateCallbacks{}, next_ == 0 ? encoder_seconds_ : 0));
+  SILK_RETURN_IF_ERROR(r.generator->StartRow(points_, o, callbacks_ ? callbacks_(next_) : GenerateCallbacks{},
+                                             next_ == 0 ? encoder_seconds_ : 0));
   ++next_;
   ++live_;
   return Status::Ok();
@@ -192,6 +191,13 @@ const Generator* CandidateRows::lead() const {
     if (!best || g->tokens().size() > best->tokens().size()) best = g;
   }
   return best;
+}
+
+std::vector<std::pair<int32_t, const Generator*>> CandidateRows::live() const {
+  std::vector<std::pair<int32_t, const Generator*>> out;
+  for (int32_t s = 0; s < live_; ++s)
+    out.emplace_back(rows_[static_cast<size_t>(s)].candidate, rows_[static_cast<size_t>(s)].generator.get());
+  return out;
 }
 
 int32_t CandidateRows::lead_candidate() const {

@@ -46,10 +46,12 @@ class CandidateRows {
   int32_t started() const { return next_; }
   // The candidate in progress with the most ids (what a preview shows), or null / -1.
   const Generator* lead() const;
+  // The candidates in progress: (index, its generator), by row.
+  std::vector<std::pair<int32_t, const Generator*>> live() const;
   int32_t lead_candidate() const;
   int64_t cache_bytes() const { return cache_.bytes(); }
   int64_t decoder_calls() const { return decoder_ ? decoder_->calls() : 0; }  // decoder.onnx runs, all rows
-  double decoder_seconds() const { return decoder_seconds_; }  // the feeds' wall time, all rows together
+  double decoder_seconds() const { return decoder_seconds_; }                 // the feeds' wall time, all rows together
 
  private:
   struct Row {

@@ -35,6 +35,7 @@ class CandidateChoice {
   Status Add(GenerateResult* result, uint64_t seed, const std::vector<float>& points, const CancelCheck& cancel);
   int32_t size() const { return static_cast<int32_t>(all_.size()); }
   const std::vector<CandidateScore>& scored() const { return all_; }  // in order
+  int32_t chosen() const { return chosen_; }                          // the best so far (0 when none)
   // The chosen one, with stats.candidates listing every candidate, stats.chosen_candidate its
   // index, and stats.seconds / generation_seconds covering all candidates. Leaves the choice empty.
   GenerateResult Take();

@@ -28,6 +28,15 @@ void GenerationSession::Reset() {
   rows_.Abandon();
   by_rows_ = false;
   waiting_.clear();
+  built_.clear();
+}
+
+Status GenerationSession::Score(GenerateResult* result, int32_t index, const CancelCheck& cancel) {
+  TokenizerDecodedMesh mesh = result->mesh;  // the choice may take the result
+  SILK_RETURN_IF_ERROR(choice_.Add(result, CandidateSeed(plan_.options.sampling.seed, index), points_, cancel));
+  if (built_.size() <= static_cast<size_t>(index)) built_.resize(static_cast<size_t>(index) + 1);
+  built_[static_cast<size_t>(index)] = std::move(mesh);
+  return Status::Ok();
 }
 
 Status GenerationSession::Start(const GenerationRequest& request, const GenerationInput& input,
@@ -95,7 +104,7 @@ Status GenerationSession::CloseCandidate(const CancelCheck& cancel) {
     SILK_ASSIGN_OR_RETURN(GenerateResult r, generator_.Finish(cancel));
     ended_ = std::move(r);
   }
-  SILK_RETURN_IF_ERROR(choice_.Add(&*ended_, CandidateSeed(plan_.options.sampling.seed, candidate_), points_, cancel));
+  SILK_RETURN_IF_ERROR(Score(&*ended_, candidate_, cancel));
   ended_.reset();
   return Status::Ok();
 }
@@ -130,8 +139,7 @@ int32_t GenerationSession::candidate() const { return by_rows_ ? std::max(rows_.
 Status GenerationSession::ScoreEnded(const CancelCheck& cancel) {
   for (auto& [index, result] : rows_.TakeEnded()) waiting_[static_cast<size_t>(index)] = std::move(result);
   for (size_t i = static_cast<size_t>(choice_.size()); i < waiting_.size() && waiting_[i]; ++i) {
-    SILK_RETURN_IF_ERROR(choice_.Add(&*waiting_[i], CandidateSeed(plan_.options.sampling.seed, static_cast<int32_t>(i)),
-                                     points_, cancel));
+    SILK_RETURN_IF_ERROR(Score(&*waiting_[i], static_cast<int32_t>(i), cancel));
     waiting_[i].reset();
   }
   return Status::Ok();
@@ -258,6 +266,67 @@ StatusOr<SessionPreview> GenerationSession::Preview() const {
     SILK_ASSIGN_OR_RETURN(p.grid, g->MeshSoFar());
   } else if (ended_) {
     p.grid = ended_->mesh;
+  }
+  p.output = ToInputFrame(p.grid, transform_);
+  return p;
+}
+
+const Generator* GenerationSession::RunningGenerator(int32_t index) const {
+  if (by_rows_) {
+    for (const auto& [i, g] : rows_.live())
+      if (i == index) return g;
+    return nullptr;
+  }
+  return index == candidate_ && generator_.active() ? &generator_ : nullptr;
+}
+
+const GenerateResult* GenerationSession::EndedResult(int32_t index) const {
+  if (by_rows_)
+    return static_cast<size_t>(index) < waiting_.size() && waiting_[static_cast<size_t>(index)]
+               ? &*waiting_[static_cast<size_t>(index)]
+               : nullptr;
+  return index == candidate_ && ended_ ? &*ended_ : nullptr;
+}
+
+std::vector<CandidateView> GenerationSession::Candidates() const {
+  std::vector<CandidateView> out;
+  if (!active_) return out;
+  const std::vector<CandidateScore>& scored = choice_.scored();
+  for (int32_t i = 0; i < candidates(); ++i) {
+    CandidateView v;
+    v.index = i;
+    if (static_cast<size_t>(i) < scored.size()) {
+      const CandidateScore& c = scored[static_cast<size_t>(i)];
+      v.state = CandidateView::State::kScored;
+      v.tokens = c.tokens;
+      v.faces = c.faces;
+      v.score = c.score;
+      v.best = i == choice_.chosen();
+    } else if (const GenerateResult* r = EndedResult(i)) {
+      v.state = CandidateView::State::kEnded;
+      v.tokens = static_cast<int64_t>(r->tokens.size());
+      v.faces = static_cast<int32_t>(r->mesh.faces.size());
+    } else if (const Generator* g = RunningGenerator(i)) {
+      v.state = CandidateView::State::kRunning;
+      v.tokens = static_cast<int64_t>(g->tokens().size());
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
+StatusOr<SessionPreview> GenerationSession::PreviewCandidate(int32_t index) const {
+  if (!active_) return InvalidArgument("generate: no generation in progress");
+  if (index < 0 || index >= candidates())
+    return InvalidArgument("generate: candidate " + std::to_string(index) + " is not in [0, " +
+                           std::to_string(candidates()) + ")");
+  SessionPreview p;
+  if (static_cast<size_t>(index) < choice_.scored().size()) {
+    p.grid = built_[static_cast<size_t>(index)];
+  } else if (const GenerateResult* r = EndedResult(index)) {
+    p.grid = r->mesh;
+  } else if (const Generator* g = RunningGenerator(index)) {
+    SILK_ASSIGN_OR_RETURN(p.grid, g->MeshSoFar());
   }
   p.output = ToInputFrame(p.grid, transform_);
   return p;

@@ -9,6 +9,7 @@
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -42,6 +43,17 @@ struct SessionResult {
 struct SessionPreview {
   TokenizerDecodedMesh grid;
   IoMesh output;
+};
+
+// One of best of N's candidates as the step-wise API shows it (every row, the best so far marked).
+struct CandidateView {
+  enum class State { kWaiting, kRunning, kEnded, kScored };  // not started / generating / built / scored
+  int32_t index = 0;
+  State state = State::kWaiting;
+  int64_t tokens = 0;
+  int32_t faces = -1;                                       // built (ended, scored): its mesh's faces
+  double score = std::numeric_limits<double>::quiet_NaN();  // scored only
+  bool best = false;                                        // the chosen one of those scored so far
 };
 
 class GenerationSession {
@@ -89,6 +101,11 @@ class GenerationSession {
   // then the unscored one with score 0), chosen_candidate the last of them.
   GenerationStats CancelledStats() const;
   StatusOr<SessionPreview> Preview() const;
+  // Every candidate of the run in progress (N entries; empty when none is active).
+  std::vector<CandidateView> Candidates() const;
+  // Candidate `index`'s mesh: its completed layers while it runs, its whole mesh once built (empty
+  // before it starts).
+  StatusOr<SessionPreview> PreviewCandidate(int32_t index) const;
   // The last started run's resolved request and encoder points (kept after Finish).
   const GenerationPlan& plan() const { return plan_; }
   const std::vector<float>& points() const { return points_; }
@@ -128,6 +145,11 @@ class GenerationSession {
   bool by_rows_ = false;
   std::chrono::steady_clock::time_point started_;       // rows mode: the run's start (wall time)
   std::vector<std::optional<GenerateResult>> waiting_;  // rows mode: ended, by index, not yet scored
+  std::vector<TokenizerDecodedMesh> built_;             // scored candidates' meshes, by index (previews)
+  // Adds candidate `index`'s result to the choice (scored, polling `cancel`), keeping its mesh.
+  Status Score(GenerateResult* result, int32_t index, const CancelCheck& cancel);
+  const Generator* RunningGenerator(int32_t index) const;
+  const GenerateResult* EndedResult(int32_t index) const;
   int32_t candidate_ = 0;
   bool active_ = false, cancelled_ = false, failed_ = false;
 };

@@ -172,8 +172,8 @@ void RowsDecoder::MakeViews(const ViewKey& key) {
   const int64_t slice = CrossSliceBytes(model_);
   for (int64_t lk = 0; lk < 2 * d.n_layers; ++lk) {
     unsigned char* at = cross_.data() + (lk * sources_ + std::max(key.source, 0)) * slice;
-    in_values_.push_back(Ort::Value::CreateTensor(mem, at, static_cast<size_t>(S * slice), cross_shape.data(), 4,
-                                                  model_.cross_type));
+    in_values_.push_back(
+        Ort::Value::CreateTensor(mem, at, static_cast<size_t>(S * slice), cross_shape.data(), 4, model_.cross_type));
   }
 }
 

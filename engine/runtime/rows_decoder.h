@@ -70,8 +70,8 @@ class RowsDecoder {
   std::vector<unsigned char> cross_;  // [L, 2, S, H, M, D] of the cross type
   std::vector<std::string> in_names_, out_names_;
   std::vector<const char*> in_ptrs_, out_ptrs_;
-  std::vector<int64_t> ids_, positions_;                            // [R, T]
-  std::vector<int32_t> seqlens_, news_, source_of_;                 // [R]
+  std::vector<int64_t> ids_, positions_;             // [R, T]
+  std::vector<int32_t> seqlens_, news_, source_of_;  // [R]
   int32_t total_ = 0;
   std::vector<Ort::Value> in_values_, out_values_;
   ViewKey views_;

@@ -33,8 +33,7 @@ std::string Name(const Variant& v) {
   std::string folder = v.folder;
   for (char& c : folder)
     if (c == '-') c = '_';
-  return folder + "_" + (v.decoder ? DecoderPrecisionName(*v.decoder) : "default") + "_" +
-         KvPrecisionName(v.kv);
+  return folder + "_" + (v.decoder ? DecoderPrecisionName(*v.decoder) : "default") + "_" + KvPrecisionName(v.kv);
 }
 
 std::unique_ptr<Model> Load(const Variant& v) {
@@ -245,6 +244,46 @@ TEST_P(RowsTest, ACancelledSessionWithRowsFinishesWithTheCandidatesStarted) {
   ASSERT_TRUE(out.ok()) << out.status().ToString();
   EXPECT_EQ(out->generation.stats.stop_reason, StopReason::kCancelled);
   EXPECT_EQ(out->generation.stats.candidates.size(), 3u);  // the three rows started
+}
+
+// The step-wise view of every candidate: at most `rows` running at once, the best so far marked
+// among the scored, each one's preview its completed layers while it runs and its mesh once built.
+TEST_P(RowsTest, EveryCandidateIsShownWhileTheRowsRun) {
+  GenerationSession session(*model_);
+  ASSERT_TRUE(session.Start(Request(5, 2), testing::SampleMeshInput()).ok());
+  int32_t most_running = 0, steps = 0;
+  std::vector<int64_t> faces_seen(5, 0);
+  while (!session.done()) {
+    ASSERT_TRUE(session.Advance(40).ok());
+    ++steps;
+    const std::vector<CandidateView> views = session.Candidates();
+    ASSERT_EQ(views.size(), 5u);
+    int32_t running = 0, best = 0, scored = 0;
+    for (const CandidateView& v : views) {
+      running += v.state == CandidateView::State::kRunning;
+      scored += v.state == CandidateView::State::kScored;
+      best += v.best;
+      auto p = session.PreviewCandidate(v.index);
+      ASSERT_TRUE(p.ok()) << p.status().ToString();
+      if (v.state == CandidateView::State::kWaiting) EXPECT_TRUE(p->grid.faces.empty());
+      if (v.faces >= 0) EXPECT_EQ(static_cast<int32_t>(p->grid.faces.size()), v.faces);
+      if (v.state == CandidateView::State::kRunning)
+        EXPECT_GE(static_cast<int64_t>(p->grid.faces.size()), faces_seen[static_cast<size_t>(v.index)]);  // grows
+      faces_seen[static_cast<size_t>(v.index)] = static_cast<int64_t>(p->grid.faces.size());
+    }
+    EXPECT_LE(running, 2);
+    EXPECT_EQ(best, scored > 0 ? 1 : 0);
+    most_running = std::max(most_running, running);
+  }
+  EXPECT_EQ(most_running, 2);
+  EXPECT_GT(steps, 3);
+  EXPECT_FALSE(session.PreviewCandidate(5).ok());
+  int32_t marked = -1;
+  for (const CandidateView& v : session.Candidates())
+    if (v.best) marked = v.index;
+  auto out = session.Finish();
+  ASSERT_TRUE(out.ok());
+  if (marked >= 0) EXPECT_EQ(out->generation.stats.chosen_candidate, marked);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, RowsTest, ::testing::ValuesIn(kVariants),
