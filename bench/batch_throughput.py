@@ -7,9 +7,12 @@ run: one `silkgen FILE` process per mesh (the model loaded each time), 2 threads
   1 process x 2 threads     silkgen --batch LIST --threads 2
   2 processes x 1 thread    silkgen --batch LIST --shard i/2 --threads 1, both at once
   best of N                 the 1 x 2 run with --candidates N against --candidates 1
+  best of N as rows         the same with --rows 1 (one candidate after another) and --rows R
+                            (up to R candidates in one decoder call per step; the same outputs,
+                            byte for byte: checked here)
 
 Usage: python3 bench/batch_throughput.py [--silkgen build/apps/silkgen] [--model DIR]
-       [--corpus ../shared/corpus/dev] [--stride 20] [--candidates 8] [--max-tokens 0]
+       [--corpus ../shared/corpus/dev] [--stride 20] [--candidates 8] [--rows 8] [--max-tokens 0]
 """
 
 import argparse
@@ -33,6 +36,15 @@ def timed(cmds):
     return time.perf_counter() - t0
 
 
+def same_outputs(one, many):
+    """The rows run's meshes are the one-after-another run's, byte for byte (exits otherwise)."""
+    a, b = sorted(p.name for p in one.glob("*.glb")), sorted(p.name for p in many.glob("*.glb"))
+    differ = [n for n in a if (one / n).read_bytes() != (many / n).read_bytes()]
+    if a != b or not a or differ:
+        sys.exit(f"--rows changed the outputs: {one} {len(a)} files, {many} {len(b)} files, differing {differ[:5]}")
+    print(f"--rows: {len(a)} outputs byte-identical to --rows 1")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--silkgen", default=ROOT / "build/apps/silkgen", type=pathlib.Path)
@@ -40,6 +52,7 @@ def main():
     ap.add_argument("--corpus", default=ROOT.parent / "shared/corpus/dev", type=pathlib.Path)
     ap.add_argument("--stride", type=int, default=20, help="every STRIDE-th file of the sorted corpus")
     ap.add_argument("--candidates", type=int, default=8, help="N of the best-of-N row")
+    ap.add_argument("--rows", type=int, default=8, help="R of the best-of-N-as-rows row")
     ap.add_argument("--max-tokens", type=int, default=0, help="id cap per mesh (0 = the model's)")
     a = ap.parse_args()
     files = sorted(a.corpus.glob("*.obj"))[:: a.stride]
@@ -76,12 +89,16 @@ def main():
                 ),
             )
         )
-        rows.append(
-            (
-                f"--batch 1 process x 2 threads, best of {a.candidates}",
-                timed([[a.silkgen, *batch("b12n", "--threads", 2, "--candidates", a.candidates)]]),
+        for r in (1, a.rows):
+            rows.append(
+                (
+                    f"--batch 1 process x 2 threads, best of {a.candidates}, --rows {r}",
+                    timed(
+                        [[a.silkgen, *batch(f"b12n_r{r}", "--threads", 2, "--candidates", a.candidates, "--rows", r)]]
+                    ),
+                )
             )
-        )
+        same_outputs(tmp / "b12n_r1", tmp / f"b12n_r{a.rows}")
     print(f"{len(files)} meshes (every {a.stride}th of {a.corpus}), model {a.model}, max-tokens {a.max_tokens}")
     print(f"{'configuration':58s} {'wall s':>8s} {'meshes/h':>9s} {'vs baseline':>11s}")
     for name, s in rows:
