@@ -49,6 +49,8 @@ struct GenerateOptions {
   // Best of N: the candidates GenerationSession runs (runtime/generation_session.h), each a
   // Generator run with a derived seed. A Generator runs one generation and ignores it.
   int32_t candidates = 1;
+  // Best of N: candidates decoded together (GenerationSession); a Generator runs one generation and ignores it
+  int32_t rows = 1;
   // Part orientation (runtime/input_orientation.h): every generated part whose winding
   // disagrees with the encoder's points' normals (area-weighted vote) is reversed, in the final
   // mesh and in MeshSoFar. Off = the winding the ids carry (what decoding the token file gives).
