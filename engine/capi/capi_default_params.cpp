@@ -20,12 +20,18 @@ static_assert(sizeof(ModelParams10) == kSize10<silk_model_params>, "the 1.0 layo
 
 // silk_generate_default_params as libsilk 1.0-1.2 exported it (the struct ended before
 // face_guidance; 1.3 appended two fields): the current defaults cut to the old size, bound as
-// silk_generate_default_params@SILK_1.0 (the current one is @@SILK_1.3). The struct is returned in
+// silk_generate_default_params@SILK_1.0 (the current one is @@SILK_1.5). The struct is returned in
 // memory the caller provides (larger than 16 bytes), so bytes of the old size and alignment are
 // that layout exactly.
 struct alignas(silk_generate_params) GenerateParams10 {
   unsigned char bytes[kSize10<silk_generate_params>];
 };
+// The same as libsilk 1.3-1.4 exported it (the struct ended before rows, which 1.5 appended),
+// bound as silk_generate_default_params@SILK_1.3.
+struct alignas(silk_generate_params) GenerateParams13 {
+  unsigned char bytes[kSize13<silk_generate_params>];
+};
+static_assert(sizeof(GenerateParams13) == kSize13<silk_generate_params>, "the 1.3 layout of silk_generate_params");
 
 }  // namespace silk::capi
 
@@ -56,6 +62,7 @@ silk_generate_params silk_generate_default_params(void) {
   p.orient = SILK_DEFAULT_ORIENT;
   p.face_guidance = SILK_MODEL_VALUE;  // the model's (model.json "sampling"), else libsilk's
   p.face_tolerance = SILK_MODEL_VALUE;
+  p.rows = SILK_MODEL_VALUE;  // the model's (model.json "sampling.rows"), else libsilk's
   return p;
 }
 
@@ -73,6 +80,15 @@ __attribute__((visibility("default"))) silk::capi::GenerateParams10 capi_generat
   return old;
 }
 __asm__(".symver capi_generate_default_params_1_0,silk_generate_default_params@SILK_1.0");
+
+__attribute__((visibility("default"))) silk::capi::GenerateParams13 capi_generate_default_params_1_3(void) {
+  silk_generate_params p = silk_generate_default_params();
+  p.struct_size = static_cast<uint32_t>(sizeof(silk::capi::GenerateParams13));
+  silk::capi::GenerateParams13 old;
+  std::memcpy(old.bytes, &p, sizeof(old.bytes));
+  return old;
+}
+__asm__(".symver capi_generate_default_params_1_3,silk_generate_default_params@SILK_1.3");
 #endif
 
 }  // extern "C"
