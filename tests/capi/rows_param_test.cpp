@@ -80,8 +80,7 @@ TEST_F(CapiRows, OutOfRangeIsRefusedWithTheTablesMessage) {
     silk_generate_params p = Params(1, 60);
     p.rows = bad;
     silk_mesh* out = nullptr;
-    ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT)
-        << bad;
+    ASSERT_EQ(silk::testing::GenerateFromMesh(g, mesh_, &p, &out, nullptr, nullptr), SILK_ERR_INVALID_ARGUMENT) << bad;
     EXPECT_EQ(out, nullptr);
     const std::string message = silk_last_error();
     EXPECT_NE(message.find("rows " + std::to_string(bad) + " is not in [1, 64]"), std::string::npos) << message;
