@@ -580,8 +580,8 @@ typedef struct silk_generate_params {
    * so the mask never empties. 0 = off; 0..127.
    * Default: SILK_DEFAULT_SURFACE_TOLERANCE (chosen by measurement, docs/runtime.md). */
   int32_t surface_tolerance;
-  /* Best of N, 1..64: a generation runs N candidates one after another on the same encoder
-   * points with seeds derived from `seed` (candidate 0: seed itself, so N = 1 is a plain run;
+  /* Best of N, 1..64: a generation runs N candidates (up to `rows` of them decoded together, below)
+   * on the same encoder points with seeds derived from `seed` (candidate 0: seed itself, so N = 1 is a plain run;
    * candidate i >= 1: the first SplitMix64 output seeded with seed + i) and returns the one whose
    * surface is closest to the input (symmetric Chamfer distance to the encoder's points; one with
    * faces always beats one without). silk_generator_run and the step-wise API alike (the same ids and
