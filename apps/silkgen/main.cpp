@@ -80,7 +80,7 @@ struct Args {
   // (SILK_MODEL_VALUE / empty) mean "not given"; a given value is checked by libsilk (CheckSettings).
   double temperature = SILK_MODEL_VALUE, top_p = SILK_MODEL_VALUE, top_p_temperature = SILK_MODEL_VALUE;
   int top_k = SILK_MODEL_VALUE;
-  int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_MODEL_VALUE;
+  int surface_tolerance = SILK_DEFAULT_SURFACE_TOLERANCE, candidates = SILK_MODEL_VALUE, rows = SILK_MODEL_VALUE;
   std::string decoder, kv_precision, preprocessing, orient = silk_orientation_name(SILK_DEFAULT_ORIENT);
   std::string face_guidance;                 // empty: the model's (model.json sampling.face_guidance)
   double face_tolerance = SILK_MODEL_VALUE;  // the model's
@@ -159,6 +159,13 @@ void AddSamplingOptions(CLI::App& app, Args& a) {
                  "N, model.json sampling.candidates; 1 when it names none)" +
                      Valid("candidates"))
       ->type_name("N");
+  app.add_option("--rows", a.rows,
+                 "Best of N: how many of the candidates are decoded together, at most (one decoder call reads "
+                 "every weight once for all of them); each candidate's ids are those it gets alone, so only the "
+                 "time depends on it; 1 = one after another (default: the model's, model.json sampling.rows; "
+                 "else 8)" +
+                     Valid("rows"))
+      ->type_name("R");
   app.add_option("--orient", a.orient,
                  "Which side of each part faces out: input (reverse every part whose winding disagrees with the "
                  "input's normals) or tokens (the winding the ids carry, as silktok decode gives it)")
@@ -228,6 +235,7 @@ int CheckSettings(const CLI::App& app, const Args& a) {
       {"--max-faces", "max_faces", a.max_faces},
       {"--surface-tolerance", "surface_tolerance", a.surface_tolerance},
       {"--candidates", "candidates", a.candidates},
+      {"--rows", "rows", a.rows},
       {"--face-tolerance", "face_tolerance", a.face_tolerance},
       {"--points", "point_count", a.n_points}};
   for (const auto& [flag, name, value] : given) {
@@ -276,6 +284,7 @@ silk_generate_params ToParams(const Args& a, uint64_t seed) {
   p.point_count = a.n_points;
   p.surface_tolerance = a.surface_tolerance;
   p.candidates = a.candidates;
+  p.rows = a.rows;
   p.orient = silk_cpp::EnumValue(silk_orientation_from_name, a.orient);
   p.face_guidance = OptionValue(silk_face_guidance_from_name, a.face_guidance, SILK_MODEL_VALUE);
   p.face_tolerance = a.face_tolerance;
@@ -306,23 +315,24 @@ int Run(const Args& a, uint64_t seed) {
   if (!a.quiet) {
     // Sampling values not given on the command line are the model's (model.json "sampling").
     auto given = [](double v) { return v >= 0 ? std::to_string(v).substr(0, 6) : std::string("model"); };
-    std::fprintf(stderr,
-                 "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
-                 "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  "
-                 "repair %s\n"
-                 "  points  %s\n  surface tolerance %d  candidates %s  orient %s  face guidance %s (tolerance %s)\n",
-                 silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
-                 input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(),
-                 info.config, info.threads, silk_decoder_precision_name(info.decoder),
-                 silk_kv_precision_name(info.kv_precision), static_cast<unsigned long long>(seed),
-                 given(a.temperature).c_str(), a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model",
-                 given(a.top_p).c_str(), a.max_tokens, a.max_faces, a.repair.c_str(),
-                 a.raw_points              ? "raw (used as given, model frame)"
-                 : a.preprocessing.empty() ? "the model's pre-processing"
-                                           : a.preprocessing.c_str(),
-                 a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model",
-                 a.orient.c_str(), a.face_guidance.empty() ? "model" : a.face_guidance.c_str(),
-                 given(a.face_tolerance).c_str());
+    std::fprintf(
+        stderr,
+        "silkgen %s\n  input   %s (%s, %zu vertices, %zu faces)\n  output  %s\n  model   %s (%s, %d threads, "
+        "%s decoder, %s KV)\n  seed %llu  temperature %s  top-k %s  top-p %s  max-tokens %d  max-faces %d  "
+        "repair %s\n"
+        "  points  %s\n  surface tolerance %d  candidates %s  rows %s  orient %s  face guidance %s (tolerance %s)\n",
+        silk_version(), a.input.c_str(), input.is_point_cloud() ? "point cloud" : "mesh", input.vertex_count(),
+        input.triangle_count(), a.output.empty() ? "(none)" : a.output.c_str(), a.model_dir.c_str(), info.config,
+        info.threads, silk_decoder_precision_name(info.decoder), silk_kv_precision_name(info.kv_precision),
+        static_cast<unsigned long long>(seed), given(a.temperature).c_str(),
+        a.top_k >= 0 ? std::to_string(a.top_k).c_str() : "model", given(a.top_p).c_str(), a.max_tokens, a.max_faces,
+        a.repair.c_str(),
+        a.raw_points              ? "raw (used as given, model frame)"
+        : a.preprocessing.empty() ? "the model's pre-processing"
+                                  : a.preprocessing.c_str(),
+        a.surface_tolerance, a.candidates >= 1 ? std::to_string(a.candidates).c_str() : "model",
+        a.rows >= 1 ? std::to_string(a.rows).c_str() : "model", a.orient.c_str(),
+        a.face_guidance.empty() ? "model" : a.face_guidance.c_str(), given(a.face_tolerance).c_str());
   }
   silkgen::ProgressBar bar(!a.quiet);
   p.progress = [](const silk_generate_progress* g, void* user) {

@@ -18,14 +18,27 @@ struct ModelParams10 {
 };
 static_assert(sizeof(ModelParams10) == kSize10<silk_model_params>, "the 1.0 layout of silk_model_params");
 
-// silk_generate_default_params as libsilk 1.0-1.2 exported it (the struct ended before
-// face_guidance; 1.3 appended two fields): the current defaults cut to the old size, bound as
-// silk_generate_default_params@SILK_1.0 (the current one is @@SILK_1.3). The struct is returned in
-// memory the caller provides (larger than 16 bytes), so bytes of the old size and alignment are
-// that layout exactly.
-struct alignas(silk_generate_params) GenerateParams10 {
-  unsigned char bytes[kSize10<silk_generate_params>];
+// silk_generate_default_params as an earlier libsilk exported it: the current defaults cut to
+// that release's size, struct_size included. The struct is returned in memory the caller provides
+// (larger than 16 bytes), so bytes of the old size and alignment are that layout exactly.
+template <size_t kSize>
+struct alignas(silk_generate_params) GenerateParamsCut {
+  unsigned char bytes[kSize];
 };
+template <size_t kSize>
+GenerateParamsCut<kSize> CutGenerateDefaults() {
+  silk_generate_params p = silk_generate_default_params();
+  p.struct_size = static_cast<uint32_t>(kSize);
+  GenerateParamsCut<kSize> old;
+  std::memcpy(old.bytes, &p, kSize);
+  return old;
+}
+// 1.0-1.2 (the struct ended before face_guidance, which 1.3 appended), bound as
+// silk_generate_default_params@SILK_1.0; 1.3-1.4 (it ended before rows, which 1.5 appended),
+// bound as @SILK_1.3. The current one is @@SILK_1.5.
+using GenerateParams10 = GenerateParamsCut<kSize10<silk_generate_params>>;
+using GenerateParams13 = GenerateParamsCut<kSize13<silk_generate_params>>;
+static_assert(sizeof(GenerateParams13) == kSize13<silk_generate_params>, "the 1.3 layout of silk_generate_params");
 
 }  // namespace silk::capi
 
@@ -56,6 +69,7 @@ silk_generate_params silk_generate_default_params(void) {
   p.orient = SILK_DEFAULT_ORIENT;
   p.face_guidance = SILK_MODEL_VALUE;  // the model's (model.json "sampling"), else libsilk's
   p.face_tolerance = SILK_MODEL_VALUE;
+  p.rows = SILK_MODEL_VALUE;  // the model's (model.json "sampling.rows"), else libsilk's
   return p;
 }
 
@@ -66,13 +80,14 @@ __attribute__((visibility("default"))) silk::capi::ModelParams10 capi_model_defa
 __asm__(".symver capi_model_default_params_1_0,silk_model_default_params@SILK_1.0");
 
 __attribute__((visibility("default"))) silk::capi::GenerateParams10 capi_generate_default_params_1_0(void) {
-  silk_generate_params p = silk_generate_default_params();
-  p.struct_size = static_cast<uint32_t>(sizeof(silk::capi::GenerateParams10));
-  silk::capi::GenerateParams10 old;
-  std::memcpy(old.bytes, &p, sizeof(old.bytes));
-  return old;
+  return silk::capi::CutGenerateDefaults<sizeof(silk::capi::GenerateParams10)>();
 }
 __asm__(".symver capi_generate_default_params_1_0,silk_generate_default_params@SILK_1.0");
+
+__attribute__((visibility("default"))) silk::capi::GenerateParams13 capi_generate_default_params_1_3(void) {
+  return silk::capi::CutGenerateDefaults<sizeof(silk::capi::GenerateParams13)>();
+}
+__asm__(".symver capi_generate_default_params_1_3,silk_generate_default_params@SILK_1.3");
 #endif
 
 }  // extern "C"

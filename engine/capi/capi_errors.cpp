@@ -85,14 +85,15 @@ bool BeginCopy(const char* function, const void* out, size_t capacity, size_t ne
 }
 
 silk_status CheckStructSize(const char* function, const char* type, uint32_t given, size_t expected,
-                            const std::string& how, size_t older) {
-  // Every size this library has shipped for the type: today's, and libsilk 1.0's for a struct
-  // that has grown since (docs/c_api.md "Struct growth").
-  if (given == expected || (older != 0 && given == older)) return SILK_OK;
+                            const std::string& how, size_t older, size_t older13) {
+  // Every size this library has shipped for the type: today's, and libsilk 1.0's and 1.3's for a
+  // struct that has grown since (docs/c_api.md "Struct growth").
+  if (given == expected || (older != 0 && given == older) || (older13 != 0 && given == older13)) return SILK_OK;
   return SetError(SILK_ERR_INVALID_ARGUMENT,
                   std::string(function) + ": " + type + ".struct_size " + std::to_string(given) + " is not a size of " +
                       type + " this library knows (expected " + std::to_string(expected) +
                       (older ? ", or " + std::to_string(older) + " as libsilk 1.0 shipped it" : std::string()) +
+                      (older13 ? ", or " + std::to_string(older13) + " as libsilk 1.3-1.4 shipped it" : std::string()) +
                       "): " + how);
 }
 

@@ -57,6 +57,7 @@ silk::StatusOr<silk::GenerationRequest> ToRequest(const silk_generate_params& p,
   if (p.top_p != SILK_MODEL_VALUE) r.top_p = p.top_p;
   if (p.top_p_temperature != SILK_MODEL_VALUE) r.top_p_temperature = p.top_p_temperature;
   if (p.candidates != SILK_MODEL_VALUE) r.candidates = p.candidates;
+  if (p.rows != SILK_MODEL_VALUE) r.rows = p.rows;
   if (p.preprocessing != SILK_MODEL_VALUE)
     r.preprocessing = p.preprocessing == SILK_PREPROCESS_OFFICIAL ? silk::PreprocessingKind::kOfficial
                                                                   : silk::PreprocessingKind::kSilk;

@@ -83,11 +83,11 @@ bool BeginCopy(const char* function, const void* out, size_t capacity, size_t ne
                silk_status* answer);
 
 // The one struct_size rule (docs/c_api.md "Struct growth"): `given` must be a size this library
-// has shipped for `type`: sizeof, or `older` (the size an earlier release shipped, 0: none);
-// otherwise SILK_ERR_INVALID_ARGUMENT naming the struct, the size given and the size expected,
-// and `how` (the way to initialise it).
+// has shipped for `type`: sizeof, `older` (the size libsilk 1.0 shipped, 0: none) or `older13`
+// (the size libsilk 1.3-1.4 shipped, 0: none); otherwise SILK_ERR_INVALID_ARGUMENT naming the
+// struct, the size given and the sizes expected, and `how` (the way to initialise it).
 silk_status CheckStructSize(const char* function, const char* type, uint32_t given, size_t expected,
-                            const std::string& how, size_t older = 0);
+                            const std::string& how, size_t older = 0, size_t older13 = 0);
 // The size libsilk 1.0 shipped for a struct that has grown since (0: it has not grown). Its
 // fields are only appended, so the 1.0 size is the offset of the first field added after 1.0.
 template <typename T>
@@ -100,19 +100,28 @@ template <>
 inline constexpr size_t kSize10<silk_generate_params> = offsetof(silk_generate_params, face_guidance);
 template <>
 inline constexpr size_t kSize10<silk_generate_stats> = offsetof(silk_generate_stats, face_guided_tokens);
+// The size libsilk 1.3-1.4 shipped for a struct that has grown since (0: it has not grown since
+// 1.3): the offset of the first field 1.5 appended.
+template <typename T>
+inline constexpr size_t kSize13 = 0;
+template <>
+inline constexpr size_t kSize13<silk_generate_params> = offsetof(silk_generate_params, rows);
+template <>
+inline constexpr size_t kSize13<silk_generate_stats> = offsetof(silk_generate_stats, rows);
 
 // A params struct (NULL: fine, the defaults apply) and a struct the library fills (NULL: fine
 // where optional; the caller checks required ones).
 template <typename T>
 silk_status CheckParamsSize(const char* function, const char* type, const T* p, const char* defaults) {
   return p ? CheckStructSize(function, type, p->struct_size, sizeof(T), std::string("initialise it with ") + defaults,
-                             kSize10<T>)
+                             kSize10<T>, kSize13<T>)
            : SILK_OK;
 }
 template <typename T>
 silk_status CheckOutSize(const char* function, const char* type, const T* p) {
   return p ? CheckStructSize(function, type, p->struct_size, sizeof(T),
-                             std::string("set struct_size = sizeof(") + type + ") before the call", kSize10<T>)
+                             std::string("set struct_size = sizeof(") + type + ") before the call", kSize10<T>,
+                             kSize13<T>)
            : SILK_OK;
 }
 // The caller's params over the defaults: only the caller's struct_size bytes are read.

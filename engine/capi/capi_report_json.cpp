@@ -39,6 +39,7 @@ Json SettingsJson(const silk_generator& g) {
               {"unconstrained", g.settings.unconstrained},
               {"surface_tolerance", p.surface_tolerance},
               {"candidates", plan.options.candidates},  // resolved: the model's N applied
+              {"rows", plan.options.rows},              // resolved: the model's, else libsilk's
               {"orient", silk_orientation_name(p.orient)},
               {"face_guidance", FaceGuidanceName(plan.options.face_guidance)},  // resolved: the model's applied
               {"face_tolerance", plan.options.face_tolerance}};
@@ -102,6 +103,7 @@ Json StatsJson(const silk_generator& g) {
   }
   j["candidates"] = cands;
   j["chosen_candidate"] = st.chosen_candidate;
+  j["rows"] = st.rows;  // best of N's rows used: min(settings.rows, candidates)
   if (g.settings.unconstrained) j["grammar"] = {{"first_illegal_token", st.illegal_at}, {"reason", st.illegal_reason}};
   return j;
 }
@@ -190,6 +192,7 @@ void FillStats(const GenerationStats& s, silk_generate_stats* out) {
   out->seconds_face_guidance = s.seconds.face_guidance;
   out->seconds_scoring = s.seconds.scoring;
   out->parts_flipped = s.parts_flipped;
+  out->rows = s.rows;
 }
 
 }  // namespace silk::capi

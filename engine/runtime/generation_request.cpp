@@ -27,6 +27,7 @@ Status CheckRequest(const GenerationRequest& r) {
                                      {ranges::kTopP, r.top_p},
                                      {ranges::kTopPTemperature, r.top_p_temperature},
                                      {ranges::kCandidates, given(r.candidates)},
+                                     {ranges::kRows, given(r.rows)},
                                      {ranges::kFaceTolerance, r.face_tolerance}})
     if (value) SILK_RETURN_IF_ERROR(CheckGiven(range, *value));
   if (r.n_points) SILK_RETURN_IF_ERROR(CheckSetting(ranges::kPointCount, *r.n_points));
@@ -70,7 +71,7 @@ StatusOr<GenerationPlan> ResolveRequest(const GenerationRequest& r, const ModelC
   o.record_trace = r.record_trace;
   o.surface_tolerance = r.surface_tolerance;
   o.candidates = r.candidates.value_or(config.candidates);
-  o.rows = r.rows.value_or(1);  // TEMP until the rows setting lands (r-plumb)
+  o.rows = r.rows.value_or(config.rows.value_or(kDefaultRows));
   o.orient_to_input = r.orient_to_input;
   o.face_guidance = r.face_guidance.value_or(config.face_guidance);
   o.face_tolerance = r.face_tolerance.value_or(config.face_tolerance);

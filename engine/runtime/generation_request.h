@@ -20,7 +20,7 @@ struct GenerationRequest {
   std::optional<double> temperature, top_p, top_p_temperature;
   std::optional<int32_t> top_k;
   std::optional<int32_t> candidates;  // best of N (ranges::kCandidates); unset: the model's N
-  std::optional<int32_t> rows;
+  std::optional<int32_t> rows;        // best of N's rows (ranges::kRows); unset: the model's, else kDefaultRows
   std::optional<PreprocessingKind> preprocessing;  // unset: model.json "preprocessing"
   std::optional<int32_t> n_points;                 // encoder points; unset: the model's pre-processing's
   bool raw_points = false;                         // the input's points are the encoder input as given (RawModelPoints)
@@ -37,7 +37,7 @@ struct GenerationRequest {
 
 // A request resolved: what the session runs.
 struct GenerationPlan {
-  GenerateOptions options;            // sampling resolved, seed = the request's, candidates = N
+  GenerateOptions options;            // sampling resolved, seed = the request's, candidates = N, rows
   PreprocessingParams preprocessing;  // the model's, with the request's kind and n_points
   bool raw_points = false;
   // "raw", or the pre-processing kind's name ("silk", "official").

@@ -69,7 +69,7 @@ struct GenerationStats {
   // Best of N: every candidate in order (one entry for a single generation), the chosen one.
   std::vector<CandidateScore> candidates;
   int32_t chosen_candidate = 0;
-  int32_t rows = 1;  // rows used (min(rows, N))
+  int32_t rows = 1;  // rows used (min(rows, N)): candidates decoded together (GenerationSession)
   PhaseSeconds seconds;
   double generation_seconds = 0;  // encoder + token loop
   double tokens_per_second = 0;   // tokens / token-loop seconds

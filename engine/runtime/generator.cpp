@@ -83,7 +83,8 @@ Status CheckGenerateOptions(const GenerateOptions& options) {
                                      {ranges::kTopPTemperature, sp.top_p_temperature},
                                      {ranges::kSurfaceTolerance, double(options.surface_tolerance)},
                                      {ranges::kFaceTolerance, options.face_tolerance},
-                                     {ranges::kCandidates, double(options.candidates)}})
+                                     {ranges::kCandidates, double(options.candidates)},
+                                     {ranges::kRows, double(options.rows)}})
     SILK_RETURN_IF_ERROR(CheckSetting(range, value).WithContext("generate: "));
   if (options.face_guidance != FaceGuidance::kOff && options.face_guidance != FaceGuidance::kHard &&
       options.face_guidance != FaceGuidance::kSoft)

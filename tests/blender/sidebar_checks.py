@@ -2,7 +2,7 @@
 """The Silk tab (View3D > Sidebar > Silk, apps/blender/silk_blender/sidebar.py) driven through its operators, as
 test_silk_addon.py's last part in every Blender it runs in: a user models folder holding a copy of the test model
 appears in the drop-down beside the bundled model (architecture and size in the label); Generate with the tab's
-settings (that model, best of 2) gives silkgen's faces and chosen candidate, the progress reaches candidate 2 of 2
+settings (that model, best of 2, 3 rows: passed on to the generation) gives silkgen's faces and chosen candidate, the progress reaches candidate 2 of 2
 and 100 %, the candidates' scores are silkgen's; the tab's Cancel flag cancels a run and leaves nothing."""
 
 import json
@@ -64,11 +64,26 @@ def run(addon, src, env, work, seed, check):
     )
 
     s, run = bpy.context.scene.silk, bpy.context.window_manager.silk_run
-    s.model, s.candidates, s.seed, s.orient = mine, 2, seed, "INPUT"
+    check(
+        s.rows == -1 and "rows" in bpy.ops.silk.generate_mesh.get_rna_type().properties,
+        "a Rows setting, -1 (the model's)",
+    )
+    s.model, s.candidates, s.rows, s.seed, s.orient = mine, 2, 3, seed, "INPUT"
     want = _silkgen_stats(env, work, "imported-tiny", seed)  # silkgen finds the same model by name
     bpy.context.view_layer.objects.active = src
     before = set(bpy.data.objects)
-    res = bpy.ops.silk.sidebar_generate()
+    generator = addon_setup.submodule(addon, "operators").silk_mesh.Generator
+    given, start = {}, generator.start
+    generator.start = lambda self, *a, **kw: given.update(kw) or start(self, *a, **kw)
+    try:
+        res = bpy.ops.silk.sidebar_generate()
+    finally:
+        generator.start = start
+    check(
+        given.get("rows") == 3 and given.get("candidates") == 2,
+        f"the tab's Rows is passed on (rows={given.get('rows')})",
+    )
+    s.rows = -1
     new = set(bpy.data.objects) - before
     faces = sum(len(o.data.polygons) for o in new if o.type == "MESH")
     print(

@@ -203,11 +203,26 @@ def test_out_of_range_settings_get_libsilks_message(generation):
             ({"temperature": 150}, "temperature 150 is not in [0, 100]"),
             ({"top_k": 10270}, "top_k 10270 is not in [0, 10269]"),
             ({"candidates": 65}, "candidates 65 is not in [1, 64]"),
+            ({"rows": 0}, "rows 0 is not in [1, 64]"),
+            ({"rows": 65}, "rows 65 is not in [1, 64]"),
             ({"max_tokens": 13}, "max_tokens 13 is not 0 or at least 14"),
         ]:
             with pytest.raises(silk_mesh.SilkError) as e:
                 gen.run(KNOT, seed=3, **kw)
             assert text in e.value.message, (kw, e.value.message)
+
+
+def test_rows_is_passed_on_and_reported(generation):
+    """rows= (C API 1.5) goes to libsilk as given: the report's settings show it, the stats the
+    rows used (min(rows, candidates)); unset it is the model's, else libsilk's 8."""
+    with silk_mesh.Generator(str(TINY)) as gen:
+        res = gen.run(KNOT, seed=3, max_tokens=120, candidates=2, rows=3)
+        assert json.loads(gen.report_json())["settings"]["rows"] == 3
+        assert 1 <= res.stats["rows"] <= 2
+        gen.run(KNOT, seed=3, max_tokens=120)
+        assert json.loads(gen.report_json())["settings"]["rows"] == 8  # the tiny model names none
+    res = silk_mesh.generate(KNOT, model=TINY, seed=3, max_tokens=120, rows=1)
+    assert res.stats["rows"] == 1
 
 
 def test_model_errors_name_the_folder_and_the_value(tmp_path, generation):

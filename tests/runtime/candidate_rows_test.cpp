@@ -137,7 +137,7 @@ GenerateOptions Options(double temperature, int32_t candidates, int32_t rows) {
   o.sampling.temperature = temperature;
   o.sampling.top_k = 50;
   o.sampling.seed = 7;
-  o.max_tokens = 300;
+  o.max_tokens = 200;
   o.surface_tolerance = 3;
   o.candidates = candidates;
   o.rows = rows;
@@ -185,7 +185,7 @@ GenerationRequest Request(int32_t candidates, int32_t rows) {
   r.seed = 3;
   r.temperature = 0.9;
   r.top_k = 50;
-  r.max_tokens = 250;
+  r.max_tokens = 160;
   r.candidates = candidates;
   r.rows = rows;
   r.surface_tolerance = 2;

@@ -30,6 +30,7 @@ TEST(GenerationRanges, EndsAcceptedAndPastThemRefusedWithTheRange) {
       {"surface_tolerance", 0, 127, -1, 128, "surface_tolerance 128 is not in [0, 127]"},
       {"face_tolerance", 0.5, 64, 0.2, 65, "face_tolerance 65 is not in [0.5, 64] (cells of 128)"},
       {"candidates", 1, 64, 0, 65, "candidates 65 is not in [1, 64]"},
+      {"rows", 1, 64, 0, 65, "rows 65 is not in [1, 64]"},
       {"point_count", 1, 1 << 20, -3, (1 << 20) + 1, "point_count 1048577 is not 0 or in [1, 1048576]"},
       {"threads", 0, 64, -1, 1e9, "threads 1000000000 is not in [0, "},
   };
@@ -55,6 +56,7 @@ TEST(GenerationRanges, ZeroIsValidOnlyWhereItMeansTheModelsOrOff) {
   EXPECT_TRUE(CheckSetting(ranges::kMaxTokens, 0).ok());
   EXPECT_TRUE(CheckSetting(ranges::kPointCount, 0).ok());
   EXPECT_FALSE(CheckSetting(ranges::kCandidates, 0).ok());
+  EXPECT_FALSE(CheckSetting(ranges::kRows, 0).ok());
   EXPECT_FALSE(CheckSetting(ranges::kFaceTolerance, 0).ok());
   EXPECT_FALSE(CheckSetting(ranges::kMaxTokens, kMinMeshTokens - 1).ok());
   EXPECT_TRUE(CheckSetting(ranges::kMaxTokens, kMinMeshTokens).ok());

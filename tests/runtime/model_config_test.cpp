@@ -180,6 +180,11 @@ TEST(ModelConfig, Version3Official) {
     ASSERT_TRUE(r.ok()) << r.status().ToString();
     EXPECT_EQ(r->candidates, 8);
     EXPECT_EQ(r->sampling.temperature, DefaultSamplingParams().temperature);  // the other fields keep theirs
+    EXPECT_FALSE(r->rows.has_value());  // no sampling.rows: libsilk's default applies
+    k["sampling"]["rows"] = 3;
+    auto rows = ParseModelConfig(k.dump(), "model.json");
+    ASSERT_TRUE(rows.ok()) << rows.status().ToString();
+    EXPECT_EQ(rows->rows, std::optional<int32_t>(3));
   }
   // Fields a v3 file leaves out of "preprocessing" take the kind's defaults.
   j["preprocessing"] = {{"kind", "official"}, {"surface_samples", 8192}};
@@ -225,6 +230,9 @@ TEST(ModelConfig, Version3RefusesEveryBadField) {
       {"candidates 0", [](auto& j) { j["sampling"]["candidates"] = 0; }, "sampling.candidates 0 is not in [1, 64]"},
       {"candidates 65", [](auto& j) { j["sampling"]["candidates"] = 65; }, "sampling.candidates 65 is not in [1, 64]"},
       {"candidates type", [](auto& j) { j["sampling"]["candidates"] = 2.5; }, "candidates"},
+      {"rows 0", [](auto& j) { j["sampling"]["rows"] = 0; }, "model.json: sampling.rows 0 is not in [1, 64]"},
+      {"rows 65", [](auto& j) { j["sampling"]["rows"] = 65; }, "model.json: sampling.rows 65 is not in [1, 64]"},
+      {"rows type", [](auto& j) { j["sampling"]["rows"] = 2.5; }, "integer field 'rows'"},
       {"int4 name", [](auto& j) { j["files"]["decoder_int4"] = "../d.onnx"; }, "plain names"},
       {"int4 type", [](auto& j) { j["files"]["decoder_int4"] = 4; }, "'decoder_int4' is not a string"},
       {"default decoder", [](auto& j) { j["files"]["default_decoder"] = "decoder_int2"; }, "files.default_decoder"},

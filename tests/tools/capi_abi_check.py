@@ -4,9 +4,9 @@
 silk_model_default_params@SILK_1.0 still returns the 1.0 layout of silk_model_params (12 bytes,
 no kv_precision), silk_model_load and silk_model_get_info accept the 1.0 sizes and write nothing
 past them, and the current symbol returns today's size. The same for silk_generate_default_params
-(@SILK_1.0: the struct before 1.3's face guidance fields; @SILK_1.3: today's): its 1.0 bytes equal
-the first bytes of today's defaults, and silk_generator_run accepts the 1.0 params and stats sizes
-without writing past them. The functions 1.3 added are bound to the SILK_1.3 node alone, those 1.4
+(@SILK_1.0: the struct before 1.3's face guidance fields; @SILK_1.3: before 1.5's rows; @SILK_1.5:
+today's): their bytes equal the first bytes of today's defaults, and silk_generator_run accepts the
+1.0 and 1.3 params and stats sizes without writing past them. The functions 1.3 added are bound to the SILK_1.3 node alone, those 1.4
 added (the enum names) to SILK_1.4 alone. Linux
 (ELF symbol versions) only.
 
@@ -122,40 +122,35 @@ def main(lib_path, model_dir):
 
 GEN_PARAMS_10 = 120  # offsetof(silk_generate_params, face_guidance) on x86-64 / aarch64 Linux
 GEN_STATS_10 = 232  # offsetof(silk_generate_stats, face_guided_tokens)
+GEN_PARAMS_13 = 136  # offsetof(silk_generate_params, rows): the 1.3-1.4 size
+GEN_STATS_13 = 256  # offsetof(silk_generate_stats, rows)
 
 
-def check_generate(lib, libc, model):
-    """silk_generate_default_params@SILK_1.0 / @SILK_1.3, and a 1.0-sized run."""
+class GenParams10(ctypes.Structure):
+    _fields_ = [("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8))]
 
-    class Old(ctypes.Structure):
-        _fields_ = [("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8))]
 
-    class New(ctypes.Structure):
-        _fields_ = [
-            ("bytes", ctypes.c_uint64 * (GEN_PARAMS_10 // 8)),
-            ("face_guidance", ctypes.c_int32),
-            ("face_tolerance", ctypes.c_double),
-        ]
+class GenParams13(ctypes.Structure):
+    _fields_ = GenParams10._fields_ + [("face_guidance", ctypes.c_int32), ("face_tolerance", ctypes.c_double)]
 
-    try:
-        p10, p13 = both_versions(lib, libc, "silk_generate_default_params", Old, "SILK_1.3", New)
-    except LookupError as e:
-        return [str(e)]
-    failures = []
-    size10, size13 = p10.bytes[0] & 0xFFFFFFFF, p13.bytes[0] & 0xFFFFFFFF
-    if size10 != GEN_PARAMS_10 or size13 != ctypes.sizeof(New):
-        failures.append(
-            f"generate params sizes: 1.0 {size10} (want {GEN_PARAMS_10}), 1.3 {size13} (want {ctypes.sizeof(New)})"
-        )
-    if list(p10.bytes)[1:] != list(p13.bytes)[1:] or (p13.face_guidance, p13.face_tolerance) != (-1, -1.0):
-        failures.append(
-            "the 1.0 default params differ from today's first bytes, or today's face guidance "
-            f"defaults are not SILK_MODEL_VALUE ({p13.face_guidance}, {p13.face_tolerance})"
-        )
-    gen = ctypes.c_void_p()
-    lib.silk_generator_create.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]
-    if lib.silk_generator_create(model, ctypes.byref(gen)) != 0:
-        return failures + [f"silk_generator_create: {lib.silk_last_error().decode()}"]
+
+class GenParams15(ctypes.Structure):
+    _fields_ = GenParams13._fields_ + [("rows", ctypes.c_int32)]
+
+
+def generate_defaults(lib, libc):
+    """silk_generate_default_params through @SILK_1.0, @SILK_1.3 and @SILK_1.5."""
+    out = []
+    for node, kind in ((b"SILK_1.0", GenParams10), (b"SILK_1.3", GenParams13), (b"SILK_1.5", GenParams15)):
+        fn = libc.dlvsym(lib._handle, b"silk_generate_default_params", node)
+        if not fn:
+            raise LookupError(f"silk_generate_default_params@{node.decode()} is missing")
+        out.append(ctypes.CFUNCTYPE(kind)(fn)())
+    return out
+
+
+def run_sized(lib, gen, params, stats_size, what):
+    """One run of 64 points with `params` (max_tokens set to 60) and stats of `stats_size`."""
     pts = (ctypes.c_double * (6 * 64))(*[v for i in range(64) for v in (i / 64, (i % 8) / 8, 0.1, 0, 0, 1)])
 
     class Input(ctypes.Structure):
@@ -168,9 +163,9 @@ def check_generate(lib, libc, model):
 
     inp = Input(ctypes.sizeof(Input), None, ctypes.cast(pts, ctypes.c_void_p), 64)
     max_tokens_offset = 40  # offsetof(silk_generate_params, max_tokens)
-    ctypes.c_int32.from_buffer(p10, max_tokens_offset).value = 60
-    stats = (ctypes.c_ubyte * (GEN_STATS_10 + 32))(*([0xAB] * (GEN_STATS_10 + 32)))
-    ctypes.c_uint32.from_buffer(stats).value = GEN_STATS_10
+    ctypes.c_int32.from_buffer(params, max_tokens_offset).value = 60
+    stats = (ctypes.c_ubyte * (stats_size + 32))(*([0xAB] * (stats_size + 32)))
+    ctypes.c_uint32.from_buffer(stats).value = stats_size
     mesh = ctypes.c_void_p()
     lib.silk_generator_run.argtypes = [
         ctypes.c_void_p,
@@ -180,13 +175,47 @@ def check_generate(lib, libc, model):
         ctypes.c_void_p,
         ctypes.c_void_p,
     ]
-    rc = lib.silk_generator_run(gen, ctypes.byref(inp), ctypes.byref(p10), ctypes.byref(mesh), None, stats)
-    if rc != 0:
-        failures.append(f"silk_generator_run with the 1.0 params and stats: {lib.silk_last_error().decode()}")
-    elif any(b != 0xAB for b in stats[GEN_STATS_10:]):
-        failures.append("silk_generator_run wrote past the 1.0 size of silk_generate_stats")
+    rc = lib.silk_generator_run(gen, ctypes.byref(inp), ctypes.byref(params), ctypes.byref(mesh), None, stats)
     lib.silk_mesh_destroy.argtypes = [ctypes.c_void_p]
     lib.silk_mesh_destroy(mesh)
+    if rc != 0:
+        return [f"silk_generator_run with the {what} params and stats: {lib.silk_last_error().decode()}"]
+    if any(b != 0xAB for b in stats[stats_size:]):
+        return [f"silk_generator_run wrote past the {what} size of silk_generate_stats"]
+    return []
+
+
+def check_generate(lib, libc, model):
+    """silk_generate_default_params@SILK_1.0 / @SILK_1.3 / @SILK_1.5, and 1.0- and 1.3-sized runs."""
+    try:
+        p10, p13, p15 = generate_defaults(lib, libc)
+    except LookupError as e:
+        return [str(e)]
+    failures = []
+    sizes = [p.bytes[0] & 0xFFFFFFFF for p in (p10, p13, p15)]
+    want = [GEN_PARAMS_10, GEN_PARAMS_13, ctypes.sizeof(GenParams15)]
+    if sizes != want:
+        failures.append(f"generate params sizes (1.0, 1.3, 1.5): {sizes}, want {want}")
+    if list(p10.bytes)[1:] != list(p13.bytes)[1:] or list(p13.bytes)[1:] != list(p15.bytes)[1:]:
+        failures.append("the 1.0 / 1.3 default params differ from today's first bytes")
+    if (p13.face_guidance, p13.face_tolerance, p15.face_guidance, p15.face_tolerance, p15.rows) != (
+        -1,
+        -1.0,
+        -1,
+        -1.0,
+        -1,
+    ):
+        failures.append(
+            "the face guidance or rows defaults are not SILK_MODEL_VALUE: "
+            f"1.3 ({p13.face_guidance}, {p13.face_tolerance}), 1.5 ({p15.face_guidance}, {p15.face_tolerance}, "
+            f"{p15.rows})"
+        )
+    gen = ctypes.c_void_p()
+    lib.silk_generator_create.argtypes = [ctypes.c_void_p, ctypes.POINTER(ctypes.c_void_p)]
+    if lib.silk_generator_create(model, ctypes.byref(gen)) != 0:
+        return failures + [f"silk_generator_create: {lib.silk_last_error().decode()}"]
+    failures += run_sized(lib, gen, p10, GEN_STATS_10, "1.0")
+    failures += run_sized(lib, gen, p13, GEN_STATS_13, "1.3")
     lib.silk_generator_destroy.argtypes = [ctypes.c_void_p]
     lib.silk_generator_destroy(gen)
     return failures

@@ -242,6 +242,8 @@ def check_bad(silkgen, repo):
             ([sample, "-o", tmp / "o.obj", "--model", model, "--face-tolerance", "0.2"], 2, ["face-tolerance"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "0"], 2, ["candidates"]),
             ([sample, "-o", tmp / "o.obj", "--model", model, "--candidates", "65"], 2, ["candidates"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--rows", "0"], 2, ["--rows: rows 0 is not in [1, 64]"]),
+            ([sample, "-o", tmp / "o.obj", "--model", model, "--rows", "65"], 2, ["--rows: rows 65 is not in [1, 64]"]),
             # libsilk's one range table answers, naming the flag (issue 32): the C API's own message.
             (
                 [sample, "-o", tmp / "o.obj", "--model", model, "--temperature", "150"],
@@ -322,6 +324,27 @@ def check_formats(silkgen, repo):
         p = run([silkgen, *base, "-o", tmp / "r.obj", "--seed", "random"], check=False)
         if p.returncode != 0:
             failures.append(f"--seed random failed: {p.stderr}")
+        failures += check_rows(silkgen, repo, tmp, stats)
+    return failures
+
+
+def check_rows(silkgen, repo, tmp, default_stats):
+    """--rows R: shown in the banner, echoed resolved in the report's settings, the rows used
+    (min(R, N)) in its stats; without it the model's, else libsilk's 8 (the tiny model names none)."""
+    failures = []
+    if default_stats["settings"].get("rows") != 8:
+        failures.append(
+            f"no --rows, a model without sampling.rows: settings.rows {default_stats['settings'].get('rows')}"
+        )
+    i = COMMON.index("--candidates")
+    plain = [a for a in COMMON[:i] + COMMON[i + 2 :] if a != "-q"]
+    args = [repo / "samples/torus_knot.obj", "--model", repo / "tests/models/tiny", "--seed", "7", *plain]
+    p = run([silkgen, *args, "--candidates", "2", "--rows", "3", "-o", tmp / "rows.obj", "--stats", tmp / "rows.json"])
+    st = json.loads((tmp / "rows.json").read_text())
+    if "candidates 2  rows 3" not in p.stderr:
+        failures.append(f"--rows 3: the banner does not show it: {p.stderr.strip()}")
+    if st["settings"].get("rows") != 3 or not 1 <= st.get("rows", 0) <= 2:
+        failures.append(f"--rows 3 --candidates 2: settings.rows {st['settings'].get('rows')}, rows {st.get('rows')}")
     return failures
 
 

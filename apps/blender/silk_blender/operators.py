@@ -90,6 +90,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
         soft_min=-1,
         soft_max=64,
     )
+    rows: shared_settings.rows_property()
     orient: shared_settings.orient_property()
     model_dir: StringProperty(
         name="Model",
@@ -131,6 +132,7 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             holes=self.repair,
             orient=self.orient,
             candidates=_given(self.candidates),
+            rows=_given(self.rows),
             surface_tolerance=_given(self.surface_tolerance),
             face_guidance=None if self.face_guidance == "MODEL" else self.face_guidance,
             face_tolerance=_given(self.face_tolerance),

@@ -2,7 +2,7 @@
 """The generation settings the operator and the sidebar both show, declared once: the same name,
 choices, default and tooltip in either place."""
 
-from bpy.props import EnumProperty, FloatProperty
+from bpy.props import EnumProperty, FloatProperty, IntProperty
 
 from . import enum_items
 
@@ -22,4 +22,15 @@ def face_tolerance_property():
         default=-1.0,
         soft_min=-1.0,
         soft_max=64.0,
+    )
+
+
+def rows_property():
+    return IntProperty(
+        name="Rows",
+        description="Best of N: how many candidates are decoded together, at most (1 = one after another); "
+        "the meshes do not depend on it, only the time does (-1 = the model's, else 8)",
+        default=-1,
+        soft_min=-1,
+        soft_max=64,
     )

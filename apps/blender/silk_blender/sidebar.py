@@ -78,6 +78,7 @@ class SilkSettings(bpy.types.PropertyGroup):
         soft_max=64,
         description="Best of N: keep the one closest to the input (0 = the model's N)",
     )
+    rows: shared_settings.rows_property()
     seed: IntProperty(name="Seed", default=0, min=0)
     temperature: FloatProperty(
         name="Temperature",
@@ -135,6 +136,7 @@ class SILK_OT_sidebar_generate(bpy.types.Operator):
             seed=s.seed,
             temperature=s.temperature,
             candidates=s.candidates or -1,
+            rows=s.rows,
             max_faces=s.max_faces,
             orient=s.orient,
             face_guidance=s.face_guidance,
@@ -169,7 +171,16 @@ class SILK_PT_sidebar(bpy.types.Panel):
         row.prop(s, "model", text="")
         row.operator(SILK_OT_refresh_models.bl_idname, text="", icon="FILE_REFRESH")
         col = layout.column(align=True)
-        for name in ("candidates", "seed", "temperature", "max_faces", "orient", "face_guidance", "face_tolerance"):
+        for name in (
+            "candidates",
+            "rows",
+            "seed",
+            "temperature",
+            "max_faces",
+            "orient",
+            "face_guidance",
+            "face_tolerance",
+        ):
             col.prop(s, name)
         row = layout.row(align=True)
         row.operator(SILK_OT_sidebar_generate.bl_idname, icon="PLAY")

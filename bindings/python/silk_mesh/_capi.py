@@ -316,6 +316,8 @@ class GenerateParams(_Sized):
         # C API 1.3: face guidance (silk_face_guidance or -1: the model's; cells or -1)
         ("face_guidance", ctypes.c_int32),
         ("face_tolerance", ctypes.c_double),
+        # C API 1.5: best of N's candidates decoded together, 1..64 (-1: the model's, else 8)
+        ("rows", ctypes.c_int32),
     ]
 
 
@@ -369,6 +371,8 @@ class GenerateStats(_Sized):
             for n in ("face_guided_tokens", "face_fallbacks")
         ]
         + [("seconds_face_guidance", ctypes.c_double)]
+        # C API 1.5: best of N's rows used (min(rows, candidates))
+        + [("rows", ctypes.c_int32)]
     )
 
 

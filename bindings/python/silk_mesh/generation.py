@@ -88,8 +88,9 @@ class Generator(_Owned):
     input: a Mesh, a mesh file path or (positions, triangles); or points= rows x y z nx ny nz.
     params: fields of silk_generate_params by name: seed, temperature, top_k, top_p, max_tokens,
     max_faces, holes ("off", "report", "repair"), point_count,
-    surface_tolerance, candidates, orient ("input", "tokens"), face_guidance ("off", "hard", "soft"),
-    face_tolerance (cells), report_flags (1: record the trace for
+    surface_tolerance, candidates, rows (best of N's candidates decoded together, 1..64; 1: one
+    after another; the result does not depend on it, only the time), orient ("input", "tokens"),
+    face_guidance ("off", "hard", "soft"), face_tolerance (cells), report_flags (1: record the trace for
     report_json(trace=True)), ...; None keeps libsilk's default (sampling: the model's values).
     progress(dict) is called after every id (tokens, max_tokens, components, faces, seconds);
     cancel() -> truthy stops the run (SilkError with status SILK_ERR_CANCELLED). An exception in

@@ -39,7 +39,7 @@
  * PATCH fixes. silk_version() is the library's own string (compare it with SILK_VERSION_STRING
  * to detect a header/library mismatch). */
 #define SILK_VERSION_MAJOR 1
-#define SILK_VERSION_MINOR 4
+#define SILK_VERSION_MINOR 5
 #define SILK_VERSION_PATCH 0
 #define SILK_STR_(x) #x
 #define SILK_STR(x) SILK_STR_(x)
@@ -524,7 +524,7 @@ enum {
 };
 /* "Use the model's value" (model.json "sampling" / "preprocessing"): the one sentinel of
  * silk_generate_params.temperature, top_k, top_p, top_p_temperature, preprocessing, candidates,
- * face_guidance and face_tolerance (their default). Exactly -1 (the value these fields always
+ * face_guidance, face_tolerance and rows (their default). Exactly -1 (the value these fields always
  * took); any other negative, NaN or infinite value is SILK_ERR_INVALID_ARGUMENT naming the field
  * and value. (SILK_STOP_NONE, also -1, is a stop reason, not this.) */
 #define SILK_MODEL_VALUE (-1)
@@ -580,8 +580,8 @@ typedef struct silk_generate_params {
    * so the mask never empties. 0 = off; 0..127.
    * Default: SILK_DEFAULT_SURFACE_TOLERANCE (chosen by measurement, docs/runtime.md). */
   int32_t surface_tolerance;
-  /* Best of N, 1..64: a generation runs N candidates one after another on the same encoder
-   * points with seeds derived from `seed` (candidate 0: seed itself, so N = 1 is a plain run;
+  /* Best of N, 1..64: a generation runs N candidates (up to `rows` of them decoded together, below)
+   * on the same encoder points with seeds derived from `seed` (candidate 0: seed itself, so N = 1 is a plain run;
    * candidate i >= 1: the first SplitMix64 output seeded with seed + i) and returns the one whose
    * surface is closest to the input (symmetric Chamfer distance to the encoder's points; one with
    * faces always beats one without). silk_generator_run and the step-wise API alike (the same ids and
@@ -607,13 +607,21 @@ typedef struct silk_generate_params {
    * libsilk's measured default (docs/runtime.md "Face guidance"). */
   int32_t face_guidance;
   double face_tolerance; /* cells, 0.5..64; default SILK_MODEL_VALUE (-1): the model's, else libsilk's */
+  /* ---- appended in C API 1.5 (a 1.0-1.4 caller's shorter struct gets the default) ---- */
+  /* Best of N: how many of the candidates are decoded together, at most, 1..64. Rows of one
+   * decoder call read every weight once; each candidate's ids are exactly those it gets alone
+   * (same seeds), so the result does not depend on rows, only the time does. 1: the candidates
+   * one after another (as C API 1.0-1.4 ran them; for baselines and checks). With N candidates
+   * min(rows, N) rows are used; a candidate that ends leaves its row to the next candidate.
+   * Default SILK_MODEL_VALUE (-1): the model's (model.json "sampling.rows"), else libsilk's 8. */
+  int32_t rows;
 } silk_generate_params;
 SILK_API silk_generate_params silk_generate_default_params(void);
 
 /* The valid values of a numeric generation setting, from the one table the generation calls check
  * against (C API 1.4). `name` is the field's name in silk_generate_params or silk_model_params:
  * "temperature", "top_k", "top_p", "top_p_temperature", "max_tokens", "max_faces",
- * "surface_tolerance", "face_tolerance", "candidates", "point_count", "threads".
+ * "surface_tolerance", "face_tolerance", "candidates", "rows" (C API 1.5), "point_count", "threads".
  * silk_param_range: *lo..*hi inclusive (*hi = INT32_MAX: no upper bound); *zero_too = 1 where 0
  * is valid as well though below *lo (max_tokens, point_count: "the model's"); any out may be NULL.
  * silk_param_check: SILK_OK when `value` is valid, else SILK_ERR_INVALID_ARGUMENT with the message
@@ -668,6 +676,8 @@ typedef struct silk_generate_stats {
    * faces passed (hard: the best-scoring kept; soft: all penalised); its seconds */
   int64_t face_guided_tokens, face_fallbacks;
   double seconds_face_guidance;
+  /* ---- appended in C API 1.5 ---- */
+  int32_t rows; /* best of N's rows used: min(params.rows, candidates) candidates decoded together */
 } silk_generate_stats;
 
 /* What to generate from: exactly one of mesh / points (or a point-cloud silk_mesh), borrowed for

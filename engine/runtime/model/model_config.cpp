@@ -206,9 +206,12 @@ Status SamplingSetting(const std::string& name, const SettingRange& range, doubl
   return s.ok() ? s : Status(StatusCode::kParseError, name + ": sampling." + s.message());
 }
 
-Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp, int32_t* candidates) {
+Status ParseSampling(const Json& j, const std::string& name, ModelConfig* c) {
+  SamplingParams* sp = &c->sampling;
+  int32_t* candidates = &c->candidates;
   *sp = DefaultSamplingParams();
   *candidates = 1;
+  c->rows.reset();
   const Json* o = nullptr;
   SILK_RETURN_IF_ERROR(GetObject(j, "sampling", name, &o));
   if (!o) return Status::Ok();
@@ -218,6 +221,12 @@ Status ParseSampling(const Json& j, const std::string& name, SamplingParams* sp,
   SILK_RETURN_IF_ERROR(GetDouble(*o, "top_p", where, &sp->top_p));
   SILK_RETURN_IF_ERROR(GetDouble(*o, "top_p_temperature", where, &sp->top_p_temperature));
   SILK_RETURN_IF_ERROR(GetOptionalInt(*o, "candidates", where, candidates));
+  if (o->contains("rows")) {
+    int32_t rows = 0;
+    SILK_RETURN_IF_ERROR(GetInt(*o, "rows", where, &rows));
+    SILK_RETURN_IF_ERROR(SamplingSetting(name, ranges::kRows, rows));
+    c->rows = rows;
+  }
   for (const auto& [range, value] : {std::pair{ranges::kCandidates, double(*candidates)},
                                      {ranges::kTemperature, sp->temperature},
                                      {ranges::kTopK, double(sp->top_k)},
@@ -392,7 +401,7 @@ StatusOr<ModelConfig> ParseModelConfig(const std::string& json_text, const std::
   if (c.arch == ModelArch::kSilk && int64_t{c.dims.d_model} != int64_t{c.dims.n_heads} * c.dims.head_dim)
     return Bad(name, "dims.d_model must be n_heads * head_dim for arch \"silk\" (docs/model_contract.md)");
   SILK_RETURN_IF_ERROR(ParsePreprocessing(j, name, &c));
-  SILK_RETURN_IF_ERROR(ParseSampling(j, name, &c.sampling, &c.candidates));
+  SILK_RETURN_IF_ERROR(ParseSampling(j, name, &c));
   SILK_RETURN_IF_ERROR(ParseFaceGuidance(j, name, &c));
   SILK_RETURN_IF_ERROR(ParseFiles(j, name, &c));
   SILK_RETURN_IF_ERROR(ParseSource(j, name, &c));

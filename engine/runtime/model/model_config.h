@@ -4,6 +4,7 @@
 // with a message instead of producing garbage.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,9 @@ struct ModelConfig {
   // sampling.candidates: the best-of-N a caller gets when it leaves N to the model (1 when
   // absent; a small model can afford several, the release-size one cannot).
   int32_t candidates = 1;
+  // sampling.rows: how many of best of N's candidates are decoded together, at most, when the
+  // caller leaves it to the model (absent: unset, libsilk's kDefaultRows).
+  std::optional<int32_t> rows;
   // sampling.face_guidance / sampling.face_tolerance: the face guidance a caller gets when it
   // leaves it to the model (absent: kDefaultFaceGuidance, kDefaultFaceTolerance).
   FaceGuidance face_guidance = kDefaultFaceGuidance;

@@ -29,6 +29,12 @@ struct SettingRange {
   const char* meaning;  // what the special values mean, for the message ("" if none)
 };
 
+// Best of N's rows (ranges::kRows) when neither the caller nor model.json ("sampling.rows") names
+// them: how many of the candidates are decoded together, at most. Rows of one decoder call read
+// every weight once and each candidate's ids are exactly those it gets alone (same seeds), so the
+// result does not depend on rows, only the time does; with N candidates min(rows, N) rows are used.
+inline constexpr int32_t kDefaultRows = 8;
+
 namespace ranges {
 inline constexpr SettingRange kTemperature{"temperature", 0, 100, false, false, "0 = greedy"};
 inline constexpr SettingRange kTopK{"top_k", 0, vocab::k_model_vocab_size, true, false, "0 = off"};
@@ -40,6 +46,8 @@ inline constexpr SettingRange kMaxFaces{"max_faces", 0, INT32_MAX, true, false, 
 inline constexpr SettingRange kSurfaceTolerance{"surface_tolerance", 0, 127, true, false, "cells of 128; 0 = off"};
 inline constexpr SettingRange kFaceTolerance{"face_tolerance", 0.5, 64, false, false, "cells of 128"};
 inline constexpr SettingRange kCandidates{"candidates", 1, 64, true, false, ""};
+// Best of N: how many of the candidates are decoded together, at most (GenerationSession).
+inline constexpr SettingRange kRows{"rows", 1, 64, true, false, ""};
 inline constexpr SettingRange kPointCount{"point_count", 1, kMaxPreprocessingPoints, true, true, "0 = the model's"};
 // onnxruntime's intra-op threads: 0 (the physical cores) up to the larger of 64 and the
 // hardware's threads.
