@@ -49,7 +49,7 @@ struct GenerateOptions {
   // Best of N: the candidates GenerationSession runs (runtime/generation_session.h), each a
   // Generator run with a derived seed. A Generator runs one generation and ignores it.
   int32_t candidates = 1;
-  // Best of N: candidates decoded together (GenerationSession); a Generator runs one generation and ignores it
+  // Best of N: candidates decoded together (GenerationSession); a Generator runs one generation and ignores it.
   int32_t rows = 1;
   // Part orientation (runtime/input_orientation.h): every generated part whose winding
   // disagrees with the encoder's points' normals (area-weighted vote) is reversed, in the final
@@ -132,15 +132,45 @@ class Generator {
   // Ends the generation without building its mesh.
   void Release();
 
+  // Rows mode (runtime/candidate_rows.h): a generation whose decoder calls the caller makes, for
+  // many generations at once (RowsDecoder). StartRow is Start without the encoder run and the
+  // cache: the caller ran the encoder (`encoder_seconds` goes into the stats) and feeds pending().
+  Status StartRow(const std::vector<float>& points, const GenerateOptions& options, const GenerateCallbacks& callbacks,
+                  double encoder_seconds);
+  enum class RowStep { kStepped, kNeedsLogits, kEnded };
+  // One id that needs no logits: a forced id is taken (kStepped); an id to sample is decided up to
+  // the logits and held (kNeedsLogits, again until StepWithLogits); kEnded once finished. Polls
+  // callbacks.cancel before each id, as Step does.
+  StatusOr<RowStep> StepWithoutLogits();
+  // The ids the decoder must take before the held id's logits (BOS first, forced runs, the last id).
+  const std::vector<int32_t>& pending() const;
+  bool waiting_for_logits() const;
+  // The caller fed pending() to the decoder (in `calls` runs taking `seconds`): it is cleared.
+  void NoteFed(double seconds, int64_t calls);
+  // Completes the held step with the logits after the ids fed (NoteFed first).
+  Status StepWithLogits(const float* logits);
+  // Shares `other`'s per-input state (surface and face guides, orientation index) when its last
+  // input is `points`, so rows of one input build them once.
+  void ShareInput(const Generator& other, const std::vector<float>& points);
+
  private:
   struct Session;
   struct StepChoice;
   // StepOnce's phases, in order: grammar (forced id, legal mask), decoder over the pending ids,
   // sampling, trace, grammar Accept, append and stop checks.
   Status StepOnce();
+  // Start's part after the encoder (both modes): the session, its stats, guides and chain.
+  Status Begin(const std::vector<float>& points, const GenerateOptions& options, const GenerateCallbacks& callbacks,
+               int32_t cap, double encoder_seconds);
+  StatusOr<int32_t> CheckStart(const std::vector<float>& points, const GenerateOptions& options) const;
+  Status AttachInput(const std::vector<float>& points, const GenerateOptions& options,
+                     const GenerateCallbacks& callbacks);
   bool ConsultGrammar(StepChoice* choice);
   Status FeedPending();
-  void ChooseId(StepChoice* choice);
+  Status CheckLogits(const float* logits) const;
+  // The step after the grammar: sample unless forced (from `logits`), trace, Accept, append.
+  Status TakeId(StepChoice* choice, const float* logits);
+  void ChooseId(StepChoice* choice, const float* logits);
   void RecordTrace(const StepChoice& choice);
   Status AcceptId(int32_t id);
   void AppendId(int32_t id);
