@@ -87,36 +87,6 @@ TEST(FaceGuide, FoldScoreIsTheAngleInsideThePair) {
   EXPECT_EQ(guide->FoldScore(x, x, p, {15, 74, 10}), 0.0);
 }
 
-// Two faces on edge (x, y) along the x axis over the plane y = 64 (input normals +y), wound the
-// decoder's way ((x, y, p), (y, x, q)): a pair opening 103 deg, not a fold, whose faces both lie
-// within 60 deg of the input's normals but face opposite sides of it, against the flat
-// continuation and a pair that agrees.
-TEST(FaceGuide, SignScoreFollowsTheWindingAcrossTheEdge) {
-  const auto guide = MakeGuide(PlanePoints(), 8.0);
-  const QVec x{10, 64, 10}, y{20, 64, 10}, p{15, 69, 14};
-  const QVec down{15, 59, 14};           // p's face goes up, this one down, both toward +z: n ~ (0, -4, 5), (0, 4, 5)
-  const double c = 4 / std::sqrt(41.0);  // each face's |cos| against +y
-  EXPECT_LT(guide->FoldScore(x, y, p, down), 1.0);  // 103 deg inside the pair: not a fold
-  EXPECT_NEAR(guide->SignScore(x, y, p, down), c * 2, 1e-9);
-  EXPECT_GT(guide->PairScore(x, y, p, down), 1.0);
-  // Invariant under the winding the decoder picks (x, y swapped) and which face came first.
-  EXPECT_NEAR(guide->SignScore(y, x, p, down), c * 2, 1e-9);
-  EXPECT_NEAR(guide->SignScore(x, y, down, p), c * 2, 1e-9);
-  // The flat continuation and a roof over the plane agree: 0.
-  EXPECT_EQ(guide->SignScore(x, y, p, {15, 59, 6}), 0.0);
-  EXPECT_EQ(guide->SignScore(x, y, {15, 66, 14}, {15, 66, 6}), 0.0);
-  EXPECT_EQ(guide->PairScore(x, y, p, {15, 59, 6}), guide->FoldScore(x, y, p, {15, 59, 6}));
-  // Faces nearly perpendicular to the input's normals disagree weakly: under 1.
-  EXPECT_LT(guide->SignScore(x, y, {15, 69, 11}, {15, 59, 11}), 1.0);
-  EXPECT_GT(guide->SignScore(x, y, {15, 69, 11}, {15, 59, 11}), 0.0);
-  // A fold scores by the fold; a degenerate face or input without normals: no sign part.
-  EXPECT_EQ(guide->PairScore(x, y, p, {25, 69, 14}), guide->FoldScore(x, y, p, {25, 69, 14}));
-  EXPECT_EQ(guide->SignScore(x, y, p, {30, 64, 10}), 0.0);
-  auto no_normals = PlanePoints();
-  for (size_t i = 0; i < no_normals.size(); i += 6) no_normals[i + 3] = no_normals[i + 4] = no_normals[i + 5] = 0;
-  EXPECT_EQ(MakeGuide(no_normals, 8.0)->SignScore(x, y, p, down), 0.0);
-}
-
 // The edge graph once `id` is accepted, from the decoders of whole layers (built independently
 // of the stage's per-column bookkeeping): the previous layer 0..n-1, the current layer's rows
 // n..n+b (u = n+b, the vertex being written), then the layer before the previous one.
@@ -165,22 +135,19 @@ BruteGraph GraphAfter(const Grammar& g, int32_t id) {
   return gr;
 }
 
-// Triangle (p, q, r) of the graph against every other triangle (p, q, y) on its edge (p, q):
-// fold and sign (FaceGuide::PairScore), or the fold alone.
-double BruteFolds(const BruteGraph& gr, int32_t p, int32_t q, int32_t r, const FaceGuide& guide, bool fold_only) {
+// Triangle (p, q, r) of the graph against every other triangle (p, q, y) on its edge (p, q).
+double BruteFolds(const BruteGraph& gr, int32_t p, int32_t q, int32_t r, const FaceGuide& guide) {
   double worst = 0;
-  for (int32_t y = 0; y < gr.total; ++y) {
-    if (y == p || y == q || y == r || !gr.Edge(p, y) || !gr.Edge(q, y)) continue;
-    const QVec &a = gr.pos[p], &b = gr.pos[q], &c = gr.pos[r], &d = gr.pos[y];
-    worst = std::max(worst, fold_only ? guide.FoldScore(a, b, c, d) : guide.PairScore(a, b, c, d));
-  }
+  for (int32_t y = 0; y < gr.total; ++y)
+    if (y != p && y != q && y != r && gr.Edge(p, y) && gr.Edge(q, y))
+      worst = std::max(worst, guide.FoldScore(gr.pos[p], gr.pos[q], gr.pos[r], gr.pos[y]));
   return worst;
 }
 
 // The id's score by brute force: every triangle of the graph through one of its new edges
 // (u, w), scored, and against every other triangle on each of its three edges (folds).
 struct Brute {
-  double score = 0, without_folds = 0, folds_unsigned = 0;  // the last: folds without the sign part
+  double score = 0, without_folds = 0;
 };
 
 Brute BruteScore(const Grammar& g, int32_t id, const FaceGuide& guide) {
@@ -196,15 +163,11 @@ Brute BruteScore(const Grammar& g, int32_t id, const FaceGuide& guide) {
     for (int32_t x = 0; x < gr.total; ++x) {
       if (x == u || x == w || !gr.Edge(u, x) || !gr.Edge(w, x)) continue;
       worst.without_folds = std::max(worst.without_folds, Score(guide, gr.pos[u], gr.pos[w], gr.pos[x]));
-      for (bool fold_only : {false, true}) {
-        double& out = fold_only ? worst.folds_unsigned : worst.score;
-        out = std::max({out, BruteFolds(gr, u, w, x, guide, fold_only), BruteFolds(gr, w, x, u, guide, fold_only),
-                        BruteFolds(gr, u, x, w, guide, fold_only)});
-      }
+      worst.score = std::max({worst.score, BruteFolds(gr, u, w, x, guide), BruteFolds(gr, w, x, u, guide),
+                              BruteFolds(gr, u, x, w, guide)});
     }
   }
   worst.score = std::max(worst.score, worst.without_folds);
-  worst.folds_unsigned = std::max(worst.folds_unsigned, worst.without_folds);
   return worst;
 }
 
@@ -227,25 +190,21 @@ bool Judged(Grammar& g, int32_t id) {
   }
 }
 
-// The walk's own vertices as input points (x y z nx ny nz rows), so some faces pass; normals
-// along +z or -z by turns (so the two faces of a pair can meet normals pointing either way).
+// The walk's own vertices as input points (x y z nx ny nz rows), so some faces pass.
 std::vector<float> WalkPoints(const Grammar& g) {
   std::vector<float> rows;
   for (const auto& comp : g.stream().components)
     for (const auto& layer : comp.layers)
-      for (const auto& v : layer.vertices) {
-        const float side = (v.pos.x + v.pos.y + v.pos.z) % 2 ? -1.f : 1.f;
+      for (const auto& v : layer.vertices)
         rows.insert(rows.end(),
                     {static_cast<float>((v.pos.x + 0.5) / 64 - 1), static_cast<float>((v.pos.y + 0.5) / 64 - 1),
-                     static_cast<float>((v.pos.z + 0.5) / 64 - 1), 0.f, 0.f, side});
-      }
+                     static_cast<float>((v.pos.z + 0.5) / 64 - 1), 0.f, 0.f, 1.f});
   return rows;
 }
 
 struct WalkTally {
   int64_t exact_steps = 0, removed = 0, passing = 0, penalised = 0;
-  int64_t folded = 0;       // ids a fold scores worst, past 1
-  int64_t signed_only = 0;  // ids past 1 only by the sign part (the fold and the face pass)
+  int64_t folded = 0;  // ids a fold scores worst, past 1
 };
 
 // Where only B ids are judged (a row's first B): the stage's mask (hard) or penalties (soft) equal
@@ -259,7 +218,6 @@ void CheckFirstBExactly(const Grammar& replay, const TokenMask& legal, const Sam
     brute.push_back({s.score, b});
     best = std::min(best, s.score);
     t->folded += s.score > std::max(1.0, s.without_folds) ? 1 : 0;
-    t->signed_only += s.score > 1 && s.folds_unsigned <= 1 ? 1 : 0;
   }
   if (mode == FaceGuidance::kHard) {
     const double keep = best <= 1 ? 1.0 : best * 1.25;
@@ -347,9 +305,8 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
   EXPECT_GT(t.removed, 0);       // ids removed,
   EXPECT_GT(t.passing, 0);       // steps where some id passed,
   EXPECT_GT(t.penalised, 0);
-  EXPECT_GT(t.folded, 0);       // folds decide some ids,
-  EXPECT_GT(t.signed_only, 0);  // the sign alone some
-  EXPECT_GT(fallbacks, 0);      // and steps where none did
+  EXPECT_GT(t.folded, 0);   // folds decide some ids
+  EXPECT_GT(fallbacks, 0);  // and steps where none did
   EXPECT_GT(narrowed_positions, 0);
 }
 

@@ -71,7 +71,6 @@ FaceGuide::FaceGuide(std::shared_ptr<const SurfaceGuide> field, const std::vecto
       root_(3 * 127 * 127 + 1),
       tolerance_(tolerance),
       angle_scale_(1.0 / (1.0 - std::cos(kFaceAngleLimitDegrees * kPi / 180.0))),
-      sign_scale_(1.0 / std::cos(kFaceAngleLimitDegrees * kPi / 180.0)),
       fold_cos_(std::cos(kFaceFoldLimitDegrees * kPi / 180.0)) {
   for (size_t i = 0; i < root_.size(); ++i) root_[i] = static_cast<float>(std::sqrt(static_cast<double>(i)));
 }
@@ -113,33 +112,6 @@ double FaceGuide::FoldScore(const QVec& x, const QVec& y, const QVec& p, const Q
   const double cos_t = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / std::sqrt(la * lb);
   if (cos_t <= fold_cos_) return (1 + cos_t) / (1 + fold_cos_);
   return 1 + kFaceFoldSpan * (cos_t - fold_cos_) / (1 - fold_cos_);
-}
-
-double FaceGuide::SignScore(const QVec& x, const QVec& y, const QVec& p, const QVec& q) const {
-  // Face (x, y, p) and, wound the other way along the edge, (y, x, q): normals (y - x) x (p - x)
-  // and (x - y) x (q - y) = (q - x) x (y - x). Each against the input normal nearest its centroid.
-  auto facing = [&](const QVec& r, bool first) {
-    const double ex = y.x - x.x, ey = y.y - x.y, ez = y.z - x.z, rx = r.x - x.x, ry = r.y - x.y, rz = r.z - x.z;
-    double nx = ey * rz - ez * ry, ny = ez * rx - ex * rz, nz = ex * ry - ey * rx;
-    if (!first) nx = -nx, ny = -ny, nz = -nz;
-    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
-    if (len == 0) return 0.0;
-    const Point3 centroid{(x.x + y.x + r.x) / 3.0, (x.y + y.y + r.y) / 3.0, (x.z + y.z + r.z) / 3.0};
-    const int32_t i = index_.Nearest(centroid).index;
-    if (i < 0) return 0.0;
-    const Point3& m = normals_[static_cast<size_t>(i)];
-    return (nx * m[0] + ny * m[1] + nz * m[2]) / len;  // 0 for a point without a normal
-  };
-  const double cp = facing(p, true);
-  if (cp == 0) return 0;
-  const double cq = facing(q, false);
-  if (cp * cq >= 0) return 0;
-  return std::min(std::fabs(cp), std::fabs(cq)) * sign_scale_;
-}
-
-double FaceGuide::PairScore(const QVec& x, const QVec& y, const QVec& p, const QVec& q) const {
-  const double fold = FoldScore(x, y, p, q);
-  return fold > 1 ? fold : std::max(fold, SignScore(x, y, p, q));
 }
 
 double FaceGuide::FaceDistance(const QVec& a, const QVec& b, const QVec& c) const {

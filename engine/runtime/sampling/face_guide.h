@@ -71,19 +71,6 @@ class FaceGuide {
   // on opposite sides of the edge (a flat pair) score 0, at kFaceFoldLimitDegrees 1, on top of
   // each other 1 + kFaceFoldSpan. A degenerate face (p or q on the edge's line) scores 0.
   double FoldScore(const QVec& x, const QVec& y, const QVec& p, const QVec& q) const;
-  // Sign score of the same pair: wound consistently (the decoder gives (x, y, p) and (y, x, q)
-  // opposite directions on their shared edge, whichever way it winds the part), do the two faces
-  // face the same side of the input (their normals against the input normals nearest their
-  // centroids)? 0 when they agree; when they disagree, min(|cos|) / cos kFaceAngleLimitDegrees,
-  // so a pair whose faces both lie within the angle limit of the input's normals but point to
-  // opposite sides of it scores past 1. Which winding the part gets does not change it (flipping
-  // both faces flips both signs), so a part that is inside-out throughout passes (`--orient
-  // input` turns it) and a face that turns against its neighbour does not. 0 for a degenerate
-  // face or an input point without a normal.
-  double SignScore(const QVec& x, const QVec& y, const QVec& p, const QVec& q) const;
-  // What face guidance scores a pair of faces on one edge by: the worse of FoldScore and
-  // SignScore (the sign part skipped when the fold alone is past 1).
-  double PairScore(const QVec& x, const QVec& y, const QVec& p, const QVec& q) const;
   // Score of an edge alone (distance only: its ends, midpoint and quarter points).
   double EdgeScore(const QVec& a, const QVec& b) const;
   // The same without its ends (a position still to be chosen: surface guidance judges that).
@@ -99,7 +86,6 @@ class FaceGuide {
   std::vector<float> root_;      // sqrt of every squared cell distance the grid holds
   double tolerance_;
   double angle_scale_;  // 1 / (1 - cos limit)
-  double sign_scale_;   // 1 / cos limit
   double fold_cos_;     // cos kFaceFoldLimitDegrees
 };
 

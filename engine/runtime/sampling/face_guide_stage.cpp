@@ -243,14 +243,14 @@ double FaceGuideStage::LinkedFace(int32_t a, int32_t c) {
   const QVec &pa = vs[a].pos, &w = prev_pos_[c];
   double s = guide_->FaceScore(u_, pa, w, u_near_, guide_->NearestPoint(pa), prev_near_[c]);
   for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e)
-    if (rows_[a].test(static_cast<size_t>(adj_[e]))) s = std::max(s, guide_->PairScore(pa, w, u_, prev_pos_[adj_[e]]));
+    if (rows_[a].test(static_cast<size_t>(adj_[e]))) s = std::max(s, guide_->FoldScore(pa, w, u_, prev_pos_[adj_[e]]));
   for (int32_t a2 = 0; a2 < b; ++a2) {
     if (a2 == a) continue;
     const bool next_to_a = a2 < a ? Linked(vs, a2, a) : Linked(vs, a, a2);
     const QVec& p2 = vs[a2].pos;
-    if (next_to_a && rows_[a2].test(static_cast<size_t>(c))) s = std::max(s, guide_->PairScore(pa, w, u_, p2));
-    if (row_linked_[a2] && rows_[a2].test(static_cast<size_t>(c))) s = std::max(s, guide_->PairScore(u_, w, pa, p2));
-    if (row_linked_[a2] && next_to_a) s = std::max(s, guide_->PairScore(u_, pa, w, p2));
+    if (next_to_a && rows_[a2].test(static_cast<size_t>(c))) s = std::max(s, guide_->FoldScore(pa, w, u_, p2));
+    if (row_linked_[a2] && rows_[a2].test(static_cast<size_t>(c))) s = std::max(s, guide_->FoldScore(u_, w, pa, p2));
+    if (row_linked_[a2] && next_to_a) s = std::max(s, guide_->FoldScore(u_, pa, w, p2));
   }
   return s;
 }
@@ -268,14 +268,14 @@ double FaceGuideStage::Pair(size_t entry) {
   // Folds: onto the faces already on edge (w1, w2); onto an earlier row's face there (a third
   // face); onto a linked row's face (u, w, a) on edge (u, w1) or (u, w2).
   for (int32_t k = apex_begin_[entry]; k < apex_begin_[entry + 1]; ++k)
-    s = std::max(s, guide_->PairScore(w1, w2, u_, apex_[static_cast<size_t>(k)]));
+    s = std::max(s, guide_->FoldScore(w1, w2, u_, apex_[static_cast<size_t>(k)]));
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   for (size_t a = 0; a < rows_.size(); ++a) {
     const bool has1 = rows_[a].test(static_cast<size_t>(c1)), has2 = rows_[a].test(static_cast<size_t>(c2));
-    if (has1 && has2) s = std::max(s, guide_->PairScore(w1, w2, u_, vs[a].pos));
+    if (has1 && has2) s = std::max(s, guide_->FoldScore(w1, w2, u_, vs[a].pos));
     if (!row_linked_[a]) continue;
-    if (has1) s = std::max(s, guide_->PairScore(u_, w1, w2, vs[a].pos));
-    if (has2) s = std::max(s, guide_->PairScore(u_, w2, w1, vs[a].pos));
+    if (has1) s = std::max(s, guide_->FoldScore(u_, w1, w2, vs[a].pos));
+    if (has2) s = std::max(s, guide_->FoldScore(u_, w2, w1, vs[a].pos));
   }
   pair_[entry] = s;
   return s;
@@ -293,7 +293,7 @@ double FaceGuideStage::FanFolds(const Columns& cols, int32_t c_new) {
       for (int32_t f = e + 1; f < adj_begin_[c + 1]; ++f) {
         const int32_t m2 = adj_[f];
         if (!cols.test(static_cast<size_t>(m2)) || (must >= 0 && m1 != must && m2 != must)) continue;
-        worst = std::max(worst, guide_->PairScore(u_, prev_pos_[c], prev_pos_[m1], prev_pos_[m2]));
+        worst = std::max(worst, guide_->FoldScore(u_, prev_pos_[c], prev_pos_[m1], prev_pos_[m2]));
       }
     }
   };
@@ -312,7 +312,7 @@ double FaceGuideStage::LinkedPairFolds(const Columns& cols, int32_t c_new) {
     if (c == c_new)
       for (const auto& [a2, m] : linked_list_)
         if (a2 == a && m != c && cols.test(static_cast<size_t>(m)))
-          worst = std::max(worst, guide_->PairScore(u_, vs[a].pos, prev_pos_[c], prev_pos_[m]));
+          worst = std::max(worst, guide_->FoldScore(u_, vs[a].pos, prev_pos_[c], prev_pos_[m]));
   return worst;
 }
 
@@ -448,11 +448,11 @@ double FaceGuideStage::ColumnFaces(const QVec& p, int32_t c, double enough) cons
     const QVec& pa = vs[a].pos;
     worst = std::max(worst, guide_->FaceDistance(p, pa, w));
     for (int32_t i = k == 0 ? 0 : col_faces_[k - 1][2]; i < end; ++i)
-      worst = std::max(worst, guide_->PairScore(pa, w, p, col_apex_[static_cast<size_t>(i)]));
+      worst = std::max(worst, guide_->FoldScore(pa, w, p, col_apex_[static_cast<size_t>(i)]));
     for (size_t j = k + 1; j < col_faces_.size(); ++j)
-      if (col_faces_[j][1] == c) worst = std::max(worst, guide_->PairScore(p, w, pa, vs[col_faces_[j][0]].pos));
+      if (col_faces_[j][1] == c) worst = std::max(worst, guide_->FoldScore(p, w, pa, vs[col_faces_[j][0]].pos));
     for (const auto& [a1, a2] : linked_pairs_)
-      if (a1 == a || a2 == a) worst = std::max(worst, guide_->PairScore(p, pa, w, vs[a1 == a ? a2 : a1].pos));
+      if (a1 == a || a2 == a) worst = std::max(worst, guide_->FoldScore(p, pa, w, vs[a1 == a ? a2 : a1].pos));
   }
   return worst;
 }
@@ -464,11 +464,11 @@ double FaceGuideStage::InLayerFolds(const QVec& p, double enough) const {
   for (size_t k = 0; k < linked_pairs_.size() && worst <= enough; ++k) {
     const QVec &p1 = vs[linked_pairs_[k].first].pos, &p2 = vs[linked_pairs_[k].second].pos;
     for (int32_t i = pair_apex_begin_[k]; i < pair_apex_begin_[k + 1]; ++i)
-      worst = std::max(worst, guide_->PairScore(p1, p2, p, pair_apex_[static_cast<size_t>(i)]));
+      worst = std::max(worst, guide_->FoldScore(p1, p2, p, pair_apex_[static_cast<size_t>(i)]));
   }
   for (const auto& [s, x, y] : fan_pairs_) {
     if (worst > enough) break;
-    worst = std::max(worst, guide_->PairScore(vs[s].pos, p, vs[x].pos, vs[y].pos));
+    worst = std::max(worst, guide_->FoldScore(vs[s].pos, p, vs[x].pos, vs[y].pos));
   }
   return worst;
 }

@@ -21,15 +21,14 @@ struct GenerationStats;
 // two of those columns that are neighbours in the previous layer (either one may come from the
 // row's earlier B ids), and with an earlier vertex of its own layer it is linked to whose row
 // holds the column. Its score is the worst of those faces, of its new edges alone (FaceGuide),
-// and of each such face's pair score (FaceGuide::PairScore: fold and sign) against every other
-// triangle of the edge graph on one of its three edges (the layer before the previous one
-// included): the surface must not double back over itself, nor turn to face the other side of
-// the input than its neighbour, whichever way the decoder will wind the part. Hard: ids scoring above 1 are removed;
-// when none passes, a row that has its B may end (K, U or E stay), otherwise the legal B ids within 25 % of the best
-// score are kept (stats->face_fallbacks). Soft: nothing is removed; the step's logit penalties (id, amount),
-// kFaceSoftPenalty per unit past 1, go to SamplerCandidates::penalties for MakeFacePenaltyStage. Other ids and forced
-// ids are never touched, so the mask never empties. The vertex's and the previous layer's parts are computed once per
-// vertex and layer; nothing is allocated per id.
+// and of each such face's folds (FaceGuide::FoldScore) onto every other triangle of the edge
+// graph on one of its three edges (the layer before the previous one included): the surface
+// must not double back over itself, whichever way the faces will be wound. Hard: ids scoring above 1 are removed; when
+// none passes, a row that has its B may end (K, U or E stay), otherwise the legal B ids within 25 % of the best score
+// are kept (stats->face_fallbacks). Soft: nothing is removed; the step's logit penalties (id, amount), kFaceSoftPenalty
+// per unit past 1, go to SamplerCandidates::penalties for MakeFacePenaltyStage. Other ids and forced ids are never
+// touched, so the mask never empties. The vertex's and the previous layer's parts are computed once per vertex and
+// layer; nothing is allocated per id.
 std::unique_ptr<SamplerStage> MakeFaceGuideStage(const FaceGuide* guide, FaceGuidance mode, const Grammar* grammar,
                                                  GenerationStats* stats);
 
