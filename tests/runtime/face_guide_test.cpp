@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Face guidance: the face score on known geometry, the stage against a brute-force reference
 // built from the edge graph after each candidate id (every legal B id of random legal walks,
-// hard and soft; the in-layer faces of every offset kept), and whole generations with the tiny
-// model (off leaves the ids alone, the guided mask and penalties reach the trace, bad values are
-// refused by name).
+// hard and soft), and whole generations with the tiny model (off leaves the ids alone, the
+// guided mask and penalties reach the trace, bad values are refused by name).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,7 +20,6 @@
 #include "tokenizer/adjacency/between_layer_cases.h"
 #include "tokenizer/adjacency/between_layer_decoder.h"
 #include "tokenizer/adjacency/self_layer_decoder.h"
-#include "tokenizer/packing/vertex_codec.h"
 #include "tokenizer/vocabulary_layout.h"
 
 namespace silk {
@@ -242,32 +240,6 @@ void CheckFirstBExactly(const Grammar& replay, const TokenMask& legal, const Sam
   EXPECT_EQ(k, c.penalties->size());
 }
 
-// Rows a < j of one layer joined by a's window or extras.
-bool InLayerEdge(const std::vector<StreamVertex>& vs, int32_t a, int32_t j) {
-  const int32_t d = j - a;
-  const auto& ex = vs[a].extras;
-  return d <= 8 ? ((vs[a].window >> (d - 1)) & 1) != 0 : std::count(ex.begin(), ex.end(), d - 1) > 0;
-}
-
-// A hard step choosing a position with some id passing: every offset kept closes in-layer faces
-// (a1, a2, p) with the earlier rows its layer's windows join to it, and each scores <= 1 by
-// distance and angle (FaceScore), not by distance alone.
-void CheckInLayerFaces(const Grammar& replay, const TokenMask& legal, const TokenMask& kept, const FaceGuide& guide,
-                       int64_t* faces) {
-  const auto& vs = replay.stream().components.back().layers.back().vertices;
-  const int32_t b = static_cast<int32_t>(vs.size()) - 1, block = replay.tokens().back();
-  for (int32_t id = legal.Next(vocab::kOBegin); id >= 0 && id < vocab::kOEnd; id = legal.Next(id + 1)) {
-    if (!kept.Test(id)) continue;
-    const QVec p = VertexOfTokens(block, id);
-    for (int32_t a1 = 0; a1 < b; ++a1)
-      for (int32_t a2 = a1 + 1; a2 < b; ++a2) {
-        if (!InLayerEdge(vs, a1, b) || !InLayerEdge(vs, a2, b) || !InLayerEdge(vs, a1, a2)) continue;
-        ASSERT_LE(Score(guide, vs[a1].pos, vs[a2].pos, p), 1 + 1e-9) << "offset " << id << " rows " << a1 << " " << a2;
-        ++*faces;
-      }
-  }
-}
-
 // Every step of random legal walks. Where only B ids are judged (a row's first B), the stage's
 // mask (hard) or penalties (soft) equal the brute-force scores' verdicts exactly; everywhere
 // (positions and blocks too): ids not judged untouched, the mask never empty, and the counters.
@@ -336,51 +308,6 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
   EXPECT_GT(t.folded, 0);   // folds decide some ids
   EXPECT_GT(fallbacks, 0);  // and steps where none did
   EXPECT_GT(narrowed_positions, 0);
-}
-
-// Input points filling the grid's volume (every 4th cell per axis, normals along z): every face
-// is near the input, so where a position passes, the angle of its in-layer faces decides.
-std::vector<float> VolumePoints() {
-  std::vector<float> rows;
-  auto coord = [](int32_t cell) { return static_cast<float>((cell + 0.5) / 64.0 - 1.0); };
-  for (int32_t x = 0; x < 128; x += 4)
-    for (int32_t y = 0; y < 128; y += 4)
-      for (int32_t z = 0; z < 128; z += 4) rows.insert(rows.end(), {coord(x), coord(y), coord(z), 0.f, 0.f, 1.f});
-  return rows;
-}
-
-// Hard guidance on random legal walks: at every position step where some offset passes, each
-// offset kept closes in-layer faces that pass by distance and angle.
-TEST(FaceGuide, KeptPositionsCloseInLayerFacesAlongTheInput) {
-  std::mt19937_64 rng(7);
-  RandomWalkOptions walk;
-  walk.max_layers = 5;
-  walk.max_layer_size = 14;
-  const auto guide = MakeGuide(VolumePoints(), 6.0);
-  int64_t faces = 0, steps = 0;
-  for (int trial = 0; trial < 12; ++trial) {
-    Grammar g;
-    const std::vector<int32_t> ids = RandomLegalWalk(&g, &rng, walk);
-    Grammar replay;
-    GenerationStats stats;
-    auto stage = MakeFaceGuideStage(guide.get(), FaceGuidance::kHard, &replay, &stats);
-    for (int32_t id : ids) {
-      const TokenMask legal = replay.LegalMask();
-      SamplerCandidates c;
-      c.forced = replay.Forced();
-      c.mask = &legal;
-      const int64_t judged = stats.face_guided_tokens, fallbacks = stats.face_fallbacks;
-      stage->Apply(&c);
-      if (replay.phase() == GrammarPhase::kWantO && stats.face_guided_tokens > judged &&
-          stats.face_fallbacks == fallbacks) {
-        ++steps;
-        CheckInLayerFaces(replay, legal, *c.mask, *guide, &faces);
-      }
-      ASSERT_TRUE(replay.Accept(id).ok());
-    }
-  }
-  EXPECT_GT(steps, 10);
-  EXPECT_GT(faces, 10);
 }
 
 GenerateOptions Options(uint64_t seed) {

@@ -119,7 +119,6 @@ class FaceGuideStage : public SamplerStage {
   // pairs that share a row s, as (s, x, y): faces (s, x, p) and (s, y, p) share edge (s, p).
   int32_t folds_vertex_ = -1;
   std::vector<Columns> pos_rows_;
-  std::vector<int32_t> pos_near_;  // each earlier row's nearest input point
   std::vector<int32_t> pair_apex_begin_;
   std::vector<QVec> pair_apex_;
   std::vector<std::array<int32_t, 3>> fan_pairs_;
@@ -402,11 +401,9 @@ void FaceGuideStage::PrepareInLayerFolds(int32_t b) {
   auto next_to = [&](int32_t x, int32_t y) { return x < y ? Linked(vs, x, y) : Linked(vs, y, x); };
   folds_vertex_ = b;
   pos_rows_.resize(static_cast<size_t>(b));
-  pos_near_.resize(static_cast<size_t>(b));
   for (int32_t a = 0; a < b; ++a) {
     pos_rows_[a].reset();
     AddRowColumns(vs[a].between, &pos_rows_[a]);
-    pos_near_[a] = guide_->NearestPoint(vs[a].pos);
   }
   pair_apex_begin_.assign(1, 0);
   pair_apex_.clear();
@@ -477,23 +474,17 @@ double FaceGuideStage::InLayerFolds(const QVec& p, double enough) const {
 }
 
 // A position fixes the vertex's edges to the linked rows, the faces among them, and where its
-// first B can go: the worst of those (the in-layer faces by distance and angle, the rest by
-// distance and folds), the B part being the best edge to a near column. interior_only: edges without their ends (a
-// representative cell of a block). Work stops once the score is known to exceed `enough` (the caller keeps only smaller
-// ones).
+// first B can go: the worst of those (distance only), the B part being the best edge to a near
+// column. interior_only: edges without their ends (a representative cell of a block). Work
+// stops once the score is known to exceed `enough` (the caller keeps only smaller ones).
 double FaceGuideStage::PositionScore(const QVec& p, bool interior_only, double enough) {
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   auto edge = [&](const QVec& q) { return interior_only ? guide_->EdgeInterior(q, p) : guide_->EdgeScore(q, p); };
   double worst = 0;
   for (int32_t a : linked_rows_) worst = std::max(worst, edge(vs[a].pos));
-  // The in-layer faces the linked rows' windows close at p: distance and angle (FaceScore); a
-  // block's representative cell (interior_only) by distance alone, as it is not the position.
-  const int32_t p_near = interior_only || linked_pairs_.empty() ? -1 : guide_->NearestPoint(p);
   for (const auto& [a1, a2] : linked_pairs_) {
     if (worst > enough) return worst;
-    const QVec &q1 = vs[a1].pos, &q2 = vs[a2].pos;
-    worst = std::max(worst, interior_only ? guide_->FaceDistance(q1, q2, p)
-                                          : guide_->FaceScore(q1, q2, p, pos_near_[a1], pos_near_[a2], p_near));
+    worst = std::max(worst, guide_->FaceDistance(vs[a1].pos, vs[a2].pos, p));
   }
   if (worst <= enough) worst = std::max(worst, InLayerFolds(p, enough));
   if (worst > enough || near_columns_.empty()) return worst;
