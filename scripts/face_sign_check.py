@@ -9,7 +9,7 @@ Per mesh and as means: NC and |NC| over the faces (area weighted, each face agai
 normal nearest its centroid), "disagree" (the share of area whose sign differs from its part's
 area-weighted majority: what `--orient input`, which turns whole parts, cannot fix), "edge flips"
 (interior edges whose two faces disagree in sign) and the same with both faces within 60 deg of
-the input's normals (what FaceGuide::SignScore scores past 1)."""
+the input's normals (what the signed pair score of commit 18e0c90 scored past 1)."""
 
 from __future__ import annotations
 
