@@ -2,8 +2,9 @@
 // Issue 20 (the runtime owns generation), silk.h only: the step-wise API honours best of N.
 // start / advance / finish with N = 3 returns exactly what silk_generator_run returns (ids, faces,
 // parts, chosen candidate), advancing by layers crosses the candidates (stats and progress name
-// the one in progress), a cancel in candidate 2 of 3 leaves finish usable, and the stop reasons
-// have their names.
+// the one in progress), a cancel in candidate 2 of 3 leaves finish usable (these two with rows 1,
+// one candidate after another; the rows' own steps and cancel: tests/runtime/candidate_rows_test.cpp),
+// and the stop reasons have their names.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -121,6 +122,7 @@ struct Progress {
 TEST_F(CapiBestOfN, LayerStepsCrossTheCandidatesAndNameTheOneInProgress) {
   Progress pr;
   silk_generate_params p = Params(5, 3);
+  p.rows = 1;  // one candidate after another (rows: candidate_rows_test)
   p.user_data = &pr;
   p.progress = [](const silk_generate_progress* x, void* u) {
     auto* pr = static_cast<Progress*>(u);
@@ -169,6 +171,7 @@ struct CancelAt {
 TEST_F(CapiBestOfN, CancelInTheSecondCandidateLeavesFinishUsable) {
   CancelAt at{g_};
   silk_generate_params p = Params(5, 3);
+  p.rows = 1;  // one candidate after another (rows: candidate_rows_test)
   p.user_data = &at;
   p.progress = [](const silk_generate_progress* x, void* u) {
     auto* at = static_cast<CancelAt*>(u);
@@ -205,6 +208,7 @@ TEST_F(CapiBestOfN, CancelInTheSecondCandidateLeavesFinishUsable) {
 TEST_F(CapiBestOfN, OneCallCancelCountsTheCandidatesStarted) {
   CancelAt at{g_};
   silk_generate_params p = Params(5, 3);
+  p.rows = 1;  // one candidate after another (rows: candidate_rows_test)
   p.user_data = &at;
   p.progress = [](const silk_generate_progress* x, void* u) {
     auto* at = static_cast<CancelAt*>(u);

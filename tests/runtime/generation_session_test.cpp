@@ -22,6 +22,7 @@ GenerationRequest Request(uint64_t seed, int32_t candidates) {
   r.top_k = 50;
   r.max_tokens = 300;
   r.candidates = candidates;
+  r.rows = 1;  // one candidate after another (rows: candidate_rows_test.cpp)
   return r;
 }
 
