@@ -18,7 +18,8 @@ namespace {
 // SILK_OK when a generation is in progress and `index` names one of its N candidates; otherwise
 // SILK_ERR_INVALID_ARGUMENT naming `function`, the index and N.
 silk_status CheckCandidate(const silk_generator& g, const char* function, int32_t index) {
-  if (!g.session.active()) return SetError(SILK_ERR_INVALID_ARGUMENT, std::string(function) + ": no generation in progress");
+  if (!g.session.active())
+    return SetError(SILK_ERR_INVALID_ARGUMENT, std::string(function) + ": no generation in progress");
   const int32_t n = g.session.candidates();
   if (index < 0 || index >= n)
     return SetError(SILK_ERR_INVALID_ARGUMENT, std::string(function) + ": candidate " + std::to_string(index) +
@@ -29,10 +30,14 @@ silk_status CheckCandidate(const silk_generator& g, const char* function, int32_
 
 silk_candidate_state ToCState(silk::CandidateView::State s) {
   switch (s) {
-    case silk::CandidateView::State::kWaiting: return SILK_CANDIDATE_WAITING;
-    case silk::CandidateView::State::kRunning: return SILK_CANDIDATE_RUNNING;
-    case silk::CandidateView::State::kEnded: return SILK_CANDIDATE_ENDED;
-    case silk::CandidateView::State::kScored: return SILK_CANDIDATE_SCORED;
+    case silk::CandidateView::State::kWaiting:
+      return SILK_CANDIDATE_WAITING;
+    case silk::CandidateView::State::kRunning:
+      return SILK_CANDIDATE_RUNNING;
+    case silk::CandidateView::State::kEnded:
+      return SILK_CANDIDATE_ENDED;
+    case silk::CandidateView::State::kScored:
+      return SILK_CANDIDATE_SCORED;
   }
   return SILK_CANDIDATE_WAITING;
 }
