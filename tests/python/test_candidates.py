@@ -43,7 +43,14 @@ def test_every_candidate_is_shown_while_best_of_n_runs(generation):
             gen.start(KNOT, seed=seed, max_tokens=200, candidates=3)
             before = gen.candidates()
             assert [c["state"] for c in before] == ["running", "waiting", "waiting"]
-            assert before[1] == {"index": 1, "state": "waiting", "tokens": 0, "faces": None, "score": None, "best": False}
+            assert before[1] == {
+                "index": 1,
+                "state": "waiting",
+                "tokens": 0,
+                "faces": None,
+                "score": None,
+                "best": False,
+            }
             check_view(gen, before, [])
             states = [set() for _ in before]
             while not gen.advance(10):
