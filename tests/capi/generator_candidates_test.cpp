@@ -35,18 +35,8 @@ size_t Faces(const silk_mesh* m) {
   return n / 3;
 }
 
-class CapiCandidates : public silk::testing::TinyModelTest {
+class CapiCandidates : public silk::testing::TinyGeneratorTest {
  protected:
-  void SetUp() override {
-    TinyModelTest::SetUp();
-    if (IsSkipped() || HasFatalFailure()) return;
-    ASSERT_EQ(silk_generator_create(model_, &g_), SILK_OK);
-    in_.mesh = mesh_;
-  }
-  void TearDown() override {
-    silk_generator_destroy(g_);
-    TinyModelTest::TearDown();
-  }
   std::vector<silk_candidate_info> View() {
     int32_t n = 0;
     EXPECT_EQ(silk_generator_candidate_count(g_, &n), SILK_OK) << silk_last_error();
@@ -97,8 +87,6 @@ class CapiCandidates : public silk::testing::TinyModelTest {
     }
     EXPECT_EQ(best, std::isinf(lowest) ? 0 : 1) << "one best among the scored";
   }
-  silk_generator* g_ = nullptr;
-  silk_generate_input in_ = silk_cpp::Sized<silk_generate_input>();
 };
 
 TEST_F(CapiCandidates, EveryCandidateIsShownWhileTheyRun) {
