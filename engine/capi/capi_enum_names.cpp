@@ -34,6 +34,7 @@ constexpr const char* kArchs[] = {"silk", "official"};
 constexpr const char* kOrientations[] = {"tokens", "input"};
 constexpr const char* kFaceGuidances[] = {"off", "hard", "soft"};
 constexpr const char* kAdvanceUntils[] = {"ids", "layer"};
+constexpr const char* kCandidateStates[] = {"waiting", "running", "ended", "scored"};  // C API 1.5
 // The generator's own names (runtime/stop_reason.h), value for value.
 constexpr const char* kStopReasons[] = {
     StopReasonName(StopReason::kNone),           StopReasonName(StopReason::kEos),
@@ -52,6 +53,7 @@ static_assert(SILK_ARCH_OFFICIAL == SILK_ARCH_SILK + 1, "kArchs lists silk_arch 
 constexpr EnumNames kOrientation = Table("silk_orientation", SILK_ORIENT_TOKENS, kOrientations);
 constexpr EnumNames kFaceGuidance = Table("silk_face_guidance", SILK_FACE_GUIDANCE_OFF, kFaceGuidances);
 constexpr EnumNames kAdvanceUntil = Table("silk_advance_until", SILK_ADVANCE_IDS, kAdvanceUntils);
+constexpr EnumNames kCandidateState = Table("silk_candidate_state", SILK_CANDIDATE_WAITING, kCandidateStates);
 constexpr EnumNames kStopReason = Table("silk_stop_reason", SILK_STOP_NONE, kStopReasons);
 
 static_assert(sizeof(kLogLevels) / sizeof(*kLogLevels) == SILK_LOG_ERROR + 1, "one name per silk_log_level");
@@ -68,6 +70,8 @@ static_assert(sizeof(kFaceGuidances) / sizeof(*kFaceGuidances) == SILK_FACE_GUID
               "one name per silk_face_guidance");
 static_assert(sizeof(kAdvanceUntils) / sizeof(*kAdvanceUntils) == SILK_ADVANCE_LAYER + 1,
               "one name per silk_advance_until");
+static_assert(sizeof(kCandidateStates) / sizeof(*kCandidateStates) == SILK_CANDIDATE_SCORED + 1,
+              "one name per silk_candidate_state");
 static_assert(sizeof(kStopReasons) / sizeof(*kStopReasons) == SILK_STOP_CANCELLED - SILK_STOP_NONE + 1,
               "one name per silk_stop_reason");
 
@@ -115,4 +119,5 @@ SILK_ENUM_NAME_FUNCTIONS(silk_orientation, kOrientation)
 SILK_ENUM_NAME_FUNCTIONS(silk_face_guidance, kFaceGuidance)
 SILK_ENUM_NAME_FUNCTIONS(silk_advance_until, kAdvanceUntil)
 SILK_ENUM_NAME_FUNCTIONS(silk_stop_reason, kStopReason)
+SILK_ENUM_NAME_FUNCTIONS(silk_candidate_state, kCandidateState)  // C API 1.5
 }  // extern "C"

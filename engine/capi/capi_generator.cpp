@@ -7,6 +7,7 @@
 
 #include "capi/capi_generator.h"
 
+using silk::capi::Busy;
 using silk::capi::BusyLock;
 using silk::capi::Guard;
 using silk::capi::Ok;
@@ -15,11 +16,6 @@ using silk::capi::SetError;
 namespace {
 
 constexpr int32_t kAllReportFlags = SILK_GENERATE_RECORD_TRACE;
-
-silk_status Busy(const char* function) {
-  return SetError(SILK_ERR_BUSY,
-                  std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
-}
 
 // The C-only checks of the params: flags 0/1, enums in range, reserved slots 0. Value ranges
 // are the runtime's (ResolveRequest).

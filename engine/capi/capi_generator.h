@@ -79,6 +79,8 @@ class BusyLock {
   bool end_run_;
 };
 
+// SILK_ERR_BUSY with the one message for a call refused because another is inside the generator.
+silk_status Busy(const char* function);
 // silk_generator_cancel / silk_generator_destroy on the state word (capi_generator_state.cpp).
 void CancelRun(silk_generator* g);
 // True: a call is inside; it is cancelled and frees the generator as it returns. False: the

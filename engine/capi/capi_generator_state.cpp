@@ -46,6 +46,11 @@ BusyLock::~BusyLock() {
   delete g_;
 }
 
+silk_status Busy(const char* function) {
+  return SetError(SILK_ERR_BUSY,
+                  std::string(function) + ": generator busy (in use on another thread; use one generator per thread)");
+}
+
 void CancelRun(silk_generator* g) {
   std::lock_guard<std::mutex> lock(g->cancel_mu);
   uint32_t s = g->state.load();

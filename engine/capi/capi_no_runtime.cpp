@@ -61,6 +61,16 @@ silk_status silk_generator_run(silk_generator*, const silk_generate_input*, cons
   if (t) *t = nullptr;
   return NoRuntime();
 }
+// C API 1.5: best of N's candidates.
+silk_status silk_generator_candidate_count(silk_generator*, int32_t* n) {
+  if (n) *n = 0;
+  return NoRuntime();
+}
+silk_status silk_generator_get_candidate(silk_generator*, int32_t, silk_candidate_info*) { return NoRuntime(); }
+silk_status silk_generator_get_candidate_mesh(silk_generator*, int32_t, silk_mesh** out) {
+  if (out) *out = nullptr;
+  return NoRuntime();
+}
 
 }  // extern "C"
 #endif

@@ -152,6 +152,11 @@ res = bpy.ops.silk.generate_mesh(seed=SEED, max_tokens=MAX_TOKENS, cancel_after_
 check(res == {"CANCELLED"}, f"cancelled run returns CANCELLED ({res})")
 check(set(bpy.data.objects) == before and len(bpy.data.meshes) == mesh_count, "a cancelled run leaves no object")
 
+# -- best of N: every candidate shown while they run (the modal run's previews) -----------------
+import candidate_preview_checks  # noqa: E402
+
+candidate_preview_checks.run(addon, src, check)
+
 # -- the Silk tab in the sidebar: models by name, settings, progress, scores, cancel -------------
 import sidebar_checks  # noqa: E402
 

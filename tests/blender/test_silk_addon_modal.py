@@ -4,7 +4,8 @@
 by tests/blender/run_blender_test.sh modal (ctest blender_addon_modal). `silk.generate_mesh` is
 invoked as a user invokes it (INVOKE_DEFAULT in the 3D view), so it runs as a modal operator
 driven by timer events: the wire preview must grow while the UI keeps handling events (this
-test's own timer watches it from outside; it starts again with each best-of-N candidate), and the result must equal the synchronous (script)
+test's own timer watches it from outside; best of N: one wire object per candidate, side by side,
+the best so far named, all removed at the end), and the result must equal the synchronous (script)
 run with the same settings. A second invocation gets a real Esc key event (window.event_simulate) while it
 runs: no object and no preview may be left. Blender ends with os._exit(status), since a
 windowed session's exit code does not follow --python-exit-code."""
@@ -44,13 +45,23 @@ check(not bpy.app.background, "a windowed session (not -b)")
 addon = addon_setup.install_and_enable(env["SILK_ADDON_ZIP"], failures)
 check(addon is not None, "add-on enabled")
 operators = addon_setup.submodule(addon, "operators")  # the installed copy
+PREFIX = addon_setup.submodule(addon, "candidate_previews").PREFIX
 
 src = addon_setup.import_active_mesh(env["SILK_DEV_MESH"])
 
 
+def is_preview(o):
+    return o.name == operators.PREVIEW_NAME or o.name.startswith(PREFIX)
+
+
 def results(new_objects):
-    parts = [o for o in new_objects if o.type == "MESH" and o.name != operators.PREVIEW_NAME]
+    parts = [o for o in new_objects if o.type == "MESH" and not is_preview(o)]
     return len(parts), sum(len(p.data.polygons) for p in parts)
+
+
+def previews():
+    """The run's wire previews: the single one (N = 1) or one per started candidate (best of N)."""
+    return [o for o in bpy.data.objects if is_preview(o)]
 
 
 def remove(objs):
@@ -83,7 +94,7 @@ def invoke():
         return win, bpy.ops.silk.generate_mesh("INVOKE_DEFAULT", seed=SEED, max_tokens=MAX_TOKENS, model_dir=MODEL)
 
 
-state = {"phase": "run", "before": set(), "preview_faces": [], "polls": 0, "t0": time.monotonic()}
+state = {"phase": "run", "before": set(), "preview_faces": {}, "names": set(), "polls": 0, "t0": time.monotonic()}
 
 
 def poll():
@@ -92,26 +103,33 @@ def poll():
     if time.monotonic() - state["t0"] > 240:
         check(False, f"phase {state['phase']} still running after 240 s")
         finish()
-    preview = bpy.data.objects.get(operators.PREVIEW_NAME)
+    shown = previews()
     if state["phase"] == "run":
-        if preview is not None:
-            state["preview_faces"].append(len(preview.data.polygons))
+        if shown:
+            for o in shown:  # faces per candidate, keyed by "Silk candidate 3/8" without "(best)"
+                state["preview_faces"].setdefault(o.name.replace(" (best)", ""), []).append(len(o.data.polygons))
+                state["names"].add(o.name)
             return 0.02
-        faces = state["preview_faces"]
         parts, total = results(set(bpy.data.objects) - state["before"])
-        print(f"modal: {total} faces in {parts} part(s); preview face counts seen {sorted(set(faces))}", flush=True)
+        print(f"modal: {total} faces in {parts} part(s); previews seen {sorted(state['names'])}", flush=True)
         check(
             parts == want_parts and total == want_faces,
             f"modal result ({total} faces, {parts} parts) == synchronous ({want_faces}, {want_parts})",
         )
-        # Best of N: the preview is the candidate in progress, so it starts again (a drop) as each
-        # of the model's N candidates after the first begins, and only grows in between.
-        drops = sum(b < a for a, b in zip(faces, faces[1:]))
-        check(
-            len(faces) >= 2 and drops <= CANDIDATES - 1,
-            f"the preview only grows while a candidate runs ({drops} restarts, {CANDIDATES} candidates)",
-        )
-        check(len(set(f for f in faces if f > 0)) >= 2, "the preview shows at least two stages of growth")
+        # Each preview only grows; best of N shows every candidate side by side, the best so far named.
+        faces = state["preview_faces"]
+        grows = all(all(b >= a for a, b in zip(f, f[1:])) for f in faces.values())
+        check(grows, f"every preview only grows ({ {k: sorted(set(v)) for k, v in faces.items()} })")
+        check(any(len(set(x for x in f if x > 0)) >= 2 for f in faces.values()), "a preview shows two stages of growth")
+        if CANDIDATES > 1:
+            want = {f"{PREFIX} {i + 1}/{CANDIDATES}" for i in range(CANDIDATES)}
+            check(set(faces) == want, f"one preview per candidate ({sorted(faces)})")
+            check(any(n.endswith(" (best)") for n in state["names"]), "the best so far is named '(best)'")
+            status = bpy.context.window_manager.silk_run.status
+            check(
+                f"of {CANDIDATES}; candidate" in status,
+                f"the progress names the candidates running and done ({status})",
+            )
         remove(set(bpy.data.objects) - state["before"])
         # Phase 2: Esc while running.
         state.update(phase="esc", before=set(bpy.data.objects), meshes=len(bpy.data.meshes), polls=0)
@@ -120,9 +138,10 @@ def poll():
         check(res == {"RUNNING_MODAL"}, f"second invocation is modal ({res})")
         return 0.02
     if state["phase"] == "esc":
-        if preview is not None:
-            if len(preview.data.polygons) > 0 and not state.get("esc_sent"):  # mid-run: some layers shown
-                state["esc_faces"] = len(preview.data.polygons)
+        if shown:
+            faces = sum(len(o.data.polygons) for o in shown)
+            if faces > 0 and not state.get("esc_sent"):  # mid-run: some layers shown
+                state["esc_faces"] = faces
                 state["win"].event_simulate(type="ESC", value="PRESS")
                 state["esc_sent"] = True
             return 0.02

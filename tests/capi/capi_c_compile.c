@@ -84,6 +84,20 @@ int main(void) {
       return 22;
     silk_tokens_destroy(walk);
   }
+  /* best of N's candidates (1.5): the names, and a NULL generator refused with a message */
+  {
+    silk_candidate_info ci = {.struct_size = sizeof ci};
+    silk_mesh* cm = NULL;
+    int32_t n = -1, state = -1;
+    const silk_status refused = silk_generation_available() ? SILK_ERR_INVALID_ARGUMENT : SILK_ERR_UNSUPPORTED;
+    if (strcmp(silk_candidate_state_name(SILK_CANDIDATE_SCORED), "scored") != 0 ||
+        strcmp(silk_candidate_state_name(SILK_CANDIDATE_SCORED + 1), "unknown") != 0)
+      return 24;
+    if (silk_candidate_state_from_name("running", &state) != SILK_OK || state != SILK_CANDIDATE_RUNNING) return 25;
+    if (silk_generator_candidate_count(NULL, &n) != refused || silk_generator_get_candidate(NULL, 0, &ci) != refused ||
+        silk_generator_get_candidate_mesh(NULL, 0, &cm) != refused || cm != NULL || strlen(silk_last_error()) == 0)
+      return 26;
+  }
   silk_mesh_destroy(back);
   silk_tokens_destroy(tokens);
   silk_mesh_destroy(mesh);

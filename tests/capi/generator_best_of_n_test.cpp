@@ -49,18 +49,8 @@ Outcome Collect(silk_mesh* m, silk_tokens* t, const silk_generate_stats& st) {
   return o;
 }
 
-class CapiBestOfN : public silk::testing::TinyModelTest {
+class CapiBestOfN : public silk::testing::TinyGeneratorTest {
  protected:
-  void SetUp() override {
-    TinyModelTest::SetUp();
-    if (IsSkipped() || HasFatalFailure()) return;
-    ASSERT_EQ(silk_generator_create(model_, &g_), SILK_OK);
-    in_.mesh = mesh_;
-  }
-  void TearDown() override {
-    silk_generator_destroy(g_);
-    TinyModelTest::TearDown();
-  }
   // Candidates matter here; the id cap is one value throughout.
   static silk_generate_params Params(uint64_t seed, int32_t candidates) {
     silk_generate_params p = TinyModelTest::Params(seed, 200);
@@ -81,8 +71,6 @@ class CapiBestOfN : public silk::testing::TinyModelTest {
     EXPECT_EQ(silk_generator_finish(g_, &m, &t, &st), SILK_OK) << silk_last_error();
     return Collect(m, t, st);
   }
-  silk_generator* g_ = nullptr;
-  silk_generate_input in_ = silk_cpp::Sized<silk_generate_input>();
 };
 
 void ExpectSame(const Outcome& a, const Outcome& b, const std::string& what) {

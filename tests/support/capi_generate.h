@@ -68,4 +68,21 @@ class TinyModelTest : public ::testing::Test {
   silk_mesh* mesh_ = nullptr;
 };
 
+// TinyModelTest with a generator on the model and an input of the sample mesh (step-wise tests).
+class TinyGeneratorTest : public TinyModelTest {
+ protected:
+  void SetUp() override {
+    TinyModelTest::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
+    ASSERT_EQ(silk_generator_create(model_, &g_), SILK_OK);
+    in_.mesh = mesh_;
+  }
+  void TearDown() override {
+    silk_generator_destroy(g_);
+    TinyModelTest::TearDown();
+  }
+  silk_generator* g_ = nullptr;
+  silk_generate_input in_ = silk_cpp::Sized<silk_generate_input>();
+};
+
 }  // namespace silk::testing

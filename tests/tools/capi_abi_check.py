@@ -7,7 +7,8 @@ past them, and the current symbol returns today's size. The same for silk_genera
 (@SILK_1.0: the struct before 1.3's face guidance fields; @SILK_1.3: before 1.5's rows; @SILK_1.5:
 today's): their bytes equal the first bytes of today's defaults, and silk_generator_run accepts the
 1.0 and 1.3 params and stats sizes without writing past them. The functions 1.3 added are bound to the SILK_1.3 node alone, those 1.4
-added (the enum names) to SILK_1.4 alone. Linux
+added (the enum names) to SILK_1.4 alone, those 1.5 added (best of N's candidates; and
+silk_generate_default_params@@SILK_1.5) to SILK_1.5 alone. Linux
 (ELF symbol versions) only.
 
     capi_abi_check.py LIBSILK MODEL_DIR
@@ -45,6 +46,14 @@ SILK_1_4 = tuple(f"silk_{e}_{kind}" for e in SILK_1_4_ENUMS for kind in ("name",
     "silk_stop_reason_from_name",
     "silk_param_range",
     "silk_param_check",
+)
+# C API 1.5: best of N's candidates while they run.
+SILK_1_5 = (
+    "silk_candidate_state_name",
+    "silk_candidate_state_from_name",
+    "silk_generator_candidate_count",
+    "silk_generator_get_candidate",
+    "silk_generator_get_candidate_mesh",
 )
 INFO_INTS = (
     "d_model",
@@ -112,8 +121,8 @@ def main(lib_path, model_dir):
     failures += check_generate(lib, libc, model)
     lib.silk_model_destroy.argtypes = [ctypes.c_void_p]
     lib.silk_model_destroy(model)
-    # Added in 1.3 / 1.4: bound to that node alone, so an older libsilk is refused by name.
-    for node, functions in ((b"SILK_1.3", SILK_1_3), (b"SILK_1.4", SILK_1_4)):
+    # Added in 1.3 / 1.4 / 1.5: bound to that node alone, so an older libsilk is refused by name.
+    for node, functions in ((b"SILK_1.3", SILK_1_3), (b"SILK_1.4", SILK_1_4), (b"SILK_1.5", SILK_1_5)):
         for fn in functions:
             if not libc.dlvsym(lib._handle, fn.encode(), node) or libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.0"):
                 failures.append(f"{fn}: must be exported as {fn}@@{node.decode()} only (engine/libsilk.map)")

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The add-on's operators: silk.generate_mesh (modal with Esc cancel, status-bar progress and a
-preview that grows per completed layer; synchronous from scripts and in background mode, with the
-same result), silk.import_tokens and silk.export_tokens."""
+preview that grows per completed layer, with best of N one per candidate side by side, the best so
+far named (candidate_previews.py); synchronous from scripts and in background mode, with the same
+result), silk.import_tokens and silk.export_tokens."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from bpy_extras.io_utils import ExportHelper, ImportHelper
 
 from . import (
     blender_mesh,
+    candidate_previews,
     enum_items,
     run_progress,
     shared_settings,
@@ -215,9 +217,20 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         coll = self._src.users_collection[0] if self._src.users_collection else context.scene.collection
-        self._preview = blender_mesh.new_mesh_object(PREVIEW_NAME, [], [], coll)
-        self._preview.matrix_world = self._src.matrix_world.copy()
-        self._preview.display_type = "WIRE"
+        self._preview, self._candidates = None, None
+        try:
+            n = len(self._job.candidates())
+        except silk_mesh.SilkError as e:
+            self._job.close()
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        if n > 1:  # best of N: every candidate side by side, the best so far named
+            self._candidates = candidate_previews.CandidatePreviews(self._src, coll)
+            self._run.after_candidates(self._candidates.update(self._job))  # the first shows at once
+        else:  # one candidate: its preview over the source
+            self._preview = blender_mesh.new_mesh_object(PREVIEW_NAME, [], [], coll)
+            self._preview.matrix_world = self._src.matrix_world.copy()
+            self._preview.display_type = "WIRE"
         wm = context.window_manager
         self._timer = wm.event_timer_add(0.05, window=context.window)
         wm.modal_handler_add(self)
@@ -231,6 +244,9 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             bpy.data.objects.remove(self._preview, do_unlink=True)
             bpy.data.meshes.remove(mesh)
             self._preview = None
+        if self._candidates is not None:
+            self._candidates.remove()
+            self._candidates = None
         self._job.close()
 
     def modal(self, context, event):
@@ -247,12 +263,15 @@ class SILK_OT_generate_mesh(bpy.types.Operator):
             while not self._job.done and time.monotonic() < t_end:
                 self._job.advance(64, until_layer=True)
                 self._run.after_advance(self._job.stats(), 64, self._job.done)
-            self._run.publish(self._job.done)
             st = self._job.stats()
-            with self._job.preview() as m:
-                pos, tri = m.positions, m.triangles
-            if len(tri) != len(self._preview.data.polygons):
-                blender_mesh.set_mesh_data(self._preview, pos, tri)
+            if self._candidates is not None:
+                self._run.after_candidates(self._candidates.update(self._job))
+            else:
+                with self._job.preview() as m:
+                    pos, tri = m.positions, m.triangles
+                if len(tri) != len(self._preview.data.polygons):
+                    blender_mesh.set_mesh_data(self._preview, pos, tri)
+            self._run.publish(self._job.done)
             context.workspace.status_text_set(
                 f"Silk: {self._run.text()}, {st['faces']} faces in {st['components']} part(s) - Esc to cancel"
             )

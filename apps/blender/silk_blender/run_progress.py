@@ -16,6 +16,13 @@ class RunProgress:
         self.max_tokens = max(1, max_tokens)  # the run's cap on ids per candidate
         self.last = {}  # candidate, candidates, tokens of the latest stats
         self.candidate, self.layers_done, self._tokens = -1, 0, 0
+        self.counts = None  # (running, done, N) of best of N's candidates, when the modal run shows them
+
+    def after_candidates(self, views: list[dict]) -> None:
+        """The candidates' views (silk_mesh Generator.candidates()): how many run and how many are done."""
+        running = sum(c["state"] == "running" for c in views)
+        done = sum(c["state"] in ("ended", "scored") for c in views)
+        self.counts = (running, done, len(views))
 
     def after_advance(self, stats: dict, max_ids: int, done: bool) -> None:
         """After each advance(max_ids, until_layer=True): fewer ids than asked and not done means a layer
@@ -42,7 +49,10 @@ class RunProgress:
         p = self.last
         if not p:
             return "preparing the points (encoder)"
-        return (
+        rows = ""
+        if self.counts and self.counts[2] > 1:  # "; " separates the sidebar's candidates line
+            rows = f"candidates running {self.counts[0]}, done {self.counts[1]} of {self.counts[2]}; "
+        return rows + (
             f"candidate {max(0, self.candidate) + 1} of {p.get('candidates', 1)}, layer {self.layers_done + 1}, "
             f"{p.get('tokens', 0)} / {p.get('max_tokens', 0)} ids"
         )

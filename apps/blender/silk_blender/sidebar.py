@@ -187,7 +187,9 @@ class SILK_PT_sidebar(bpy.types.Panel):
         row.operator(SILK_OT_sidebar_cancel.bl_idname, icon="CANCEL")
         if run.running or run.status:
             col = layout.column(align=True)
-            for line in run.status.split(", ", 1):  # "done: candidate 2 of 2", "layer 5, 812 / 2047 ids"
+            rows, _, rest = run.status.rpartition("; ")  # "candidates running 2, done 3 of 8" (best of N, modal)
+            lines = ([rows] if rows else []) + rest.split(", ", 1)  # "done: candidate 2 of 2", "layer 5, ..."
+            for line in lines:
                 col.label(text=line)
             if hasattr(layout, "progress"):  # Blender 4.0+: a real progress bar
                 col.progress(factor=run.progress, text=f"{round(100 * run.progress)} %")

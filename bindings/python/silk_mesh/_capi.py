@@ -35,6 +35,7 @@ ENUM_FIRST = {
     "face_guidance": 0,
     "advance_until": 0,
     "stop_reason": -1,
+    "candidate_state": 0,  # C API 1.5
 }
 
 
@@ -380,6 +381,19 @@ class GenerateInput(_Sized):
     _fields_ = _SIZE + [("mesh", ctypes.c_void_p), ("points", _c_double_p), ("point_rows", ctypes.c_size_t)]
 
 
+class CandidateInfo(_Sized):
+    """silk_candidate_info (C API 1.5): one of best of N's candidates of the generation in progress."""
+
+    _fields_ = _SIZE + [
+        ("index", ctypes.c_int32),
+        ("state", ctypes.c_int32),
+        ("faces", ctypes.c_int32),
+        ("tokens", ctypes.c_int64),
+        ("score", ctypes.c_double),
+        ("best", ctypes.c_int32),
+    ]
+
+
 class SaveParams(_Sized):
     _fields_ = _SIZE + [("part_colors", ctypes.c_int32), ("obj_comment", ctypes.c_char_p), ("format", ctypes.c_int32)]
 
@@ -505,6 +519,13 @@ SIGNATURES = {
     "silk_model_default_dir": (ctypes.c_int, [ctypes.c_char_p, ctypes.c_size_t, _c_size_p]),
     "silk_model_find": (ctypes.c_int, [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t, _c_size_p]),
     "silk_models_list": (ctypes.c_int, [ctypes.POINTER(ctypes.c_void_p)]),
+    # C API 1.5: best of N's candidates while they run.
+    "silk_generator_candidate_count": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p]),
+    "silk_generator_get_candidate": (ctypes.c_int, [ctypes.c_void_p, ctypes.c_int32, ctypes.POINTER(CandidateInfo)]),
+    "silk_generator_get_candidate_mesh": (
+        ctypes.c_int,
+        [ctypes.c_void_p, ctypes.c_int32, ctypes.POINTER(ctypes.c_void_p)],
+    ),
 }
 
 

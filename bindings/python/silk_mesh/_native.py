@@ -276,6 +276,22 @@ def generator_stats(g: c_void_p) -> _capi.GenerateStats:
     return st
 
 
+def generator_candidates(g: c_void_p) -> list[_capi.CandidateInfo]:
+    """silk_generator_get_candidate of every candidate of the generation in progress."""
+    n = ctypes.c_int32()
+    check(lib().silk_generator_candidate_count(g, byref(n)))
+    out = []
+    for i in range(n.value):
+        c = _capi.CandidateInfo()
+        check(lib().silk_generator_get_candidate(g, i, byref(c)))
+        out.append(c)
+    return out
+
+
+def generator_candidate_mesh(g: c_void_p, index: int) -> c_void_p:
+    return _out(lib().silk_generator_get_candidate_mesh, g, index)
+
+
 def generator_finish(g: c_void_p) -> tuple[c_void_p, c_void_p, _capi.GenerateStats]:
     mh, th, st = c_void_p(), c_void_p(), _capi.GenerateStats()
     check(lib().silk_generator_finish(g, byref(mh), byref(th), byref(st)))

@@ -82,7 +82,8 @@ def _progress_dict(p) -> dict:
 class Generator(_Owned):
     """One generation at a time on a Model (a Model, a folder path, or None: the bundled model).
     One call: run(input, **params) -> Result. Step-wise: start(input, **params), advance(...) until
-    it returns True (also `done`), preview() / ids() / stats() at any point, finish() -> Result;
+    it returns True (also `done`), preview() / ids() / stats() at any point (best of N: every
+    candidate with candidates() / candidate_preview(i)), finish() -> Result;
     cancel() from anywhere (a callback, another thread). Use one generator per thread.
 
     input: a Mesh, a mesh file path or (positions, triangles); or points= rows x y z nx ny nz.
@@ -191,6 +192,34 @@ class Generator(_Owned):
 
     def ids(self) -> list[int]:
         return _native.tokens_take(_native.generator_tokens(self.handle))
+
+    def candidates(self) -> list[dict]:
+        """Every one of best of N's candidates of the generation in progress (C API 1.5), in seed
+        order: {"index", "state" ("waiting", "running", "ended", "scored"), "tokens" (ids so far),
+        "faces" (its mesh's, None until built), "score" (None unless scored; lower is better),
+        "best" (True: the best of those scored so far)}. The candidates may run one after another
+        or together as rows; one run one after another stays "running" until its mesh is built.
+        Between start() and finish() only (SilkError otherwise)."""
+        out = []
+        for c in _native.generator_candidates(self.handle):
+            out.append(
+                {
+                    "index": c.index,
+                    "state": _native.enum_name("candidate_state", c.state),
+                    "tokens": c.tokens,
+                    "faces": None if c.faces < 0 else c.faces,
+                    "score": c.score if c.score == c.score else None,  # NaN: not scored
+                    "best": bool(c.best),
+                }
+            )
+        return out
+
+    def candidate_preview(self, index: int) -> Mesh:
+        """Candidate `index`'s mesh (input frame): its completed layers while it runs, its whole mesh
+        once built, no faces while it waits. SilkError (invalid argument) for an index outside
+        [0, N) or with no generation in progress."""
+        index = _checks.integer(index, ctypes.c_int32, "candidate_preview: index")
+        return Mesh._adopt(_native.generator_candidate_mesh(self.handle, index))
 
     def stats(self) -> dict:
         return _native.stats_dict(_native.generator_stats(self.handle))

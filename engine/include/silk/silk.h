@@ -792,6 +792,48 @@ SILK_API silk_status silk_advance_until_from_name(const char* name, int32_t* out
 /* silk_stop_reason_name is declared beside silk_stop_reason ("none" ... "cancelled"). */
 SILK_API silk_status silk_stop_reason_from_name(const char* name, int32_t* out);
 
+/* ---- best of N's candidates while they run (C API 1.5) -----------------------------------
+ * The step-wise view of every candidate of the generation in progress (params.candidates = N),
+ * not only the one silk_generator_get_mesh shows: whether a candidate waits, generates, has ended
+ * or has been scored, its ids and faces so far, its score, the best so far, and its mesh. The
+ * candidates run one after another or together as rows of one decoder call: the view is the same.
+ * Like silk_generator_get_mesh these answer during a generation only (from a successful start
+ * until finish; a cancelled run stays viewable until its finish): otherwise, and for an index
+ * outside [0, N), SILK_ERR_INVALID_ARGUMENT (the message names the index and N). Same generator
+ * rules as the other step-wise queries: one call at a time on a generator (SILK_ERR_BUSY while
+ * another call, e.g. an advance on another thread or inside its own callbacks, is in it). */
+typedef enum silk_candidate_state {
+  SILK_CANDIDATE_WAITING = 0, /* not started */
+  SILK_CANDIDATE_RUNNING = 1, /* generating ids; also one whose ids have ended but whose mesh is not built
+                                 yet (one after another: until the next advance, the last one until finish) */
+  SILK_CANDIDATE_ENDED = 2,   /* its ids have ended and its mesh is built; not scored yet */
+  SILK_CANDIDATE_SCORED = 3   /* scored: score set, compared with the others scored so far */
+} silk_candidate_state;
+SILK_API const char* silk_candidate_state_name(int32_t state); /* "waiting", "running", "ended", "scored" */
+SILK_API silk_status silk_candidate_state_from_name(const char* name, int32_t* out);
+
+/* One candidate as silk_generator_get_candidate fills it. The caller sets struct_size
+ * (silk_candidate_info c = {sizeof c};); fields may only be appended. */
+typedef struct silk_candidate_info {
+  uint32_t struct_size;
+  int32_t index;  /* 0 .. N-1: the seed order, as silk_generate_stats.chosen_candidate counts */
+  int32_t state;  /* silk_candidate_state */
+  int32_t faces;  /* ended or scored: its mesh's faces; -1 (unknown) while waiting or running */
+  int64_t tokens; /* its ids so far (0 while waiting) */
+  double score;   /* scored only (lower is better, as silk_generate_stats.score); NaN otherwise */
+  int32_t best;   /* 1: the best of those scored so far (the one finish returns if no later one beats it) */
+} silk_candidate_info;
+
+/* *n = N, the candidates of the generation in progress. */
+SILK_API silk_status silk_generator_candidate_count(silk_generator* generator, int32_t* n);
+/* Candidate `index` of the generation in progress into *out (struct_size bytes at most). */
+SILK_API silk_status silk_generator_get_candidate(silk_generator* generator, int32_t index, silk_candidate_info* out);
+/* Candidate `index`'s mesh in the input frame: while it runs, the faces of its completed layers
+ * (as silk_generator_get_mesh shows the one in progress); once ended, its whole mesh; a mesh with
+ * no faces while it waits.
+ * *out: a new silk_mesh owned by the caller, silk_mesh_destroy (a copy). */
+SILK_API silk_status silk_generator_get_candidate_mesh(silk_generator* generator, int32_t index, silk_mesh** out);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -312,6 +312,22 @@ class Generator {
     Check(silk_generator_get_stats(h_.get(), &s));
     return s;
   }
+  // Best of N's candidates of the generation in progress (C API 1.5): every one's state, and its mesh.
+  std::vector<silk_candidate_info> Candidates() {
+    int32_t n = 0;
+    Check(silk_generator_candidate_count(h_.get(), &n));
+    std::vector<silk_candidate_info> out(static_cast<size_t>(n));
+    for (int32_t i = 0; i < n; ++i) {
+      out[static_cast<size_t>(i)].struct_size = sizeof(silk_candidate_info);
+      Check(silk_generator_get_candidate(h_.get(), i, &out[static_cast<size_t>(i)]));
+    }
+    return out;
+  }
+  Mesh CandidateMesh(int32_t index) {
+    silk_mesh* m = nullptr;
+    Check(silk_generator_get_candidate_mesh(h_.get(), index, &m));
+    return Mesh(m);
+  }
   Mesh Finish(silk_generate_stats* stats = nullptr, std::vector<int32_t>* tokens = nullptr) {
     silk_mesh* m = nullptr;
     silk_tokens* t = nullptr;
