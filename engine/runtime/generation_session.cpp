@@ -29,6 +29,7 @@ void GenerationSession::Reset() {
   by_rows_ = false;
   waiting_.clear();
   built_.clear();
+  last_ended_ = LastEnded{};
 }
 
 Status GenerationSession::Score(GenerateResult* result, int32_t index, const CancelCheck& cancel) {
@@ -134,10 +135,18 @@ bool GenerationSession::done() const {
   return active_ && (cancelled_ || (candidate_ + 1 >= candidates() && generator_.finished()));
 }
 
-int32_t GenerationSession::candidate() const { return by_rows_ ? std::max(rows_.lead_candidate(), 0) : candidate_; }
+int32_t GenerationSession::candidate() const {
+  if (!by_rows_) return candidate_;
+  return rows_.lead() ? rows_.lead_candidate() : std::max(last_ended_.candidate, 0);
+}
 
 Status GenerationSession::ScoreEnded(const CancelCheck& cancel) {
-  for (auto& [index, result] : rows_.TakeEnded()) waiting_[static_cast<size_t>(index)] = std::move(result);
+  for (auto& [index, result] : rows_.TakeEnded()) {
+    last_ended_.candidate = index;  // shown once no candidate runs
+    last_ended_.tokens = result.tokens;
+    last_ended_.stats = result.stats;
+    waiting_[static_cast<size_t>(index)] = std::move(result);
+  }
   for (size_t i = static_cast<size_t>(choice_.size()); i < waiting_.size() && waiting_[i]; ++i) {
     SILK_RETURN_IF_ERROR(Score(&*waiting_[i], static_cast<int32_t>(i), cancel));
     waiting_[i].reset();
@@ -230,7 +239,7 @@ const Generator* GenerationSession::Shown() const {
 const std::vector<int32_t>& GenerationSession::tokens() const {
   static const std::vector<int32_t> kNone;
   if (!active_) return kNone;
-  if (by_rows_) return rows_.lead() ? rows_.lead()->tokens() : kNone;
+  if (by_rows_) return rows_.lead() ? rows_.lead()->tokens() : last_ended_.tokens;
   if (generator_.active()) return generator_.tokens();
   return ended_ ? ended_->tokens : kNone;
 }
@@ -238,7 +247,7 @@ const std::vector<int32_t>& GenerationSession::tokens() const {
 const GenerationStats& GenerationSession::stats() const {
   static const GenerationStats kNone;
   if (!active_) return kNone;
-  if (by_rows_) return rows_.lead() ? rows_.lead()->stats() : kNone;
+  if (by_rows_) return rows_.lead() ? rows_.lead()->stats() : last_ended_.stats;
   if (generator_.active()) return generator_.stats();
   return ended_ ? ended_->stats : kNone;
 }

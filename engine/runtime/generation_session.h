@@ -145,7 +145,12 @@ class GenerationSession {
   bool by_rows_ = false;
   std::chrono::steady_clock::time_point started_;       // rows mode: the run's start (wall time)
   std::vector<std::optional<GenerateResult>> waiting_;  // rows mode: ended, by index, not yet scored
-  std::vector<TokenizerDecodedMesh> built_;             // scored candidates' meshes, by index (previews)
+  struct LastEnded {  // rows mode: the candidate that ended last (tokens(), stats() once none runs)
+    int32_t candidate = -1;
+    std::vector<int32_t> tokens;
+    GenerationStats stats;
+  } last_ended_;
+  std::vector<TokenizerDecodedMesh> built_;  // scored candidates' meshes, by index (previews)
   // Adds candidate `index`'s result to the choice (scored, polling `cancel`), keeping its mesh.
   Status Score(GenerateResult* result, int32_t index, const CancelCheck& cancel);
   const Generator* RunningGenerator(int32_t index) const;

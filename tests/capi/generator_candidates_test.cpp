@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "silk/silk.h"
@@ -91,13 +92,16 @@ class CapiCandidates : public silk::testing::TinyGeneratorTest {
 
 TEST_F(CapiCandidates, EveryCandidateIsShownWhileTheyRun) {
   int chosen_later = 0;
-  for (uint64_t seed : {5, 8}) {
+  // One after another (rows 1), and two rows at once (candidate 2 waits for a free row).
+  for (const auto& [seed, rows] : {std::pair<uint64_t, int32_t>{5, 1}, {8, 1}, {5, 2}, {8, 2}}) {
     silk_generate_params p = Params(seed, 200);
     p.candidates = 3;
+    p.rows = rows;
     ASSERT_EQ(silk_generator_start(g_, &in_, &p), SILK_OK) << silk_last_error();
     std::vector<silk_candidate_info> before = View();
     ASSERT_EQ(before.size(), 3u);
     EXPECT_EQ(before[0].state, SILK_CANDIDATE_RUNNING);
+    EXPECT_EQ(before[1].state, rows > 1 ? SILK_CANDIDATE_RUNNING : SILK_CANDIDATE_WAITING);
     EXPECT_EQ(before[2].state, SILK_CANDIDATE_WAITING);
     CheckView(before, {});
     std::vector<int> seen(3, 0);  // bit per state seen, per candidate
@@ -185,22 +189,27 @@ TEST_F(CapiCandidates, RefusesNoRunAndIndexOutOfRange) {
   EXPECT_EQ(silk_generator_candidate_count(g_, nullptr), SILK_ERR_INVALID_ARGUMENT);
 }
 
-// silk.hpp: Generator::Candidates / CandidateMesh over the same calls; one candidate is one row.
+// silk.hpp: Generator::Candidates / CandidateMesh over the same calls, one after another and as rows.
 TEST_F(CapiCandidates, CppWrapperListsTheCandidates) {
   silk_model_params o = silk_model_default_params();
   o.threads = 1;
   const silk_cpp::Model model = silk_cpp::Model::Load(silk::testing::SourcePath("tests/models/tiny"), o);
   silk_cpp::Generator gen(model);
-  for (int32_t n : {1, 2}) {
+  for (const auto& [n, rows] : {std::pair<int32_t, int32_t>{1, 1}, {2, 1}, {2, 2}}) {
     silk_generate_params p = Params(5, 40);
     p.candidates = n;
+    p.rows = rows;
     gen.Start(in_, p);
     while (!gen.Advance(1000)) {
     }
     const std::vector<silk_candidate_info> all = gen.Candidates();
     ASSERT_EQ(all.size(), static_cast<size_t>(n));
-    EXPECT_EQ(all.front().state, n > 1 ? SILK_CANDIDATE_SCORED : SILK_CANDIDATE_RUNNING);
-    EXPECT_EQ(all.back().state, SILK_CANDIDATE_RUNNING);  // one after another: built and scored by finish
+    if (rows > 1) {  // rows: each candidate is built and scored as it ends
+      for (const silk_candidate_info& c : all) EXPECT_EQ(c.state, SILK_CANDIDATE_SCORED);
+    } else {
+      EXPECT_EQ(all.front().state, n > 1 ? SILK_CANDIDATE_SCORED : SILK_CANDIDATE_RUNNING);
+      EXPECT_EQ(all.back().state, SILK_CANDIDATE_RUNNING);  // one after another: built and scored by finish
+    }
     EXPECT_GT(all.back().tokens, 0);
     EXPECT_GT(gen.CandidateMesh(n - 1).triangles().size(), 0u);
     EXPECT_THROW(gen.CandidateMesh(n), silk_cpp::Error);
