@@ -40,7 +40,7 @@ def test_every_candidate_is_shown_while_best_of_n_runs(generation):
     moved = False
     with silk_mesh.Generator(TINY) as gen:
         for seed in (5, 8):
-            gen.start(KNOT, seed=seed, max_tokens=200, candidates=3)
+            gen.start(KNOT, seed=seed, max_tokens=200, candidates=3, rows=1)  # one after another
             before = gen.candidates()
             assert [c["state"] for c in before] == ["running", "waiting", "waiting"]
             assert before[1] == {
@@ -69,6 +69,28 @@ def test_every_candidate_is_shown_while_best_of_n_runs(generation):
                     assert chosen["best"] and math.isclose(chosen["score"], stats["score"], rel_tol=0, abs_tol=0)
                     assert chosen["faces"] == mesh.triangle_count
     assert moved, "candidate 0 stayed the best every time: pick other seeds"
+
+
+def test_candidates_as_rows_run_together_and_end_scored(generation):
+    """rows=2: two of the three candidates start at once, the third waits for a free row; each one is
+    scored as it ends, and the mesh equals the one-after-another run's."""
+    with silk_mesh.Generator(TINY) as gen:
+        gen.start(KNOT, seed=5, max_tokens=200, candidates=3, rows=1)
+        while not gen.advance(1000):
+            pass
+        one_mesh, one_ids, one_stats = gen.finish()
+        one_mesh.close()
+        gen.start(KNOT, seed=5, max_tokens=200, candidates=3, rows=2)
+        assert [c["state"] for c in gen.candidates()] == ["running", "running", "waiting"]
+        while not gen.advance(10):
+            now = gen.candidates()
+            check_view(gen, now, [])
+            assert sum(c["state"] == "running" for c in now) <= 2
+        assert [c["state"] for c in gen.candidates()] == ["scored"] * 3
+        mesh, ids, stats = gen.finish()
+        with mesh:
+            assert list(ids) == list(one_ids) and stats["chosen_candidate"] == one_stats["chosen_candidate"]
+            assert stats["rows"] == 2
 
 
 def test_candidates_refuse_no_run_and_an_index_out_of_range(generation):
