@@ -7,14 +7,14 @@
 //
 //   time_to_mesh --model DIR [--calls 1000,4000] [--decoders int4,int8,fp32] [--kv fp32,fp16,int8]
 //                [--threads 2] [--official-depths 0,1024] [--official-steps 24] [--no-official]
-//                [--rows 1,2,4,8 [--baseline DIR]]
+//                [--rows 1,2,4,8 [--baseline DIR]] [--block 100]
 //
 // A --kv item PRECISION@FOLDER takes that precision's variant from another model folder (e.g. one
 // whose fp16 variants are `silk-export kv16 --attention ort`), printed as PRECISION@<folder name>.
 //
 // One pass of max(calls) calls per config; the figures for a smaller N are that pass's first N
 // calls (the same thing: N calls from depth 0). Each config runs in a forked child (its own peak
-// RSS); the KV precisions of one decoder are loaded side by side and fed in turns of 100 calls,
+// RSS); the KV precisions of one decoder are loaded side by side and fed in turns of --block calls (100),
 // so load from other processes hits them alike (decoders run one after the other: memory).
 // Random ids: the decoder's cost does not depend on which ids it is fed.
 //
@@ -22,7 +22,7 @@
 // config, one child per R feeds R rows together from depth 0 through RowsDecoder over a
 // RowsKvCache (one id per row per call, BOS first, all rows attending to one encoder output),
 // beside a child feeding one sequence through DecoderRunner (today's path), all interleaved in
-// turns of 100 calls as above. Per R: ms per call, rows x calls per second and its ratio to R = 1
+// turns of --block calls as above. Per R: ms per call, rows x calls per second and its ratio to R = 1
 // of the same run, bytes per call and the bound counting the weights and cross K/V once and each
 // row's cache, peak RSS; and R = 1 through RowsDecoder against DecoderRunner. --baseline DIR adds a
 // DecoderRunner child on DIR's variant of the same precision (the same weights as a contract v3
@@ -72,6 +72,7 @@ struct Args {
   bool official = true;
   std::vector<int> rows;  // --rows: R values (empty: the table of KV precisions)
   std::string baseline;   // --baseline DIR: a second DecoderRunner child on DIR's variant (e.g. contract v3)
+  int block = 100;        // --block: calls per child per turn
 };
 
 // One child's work: a KV configuration, fed as one sequence through DecoderRunner (rows 0) or as
@@ -227,15 +228,13 @@ Child Spawn(const Args& a, DecoderPrecision p, const Job& job) {
 }
 
 // The jobs of one decoder (its KV precisions, or one KV precision's R values), loaded side by side
-// and fed in turns of `kBlock` calls, so a change of the machine's load during the run hits each
-// of them alike.
-constexpr int kBlock = 100;
-
+// and fed in turns of --block calls (100), so a change of the machine's load during the run hits
+// each of them alike (a smaller block: alike at a finer grain, for close comparisons).
 std::vector<Pass> RunInterleaved(const Args& a, DecoderPrecision p, const std::vector<Job>& jobs) {
   std::vector<Child> kids;
   for (const Job& job : jobs) kids.push_back(Spawn(a, p, job));
-  for (int done = 0; done < a.calls.back(); done += kBlock) {
-    const int n = std::min(kBlock, a.calls.back() - done);
+  for (int done = 0; done < a.calls.back(); done += a.block) {
+    const int n = std::min(a.block, a.calls.back() - done);
     for (Child& ch : kids) {
       char ok = 0;
       if (ch.alive)
@@ -334,6 +333,8 @@ bool ParseArgs(int argc, char** argv, Args* a) {
       a->rows = Ints(next());
     else if (k == "--baseline")
       a->baseline = next();
+    else if (k == "--block")
+      a->block = std::atoi(next().c_str());
     else if (k == "--decoders") {
       a->decoders.clear();
       std::stringstream ss(next());
@@ -359,6 +360,7 @@ bool ParseArgs(int argc, char** argv, Args* a) {
   std::sort(a->calls.begin(), a->calls.end());
   for (int r : a->rows)
     if (r < 1 || r > 64) return false;
+  if (a->block < 1) return false;
   return !a->model.empty() && !a->calls.empty() && a->calls.front() > 0 && a->calls.size() <= 8;
 }
 
@@ -497,12 +499,13 @@ int Usage() {
   std::fprintf(stderr,
                "usage: time_to_mesh --model DIR [--calls 1000,4000] [--decoders int4,int8,fp32] [--kv fp32,fp16,int8]\n"
                "                    [--threads 2] [--official-depths 0,1024] [--official-steps 24] [--no-official]\n"
-               "                    [--rows 1,2,4,8 [--baseline DIR]]\n"
+               "                    [--rows 1,2,4,8 [--baseline DIR]] [--block 100]\n"
                "  (DIR: a release-size model folder, e.g. python3 bench/export_bench_models.py --configs official\n"
                "   --out OUT, then python3 -m silk_export kv16 OUT/official; a --kv item PRECISION@FOLDER takes\n"
                "   that variant from another folder; --rows: R sequences per call, 1 to 64 each, beside\n"
                "   DecoderRunner, instead of the table of KV precisions: no official loop; --baseline DIR: a second\n"
-               "   DecoderRunner on DIR's variant, e.g. the same weights in decoder contract v3)\n");
+               "   DecoderRunner on DIR's variant, e.g. the same weights in decoder contract v3; --block: calls each\n"
+               "   child makes per turn)\n");
   return 2;
 }
 
