@@ -5,7 +5,9 @@ and of the released official network ("official": arch official at the release s
 parameters) for bench/generation_bench.cpp, at bench time (never committed: paper is ~2 GB in
 fp32, official ~2.4 GB). Each goes to OUT/<config>/ with model.json, encoder.onnx, decoder.onnx,
 decoder.int8.onnx; "official" also gets decoder.int4.onnx and the importer's fidelity figures
-(model.json "import.fidelity": top-1 agreement and KL of each variant vs fp32).
+(model.json "import.fidelity": top-1 agreement and KL of each variant vs fp32). Every folder
+gets, as `silk-export export` / import-official write them, the fp16- and int8-cache variants
+of every decoder in decoder contract v4 (R rows per call) and model_version 4 (time_to_mesh --rows).
 
     python3 bench/export_bench_models.py --out /tmp/silk-bench-models [--configs tiny small paper official]
 """
@@ -24,16 +26,17 @@ sys.path.insert(0, str(REPO / "export"))
 import torch  # noqa: E402
 
 from silk_export.json_io import dumps, write_json  # noqa: E402
-from silk_export.registry import get_architecture  # noqa: E402
 from silk_export.models.configs import get_config  # noqa: E402
 from silk_export.models.silk_model import SilkModel  # noqa: E402
 from silk_export.onnx.export import export_graphs, export_model, sidecar, transpose_linears  # noqa: E402
+from silk_export.onnx.rows import ROWS_CONTRACT  # noqa: E402
 
 RANDOM = {"steps": 0, "data": "random weights (benchmark)"}
 
 
 def export_official(out: Path, seed: int, int4_block: int, int4_accuracy: int) -> int:
-    """Release-size official network, random weights; all three decoders + fidelity figures."""
+    """Release-size official network, random weights; all three decoders + fidelity figures + the
+    contract v4 cache variants (write_variants), so model.json says model_version 4 as import-official's."""
     from silk_export.official.checkpoint import RELEASE_SIZES, official_config
     from silk_export.import_official import write_variants
     from silk_export.official.model import OfficialModel
@@ -48,6 +51,7 @@ def export_official(out: Path, seed: int, int4_block: int, int4_accuracy: int) -
         {**RANDOM, "seed": seed},
         files,
         {"import": {"fidelity": figures, "int4": {"block_size": int4_block, "accuracy_level": int4_accuracy}}},
+        ROWS_CONTRACT,
     )
     write_json(out / "model.json", meta)
     return params
@@ -65,10 +69,10 @@ def main() -> int:
     torch.set_num_threads(2)
     for name in a.configs:
         out = Path(a.out) / name
-        version = get_architecture("official" if name == "official" else "silk").model_version
+        # export_model and export_official both write contract v4 variants with model_version 4
         current = (out / "model.json").exists() and json.loads((out / "model.json").read_text()).get(
             "model_version"
-        ) == version
+        ) == ROWS_CONTRACT
         if current and (a.no_int8 or (out / "decoder.int8.onnx").exists()):
             print(f"{name}: already in {out}")
             continue
