@@ -20,6 +20,7 @@
 #include "runtime/generation_session.h"
 #include "runtime/rows_decoder.h"
 #include "runtime_test_util.h"
+#include "session_run.h"
 
 namespace silk {
 namespace {
@@ -193,16 +194,7 @@ GenerationRequest Request(int32_t candidates, int32_t rows) {
 }
 
 SessionResult RunSession(GenerationSession* s, const GenerationRequest& r, int32_t max_ids, AdvanceUntil until) {
-  const Status started = s->Start(r, testing::SampleMeshInput());
-  EXPECT_TRUE(started.ok()) << started.ToString();
-  while (started.ok() && !s->done()) {
-    const Status st = s->Advance(max_ids, until);
-    EXPECT_TRUE(st.ok()) << st.ToString();
-    if (!st.ok()) break;
-  }
-  auto out = s->Finish();
-  EXPECT_TRUE(out.ok()) << out.status().ToString();
-  return out.ok() ? std::move(*out) : SessionResult{};
+  return testing::RunSession(s, r, testing::SampleMeshInput(), max_ids, until);
 }
 
 void ExpectSameChoice(const SessionResult& a, const SessionResult& b, const std::string& what) {

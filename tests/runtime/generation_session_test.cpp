@@ -11,6 +11,7 @@
 #include "runtime/candidates.h"
 #include "runtime/generation_session.h"
 #include "runtime_test_util.h"
+#include "session_run.h"
 
 namespace silk {
 namespace {
@@ -37,15 +38,7 @@ class SessionTest : public ::testing::Test {
   // Start + Advance(max_ids, until) until done + Finish.
   SessionResult RunSession(GenerationSession* s, const GenerationRequest& r, int32_t max_ids = 1 << 30,
                            AdvanceUntil until = AdvanceUntil::kIds, const GenerateCallbacks& cb = {}) {
-    EXPECT_TRUE(s->Start(r, input_, cb).ok());
-    while (!s->done()) {
-      const Status st = s->Advance(max_ids, until);
-      EXPECT_TRUE(st.ok()) << st.ToString();
-      if (!st.ok()) break;
-    }
-    auto out = s->Finish();
-    EXPECT_TRUE(out.ok()) << out.status().ToString();
-    return out.ok() ? std::move(*out) : SessionResult{};
+    return testing::RunSession(s, r, input_, max_ids, until, cb);
   }
   std::unique_ptr<Model> model_;
   GenerationInput input_;
