@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "runtime/generation_output.h"
+#include "runtime/model/model_impl.h"
 
 namespace silk {
 
@@ -49,7 +50,9 @@ Status GenerationSession::Start(const GenerationRequest& request, const Generati
   if (Status s = PreparePoints(request, input, callbacks.cancel); !s.ok()) return s.WithContext(context);
   callbacks_ = callbacks;
   flag_ = flag;
-  by_rows_ = plan_.options.rows > 1 && plan_.options.candidates > 1;
+  // A decoder before contract v4 takes one row per call: rows would run one after another anyway
+  // and only hold R caches at once, so such a folder runs its candidates one after another.
+  by_rows_ = plan_.options.rows > 1 && plan_.options.candidates > 1 && model_.impl().rows_contract;
   if (by_rows_) {
     started_ = Clock::now();
     waiting_.assign(static_cast<size_t>(candidates()), std::nullopt);

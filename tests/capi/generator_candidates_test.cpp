@@ -38,6 +38,10 @@ size_t Faces(const silk_mesh* m) {
 
 class CapiCandidates : public silk::testing::TinyGeneratorTest {
  protected:
+  // Contract v4: best of N runs as rows there (a batch-1 folder runs its candidates one after another).
+  std::string ModelDir() const override { return "tests/models/tiny-rows"; }
+
+ protected:
   std::vector<silk_candidate_info> View() {
     int32_t n = 0;
     EXPECT_EQ(silk_generator_candidate_count(g_, &n), SILK_OK) << silk_last_error();
@@ -193,7 +197,7 @@ TEST_F(CapiCandidates, RefusesNoRunAndIndexOutOfRange) {
 TEST_F(CapiCandidates, CppWrapperListsTheCandidates) {
   silk_model_params o = silk_model_default_params();
   o.threads = 1;
-  const silk_cpp::Model model = silk_cpp::Model::Load(silk::testing::SourcePath("tests/models/tiny"), o);
+  const silk_cpp::Model model = silk_cpp::Model::Load(silk::testing::SourcePath("tests/models/tiny-rows"), o);
   silk_cpp::Generator gen(model);
   for (const auto& [n, rows] : {std::pair<int32_t, int32_t>{1, 1}, {2, 1}, {2, 2}}) {
     silk_generate_params p = Params(5, 40);

@@ -14,6 +14,7 @@ import silk_mesh
 
 ROOT = Path(__file__).resolve().parents[2]
 TINY = ROOT / "tests" / "models" / "tiny"
+TINY_ROWS = ROOT / "tests" / "models" / "tiny-rows"  # contract v4: best of N runs as rows
 KNOT = ROOT / "samples" / "torus_knot.obj"
 ORDER = ["waiting", "running", "ended", "scored"]
 
@@ -72,9 +73,14 @@ def test_every_candidate_is_shown_while_best_of_n_runs(generation):
 
 
 def test_candidates_as_rows_run_together_and_end_scored(generation):
-    """rows=2: two of the three candidates start at once, the third waits for a free row; each one is
-    scored as it ends, and the mesh equals the one-after-another run's."""
+    """rows=2 on a contract v4 folder: two of the three candidates start at once, the third waits for a
+    free row; each one is scored as it ends, and the mesh equals the one-after-another run's. A
+    batch-1 folder runs them one after another whatever rows asks."""
     with silk_mesh.Generator(TINY) as gen:
+        gen.start(KNOT, seed=5, max_tokens=60, candidates=3, rows=2)
+        assert [c["state"] for c in gen.candidates()] == ["running", "waiting", "waiting"]
+        gen.finish()[0].close()
+    with silk_mesh.Generator(TINY_ROWS) as gen:
         gen.start(KNOT, seed=5, max_tokens=200, candidates=3, rows=1)
         while not gen.advance(1000):
             pass

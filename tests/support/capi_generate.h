@@ -2,6 +2,7 @@
 // What the C API generation tests share: the one-call generation from a silk_mesh or from rows
 // of points through silk_generator_run, and a fixture holding the tiny test model and the sample.
 #pragma once
+#include <string>
 #include <cmath>
 #include <vector>
 #include <gtest/gtest.h>
@@ -49,7 +50,7 @@ class TinyModelTest : public ::testing::Test {
     if (!silk_generation_available()) GTEST_SKIP() << "libsilk built without onnxruntime";
     silk_model_params o = silk_model_default_params();
     o.threads = 1;
-    ASSERT_EQ(silk_model_load(SourcePath("tests/models/tiny").c_str(), &o, &model_), SILK_OK) << silk_last_error();
+    ASSERT_EQ(silk_model_load(SourcePath(ModelDir()).c_str(), &o, &model_), SILK_OK) << silk_last_error();
     ASSERT_EQ(silk_mesh_load(SourcePath("samples/torus_knot.obj").c_str(), nullptr, &mesh_), SILK_OK)
         << silk_last_error();
   }
@@ -57,6 +58,9 @@ class TinyModelTest : public ::testing::Test {
     silk_mesh_destroy(mesh_);
     silk_model_destroy(model_);
   }
+  // The model folder (relative to the source tree): the batch-1 tiny model unless a test needs
+  // another (tests/models/tiny-rows: decoder contract v4, where best of N runs as rows).
+  virtual std::string ModelDir() const { return "tests/models/tiny"; }
   // The default parameters with a seed and an id cap.
   static silk_generate_params Params(uint64_t seed, int32_t max_tokens = 120) {
     silk_generate_params p = silk_generate_default_params();
