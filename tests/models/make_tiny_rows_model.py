@@ -21,6 +21,9 @@ from silk_export.onnx.kv_precision import add_kv_to_folder  # noqa: E402
 
 
 def make(src: Path, out: Path) -> None:
+    src, out = src.resolve(), out.resolve()
+    if out == src or out in src.parents or src in out.parents:
+        raise SystemExit(f"make_tiny_rows_model: --out {out} overlaps --src {src}; it is removed and rewritten")
     if out.exists():
         shutil.rmtree(out)
     out.mkdir(parents=True)
