@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <string>
 
 #include "runtime/candidates.h"
@@ -116,11 +117,25 @@ Status CandidateRows::StepWithoutLogits(int32_t max_ids, bool until_layer, int32
   return Status::Ok();
 }
 
+// How many pending ids each row feeds in the next call. Contract v4: the fewest any row has (at
+// most one chunk), so no row is padded: a row with a longer forced run feeds that many of it now and
+// the rest in the next calls (a position's logits do not depend on the cut), while the rows that
+// need their logits sooner go on sampling. A batch-1 decoder runs each row alone: all of it.
+int64_t CandidateRows::FeedWidth() const {
+  if (!model_.impl().rows_contract) return std::numeric_limits<int64_t>::max();
+  int64_t width = kDecoderChunk;
+  for (int32_t s = 0; s < live_; ++s)
+    width = std::min<int64_t>(width, static_cast<int64_t>(rows_[static_cast<size_t>(s)].generator->pending().size()));
+  return std::max<int64_t>(width, 1);
+}
+
 Status CandidateRows::Decode(int32_t max_ids, int32_t* ids) {
+  const int64_t width = FeedWidth();
   std::vector<RowFeed> feeds;
   for (int32_t s = 0; s < live_; ++s) {
     const std::vector<int32_t>& p = rows_[static_cast<size_t>(s)].generator->pending();
-    feeds.push_back(RowFeed{s, p.data(), static_cast<int64_t>(p.size()), 0});
+    const int64_t n = std::min(width, static_cast<int64_t>(p.size()));
+    feeds.push_back(RowFeed{s, p.data(), n, 0, n == static_cast<int64_t>(p.size())});
   }
   const auto t0 = Clock::now();
   SILK_RETURN_IF_ERROR(decoder_->Feed(feeds));
@@ -129,7 +144,9 @@ Status CandidateRows::Decode(int32_t max_ids, int32_t* ids) {
   const int64_t vocab = model_.config().model_vocab_size;
   for (int32_t s = 0; s < live_; ++s) {
     Row& r = rows_[static_cast<size_t>(s)];
-    r.generator->NoteFed(seconds, ChunksOf(feeds[static_cast<size_t>(s)].n));
+    const RowFeed& f = feeds[static_cast<size_t>(s)];
+    r.generator->NoteFed(seconds, ChunksOf(f.n), f.n);
+    if (!f.keep_logits) continue;  // more of its run in the next call
     if (*ids < max_ids) {
       SILK_RETURN_IF_ERROR(r.generator->StepWithLogits(decoder_->logits(s)));
       ++*ids;

@@ -50,8 +50,9 @@ class CandidateRows {
   std::vector<std::pair<int32_t, const Generator*>> live() const;
   int32_t lead_candidate() const;
   int64_t cache_bytes() const { return cache_.bytes(); }
-  int64_t decoder_calls() const { return decoder_ ? decoder_->calls() : 0; }  // decoder.onnx runs, all rows
-  double decoder_seconds() const { return decoder_seconds_; }                 // the feeds' wall time, all rows together
+  int64_t decoder_calls() const { return decoder_ ? decoder_->calls() : 0; }          // decoder.onnx runs, all rows
+  int64_t decoder_positions() const { return decoder_ ? decoder_->positions() : 0; }  // computed, padding included
+  double decoder_seconds() const { return decoder_seconds_; }  // the feeds' wall time, all rows together
 
  private:
   struct Row {
@@ -66,8 +67,10 @@ class CandidateRows {
   // Ends the finished rows (built, into ended_), compacting the rows to slots 0..live-1, and gives
   // the freed rows to the next candidates.
   Status Retire(const CancelCheck& finishing);
-  // One RowsDecoder feed for every row waiting for logits; each takes its id while the budget lasts.
+  // One RowsDecoder feed for every row waiting for logits (FeedWidth ids of each); a row whose
+  // pending ids are all fed takes its id while the budget lasts.
   Status Decode(int32_t max_ids, int32_t* ids);
+  int64_t FeedWidth() const;
   bool AllWaiting() const;
 
   const Model& model_;

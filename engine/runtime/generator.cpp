@@ -336,13 +336,14 @@ const std::vector<int32_t>& Generator::pending() const {
 
 bool Generator::waiting_for_logits() const { return session_ && session_->held.has_value(); }
 
-void Generator::NoteFed(double seconds, int64_t calls) {
+void Generator::NoteFed(double seconds, int64_t calls, int64_t fed) {
   if (!session_) return;
   Session& s = *session_;
   s.res.stats.seconds.decoder += seconds;
   s.row_calls += calls;
-  s.row_fed += static_cast<int64_t>(s.pending.size());
-  s.pending.clear();
+  fed = std::clamp<int64_t>(fed, 0, static_cast<int64_t>(s.pending.size()));
+  s.row_fed += fed;
+  s.pending.erase(s.pending.begin(), s.pending.begin() + fed);
 }
 
 Status Generator::StepWithLogits(const float* logits) {

@@ -145,8 +145,9 @@ class Generator {
   // The ids the decoder must take before the held id's logits (BOS first, forced runs, the last id).
   const std::vector<int32_t>& pending() const;
   bool waiting_for_logits() const;
-  // The caller fed pending() to the decoder (in `calls` runs taking `seconds`): it is cleared.
-  void NoteFed(double seconds, int64_t calls);
+  // The caller fed the first `fed` ids of pending() to the decoder (in `calls` runs taking
+  // `seconds`): they leave it. The held id's logits are those after the last pending id.
+  void NoteFed(double seconds, int64_t calls, int64_t fed);
   // Completes the held step with the logits after the ids fed (NoteFed first).
   Status StepWithLogits(const float* logits);
   // Shares `other`'s per-input state (surface and face guides, orientation index) when its last

@@ -82,7 +82,7 @@ Status RowsDecoder::Feed(const std::vector<RowFeed>& rows) {
       const RowFeed& r = rows[i];
       if (done[i] == r.n) continue;
       Chunk c{r.ids + done[i], std::min(max_chunk_, r.n - done[i]), r.source, false};
-      c.last = done[i] + c.n == r.n;
+      c.last = done[i] + c.n == r.n && r.keep_logits;
       done[i] += c.n;
       if (!model_.rows_contract) {  // batch 1: this row alone, all its chunks in turn
         chunks[0] = c;
@@ -113,6 +113,7 @@ Status RowsDecoder::Call(int32_t first, const std::vector<Chunk>& chunks) {
     model_.decoder->Run(Ort::RunOptions{nullptr}, in_ptrs_.data(), in_values_.data(), in_values_.size(),
                         out_ptrs_.data(), out_values_.data(), out_values_.size());
     ++calls_;
+    positions_computed_ += R * T;
     KeepLogits(first, chunks, T);
     for (size_t r = 0; r < chunks.size(); ++r)
       if (chunks[r].n > 0) cache_->Extend(first + static_cast<int32_t>(r), chunks[r].n);

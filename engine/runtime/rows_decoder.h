@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // RowsDecoder: feeds the known tokens of many sequences ("rows") to decoder.onnx together, one call
 // per chunk for all rows (decoder contract v4: every weight read once per call for all rows), over a
-// RowsKvCache. Each row's ids go in the same chunks DecoderRunner would feed them alone (max_chunk),
-// so with the ai.silk kernels a row's logits are bit for bit its logits alone. A decoder before
+// RowsKvCache. A row's ids go in chunks of at most max_chunk; with the ai.silk kernels a row's logits
+// are bit for bit its logits alone, however its ids are cut into feeds. A call runs at its longest
+// row's count (shorter rows padded): CandidateRows feeds every row the same count. A decoder before
 // contract v4 (batch 1) runs the rows one after another over the same cache.
 #pragma once
 #include <cstdint>
@@ -15,12 +16,13 @@
 
 namespace silk {
 
-// One row's part of a Feed: all of its pending ids, at positions cache.length(slot) on.
+// One row's part of a Feed: n ids at positions cache.length(slot) on.
 struct RowFeed {
   int32_t slot = 0;
   const int32_t* ids = nullptr;
   int64_t n = 0;
-  int32_t source = 0;  // which encoder output (SetSource) the row attends to
+  int32_t source = 0;       // which encoder output (SetSource) the row attends to
+  bool keep_logits = true;  // false: more of the row's ids follow in a later Feed (no logits kept)
 };
 
 class RowsDecoder {
@@ -34,10 +36,13 @@ class RowsDecoder {
   void SetSource(int32_t index, const void* cross_kv);
 
   // Feeds every row's ids (distinct slots); afterwards logits(slot) holds each row's next-token
-  // logits after its last id. Counts the calls each row took part in (calls(slot)).
+  // logits after its last id (rows with keep_logits). With the ai.silk kernels (contract v4) a
+  // position's logits and cache do not depend on how its row's ids were cut into feeds. Counts the calls each row took
+  // part in (calls(slot)).
   Status Feed(const std::vector<RowFeed>& rows);
   const float* logits(int32_t slot) const { return row_logits_.data() + slot * vocab_; }
-  int64_t calls() const { return calls_; }  // decoder.onnx runs in all
+  int64_t calls() const { return calls_; }                   // decoder.onnx runs in all
+  int64_t positions() const { return positions_computed_; }  // R x T summed over the runs (padding included)
 
  private:
   struct Chunk {  // a row's part of one call
@@ -77,7 +82,7 @@ class RowsDecoder {
   ViewKey views_;
   std::vector<float> logits_;      // [R, T, V], the bound output
   std::vector<float> row_logits_;  // [slots, V]
-  int64_t calls_ = 0;
+  int64_t calls_ = 0, positions_computed_ = 0;
 };
 
 }  // namespace silk

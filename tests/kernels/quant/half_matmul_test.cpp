@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -74,6 +75,24 @@ TEST(HalfMatMul, OrderOfParallelWorkIsIrrelevant) {
   const Case c{2, 1024, 1000};
   const Operands o = Random(c, 5);
   EXPECT_EQ(Multiply(c, o, RowKernels::kBest, Serial), Multiply(c, o, RowKernels::kBest, Backwards));
+}
+
+// Weight rows go eight at a time (one vector of horizontal sums; converted to float32 once for
+// many activation rows up to K 1,024) and the rest one by one: every output must be bit for bit
+// the one-row path's (a product of one weight row alone), so no model's logits move with N or M.
+TEST(HalfMatMul, EightRowBlocksGiveEachOutputTheOneRowValue) {
+  for (const Case& c : {Case{1, 1024, 19}, Case{5, 96, 17}, Case{3, 1056, 16}, Case{2, 37, 8}, Case{8, 1000, 24}}) {
+    const Operands o = Random(c, static_cast<uint32_t>(c.k + c.m));
+    const std::vector<float> all = Multiply(c, o, RowKernels::kBest);
+    for (int64_t n = 0; n < c.n; ++n) {
+      const Case one{c.m, c.k, 1};
+      Operands row{o.a, std::vector<uint16_t>(o.w.begin() + n * c.k, o.w.begin() + (n + 1) * c.k)};
+      const std::vector<float> alone = Multiply(one, row, RowKernels::kBest);
+      for (int64_t m = 0; m < c.m; ++m)
+        ASSERT_EQ(0, std::memcmp(&all[static_cast<size_t>(m * c.n + n)], &alone[static_cast<size_t>(m)], 4))
+            << "m " << m << " n " << n << " of " << c.m << "x" << c.k << "x" << c.n;
+    }
+  }
 }
 
 TEST(HalfMatMul, NonFiniteInputsPropagate) {
