@@ -38,12 +38,8 @@ Status CandidateRows::Start(const std::vector<float>& points, const GenerateOpti
   callbacks_ = callbacks;
   decoder_seconds_ = 0;
   encoder_run_->UnsetTerminate();
-  if (CancelRequested(cancel)) return Status(StatusCode::kCancelled, "generation cancelled");
   const auto t0 = Clock::now();
-  auto encoded = RunEncoder(m, points.data(), static_cast<int64_t>(points.size() / 6), *encoder_run_);
-  if (!encoded.ok() && CancelRequested(cancel))
-    return Status(StatusCode::kCancelled, "generation cancelled during the encoder run");
-  SILK_ASSIGN_OR_RETURN(Ort::Value cross, std::move(encoded));
+  SILK_ASSIGN_OR_RETURN(Ort::Value cross, EncodeInput(m, points, *encoder_run_, cancel));
   encoder_seconds_ = Since(t0);
   // BOS + every id but the last of the longest sequence the model allows.
   SILK_RETURN_IF_ERROR(cache_.Reserve(R, m.config.dims.max_seq_len - 1, ModelKvShape(m)));

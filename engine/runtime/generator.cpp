@@ -115,7 +115,7 @@ struct Generator::Session {
   GenerateOptions options;
   GenerateCallbacks callbacks;
   int32_t cap;
-  Ort::Value cross{nullptr};
+  std::shared_ptr<Ort::Value> cross;      // the input's encoder output (Generator::cross_)
   std::unique_ptr<DecoderRunner> runner;  // null in rows mode
   std::optional<StepChoice> held;         // rows mode: a step waiting for its logits
   int64_t row_calls = 0, row_fed = 0;     // rows mode: decoder runs taken part in, positions fed
@@ -157,6 +157,7 @@ void Generator::InterruptEncoder() { encoder_run_->SetTerminate(); }
 void Generator::CacheInput(const std::vector<float>& points) {
   if (points == input_points_) return;
   input_points_ = points;
+  cross_.reset();
   guide_.reset();
   face_guide_.reset();
   orientation_.reset();
@@ -182,22 +183,25 @@ Status Generator::Start(const std::vector<float>& points, const GenerateOptions&
   session_.reset();
   const Model::Impl& m = model_.impl();
   SILK_ASSIGN_OR_RETURN(const int32_t cap, CheckStart(points, options));
-  // A terminate request left from an earlier run is dropped before the poll; one made after the
-  // poll stops the encoder run below (InterruptEncoder).
-  encoder_run_->UnsetTerminate();
-  if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
-  // Encoder: cross-attention K/V once per input.
-  const auto t0 = Clock::now();
-  auto encoded = RunEncoder(m, points.data(), static_cast<int64_t>(points.size() / 6), *encoder_run_);
-  if (!encoded.ok() && callbacks.cancel && callbacks.cancel())
-    return Status(StatusCode::kCancelled, "generation cancelled during the encoder run");
-  SILK_ASSIGN_OR_RETURN(Ort::Value cross, std::move(encoded));
-  const double encoder_seconds = Since(t0);
+  // Encoder: cross-attention K/V once per input, kept for the next run on it (the candidates of
+  // a best of N run one after another on the same points). A terminate request left from an
+  // earlier run is dropped before the poll; one made after it stops the run (InterruptEncoder).
+  CacheInput(points);
+  double encoder_seconds = 0;
+  if (!cross_) {
+    encoder_run_->UnsetTerminate();
+    const auto t0 = Clock::now();
+    SILK_ASSIGN_OR_RETURN(Ort::Value cross, EncodeInput(m, points, *encoder_run_, callbacks.cancel));
+    cross_ = std::make_shared<Ort::Value>(std::move(cross));
+    encoder_seconds = Since(t0);
+  } else if (callbacks.cancel && callbacks.cancel()) {
+    return Status(StatusCode::kCancelled, "generation cancelled");
+  }
   // Cache: BOS + every id but the last (EOS is never fed).
   SILK_RETURN_IF_ERROR(cache_.Reserve(cap, ModelKvShape(m)));
   SILK_RETURN_IF_ERROR(Begin(points, options, callbacks, cap, encoder_seconds));
-  session_->cross = std::move(cross);
-  session_->runner = std::make_unique<DecoderRunner>(m, &cache_, session_->cross.GetTensorMutableData<void>());
+  session_->cross = cross_;
+  session_->runner = std::make_unique<DecoderRunner>(m, &cache_, session_->cross->GetTensorMutableData<void>());
   return Status::Ok();
 }
 

@@ -25,7 +25,8 @@
 
 namespace Ort {
 struct RunOptions;
-}
+struct Value;
+}  // namespace Ort
 
 namespace silk {
 
@@ -180,9 +181,10 @@ class Generator {
   const Model& model_;
   KvCache cache_;
   // What the last input's points gave: runs on the same input (best of N) build each once.
-  // A different input clears both (CacheInput).
+  // A different input clears them all (CacheInput).
   void CacheInput(const std::vector<float>& points);
   std::vector<float> input_points_;
+  std::shared_ptr<Ort::Value> cross_;  // the encoder output (Start; rows mode: the caller's)
   std::shared_ptr<const SurfaceGuide> guide_;
   std::shared_ptr<const FaceGuide> face_guide_;
   std::shared_ptr<const OrientedPointSet> orientation_;

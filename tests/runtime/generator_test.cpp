@@ -51,6 +51,20 @@ TEST_F(GeneratorTest, SameSeedSameTokensAcrossRunsAndGenerators) {
   EXPECT_EQ(a.tokens, b.tokens);
   EXPECT_EQ(a.tokens, c.tokens);
   EXPECT_NE(a.tokens, Run(Options(6)).tokens);
+  // The encoder runs once per input: the second run on the same points (best of N's next
+  // candidate) reuses its output; other points run it again, and going back runs it again.
+  EXPECT_GT(a.stats.seconds.encoder, 0.0);
+  EXPECT_EQ(b.stats.seconds.encoder, 0.0);
+  EXPECT_GT(c.stats.seconds.encoder, 0.0);
+  std::vector<float> moved = points_;
+  for (size_t i = 0; i < moved.size(); i += 6) moved[i] *= 0.5f;
+  auto other = reused.Run(moved, Options(5));
+  ASSERT_TRUE(other.ok()) << other.status().ToString();
+  EXPECT_GT(other->stats.seconds.encoder, 0.0);
+  EXPECT_NE(other->tokens, a.tokens);
+  const auto back = Run(Options(5), &reused);
+  EXPECT_GT(back.stats.seconds.encoder, 0.0);
+  EXPECT_EQ(back.tokens, a.tokens);
 }
 
 // The grammar promises a non-empty legal set before EOS within the length budget (grammar.h,

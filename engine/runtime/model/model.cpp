@@ -255,4 +255,12 @@ StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, i
   return StatusOr<Ort::Value>(std::move(out));
 }
 
+StatusOr<Ort::Value> EncodeInput(const Model::Impl& model, const std::vector<float>& points,
+                                 const Ort::RunOptions& run_options, const CancelCheck& cancel) {
+  if (CancelRequested(cancel)) return Status(StatusCode::kCancelled, "generation cancelled");
+  auto encoded = RunEncoder(model, points.data(), static_cast<int64_t>(points.size() / 6), run_options);
+  if (!encoded.ok() && CancelRequested(cancel)) return CancelledStatus("the encoder run");
+  return encoded;
+}
+
 }  // namespace silk

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cancel_check.h"
 #include "runtime/model/model.h"
 #include "runtime/model/ort_support.h"
 
@@ -46,5 +47,10 @@ std::vector<std::string> DecoderOutputNames(int64_t n_layers);
 // run_options: SetTerminate on it from another thread stops the run (an error status).
 StatusOr<Ort::Value> RunEncoder(const Model::Impl& model, const float* points, int64_t n_points,
                                 const Ort::RunOptions& run_options = Ort::RunOptions{nullptr});
+
+// RunEncoder for a generation's input (rows of 6 floats): `cancel` is polled before the run, and a
+// run stopped by SetTerminate on `run_options` while `cancel` says so is reported as cancelled.
+StatusOr<Ort::Value> EncodeInput(const Model::Impl& model, const std::vector<float>& points,
+                                 const Ort::RunOptions& run_options, const CancelCheck& cancel);
 
 }  // namespace silk
