@@ -118,7 +118,7 @@ Status CandidateRows::StepWithoutLogits(int32_t max_ids, bool until_layer, int32
 // the rest in the next calls (a position's logits do not depend on the cut), while the rows that
 // need their logits sooner go on sampling. A batch-1 decoder runs each row alone: all of it.
 int64_t CandidateRows::FeedWidth() const {
-  if (!model_.impl().rows_contract) return std::numeric_limits<int64_t>::max();
+  if (!model_.impl().rows_together) return std::numeric_limits<int64_t>::max();
   int64_t width = kDecoderChunk;
   for (int32_t s = 0; s < live_; ++s)
     width = std::min<int64_t>(width, static_cast<int64_t>(rows_[static_cast<size_t>(s)].generator->pending().size()));

@@ -51,8 +51,9 @@ Status GenerationSession::Start(const GenerationRequest& request, const Generati
   callbacks_ = callbacks;
   flag_ = flag;
   // A decoder before contract v4 takes one row per call: rows would run one after another anyway
-  // and only hold R caches at once, so such a folder runs its candidates one after another.
-  by_rows_ = plan_.options.rows > 1 && plan_.options.candidates > 1 && model_.impl().rows_contract;
+  // and only hold R caches at once, so such a folder runs its candidates one after another; so
+  // does an INT8 decoder, whose rows are not each exactly their own (RowsTogether).
+  by_rows_ = plan_.options.rows > 1 && plan_.options.candidates > 1 && model_.impl().rows_together;
   if (by_rows_) {
     started_ = Clock::now();
     waiting_.assign(static_cast<size_t>(candidates()), std::nullopt);

@@ -2,7 +2,9 @@
 """Makes tests/models/tiny-rows/: the tiny test model (tests/models/tiny, same weights) as a
 model_version 4 folder whose INT4 decoder's fp16- and int8-cache variants are in decoder contract
 v4 (R rows per call, docs/model_contract.md), so the runtime's rows tests run libsilk's ai.silk
-kernels, with which a row's ids are exactly its ids alone.
+kernels, with which a row's ids are exactly its ids alone; and an INT8 decoder (onnxruntime's
+dynamic quantization: one activation scale per call, so its rows are not each their own) with the
+same cache variants, which best of N must run one row at a time.
 
     python3 tests/models/make_tiny_rows_model.py [--out tests/models/tiny-rows]
 """
@@ -16,7 +18,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "export"))
 
-from silk_export.onnx.export import quantize_decoder_int4  # noqa: E402
+from silk_export.onnx.export import quantize_decoder, quantize_decoder_int4  # noqa: E402
 from silk_export.onnx.kv_precision import add_kv_to_folder  # noqa: E402
 
 
@@ -30,6 +32,7 @@ def make(src: Path, out: Path) -> None:
     for name in ("encoder.onnx", "decoder.onnx"):
         shutil.copy(src / name, out / name)
     quantize_decoder_int4(out / "decoder.onnx", out / "decoder.int4.onnx")
+    quantize_decoder(out / "decoder.onnx", out / "decoder.int8.onnx")
     meta = json.loads((src / "model.json").read_text())
     meta["model_version"] = 4
     meta["arch"] = "silk"
@@ -37,6 +40,7 @@ def make(src: Path, out: Path) -> None:
     meta["files"] = {
         "encoder": "encoder.onnx",
         "decoder": "decoder.onnx",
+        "decoder_int8": "decoder.int8.onnx",
         "decoder_int4": "decoder.int4.onnx",
         "default_decoder": "decoder_int4",
     }

@@ -288,6 +288,41 @@ TEST_P(RowsTest, ACancelledSessionWithRowsFinishesWithTheCandidatesStarted) {
   EXPECT_EQ(out->generation.stats.candidates.size(), GetParam().rows_contract ? 3u : 1u);
 }
 
+// The INT8 decoder (onnxruntime's DynamicQuantizeLinear: one activation scale for every row and
+// position of a call) is contract v4 but its rows are not each their own: fed together, a row's
+// logits move with the others'. So best of N runs its candidates one row at a time (RowsTogether),
+// with the same choice as rows 1 and the report saying 1 row.
+TEST(RowsInt8, AnInt8DecoderRunsBestOfNOneRowAtATime) {
+  const auto model = Load({"tiny-rows", DecoderPrecision::kInt8, KvPrecision::kFp16, true});
+  ASSERT_TRUE(model);
+  const Model::Impl& m = model->impl();
+  ASSERT_TRUE(m.rows_contract);
+  EXPECT_FALSE(m.rows_together);
+  const std::vector<float> points = testing::SamplePoints(*model);
+  auto cross = RunEncoder(m, points.data(), static_cast<int64_t>(points.size() / 6));
+  ASSERT_TRUE(cross.ok());
+  RowsKvCache rows_cache;
+  ASSERT_TRUE(rows_cache.Reserve(2, 1023, ModelKvShape(m)).ok());
+  RowsDecoder rows(m, &rows_cache);
+  rows.SetSources(1);
+  rows.SetSource(0, cross->GetTensorMutableData<void>());
+  const std::vector<int32_t> a = {10269, 4000, 12, 900}, b = {10269, 7, 10000, 3};
+  ASSERT_TRUE(rows.Feed({RowFeed{0, a.data(), 4, 0}, RowFeed{1, b.data(), 4, 0}}).ok());
+  KvCache alone_cache;
+  ASSERT_TRUE(alone_cache.Reserve(1023, ModelKvShape(m)).ok());
+  DecoderRunner alone(m, &alone_cache, cross->GetTensorMutableData<void>());
+  ASSERT_TRUE(alone.Feed(a.data(), 4).ok());
+  const size_t bytes = static_cast<size_t>(model->config().model_vocab_size) * sizeof(float);
+  EXPECT_NE(0, std::memcmp(alone.last_logits(), rows.logits(0), bytes))
+      << "INT8 rows are their own now: run them together";
+
+  GenerationSession session(*model);
+  const SessionResult one = RunSession(&session, Request(6, 1), 1 << 30, AdvanceUntil::kIds);
+  const SessionResult four = RunSession(&session, Request(6, 4), 1 << 30, AdvanceUntil::kIds);
+  EXPECT_EQ(four.generation.stats.rows, 1);
+  ExpectSameChoice(one, four, "INT8, rows 4");
+}
+
 // The step-wise view of every candidate: at most `rows` running at once, the best so far marked
 // among the scored, each one's preview its completed layers while it runs and its mesh once built.
 TEST_P(RowsTest, EveryCandidateIsShownWhileTheRowsRun) {

@@ -613,7 +613,8 @@ typedef struct silk_generate_params {
    * (same seeds), so the result does not depend on rows, only the time does. 1: the candidates
    * one after another (as C API 1.0-1.4 ran them; for baselines and checks). With N candidates
    * min(rows, N) rows are used (1 with a model folder before decoder contract v4, whose decoder
-   * takes one row per call); a candidate that ends leaves its row to the next candidate.
+   * takes one row per call, and with the INT8 decoder, whose rows would move each other's ids:
+   * its activations take one quantization scale per call); a candidate that ends leaves its row to the next candidate.
    * Default SILK_MODEL_VALUE (-1): the model's (model.json "sampling.rows"), else libsilk's 8. */
   int32_t rows;
 } silk_generate_params;

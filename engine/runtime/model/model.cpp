@@ -213,6 +213,7 @@ StatusOr<std::unique_ptr<Model>> Model::Load(const std::string& dir, const Model
     impl->decoder = std::make_unique<Ort::Session>(env, NativePath(dec_path).c_str(), so);
     impl->cross_type = CrossType(*impl->decoder);
     impl->rows_contract = HasRowsInputs(*impl->decoder);
+    impl->rows_together = RowsTogether(impl->rows_contract, impl->precision);
     if (impl->rows_contract)  // one row: R = S = 1
       dec_in.insert(dec_in.begin() + 4, {{"new_positions", kI32, {1}}, {"cross_source", kI32, {1}}});
     for (IoSpec& spec : dec_in)
@@ -261,6 +262,10 @@ StatusOr<Ort::Value> EncodeInput(const Model::Impl& model, const std::vector<flo
   auto encoded = RunEncoder(model, points.data(), static_cast<int64_t>(points.size() / 6), run_options);
   if (!encoded.ok() && CancelRequested(cancel)) return CancelledStatus("the encoder run");
   return encoded;
+}
+
+bool RowsTogether(bool rows_contract, DecoderPrecision precision) {
+  return rows_contract && precision != DecoderPrecision::kInt8;
 }
 
 }  // namespace silk

@@ -22,11 +22,20 @@ struct Model::Impl {
   // (RunEncoder then converts the encoder's float32 cross_kv once).
   ONNXTensorElementDataType cross_type = ONNX_TENSOR_ELEMENT_DATA_TYPE_FLOAT;
   // Decoder contract v4 (R rows per call): the decoder also takes new_positions and cross_source
-  // (int32 [R]); the runtime runs it with one row (R = S = 1).
+  // (int32 [R]); DecoderRunner runs it with one row (R = S = 1).
   bool rows_contract = false;
+  // Whether best of N decodes its candidates as rows (RowsTogether below).
+  bool rows_together = false;
   std::unique_ptr<Ort::Session> encoder, decoder;
   Ort::MemoryInfo cpu_memory = Ort::MemoryInfo::CreateCpu(OrtArenaAllocator, OrtMemTypeDefault);
 };
+
+// Whether the loaded decoder runs many sequences in one call with each row's logits exactly those
+// of the row alone, however its ids are cut into calls: a contract v4 decoder with the ai.silk
+// kernels or onnxruntime's float32 MatMul (measured bit for bit at the tiny, bundled and release
+// sizes). Not the INT8 decoder: onnxruntime's DynamicQuantizeLinear takes one activation scale for
+// every row and position of a call, so rows would move each other's ids; it runs one row at a time.
+bool RowsTogether(bool rows_contract, DecoderPrecision precision);
 
 // The element type of the decoder's past_*/present_* tensors for a KV precision.
 inline ONNXTensorElementDataType KvOnnxType(KvPrecision p) {
