@@ -11,9 +11,8 @@
 
 namespace silk {
 
-StatusOr<PreparedInput> PrepareInput(const Model& model, const GenerationRequest& request,
-                                     const GenerationInput& input, const CancelCheck& cancel,
-                                     const CancelCheck& flag) {
+StatusOr<PreparedInput> PrepareInput(const Model& model, const GenerationRequest& request, const GenerationInput& input,
+                                     const CancelCheck& cancel, const CancelCheck& flag) {
   PreparedInput out;
   SILK_ASSIGN_OR_RETURN(out.plan, ResolveRequest(request, model.config()));
   const std::string context = (input.name.empty() ? std::string("input") : input.name) + ": ";

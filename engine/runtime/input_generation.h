@@ -36,9 +36,8 @@ struct PreparedInput {
 // ResolveRequest (its messages name the field), then the input checked (polling `flag`) and its
 // points prepared (raw as given, else the plan's pre-processing, polling `cancel`); the input's
 // errors start with its name ("input: " when it has none).
-StatusOr<PreparedInput> PrepareInput(const Model& model, const GenerationRequest& request,
-                                     const GenerationInput& input, const CancelCheck& cancel,
-                                     const CancelCheck& flag);
+StatusOr<PreparedInput> PrepareInput(const Model& model, const GenerationRequest& request, const GenerationInput& input,
+                                     const CancelCheck& cancel, const CancelCheck& flag);
 
 // How the candidates of an input ran when they ran as rows (their stats count the run's wall time
 // and the shared feeds' time, not the sum of the candidates').

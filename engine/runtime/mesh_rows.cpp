@@ -55,6 +55,15 @@ int32_t MeshRows::Add(const GenerationRequest& request, const GenerationInput& i
   return added_ - 1;
 }
 
+int32_t MeshRows::AddError(Status error) {
+  Input in;
+  in.index = added_++;
+  in.prepared = error;
+  in.error = std::move(error);
+  queue_.push_back(std::move(in));
+  return added_ - 1;
+}
+
 void MeshRows::InterruptEncoder() {
   session_.InterruptEncoder();
   rows_.InterruptEncoder();
@@ -63,7 +72,8 @@ void MeshRows::InterruptEncoder() {
 StatusOr<MeshRowsEnded> MeshRows::Next() {
   if (!ByRows()) return NextAlone();
   while (ended_.empty()) {
-    if (queue_.empty() && flight_.empty()) return InvalidArgument("batch: no input queued or in flight (add one first)");
+    if (queue_.empty() && flight_.empty())
+      return InvalidArgument("batch: no input queued or in flight (add one first)");
     Status s = Cancelled() ? CancelledBatch() : Admit();
     if (s.ok() && ended_.empty() && !flight_.empty()) s = rows_.Advance(1 << 30, false, callbacks_.cancel);
     if (s.ok()) s = Collect();
@@ -81,6 +91,10 @@ StatusOr<MeshRowsEnded> MeshRows::NextAlone() {
   queue_.pop_front();
   MeshRowsEnded out;
   out.index = in.index;
+  if (!in.error.ok()) {
+    out.result = std::move(in.error);
+    return out;
+  }
   GenerateCallbacks cb;
   cb.cancel = callbacks_.cancel;
   if (callbacks_.progress)
@@ -151,8 +165,8 @@ Status MeshRows::Collect() {
   for (auto& [id, f] : flight_) {  // scored in candidate order, as one after another
     const uint64_t seed = f.prepared.plan.options.sampling.seed;
     for (size_t i = static_cast<size_t>(f.choice.size()); i < f.waiting.size() && f.waiting[i]; ++i) {
-      SILK_RETURN_IF_ERROR(f.choice.Add(&*f.waiting[i], CandidateSeed(seed, static_cast<int32_t>(i)),
-                                        f.prepared.points, callbacks_.cancel));
+      SILK_RETURN_IF_ERROR(f.choice.Add(&*f.waiting[i], CandidateSeed(seed, static_cast<int32_t>(i)), f.prepared.points,
+                                        callbacks_.cancel));
       f.waiting[i].reset();
     }
   }
@@ -167,8 +181,8 @@ void MeshRows::Conclude(int32_t id) {
   if (f.choice.size() == o.candidates) {
     // As GenerationSession: rows only when best of N asks for more than one (stats.rows: its own).
     const bool by_rows = o.rows > 1 && o.candidates > 1;
-    const RowsRun run{std::max(1, std::min(o.rows, o.candidates)), rows_.cache_bytes(),
-                      rows_.decoder_seconds(), Since(f.started)};
+    const RowsRun run{std::max(1, std::min(o.rows, o.candidates)), rows_.cache_bytes(), rows_.decoder_seconds(),
+                      Since(f.started)};
     ended_.push_back(MeshRowsEnded{f.index, ConcludeChoice(&f.choice, f.prepared, true, by_rows ? &run : nullptr)});
   }
   flight_.erase(id);

@@ -48,6 +48,8 @@ class MeshRows {
   // Queues an input; returns its index (0, 1, ... in the order added). The request is resolved and
   // the input prepared into encoder points now; an error there is the input's result (Next).
   int32_t Add(const GenerationRequest& request, const GenerationInput& input);
+  // Queues an input that failed before it could be added (e.g. its C params): `error` is its result.
+  int32_t AddError(Status error);
   // Runs until an input ends and returns it (a failed one included: its error). InvalidArgument
   // when no input is queued or in flight. A cancel (kCancelled) ends every input in flight with
   // kCancelled results, to be taken by the following calls; the queued ones are dropped.
@@ -66,6 +68,7 @@ class MeshRows {
     StatusOr<PreparedInput> prepared = Status(StatusCode::kInternal, "not prepared");
     GenerationRequest request;
     GenerationInput input;  // kept only for the one-after-another path
+    Status error;           // AddError's
   };
   struct Flight {  // an input whose candidates run as rows
     int32_t index = 0;

@@ -41,7 +41,7 @@ GenerationInput InputOf(const Case& c) {
   GenerationInput in;
   in.name = c.mesh;
   auto m = ReadMeshFile(c.mesh == "torus_knot.obj" ? testing::SourcePath("samples/" + c.mesh)
-                                                    : testing::SharedPath("corpus/dev/" + c.mesh));
+                                                   : testing::SharedPath("corpus/dev/" + c.mesh));
   EXPECT_TRUE(m.ok()) << c.mesh;
   if (m.ok()) in.mesh = std::move(*m);
   return in;
@@ -218,9 +218,7 @@ TEST_P(MeshRowsTest, MisuseIsRefused) {
 INSTANTIATE_TEST_SUITE_P(Models, MeshRowsTest,
                          ::testing::Values(Variant{"tiny-rows", DecoderPrecision::kInt4, KvPrecision::kInt8},
                                            Variant{"tiny", std::nullopt, KvPrecision::kFp32}),
-                         [](const auto& info) {
-                           return std::string(info.param.folder[4] == '-' ? "rows" : "batch1");
-                         });
+                         [](const auto& info) { return std::string(info.param.folder[4] == '-' ? "rows" : "batch1"); });
 
 }  // namespace
 }  // namespace silk
