@@ -134,9 +134,9 @@ class CapiBatch : public silk::testing::TinyModelTest {
     struct Seen {
       std::map<int32_t, int64_t> reports;
     } seen;
-    silk_batch* b = Create(3, [](int32_t input, const silk_generate_progress*, void* u) {
-      ++static_cast<Seen*>(u)->reports[input];
-    }, &seen);
+    silk_batch* b = Create(
+        3, [](int32_t input, const silk_generate_progress*, void* u) { ++static_cast<Seen*>(u)->reports[input]; },
+        &seen);
     ASSERT_TRUE(b);
     // Inputs 0, 1, a broken one (2), then 2 and 3 as indexes 3 and 4.
     for (size_t i = 0; i < params_.size(); ++i) {
@@ -183,10 +183,13 @@ TEST_F(CapiBatchRows, ACancelEndsTheInputsInFlight) {
     silk_batch* batch = nullptr;
     int64_t reports = 0;
   } state;
-  state.batch = Create(2, [](int32_t, const silk_generate_progress*, void* u) {
-    auto* s = static_cast<State*>(u);
-    if (++s->reports == 100) silk_batch_cancel(s->batch);
-  }, &state);
+  state.batch = Create(
+      2,
+      [](int32_t, const silk_generate_progress*, void* u) {
+        auto* s = static_cast<State*>(u);
+        if (++s->reports == 100) silk_batch_cancel(s->batch);
+      },
+      &state);
   ASSERT_TRUE(state.batch);
   for (size_t i = 0; i < params_.size(); ++i) {
     silk_generate_input in = Input(i);
