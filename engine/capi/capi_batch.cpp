@@ -66,8 +66,7 @@ int32_t AddInput(silk_batch* b, const silk_generate_input& input, const silk_gen
 }
 
 // An ended input's result into the caller's outs.
-silk_status Deliver(silk::MeshRowsEnded e, silk_mesh** out_mesh, silk_tokens** out_tokens,
-                    silk_generate_stats* stats) {
+silk_status Deliver(silk::MeshRowsEnded e, silk_mesh** out_mesh, silk_tokens** out_tokens, silk_generate_stats* stats) {
   if (!e.result.ok()) {
     if (stats && e.result.status().code() == silk::StatusCode::kCancelled) {
       silk_generate_stats st = silk::capi::Blank<silk_generate_stats>();
@@ -124,8 +123,8 @@ silk_status silk_batch_add(silk_batch* b, const silk_generate_input* input, cons
     SILK_CAPI_TRY(silk::capi::CheckStructSize("silk_batch_add", "silk_generate_input", input->struct_size,
                                               sizeof(silk_generate_input),
                                               "set struct_size = sizeof(silk_generate_input) before the call"));
-    SILK_CAPI_TRY(
-        silk::capi::CheckParamsSize("silk_batch_add", "silk_generate_params", params, "silk_generate_default_params()"));
+    SILK_CAPI_TRY(silk::capi::CheckParamsSize("silk_batch_add", "silk_generate_params", params,
+                                              "silk_generate_default_params()"));
     BatchCall call(b);
     if (!call.ok()) return Busy("silk_batch_add");
     SILK_CAPI_REQUIRE(!b->closed, "silk_batch_add: the batch is closed (silk_batch_close)");

@@ -100,8 +100,14 @@ silk::StatusOr<silk::GenerationInput> ToInput(const silk_generate_input& in, con
 }
 
 silk_generate_progress ToCProgress(const GenerateProgress& x) {
-  return silk_generate_progress{sizeof(silk_generate_progress), x.tokens, x.max_tokens, x.components, x.faces,
-                                x.seconds, x.candidate, x.candidates};
+  return silk_generate_progress{sizeof(silk_generate_progress),
+                                x.tokens,
+                                x.max_tokens,
+                                x.components,
+                                x.faces,
+                                x.seconds,
+                                x.candidate,
+                                x.candidates};
 }
 
 }  // namespace silk::capi
