@@ -47,8 +47,8 @@ struct Flight {
 
 // Input `in` added to the batch (*index); false when it is decided without generating (*r final
 // but for Settle): a refused line, an existing output, an output name refused, a mesh that fails to load.
-bool StartInput(silk_batch* batch, const BatchSettings& s, const BatchArgs& args, const BatchInput& in,
-                BatchResult* r, int32_t* index) {
+bool StartInput(silk_batch* batch, const BatchSettings& s, const BatchArgs& args, const BatchInput& in, BatchResult* r,
+                int32_t* index) {
   if (!Precheck(s, args, in, r)) return false;
   try {
     silk_cpp::CheckOutputPath(r->output);  // a name the file system cannot hold: refused before generating

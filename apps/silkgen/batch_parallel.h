@@ -18,7 +18,6 @@ namespace silkgen {
 // Every input of `mine` through one silk_batch on `model`; stops adding after a signal (the inputs
 // in flight end cancelled) or when the report cannot be written (*error names it).
 Tally RunInputsParallel(const BatchArgs& args, const BatchSettings& settings, const std::vector<BatchInput>& mine,
-                        const silk_cpp::Model& model, const BatchRunInfo& run, BatchReport& report,
-                        std::string* error);
+                        const silk_cpp::Model& model, const BatchRunInfo& run, BatchReport& report, std::string* error);
 
 }  // namespace silkgen
