@@ -86,6 +86,11 @@ StatusOr<MeshRowsEnded> MeshRows::Next() {
 
 // One after another: input by input on the session, as silk_generator_generate runs it.
 StatusOr<MeshRowsEnded> MeshRows::NextAlone() {
+  if (!ended_.empty()) {
+    MeshRowsEnded out = std::move(ended_.front());
+    ended_.pop_front();
+    return out;
+  }
   if (queue_.empty()) return InvalidArgument("batch: no input queued or in flight (add one first)");
   Input in = std::move(queue_.front());
   queue_.pop_front();
@@ -109,7 +114,7 @@ StatusOr<MeshRowsEnded> MeshRows::NextAlone() {
   }
   if (!out.result.ok() && out.result.status().code() == StatusCode::kCancelled) {
     session_.Abandon();
-    queue_.clear();  // a cancel stops the batch
+    EndQueued();  // a cancel stops the batch
   }
   return out;
 }
@@ -194,8 +199,14 @@ Status MeshRows::CancelAll(Status why) {
   if (ByRows()) SILK_RETURN_IF_ERROR(rows_.Open(parallel_ * rows_per_mesh_, parallel_));
   for (auto& [id, f] : flight_) ended_.push_back(MeshRowsEnded{f.index, why});
   flight_.clear();
-  if (why.code() == StatusCode::kCancelled) queue_.clear();  // a cancel stops the batch
+  if (why.code() == StatusCode::kCancelled) EndQueued();  // a cancel stops the batch
   return Status::Ok();
+}
+
+void MeshRows::EndQueued() {
+  for (const Input& in : queue_)
+    ended_.push_back(MeshRowsEnded{in.index, Status(StatusCode::kCancelled, "generation cancelled before it started")});
+  queue_.clear();
 }
 
 }  // namespace silk

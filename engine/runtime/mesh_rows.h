@@ -52,7 +52,8 @@ class MeshRows {
   int32_t AddError(Status error);
   // Runs until an input ends and returns it (a failed one included: its error). InvalidArgument
   // when no input is queued or in flight. A cancel (kCancelled) ends every input in flight with
-  // kCancelled results, to be taken by the following calls; the queued ones are dropped.
+  // kCancelled results, to be taken by the following calls, and the queued ones too, unstarted
+  // ("cancelled before it started"): every input added comes back exactly once.
   StatusOr<MeshRowsEnded> Next();
   // Thread-safe, any time: stops an encoder run in progress.
   void InterruptEncoder();
@@ -85,6 +86,8 @@ class MeshRows {
   Status Collect();
   void Conclude(int32_t mesh);
   Status CancelAll(Status why);
+  // A cancel: every queued input ends kCancelled without starting.
+  void EndQueued();
   bool Cancelled() const { return CancelRequested(callbacks_.cancel); }
 
   const Model& model_;

@@ -83,7 +83,8 @@ def test_a_cancel_ends_the_inputs_in_flight(generation):
         items = list(batch)
     cancelled = [it for it in items if it.error is not None]
     assert cancelled and all(it.error.status == silk_mesh.SILK_ERR_CANCELLED for it in cancelled)
-    assert len(items) < len(PARAMS)  # the queued ones never started
+    assert sorted(it.index for it in items) == list(range(len(PARAMS)))  # each comes back once
+    assert "before it started" in str(items[-1].error)  # the last queued never started
 
 
 def test_misuse_raises(generation):

@@ -27,8 +27,8 @@ class Batch(_Owned):
     path or None (the bundled model). parallel: meshes in flight at most, 1..16 (1: one after
     another; a model folder before decoder contract v4 always runs them so). rows: decoder rows per
     mesh in flight (None: the model's). progress(index, dict) after every id of input `index`;
-    cancel() -> truthy stops the batch (the inputs in flight end with SILK_ERR_CANCELLED, the queued
-    ones never start). An exception in a callback cancels the batch and is raised from next().
+    cancel() -> truthy stops the batch (the inputs in flight end with SILK_ERR_CANCELLED, and the
+    queued ones too without starting: every input added comes back once). An exception in a callback cancels the batch and is raised from next().
 
     add(input=None, *, points=None, **params) -> index queues an input (copied) with Generator.run's
     params; next() -> BatchItem of the next input to end, or None when none is queued or in flight;

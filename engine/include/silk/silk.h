@@ -882,7 +882,8 @@ SILK_API silk_status silk_batch_close(silk_batch* batch);
  * (owned by the caller, silk_mesh_destroy), *out_tokens and stats (both may be NULL) as
  * silk_generator_run fills them; or the input's error (silk_last_error names it) with the outs
  * NULL / blank. After a cancel (params.cancel or silk_batch_cancel) the inputs in flight come back
- * with SILK_ERR_CANCELLED (stats: stop reason CANCELLED) and the queued ones never start. When no
+ * with SILK_ERR_CANCELLED (stats: stop reason CANCELLED), and so do the queued ones, never started
+ * (every input added comes back exactly once). When no
  * input is queued or in flight: SILK_ERR_INVALID_ARGUMENT with *out_index -1. */
 SILK_API silk_status silk_batch_next(silk_batch* batch, int32_t* out_index, silk_mesh** out_mesh,
                                      silk_tokens** out_tokens, silk_generate_stats* stats);
