@@ -166,7 +166,7 @@ TEST_P(MeshRowsTest, ABrokenInputFailsAloneAndTheOthersFinish) {
   }
 }
 
-TEST_P(MeshRowsTest, ACancelEndsTheInputsInFlightAndDropsTheRest) {
+TEST_P(MeshRowsTest, ACancelEndsTheInputsInFlightAndTheQueuedUnstarted) {
   MeshRows batch(*model_);
   int reports = 0;
   MeshRowsCallbacks cb;
