@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Registers --batch, --format, --shard, --report and --overwrite (batch_options.h).
+// Registers --batch, --format, --shard, --report, --parallel and --overwrite (batch_options.h).
 #include "batch_options.h"
 
 #include <CLI/CLI.hpp>
@@ -8,7 +8,7 @@
 
 namespace silkgen {
 
-void AddBatchOptions(CLI::App& app, BatchArgs& b) {
+void AddBatchOptions(CLI::App& app, BatchArgs& b, const std::string& parallel_range) {
   const char* group = "Many meshes at once (docs/batch.md)";
   app.add_option("--batch", b.source,
                  "Generate for every input of LIST (a text file: one path a line, relative paths from the list's "
@@ -32,6 +32,14 @@ void AddBatchOptions(CLI::App& app, BatchArgs& b) {
                  "or OUTDIR/silkgen_batch.shard-I-of-N.jsonl when sharded)")
       ->group(group)
       ->type_name("FILE");
+  app.add_option("--parallel", b.parallel,
+                 "--batch: decode up to R meshes together, one decoder call per step for all of them (a model folder "
+                 "of decoder contract v4; an older one runs them one after another); every output, report row and "
+                 "the exit status are those of --parallel 1, only the time differs; 1 = one after another" +
+                     parallel_range)
+      ->capture_default_str()
+      ->group(group)
+      ->type_name("R");
   app.add_flag("--overwrite", b.overwrite, "--batch: generate again for inputs whose output exists")->group(group);
 }
 

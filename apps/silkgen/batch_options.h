@@ -13,10 +13,12 @@ namespace silkgen {
 struct BatchArgs {
   std::string source;  // --batch LIST_OR_DIR; empty: a single-input run
   std::string format = "glb", shard, report;
+  int parallel = 1;  // --parallel: meshes decoded together, at most
   bool overwrite = false;
   bool shard_given = false, report_given = false;  // the option was on the command line (even as "")
 };
 
-void AddBatchOptions(CLI::App& app, BatchArgs& b);
+// `parallel_range`: libsilk's range text for --parallel (" [1..16]").
+void AddBatchOptions(CLI::App& app, BatchArgs& b, const std::string& parallel_range);
 
 }  // namespace silkgen

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The --batch loop (batch_run.h): shard and list first, then the model once, then each input.
+// The --batch loop (batch_run.h): shard and list first, then the model once, then each input
+// (one after another here; --parallel: batch_parallel.cpp); an input's steps (batch_steps.h).
 #include "../common/app_errors.h"
 #include "../common/app_files.h"
 #include "../common/file_roles.h"
@@ -16,7 +17,9 @@
 #include <system_error>
 
 #include "batch_inputs.h"
+#include "batch_parallel.h"
 #include "batch_report.h"
+#include "batch_steps.h"
 #include "exit_codes.h"
 #include "progress_bar.h"
 #include "silk/silk.hpp"
@@ -24,6 +27,80 @@
 namespace fs = std::filesystem;
 
 namespace silkgen {
+
+void Fill(const silk_generate_stats& st, const silk_cpp::Mesh& mesh, BatchResult* r) {
+  r->faces = st.faces;
+  r->vertices = static_cast<int>(mesh.vertex_count());
+  r->parts = st.components;
+  r->tokens = st.tokens;
+  r->stop_reason = silk_stop_reason_name(st.stop_reason);
+  r->candidates = st.candidates;
+  r->chosen_candidate = st.chosen_candidate;
+  r->score = st.score;
+  r->watertight = st.watertight;
+  r->edge_manifold = st.edge_manifold;
+}
+
+void SaveResult(const silk_generate_stats& st, const silk_cpp::Mesh& result, const BatchSettings& s,
+                const std::string& format, BatchResult* r) {
+  Fill(st, result, r);
+  silk_save_params sp = s.save;
+  sp.format = silk_cpp::EnumValue(silk_mesh_format_from_name, format);
+  result.Save(r->output, sp);
+}
+
+std::string OutputOf(const BatchSettings& s, const BatchArgs& args, const BatchInput& in) {
+  if (!in.problem.empty()) return "";
+  return silkapp::Utf8(silkapp::FsPath(s.output_dir) / silkapp::FsPath(in.stem + "." + args.format));
+}
+
+bool Precheck(const BatchSettings& s, const BatchArgs& args, const BatchInput& in, BatchResult* r) {
+  r->output = OutputOf(s, args, in);
+  std::error_code ec;
+  if (!in.problem.empty()) {  // a refused list line: nothing is opened
+    r->status = "failed";
+    r->error = silkapp::ErrorText(SILK_ERR_INVALID_ARGUMENT, in.problem);
+    return false;
+  }
+  if (!args.overwrite && fs::exists(silkapp::FsPath(r->output), ec)) {
+    r->status = "skipped";
+    return false;
+  }
+  return true;
+}
+
+void NoteError(const std::exception& e, BatchResult* r) {
+  const auto* silk_error = dynamic_cast<const silk_cpp::Error*>(&e);  // else std::bad_alloc, filesystem errors
+  const bool cancelled = silk_error && silk_error->status() == SILK_ERR_CANCELLED && silkapp::InterruptSignal();
+  r->status = cancelled ? "cancelled" : "failed";
+  r->error = e.what();
+}
+
+void Settle(std::chrono::steady_clock::time_point t0, BatchResult* r) {
+  if (r->status != "ok") {  // no figures without an output
+    BatchResult bare;
+    bare.status = r->status;
+    bare.output = r->output;
+    bare.error = r->error;
+    *r = bare;
+  }
+  r->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void PrintLine(const BatchSettings& s, size_t k, size_t n, const BatchInput& in, const BatchResult& r) {
+  if (r.status == "ok" && !s.quiet)
+    std::fprintf(stderr,
+                 "silkgen: [%zu/%zu] %s: ok -> %s (%d faces, %d part(s), %lld ids, %s, candidate %d of %d, %.2f s)\n",
+                 k, n, in.entry.c_str(), r.output.c_str(), r.faces, r.parts, static_cast<long long>(r.tokens),
+                 r.stop_reason.c_str(), r.chosen_candidate + 1, r.candidates, r.seconds);
+  else if (r.status == "skipped" && !s.quiet)
+    std::fprintf(stderr, "silkgen: [%zu/%zu] %s: skipped, %s exists (--overwrite redoes it)\n", k, n, in.entry.c_str(),
+                 r.output.c_str());
+  else if (r.status != "ok" && r.status != "skipped")  // failures are printed even with -q, in the error form
+    std::fprintf(stderr, "silkgen: %s (input %zu of %zu, %s: %s)\n", r.error.c_str(), k, n, in.entry.c_str(),
+                 r.status.c_str());
+}
+
 namespace {
 
 struct Callbacks {
@@ -81,19 +158,6 @@ bool PrepareOutputDir(const BatchArgs& args, const std::string& outdir, std::str
   return true;
 }
 
-void Fill(const silk_generate_stats& st, const silk_cpp::Mesh& mesh, BatchResult* r) {
-  r->faces = st.faces;
-  r->vertices = static_cast<int>(mesh.vertex_count());
-  r->parts = st.components;
-  r->tokens = st.tokens;
-  r->stop_reason = silk_stop_reason_name(st.stop_reason);
-  r->candidates = st.candidates;
-  r->chosen_candidate = st.chosen_candidate;
-  r->score = st.score;
-  r->watertight = st.watertight;
-  r->edge_manifold = st.edge_manifold;
-}
-
 // Generation and the save (libsilk's writers are atomic: a temporary beside the output, renamed
 // into place, so a failed or killed run never leaves a partial output).
 void Generate(silk_cpp::Generator& generator, const BatchSettings& s, const BatchInput& in, const std::string& format,
@@ -101,80 +165,31 @@ void Generate(silk_cpp::Generator& generator, const BatchSettings& s, const Batc
   silk_cpp::Mesh input = silk_cpp::Mesh::Load(in.path);
   silk_generate_stats st = silk_cpp::Sized<silk_generate_stats>();
   silk_cpp::Mesh result = generator.Generate(input, s.generate, &st);
-  Fill(st, result, r);
-  silk_save_params sp = s.save;
-  sp.format = silk_cpp::EnumValue(silk_mesh_format_from_name, format);
-  result.Save(r->output, sp);
-}
-
-std::string OutputOf(const BatchSettings& s, const BatchArgs& args, const BatchInput& in) {
-  if (!in.problem.empty()) return "";
-  return silkapp::Utf8(silkapp::FsPath(s.output_dir) / silkapp::FsPath(in.stem + "." + args.format));
+  SaveResult(st, result, s, format, r);
 }
 
 BatchResult OneInput(silk_cpp::Generator& generator, const BatchSettings& s, const BatchArgs& args,
                      const BatchInput& in) {
   const auto t0 = std::chrono::steady_clock::now();
   BatchResult r;
-  r.output = OutputOf(s, args, in);
-  std::error_code ec;
-  if (!in.problem.empty()) {  // a refused list line: nothing is opened
-    r.status = "failed";
-    r.error = silkapp::ErrorText(SILK_ERR_INVALID_ARGUMENT, in.problem);
-    return r;
-  }
-  if (!args.overwrite && fs::exists(silkapp::FsPath(r.output), ec)) {
-    r.status = "skipped";
-    return r;
-  }
+  if (!Precheck(s, args, in, &r)) return r;
   try {
     silk_cpp::CheckOutputPath(r.output);  // a name the file system cannot hold: refused before generating
     Generate(generator, s, in, args.format, &r);
     r.status = "ok";
-  } catch (const silk_cpp::Error& e) {
-    r.status = e.status() == SILK_ERR_CANCELLED && silkapp::InterruptSignal() ? "cancelled" : "failed";
-    r.error = e.what();
-  } catch (const std::exception& e) {  // std::bad_alloc, filesystem errors
-    r.status = "failed";
-    r.error = e.what();
+  } catch (const std::exception& e) {
+    NoteError(e, &r);
   }
-  if (r.status != "ok") {  // no figures without an output
-    BatchResult bare;
-    bare.status = r.status;
-    bare.output = r.output;
-    bare.error = r.error;
-    r = bare;
-  }
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Settle(t0, &r);
   return r;
 }
-
-void PrintLine(const BatchSettings& s, size_t k, size_t n, const BatchInput& in, const BatchResult& r) {
-  if (r.status == "ok" && !s.quiet)
-    std::fprintf(stderr,
-                 "silkgen: [%zu/%zu] %s: ok -> %s (%d faces, %d part(s), %lld ids, %s, candidate %d of %d, %.2f s)\n",
-                 k, n, in.entry.c_str(), r.output.c_str(), r.faces, r.parts, static_cast<long long>(r.tokens),
-                 r.stop_reason.c_str(), r.chosen_candidate + 1, r.candidates, r.seconds);
-  else if (r.status == "skipped" && !s.quiet)
-    std::fprintf(stderr, "silkgen: [%zu/%zu] %s: skipped, %s exists (--overwrite redoes it)\n", k, n, in.entry.c_str(),
-                 r.output.c_str());
-  else if (r.status != "ok" && r.status != "skipped")  // failures are printed even with -q, in the error form
-    std::fprintf(stderr, "silkgen: %s (input %zu of %zu, %s: %s)\n", r.error.c_str(), k, n, in.entry.c_str(),
-                 r.status.c_str());
-}
-
-struct Tally {
-  size_t ok = 0, skipped = 0, failed = 0, cancelled = 0;
-  void Add(const std::string& status) {
-    (status == "ok" ? ok : status == "skipped" ? skipped : status == "failed" ? failed : cancelled) += 1;
-  }
-};
 
 // Every input of the shard in turn; stops after the one a signal interrupted, or when the report
 // cannot be written (*error names it: a run that cannot record what it did does not go on).
 Tally RunInputs(const BatchArgs& args, const BatchSettings& settings, const std::vector<BatchInput>& mine,
                 const BatchRunInfo& run, BatchReport& report, std::string* error) {
   silk_cpp::Model model = silk_cpp::Model::Load(settings.model_dir, settings.model);
+  if (args.parallel > 1) return RunInputsParallel(args, settings, mine, model, run, report, error);
   silk_cpp::Generator generator(model);
   ProgressBar bar(!settings.quiet);
   Callbacks callbacks{&bar};
@@ -256,7 +271,8 @@ int RunBatch(const BatchArgs& args, const BatchSettings& settings) {
   const int sig = silkapp::InterruptSignal();
   if (!settings.quiet || t.failed || sig || !error.empty())
     std::fprintf(stderr, "silkgen --batch: %zu ok, %zu skipped, %zu failed%s of %zu inputs in %.1f s%s\n", t.ok,
-                 t.skipped, t.failed, t.cancelled ? ", 1 cancelled" : "", mine.size(), wall,
+                 t.skipped, t.failed, t.cancelled ? (", " + std::to_string(t.cancelled) + " cancelled").c_str() : "",
+                 mine.size(), wall,
                  sig              ? " (interrupted: the rest not started)"
                  : !error.empty() ? " (stopped: the report failed)"
                                   : "");

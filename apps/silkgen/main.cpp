@@ -219,7 +219,7 @@ void AddOptions(CLI::App& app, Args& a) {
   AddRunOptions(app, a);
   // The reference check's trace (tests/models/reference_loop.py), not needed for normal use.
   app.add_option("--trace", a.trace_path, "Write points + every id with its legal set (reference check)")->group("");
-  silkgen::AddBatchOptions(app, a.batch);
+  silkgen::AddBatchOptions(app, a.batch, Valid("parallel"));
 }
 
 // The numeric settings given on the command line, each checked by libsilk's one range table
@@ -237,7 +237,8 @@ int CheckSettings(const CLI::App& app, const Args& a) {
       {"--candidates", "candidates", a.candidates},
       {"--rows", "rows", a.rows},
       {"--face-tolerance", "face_tolerance", a.face_tolerance},
-      {"--points", "point_count", a.n_points}};
+      {"--points", "point_count", a.n_points},
+      {"--parallel", "parallel", a.batch.parallel}};
   for (const auto& [flag, name, value] : given) {
     if (app.count(flag) == 0) continue;
     const silk_status s = silk_param_check(name, value);
@@ -468,7 +469,7 @@ int main(int argc, char** argv) {
   } catch (const silk_cpp::Error& e) {
     return Fail(e);
   }
-  for (const char* only : {"--format", "--shard", "--report", "--overwrite"})
+  for (const char* only : {"--format", "--shard", "--report", "--parallel", "--overwrite"})
     if (app.count(only)) return Fail(SILK_ERR_INVALID_ARGUMENT, std::string(only) + " is a --batch option", kExitUsage);
   if (a.input.empty())
     return Fail(SILK_ERR_INVALID_ARGUMENT, "give an input file (or --batch LIST_OR_DIR); --help lists the options",

@@ -13,7 +13,11 @@ ProgressBar::ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILEN
 
 void ProgressBar::Update(const silk_generate_progress& p) {
   if (!enabled_) return;
-  const std::string line = Line(p);  // every report counts, drawn or not
+  Draw(Line(p));  // every report counts, drawn or not
+}
+
+void ProgressBar::Draw(const std::string& line) {
+  if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
   if (drawn_ && now - last_ < std::chrono::milliseconds(100)) return;
   last_ = now;

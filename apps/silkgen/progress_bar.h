@@ -17,6 +17,8 @@ class ProgressBar {
   explicit ProgressBar(bool enabled);
   void Update(const silk_generate_progress& p);
   void Finish();  // clears the line
+  // Draws `line` (--batch --parallel's own), as often as Update draws.
+  void Draw(const std::string& line);
 
   // The line for `p` after the earlier reports of the same run (also what the tests read).
   std::string Line(const silk_generate_progress& p);

@@ -53,6 +53,15 @@ silk_model_params silk_model_default_params(void) {
   return o;
 }
 
+silk_batch_params silk_batch_default_params(void) {
+  silk_batch_params p;
+  std::memset(&p, 0, sizeof(p));
+  p.struct_size = sizeof(p);
+  p.parallel = 1;
+  p.rows = SILK_MODEL_VALUE;
+  return p;
+}
+
 silk_generate_params silk_generate_default_params(void) {
   silk_generate_params p;
   std::memset(&p, 0, sizeof(p));

@@ -87,6 +87,13 @@ void CancelRun(silk_generator* g);
 // caller deletes it now.
 bool DeferDestroy(silk_generator* g);
 
+// The C params as the runtime's request (capi_request.cpp): the C-only checks (flags, enums,
+// reserved slots), SILK_MODEL_VALUE as unset; `unconstrained` is the measurement mode.
+StatusOr<GenerationRequest> ToRequest(const silk_generate_params& p, bool unconstrained);
+// The caller's input (mesh, point cloud or raw points) as a GenerationInput, polling `cancel`.
+StatusOr<GenerationInput> ToInput(const silk_generate_input& in, const CancelCheck& cancel);
+// A progress report as the C callbacks get it.
+silk_generate_progress ToCProgress(const GenerateProgress& x);
 // GenerationStats -> silk_generate_stats (the C view of the one stats struct): a full struct
 // (struct_size = sizeof), for StoreOut into the caller's.
 void FillStats(const GenerationStats& s, silk_generate_stats* out);

@@ -72,5 +72,24 @@ silk_status silk_generator_get_candidate_mesh(silk_generator*, int32_t, silk_mes
   return NoRuntime();
 }
 
+silk_status silk_batch_create(const silk_model*, const silk_batch_params*, silk_batch** out) {
+  if (out) *out = nullptr;
+  return NoRuntime();
+}
+void silk_batch_destroy(silk_batch*) {}
+silk_status silk_batch_add(silk_batch*, const silk_generate_input*, const silk_generate_params*, int32_t* index) {
+  if (index) *index = -1;
+  return NoRuntime();
+}
+silk_status silk_batch_close(silk_batch*) { return NoRuntime(); }
+silk_status silk_batch_next(silk_batch*, int32_t* index, silk_mesh** mesh, silk_tokens** tokens, silk_generate_stats*) {
+  if (index) *index = -1;
+  if (mesh) *mesh = nullptr;
+  if (tokens) *tokens = nullptr;
+  return NoRuntime();
+}
+silk_status silk_batch_counts(silk_batch*, int32_t*, int32_t*) { return NoRuntime(); }
+void silk_batch_cancel(silk_batch*) {}
+
 }  // extern "C"
 #endif

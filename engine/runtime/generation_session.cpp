@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "runtime/generation_output.h"
+#include "runtime/input_generation.h"
 #include "runtime/model/model_impl.h"
 
 namespace silk {
@@ -44,10 +45,11 @@ Status GenerationSession::Score(GenerateResult* result, int32_t index, const Can
 Status GenerationSession::Start(const GenerationRequest& request, const GenerationInput& input,
                                 const GenerateCallbacks& callbacks, const CancelCheck& flag) {
   Reset();
-  SILK_ASSIGN_OR_RETURN(plan_, ResolveRequest(request, model_.config()));
-  const std::string context = (input.name.empty() ? std::string("input") : input.name) + ": ";
-  if (Status s = ValidateGenerationInput(input, flag); !s.ok()) return s.WithContext(context);
-  if (Status s = PreparePoints(request, input, callbacks.cancel); !s.ok()) return s.WithContext(context);
+  SILK_ASSIGN_OR_RETURN(PreparedInput prepared, PrepareInput(model_, request, input, callbacks.cancel, flag));
+  plan_ = std::move(prepared.plan);
+  points_ = std::move(prepared.points);
+  transform_ = prepared.transform;
+  prepare_seconds_ = prepared.prepare_seconds;
   callbacks_ = callbacks;
   flag_ = flag;
   // A decoder before contract v4 takes one row per call: rows would run one after another anyway
@@ -64,19 +66,6 @@ Status GenerationSession::Start(const GenerationRequest& request, const Generati
     SILK_RETURN_IF_ERROR(StartCandidate());
   }
   active_ = true;
-  return Status::Ok();
-}
-
-// The encoder's points: raw ones as given (the model's n_points), else the plan's pre-processing.
-Status GenerationSession::PreparePoints(const GenerationRequest& request, const GenerationInput& input,
-                                        const CancelCheck& cancel) {
-  const auto t0 = Clock::now();
-  SILK_ASSIGN_OR_RETURN(PreparedPoints pts, plan_.raw_points
-                                                ? RawModelPoints(input, model_.config().dims.n_points)
-                                                : PrepareModelPoints(input, plan_.preprocessing, request.seed, cancel));
-  points_ = std::move(pts.rows);
-  transform_ = pts.transform;
-  prepare_seconds_ = Since(t0);
   return Status::Ok();
 }
 
@@ -212,19 +201,12 @@ StatusOr<SessionResult> GenerationSession::FinishRows(const CancelCheck& scoring
 
 // The chosen candidate in the input frame, with the whole run's times; ends the run.
 SessionResult GenerationSession::Conclude(bool complete) {
-  SessionResult out;
-  out.generation = choice_.Take();
-  GenerationStats& st = out.generation.stats;
-  if (!complete) st.stop_reason = StopReason::kCancelled;
-  if (by_rows_) {  // the candidates overlapped: wall time, and the feeds' time once
-    st.rows = rows_.rows();
-    st.kv_cache_bytes = rows_.cache_bytes();
-    st.seconds.decoder = rows_.decoder_seconds();
-    st.generation_seconds = std::max(0.0, Since(started_) - st.seconds.build_mesh - st.seconds.scoring);
-  }
-  out.output = FinishOutput(&out.generation, transform_);  // verdicts into the stats
-  st.seconds.load_input += prepare_seconds_;
-  st.seconds.total = st.seconds.load_input + st.generation_seconds + st.seconds.build_mesh + st.seconds.scoring;
+  PreparedInput input;
+  input.transform = transform_;
+  input.prepare_seconds = prepare_seconds_;
+  RowsRun run;
+  if (by_rows_) run = RowsRun{rows_.rows(), rows_.cache_bytes(), rows_.decoder_seconds(), Since(started_)};
+  SessionResult out = ConcludeChoice(&choice_, input, complete, by_rows_ ? &run : nullptr);
   Reset();
   return out;
 }

@@ -22,6 +22,7 @@
 #include "runtime/generation_input.h"
 #include "runtime/generation_request.h"
 #include "runtime/generator.h"
+#include "runtime/input_generation.h"
 #include "runtime/model/model.h"
 
 namespace silk {
@@ -30,13 +31,6 @@ namespace silk {
 enum class AdvanceUntil {
   kIds,    // only at max_ids (or the end): candidates follow one another within the call
   kLayer,  // also after the next completed layer, and at the end of a candidate
-};
-
-// A finished generation: the chosen candidate (ids, grid mesh with its parts, report, stats with
-// every candidate's score) and its mesh in the input frame.
-struct SessionResult {
-  GenerateResult generation;
-  IoMesh output;
 };
 
 // The completed layers of the candidate in progress, on the grid (parts) and in the input frame.
@@ -114,7 +108,6 @@ class GenerationSession {
   std::vector<double> InputFramePoints() const;
 
  private:
-  Status PreparePoints(const GenerationRequest& request, const GenerationInput& input, const CancelCheck& cancel);
   GenerateCallbacks CandidateCallbacks(int32_t index);
   Status StartCandidate();
   Status CloseCandidate(const CancelCheck& cancel);

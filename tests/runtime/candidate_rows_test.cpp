@@ -243,20 +243,6 @@ SessionResult RunSession(GenerationSession* s, const GenerationRequest& r, int32
   return testing::RunSession(s, r, testing::SampleMeshInput(), max_ids, until);
 }
 
-void ExpectSameChoice(const SessionResult& a, const SessionResult& b, const std::string& what) {
-  EXPECT_EQ(a.generation.tokens, b.generation.tokens) << what;
-  EXPECT_EQ(a.output.triangles, b.output.triangles) << what;
-  EXPECT_EQ(a.generation.stats.chosen_candidate, b.generation.stats.chosen_candidate) << what;
-  ASSERT_EQ(a.generation.stats.candidates.size(), b.generation.stats.candidates.size()) << what;
-  for (size_t i = 0; i < a.generation.stats.candidates.size(); ++i) {
-    const CandidateScore &x = a.generation.stats.candidates[i], &y = b.generation.stats.candidates[i];
-    EXPECT_EQ(x.seed, y.seed) << what << " candidate " << i;
-    EXPECT_EQ(x.score, y.score) << what << " candidate " << i;
-    EXPECT_EQ(x.tokens, y.tokens) << what << " candidate " << i;
-    EXPECT_EQ(x.faces, y.faces) << what << " candidate " << i;
-  }
-}
-
 TEST_P(RowsTest, SessionWithRowsChoosesAsOneAfterAnother) {
   GenerationSession session(*model_);
   const SessionResult one = RunSession(&session, Request(6, 1), 1 << 30, AdvanceUntil::kIds);
@@ -264,10 +250,11 @@ TEST_P(RowsTest, SessionWithRowsChoosesAsOneAfterAnother) {
   const SessionResult four = RunSession(&session, Request(6, 4), 1 << 30, AdvanceUntil::kIds);
   // A batch-1 folder runs its candidates one after another whatever rows asks.
   EXPECT_EQ(four.generation.stats.rows, GetParam().rows_contract ? 4 : 1);
-  ExpectSameChoice(one, four, "rows 4");
+  testing::ExpectSameChoice(one, four, "rows 4");
   // Stepped by a few ids (logits kept across calls) and by layers.
-  ExpectSameChoice(one, RunSession(&session, Request(6, 4), 3, AdvanceUntil::kIds), "rows 4, 3 ids a call");
-  ExpectSameChoice(one, RunSession(&session, Request(6, 8), 50, AdvanceUntil::kLayer), "rows 8 (6 used), by layer");
+  testing::ExpectSameChoice(one, RunSession(&session, Request(6, 4), 3, AdvanceUntil::kIds), "rows 4, 3 ids a call");
+  testing::ExpectSameChoice(one, RunSession(&session, Request(6, 8), 50, AdvanceUntil::kLayer),
+                            "rows 8 (6 used), by layer");
 }
 
 TEST_P(RowsTest, ACancelledSessionWithRowsFinishesWithTheCandidatesStarted) {

@@ -8,7 +8,8 @@ past them, and the current symbol returns today's size. The same for silk_genera
 today's): their bytes equal the first bytes of today's defaults, and silk_generator_run accepts the
 1.0 and 1.3 params and stats sizes without writing past them. The functions 1.3 added are bound to the SILK_1.3 node alone, those 1.4
 added (the enum names) to SILK_1.4 alone, those 1.5 added (best of N's candidates; and
-silk_generate_default_params@@SILK_1.5) to SILK_1.5 alone. Linux
+silk_generate_default_params@@SILK_1.5) to SILK_1.5 alone, those 1.6 added (the batch,
+silk_batch_*) to SILK_1.6 alone. Linux
 (ELF symbol versions) only.
 
     capi_abi_check.py LIBSILK MODEL_DIR
@@ -54,6 +55,16 @@ SILK_1_5 = (
     "silk_generator_candidate_count",
     "silk_generator_get_candidate",
     "silk_generator_get_candidate_mesh",
+)
+SILK_1_6 = (
+    "silk_batch_default_params",
+    "silk_batch_create",
+    "silk_batch_destroy",
+    "silk_batch_add",
+    "silk_batch_close",
+    "silk_batch_next",
+    "silk_batch_counts",
+    "silk_batch_cancel",
 )
 INFO_INTS = (
     "d_model",
@@ -122,7 +133,12 @@ def main(lib_path, model_dir):
     lib.silk_model_destroy.argtypes = [ctypes.c_void_p]
     lib.silk_model_destroy(model)
     # Added in 1.3 / 1.4 / 1.5: bound to that node alone, so an older libsilk is refused by name.
-    for node, functions in ((b"SILK_1.3", SILK_1_3), (b"SILK_1.4", SILK_1_4), (b"SILK_1.5", SILK_1_5)):
+    for node, functions in (
+        (b"SILK_1.3", SILK_1_3),
+        (b"SILK_1.4", SILK_1_4),
+        (b"SILK_1.5", SILK_1_5),
+        (b"SILK_1.6", SILK_1_6),
+    ):
         for fn in functions:
             if not libc.dlvsym(lib._handle, fn.encode(), node) or libc.dlvsym(lib._handle, fn.encode(), b"SILK_1.0"):
                 failures.append(f"{fn}: must be exported as {fn}@@{node.decode()} only (engine/libsilk.map)")

@@ -12,6 +12,11 @@ ctest (tests/cli/silkgen_batch.cmake). Each mode builds its own list in a tempor
                                 message in the report and on stderr, the others `ok`, exit 1; a rerun
                                 skips the finished ones (appended lines), --overwrite redoes them;
                                 no temporary file is left
+  parallel SILKGEN REPO SHARED  --parallel 3 (several meshes as rows of one decoder call on the
+                                contract v4 tiny-rows folder; one after another on the batch-1 tiny
+                                folder) against --parallel 1 on a list with a broken file: the same
+                                output files byte for byte, the same report rows (timings, run and
+                                output folder aside), the same exit status; bad --parallel values
   options SILKGEN REPO SHARED   bad --shard values and Slurm variables, stem collisions, a mesh
                                 file given as the list, conflicting options: exit status and a
                                 message naming the problem, nothing generated; list syntax
@@ -245,9 +250,57 @@ def check_list_syntax(silkgen, repo, shared, tmp):
     return failures
 
 
+def without_times(path):
+    """The report's rows without what differs between two runs: times, the run id, the output folder."""
+    rows = report(path)
+    for r in rows:
+        for k in ("seconds", "time", "run"):
+            r.pop(k, None)
+        r["output"] = pathlib.Path(r["output"]).name if r["output"] else r["output"]
+    return rows
+
+
+def check_parallel(silkgen, repo, shared, tmp):
+    failures = []
+    files = inputs(repo, shared)[:3] + [shared / "corpus/bad/assimp_invalid.off"] + inputs(repo, shared)[3:5]
+    lst = write_list(tmp / "list.txt", files)
+    for model in ("tiny-rows", "tiny"):
+        outs = {}
+        for parallel in ("1", "3"):
+            out = tmp / f"{model}_p{parallel}"
+            cmd = [silkgen, "--batch", lst, "-o", out, "--model", repo / "tests/models" / model, *GEN]
+            p = run([*cmd, "--candidates", "3", "--parallel", parallel])
+            outs[parallel] = (out, p.returncode, p.stderr)
+        (o1, rc1, err1), (o3, rc3, err3) = outs["1"], outs["3"]
+        label = f"{model} --parallel 3"
+        if (rc1, rc3) != (1, 1):
+            failures.append(f"{label}: exit {rc3}, --parallel 1 exit {rc1} (both 1: one input is broken)\n{err3}")
+        meshes1 = sorted(f.name for f in o1.iterdir() if f.suffix == ".glb")
+        meshes3 = sorted(f.name for f in o3.iterdir() if f.suffix == ".glb")
+        if meshes1 != meshes3 or len(meshes1) != len(files) - 1:
+            failures.append(f"{label}: outputs {meshes3}, --parallel 1 wrote {meshes1}")
+        for name in set(meshes1) & set(meshes3):
+            if (o1 / name).read_bytes() != (o3 / name).read_bytes():
+                failures.append(f"{label}: {name} differs from --parallel 1's")
+        r1, r3 = without_times(o1 / "silkgen_batch.jsonl"), without_times(o3 / "silkgen_batch.jsonl")
+        if r1 != r3:
+            failures.append(f"{label}: report rows differ from --parallel 1's:\n{r3}\n{r1}")
+        if [r["status"] for r in r3].count("failed") != 1 or len(r3) != len(files):
+            failures.append(f"{label}: report statuses {[r['status'] for r in r3]} (one failed of {len(files)})")
+        if "assimp_invalid.off" not in err3 or err1.count("silkgen: [") != err3.count("silkgen: ["):
+            failures.append(f"{label}: stderr lines differ from --parallel 1's\n{err3}\n{err1}")
+    bad = [silkgen, "--batch", lst, "-o", tmp / "bad", "--model", repo / "tests/models/tiny-rows", *GEN]
+    for value in ("0", "17", "x"):
+        expect(failures, run([*bad, "--parallel", value]), 2, ["--parallel"], f"--parallel {value}")
+    expect(failures, run([*bad, "--parallel", "17"]), 2, ["[1, 16]"], "--parallel 17: the range")
+    single = [silkgen, repo / "samples/torus_knot.obj", "-o", tmp / "one.obj", "--model", repo / "tests/models/tiny"]
+    expect(failures, run([*single, "--parallel", "2"]), 2, ["--parallel is a --batch option"], "no --batch")
+    return failures
+
+
 def main():
     mode, silkgen, repo, shared = sys.argv[1], *(pathlib.Path(a).resolve() for a in sys.argv[2:5])
-    checks = {"shards": check_shards, "resume": check_resume, "options": check_options}
+    checks = {"shards": check_shards, "resume": check_resume, "options": check_options, "parallel": check_parallel}
     if mode not in checks:
         print(__doc__)
         return 2

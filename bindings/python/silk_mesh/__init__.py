@@ -26,6 +26,7 @@ from ._capi import (
 from ._library import SilkError, library_path, load_library
 from . import _capi, _native
 from .codec import decode, encode, read_ids, write_ids
+from .batch import Batch, BatchItem
 from .generation import Generator, Model, Result, generate
 from .models import bundled_model_dir, find_model, list_models, models_dir
 from .mesh import Mesh, load_arrays
@@ -36,6 +37,8 @@ __all__ = [
     "Model",
     "Generator",
     "Result",
+    "Batch",
+    "BatchItem",
     "SilkError",
     "encode",
     "decode",

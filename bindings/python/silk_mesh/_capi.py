@@ -291,6 +291,19 @@ CANCEL_FN = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_void_p)
 
 SILK_GENERATE_RECORD_TRACE = 1  # silk_generate_params.report_flags
 
+# C API 1.6: a batch's progress callback (input index, progress, user data).
+BATCH_PROGRESS_FN = ctypes.CFUNCTYPE(None, ctypes.c_int32, ctypes.POINTER(GenerateProgress), ctypes.c_void_p)
+
+
+class BatchParams(_Sized):
+    _fields_ = _SIZE + [
+        ("parallel", ctypes.c_int32),  # meshes in flight at most, 1..16
+        ("rows", ctypes.c_int32),  # decoder rows per mesh in flight (-1: the model's)
+        ("progress", BATCH_PROGRESS_FN),
+        ("cancel", CANCEL_FN),
+        ("user_data", ctypes.c_void_p),
+    ]
+
 
 class GenerateParams(_Sized):
     _fields_ = _SIZE + [
@@ -526,6 +539,30 @@ SIGNATURES = {
         ctypes.c_int,
         [ctypes.c_void_p, ctypes.c_int32, ctypes.POINTER(ctypes.c_void_p)],
     ),
+    # C API 1.6: a batch of inputs, several meshes decoded together.
+    "silk_batch_default_params": (BatchParams, []),
+    "silk_batch_create": (
+        ctypes.c_int,
+        [ctypes.c_void_p, ctypes.POINTER(BatchParams), ctypes.POINTER(ctypes.c_void_p)],
+    ),
+    "silk_batch_destroy": (None, [ctypes.c_void_p]),
+    "silk_batch_add": (
+        ctypes.c_int,
+        [ctypes.c_void_p, ctypes.POINTER(GenerateInput), ctypes.POINTER(GenerateParams), _c_int32_p],
+    ),
+    "silk_batch_close": (ctypes.c_int, [ctypes.c_void_p]),
+    "silk_batch_next": (
+        ctypes.c_int,
+        [
+            ctypes.c_void_p,
+            _c_int32_p,
+            ctypes.POINTER(ctypes.c_void_p),
+            ctypes.POINTER(ctypes.c_void_p),
+            ctypes.POINTER(GenerateStats),
+        ],
+    ),
+    "silk_batch_counts": (ctypes.c_int, [ctypes.c_void_p, _c_int32_p, _c_int32_p]),
+    "silk_batch_cancel": (None, [ctypes.c_void_p]),
 }
 
 

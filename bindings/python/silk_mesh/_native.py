@@ -305,6 +305,46 @@ def generator_run(g: c_void_p, inp: _capi.GenerateInput, params: _capi.GenerateP
     return mh, th, st
 
 
+# -- a batch of inputs (C API 1.6) ------------------------------------------------------------
+def batch_defaults() -> _capi.BatchParams:
+    return lib().silk_batch_default_params()
+
+
+def batch_create(model: c_void_p, params: _capi.BatchParams) -> c_void_p:
+    return _out(lib().silk_batch_create, model, byref(params))
+
+
+def batch_destroy(h: c_void_p) -> None:
+    lib().silk_batch_destroy(h)
+
+
+def batch_add(b: c_void_p, inp: _capi.GenerateInput, params: _capi.GenerateParams) -> int:
+    index = ctypes.c_int32(-1)
+    check(lib().silk_batch_add(b, byref(inp), byref(params), byref(index)))
+    return index.value
+
+
+def batch_close(b: c_void_p) -> None:
+    check(lib().silk_batch_close(b))
+
+
+def batch_next(b: c_void_p):
+    """silk_batch_next: (index, status, mesh handle, tokens handle, stats); index -1: nothing left."""
+    index, mh, th, st = ctypes.c_int32(-1), c_void_p(), c_void_p(), _capi.GenerateStats()
+    status = lib().silk_batch_next(b, byref(index), byref(mh), byref(th), byref(st))
+    return index.value, status, mh, th, st
+
+
+def batch_counts(b: c_void_p) -> tuple[int, int]:
+    flight, queued = ctypes.c_int32(), ctypes.c_int32()
+    check(lib().silk_batch_counts(b, byref(flight), byref(queued)))
+    return flight.value, queued.value
+
+
+def batch_cancel(b: c_void_p) -> None:
+    lib().silk_batch_cancel(b)
+
+
 def generator_report_json(g: c_void_p, trace: bool) -> str:
     L, report = lib(), c_void_p()
     check(L.silk_generator_report(g, int(trace), byref(report)))

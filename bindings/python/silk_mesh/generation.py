@@ -79,6 +79,27 @@ def _progress_dict(p) -> dict:
     return p[0].as_dict()
 
 
+def _generate_params(params: dict) -> _capi.GenerateParams:
+    """silk_generate_params from keywords (Generator's params; the callbacks are set apart)."""
+    enums = {field: _native.enum_names(enum) for field, enum in _ENUM_FIELDS.items()}
+    return _params.fill(_native.generate_defaults(), params, "generate", enums, _HIDDEN)
+
+
+def _generate_input(source, points):
+    """(silk_generate_input, what must outlive its use: the points array or a _Borrowed mesh,
+    whose __exit__ the caller calls)."""
+    gi = _capi.GenerateInput()
+    if (source is None) == (points is None):
+        raise TypeError("generate: give exactly one of an input mesh and points=")
+    if points is not None:
+        ptr, rows, keep = _arrays.to_c(points, ctypes.c_double, 6, "points")
+        gi.points, gi.point_rows = ptr, rows
+        return gi, keep
+    borrowed = _Borrowed(source, "generate")
+    gi.mesh = borrowed.mesh.handle
+    return gi, borrowed
+
+
 class Generator(_Owned):
     """One generation at a time on a Model (a Model, a folder path, or None: the bundled model).
     One call: run(input, **params) -> Result. Step-wise: start(input, **params), advance(...) until
@@ -113,8 +134,7 @@ class Generator(_Owned):
 
     def _prepare(self, source, points, progress, cancel, params: dict):
         """(GenerateInput, GenerateParams); their Python-side objects stay in self._keep."""
-        enums = {field: _native.enum_names(enum) for field, enum in _ENUM_FIELDS.items()}
-        p = _params.fill(_native.generate_defaults(), params, "generate", enums, _HIDDEN)
+        p = _generate_params(params)
         callbacks = []
         if progress is not None:
             callbacks.append(_capi.PROGRESS_FN(lambda pr, _u: self._guard(progress, _progress_dict(pr))))
@@ -122,15 +142,7 @@ class Generator(_Owned):
         if cancel is not None:
             callbacks.append(_capi.CANCEL_FN(lambda _u: 1 if self._guard(cancel) else 0))
             p.cancel = callbacks[-1]
-        gi, borrowed = _capi.GenerateInput(), None
-        if (source is None) == (points is None):
-            raise TypeError("generate: give exactly one of an input mesh and points=")
-        if points is not None:
-            ptr, rows, keep = _arrays.to_c(points, ctypes.c_double, 6, "points")
-            gi.points, gi.point_rows = ptr, rows
-        else:
-            borrowed = _Borrowed(source, "generate")
-            gi.mesh, keep = borrowed.mesh.handle, borrowed
+        gi, keep = _generate_input(source, points)
         self._keep, self._error = (callbacks, keep, p), None
         return gi, p
 

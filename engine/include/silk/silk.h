@@ -39,7 +39,7 @@
  * PATCH fixes. silk_version() is the library's own string (compare it with SILK_VERSION_STRING
  * to detect a header/library mismatch). */
 #define SILK_VERSION_MAJOR 1
-#define SILK_VERSION_MINOR 5
+#define SILK_VERSION_MINOR 6
 #define SILK_VERSION_PATCH 0
 #define SILK_STR_(x) #x
 #define SILK_STR(x) SILK_STR_(x)
@@ -623,7 +623,8 @@ SILK_API silk_generate_params silk_generate_default_params(void);
 /* The valid values of a numeric generation setting, from the one table the generation calls check
  * against (C API 1.4). `name` is the field's name in silk_generate_params or silk_model_params:
  * "temperature", "top_k", "top_p", "top_p_temperature", "max_tokens", "max_faces",
- * "surface_tolerance", "face_tolerance", "candidates", "rows" (C API 1.5), "point_count", "threads".
+ * "surface_tolerance", "face_tolerance", "candidates", "rows" (C API 1.5), "point_count", "threads";
+ * and silk_batch_params' "parallel" (C API 1.6).
  * silk_param_range: *lo..*hi inclusive (*hi = INT32_MAX: no upper bound); *zero_too = 1 where 0
  * is valid as well though below *lo (max_tokens, point_count: "the model's"); any out may be NULL.
  * silk_param_check: SILK_OK when `value` is valid, else SILK_ERR_INVALID_ARGUMENT with the message
@@ -835,6 +836,62 @@ SILK_API silk_status silk_generator_get_candidate(silk_generator* generator, int
  * no faces while it waits.
  * *out: a new silk_mesh owned by the caller, silk_mesh_destroy (a copy). */
 SILK_API silk_status silk_generator_get_candidate_mesh(silk_generator* generator, int32_t index, silk_mesh** out);
+
+/* ---- a batch of inputs, several meshes decoded together (C API 1.6) ----------------------
+ * Pull-style: add inputs (each with its own silk_generate_params), then pull each finished one
+ * with silk_batch_next as soon as it ends, with its input index (the order added: 0, 1, ...), so a
+ * caller writes outputs as they end and reports in input order. Up to params.parallel meshes are
+ * in flight at once as rows of one decoder call (a model folder of decoder contract v4): every
+ * weight is read once per step for all of them; a freed row goes to the next candidate of the
+ * first mesh in input order that has one to start. Each input's mesh, ids and figures (timings
+ * aside) are exactly those silk_generator_run returns for the same input and params; parallel 1,
+ * or a folder before contract v4 (one row per call), runs the inputs one after another. An input's
+ * error (bad points, a refused param) is its own result and never stops the others. One call at a
+ * time on a batch (SILK_ERR_BUSY otherwise, e.g. from inside its own callbacks); silk_batch_cancel
+ * is thread-safe. */
+typedef struct silk_batch silk_batch;
+/* Progress of input `input` (its own candidate and candidates in the report). */
+typedef void (*silk_batch_progress_fn)(int32_t input, const silk_generate_progress* progress, void* user_data);
+typedef struct silk_batch_params {
+  uint32_t struct_size; /* set by silk_batch_default_params() */
+  /* Meshes in flight at most, 1..16 (silk_param_range("parallel")); 1: one after another (the
+   * default, as a loop of silk_generator_run). */
+  int32_t parallel;
+  /* Decoder rows per mesh in flight (the batch holds parallel x rows), 1..64; each mesh's candidates
+   * take at most min(its params' rows, its candidates) at once. Default SILK_MODEL_VALUE (-1): the
+   * model's (model.json "sampling.rows"), else 8. */
+  int32_t rows;
+  silk_batch_progress_fn progress; /* may be NULL; the inputs' own params.progress is not called */
+  silk_cancel_fn cancel;           /* may be NULL; polled as silk_generator_run polls it: stops the batch */
+  void* user_data;                 /* passed to both */
+} silk_batch_params;
+SILK_API silk_batch_params silk_batch_default_params(void);
+/* A batch on `model` (which it keeps alive). *out: owned by the caller, silk_batch_destroy. */
+SILK_API silk_status silk_batch_create(const silk_model* model, const silk_batch_params* params, silk_batch** out);
+SILK_API void silk_batch_destroy(silk_batch* batch);
+/* Queues an input (copied: the caller's mesh or points may go) with its params (NULL: the
+ * defaults; progress, cancel and user_data there are not used: the batch's are). *out_index (may
+ * be NULL): its index. The params and input are checked when the input starts: their errors come
+ * back from silk_batch_next as that input's result. SILK_ERR_INVALID_ARGUMENT after
+ * silk_batch_close or a cancel. Add at most a few inputs beyond parallel ahead of the pulls: a
+ * queued input holds its copy (and, in rows, its encoder points) until it starts. */
+SILK_API silk_status silk_batch_add(silk_batch* batch, const silk_generate_input* input,
+                                    const silk_generate_params* params, int32_t* out_index);
+/* No more inputs: silk_batch_add is refused from now on (the queued ones still run). */
+SILK_API silk_status silk_batch_close(silk_batch* batch);
+/* Runs until an input ends and returns its result: *out_index its index; SILK_OK with *out_mesh
+ * (owned by the caller, silk_mesh_destroy), *out_tokens and stats (both may be NULL) as
+ * silk_generator_run fills them; or the input's error (silk_last_error names it) with the outs
+ * NULL / blank. After a cancel (params.cancel or silk_batch_cancel) the inputs in flight come back
+ * with SILK_ERR_CANCELLED (stats: stop reason CANCELLED), and so do the queued ones, never started
+ * (every input added comes back exactly once). When no
+ * input is queued or in flight: SILK_ERR_INVALID_ARGUMENT with *out_index -1. */
+SILK_API silk_status silk_batch_next(silk_batch* batch, int32_t* out_index, silk_mesh** out_mesh,
+                                     silk_tokens** out_tokens, silk_generate_stats* stats);
+/* Inputs in flight (started, not ended) and queued (added, not started): either may be NULL. */
+SILK_API silk_status silk_batch_counts(silk_batch* batch, int32_t* in_flight, int32_t* queued);
+/* Thread-safe, any time: cancels the batch (the silk_batch_next in progress returns soon). */
+SILK_API void silk_batch_cancel(silk_batch* batch);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -30,7 +30,7 @@ std::optional<SettingRange> FindSetting(std::string_view name) {
   for (const SettingRange& r :
        {ranges::kTemperature, ranges::kTopK, ranges::kTopP, ranges::kTopPTemperature, ranges::kMaxTokens,
         ranges::kMaxFaces, ranges::kSurfaceTolerance, ranges::kFaceTolerance, ranges::kCandidates, ranges::kRows,
-        ranges::kPointCount, ranges::Threads()})
+        ranges::kParallel, ranges::kPointCount, ranges::Threads()})
     if (name == r.name) return r;
   return std::nullopt;
 }

@@ -48,6 +48,8 @@ inline constexpr SettingRange kFaceTolerance{"face_tolerance", 0.5, 64, false, f
 inline constexpr SettingRange kCandidates{"candidates", 1, 64, true, false, ""};
 // Best of N: how many of the candidates are decoded together, at most (GenerationSession).
 inline constexpr SettingRange kRows{"rows", 1, 64, true, false, ""};
+// A batch of inputs (MeshRows): how many meshes are decoded together, at most.
+inline constexpr SettingRange kParallel{"parallel", 1, 16, true, false, "1 = one after another"};
 inline constexpr SettingRange kPointCount{"point_count", 1, kMaxPreprocessingPoints, true, true, "0 = the model's"};
 // onnxruntime's intra-op threads: 0 (the physical cores) up to the larger of 64 and the
 // hardware's threads.
