@@ -307,7 +307,7 @@ TEST(RowsInt8, AnInt8DecoderRunsBestOfNOneRowAtATime) {
   const SessionResult one = RunSession(&session, Request(6, 1), 1 << 30, AdvanceUntil::kIds);
   const SessionResult four = RunSession(&session, Request(6, 4), 1 << 30, AdvanceUntil::kIds);
   EXPECT_EQ(four.generation.stats.rows, 1);
-  ExpectSameChoice(one, four, "INT8, rows 4");
+  testing::ExpectSameChoice(one, four, "INT8, rows 4");
 }
 
 // The step-wise view of every candidate: at most `rows` running at once, the best so far marked
