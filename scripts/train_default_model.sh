@@ -113,9 +113,13 @@ fi
 if has export; then
   # TEMPERATURE, TOP_K and CANDIDATES: the model's default sampling and best of N, chosen on the
   # val split with scripts/eval_guidance.sh; written into model.json, which silkgen and the C API read.
+  # KV_VARIANTS / KV_PRECISION: the contract v4 cache variants shipped and the default cache. The
+  # bundled folder ships the fp16 ones only (40 MB limit) and uses them by default, so best of N
+  # runs its candidates as rows of one decoder call (docs/runtime.md, "Rows").
   silk-export export --checkpoint "$RUN/checkpoint.pt" --out "$OUT" \
     ${TEMPERATURE:+--temperature "$TEMPERATURE"} ${TOP_K:+--top-k "$TOP_K"} \
     ${CANDIDATES:+--candidates "$CANDIDATES"} \
+    --kv-variants ${KV_VARIANTS:-fp16} --kv-precision "${KV_PRECISION:-fp16}" \
     --data "0 A.D. art meshes (0ad-data 0.0.26, CC BY-SA 3.0), train split, dev corpus excluded"
   cp "$RUN/loss.png" "$OUT/loss.png"
 fi

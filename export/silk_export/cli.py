@@ -193,6 +193,20 @@ def _add_export(sub) -> None:
         help="model.json sampling.candidates: the best of N silkgen and the C API run unless "
         "told otherwise (absent: 1)",
     )
+    e.add_argument(
+        "--kv-variants",
+        nargs="+",
+        choices=["fp16", "int8"],
+        default=["fp16", "int8"],
+        help="which self-K/V cache variants of every decoder to write (contract v4, files.kv_fp16 / "
+        "files.kv_int8; default: both)",
+    )
+    e.add_argument(
+        "--kv-precision",
+        choices=KV_PRECISIONS,
+        help="files.default_kv_precision: the cache silkgen and the C API use unless told otherwise "
+        "(fp16 / int8 need that variant; absent: fp32)",
+    )
     e.set_defaults(fn=_cmd_export)
 
 
@@ -221,7 +235,15 @@ def _cmd_export(a) -> int:
         check_finite(ck["model"].items(), str(a.checkpoint))
         out = output_folder(a.out, a.name)
         out.parent.mkdir(parents=True, exist_ok=True)
-        meta = export_model(model, out, training, int8=not a.no_int8, sampling=sampling or None)
+        meta = export_model(
+            model,
+            out,
+            training,
+            int8=not a.no_int8,
+            sampling=sampling or None,
+            kv_variants=tuple(dict.fromkeys(a.kv_variants)),
+            kv_default=a.kv_precision,
+        )
     except ValueError as e:
         print(f"silk-export export: error: {e}", file=sys.stderr)
         return 2

@@ -383,23 +383,15 @@ def glb_parts(path):
     return parts
 
 
-def surface_samples(src):
-    """20,000 area-weighted samples of an OBJ's surface with their face normals (numpy's generator,
-    not libsilk's)."""
+def encoder_points(path):
+    """The points and unit normals silkgen oriented the parts by (--save-points: the encoder's
+    points in the input's frame, an ascii PLY of x y z nx ny nz) as numpy arrays."""
     import numpy as np
 
-    lines = src.read_text().splitlines()
-    sv = np.array([[float(x) for x in l.split()[1:4]] for l in lines if l.startswith("v ")])
-    sf = np.array([[int(x.split("/")[0]) - 1 for x in l.split()[1:4]] for l in lines if l.startswith("f ")])
-    s_cross = np.cross(sv[sf[:, 1]] - sv[sf[:, 0]], sv[sf[:, 2]] - sv[sf[:, 0]])
-    s_area = 0.5 * np.linalg.norm(s_cross, axis=1)
-    s_unit = s_cross / np.maximum(2 * s_area[:, None], 1e-300)
-    rng = np.random.default_rng(0)
-    pick = rng.choice(len(sf), 20000, p=s_area / s_area.sum())
-    uv = rng.random((20000, 2))
-    uv[uv.sum(1) > 1] = 1 - uv[uv.sum(1) > 1]
-    a0 = sv[sf[pick, 0]]
-    return a0 + uv[:, :1] * (sv[sf[pick, 1]] - a0) + uv[:, 1:] * (sv[sf[pick, 2]] - a0), s_unit[pick]
+    lines = path.read_text().splitlines()
+    rows = np.array([[float(x) for x in l.split()] for l in lines[lines.index("end_header") + 1 :] if l.strip()])
+    normals = rows[:, 3:6]
+    return rows[:, :3], normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
 
 
 def compare_parts(tag, tparts, iparts, s_points, s_normal, failures):
@@ -423,8 +415,8 @@ def compare_parts(tag, tparts, iparts, s_points, s_normal, failures):
         if not (same or rev):
             failures.append(f"{tag}: part {k} is neither kept nor wholly reversed")
         reversed_parts += int(rev and not same)
-        # Independent vote: area-weighted agreement with the normal of the input surface
-        # sample nearest to each face's centroid.
+        # Independent vote: area-weighted agreement with the normal of the reference point
+        # nearest to each face's centroid.
         cross = np.cross(iv[i_f[:, 1]] - iv[i_f[:, 0]], iv[i_f[:, 2]] - iv[i_f[:, 0]])
         cen = iv[i_f].mean(axis=1)
         near = np.argmin(((cen[:, None, :] - s_points[None, :, :]) ** 2).sum(-1), axis=1)
@@ -433,10 +425,13 @@ def compare_parts(tag, tparts, iparts, s_points, s_normal, failures):
 
 
 def check_orient(silkgen, repo):
-    """--orient input vs tokens with the bundled model (several parts per mesh), per GLB node."""
+    """--orient input vs tokens with the bundled model (several parts per mesh), per GLB node. The
+    independent vote (numpy) is taken against the input's normals at the encoder's points, the
+    reference libsilk orients by: this small model's parts lie across the surface, so their votes
+    are near ties (|vote| a few % of the part's area) whose sign other samples of the same surface
+    can turn."""
     failures, flipped_total = [], 0
     src = repo / "samples/torus_knot.obj"
-    s_points, s_normal = surface_samples(src)
     plain = [a for a in COMMON if a not in ("--orient", "tokens", "--max-tokens", "300")]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
@@ -463,6 +458,8 @@ def check_orient(silkgen, repo):
                         tmp / f"{mode}.txt",
                         "--stats",
                         tmp / f"{mode}.json",
+                        "--save-points",
+                        tmp / f"{mode}.ply",
                         *plain,
                         "--orient",
                         mode,
@@ -476,6 +473,7 @@ def check_orient(silkgen, repo):
                 continue
             if ts["parts_flipped"] != 0 or ist["settings"]["orient"] != "input":
                 failures.append(f"{tag}: --orient tokens reversed {ts['parts_flipped']} parts")
+            s_points, s_normal = encoder_points(tmp / "input.ply")
             reversed_parts, votes = compare_parts(tag, tparts, iparts, s_points, s_normal, failures)
             if reversed_parts != ist["parts_flipped"]:
                 failures.append(f"{tag}: {reversed_parts} parts reversed, stats say {ist['parts_flipped']}")

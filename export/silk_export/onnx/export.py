@@ -18,7 +18,7 @@ from ..models.configs import ModelConfig
 from ..models.finite import check_finite
 from ..registry import get_architecture
 from ..vocab import load_vocab
-from .kv_precision import add_kv_variants
+from .kv_precision import KV_FILES, add_kv_variants
 from .rows import ROWS_CONTRACT
 from .graphs import DecoderGraph, EncoderGraph, decoder_input_names, decoder_output_names
 
@@ -349,6 +349,16 @@ def export_graphs(model, out_dir: Path, external_over: int = 1 << 30) -> dict:
     return files
 
 
+def _check_kv_choice(variants: tuple[str, ...], default: str | None) -> None:
+    """The cache variants an export writes exist, and the default cache is fp32 or one of them."""
+    for v in variants:
+        if v not in KV_FILES:
+            raise ValueError(f"KV cache variant '{v}': expected one of {', '.join(KV_FILES)}")
+    if default is not None and default != "fp32" and default not in variants:
+        written = ", ".join(variants) or "none"
+        raise ValueError(f"default KV precision '{default}' needs its cache variant (written: {written})")
+
+
 def export_model(
     model,
     out_dir: Path,
@@ -356,22 +366,30 @@ def export_model(
     int8: bool = True,
     sampling: dict | None = None,
     rows: bool = True,
+    kv_variants: tuple[str, ...] = ("fp16", "int8"),
+    kv_default: str | None = None,
 ) -> dict:
     """Exports all files into out_dir; returns the sidecar dict that was written. `sampling`: the
     model.json "sampling" defaults silkgen and the C API start from (absent: libsilk's built-in
-    ones, temperature 0.5 and top-k 50). `rows`: model_version 4, with the fp16- and int8-cache
-    variants of every decoder in contract v4 (rows.py); False: the architecture's version and no
-    variants (the committed test model's form). Raises ValueError before writing anything when a
-    weight is NaN / Inf (naming its key) or a sampling value is not finite."""
+    ones, temperature 0.5 and top-k 50). `rows`: model_version 4, with the `kv_variants` cache
+    variants (fp16, int8) of every decoder in contract v4 (rows.py); False: the architecture's
+    version and no variants (the committed test model's form). `kv_default`: files.default_kv_precision
+    (None: absent, the fp32 cache). Raises ValueError before writing anything when a weight is
+    NaN / Inf (naming its key), a sampling value is not finite or `kv_default` names a cache
+    that is not written."""
     out_dir = Path(out_dir)
     check_finite(model.state_dict().items(), "model")
     dumps({"sampling": sampling}, what="model.json")  # a NaN default: refused before the graphs
+    variants = tuple(kv_variants) if rows else ()
+    _check_kv_choice(variants, kv_default)
     files = export_graphs(model, out_dir)
     if int8:
         quantize_decoder(out_dir / "decoder.onnx", out_dir / "decoder.int8.onnx")
         files["decoder_int8"] = "decoder.int8.onnx"
-    for precision in ("fp16", "int8") if rows else ():  # contract v4 (the default stays the fp32 cache)
+    for precision in variants:  # contract v4
         add_kv_variants(out_dir, files, precision, rows=True)
+    if kv_default is not None:
+        files["default_kv_precision"] = kv_default
     meta = sidecar(
         model.cfg,
         training or {"steps": 0, "data": None, "seed": None},
