@@ -55,7 +55,7 @@ Status GenerationSession::Start(const GenerationRequest& request, const Generati
   // A decoder before contract v4 takes one row per call: rows would run one after another anyway
   // and only hold R caches at once, so such a folder runs its candidates one after another; so
   // does an INT8 decoder, whose rows are not each exactly their own (RowsTogether).
-  by_rows_ = plan_.options.rows > 1 && plan_.options.candidates > 1 && model_.impl().rows_together;
+  by_rows_ = CandidatesAsRows(plan_.options, model_);
   if (by_rows_) {
     started_ = Clock::now();
     waiting_.assign(static_cast<size_t>(candidates()), std::nullopt);

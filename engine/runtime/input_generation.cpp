@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "runtime/generation_output.h"
+#include "runtime/model/model_impl.h"
 
 namespace silk {
 
@@ -43,6 +44,10 @@ SessionResult ConcludeChoice(CandidateChoice* choice, const PreparedInput& input
   st.seconds.load_input += input.prepare_seconds;
   st.seconds.total = st.seconds.load_input + st.generation_seconds + st.seconds.build_mesh + st.seconds.scoring;
   return out;
+}
+
+bool CandidatesAsRows(const GenerateOptions& options, const Model& model) {
+  return options.rows > 1 && options.candidates > 1 && model.impl().rows_together;
 }
 
 }  // namespace silk

@@ -51,4 +51,9 @@ struct RowsRun {
 // run's times; `complete` false marks it cancelled. `rows`: null when one after another.
 SessionResult ConcludeChoice(CandidateChoice* choice, const PreparedInput& input, bool complete, const RowsRun* rows);
 
+// The one rule for whether a generation's candidates run as rows (GenerationSession, MeshRows):
+// more than one row and one candidate asked, and a decoder whose rows are each their own
+// (Model::Impl::rows_together: contract v4, not INT8).
+bool CandidatesAsRows(const GenerateOptions& options, const Model& model);
+
 }  // namespace silk

@@ -185,7 +185,7 @@ void MeshRows::Conclude(int32_t id) {
   const GenerateOptions& o = f.prepared.plan.options;
   if (f.choice.size() == o.candidates) {
     // As GenerationSession: rows only when best of N asks for more than one (stats.rows: its own).
-    const bool by_rows = o.rows > 1 && o.candidates > 1;
+    const bool by_rows = CandidatesAsRows(o, model_);
     const RowsRun run{std::max(1, std::min(o.rows, o.candidates)), rows_.cache_bytes(), rows_.decoder_seconds(),
                       Since(f.started)};
     ended_.push_back(MeshRowsEnded{f.index, ConcludeChoice(&f.choice, f.prepared, true, by_rows ? &run : nullptr)});
