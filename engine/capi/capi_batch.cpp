@@ -105,7 +105,8 @@ silk_status silk_batch_create(const silk_model* model, const silk_batch_params* 
     auto b = std::make_unique<silk_batch>(model->model);
     b->params = silk::capi::ReadParams(params, silk_batch_default_params());
     const int32_t rows =
-        b->params.rows == SILK_MODEL_VALUE ? model->model->config().rows.value_or(silk::kDefaultRows) : b->params.rows;
+        silk::ResolveRows(b->params.rows == SILK_MODEL_VALUE ? std::nullopt : std::optional<int32_t>(b->params.rows),
+                          model->model->config());
     if (silk::Status s = b->rows.Open(b->params.parallel, rows, ToCallbacks(b.get())); !s.ok())
       return SetError(s.WithContext("silk_batch_create: "));
     *out = b.release();

@@ -71,7 +71,7 @@ StatusOr<GenerationPlan> ResolveRequest(const GenerationRequest& r, const ModelC
   o.record_trace = r.record_trace;
   o.surface_tolerance = r.surface_tolerance;
   o.candidates = r.candidates.value_or(config.candidates);
-  o.rows = r.rows.value_or(config.rows.value_or(kDefaultRows));
+  o.rows = ResolveRows(r.rows, config);
   o.orient_to_input = r.orient_to_input;
   o.face_guidance = r.face_guidance.value_or(config.face_guidance);
   o.face_tolerance = r.face_tolerance.value_or(config.face_tolerance);
@@ -79,6 +79,10 @@ StatusOr<GenerationPlan> ResolveRequest(const GenerationRequest& r, const ModelC
   plan.preprocessing = ResolvePreprocessing(r, config);
   plan.raw_points = r.raw_points;
   return plan;
+}
+
+int32_t ResolveRows(std::optional<int32_t> asked, const ModelConfig& config) {
+  return asked.value_or(config.rows.value_or(kDefaultRows));
 }
 
 }  // namespace silk

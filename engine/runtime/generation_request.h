@@ -48,4 +48,7 @@ struct GenerationPlan {
 // range: InvalidArgument naming the field and value, then CheckGenerateOptions).
 StatusOr<GenerationPlan> ResolveRequest(const GenerationRequest& request, const ModelConfig& config);
 
+// Best of N's rows when `asked` is unset: the model's (model.json sampling.rows), else kDefaultRows.
+int32_t ResolveRows(std::optional<int32_t> asked, const ModelConfig& config);
+
 }  // namespace silk
