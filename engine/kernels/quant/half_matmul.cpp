@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: MIT
 // HalfMatMul: each float16 weight row is read once per call and dotted with every activation row
 // (AVX2 + F16C: four accumulators, the stream prefetched ahead, eight weight rows reduced together
-// and, for many activation rows, converted once; plain C++ otherwise), rows spread over the
-// caller's pool in blocks.
+// and, for many activation rows, converted once, two rows per register with AVX-512; plain C++
+// otherwise), rows spread over the caller's pool in blocks.
 #include "kernels/quant/half_matmul.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "kernels/cpu/float16.h"
 
@@ -83,15 +86,21 @@ SILK_AVX2 inline __m256 Reduce8(const __m256* s) {
   return _mm256_add_ps(_mm256_add_ps(c0, c2), _mm256_add_ps(c1, c3));
 }
 
-// Weight rows [r0, r0 + 8) against every activation row; `wf` holds 8 x kConvertedMax floats.
+// The eight weight rows of a block as float32 (`wf`: 8 x the 32-wide body of K), converted once for
+// every activation row of the call.
+SILK_AVX2 void ConvertBlock(int64_t k, const uint16_t* w, float* wf) {
+  const int64_t body = k / 32 * 32;
+  for (int64_t j = 0; j < kBlockRows; ++j)
+    for (int64_t i = 0; i < body; i += 8) _mm256_storeu_ps(wf + j * body + i, Half8(w + j * k + i));
+}
+
+// Weight rows [r0, r0 + 8) against activation rows [m0, m_rows); `wf`: the block converted by
+// ConvertBlock when kConverted.
 template <bool kConverted>
-SILK_AVX2 void BlockAvx2(int64_t m_rows, int64_t k, int64_t n, const float* a, const uint16_t* w, float* out,
-                         float* wf) {
+SILK_AVX2 void BlockAvx2(int64_t m0, int64_t m_rows, int64_t k, int64_t n, const float* a, const uint16_t* w,
+                         float* out, const float* wf) {
   const int64_t steps = k / 32, body = steps * 32;
-  if (kConverted)
-    for (int64_t j = 0; j < kBlockRows; ++j)
-      for (int64_t i = 0; i < body; i += 8) _mm256_storeu_ps(wf + j * body + i, Half8(w + j * k + i));
-  for (int64_t m = 0; m < m_rows; ++m) {
+  for (int64_t m = m0; m < m_rows; ++m) {
     const float* am = a + m * k;
     __m256 sums[kBlockRows];
     alignas(32) float tail[kBlockRows];
@@ -108,6 +117,98 @@ bool CpuHasAvx2() {
       __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
   return has;
 }
+
+// Two activation rows per 512-bit register (row 2i in the low half, 2i + 1 in the high one),
+// each half doing BlockAvx2's float operations in BlockAvx2's order, so each output is still bit
+// for bit its one-row value; the ports do twice the products per instruction, and a step's four
+// activation vectors stay in registers for four weight rows (one weight load per fma).
+#define SILK_AVX512 __attribute__((target("avx2,fma,f16c,avx512f,avx512dq")))
+// GCC 12's AVX-512 intrinsics pass _mm512_undefined_ps() as the unused merge source, which its
+// -Wmaybe-uninitialized reports once inlined (fixed in later GCC); the values are never read.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+bool CpuHasAvx512() {
+  static const bool has = CpuHasAvx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+  return has;
+}
+
+// The call's activation rows two by two, 8 floats of row 2i then the same 8 of row 2i + 1, over
+// the 32-wide body of K (64-byte aligned); an odd last row is left to BlockAvx2.
+class PairedActivations {
+ public:
+  PairedActivations(const float* a, int64_t m, int64_t k)
+      : chunks_(k / 32 * 4), pairs_(m / 2), data_(static_cast<size_t>(pairs_ * chunks_ * 16 + 16)) {
+    data0_ = data_.data() + (64 - reinterpret_cast<uintptr_t>(data_.data()) % 64) % 64 / 4;
+    for (int64_t p = 0; p < pairs_; ++p)
+      for (int64_t c = 0; c < chunks_; ++c)
+        for (int h = 0; h < 2; ++h)
+          std::copy_n(a + (2 * p + h) * k + c * 8, 8, data0_ + (p * chunks_ + c) * 16 + 8 * h);
+  }
+  const float* Pair(int64_t p) const { return data0_ + p * chunks_ * 16; }
+  int64_t pairs() const { return pairs_; }
+
+ private:
+  int64_t chunks_, pairs_;
+  std::vector<float> data_;  // 16 floats over, for the alignment
+  float* data0_;
+};
+
+// StepSums<true> of four weight rows [j0, j0 + 4) of a converted block against one pair: s[j].
+SILK_AVX512 inline void PairStepSums4(const float* pa, const float* wf, int64_t body, int64_t j0, __m512* s) {
+  // (every loop below is unrolled, so the sixteen accumulators stay in registers)
+  __m512 acc[4][4];
+#pragma GCC unroll 16
+  for (int v = 0; v < 16; ++v) acc[v / 4][v % 4] = _mm512_setzero_ps();
+  for (int64_t i = 0; i < body; i += 32) {
+    __m512 a[4];
+#pragma GCC unroll 4
+    for (int c = 0; c < 4; ++c) a[c] = _mm512_load_ps(pa + (i / 8 + c) * 16);
+#pragma GCC unroll 16
+    for (int v = 0; v < 16; ++v) {
+      const int j = v / 4, c = v % 4;
+      const __m512 wv = _mm512_broadcast_f32x8(_mm256_loadu_ps(wf + (j0 + j) * body + i + 8 * c));
+      acc[j][c] = _mm512_fmadd_ps(a[c], wv, acc[j][c]);
+    }
+  }
+#pragma GCC unroll 4
+  for (int j = 0; j < 4; ++j)
+    s[j0 + j] = _mm512_add_ps(_mm512_add_ps(acc[j][0], acc[j][1]), _mm512_add_ps(acc[j][2], acc[j][3]));
+}
+
+// Reduce8 in each half: the low half gives row 2i's eight outputs, the high half row 2i + 1's.
+SILK_AVX512 inline __m512 Reduce8Pair(const __m512* s) {
+  const __m512i lo = _mm512_set_epi32(27, 26, 25, 24, 11, 10, 9, 8, 19, 18, 17, 16, 3, 2, 1, 0);
+  const __m512i hi = _mm512_set_epi32(31, 30, 29, 28, 15, 14, 13, 12, 23, 22, 21, 20, 7, 6, 5, 4);
+  __m512 h[4];
+  for (int j = 0; j < 4; ++j)
+    h[j] = _mm512_add_ps(_mm512_permutex2var_ps(s[j], lo, s[j + 4]), _mm512_permutex2var_ps(s[j], hi, s[j + 4]));
+  const __m512 t0 = _mm512_unpacklo_ps(h[0], h[1]), t1 = _mm512_unpackhi_ps(h[0], h[1]);
+  const __m512 t2 = _mm512_unpacklo_ps(h[2], h[3]), t3 = _mm512_unpackhi_ps(h[2], h[3]);
+  const __m512 c0 = _mm512_shuffle_ps(t0, t2, 0x44), c1 = _mm512_shuffle_ps(t0, t2, 0xEE);
+  const __m512 c2 = _mm512_shuffle_ps(t1, t3, 0x44), c3 = _mm512_shuffle_ps(t1, t3, 0xEE);
+  return _mm512_add_ps(_mm512_add_ps(c0, c2), _mm512_add_ps(c1, c3));
+}
+
+// A converted block of weight rows (w, as float32 in wf) against every pair of activation rows.
+SILK_AVX512 void BlockPairs(const PairedActivations& pairs, int64_t k, int64_t n, const float* a, const uint16_t* w,
+                            float* out, const float* wf) {
+  const int64_t body = k / 32 * 32;
+  for (int64_t p = 0; p < pairs.pairs(); ++p) {
+    __m512 sums[kBlockRows];
+    PairStepSums4(pairs.Pair(p), wf, body, 0, sums);
+    PairStepSums4(pairs.Pair(p), wf, body, 4, sums);
+    alignas(64) float tail[2 * kBlockRows] = {};
+    if (body < k)
+      for (int h = 0; h < 2; ++h)
+        for (int64_t j = 0; j < kBlockRows; ++j)
+          tail[h * kBlockRows + j] = RowScalar(a + (2 * p + h) * k + body, w + j * k + body, k - body);
+    const __m512 both = _mm512_add_ps(Reduce8Pair(sums), _mm512_load_ps(tail));
+    _mm256_storeu_ps(out + 2 * p * n, _mm512_castps512_ps256(both));
+    _mm256_storeu_ps(out + (2 * p + 1) * n, _mm512_extractf32x8_ps(both, 1));
+  }
+}
+#pragma GCC diagnostic pop
 #endif
 
 using RowFn = float (*)(const float*, const uint16_t*, int64_t);
@@ -126,6 +227,7 @@ struct Job {
   const uint16_t* w;
   float* out;
   RowFn row;
+  const void* pairs;  // PairedActivations where the 512-bit kernel runs, else null
 };
 
 // Weight rows [index * kRowsPerTask, ...) against every activation row (each weight row is read
@@ -139,12 +241,16 @@ void RunTask(void* state, size_t index) {
   if (job.row == RowAvx2) {
     alignas(32) float wf[kBlockRows * kConvertedMax];
     const bool convert = s.m > 1 && s.k <= kConvertedMax;
+    const auto* pairs = static_cast<const PairedActivations*>(job.pairs);
     for (; r + kBlockRows <= r1; r += kBlockRows) {
       const uint16_t* w = job.w + r * s.k;
-      if (convert)
-        BlockAvx2<true>(s.m, s.k, s.n, job.a, w, job.out + r, wf);
-      else
-        BlockAvx2<false>(s.m, s.k, s.n, job.a, w, job.out + r, wf);
+      if (!convert) {
+        BlockAvx2<false>(0, s.m, s.k, s.n, job.a, w, job.out + r, wf);
+        continue;
+      }
+      ConvertBlock(s.k, w, wf);
+      if (pairs) BlockPairs(*pairs, s.k, s.n, job.a, w, job.out + r, wf);
+      BlockAvx2<true>(pairs ? 2 * pairs->pairs() : 0, s.m, s.k, s.n, job.a, w, job.out + r, wf);
     }
   }
 #endif
@@ -165,7 +271,14 @@ bool HalfShapeSupported(const HalfMatMulShape& s, const char** why) {
 void HalfMatMul(const HalfMatMulShape& s, const float* a, const uint16_t* w, float* out, ParallelForFn parallel_for,
                 void* parallel_context, RowKernels kernels) {
   if (s.m == 0) return;
-  Job job{&s, a, w, out, PickRow(kernels)};
+  Job job{&s, a, w, out, PickRow(kernels), nullptr};
+#if SILK_HALF_AVX2
+  std::unique_ptr<PairedActivations> pairs;  // two or more rows, the block converted once (K <= kConvertedMax)
+  if (job.row == RowAvx2 && s.m > 1 && s.k <= kConvertedMax && CpuHasAvx512()) {
+    pairs = std::make_unique<PairedActivations>(a, s.m, s.k);
+    job.pairs = pairs.get();
+  }
+#endif
   RunTasks(parallel_for, parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
 }
 

@@ -81,7 +81,8 @@ TEST(HalfMatMul, OrderOfParallelWorkIsIrrelevant) {
 // many activation rows up to K 1,024) and the rest one by one: every output must be bit for bit
 // the one-row path's (a product of one weight row alone), so no model's logits move with N or M.
 TEST(HalfMatMul, EightRowBlocksGiveEachOutputTheOneRowValue) {
-  for (const Case& c : {Case{1, 1024, 19}, Case{5, 96, 17}, Case{3, 1056, 16}, Case{2, 37, 8}, Case{8, 1000, 24}}) {
+  for (const Case& c : {Case{1, 1024, 19}, Case{5, 96, 17}, Case{3, 1056, 16}, Case{2, 37, 8}, Case{8, 1000, 24},
+                        Case{8, 96, 41}, Case{4, 16, 9}, Case{7, 1024, 16}}) {
     const Operands o = Random(c, static_cast<uint32_t>(c.k + c.m));
     const std::vector<float> all = Multiply(c, o, RowKernels::kBest);
     for (int64_t n = 0; n < c.n; ++n) {
