@@ -58,17 +58,29 @@ class QuantizedRows {
   std::vector<QuantizedRow> rows_;
 };
 
-void QuantizeRow(const float* a, int64_t k, QuantizedRow* q) {
+// One group of kGroup activations as int8 values in int32 (nearest even of x * 127 / max|x|,
+// clamped to [-127, 127], NaN -> 0); returns the group's scale max|x| / 127 (NaN ignored by max).
+using GroupValuesFn = float (*)(const float* x, int32_t* values);
+
+float GroupValuesScalar(const float* x, int32_t* values) {
+  float top = 0.0f;
+  for (int64_t i = 0; i < kGroup; ++i) top = std::max(top, std::fabs(x[i]));  // NaN: ignored by max
+  const float inverse = top > 0.0f && std::isfinite(top) ? 127.0f / top : 0.0f;
+  for (int64_t i = 0; i < kGroup; ++i) {
+    const float r = std::nearbyint(x[i] * inverse);
+    values[i] = r >= 127.0f ? 127 : r <= -127.0f ? -127 : r == r ? static_cast<int>(r) : 0;
+  }
+  return top / 127.0f;
+}
+
+void QuantizeRow(const float* a, int64_t k, GroupValuesFn group_values, QuantizedRow* q) {
   const int64_t groups = k / kGroup;
   for (int64_t g = 0; g < groups; ++g) {
-    const float* x = a + g * kGroup;
-    float top = 0.0f;
-    for (int64_t i = 0; i < kGroup; ++i) top = std::max(top, std::fabs(x[i]));  // NaN: ignored by max
-    const float scale = top / 127.0f, inverse = top > 0.0f && std::isfinite(top) ? 127.0f / top : 0.0f;
+    alignas(32) int32_t values[kGroup];
+    const float scale = group_values(a + g * kGroup, values);
     int32_t sum = 0;
     for (int64_t i = 0; i < kGroup; ++i) {
-      const float r = std::nearbyint(x[i] * inverse);
-      const int8_t v = static_cast<int8_t>(r >= 127.0f ? 127 : r <= -127.0f ? -127 : r == r ? static_cast<int>(r) : 0);
+      const int8_t v = static_cast<int8_t>(values[i]);
       int8_t* half = i % 2 ? q->odd : q->even;  // (as an lvalue, GCC 12's -O0 UBSan build computed a wild address)
       half[g * 16 + i / 2] = v;
       sum += v;
@@ -149,6 +161,28 @@ class PairedRows {
 #define SILK_AVX2 __attribute__((target("avx2,fma")))
 
 constexpr int64_t kPrefetchBytes = 4096;  // ahead in the weight stream (measured: 2-4 KB best here)
+
+// GroupValuesScalar's values, eight lanes at a time (the same products, rounding and clamps; max
+// is exact, so its order does not matter, and MAXPS keeps the running maximum where x is NaN).
+SILK_AVX2 float GroupValuesAvx2(const float* x, int32_t* values) {
+  const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
+  __m256 v[4], top = _mm256_setzero_ps();
+  for (int i = 0; i < 4; ++i) {
+    v[i] = _mm256_loadu_ps(x + 8 * i);
+    top = _mm256_max_ps(_mm256_and_ps(v[i], abs_mask), top);
+  }
+  __m128 t = _mm_max_ps(_mm256_castps256_ps128(top), _mm256_extractf128_ps(top, 1));
+  t = _mm_max_ps(t, _mm_movehl_ps(t, t));
+  const float peak = _mm_cvtss_f32(_mm_max_ss(t, _mm_movehdup_ps(t)));
+  const __m256 inverse = _mm256_set1_ps(peak > 0.0f && std::isfinite(peak) ? 127.0f / peak : 0.0f);
+  for (int i = 0; i < 4; ++i) {
+    __m256 r = _mm256_round_ps(_mm256_mul_ps(v[i], inverse), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+    r = _mm256_and_ps(r, _mm256_cmp_ps(r, r, _CMP_ORD_Q));  // NaN -> 0
+    r = _mm256_min_ps(_mm256_max_ps(r, _mm256_set1_ps(-127.0f)), _mm256_set1_ps(127.0f));
+    _mm256_store_si256(reinterpret_cast<__m256i*>(values + 8 * i), _mm256_cvtps_epi32(r));
+  }
+  return peak / 127.0f;
+}
 
 // Two groups per step: 32 packed bytes against 32 even and 32 odd activations; maddubs + madd
 // give one int32 per 4 bytes (lanes 0-3 group 2p, 4-7 group 2p + 1), scaled per lane. An odd
@@ -311,6 +345,14 @@ SILK_AVX512 void RowsAvx512Pairs(const Int4MatMulShape& s, const QuantizedRows& 
 #pragma GCC diagnostic pop
 #endif
 
+GroupValuesFn PickGroupValues(RowKernels kernels) {
+#if SILK_INT4_AVX2
+  if (kernels == RowKernels::kBest && CpuHasAvx2()) return GroupValuesAvx2;
+#endif
+  (void)kernels;
+  return GroupValuesScalar;
+}
+
 using RowsFn = void (*)(const Int4MatMulShape&, const QuantizedRow&, const uint8_t*, const float*, int64_t, int64_t,
                         float*);
 
@@ -389,7 +431,8 @@ void RunTask(void* state, size_t index) {
   const Int4MatMulShape& s = *job.shape;
   const int64_t r0 = static_cast<int64_t>(index) * kRowsPerTask, r1 = std::min(s.n, r0 + kRowsPerTask);
   if (job.paired) {
-    const int64_t pairs = (s.m + 1) / 2, per_pass = PairsPerPass(s.k);
+    const int64_t pairs = (s.m + 1) / 2, passes = (pairs + PairsPerPass(s.k) - 1) / PairsPerPass(s.k);
+    const int64_t per_pass = (pairs + passes - 1) / passes;  // even passes: 4 pairs at most 3 a pass go 2 + 2
     for (int64_t j = 0; j < pairs; j += per_pass)
       job.pair_fns[std::min(pairs - j, per_pass) - 1](s, *job.rows, *job.paired, j, job.packed, job.scales, r0, r1,
                                                       job.out);
@@ -420,11 +463,21 @@ bool Int4ShapeSupported(const Int4MatMulShape& s, const char** why) {
   return problem == nullptr;
 }
 
+void QuantizeInt4Activations(const float* a, int64_t k, int8_t* values, float* scales, RowKernels kernels) {
+  const GroupValuesFn group_values = PickGroupValues(kernels);
+  for (int64_t g = 0; g < k / kGroup; ++g) {
+    alignas(32) int32_t v[kGroup];
+    scales[g] = group_values(a + g * kGroup, v);
+    for (int64_t i = 0; i < kGroup; ++i) values[g * kGroup + i] = static_cast<int8_t>(v[i]);
+  }
+}
+
 void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed, const float* scales, float* out,
                 ParallelForFn parallel_for, void* parallel_context, RowKernels kernels) {
   if (s.m == 0) return;
   QuantizedRows rows(s.m, s.k);
-  for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, rows.row(m));
+  const GroupValuesFn group_values = PickGroupValues(kernels);
+  for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, group_values, rows.row(m));
   Job job{&s, &rows, packed, scales, out, PickRows(s, kernels), {}, nullptr, {}};
   std::unique_ptr<PairedRows> paired;
   if (s.m > 1 && PickPairs(s, kernels, 1)) {  // the 512-bit kernels, two activation rows per register

@@ -28,6 +28,12 @@ struct Int4MatMulShape {
 // Whether the shape is one this kernel computes; if not, why (for the op's error message).
 bool Int4ShapeSupported(const Int4MatMulShape& shape, const char** why);
 
+// Activation row `a` (k values, a multiple of kInt4ActivationGroup) as Int4MatMul quantizes it:
+// values[i] = nearest even of a[i] * 127 / max|group|, clamped to [-127, 127], NaN -> 0, and
+// scales[g] = max|group g| / 127 (NaN ignored). kBest and kScalar give the same bytes.
+void QuantizeInt4Activations(const float* a, int64_t k, int8_t* values, float* scales,
+                             RowKernels kernels = RowKernels::kBest);
+
 // The product above; `a` is [m, k] float32, `out` [m, n]. The caller checked the shape.
 void Int4MatMul(const Int4MatMulShape& shape, const float* a, const uint8_t* packed, const float* scales, float* out,
                 ParallelForFn parallel_for, void* parallel_context, RowKernels kernels = RowKernels::kBest);

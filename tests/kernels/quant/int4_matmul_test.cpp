@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -139,6 +140,34 @@ TEST(Int4MatMul, NonFiniteActivationsDoNotCrash) {
   a[3] = std::numeric_limits<float>::quiet_NaN();
   a[40] = std::numeric_limits<float>::infinity();
   for (RowKernels kernels : {RowKernels::kBest, RowKernels::kScalar}) Multiply(c, a, w, kernels);
+}
+
+// The activations' int8 groups decide every Int4MatMul output: the vectorized rounding must give
+// plain C++'s bytes on ties (x.5 after scaling), signed zeros, denormals, NaN and infinities.
+TEST(Int4MatMul, VectorizedActivationRoundingEqualsPlainCpp) {
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> a(32 * 8);
+  std::mt19937 rng(3);
+  std::normal_distribution<float> normal(0.0f, 2.0f);
+  for (float& x : a) x = normal(rng);
+  for (int i = 0; i < 32; ++i) a[i] = i == 0 ? 127.0f : static_cast<float>(i % 2 ? i : -i) + 0.5f;  // ties
+  for (int i = 32; i < 64; ++i) a[i] = i % 3 ? -0.0f : std::numeric_limits<float>::denorm_min();
+  a[70] = nan;   // a NaN among finite values: 0, the scale from the rest
+  a[100] = inf;  // an infinity: scale inf, every value 0
+  a[130] = -inf, a[131] = nan;
+  std::fill(a.begin() + 160, a.begin() + 192, 0.0f);  // an all-zero group
+  for (int i = 192; i < 224; ++i) a[i] = 1e-30f * static_cast<float>(i - 208);
+  std::vector<int8_t> best(a.size()), plain(a.size());
+  std::vector<float> best_scale(8), plain_scale(8);
+  QuantizeInt4Activations(a.data(), static_cast<int64_t>(a.size()), best.data(), best_scale.data(), RowKernels::kBest);
+  QuantizeInt4Activations(a.data(), static_cast<int64_t>(a.size()), plain.data(), plain_scale.data(),
+                          RowKernels::kScalar);
+  EXPECT_EQ(best, plain);
+  for (int g = 0; g < 8; ++g) EXPECT_EQ(0, std::memcmp(&best_scale[g], &plain_scale[g], 4)) << "group " << g;
+  EXPECT_EQ(plain[1], 2) << "1.5 rounds to the even 2";
+  EXPECT_EQ(plain[2], -2) << "-2.5 rounds to the even -2";
+  EXPECT_EQ(plain[70], 0);
+  EXPECT_TRUE(std::isinf(plain_scale[3]));
 }
 
 TEST(Int4MatMul, ShapesItDoesNotComputeAreNamed) {
