@@ -210,6 +210,7 @@ Status Generator::StartRow(const std::vector<float>& points, const GenerateOptio
   session_.reset();
   SILK_ASSIGN_OR_RETURN(const int32_t cap, CheckStart(points, options));
   if (callbacks.cancel && callbacks.cancel()) return Status(StatusCode::kCancelled, "generation cancelled");
+  CacheInput(points);
   return Begin(points, options, callbacks, cap, encoder_seconds);
 }
 
@@ -252,7 +253,6 @@ Status Generator::AttachInput(const std::vector<float>& points, const GenerateOp
                               const GenerateCallbacks& callbacks) {
   Session& s = *session_;
   GenerationStats& st = s.res.stats;
-  CacheInput(points);
   if (options.surface_tolerance > 0 && !options.unconstrained) {
     const auto t0 = Clock::now();
     if (!guide_ || guide_->tolerance() != options.surface_tolerance)

@@ -161,7 +161,8 @@ class Generator {
   // StepOnce's phases, in order: grammar (forced id, legal mask), decoder over the pending ids,
   // sampling, trace, grammar Accept, append and stop checks.
   Status StepOnce();
-  // Start's part after the encoder (both modes): the session, its stats, guides and chain.
+  // Start's part after the encoder (both modes; CacheInput(points) already called once): the
+  // session, its stats, guides and chain.
   Status Begin(const std::vector<float>& points, const GenerateOptions& options, const GenerateCallbacks& callbacks,
                int32_t cap, double encoder_seconds);
   StatusOr<int32_t> CheckStart(const std::vector<float>& points, const GenerateOptions& options) const;
