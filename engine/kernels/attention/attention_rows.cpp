@@ -337,15 +337,19 @@ SILK_AVX2 float ExpShiftedAvx2(float* x, int64_t n, float top) {
 template <typename E, int kLanes>
 SILK_AVX2 void WeightedSumLanes(const float* w, const E* rows, int64_t n, int64_t d, int64_t i0, float factor,
                                 float* out) {
-  __m256 acc[kLanes];
+  __m256 acc[kLanes];  // (every loop over it is unrolled: GCC -O2 otherwise kept it in memory, a
+                       // load and a store around each fma)
+#pragma GCC unroll 8
   for (int k = 0; k < kLanes; ++k) acc[k] = _mm256_setzero_ps();
   const E* row = rows;
   for (int64_t j = 0; j < n; ++j, row += Stride<E>(d)) {
     PrefetchAhead(row, Stride<E>(d));
     const __m256 wj = _mm256_set1_ps(w[j] * RowScale(row, d));
+#pragma GCC unroll 8
     for (int k = 0; k < kLanes; ++k) acc[k] = _mm256_fmadd_ps(wj, Load8(row + i0 + 8 * k), acc[k]);
   }
   const __m256 f = _mm256_set1_ps(factor);
+#pragma GCC unroll 8
   for (int k = 0; k < kLanes; ++k) {
     float* o = out + i0 + 8 * k;
     _mm256_storeu_ps(o, _mm256_fmadd_ps(f, acc[k], _mm256_loadu_ps(o)));
