@@ -28,22 +28,35 @@ struct Shape {
 
 using Clock = std::chrono::steady_clock;
 
+// Activation rows in [-1, 1).
+std::vector<float> Activations(std::mt19937* rng, int64_t rows, int64_t k) {
+  std::vector<float> a(static_cast<size_t>(rows * k));
+  for (float& x : a) x = static_cast<float>((*rng)() % 1000) / 500.0f - 1.0f;
+  return a;
+}
+
+// Minimum ms of `calls` runs of product().
+template <typename Product>
+double MinMs(int calls, const Product& product) {
+  double best = 1e30;
+  for (int c = 0; c < calls; ++c) {
+    const auto t0 = Clock::now();
+    product();
+    best = std::min(best, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  }
+  return best;
+}
+
 // Minimum ms of `calls` Int4MatMul products of `rows` activation rows.
 double Int4MinMs(const Shape& sh, int64_t rows, int calls) {
   std::mt19937 rng(1);
   std::vector<uint8_t> packed(static_cast<size_t>(sh.n * sh.k / 2));
   for (uint8_t& b : packed) b = static_cast<uint8_t>(rng());
-  std::vector<float> scales(static_cast<size_t>(sh.n * sh.k / 32), 0.01f);
-  std::vector<float> a(static_cast<size_t>(rows * sh.k));
-  for (float& x : a) x = static_cast<float>(rng() % 1000) / 500.0f - 1.0f;
+  const std::vector<float> scales(static_cast<size_t>(sh.n * sh.k / 32), 0.01f), a = Activations(&rng, rows, sh.k);
   std::vector<float> out(static_cast<size_t>(rows * sh.n));
-  double best = 1e30;
-  for (int c = 0; c < calls; ++c) {
-    const auto t0 = Clock::now();
+  return MinMs(calls, [&] {
     silk::Int4MatMul({rows, sh.k, sh.n, 32}, a.data(), packed.data(), scales.data(), out.data(), nullptr, nullptr);
-    best = std::min(best, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-  }
-  return best;
+  });
 }
 
 // The same for HalfMatMul (float16 weights in [-2, 2]).
@@ -51,16 +64,9 @@ double HalfMinMs(const Shape& sh, int64_t rows, int calls) {
   std::mt19937 rng(1);
   std::vector<uint16_t> w(static_cast<size_t>(sh.n * sh.k));
   for (uint16_t& h : w) h = static_cast<uint16_t>(0x3c00 ^ (rng() & 0x83ff));  // sign and mantissa random
-  std::vector<float> a(static_cast<size_t>(rows * sh.k));
-  for (float& x : a) x = static_cast<float>(rng() % 1000) / 500.0f - 1.0f;
+  const std::vector<float> a = Activations(&rng, rows, sh.k);
   std::vector<float> out(static_cast<size_t>(rows * sh.n));
-  double best = 1e30;
-  for (int c = 0; c < calls; ++c) {
-    const auto t0 = Clock::now();
-    silk::HalfMatMul({rows, sh.k, sh.n}, a.data(), w.data(), out.data(), nullptr, nullptr);
-    best = std::min(best, std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-  }
-  return best;
+  return MinMs(calls, [&] { silk::HalfMatMul({rows, sh.k, sh.n}, a.data(), w.data(), out.data(), nullptr, nullptr); });
 }
 
 // One table row per R in 1, 2, 4, 8 for each shape.
