@@ -60,6 +60,9 @@ SILK_AVX2 float RowAvx2(const float* a, const uint16_t* w, int64_t k) {
 constexpr int64_t kBlockRows = 8;
 constexpr int64_t kConvertedMax = 1024;  // K up to which a block's weights are converted once
 
+// Whether a call converts each block of weight rows to float32 once for all its activation rows.
+bool ConvertsOnce(const HalfMatMulShape& s) { return s.m > 1 && s.k <= kConvertedMax; }
+
 // (acc0 + acc1) + (acc2 + acc3) of RowAvx2 over `steps` steps of 32, weights as float32 or float16.
 template <bool kConverted>
 SILK_AVX2 inline __m256 StepSums(const float* a, const float* wf, const uint16_t* w, int64_t steps) {
@@ -221,13 +224,15 @@ RowFn PickRow(RowKernels kernels) {
   return RowScalar;
 }
 
+class PairedActivations;  // (defined with the AVX-512 kernels)
+
 struct Job {
   const HalfMatMulShape* shape;
   const float* a;
   const uint16_t* w;
   float* out;
   RowFn row;
-  const void* pairs;  // PairedActivations where the 512-bit kernel runs, else null
+  const PairedActivations* pairs;  // where the 512-bit kernel runs, else null
 };
 
 // Weight rows [index * kRowsPerTask, ...) against every activation row (each weight row is read
@@ -240,8 +245,8 @@ void RunTask(void* state, size_t index) {
 #if SILK_HALF_AVX2
   if (job.row == RowAvx2) {
     alignas(32) float wf[kBlockRows * kConvertedMax];
-    const bool convert = s.m > 1 && s.k <= kConvertedMax;
-    const auto* pairs = static_cast<const PairedActivations*>(job.pairs);
+    const bool convert = ConvertsOnce(s);
+    const PairedActivations* pairs = job.pairs;
     for (; r + kBlockRows <= r1; r += kBlockRows) {
       const uint16_t* w = job.w + r * s.k;
       if (!convert) {
@@ -273,8 +278,8 @@ void HalfMatMul(const HalfMatMulShape& s, const float* a, const uint16_t* w, flo
   if (s.m == 0) return;
   Job job{&s, a, w, out, PickRow(kernels), nullptr};
 #if SILK_HALF_AVX2
-  std::unique_ptr<PairedActivations> pairs;  // two or more rows, the block converted once (K <= kConvertedMax)
-  if (job.row == RowAvx2 && s.m > 1 && s.k <= kConvertedMax && CpuHasAvx512()) {
+  std::unique_ptr<PairedActivations> pairs;
+  if (job.row == RowAvx2 && ConvertsOnce(s) && CpuHasAvx512()) {
     pairs = std::make_unique<PairedActivations>(a, s.m, s.k);
     job.pairs = pairs.get();
   }

@@ -431,7 +431,7 @@ void RunTask(void* state, size_t index) {
   const Int4MatMulShape& s = *job.shape;
   const int64_t r0 = static_cast<int64_t>(index) * kRowsPerTask, r1 = std::min(s.n, r0 + kRowsPerTask);
   if (job.paired) {
-    const int64_t pairs = (s.m + 1) / 2, passes = (pairs + PairsPerPass(s.k) - 1) / PairsPerPass(s.k);
+    const int64_t pairs = (s.m + 1) / 2, most = PairsPerPass(s.k), passes = (pairs + most - 1) / most;
     const int64_t per_pass = (pairs + passes - 1) / passes;  // even passes: 4 pairs at most 3 a pass go 2 + 2
     for (int64_t j = 0; j < pairs; j += per_pass)
       job.pair_fns[std::min(pairs - j, per_pass) - 1](s, *job.rows, *job.paired, j, job.packed, job.scales, r0, r1,

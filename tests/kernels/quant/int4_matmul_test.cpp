@@ -165,7 +165,7 @@ TEST(Int4MatMul, VectorizedActivationRoundingEqualsPlainCpp) {
   EXPECT_EQ(best, plain);
   for (int g = 0; g < 8; ++g) EXPECT_EQ(0, std::memcmp(&best_scale[g], &plain_scale[g], 4)) << "group " << g;
   EXPECT_EQ(plain[1], 2) << "1.5 rounds to the even 2";
-  EXPECT_EQ(plain[2], -2) << "-2.5 rounds to the even -2";
+  EXPECT_EQ(plain[2], -2) << "-1.5 rounds to the even -2";
   EXPECT_EQ(plain[70], 0);
   EXPECT_TRUE(std::isinf(plain_scale[3]));
 }
