@@ -95,4 +95,13 @@ GenerateResult CandidateChoice::Take() {
   return best;
 }
 
+Status ScoreWaiting(int32_t next, std::vector<std::optional<GenerateResult>>* waiting,
+                    const std::function<Status(int32_t index, GenerateResult* result)>& score) {
+  for (size_t i = static_cast<size_t>(next); i < waiting->size() && (*waiting)[i]; ++i) {
+    SILK_RETURN_IF_ERROR(score(static_cast<int32_t>(i), &*(*waiting)[i]));
+    (*waiting)[i].reset();
+  }
+  return Status::Ok();
+}
+
 }  // namespace silk

@@ -4,6 +4,8 @@
 // GenerationSession (runtime/generation_session.h) runs the candidates.
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/cancel_check.h"
@@ -47,5 +49,11 @@ class CandidateChoice {
   PhaseSeconds total_;
   double generation_seconds_ = 0;
 };
+
+// Candidates scored in candidate order however their rows end: waiting[i] holds candidate i's
+// result once it has ended; from candidate `next` (the first not yet scored) on, while there is
+// one, `score(i, result)` runs and the result is cleared. Stops at the first error.
+Status ScoreWaiting(int32_t next, std::vector<std::optional<GenerateResult>>* waiting,
+                    const std::function<Status(int32_t index, GenerateResult* result)>& score);
 
 }  // namespace silk

@@ -140,11 +140,8 @@ Status GenerationSession::ScoreEnded(const CancelCheck& cancel) {
     last_ended_.stats = result.stats;
     waiting_[static_cast<size_t>(index)] = std::move(result);
   }
-  for (size_t i = static_cast<size_t>(choice_.size()); i < waiting_.size() && waiting_[i]; ++i) {
-    SILK_RETURN_IF_ERROR(Score(&*waiting_[i], static_cast<int32_t>(i), cancel));
-    waiting_[i].reset();
-  }
-  return Status::Ok();
+  return ScoreWaiting(choice_.size(), &waiting_,
+                      [&](int32_t index, GenerateResult* result) { return Score(result, index, cancel); });
 }
 
 Status GenerationSession::AdvanceRows(int32_t max_ids, AdvanceUntil until) {

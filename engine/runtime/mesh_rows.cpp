@@ -169,11 +169,9 @@ Status MeshRows::Collect() {
   }
   for (auto& [id, f] : flight_) {  // scored in candidate order, as one after another
     const uint64_t seed = f.prepared.plan.options.sampling.seed;
-    for (size_t i = static_cast<size_t>(f.choice.size()); i < f.waiting.size() && f.waiting[i]; ++i) {
-      SILK_RETURN_IF_ERROR(f.choice.Add(&*f.waiting[i], CandidateSeed(seed, static_cast<int32_t>(i)), f.prepared.points,
-                                        callbacks_.cancel));
-      f.waiting[i].reset();
-    }
+    SILK_RETURN_IF_ERROR(ScoreWaiting(f.choice.size(), &f.waiting, [&](int32_t index, GenerateResult* result) {
+      return f.choice.Add(result, CandidateSeed(seed, index), f.prepared.points, callbacks_.cancel);
+    }));
   }
   for (const int32_t id : over) Conclude(id);
   return Status::Ok();

@@ -223,7 +223,9 @@ TEST_P(RowsTest, CandidatesAreTheirRunsAlone) {
       EXPECT_EQ(got[i].stats.fed_positions, run->stats.fed_positions);
       EXPECT_GT(run->tokens.size(), 14u);
     }
-    if (temperature > 0) EXPECT_NE(got[0].tokens, got[1].tokens);  // the seeds differ
+    if (temperature > 0) {
+      EXPECT_NE(got[0].tokens, got[1].tokens);  // the seeds differ
+    }
   }
 }
 
@@ -329,10 +331,15 @@ TEST_P(RowsTest, EveryCandidateIsShownWhileTheRowsRun) {
       best += v.best;
       auto p = session.PreviewCandidate(v.index);
       ASSERT_TRUE(p.ok()) << p.status().ToString();
-      if (v.state == CandidateView::State::kWaiting) EXPECT_TRUE(p->grid.faces.empty());
-      if (v.faces >= 0) EXPECT_EQ(static_cast<int32_t>(p->grid.faces.size()), v.faces);
-      if (v.state == CandidateView::State::kRunning)
+      if (v.state == CandidateView::State::kWaiting) {
+        EXPECT_TRUE(p->grid.faces.empty());
+      }
+      if (v.faces >= 0) {
+        EXPECT_EQ(static_cast<int32_t>(p->grid.faces.size()), v.faces);
+      }
+      if (v.state == CandidateView::State::kRunning) {
         EXPECT_GE(static_cast<int64_t>(p->grid.faces.size()), faces_seen[static_cast<size_t>(v.index)]);  // grows
+      }
       faces_seen[static_cast<size_t>(v.index)] = static_cast<int64_t>(p->grid.faces.size());
     }
     EXPECT_LE(running, 2);

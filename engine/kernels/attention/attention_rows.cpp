@@ -11,12 +11,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "kernels/cpu/cpu_features.h"
 #include "kernels/cpu/float16.h"
-
-#if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
-#define SILK_ATTENTION_AVX2 1
-#include <immintrin.h>
-#endif
 
 namespace silk {
 
@@ -148,8 +144,8 @@ void WeightedSumScalar(const float* w, const void* rows, int64_t n, int64_t d, f
   }
 }
 
-#ifdef SILK_ATTENTION_AVX2
-#define SILK_AVX2 __attribute__((target("avx2,fma,f16c")))
+#ifdef SILK_KERNELS_X86
+#define SILK_AVX2 SILK_TARGET_AVX2
 
 SILK_AVX2 inline __m256 Load8(const float* p) { return _mm256_loadu_ps(p); }
 SILK_AVX2 inline __m256 Load8(const uint16_t* p) {
@@ -368,16 +364,11 @@ SILK_AVX2 void WeightedSumAvx2(const float* w, const void* rows, int64_t n, int6
   for (int64_t i0 = 0; i0 < d; i0 += 64) kByLanes[std::min<int64_t>(d - i0, 64) / 8 - 1](w, r, n, d, i0, factor, out);
 }
 
-bool CpuHasAvx2() {
-  static const bool has =
-      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
-  return has;
-}
 #endif
 
 template <typename E>
 AttentionRows RowsOf(int64_t head_dim, RowKernels kernels) {
-#ifdef SILK_ATTENTION_AVX2
+#ifdef SILK_KERNELS_X86
   if (kernels == RowKernels::kBest && head_dim % 8 == 0 && CpuHasAvx2())
     return AttentionRows{true, StoreAvx2<E>, DotsAvx2<E>, ExpShiftedAvx2, WeightedSumAvx2<E>};
 #endif

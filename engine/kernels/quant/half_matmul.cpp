@@ -10,12 +10,8 @@
 #include <memory>
 #include <vector>
 
+#include "kernels/cpu/cpu_features.h"
 #include "kernels/cpu/float16.h"
-
-#if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
-#define SILK_HALF_AVX2 1
-#include <immintrin.h>
-#endif
 
 namespace silk {
 
@@ -29,8 +25,8 @@ float RowScalar(const float* a, const uint16_t* w, int64_t k) {
   return acc;
 }
 
-#if SILK_HALF_AVX2
-#define SILK_AVX2 __attribute__((target("avx2,fma,f16c")))
+#ifdef SILK_KERNELS_X86
+#define SILK_AVX2 SILK_TARGET_AVX2
 
 constexpr int64_t kPrefetchBytes = 2048;  // ahead in the weight stream
 
@@ -115,26 +111,12 @@ SILK_AVX2 void BlockAvx2(int64_t m0, int64_t m_rows, int64_t k, int64_t n, const
   }
 }
 
-bool CpuHasAvx2() {
-  static const bool has =
-      __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
-  return has;
-}
-
 // Two activation rows per 512-bit register (row 2i in the low half, 2i + 1 in the high one),
 // each half doing BlockAvx2's float operations in BlockAvx2's order, so each output is still bit
 // for bit its one-row value; the ports do twice the products per instruction, and a step's four
 // activation vectors stay in registers for four weight rows (one weight load per fma).
-#define SILK_AVX512 __attribute__((target("avx2,fma,f16c,avx512f,avx512dq")))
-// GCC 12's AVX-512 intrinsics pass _mm512_undefined_ps() as the unused merge source, which its
-// -Wmaybe-uninitialized reports once inlined (fixed in later GCC); the values are never read.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-
-bool CpuHasAvx512() {
-  static const bool has = CpuHasAvx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
-  return has;
-}
+#define SILK_AVX512 SILK_TARGET_AVX512
+SILK_AVX512_CODE_BEGIN
 
 // The call's activation rows two by two, 8 floats of row 2i then the same 8 of row 2i + 1, over
 // the 32-wide body of K (64-byte aligned); an odd last row is left to BlockAvx2.
@@ -211,13 +193,13 @@ SILK_AVX512 void BlockPairs(const PairedActivations& pairs, int64_t k, int64_t n
     _mm256_storeu_ps(out + (2 * p + 1) * n, _mm512_extractf32x8_ps(both, 1));
   }
 }
-#pragma GCC diagnostic pop
+SILK_AVX512_CODE_END
 #endif
 
 using RowFn = float (*)(const float*, const uint16_t*, int64_t);
 
 RowFn PickRow(RowKernels kernels) {
-#if SILK_HALF_AVX2
+#ifdef SILK_KERNELS_X86
   if (kernels == RowKernels::kBest && CpuHasAvx2()) return RowAvx2;
 #endif
   (void)kernels;
@@ -242,7 +224,7 @@ void RunTask(void* state, size_t index) {
   const HalfMatMulShape& s = *job.shape;
   const int64_t r0 = static_cast<int64_t>(index) * kRowsPerTask, r1 = std::min(s.n, r0 + kRowsPerTask);
   int64_t r = r0;
-#if SILK_HALF_AVX2
+#ifdef SILK_KERNELS_X86
   if (job.row == RowAvx2) {
     alignas(32) float wf[kBlockRows * kConvertedMax];
     const bool convert = ConvertsOnce(s);
@@ -277,7 +259,7 @@ void HalfMatMul(const HalfMatMulShape& s, const float* a, const uint16_t* w, flo
                 void* parallel_context, RowKernels kernels) {
   if (s.m == 0) return;
   Job job{&s, a, w, out, PickRow(kernels), nullptr};
-#if SILK_HALF_AVX2
+#ifdef SILK_KERNELS_X86
   std::unique_ptr<PairedActivations> pairs;
   if (job.row == RowAvx2 && ConvertsOnce(s) && CpuHasAvx512()) {
     pairs = std::make_unique<PairedActivations>(a, s.m, s.k);

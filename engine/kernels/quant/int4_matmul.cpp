@@ -10,10 +10,7 @@
 #include <memory>
 #include <vector>
 
-#if (defined(__x86_64__) || defined(_M_X64)) && (defined(__GNUC__) || defined(__clang__))
-#define SILK_INT4_AVX2 1
-#include <immintrin.h>
-#endif
+#include "kernels/cpu/cpu_features.h"
 
 namespace silk {
 
@@ -157,8 +154,8 @@ class PairedRows {
   int32_t* words0_;
 };
 
-#if SILK_INT4_AVX2
-#define SILK_AVX2 __attribute__((target("avx2,fma")))
+#ifdef SILK_KERNELS_X86
+#define SILK_AVX2 SILK_TARGET_AVX2
 
 constexpr int64_t kPrefetchBytes = 4096;  // ahead in the weight stream (measured: 2-4 KB best here)
 
@@ -273,26 +270,12 @@ SILK_AVX2 void RowsAvx2Batch(const Int4MatMulShape& s, const QuantizedRow* q, co
   }
 }
 
-bool CpuHasAvx2() {
-  static const bool has = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return has;
-}
-
 // Two activation rows per 512-bit register: each row in its own 256-bit half doing RowsAvx2's
 // float operations in RowsAvx2's order, so each row is still bit-identical to it alone. The
 // integer dot products use VNNI (vpdpbusd), which gives the same exact int32 sums as
 // maddubs + madd (no product or partial sum of 4-bit weights and int8 activations saturates).
-#define SILK_AVX512 __attribute__((target("avx2,fma,avx512f,avx512bw,avx512vl,avx512vnni")))
-// GCC 12's AVX-512 intrinsics pass _mm512_undefined_*() as the unused merge source, which its
-// -Wmaybe-uninitialized reports once inlined (fixed in later GCC); the values are never read.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-
-bool CpuHasAvx512Vnni() {
-  static const bool has = CpuHasAvx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-                          __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vnni");
-  return has;
-}
+#define SILK_AVX512 SILK_TARGET_AVX512_VNNI
+SILK_AVX512_CODE_BEGIN
 
 // Step p of every pair of activation rows against one weight row's step: acc[j] as StepAccumulate
 // computes it, for both rows of pair j at once.
@@ -342,11 +325,11 @@ SILK_AVX512 void RowsAvx512Pairs(const Int4MatMulShape& s, const QuantizedRows& 
       }
   }
 }
-#pragma GCC diagnostic pop
+SILK_AVX512_CODE_END
 #endif
 
 GroupValuesFn PickGroupValues(RowKernels kernels) {
-#if SILK_INT4_AVX2
+#ifdef SILK_KERNELS_X86
   if (kernels == RowKernels::kBest && CpuHasAvx2()) return GroupValuesAvx2;
 #endif
   (void)kernels;
@@ -357,7 +340,7 @@ using RowsFn = void (*)(const Int4MatMulShape&, const QuantizedRow&, const uint8
                         float*);
 
 RowsFn PickRows(const Int4MatMulShape& s, RowKernels kernels) {
-#if SILK_INT4_AVX2
+#ifdef SILK_KERNELS_X86
   if (kernels == RowKernels::kBest && CpuHasAvx2()) return s.block == kGroup ? RowsAvx2<true> : RowsAvx2<false>;
 #endif
   (void)s, (void)kernels;
@@ -370,7 +353,7 @@ using BatchFn = void (*)(const Int4MatMulShape&, const QuantizedRow*, const uint
 constexpr int kMaxBatchRows = 4;  // activation rows per pass over a tile (measured: bench/kernel_rows)
 
 BatchFn PickBatch(const Int4MatMulShape& s, RowKernels kernels, int64_t rows) {
-#if SILK_INT4_AVX2
+#ifdef SILK_KERNELS_X86
   if (kernels == RowKernels::kBest && CpuHasAvx2()) {
     static constexpr BatchFn kGroupScale[kMaxBatchRows] = {RowsAvx2Batch<true, 1>, RowsAvx2Batch<true, 2>,
                                                            RowsAvx2Batch<true, 3>, RowsAvx2Batch<true, 4>};
@@ -390,7 +373,7 @@ using PairsFn = void (*)(const Int4MatMulShape&, const QuantizedRows&, const Pai
 constexpr int kMaxPairs = 4;  // pairs of activation rows per pass over a tile (8 rows)
 
 PairsFn PickPairs(const Int4MatMulShape& s, RowKernels kernels, int64_t pairs) {
-#if SILK_INT4_AVX2
+#ifdef SILK_KERNELS_X86
   if (kernels == RowKernels::kBest && CpuHasAvx512Vnni()) {
     static constexpr PairsFn kGroupScale[kMaxPairs] = {RowsAvx512Pairs<true, 1>, RowsAvx512Pairs<true, 2>,
                                                        RowsAvx512Pairs<true, 3>, RowsAvx512Pairs<true, 4>};
