@@ -369,7 +369,7 @@ SILK_AVX2 void WeightedSumAvx2(const float* w, const void* rows, int64_t n, int6
 template <typename E>
 AttentionRows RowsOf(int64_t head_dim, RowKernels kernels) {
 #ifdef SILK_KERNELS_X86
-  if (kernels == RowKernels::kBest && head_dim % 8 == 0 && CpuHasAvx2())
+  if (kernels != RowKernels::kScalar && head_dim % 8 == 0 && CpuHasAvx2())
     return AttentionRows{true, StoreAvx2<E>, DotsAvx2<E>, ExpShiftedAvx2, WeightedSumAvx2<E>};
 #endif
   (void)head_dim;

@@ -21,7 +21,8 @@ inline void RunTasks(ParallelForFn parallel_for, void* context, void (*work)(voi
   }
 }
 
-// kBest: the vectorized rows where the CPU has them; kScalar: plain C++.
-enum class RowKernels { kBest, kScalar };
+// kBest: the widest vectorized rows the CPU has; kAvx2: the 256-bit ones even where it has wider
+// ones (so tests check both on one machine); kScalar: plain C++.
+enum class RowKernels { kBest, kAvx2, kScalar };
 
 }  // namespace silk

@@ -200,7 +200,7 @@ using RowFn = float (*)(const float*, const uint16_t*, int64_t);
 
 RowFn PickRow(RowKernels kernels) {
 #ifdef SILK_KERNELS_X86
-  if (kernels == RowKernels::kBest && CpuHasAvx2()) return RowAvx2;
+  if (kernels != RowKernels::kScalar && CpuHasAvx2()) return RowAvx2;
 #endif
   (void)kernels;
   return RowScalar;
@@ -261,7 +261,7 @@ void HalfMatMul(const HalfMatMulShape& s, const float* a, const uint16_t* w, flo
   Job job{&s, a, w, out, PickRow(kernels), nullptr};
 #ifdef SILK_KERNELS_X86
   std::unique_ptr<PairedActivations> pairs;
-  if (job.row == RowAvx2 && ConvertsOnce(s) && CpuHasAvx512()) {
+  if (kernels == RowKernels::kBest && job.row == RowAvx2 && ConvertsOnce(s) && CpuHasAvx512()) {
     pairs = std::make_unique<PairedActivations>(a, s.m, s.k);
     job.pairs = pairs.get();
   }

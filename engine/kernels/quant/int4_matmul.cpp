@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Int4MatMul: each activation row is quantized once to int8 groups of 32 (scale max|a| / 127),
 // then every weight row is one pass of integer dot products over its packed nibbles, scaled per
-// group, with the weight stream prefetched ahead; rows are spread over the caller's pool.
+// group, with the weight stream prefetched ahead; rows are spread over the caller's pool. With
+// AVX-512 VNNI, 16 groups at a time in group lanes (each group's dot product whole in one lane);
+// with AVX2, 64 weights a step in eight lanes; else plain C++.
 #include "kernels/quant/int4_matmul.h"
 
 #include <algorithm>
@@ -116,42 +118,72 @@ void RowsScalar(const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* 
   }
 }
 
-// The activation rows of a call two by two, interleaved per step (32 bytes of row 2j, then 32
-// of row 2j + 1; likewise the offsets and lane scales), so one 512-bit load, 64-byte aligned,
-// feeds both halves. An odd last row is paired with itself.
-class PairedRows {
+// Group lanes: a block of 16 groups (512 weights, 256 packed bytes) of a weight row as four
+// 512-bit registers transposed so that each int32 lane holds one group: lane 4c + j is group
+// 4j + c of the block (GroupOfLane), and register k holds its packed bytes 4k..4k + 3, whose low
+// nibbles meet the group's even elements 8k, 8k + 2, 8k + 4, 8k + 6 and high nibbles the odd ones.
+// Eight vpdpbusd then give each lane its group's whole integer dot product, so the float work
+// (convert, scale, accumulate) is done once per group and row instead of once per eight weights.
+constexpr int64_t kLaneGroups = 16;
+constexpr int64_t GroupOfLane(int64_t lane) { return 4 * (lane % 4) + lane / 4; }
+
+// The activation rows of a call laid out for the group lanes: per row and block of 16 groups,
+// the bytes that meet the low nibbles of register k (lo[k]: 64 bytes), those that meet the high
+// ones (hi[k]), the lanes' zero-point offsets (-8 * sum of the group's values) and scales; groups
+// past K are zeros. 64-byte aligned, 640 bytes per row and block.
+class GroupLaneRows {
  public:
-  PairedRows(const QuantizedRows& rows, int64_t m, int64_t k)
-      : steps_(k / (2 * kGroup)), pairs_((m + 1) / 2), bytes_(Size(128) + 64), words_(Size(32) + 16) {
-    bytes0_ = bytes_.data() + (64 - reinterpret_cast<uintptr_t>(bytes_.data()) % 64) % 64;
-    words0_ = words_.data() + (64 - reinterpret_cast<uintptr_t>(words_.data()) % 64) % 64 / 4;
-    for (int64_t j = 0; j < pairs_; ++j)
-      for (int h = 0; h < 2; ++h) {
-        const QuantizedRow& q = rows[std::min(2 * j + h, m - 1)];
-        for (int64_t p = 0; p < steps_; ++p) {
-          int8_t* b = Bytes(j, p) + 32 * h;
-          std::memcpy(b, q.even + p * 32, 32);
-          std::memcpy(b + 64, q.odd + p * 32, 32);
-          int32_t* w = Words(j, p) + 8 * h;
-          std::memcpy(w, q.offset + p * 8, 32);
-          std::memcpy(w + 16, q.lane_scale + p * 8, 32);  // floats, stored as their bits
+  static constexpr int64_t kBlockBytes = 640;
+  GroupLaneRows(const QuantizedRows& rows, int64_t m, int64_t k)
+      : blocks_((k / kGroup + kLaneGroups - 1) / kLaneGroups),
+        bytes_(static_cast<size_t>(m * blocks_ * kBlockBytes + 64)) {
+    base_ = bytes_.data() + (64 - reinterpret_cast<uintptr_t>(bytes_.data()) % 64) % 64;
+    const int64_t groups = k / kGroup;
+    for (int64_t r = 0; r < m; ++r)
+      for (int64_t b = 0; b < blocks_; ++b) {
+        unsigned char* block = Block(r, b);
+        for (int64_t lane = 0; lane < kLaneGroups; ++lane) {
+          const int64_t g = b * kLaneGroups + GroupOfLane(lane);
+          if (g >= groups) continue;
+          const QuantizedRow& q = rows[r];
+          for (int kk = 0; kk < 4; ++kk) {
+            std::memcpy(block + kk * 64 + lane * 4, q.even + g * 16 + 4 * kk, 4);
+            std::memcpy(block + 256 + kk * 64 + lane * 4, q.odd + g * 16 + 4 * kk, 4);
+          }
+          std::memcpy(block + 512 + lane * 4, q.offset + g * 4, 4);
+          std::memcpy(block + 576 + lane * 4, q.scale + g, 4);
         }
       }
   }
-  // Step p of pair j: even[64], odd[64]; and offsets[16], lane scales[16].
-  const int8_t* Bytes(int64_t j, int64_t p) const { return bytes0_ + (j * steps_ + p) * 128; }
-  const int32_t* Words(int64_t j, int64_t p) const { return words0_ + (j * steps_ + p) * 32; }
-  int64_t pairs() const { return pairs_; }
+  // Row r's block b: lo[4][64], hi[4][64], offsets[16] (int32), scales[16] (float).
+  const unsigned char* Block(int64_t r, int64_t b) const { return base_ + (r * blocks_ + b) * kBlockBytes; }
+  int64_t blocks() const { return blocks_; }
 
  private:
-  int8_t* Bytes(int64_t j, int64_t p) { return bytes0_ + (j * steps_ + p) * 128; }
-  int32_t* Words(int64_t j, int64_t p) { return words0_ + (j * steps_ + p) * 32; }
-  size_t Size(int64_t per_step) const { return static_cast<size_t>(pairs_ * steps_ * per_step); }
-  int64_t steps_, pairs_;
-  std::vector<int8_t> bytes_;  // 64 bytes over, for the alignment
-  std::vector<int32_t> words_;
-  int8_t* bytes0_;
-  int32_t* words0_;
+  unsigned char* Block(int64_t r, int64_t b) { return base_ + (r * blocks_ + b) * kBlockBytes; }
+  int64_t blocks_;
+  std::vector<unsigned char> bytes_;  // zeros where no group is
+  unsigned char* base_;
+};
+
+// Per block of 16 groups of a weight row: where its scales start among the row's scales, how many
+// there are, and which of them each lane takes (scale index = group * 32 / block).
+struct LaneScales {
+  std::vector<int64_t> first, count;
+  std::vector<int32_t> pick;  // [blocks][16]: the lane's scale, counted from `first`
+
+  LaneScales(const Int4MatMulShape& s, int64_t blocks) : first(blocks), count(blocks), pick(blocks * kLaneGroups) {
+    const int64_t groups = s.k / kGroup;
+    for (int64_t b = 0; b < blocks; ++b) {
+      const int64_t g0 = b * kLaneGroups, g1 = std::min(groups, g0 + kLaneGroups);
+      first[b] = g0 * kGroup / s.block;
+      count[b] = (g1 - 1) * kGroup / s.block - first[b] + 1;
+      for (int64_t lane = 0; lane < kLaneGroups; ++lane) {
+        const int64_t g = g0 + GroupOfLane(lane);  // a lane past K takes a zero (count < 16 there)
+        pick[b * kLaneGroups + lane] = static_cast<int32_t>(g < groups ? g * kGroup / s.block - first[b] : 15);
+      }
+    }
+  }
 };
 
 #ifdef SILK_KERNELS_X86
@@ -277,52 +309,75 @@ SILK_AVX2 void RowsAvx2Batch(const Int4MatMulShape& s, const QuantizedRow* q, co
 #define SILK_AVX512 SILK_TARGET_AVX512_VNNI
 SILK_AVX512_CODE_BEGIN
 
-// Step p of every pair of activation rows against one weight row's step: acc[j] as StepAccumulate
-// computes it, for both rows of pair j at once.
-template <int kPairs>
-SILK_AVX512 inline void StepPairs(__m512i lo, __m512i hi, __m512 wscale, const PairedRows& a, int64_t j0, int64_t p,
-                                  __m512* acc) {
+// Block b of a weight row (256 packed bytes from w; fewer past K, read masked) transposed into
+// group lanes: lo[k] and hi[k] its nibbles as GroupLaneRows' lo[k] and hi[k] expect them.
+SILK_AVX512 inline void LaneNibbles(const uint8_t* w, int64_t bytes, __m512i* lo, __m512i* hi) {
+  __m512i x[4];
+  if (bytes >= 256) {
 #pragma GCC unroll 4
-  for (int j = 0; j < kPairs; ++j) {
-    const int8_t* b = a.Bytes(j0 + j, p);
-    const int32_t* w = a.Words(j0 + j, p);
-    __m512i dot = _mm512_loadu_si512(w);
-    dot = _mm512_dpbusd_epi32(dot, lo, _mm512_loadu_si512(b));
-    dot = _mm512_dpbusd_epi32(dot, hi, _mm512_loadu_si512(b + 64));
-    const __m512 lane = _mm512_mul_ps(wscale, _mm512_loadu_ps(reinterpret_cast<const float*>(w + 16)));
-    acc[j] = _mm512_fmadd_ps(_mm512_cvtepi32_ps(dot), lane, acc[j]);
+    for (int j = 0; j < 4; ++j) x[j] = _mm512_loadu_si512(w + 64 * j);
+  } else {  // the last block of a row whose groups are not a multiple of 16
+    for (int j = 0; j < 4; ++j) {
+      const int64_t n = std::clamp<int64_t>(bytes - 64 * j, 0, 64);
+      x[j] = _mm512_maskz_loadu_epi8(n == 64 ? ~uint64_t{0} : (uint64_t{1} << n) - 1, w + 64 * j);
+    }
   }
+  // a 4 x 4 transpose of the dwords of each 128-bit lane: register k, lane 4c + j = x[j]'s lane c, dword k
+  const __m512i t0 = _mm512_unpacklo_epi32(x[0], x[1]), t1 = _mm512_unpackhi_epi32(x[0], x[1]);
+  const __m512i t2 = _mm512_unpacklo_epi32(x[2], x[3]), t3 = _mm512_unpackhi_epi32(x[2], x[3]);
+  const __m512i k[4] = {_mm512_unpacklo_epi64(t0, t2), _mm512_unpackhi_epi64(t0, t2), _mm512_unpacklo_epi64(t1, t3),
+                        _mm512_unpackhi_epi64(t1, t3)};
+  const __m512i low4 = _mm512_set1_epi8(0x0f);
+#pragma GCC unroll 4
+  for (int j = 0; j < 4; ++j)
+    lo[j] = _mm512_and_si512(k[j], low4), hi[j] = _mm512_and_si512(_mm512_srli_epi16(k[j], 4), low4);
 }
 
-// Pairs [j0, j0 + kPairs) (activation rows 2 * j0 ...) against weight rows [r0, r1); out is
-// activation row 0's, rows past m are not written.
-template <bool kScalePerGroup, int kPairs>
-SILK_AVX512 void RowsAvx512Pairs(const Int4MatMulShape& s, const QuantizedRows& q, const PairedRows& a, int64_t j0,
-                                 const uint8_t* packed, const float* scales, int64_t r0, int64_t r1, float* out) {
-  const int64_t pairs = s.k / (2 * kGroup), blocks = s.k / s.block, groups_per_block = s.block / kGroup;
-  const __m512i low4 = _mm512_set1_epi8(0x0f);
+// Activation rows [m0, m0 + kRows) against weight rows [r0, r1) in group lanes: per block, the
+// eight dot products of each lane's group (zero point included) converted once, times the weight
+// and activation scales, accumulated per lane; the 16 lanes summed at the end in a fixed order.
+// Each row's arithmetic depends on that row alone, so a row is the same bits in any batch.
+template <int kRows>
+SILK_AVX512 void GroupLanesAvx512(const Int4MatMulShape& s, const GroupLaneRows& a, const LaneScales& ls, int64_t m0,
+                                  const uint8_t* packed, const float* scales, int64_t r0, int64_t r1, float* out) {
+  const int64_t blocks = a.blocks(), row_bytes = s.k / 2, row_scales = s.k / s.block;
   for (int64_t r = r0; r < r1; ++r) {
-    const uint8_t* w = packed + r * (s.k / 2);
-    __m512 acc[kPairs];  // (the loops over it are unrolled, so it stays in registers)
+    const uint8_t* w = packed + r * row_bytes;
+    const float* ws = scales + r * row_scales;
+    __m512 acc[kRows];  // (the loops over it are unrolled, so it stays in registers)
+#pragma GCC unroll 8
+    for (int i = 0; i < kRows; ++i) acc[i] = _mm512_setzero_ps();
+    for (int64_t b = 0; b < blocks; ++b) {
 #pragma GCC unroll 4
-    for (int j = 0; j < kPairs; ++j) acc[j] = _mm512_setzero_ps();
-    for (int64_t p = 0; p < pairs; ++p) {
-      _mm_prefetch(reinterpret_cast<const char*>(w + p * 32 + kPrefetchBytes), _MM_HINT_T0);
-      const __m512i x = _mm512_broadcast_i64x4(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(w + p * 32)));
-      const __m512i lo = _mm512_and_si512(x, low4), hi = _mm512_and_si512(_mm512_srli_epi16(x, 4), low4);
-      const __m256 ws = StepScale<kScalePerGroup>(scales + r * blocks, p, groups_per_block);
-      const __m512 wscale = _mm512_castpd_ps(_mm512_broadcast_f64x4(_mm256_castps_pd(ws)));
-      StepPairs<kPairs>(lo, hi, wscale, a, j0, p, acc);
-    }
+      for (int line = 0; line < 4; ++line)
+        _mm_prefetch(reinterpret_cast<const char*>(w + b * 256 + kPrefetchBytes + 64 * line), _MM_HINT_T0);
+      __m512i lo[4], hi[4];
+      LaneNibbles(w + b * 256, row_bytes - b * 256, lo, hi);
+      const __mmask16 have = static_cast<__mmask16>((1u << ls.count[b]) - 1);  // count: 1..16
+      const __m512 held = _mm512_maskz_loadu_ps(have, ws + ls.first[b]);
+      const __m512 wscale = _mm512_permutexvar_ps(_mm512_loadu_si512(&ls.pick[b * kLaneGroups]), held);
+#pragma GCC unroll 8
+      for (int i = 0; i < kRows; ++i) {
+        const unsigned char* x = a.Block(m0 + i, b);
+        __m512i dot = _mm512_load_si512(x + 512);
 #pragma GCC unroll 4
-    for (int j = 0; j < kPairs; ++j)
-      for (int h = 0; h < 2; ++h) {
-        const int64_t m = 2 * (j0 + j) + h;
-        if (m >= s.m) break;
-        const __m512d both = _mm512_castps_pd(acc[j]);
-        const __m256 half = _mm256_castpd_ps(h ? _mm512_extractf64x4_pd(both, 1) : _mm512_castpd512_pd256(both));
-        out[m * s.n + r] = RowSum(half, s, q[m], w, scales, r);
+        for (int k = 0; k < 4; ++k) {
+          dot = _mm512_dpbusd_epi32(dot, lo[k], _mm512_load_si512(x + 64 * k));
+          dot = _mm512_dpbusd_epi32(dot, hi[k], _mm512_load_si512(x + 256 + 64 * k));
+        }
+        const __m512 lane = _mm512_mul_ps(wscale, _mm512_load_ps(reinterpret_cast<const float*>(x + 576)));
+        acc[i] = _mm512_fmadd_ps(_mm512_cvtepi32_ps(dot), lane, acc[i]);
       }
+    }
+#pragma GCC unroll 8
+    for (int i = 0; i < kRows; ++i) {
+      const __m512d both = _mm512_castps_pd(acc[i]);
+      const __m256 h8 = _mm256_add_ps(_mm256_castpd_ps(_mm512_castpd512_pd256(both)),
+                                      _mm256_castpd_ps(_mm512_extractf64x4_pd(both, 1)));
+      __m128 h = _mm_add_ps(_mm256_castps256_ps128(h8), _mm256_extractf128_ps(h8, 1));
+      h = _mm_add_ps(h, _mm_movehl_ps(h, h));
+      out[(m0 + i) * s.n + r] = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
+    }
   }
 }
 SILK_AVX512_CODE_END
@@ -330,7 +385,7 @@ SILK_AVX512_CODE_END
 
 GroupValuesFn PickGroupValues(RowKernels kernels) {
 #ifdef SILK_KERNELS_X86
-  if (kernels == RowKernels::kBest && CpuHasAvx2()) return GroupValuesAvx2;
+  if (kernels != RowKernels::kScalar && CpuHasAvx2()) return GroupValuesAvx2;
 #endif
   (void)kernels;
   return GroupValuesScalar;
@@ -341,7 +396,7 @@ using RowsFn = void (*)(const Int4MatMulShape&, const QuantizedRow&, const uint8
 
 RowsFn PickRows(const Int4MatMulShape& s, RowKernels kernels) {
 #ifdef SILK_KERNELS_X86
-  if (kernels == RowKernels::kBest && CpuHasAvx2()) return s.block == kGroup ? RowsAvx2<true> : RowsAvx2<false>;
+  if (kernels != RowKernels::kScalar && CpuHasAvx2()) return s.block == kGroup ? RowsAvx2<true> : RowsAvx2<false>;
 #endif
   (void)s, (void)kernels;
   return RowsScalar;
@@ -354,7 +409,7 @@ constexpr int kMaxBatchRows = 4;  // activation rows per pass over a tile (measu
 
 BatchFn PickBatch(const Int4MatMulShape& s, RowKernels kernels, int64_t rows) {
 #ifdef SILK_KERNELS_X86
-  if (kernels == RowKernels::kBest && CpuHasAvx2()) {
+  if (kernels != RowKernels::kScalar && CpuHasAvx2()) {
     static constexpr BatchFn kGroupScale[kMaxBatchRows] = {RowsAvx2Batch<true, 1>, RowsAvx2Batch<true, 2>,
                                                            RowsAvx2Batch<true, 3>, RowsAvx2Batch<true, 4>};
     static constexpr BatchFn kBlockScale[kMaxBatchRows] = {RowsAvx2Batch<false, 1>, RowsAvx2Batch<false, 2>,
@@ -367,32 +422,22 @@ BatchFn PickBatch(const Int4MatMulShape& s, RowKernels kernels, int64_t rows) {
   return nullptr;
 }
 
-// kPairs pairs of activation rows at once (1..kMaxPairs), from pair j0, against weight rows [r0, r1).
-using PairsFn = void (*)(const Int4MatMulShape&, const QuantizedRows&, const PairedRows&, int64_t, const uint8_t*,
+// kRows activation rows at once (1..kMaxLaneRows) in group lanes, from row m0.
+using LanesFn = void (*)(const Int4MatMulShape&, const GroupLaneRows&, const LaneScales&, int64_t, const uint8_t*,
                          const float*, int64_t, int64_t, float*);
-constexpr int kMaxPairs = 4;  // pairs of activation rows per pass over a tile (8 rows)
+constexpr int kMaxLaneRows = 8;  // activation rows per pass over a tile (measured: 8 rows 0.21 ms, 2 x 4 0.27 ms)
 
-PairsFn PickPairs(const Int4MatMulShape& s, RowKernels kernels, int64_t pairs) {
+LanesFn PickLanes(RowKernels kernels, int64_t rows) {
 #ifdef SILK_KERNELS_X86
   if (kernels == RowKernels::kBest && CpuHasAvx512Vnni()) {
-    static constexpr PairsFn kGroupScale[kMaxPairs] = {RowsAvx512Pairs<true, 1>, RowsAvx512Pairs<true, 2>,
-                                                       RowsAvx512Pairs<true, 3>, RowsAvx512Pairs<true, 4>};
-    static constexpr PairsFn kBlockScale[kMaxPairs] = {RowsAvx512Pairs<false, 1>, RowsAvx512Pairs<false, 2>,
-                                                       RowsAvx512Pairs<false, 3>, RowsAvx512Pairs<false, 4>};
-    const PairsFn* table = s.block == kGroup ? kGroupScale : kBlockScale;
-    return table[std::min<int64_t>(pairs, kMaxPairs) - 1];
+    static constexpr LanesFn kByRows[kMaxLaneRows] = {GroupLanesAvx512<1>, GroupLanesAvx512<2>, GroupLanesAvx512<3>,
+                                                      GroupLanesAvx512<4>, GroupLanesAvx512<5>, GroupLanesAvx512<6>,
+                                                      GroupLanesAvx512<7>, GroupLanesAvx512<8>};
+    return kByRows[std::min<int64_t>(rows, kMaxLaneRows) - 1];
   }
 #endif
-  (void)s, (void)kernels, (void)pairs;
+  (void)kernels, (void)rows;
   return nullptr;
-}
-
-// Pairs per pass over a weight tile: as many as keep their activations (256 bytes per pair per
-// 64 weights) within a 48 KB L1 data cache, between 1 and kMaxPairs (measured, bench/int4_rows:
-// at K 4,096, two pairs per pass give 8 rows 0.52 ms against 0.62 ms for one).
-int64_t PairsPerPass(int64_t k) {
-  const int64_t steps = std::max<int64_t>(1, (k + 2 * kGroup - 1) / (2 * kGroup));  // K below 64 too
-  return std::clamp<int64_t>(int64_t{48 * 1024} / (steps * 256), 1, kMaxPairs);
 }
 
 struct Job {
@@ -403,8 +448,9 @@ struct Job {
   float* out;
   RowsFn fn;
   BatchFn batch[kMaxBatchRows];  // by rows - 1; null: one activation row at a time with fn
-  const PairedRows* paired;      // with pair_fns: the 512-bit kernels instead of batch
-  PairsFn pair_fns[kMaxPairs];   // by pairs - 1
+  const GroupLaneRows* lanes;    // with lane_fns: the group-lane kernels instead of fn and batch
+  const LaneScales* lane_scales;
+  LanesFn lane_fns[kMaxLaneRows];  // by rows - 1
 };
 
 // Weight rows [i * kRowsPerTask, ...) against every activation row: the rows' bytes are read
@@ -413,12 +459,11 @@ void RunTask(void* state, size_t index) {
   const Job& job = *static_cast<const Job*>(state);
   const Int4MatMulShape& s = *job.shape;
   const int64_t r0 = static_cast<int64_t>(index) * kRowsPerTask, r1 = std::min(s.n, r0 + kRowsPerTask);
-  if (job.paired) {
-    const int64_t pairs = (s.m + 1) / 2, most = PairsPerPass(s.k), passes = (pairs + most - 1) / most;
-    const int64_t per_pass = (pairs + passes - 1) / passes;  // even passes: 4 pairs at most 3 a pass go 2 + 2
-    for (int64_t j = 0; j < pairs; j += per_pass)
-      job.pair_fns[std::min(pairs - j, per_pass) - 1](s, *job.rows, *job.paired, j, job.packed, job.scales, r0, r1,
-                                                      job.out);
+  if (job.lanes) {
+    for (int64_t m = 0; m < s.m; m += kMaxLaneRows) {
+      const int64_t rows = std::min<int64_t>(s.m - m, kMaxLaneRows);
+      job.lane_fns[rows - 1](s, *job.lanes, *job.lane_scales, m, job.packed, job.scales, r0, r1, job.out);
+    }
     return;
   }
   if (!job.batch[0]) {
@@ -461,12 +506,14 @@ void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed,
   QuantizedRows rows(s.m, s.k);
   const GroupValuesFn group_values = PickGroupValues(kernels);
   for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, group_values, rows.row(m));
-  Job job{&s, &rows, packed, scales, out, PickRows(s, kernels), {}, nullptr, {}};
-  std::unique_ptr<PairedRows> paired;
-  if (s.m > 1 && PickPairs(s, kernels, 1)) {  // the 512-bit kernels, two activation rows per register
-    paired = std::make_unique<PairedRows>(rows, s.m, s.k);
-    job.paired = paired.get();
-    for (int64_t j = 1; j <= kMaxPairs; ++j) job.pair_fns[j - 1] = PickPairs(s, kernels, j);
+  Job job{&s, &rows, packed, scales, out, PickRows(s, kernels), {}, nullptr, nullptr, {}};
+  std::unique_ptr<GroupLaneRows> lanes;
+  std::unique_ptr<LaneScales> lane_scales;
+  if (PickLanes(kernels, 1)) {  // one row and many alike: a row's bits do not depend on the batch
+    lanes = std::make_unique<GroupLaneRows>(rows, s.m, s.k);
+    lane_scales = std::make_unique<LaneScales>(s, lanes->blocks());
+    job.lanes = lanes.get(), job.lane_scales = lane_scales.get();
+    for (int64_t r = 1; r <= kMaxLaneRows; ++r) job.lane_fns[r - 1] = PickLanes(kernels, r);
   } else if (s.m > 1) {  // one row (a single sequence's step) keeps the one-row kernel
     for (int64_t r = 1; r <= kMaxBatchRows; ++r) job.batch[r - 1] = PickBatch(s, kernels, r);
   }

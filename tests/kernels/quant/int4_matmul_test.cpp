@@ -82,6 +82,7 @@ TEST_P(Int4MatMulTest, MatchesTheDequantizedProductWithinTheActivationRounding) 
   const Weights w = RandomWeights(c, rng);
   const std::vector<float> a = RandomActivations(c, rng);
   const std::vector<float> best = Multiply(c, a, w, RowKernels::kBest), scalar = Multiply(c, a, w, RowKernels::kScalar);
+  const std::vector<float> avx2 = Multiply(c, a, w, RowKernels::kAvx2);  // best's rows where the CPU has no wider ones
   for (int64_t m = 0; m < c.m; ++m)
     for (int64_t n = 0; n < c.n; ++n) {
       double exact = 0, rounded = 0, bound = 0, magnitude = 0;
@@ -99,6 +100,7 @@ TEST_P(Int4MatMulTest, MatchesTheDequantizedProductWithinTheActivationRounding) 
       const double float_rounding = 1e-5 * magnitude + 1e-6;
       EXPECT_NEAR(best[i], exact, bound * 1.001 + float_rounding) << "m " << m << " n " << n;
       EXPECT_NEAR(best[i], rounded, float_rounding) << "m " << m << " n " << n;
+      EXPECT_NEAR(avx2[i], rounded, float_rounding) << "m " << m << " n " << n;
       EXPECT_NEAR(scalar[i], rounded, float_rounding) << "m " << m << " n " << n;
     }
 }
@@ -114,7 +116,8 @@ TEST_P(Int4MatMulTest, TheOrderOfParallelWorkDoesNotMatter) {
 INSTANTIATE_TEST_SUITE_P(Shapes, Int4MatMulTest,
                          ::testing::Values(Case{1, 64, 1, 32}, Case{1, 1024, 37, 32}, Case{1, 96, 300, 32},
                                            Case{3, 256, 520, 32}, Case{1, 256, 33, 64}, Case{2, 512, 17, 128},
-                                           Case{1, 32, 9, 32}, Case{0, 64, 5, 32}));
+                                           Case{1, 32, 9, 32}, Case{0, 64, 5, 32}, Case{2, 768, 20, 192},
+                                           Case{3, 4160, 7, 64}));
 
 TEST(Int4MatMul, ZeroGroupsAndTinyValuesStayFinite) {
   const Case c{1, 128, 12, 32};

@@ -41,13 +41,14 @@ TEST(MatMulRows, Int4EveryRowOfABatchIsBitIdenticalToItAlone) {
   struct Shape {
     int64_t k, n, block;
   };
-  // block 32 (one scale per group), 64 and 128 (one per block), K = 32 mod 64 (the odd last group),
-  // N not a multiple of the 256-row tile; K 2048 and 4160 take fewer pairs of rows per pass over a
-  // tile (3 and 1) in the 512-bit kernel.
+  // block 32 (one scale per group), 64, 128 and 192 (one per block; 192: blocks of 16 group lanes
+  // whose scales start mid-block), K = 32 mod 64 (the odd last group), group counts that are not a
+  // multiple of 16 (the group lanes' masked last block: K 96, 4160, 32), N not a multiple of the
+  // 256-row tile; 9 rows take two passes of the group-lane kernel.
   for (const Shape& sh : {Shape{1024, 300, 32}, Shape{256, 513, 64}, Shape{96, 40, 32}, Shape{384, 77, 128},
-                          Shape{2048, 70, 32}, Shape{4160, 9, 64}, Shape{32, 33, 32}})
+                          Shape{2048, 70, 32}, Shape{4160, 9, 64}, Shape{32, 33, 32}, Shape{768, 20, 192}})
     for (int64_t rows : {2, 3, 4, 5, 8, 9})
-      for (RowKernels kernels : {RowKernels::kBest, RowKernels::kScalar}) {
+      for (RowKernels kernels : {RowKernels::kBest, RowKernels::kAvx2, RowKernels::kScalar}) {
         std::mt19937 rng(static_cast<uint32_t>(sh.k + sh.n + rows));
         std::vector<uint8_t> packed(static_cast<size_t>(sh.n * sh.k / 2));
         for (uint8_t& b : packed) b = static_cast<uint8_t>(rng());
@@ -64,7 +65,9 @@ TEST(MatMulRows, Int4EveryRowOfABatchIsBitIdenticalToItAlone) {
                          Backwards, nullptr, kernels);
               return one;
             },
-            kernels == RowKernels::kBest ? "Int4MatMul (best rows)" : "Int4MatMul (scalar rows)");
+            kernels == RowKernels::kBest   ? "Int4MatMul (best rows)"
+            : kernels == RowKernels::kAvx2 ? "Int4MatMul (AVX2 rows)"
+                                           : "Int4MatMul (scalar rows)");
       }
 }
 
