@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The row primitives of CachedAttention (dot products with cached keys, the softmax's
 // exponentials, the weighted sum of cached values, storing new rows) for one cache element type:
-// AVX2/FMA/F16C versions where the CPU has them, plain C++ otherwise, chosen once per call.
+// AVX-512 or AVX2/FMA/F16C versions where the CPU has them (the same bits), plain C++ otherwise,
+// chosen once per call.
 // `rows` are consecutive cache rows of CacheRowBytes(element, d) bytes each.
 #pragma once
 #include <cstdint>

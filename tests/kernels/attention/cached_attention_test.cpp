@@ -235,6 +235,41 @@ TEST(CachedAttention, Int8ScoresAreTheSameOnEveryPath) {
   }
 }
 
+// The widest rows (512-bit where the CPU has AVX-512) give the 256-bit rows' bits: the weighted
+// sums lane for lane in the same order, the float dot products with the same two accumulators, the
+// int8 ones exact. Odd row counts take the float dot's one-row tail; head sizes that are not a
+// multiple of 16 (or 32 for int8 scores) fall back to the 256-bit rows. (Equal by construction on
+// a CPU without AVX-512.)
+TEST(CachedAttention, WidestRowsGiveTheAvx2RowsBits) {
+  std::mt19937 rng(5);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  for (CacheElement e : {CacheElement::kFloat32, CacheElement::kFloat16, CacheElement::kInt8})
+    for (int64_t d : {64, 16, 48, 96, 128})
+      for (int64_t rows : {1, 2, 7, 37}) {
+        const int64_t rb = static_cast<int64_t>(CacheRowBytes(e, d));
+        const AttentionRows best = AttentionRowsFor(e, d, RowKernels::kBest);
+        const AttentionRows avx2 = AttentionRowsFor(e, d, RowKernels::kAvx2);
+        std::vector<unsigned char> cache(static_cast<size_t>(rows * rb));
+        std::vector<float> x(static_cast<size_t>(d)), q(static_cast<size_t>(d)), w(static_cast<size_t>(rows));
+        for (int64_t j = 0; j < rows; ++j) {
+          for (float& v : x) v = n(rng) * 3.0f;
+          avx2.store(x.data(), cache.data() + j * rb, d);
+        }
+        for (float& v : q) v = n(rng);
+        for (float& v : w) v = std::fabs(n(rng));
+        std::vector<float> a(static_cast<size_t>(rows)), b(static_cast<size_t>(rows));
+        best.dots(q.data(), cache.data(), rows, d, 0.125f, a.data());
+        avx2.dots(q.data(), cache.data(), rows, d, 0.125f, b.data());
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * 4), 0)
+            << "dots, head_dim " << d << ", " << rows << " rows";
+        std::vector<float> sa(static_cast<size_t>(d), 0.5f), sb(static_cast<size_t>(d), 0.5f);
+        best.weighted_sum(w.data(), cache.data(), rows, d, 0.7f, sa.data());
+        avx2.weighted_sum(w.data(), cache.data(), rows, d, 0.7f, sb.data());
+        EXPECT_EQ(std::memcmp(sa.data(), sb.data(), sa.size() * 4), 0)
+            << "weighted sum, head_dim " << d << ", " << rows << " rows";
+      }
+}
+
 // Scores far apart (one key dominates, the others underflow exp) stay finite and pick that key.
 TEST(CachedAttention, SharpSoftmaxIsFinite) {
   AttentionShape s{1, 1, 16, 1, 40, 41, 1000.0f};
