@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Scalar and AVX2 row primitives for CachedAttention (float32, float16 and int8 + scale rows); the
-// vectorized ones are compiled for AVX2+FMA+F16C with a target attribute and used only when the
-// CPU reports those features.
+// Scalar, AVX2 and AVX-512 row primitives for CachedAttention (float32, float16 and int8 + scale
+// rows); the vectorized ones are compiled for their instruction sets with a target attribute
+// (kernels/cpu/cpu_features.h) and used only when the CPU reports them.
 #include "kernels/attention/attention_rows.h"
 
 #include <algorithm>
