@@ -13,6 +13,7 @@
 
 #include "kernels/cpu/cpu_features.h"
 #include "kernels/cpu/float16.h"
+#include "kernels/cpu/vector_sums.h"
 
 namespace silk {
 
@@ -155,13 +156,6 @@ SILK_AVX2 inline __m256 Load8(const int8_t* p) {
   return _mm256_cvtepi32_ps(_mm256_cvtepi8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))));
 }
 
-SILK_AVX2 inline float Sum8(__m256 v) {
-  __m128 s = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
-  s = _mm_add_ps(s, _mm_movehl_ps(s, s));
-  s = _mm_add_ss(s, _mm_movehdup_ps(s));
-  return _mm_cvtss_f32(s);
-}
-
 // Eight int8 of x / scale (nearest even: the default MXCSR rounding), clamped as QuantizeOne.
 SILK_AVX2 inline void Quantize8(const float* x, __m256 scale, int8_t* out) {
   __m256 v = _mm256_round_ps(_mm256_div_ps(_mm256_loadu_ps(x), scale), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
@@ -256,22 +250,27 @@ SILK_AVX2 inline __m256i RowDot16(const int8_t* r, const int16_t* q, int64_t d) 
   return s;
 }
 
-// DotsInt8Scalar's values, four rows per step (their eight-lane sums reduced together); the int32
-// sums cannot overflow for d <= 512 (d * 32767 * 127 < 2^31), the caller's condition.
-SILK_AVX2 void DotsInt8Avx2(const float* q, const int8_t* r, int64_t n, int64_t d, float scale, float* out) {
-  const Query16 q16(q, d, scale);
+// The scores of four consecutive int8 rows from their eight-lane int32 sums a..d (the sums are
+// exact, so how the lanes are added does not matter): (sum * row scale) * factor.
+SILK_AVX2 inline void FourScores(__m256i a, __m256i b, __m256i c, __m256i e, const int8_t* r, int64_t stride, int64_t d,
+                                 float factor, float* out) {
+  const __m256i h = _mm256_hadd_epi32(_mm256_hadd_epi32(a, b), _mm256_hadd_epi32(c, e));
+  const __m128i sums = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256(h, 1));
+  const __m128 scales =
+      _mm_setr_ps(RowScale(r, d), RowScale(r + stride, d), RowScale(r + 2 * stride, d), RowScale(r + 3 * stride, d));
+  _mm_storeu_ps(out, _mm_mul_ps(_mm_mul_ps(_mm_cvtepi32_ps(sums), scales), _mm_set1_ps(factor)));
+}
+
+// DotsInt8Scalar's values for an int16 query already built, four rows per step; the int32 sums
+// cannot overflow for d <= 512 (d * 32767 * 127 < 2^31), the caller's condition.
+SILK_AVX2 void DotsInt8Avx2(const Query16& q16, const int8_t* r, int64_t n, int64_t d, float* out) {
   const int64_t stride = Stride<int8_t>(d);
   const int16_t* qi = q16.data();
   int64_t j = 0;
   for (; j + 3 < n; j += 4, r += 4 * stride) {
     PrefetchAhead(r, 4 * stride);
-    const __m256i h =
-        _mm256_hadd_epi32(_mm256_hadd_epi32(RowDot16(r, qi, d), RowDot16(r + stride, qi, d)),
-                          _mm256_hadd_epi32(RowDot16(r + 2 * stride, qi, d), RowDot16(r + 3 * stride, qi, d)));
-    const __m128i sums = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256(h, 1));
-    const __m128 scales =
-        _mm_setr_ps(RowScale(r, d), RowScale(r + stride, d), RowScale(r + 2 * stride, d), RowScale(r + 3 * stride, d));
-    _mm_storeu_ps(out + j, _mm_mul_ps(_mm_mul_ps(_mm_cvtepi32_ps(sums), scales), _mm_set1_ps(q16.factor())));
+    FourScores(RowDot16(r, qi, d), RowDot16(r + stride, qi, d), RowDot16(r + 2 * stride, qi, d),
+               RowDot16(r + 3 * stride, qi, d), r, stride, d, q16.factor(), out + j);
   }
   for (; j < n; ++j, r += stride) {
     const __m256i s = RowDot16(r, qi, d);
@@ -287,7 +286,7 @@ SILK_AVX2 void DotsAvx2(const float* q, const void* rows, int64_t n, int64_t d, 
   const E* r = static_cast<const E*>(rows);
   if constexpr (std::is_same<E, int8_t>::value) {
     if (d % 16 == 0 && d <= 512)
-      DotsInt8Avx2(q, r, n, d, scale, out);
+      DotsInt8Avx2(Query16(q, d, scale), r, n, d, out);
     else
       DotsInt8Scalar(q, rows, n, d, scale, out);
   } else if (d == 64) {
@@ -381,15 +380,8 @@ SILK_AVX512 inline __m512 Load16(const int8_t* p) {
   return _mm512_cvtepi32_ps(_mm512_cvtepi8_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))));
 }
 
-// A register's two halves added, then Sum8: Dots64's Sum8(a0 + a1).
-SILK_AVX512 inline float SumHalves(__m512 v) {
-  const __m512d both = _mm512_castps_pd(v);
-  return Sum8(
-      _mm256_add_ps(_mm256_castpd_ps(_mm512_castpd512_pd256(both)), _mm256_castpd_ps(_mm512_extractf64x4_pd(both, 1))));
-}
-
 // Dots64 with a0 in the low half and a1 in the high half of one register: elements 16k..16k + 15
-// are Dots64's steps 2k (low) and 2k + 1 (high).
+// are Dots64's steps 2k (low) and 2k + 1 (high), and SumHalves is Dots64's Sum8(a0 + a1).
 template <typename E>
 SILK_AVX512 void Dots64Avx512(const float* q, const E* r, int64_t n, float scale, float* out) {
   constexpr int64_t d = 64;
@@ -427,7 +419,7 @@ SILK_AVX512 inline __m256i Fold(__m512i s) {
 }
 
 // DotsInt8Avx2's values (the same exact int32 sums, the same float products), for d a multiple
-// of 32 up to 512.
+// of 32 up to 512; the last n % 4 rows by DotsInt8Avx2 with the same query.
 SILK_AVX512 void DotsInt8Avx512(const float* q, const int8_t* r, int64_t n, int64_t d, float scale, float* out) {
   const Query16 q16(q, d, scale);
   const int64_t stride = Stride<int8_t>(d);
@@ -435,15 +427,11 @@ SILK_AVX512 void DotsInt8Avx512(const float* q, const int8_t* r, int64_t n, int6
   int64_t j = 0;
   for (; j + 3 < n; j += 4, r += 4 * stride) {
     PrefetchAhead(r, 4 * stride);
-    const __m256i h = _mm256_hadd_epi32(
-        _mm256_hadd_epi32(Fold(RowDot16Avx512(r, qi, d)), Fold(RowDot16Avx512(r + stride, qi, d))),
-        _mm256_hadd_epi32(Fold(RowDot16Avx512(r + 2 * stride, qi, d)), Fold(RowDot16Avx512(r + 3 * stride, qi, d))));
-    const __m128i sums = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256(h, 1));
-    const __m128 scales =
-        _mm_setr_ps(RowScale(r, d), RowScale(r + stride, d), RowScale(r + 2 * stride, d), RowScale(r + 3 * stride, d));
-    _mm_storeu_ps(out + j, _mm_mul_ps(_mm_mul_ps(_mm_cvtepi32_ps(sums), scales), _mm_set1_ps(q16.factor())));
+    FourScores(Fold(RowDot16Avx512(r, qi, d)), Fold(RowDot16Avx512(r + stride, qi, d)),
+               Fold(RowDot16Avx512(r + 2 * stride, qi, d)), Fold(RowDot16Avx512(r + 3 * stride, qi, d)), r, stride, d,
+               q16.factor(), out + j);
   }
-  if (j < n) DotsInt8Avx2(q, r, n - j, d, scale, out + j);
+  if (j < n) DotsInt8Avx2(q16, r, n - j, d, out + j);
 }
 
 template <typename E>

@@ -11,6 +11,8 @@
 #define SILK_TARGET_AVX2 __attribute__((target("avx2,fma,f16c")))
 #define SILK_TARGET_AVX512 __attribute__((target("avx2,fma,f16c,avx512f,avx512dq")))
 #define SILK_TARGET_AVX512_VNNI __attribute__((target("avx2,fma,f16c,avx512f,avx512bw,avx512vl,avx512vnni")))
+// AVX-512 F alone: helpers that functions of both AVX-512 targets inline (vector_sums.h).
+#define SILK_TARGET_AVX512F __attribute__((target("avx2,fma,f16c,avx512f")))
 
 // GCC 12's AVX-512 intrinsics pass _mm512_undefined_*() as the unused merge source, which its
 // -Wmaybe-uninitialized reports once inlined (fixed in later GCC); the values are never read. These

@@ -12,6 +12,7 @@
 
 #include "kernels/cpu/cpu_features.h"
 #include "kernels/cpu/float16.h"
+#include "kernels/cpu/vector_sums.h"
 
 namespace silk {
 
@@ -43,9 +44,7 @@ SILK_AVX2 float RowAvx2(const float* a, const uint16_t* w, int64_t k) {
     for (int j = 0; j < 4; ++j) acc[j] = _mm256_fmadd_ps(_mm256_loadu_ps(a + i + 8 * j), Half8(w + i + 8 * j), acc[j]);
   }
   const __m256 s = _mm256_add_ps(_mm256_add_ps(acc[0], acc[1]), _mm256_add_ps(acc[2], acc[3]));
-  __m128 h = _mm_add_ps(_mm256_castps256_ps128(s), _mm256_extractf128_ps(s, 1));
-  h = _mm_add_ps(h, _mm_movehl_ps(h, h));
-  return _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h))) + RowScalar(a + i, w + i, k - i);
+  return Sum8(s) + RowScalar(a + i, w + i, k - i);
 }
 
 // Eight weight rows at once against each activation row: every output keeps RowAvx2's arithmetic

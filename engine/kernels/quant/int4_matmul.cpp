@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "kernels/cpu/cpu_features.h"
+#include "kernels/cpu/vector_sums.h"
 
 namespace silk {
 
@@ -255,9 +256,7 @@ SILK_AVX2 inline __m256 StepAccumulate(__m256i lo, __m256i hi, __m256 wscale, co
 // The row's output: the eight lanes summed, plus an odd last group.
 SILK_AVX2 inline float RowSum(__m256 acc, const Int4MatMulShape& s, const QuantizedRow& q, const uint8_t* w,
                               const float* scales, int64_t r) {
-  __m128 h = _mm_add_ps(_mm256_castps256_ps128(acc), _mm256_extractf128_ps(acc, 1));
-  h = _mm_add_ps(h, _mm_movehl_ps(h, h));
-  float sum = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
+  float sum = Sum8(acc);
   if (s.k % (2 * kGroup)) sum += GroupScalar(s, q, w, scales, r, s.k / (2 * kGroup) * 2);
   return sum;
 }
@@ -370,14 +369,7 @@ SILK_AVX512 void GroupLanesAvx512(const Int4MatMulShape& s, const GroupLaneRows&
       }
     }
 #pragma GCC unroll 8
-    for (int i = 0; i < kRows; ++i) {
-      const __m512d both = _mm512_castps_pd(acc[i]);
-      const __m256 h8 = _mm256_add_ps(_mm256_castpd_ps(_mm512_castpd512_pd256(both)),
-                                      _mm256_castpd_ps(_mm512_extractf64x4_pd(both, 1)));
-      __m128 h = _mm_add_ps(_mm256_castps256_ps128(h8), _mm256_extractf128_ps(h8, 1));
-      h = _mm_add_ps(h, _mm_movehl_ps(h, h));
-      out[(m0 + i) * s.n + r] = _mm_cvtss_f32(_mm_add_ss(h, _mm_movehdup_ps(h)));
-    }
+    for (int i = 0; i < kRows; ++i) out[(m0 + i) * s.n + r] = SumHalves(acc[i]);
   }
 }
 SILK_AVX512_CODE_END
