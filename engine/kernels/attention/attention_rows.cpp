@@ -478,14 +478,110 @@ SILK_AVX512 void WeightedSumAvx512(const float* w, const void* rows, int64_t n, 
   const E* r = static_cast<const E*>(rows);
   for (int64_t i0 = 0; i0 < d; i0 += 64) kByLanes[std::min<int64_t>(d - i0, 64) / 16 - 1](w, r, n, d, i0, factor, out);
 }
+
+// The many-query rows (head_dim 64; float32 or float16 rows): blocks of 16 rows widened once to
+// float32 on the stack, then each query's products over the block. A query's operations on a row,
+// and their order, are Dots64Avx512's and WeightedSumLanes16's, so it gets their bits; only the
+// widening (exact) is shared. Measured in the release decoder, 8 rows sharing one mesh's cross K/V:
+// see docs/benchmarks.md, "Cross attention: one widening for the rows of a mesh".
+constexpr int64_t kManyBlock = 16;
+
+// `count` (<= kManyBlock) rows as float32: float32 rows in place, float16 ones into `buffer`.
+template <typename E>
+SILK_AVX512 inline const float* WidenRows(const E* rows, int64_t count, float* buffer) {
+  PrefetchAhead(rows, kManyBlock * 64);
+  if constexpr (sizeof(E) == 4) {
+    (void)buffer, (void)count;
+    return rows;
+  } else {
+    for (int64_t i = 0; i < count * 64; i += 16) _mm512_store_ps(buffer + i, Load16(rows + i));
+    return buffer;
+  }
+}
+
+// Sixteen rows' dots with one query, each as Dots64Avx512's pair loop computes a row.
+SILK_AVX512 inline __m512 SixteenDots(const float* q, const float* k) {
+  const __m512 q0 = _mm512_loadu_ps(q), q1 = _mm512_loadu_ps(q + 16), q2 = _mm512_loadu_ps(q + 32),
+               q3 = _mm512_loadu_ps(q + 48);
+  __m512 acc[kManyBlock];
+#pragma GCC unroll 16
+  for (int j = 0; j < kManyBlock; ++j) {
+    const float* row = k + 64 * j;
+    __m512 a = _mm512_mul_ps(q0, _mm512_loadu_ps(row));
+    a = _mm512_fmadd_ps(q1, _mm512_loadu_ps(row + 16), a);
+    a = _mm512_fmadd_ps(q2, _mm512_loadu_ps(row + 32), a);
+    acc[j] = _mm512_fmadd_ps(q3, _mm512_loadu_ps(row + 48), a);
+  }
+  return SumHalvesOf16(acc);
+}
+
+template <typename E>
+SILK_AVX512 void DotsMany64Avx512(const float* const* q, int64_t queries, const void* rows, int64_t n, int64_t d,
+                                  float scale, float* const* out) {
+  (void)d;  // 64
+  const E* r = static_cast<const E*>(rows);
+  alignas(64) float buffer[kManyBlock * 64];
+  const __m512 s = _mm512_set1_ps(scale);
+  int64_t j0 = 0;
+  for (; j0 + kManyBlock <= n; j0 += kManyBlock) {
+    const float* k = WidenRows(r + 64 * j0, kManyBlock, buffer);
+    for (int64_t i = 0; i < queries; ++i) _mm512_storeu_ps(out[i] + j0, _mm512_mul_ps(s, SixteenDots(q[i], k)));
+  }
+  if (j0 < n)  // the last rows as Dots64Avx512 takes them (j0 is even: the same pairs)
+    for (int64_t i = 0; i < queries; ++i) Dots64Avx512(q[i], r + 64 * j0, n - j0, scale, out[i] + j0);
+}
+
+// Up to kManyQueries queries' four accumulators each, kept on the stack between blocks.
+constexpr int64_t kManyQueries = 8;
+
+// acc[16k..16k + 15] += w[j] * row j's columns 16k.. for `count` rows of float32 `k` (stride 64).
+SILK_AVX512 inline void AccumulateRows(const float* w, const float* k, int64_t count, float* acc) {
+  __m512 a0 = _mm512_load_ps(acc), a1 = _mm512_load_ps(acc + 16), a2 = _mm512_load_ps(acc + 32),
+         a3 = _mm512_load_ps(acc + 48);
+  for (int64_t j = 0; j < count; ++j, k += 64) {
+    const __m512 wj = _mm512_set1_ps(w[j] * 1.0f);  // WeightedSumLanes16's w[j] * RowScale (1 here)
+    a0 = _mm512_fmadd_ps(wj, _mm512_loadu_ps(k), a0);
+    a1 = _mm512_fmadd_ps(wj, _mm512_loadu_ps(k + 16), a1);
+    a2 = _mm512_fmadd_ps(wj, _mm512_loadu_ps(k + 32), a2);
+    a3 = _mm512_fmadd_ps(wj, _mm512_loadu_ps(k + 48), a3);
+  }
+  _mm512_store_ps(acc, a0), _mm512_store_ps(acc + 16, a1), _mm512_store_ps(acc + 32, a2), _mm512_store_ps(acc + 48, a3);
+}
+
+template <typename E>
+SILK_AVX512 void WeightedSumMany64Avx512(const float* const* w, int64_t queries, const void* rows, int64_t n, int64_t d,
+                                         const float* factor, float* const* out) {
+  const E* r = static_cast<const E*>(rows);
+  alignas(64) float buffer[kManyBlock * 64], acc[kManyQueries * 64];
+  for (int64_t first = 0; first < queries; first += kManyQueries) {
+    const int64_t count = std::min(kManyQueries, queries - first);
+    std::fill(acc, acc + count * 64, 0.0f);
+    for (int64_t j0 = 0; j0 < n; j0 += kManyBlock) {
+      const int64_t block = std::min(kManyBlock, n - j0);
+      const float* k = WidenRows(r + 64 * j0, block, buffer);
+      for (int64_t i = 0; i < count; ++i) AccumulateRows(w[first + i] + j0, k, block, acc + 64 * i);
+    }
+    for (int64_t i = 0; i < count; ++i) {
+      const __m512 f = _mm512_set1_ps(factor[first + i]);
+      float* o = out[first + i];
+      for (int64_t c = 0; c < d; c += 16)
+        _mm512_storeu_ps(o + c, _mm512_fmadd_ps(f, _mm512_load_ps(acc + 64 * i + c), _mm512_loadu_ps(o + c)));
+    }
+  }
+}
 SILK_AVX512_CODE_END
 #endif
 
 template <typename E>
 AttentionRows RowsOf(int64_t head_dim, RowKernels kernels) {
 #ifdef SILK_KERNELS_X86
-  if (kernels == RowKernels::kBest && head_dim % 8 == 0 && CpuHasAvx512Vnni())
-    return AttentionRows{true, StoreAvx2<E>, DotsAvx512<E>, ExpShiftedAvx2, WeightedSumAvx512<E>};
+  if (kernels == RowKernels::kBest && head_dim % 8 == 0 && CpuHasAvx512Vnni()) {
+    AttentionRows rows{true, StoreAvx2<E>, DotsAvx512<E>, ExpShiftedAvx2, WeightedSumAvx512<E>};
+    if constexpr (!std::is_same<E, int8_t>::value) {
+      if (head_dim == 64) rows.dots_many = DotsMany64Avx512<E>, rows.weighted_sum_many = WeightedSumMany64Avx512<E>;
+    }
+    return rows;
+  }
   if (kernels != RowKernels::kScalar && head_dim % 8 == 0 && CpuHasAvx2())
     return AttentionRows{true, StoreAvx2<E>, DotsAvx2<E>, ExpShiftedAvx2, WeightedSumAvx2<E>};
 #endif
@@ -495,6 +591,18 @@ AttentionRows RowsOf(int64_t head_dim, RowKernels kernels) {
 }
 
 }  // namespace
+
+void AttentionRows::DotsOfMany(const float* const* q, int64_t queries, const void* rows, int64_t n, int64_t d,
+                               float scale, float* const* out) const {
+  if (dots_many) return dots_many(q, queries, rows, n, d, scale, out);
+  for (int64_t i = 0; i < queries; ++i) dots(q[i], rows, n, d, scale, out[i]);
+}
+
+void AttentionRows::WeightedSumsOfMany(const float* const* w, int64_t queries, const void* rows, int64_t n, int64_t d,
+                                       const float* factor, float* const* out) const {
+  if (weighted_sum_many) return weighted_sum_many(w, queries, rows, n, d, factor, out);
+  for (int64_t i = 0; i < queries; ++i) weighted_sum(w[i], rows, n, d, factor[i], out[i]);
+}
 
 AttentionRows AttentionRowsFor(CacheElement element, int64_t head_dim, RowKernels kernels) {
   switch (element) {

@@ -23,6 +23,19 @@ struct AttentionRows {
   float (*exp_shifted)(float* x, int64_t n, float top) = nullptr;
   // out[i] += factor * sum_j w[j] * rows[j][i].
   void (*weighted_sum)(const float* w, const void* rows, int64_t n, int64_t d, float factor, float* out) = nullptr;
+  // Several queries over the same rows (cross attention: the candidates of one mesh read its K/V),
+  // each exactly as dots / weighted_sum would give it alone, the rows widened once for all of them;
+  // nullptr where the element type or head size has no such version (DotsOfMany and
+  // WeightedSumsOfMany then call the one-query primitives in turn).
+  void (*dots_many)(const float* const* q, int64_t queries, const void* rows, int64_t n, int64_t d, float scale,
+                    float* const* out) = nullptr;
+  void (*weighted_sum_many)(const float* const* w, int64_t queries, const void* rows, int64_t n, int64_t d,
+                            const float* factor, float* const* out) = nullptr;
+
+  void DotsOfMany(const float* const* q, int64_t queries, const void* rows, int64_t n, int64_t d, float scale,
+                  float* const* out) const;
+  void WeightedSumsOfMany(const float* const* w, int64_t queries, const void* rows, int64_t n, int64_t d,
+                          const float* factor, float* const* out) const;
 };
 
 AttentionRows AttentionRowsFor(CacheElement element, int64_t head_dim, RowKernels kernels);

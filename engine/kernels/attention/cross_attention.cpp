@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
-// CrossAttention: per (head, position), one pass of dot products over the head's key rows, the
-// softmax, one weighted pass over its value rows (the float32 or float16 rows of CachedAttention).
+// CrossAttention: per head, the queries that read one source (the candidates of one mesh) together:
+// one pass of dot products over the head's key rows, the softmaxes, one weighted pass over its value
+// rows (the float32 or float16 rows of CachedAttention, widened once for all those queries).
 #include "kernels/attention/cross_attention.h"
 
 #include <algorithm>
 #include <vector>
+#include <utility>
 
 #include "kernels/attention/attention_rows.h"
 #include "kernels/ort/ort_op_glue.h"
@@ -13,31 +15,70 @@ namespace silk {
 
 namespace {
 
+// The queries that read one source, in chunks: a task is one head of one source and up to
+// kQueriesPerTask of its queries (rows x positions), which widen each key and value row once.
+constexpr int64_t kQueriesPerTask = 8;
+
+struct Task {
+  int64_t source, head;
+  size_t first, count;  // into Job::queries
+};
+
 struct Job {
   const CrossAttentionShape* shape;
   const float* q;
-  const unsigned char *key, *value;  // [heads, rows] rows of row_bytes
+  const unsigned char *key, *value;  // [sources, heads, rows] rows of row_bytes
   size_t row_bytes;
   float* out;
   const AttentionRows* rows;
+  std::vector<int64_t> queries;  // row * positions + position, grouped by source
+  std::vector<Task> tasks;
 };
 
-// index = (head * batch + row) * positions + position: a head's keys and values are read for
-// every row and position in turn, so rows sharing a source find them in cache.
-void AttendOne(void* state, size_t index) {
+// Each query: dot products with the head's key rows, the softmax, the weighted sum of its value
+// rows (the same primitives, in the same order, as one query alone).
+void AttendGroup(void* state, size_t index) {
   const Job& job = *static_cast<const Job*>(state);
   const CrossAttentionShape& s = *job.shape;
-  const int64_t t = static_cast<int64_t>(index) % s.positions, hb = static_cast<int64_t>(index) / s.positions;
-  const int64_t h = hb / s.batch, b = hb % s.batch, src = s.source ? s.source[b] : b;
-  const int64_t D = s.head_dim, M = s.rows, at = ((b * s.heads + h) * s.positions + t) * D;
-  const size_t block = static_cast<size_t>((src * s.heads + h) * M) * job.row_bytes;
-  std::vector<float> scores(static_cast<size_t>(M));
-  job.rows->dots(job.q + at, job.key + block, M, D, s.scale, scores.data());
-  const float top = *std::max_element(scores.begin(), scores.end());
-  const float sum = job.rows->exp_shifted(scores.data(), M, top);
-  float* out = job.out + at;
-  std::fill(out, out + D, 0.0f);
-  job.rows->weighted_sum(scores.data(), job.value + block, M, D, 1.0f / sum, out);
+  const Task& task = job.tasks[index];
+  const int64_t D = s.head_dim, M = s.rows, n = static_cast<int64_t>(task.count);
+  const float* q[kQueriesPerTask];
+  float *out[kQueriesPerTask], *scores[kQueriesPerTask], factor[kQueriesPerTask];
+  std::vector<float> buffer(static_cast<size_t>(n * M));
+  for (int64_t i = 0; i < n; ++i) {
+    const int64_t query = job.queries[task.first + static_cast<size_t>(i)];
+    const int64_t b = query / s.positions, t = query % s.positions;
+    const int64_t at = ((b * s.heads + task.head) * s.positions + t) * D;
+    q[i] = job.q + at, out[i] = job.out + at, scores[i] = buffer.data() + i * M;
+  }
+  const size_t block = static_cast<size_t>((task.source * s.heads + task.head) * M) * job.row_bytes;
+  job.rows->DotsOfMany(q, n, job.key + block, M, D, s.scale, scores);
+  for (int64_t i = 0; i < n; ++i) {
+    const float top = *std::max_element(scores[i], scores[i] + M);
+    factor[i] = 1.0f / job.rows->exp_shifted(scores[i], M, top);
+    std::fill(out[i], out[i] + D, 0.0f);
+  }
+  job.rows->WeightedSumsOfMany(scores, n, job.value + block, M, D, factor, out);
+}
+
+// Queries grouped by source (rows in order within one), and per head the chunks of each group.
+void PlanTasks(const CrossAttentionShape& s, Job* job) {
+  std::vector<int64_t> by_source(static_cast<size_t>(s.batch));
+  for (int64_t b = 0; b < s.batch; ++b) by_source[static_cast<size_t>(b)] = b;
+  const auto source = [&s](int64_t b) { return s.source ? int64_t{s.source[b]} : b; };
+  std::stable_sort(by_source.begin(), by_source.end(), [&](int64_t a, int64_t b) { return source(a) < source(b); });
+  std::vector<std::pair<int64_t, size_t>> groups;  // source, first query
+  for (int64_t b : by_source) {
+    if (groups.empty() || groups.back().first != source(b)) groups.emplace_back(source(b), job->queries.size());
+    for (int64_t t = 0; t < s.positions; ++t) job->queries.push_back(b * s.positions + t);
+  }
+  for (int64_t h = 0; h < s.heads; ++h)
+    for (size_t g = 0; g < groups.size(); ++g) {
+      const size_t end = g + 1 < groups.size() ? groups[g + 1].second : job->queries.size();
+      for (size_t first = groups[g].second; first < end; first += kQueriesPerTask)
+        job->tasks.push_back(
+            {groups[g].first, h, first, std::min<size_t>(static_cast<size_t>(kQueriesPerTask), end - first)});
+    }
 }
 
 }  // namespace
@@ -53,8 +94,11 @@ void CrossAttention(const CrossAttentionShape& s, CacheElement element, const fl
           static_cast<const unsigned char*>(value),
           CacheRowBytes(element, s.head_dim),
           out,
-          &rows};
-  RunTasks(parallel_for, parallel_context, AttendOne, &job, static_cast<size_t>(s.heads * s.batch * s.positions));
+          &rows,
+          {},
+          {}};
+  PlanTasks(s, &job);
+  RunTasks(parallel_for, parallel_context, AttendGroup, &job, job.tasks.size());
 }
 
 std::string ResolveCrossAttention(const CrossAttentionInputs& in, float scale, CrossAttentionShape* s,

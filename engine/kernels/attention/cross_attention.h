@@ -3,8 +3,9 @@
 // for the release network): the computation of the decoder's ai.silk CrossAttention op
 // (docs/model_contract.md). onnxruntime runs it as MatMul with a transposed key, Mul, Softmax and
 // MatMul, its batched small products reading the keys at a third of memory speed; this reads each
-// key and value row once per position and head. The rows are float32, or float16 in the silk form
-// of the cache variants (half the bytes of each call's cross reads; docs/model_contract.md).
+// key and value row once per head for all the queries that share its source (the candidates of one
+// mesh), up to 8 at a time. The rows are float32, or float16 in the silk form of the cache variants
+// (half the bytes of each call's cross reads; docs/model_contract.md).
 #pragma once
 #include <cstdint>
 #include <string>

@@ -15,10 +15,11 @@
 #define SILK_TARGET_AVX512F __attribute__((target("avx2,fma,f16c,avx512f")))
 
 // GCC 12's AVX-512 intrinsics pass _mm512_undefined_*() as the unused merge source, which its
-// -Wmaybe-uninitialized reports once inlined (fixed in later GCC); the values are never read. These
-// bracket the AVX-512 code of a file.
-#define SILK_AVX512_CODE_BEGIN \
-  _Pragma("GCC diagnostic push") _Pragma("GCC diagnostic ignored \"-Wmaybe-uninitialized\"")
+// -Wmaybe-uninitialized (or -Wuninitialized) reports once inlined (fixed in later GCC); the values
+// are never read. These bracket the AVX-512 code of a file.
+#define SILK_AVX512_CODE_BEGIN                                                               \
+  _Pragma("GCC diagnostic push") _Pragma("GCC diagnostic ignored \"-Wmaybe-uninitialized\"") \
+      _Pragma("GCC diagnostic ignored \"-Wuninitialized\"")
 #define SILK_AVX512_CODE_END _Pragma("GCC diagnostic pop")
 
 namespace silk {
