@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Int4MatMul: each activation row is quantized once to int8 groups of 32 (scale max|a| / 127),
-// then every weight row is one pass of integer dot products over its packed nibbles, scaled per
-// group, with the weight stream prefetched ahead; rows are spread over the caller's pool. With
+// Int4MatMul: each activation row is quantized once to int8 groups of 32 (scale max|a| / 127; the
+// rows of a call on the caller's pool, a row a task), then every weight row is one pass of integer
+// dot products over its packed nibbles, scaled per group, with the weight stream prefetched ahead;
+// weight rows are spread over the pool. With
 // AVX-512 VNNI, 16 groups at a time in group lanes (each group's dot product whole in one lane);
 // with AVX2, 64 weights a step in eight lanes; else plain C++.
 #include "kernels/quant/int4_matmul.h"
@@ -73,18 +74,33 @@ float GroupValuesScalar(const float* x, int32_t* values) {
   return top / 127.0f;
 }
 
-void QuantizeRow(const float* a, int64_t k, GroupValuesFn group_values, QuantizedRow* q) {
+// A group's values (in [-127, 127]) as int8, its even elements to `even` and odd ones to `odd`;
+// returns their sum.
+using SplitGroupFn = int32_t (*)(const int32_t* values, int8_t* even, int8_t* odd);
+
+int32_t SplitGroupScalar(const int32_t* values, int8_t* even, int8_t* odd) {
+  int32_t sum = 0;
+  for (int64_t i = 0; i < kGroup; ++i) {
+    const int8_t v = static_cast<int8_t>(values[i]);
+    int8_t* half = i % 2 ? odd : even;  // (as an lvalue, GCC 12's -O0 UBSan build computed a wild address)
+    half[i / 2] = v;
+    sum += v;
+  }
+  return sum;
+}
+
+// How a call quantizes its activation rows (the vectorized or the plain functions: the same values).
+struct GroupQuantizer {
+  GroupValuesFn values;
+  SplitGroupFn split;
+};
+
+void QuantizeRow(const float* a, int64_t k, const GroupQuantizer& quantizer, QuantizedRow* q) {
   const int64_t groups = k / kGroup;
   for (int64_t g = 0; g < groups; ++g) {
     alignas(32) int32_t values[kGroup];
-    const float scale = group_values(a + g * kGroup, values);
-    int32_t sum = 0;
-    for (int64_t i = 0; i < kGroup; ++i) {
-      const int8_t v = static_cast<int8_t>(values[i]);
-      int8_t* half = i % 2 ? q->odd : q->even;  // (as an lvalue, GCC 12's -O0 UBSan build computed a wild address)
-      half[g * 16 + i / 2] = v;
-      sum += v;
-    }
+    const float scale = quantizer.values(a + g * kGroup, values);
+    const int32_t sum = quantizer.split(values, q->even + g * 16, q->odd + g * 16);
     q->scale[g] = scale;
     for (int j = 0; j < 4; ++j) q->lane_scale[g * 4 + j] = scale;
     q->offset[g * 4] = -8 * sum;
@@ -135,26 +151,27 @@ constexpr int64_t GroupOfLane(int64_t lane) { return 4 * (lane % 4) + lane / 4; 
 class GroupLaneRows {
  public:
   static constexpr int64_t kBlockBytes = 640;
-  GroupLaneRows(const QuantizedRows& rows, int64_t m, int64_t k)
+  GroupLaneRows(int64_t m, int64_t k)
       : blocks_((k / kGroup + kLaneGroups - 1) / kLaneGroups),
+        groups_(k / kGroup),
         bytes_(static_cast<size_t>(m * blocks_ * kBlockBytes + 64)) {
     base_ = bytes_.data() + (64 - reinterpret_cast<uintptr_t>(bytes_.data()) % 64) % 64;
-    const int64_t groups = k / kGroup;
-    for (int64_t r = 0; r < m; ++r)
-      for (int64_t b = 0; b < blocks_; ++b) {
-        unsigned char* block = Block(r, b);
-        for (int64_t lane = 0; lane < kLaneGroups; ++lane) {
-          const int64_t g = b * kLaneGroups + GroupOfLane(lane);
-          if (g >= groups) continue;
-          const QuantizedRow& q = rows[r];
-          for (int kk = 0; kk < 4; ++kk) {
-            std::memcpy(block + kk * 64 + lane * 4, q.even + g * 16 + 4 * kk, 4);
-            std::memcpy(block + 256 + kk * 64 + lane * 4, q.odd + g * 16 + 4 * kk, 4);
-          }
-          std::memcpy(block + 512 + lane * 4, q.offset + g * 4, 4);
-          std::memcpy(block + 576 + lane * 4, q.scale + g, 4);
+  }
+  // Row r's blocks from its quantized values (rows are independent: filled in parallel).
+  void Fill(const QuantizedRow& q, int64_t r) {
+    for (int64_t b = 0; b < blocks_; ++b) {
+      unsigned char* block = Block(r, b);
+      for (int64_t lane = 0; lane < kLaneGroups; ++lane) {
+        const int64_t g = b * kLaneGroups + GroupOfLane(lane);
+        if (g >= groups_) continue;
+        for (int kk = 0; kk < 4; ++kk) {
+          std::memcpy(block + kk * 64 + lane * 4, q.even + g * 16 + 4 * kk, 4);
+          std::memcpy(block + 256 + kk * 64 + lane * 4, q.odd + g * 16 + 4 * kk, 4);
         }
+        std::memcpy(block + 512 + lane * 4, q.offset + g * 4, 4);
+        std::memcpy(block + 576 + lane * 4, q.scale + g, 4);
       }
+    }
   }
   // Row r's block b: lo[4][64], hi[4][64], offsets[16] (int32), scales[16] (float).
   const unsigned char* Block(int64_t r, int64_t b) const { return base_ + (r * blocks_ + b) * kBlockBytes; }
@@ -162,7 +179,7 @@ class GroupLaneRows {
 
  private:
   unsigned char* Block(int64_t r, int64_t b) { return base_ + (r * blocks_ + b) * kBlockBytes; }
-  int64_t blocks_;
+  int64_t blocks_, groups_;
   std::vector<unsigned char> bytes_;  // zeros where no group is
   unsigned char* base_;
 };
@@ -212,6 +229,27 @@ SILK_AVX2 float GroupValuesAvx2(const float* x, int32_t* values) {
     _mm256_store_si256(reinterpret_cast<__m256i*>(values + 8 * i), _mm256_cvtps_epi32(r));
   }
   return peak / 127.0f;
+}
+
+// SplitGroupScalar's bytes and sum: the 32 values packed to int8 in order (no value saturates),
+// then the even bytes of each 128-bit lane gathered before the odd ones.
+SILK_AVX2 int32_t SplitGroupAvx2(const int32_t* values, int8_t* even, int8_t* odd) {
+  const __m256i* v = reinterpret_cast<const __m256i*>(values);
+  const __m256i a = _mm256_load_si256(v), b = _mm256_load_si256(v + 1), c = _mm256_load_si256(v + 2),
+                d = _mm256_load_si256(v + 3);
+  const __m256i sums = _mm256_add_epi32(_mm256_add_epi32(a, b), _mm256_add_epi32(c, d));
+  __m128i t = _mm_add_epi32(_mm256_castsi256_si128(sums), _mm256_extracti128_si256(sums, 1));
+  t = _mm_add_epi32(t, _mm_shuffle_epi32(t, 0x4e));
+  t = _mm_add_epi32(t, _mm_shuffle_epi32(t, 0xb1));
+  // packs interleave the 128-bit lanes: dwords a0-3 b0-3 c0-3 d0-3 | a4-7 b4-7 c4-7 d4-7, put back in order
+  __m256i x = _mm256_packs_epi16(_mm256_packs_epi32(a, b), _mm256_packs_epi32(c, d));
+  x = _mm256_permutevar8x32_epi32(x, _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7));
+  const __m256i evens_first = _mm256_setr_epi8(0, 2, 4, 6, 8, 10, 12, 14, 1, 3, 5, 7, 9, 11, 13, 15, 0, 2, 4, 6, 8, 10,
+                                               12, 14, 1, 3, 5, 7, 9, 11, 13, 15);
+  x = _mm256_permute4x64_epi64(_mm256_shuffle_epi8(x, evens_first), _MM_SHUFFLE(3, 1, 2, 0));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(even), _mm256_castsi256_si128(x));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(odd), _mm256_extracti128_si256(x, 1));
+  return _mm_cvtsi128_si32(t);
 }
 
 // Two groups per step: 32 packed bytes against 32 even and 32 odd activations; maddubs + madd
@@ -375,12 +413,12 @@ SILK_AVX512 void GroupLanesAvx512(const Int4MatMulShape& s, const GroupLaneRows&
 SILK_AVX512_CODE_END
 #endif
 
-GroupValuesFn PickGroupValues(RowKernels kernels) {
+GroupQuantizer PickQuantizer(RowKernels kernels) {
 #ifdef SILK_KERNELS_X86
-  if (kernels != RowKernels::kScalar && CpuHasAvx2()) return GroupValuesAvx2;
+  if (kernels != RowKernels::kScalar && CpuHasAvx2()) return {GroupValuesAvx2, SplitGroupAvx2};
 #endif
   (void)kernels;
-  return GroupValuesScalar;
+  return {GroupValuesScalar, SplitGroupScalar};
 }
 
 using RowsFn = void (*)(const Int4MatMulShape&, const QuantizedRow&, const uint8_t*, const float*, int64_t, int64_t,
@@ -468,6 +506,22 @@ void RunTask(void* state, size_t index) {
   }
 }
 
+// Activation row `index`: its int8 groups, and its group-lane blocks when the call uses them.
+struct PrepareJob {
+  const Int4MatMulShape* shape;
+  const float* a;
+  GroupQuantizer quantizer;
+  QuantizedRows* rows;
+  GroupLaneRows* lanes;  // null: no group lanes
+};
+
+void PrepareRow(void* state, size_t index) {
+  const PrepareJob& job = *static_cast<const PrepareJob*>(state);
+  const int64_t m = static_cast<int64_t>(index), k = job.shape->k;
+  QuantizeRow(job.a + m * k, k, job.quantizer, job.rows->row(m));
+  if (job.lanes) job.lanes->Fill((*job.rows)[m], m);
+}
+
 }  // namespace
 
 bool Int4ShapeSupported(const Int4MatMulShape& s, const char** why) {
@@ -484,7 +538,7 @@ bool Int4ShapeSupported(const Int4MatMulShape& s, const char** why) {
 }
 
 void QuantizeInt4Activations(const float* a, int64_t k, int8_t* values, float* scales, RowKernels kernels) {
-  const GroupValuesFn group_values = PickGroupValues(kernels);
+  const GroupValuesFn group_values = PickQuantizer(kernels).values;
   for (int64_t g = 0; g < k / kGroup; ++g) {
     alignas(32) int32_t v[kGroup];
     scales[g] = group_values(a + g * kGroup, v);
@@ -496,19 +550,21 @@ void Int4MatMul(const Int4MatMulShape& s, const float* a, const uint8_t* packed,
                 ParallelForFn parallel_for, void* parallel_context, RowKernels kernels) {
   if (s.m == 0) return;
   QuantizedRows rows(s.m, s.k);
-  const GroupValuesFn group_values = PickGroupValues(kernels);
-  for (int64_t m = 0; m < s.m; ++m) QuantizeRow(a + m * s.k, s.k, group_values, rows.row(m));
   Job job{&s, &rows, packed, scales, out, PickRows(s, kernels), {}, nullptr, nullptr, {}};
   std::unique_ptr<GroupLaneRows> lanes;
   std::unique_ptr<LaneScales> lane_scales;
   if (PickLanes(kernels, 1)) {  // one row and many alike: a row's bits do not depend on the batch
-    lanes = std::make_unique<GroupLaneRows>(rows, s.m, s.k);
+    lanes = std::make_unique<GroupLaneRows>(s.m, s.k);
     lane_scales = std::make_unique<LaneScales>(s, lanes->blocks());
     job.lanes = lanes.get(), job.lane_scales = lane_scales.get();
     for (int64_t r = 1; r <= kMaxLaneRows; ++r) job.lane_fns[r - 1] = PickLanes(kernels, r);
   } else if (s.m > 1) {  // one row (a single sequence's step) keeps the one-row kernel
     for (int64_t r = 1; r <= kMaxBatchRows; ++r) job.batch[r - 1] = PickBatch(s, kernels, r);
   }
+  // The activation rows quantized (and laid out in group lanes) on the pool, a row a task: with
+  // 8 rows this was a tenth of a release decoder call on one thread while the others waited.
+  PrepareJob prepare{&s, a, PickQuantizer(kernels), &rows, lanes.get()};
+  RunTasks(parallel_for, parallel_context, PrepareRow, &prepare, static_cast<size_t>(s.m));
   RunTasks(parallel_for, parallel_context, RunTask, &job, static_cast<size_t>((s.n + kRowsPerTask - 1) / kRowsPerTask));
 }
 
