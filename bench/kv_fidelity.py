@@ -163,6 +163,14 @@ def measure(
     return result
 
 
+def report(result: dict, path: Path | None) -> None:
+    """The result as JSON on stdout, and into `path` when given."""
+    text = json.dumps(result, indent=1)
+    if path:
+        path.write_text(text + "\n")
+    print(text)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("model", type=Path)
@@ -188,11 +196,7 @@ def main() -> int:
         raise SystemExit(f"--reference {a.reference}: needs one decoder key and a file in {a.model}")
     paths = a.tokens or [SHARED / "spec" / "golden-dev" / f"{n}.tokens.txt" for n in DEFAULT_TOKENS]
     sequences = {p.name.split(".")[0]: read_tokens(p)[: a.max_len - 1] for p in paths}
-    res = measure(a.model, decoders, a.kv, sequences, a.points, a.chunk, a.threads, a.reference)
-    text = json.dumps(res, indent=1)
-    if a.json:
-        a.json.write_text(text + "\n")
-    print(text)
+    report(measure(a.model, decoders, a.kv, sequences, a.points, a.chunk, a.threads, a.reference), a.json)
     return 0
 
 

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from kv_fidelity import SHARED, cloud, compare, read_tokens, variant_file
+from kv_fidelity import SHARED, cloud, compare, read_tokens, report, variant_file
 
 from silk_export.onnx.decode import session  # noqa: E402  (kv_fidelity puts export/ on the path)
 
@@ -89,8 +89,11 @@ def measure(model: Path, key: str, kv: str, seqs: dict[str, list[int]], points: 
         diff = float(np.abs(alone - together[r]).max())
         worst = max(worst, diff)
         identical += int(np.array_equal(alone, together[r]))
-        print(f"  {key} {kv} {name}: top-1 {a.mean():.4f} (decided {a[dec].mean():.4f} of {dec.sum()}), "
-              f"max |d| {diff:.3g}", flush=True)
+        print(
+            f"  {key} {kv} {name}: top-1 {a.mean():.4f} (decided {a[dec].mean():.4f} of {dec.sum()}), "
+            f"max |d| {diff:.3g}",
+            flush=True,
+        )
     a, dec = np.concatenate(agree), np.concatenate(decided)
     return {
         "file": file,
@@ -134,10 +137,7 @@ def main() -> int:
     result = {"model": str(a.model), "kv": a.kv, "decoders": {}}
     for key in a.decoders:
         result["decoders"][key] = measure(a.model, key, a.kv, seqs, a.points, a.threads)
-    text = json.dumps(result, indent=1)
-    if a.json:
-        a.json.write_text(text + "\n")
-    print(text)
+    report(result, a.json)
     return 0
 
 
