@@ -363,10 +363,10 @@ int Run(const Args& a, uint64_t seed) {
                  st.seconds_total, st.edge_manifold ? "yes" : "no", st.vertex_manifold ? "yes" : "no",
                  st.consistently_oriented ? "yes" : "no", st.watertight ? "yes" : "no");
   if (!a.quiet && st.parts_flipped > 0)
-    std::fprintf(
-        stderr,
-        "silkgen: %d of %d part(s) reversed to face the input's normals (--orient tokens keeps the ids' winding)\n",
-        st.parts_flipped, st.components);
+    std::fprintf(stderr,
+                 "silkgen: %d surface patch(es) reversed to face the input's normals (--orient tokens keeps the ids' "
+                 "winding)\n",
+                 st.parts_flipped);
   if (!a.quiet && (st.candidates > 1 || st.guided_tokens > 0))
     std::fprintf(stderr,
                  "silkgen: candidate %d of %d written (Chamfer %.4f); guidance: %lld vertex ids, %lld fallbacks\n",

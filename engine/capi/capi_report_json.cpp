@@ -131,6 +131,7 @@ Json TraceJson(const silk_generator& g) {
       for (const auto& [id, amount] : s.penalties) pen.push_back({id, static_cast<double>(amount)});
       step["penalties"] = pen;
     }
+    if (s.face != FaceVerdict::kNotJudged) step["face"] = s.face == FaceVerdict::kFallback ? "fallback" : "passed";
     steps.push_back(step);
   }
   j["steps"] = steps;

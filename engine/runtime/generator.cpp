@@ -100,6 +100,7 @@ struct Generator::StepChoice {
   bool forced = false;
   const TokenMask* mask = nullptr;
   const std::vector<std::pair<int32_t, float>>* penalties = nullptr;  // soft face guidance
+  FaceVerdict face = FaceVerdict::kNotJudged;                         // face guidance's verdict
 };
 
 // One generation in progress: the encoder output and the decoder runner over the KV cache (none in
@@ -371,6 +372,7 @@ bool Generator::ConsultGrammar(StepChoice* c) {
   c->id = narrowed.forced;
   c->mask = narrowed.mask;
   c->penalties = narrowed.penalties;
+  c->face = narrowed.face;
   if (c->mask->Empty()) {
     // Cannot happen if the grammar's liveness guarantee holds; stop with what is closed
     // rather than fail the whole run, and say so in the stats.
@@ -423,6 +425,7 @@ void Generator::RecordTrace(const StepChoice& c) {
   step.forced = c.forced;
   if (!c.forced && c.mask) step.legal = MaskRanges(*c.mask);
   if (!c.forced && c.penalties) step.penalties = *c.penalties;
+  step.face = c.face;
   s.res.trace.push_back(std::move(step));
 }
 

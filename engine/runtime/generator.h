@@ -85,6 +85,7 @@ struct TraceStep {
   bool forced = false;
   std::vector<std::pair<int32_t, int32_t>> legal;
   std::vector<std::pair<int32_t, float>> penalties;  // soft face guidance: (id, logit penalty)
+  FaceVerdict face = FaceVerdict::kNotJudged;        // face guidance: passed, fallback or not judged
 };
 
 struct GenerateResult {

@@ -163,10 +163,11 @@ def _orient_both(gen, src, seed):
 
 
 def test_orientation_reverses_whole_parts_in_the_preview_and_the_result():
-    """orient="input" (the default) against orient="tokens" with the bundled model (several parts):
-    the same ids; the result's faces are the tokens' faces, some parts reversed (as many as the
-    stats say); and the step-wise preview at the end equals the result, i.e. it is oriented too.
-    Seeds 0.. until one run reverses a part (eight without one is a failure)."""
+    """orient="input" (the default) against orient="tokens" with the bundled model (several parts,
+    many surface patches): the same ids; the result's faces are the tokens' faces, some patches
+    reversed (some when the stats say so); and the step-wise preview at the end equals the result,
+    i.e. it is oriented too. Seeds 0.. until one run reverses a patch (eight without one is a
+    failure)."""
     default = REPO_ROOT / "models/default"
     with (
         silk_mesh.Model(default, threads=1) as model,
@@ -183,7 +184,7 @@ def test_orientation_reverses_whole_parts_in_the_preview_and_the_result():
             reversed_ = np.all(t_tri[:, [0, 2, 1]] == i_tri, axis=1)
             assert np.all(same | reversed_)
             assert reversed_.any() == (i_stats["parts_flipped"] >= 1), seed
-            # Whole parts: faces sharing a vertex are reversed together.
+            # Whole patches: faces sharing a vertex (one fan, one patch) are reversed together.
             flipped_vertices = set(i_tri[reversed_].ravel().tolist())
             assert not flipped_vertices & set(i_tri[same].ravel().tolist())
             assert np.array_equal(p_tri, i_tri)  # the preview of the finished run is the oriented result

@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import shutil
 import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -206,3 +207,23 @@ def test_kv_commands_keep_a_v4_folder_v4(folder, tmp_path):
         inputs = [i.name for i in onnx.load(str(m / "decoder.int4.kv8.onnx")).graph.input]
         assert (NEW_POSITIONS in inputs) == (version == 4)
         assert json.loads((m / "model.json").read_text())["model_version"] == version
+
+
+def test_int4_quantizes_only_whole_blocks(tmp_path):
+    """quantize_decoder_int4 leaves fp32 every weight MatMul whose K is not a whole number of
+    32-blocks (onnxruntime's MatMulNBits pads them, and on AVX2 without AVX-512 its batch rows
+    differ from each row alone), and quantizes the others: the repository's tiny test model
+    (d_model 16) has both kinds."""
+    src_path = Path(__file__).resolve().parents[2] / "tests/models/tiny/decoder.onnx"
+    quantize_decoder_int4(src_path, tmp_path / "decoder.int4.onnx")
+    src = onnx.load(str(src_path))
+    shapes = {i.name: list(i.dims) for i in src.graph.initializer}
+    weights = [n for n in src.graph.node if n.op_type == "MatMul" and len(shapes.get(n.input[1], [])) == 2]
+    ks = [shapes[n.input[1]][0] for n in weights]
+    assert any(k % 32 for k in ks) and any(k % 32 == 0 for k in ks), ks
+    q = onnx.load(str(tmp_path / "decoder.int4.onnx"))
+    attrs = [{a.name: a.i for a in n.attribute} for n in q.graph.node if n.op_type == "MatMulNBits"]
+    assert attrs and all(a["K"] % 32 == 0 for a in attrs)
+    q_shapes = {i.name: list(i.dims) for i in q.graph.initializer}
+    kept = [q_shapes[n.input[1]][0] for n in q.graph.node if n.op_type == "MatMul" and n.input[1] in q_shapes]
+    assert sorted(k for k in kept if k % 32) == sorted(k for k in ks if k % 32)

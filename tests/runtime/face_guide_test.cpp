@@ -181,8 +181,10 @@ bool Judged(Grammar& g, int32_t id) {
       return k;
     case GrammarPhase::kWantO:
       return id >= vocab::kOBegin && id < vocab::kOEnd;
+    case GrammarPhase::kWantS:
+      return id >= vocab::kSBegin && id < vocab::kSEnd;
     case GrammarPhase::kAfterS:
-      return b;
+      return b || (id >= vocab::kXBegin && id < vocab::kXEnd);
     case GrammarPhase::kAfterB:
       return b || k;
     default:
@@ -204,7 +206,8 @@ std::vector<float> WalkPoints(const Grammar& g) {
 
 struct WalkTally {
   int64_t exact_steps = 0, removed = 0, passing = 0, penalised = 0;
-  int64_t folded = 0;  // ids a fold scores worst, past 1
+  int64_t folded = 0;           // ids a fold scores worst, past 1
+  int64_t windows_removed = 0;  // S ids hard guidance removed (each with a later row linked twice)
 };
 
 // Where only B ids are judged (a row's first B): the stage's mask (hard) or penalties (soft) equal
@@ -219,6 +222,8 @@ void CheckFirstBExactly(const Grammar& replay, const TokenMask& legal, const Sam
     best = std::min(best, s.score);
     t->folded += s.score > std::max(1.0, s.without_folds) ? 1 : 0;
   }
+  // The trace's verdict: a fallback exactly when no legal B id passes (a rounding tie: either).
+  if (std::fabs(best - 1) >= 1e-9) EXPECT_EQ(c.face, best <= 1 ? FaceVerdict::kPassed : FaceVerdict::kFallback) << best;
   if (mode == FaceGuidance::kHard) {
     const double keep = best <= 1 ? 1.0 : best * 1.25;
     for (const auto& [score, b] : brute) {
@@ -238,6 +243,26 @@ void CheckFirstBExactly(const Grammar& replay, const TokenMask& legal, const Sam
     ++k, ++t->penalised;
   }
   EXPECT_EQ(k, c.penalties->size());
+}
+
+// A window step (hard): a window that links no later row to a second row (each row it reaches
+// has no earlier link) closes no face and stays; the empty window always stays. Counts removals.
+void CheckWindows(const Grammar& replay, const TokenMask& legal, const TokenMask& guided, WalkTally* t) {
+  const auto& vs = replay.stream().components.back().layers.back().vertices;
+  const int32_t b = static_cast<int32_t>(vs.size()) - 1;
+  auto linked = [&](int32_t a, int32_t j) {
+    const int32_t d = j - a;
+    if (d <= vocab::k_self_window) return ((vs[a].window >> (d - 1)) & 1) != 0;
+    return std::find(vs[a].extras.begin(), vs[a].extras.end(), d - 1) != vs[a].extras.end();
+  };
+  for (int32_t id = legal.Next(vocab::kSBegin); id >= 0 && id < vocab::kSEnd; id = legal.Next(id + 1)) {
+    bool second_link = false;
+    for (int32_t d = 1; d <= vocab::k_self_window; ++d)
+      if (((id - vocab::kSBegin) >> (d - 1)) & 1)
+        for (int32_t a = 0; a < b && !second_link; ++a) second_link = linked(a, b + d);
+    if (!second_link) EXPECT_TRUE(guided.Test(id)) << "window " << id - vocab::kSBegin;
+    t->windows_removed += guided.Test(id) ? 0 : 1;
+  }
 }
 
 // Every step of random legal walks. Where only B ids are judged (a row's first B), the stage's
@@ -272,6 +297,7 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
       stage->Apply(&c);
       judged_steps += any_judged ? 1 : 0;
       if (!any_judged) {
+        EXPECT_EQ(c.face, FaceVerdict::kNotJudged);
         EXPECT_EQ(c.mask, &legal);
         EXPECT_EQ(c.penalties, nullptr);
       } else if (mode == FaceGuidance::kHard) {
@@ -283,6 +309,7 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
           }
         }
         narrowed_positions += replay.phase() == GrammarPhase::kWantO && c.mask->Count() < legal.Count() ? 1 : 0;
+        if (replay.phase() == GrammarPhase::kWantS) CheckWindows(replay, legal, *c.mask, &t);
       } else {
         EXPECT_EQ(c.mask, &legal);
         ASSERT_NE(c.penalties, nullptr);
@@ -308,6 +335,7 @@ TEST(FaceGuide, StageMatchesTheEdgeGraphOnRandomWalks) {
   EXPECT_GT(t.folded, 0);   // folds decide some ids
   EXPECT_GT(fallbacks, 0);  // and steps where none did
   EXPECT_GT(narrowed_positions, 0);
+  EXPECT_GT(t.windows_removed, 0);  // windows judged by the later rows they link
 }
 
 GenerateOptions Options(uint64_t seed) {

@@ -99,6 +99,26 @@ def reference(repo, trace, tok):
     return p.returncode, (p.stdout + p.stderr).strip()
 
 
+def face_steps(silkgen, repo, name, trace):
+    """scripts/face_step_check.py over a hard-guided trace: it must match the decoded vertices to
+    the ids and class every face, some by a step guidance passed."""
+    import os
+
+    env = dict(os.environ, PYTHONPATH=str(repo / "bindings/python"))
+    env["SILK_LIBRARY"] = str(pathlib.Path(silkgen).resolve().parent.parent / "engine/libsilk.so")
+    p = subprocess.run(
+        [sys.executable, repo / "scripts/face_step_check.py", trace],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
+    rows = [line for line in p.stdout.splitlines() if line.startswith("| ") and not line.startswith("| deciding")]
+    if p.returncode != 0 or not any("passed" in r for r in rows):
+        return [f"{name}: face_step_check.py ({p.returncode}): {(p.stdout + p.stderr).strip()[-300:]}"]
+    return []
+
+
 def check_golden(silkgen, repo, update, what=(".tokens.txt",)):
     gold = repo / "tests/models/golden"
     failures = []
@@ -173,8 +193,14 @@ def check_reference(silkgen, repo):
             print(f"{name}: {msg}")
             if rc != 0:
                 failures.append(f"{name} ({' '.join(extra)}): {msg}")
-            if "soft" in extra and not any(st.get("penalties") for st in json.loads(trace.read_text())["steps"]):
+            steps = json.loads(trace.read_text())["steps"]
+            if "soft" in extra and not any(st.get("penalties") for st in steps):
                 failures.append(f"{name}: soft face guidance left no logit penalty in the trace (nothing checked)")
+            verdicts = {st.get("face") for st in steps if not st["forced"]} - {None}
+            if ("hard" in extra or "soft" in extra) != bool(verdicts) or not verdicts <= {"passed", "fallback"}:
+                failures.append(f"{name}: face guidance verdicts in the trace: {sorted(verdicts)}")
+            if "hard" in extra:  # scripts/face_step_check.py reads the same trace (ids in reading order)
+                failures += face_steps(silkgen, repo, name, trace)
     return failures
 
 
@@ -394,9 +420,31 @@ def encoder_points(path):
     return rows[:, :3], normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
 
 
+def patches(faces):
+    """Each face's surface patch (faces joined by shared edges: the unit --orient input turns)."""
+    parent = list(range(len(faces)))
+
+    def find(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    first = {}
+    for i, f in enumerate(faces):
+        for k in range(3):
+            e = tuple(sorted((int(f[k]), int(f[(k + 1) % 3]))))
+            if e in first:
+                parent[find(i)] = find(first[e])
+            else:
+                first[e] = i
+    return [find(i) for i in range(len(faces))]
+
+
 def compare_parts(tag, tparts, iparts, s_points, s_normal, failures):
-    """Each part of the --orient input run against the same part of the --orient tokens run: kept or
-    wholly reversed. Returns (parts reversed, each part's area-weighted vote against the input's normals)."""
+    """Each surface patch of each part of the --orient input run against the same faces of the
+    --orient tokens run: kept or wholly reversed. Returns (patches reversed, each patch's
+    area-weighted vote against the input's normals)."""
     import numpy as np
 
     reversed_parts, votes = 0, []
@@ -407,35 +455,38 @@ def compare_parts(tag, tparts, iparts, s_points, s_normal, failures):
         # The GLB numbers each part's vertices by first use, so compare corner positions.
         pt, pi = tv[tf], iv[i_f]  # [faces, 3 corners, xyz]
 
-        def cyclic_equal(x, y):  # every face of x is the same face of y up to a rotation of corners
-            return bool(np.all(np.any([np.all(np.roll(y, r, axis=1) == x, axis=(1, 2)) for r in range(3)], axis=0)))
+        def cyclic_equal(x, y):  # per face: x is the same face as y up to a rotation of corners
+            return np.any([np.all(np.roll(y, r, axis=1) == x, axis=(1, 2)) for r in range(3)], axis=0)
 
-        same = cyclic_equal(pi, pt)
-        rev = cyclic_equal(pi, pt[:, [0, 2, 1]])
-        if not (same or rev):
-            failures.append(f"{tag}: part {k} is neither kept nor wholly reversed")
-        reversed_parts += int(rev and not same)
-        # Independent vote: area-weighted agreement with the normal of the reference point
-        # nearest to each face's centroid.
-        cross = np.cross(iv[i_f[:, 1]] - iv[i_f[:, 0]], iv[i_f[:, 2]] - iv[i_f[:, 0]])
-        cen = iv[i_f].mean(axis=1)
-        near = np.argmin(((cen[:, None, :] - s_points[None, :, :]) ** 2).sum(-1), axis=1)
-        votes.append(0.5 * float(np.einsum("ij,ij->i", cross, s_normal[near]).sum()))
+        same, rev = cyclic_equal(pi, pt), cyclic_equal(pi, pt[:, [0, 2, 1]])
+        patch = np.array(patches(i_f))
+        for p in np.unique(patch):
+            on = patch == p
+            if not (np.all(same[on]) or np.all(rev[on])):
+                failures.append(f"{tag}: part {k}: a patch is neither kept nor wholly reversed")
+            reversed_parts += int(np.all(rev[on]) and not np.all(same[on]))
+            # Independent vote: area-weighted agreement with the normal of the reference point
+            # nearest to each face's centroid.
+            f_on = i_f[on]
+            cross = np.cross(iv[f_on[:, 1]] - iv[f_on[:, 0]], iv[f_on[:, 2]] - iv[f_on[:, 0]])
+            cen = iv[f_on].mean(axis=1)
+            near = np.argmin(((cen[:, None, :] - s_points[None, :, :]) ** 2).sum(-1), axis=1)
+            votes.append(0.5 * float(np.einsum("ij,ij->i", cross, s_normal[near]).sum()))
     return reversed_parts, votes
 
 
 def check_orient(silkgen, repo):
-    """--orient input vs tokens with the bundled model (several parts per mesh), per GLB node. The
-    independent vote (numpy) is taken against the input's normals at the encoder's points, the
-    reference libsilk orients by: this small model's parts lie across the surface, so their votes
-    are near ties (|vote| a few % of the part's area) whose sign other samples of the same surface
-    can turn."""
+    """--orient input vs tokens with the bundled model (several parts per mesh), per surface patch
+    of each GLB node. The independent vote (numpy) is taken against the input's normals at the
+    encoder's points, the reference libsilk orients by: this small model's patches lie across the
+    surface, so their votes are near ties (|vote| a few % of the patch's area) whose sign other
+    samples of the same surface can turn."""
     failures, flipped_total = [], 0
     src = repo / "samples/torus_knot.obj"
     plain = [a for a in COMMON if a not in ("--orient", "tokens", "--max-tokens", "300")]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
-        # At least three seeds, and on until one reverses a part (a model whose parts mostly face
+        # At least three seeds, and on until one reverses a patch (a model whose patches mostly face
         # the right way still leaves some to turn; eight seeds without one is a failure below).
         for seed in range(8):
             if seed >= 3 and flipped_total > 0:
@@ -476,18 +527,18 @@ def check_orient(silkgen, repo):
             s_points, s_normal = encoder_points(tmp / "input.ply")
             reversed_parts, votes = compare_parts(tag, tparts, iparts, s_points, s_normal, failures)
             if reversed_parts != ist["parts_flipped"]:
-                failures.append(f"{tag}: {reversed_parts} parts reversed, stats say {ist['parts_flipped']}")
+                failures.append(f"{tag}: {reversed_parts} patches reversed, stats say {ist['parts_flipped']}")
             flipped_total += reversed_parts
             total = sum(abs(x) for x in votes)
             against = sum(-x for x in votes if x < 0)
             print(
-                f"{tag}: {reversed_parts} of {len(iparts)} parts reversed; parts facing against the input's "
+                f"{tag}: {reversed_parts} of {len(votes)} patches reversed; patches facing against the input's "
                 f"normals now hold {against / max(total, 1e-300):.1%} of the area-weighted vote"
             )
             if against > 0.05 * total:
-                failures.append(f"{tag}: parts holding {against / total:.1%} of the vote still face inward")
+                failures.append(f"{tag}: patches holding {against / total:.1%} of the vote still face inward")
     if flipped_total == 0:
-        failures.append("no part was reversed on eight seeds: the check exercised nothing")
+        failures.append("no patch was reversed on eight seeds: the check exercised nothing")
     return failures
 
 

@@ -669,7 +669,7 @@ typedef struct silk_generate_stats {
   int32_t chosen_candidate; /* index of the returned one (the report JSON lists every seed and score);
                                during a step-wise run: the one in progress */
   double score;             /* returned mesh: symmetric Chamfer distance to the encoder's points, model frame */
-  int32_t parts_flipped;    /* parts reversed to face the input's normals (params.orient) */
+  int32_t parts_flipped;    /* surface patches (faces joined by edges) turned to face the input (params.orient) */
   /* ---- timings (measurement; seconds, wall clock) ---- */
   double tokens_per_second;
   double seconds_prepare, seconds_encoder, seconds_decoder, seconds_grammar, seconds_sampling, seconds_build_mesh,

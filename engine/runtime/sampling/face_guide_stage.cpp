@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Face guidance's stages (runtime/sampling/face_guide_stage.h): the faces each legal B id would
-// close, scored by FaceGuide, turned into a narrower mask (hard) or logit penalties (soft).
+// Face guidance's stages (runtime/sampling/face_guide_stage.h): the faces each legal B id,
+// position or in-layer link would close, scored by FaceGuide, turned into a narrower mask (hard)
+// or logit penalties (soft).
 #include "runtime/sampling/face_guide_stage.h"
 
 #include <algorithm>
@@ -45,8 +46,8 @@ class FaceGuideStage : public SamplerStage {
   void Apply(SamplerCandidates* c) override {
     if (c->forced >= 0) return;
     const GrammarPhase phase = grammar_->phase();
-    if (phase != GrammarPhase::kWantK && phase != GrammarPhase::kWantO && phase != GrammarPhase::kAfterS &&
-        phase != GrammarPhase::kAfterB)
+    if (phase != GrammarPhase::kWantK && phase != GrammarPhase::kWantO && phase != GrammarPhase::kWantS &&
+        phase != GrammarPhase::kAfterS && phase != GrammarPhase::kAfterB)
       return;
     if (!PrepareLayer()) return;
     const auto t0 = Clock::now();
@@ -55,12 +56,16 @@ class FaceGuideStage : public SamplerStage {
       ScoreOffsets(*c->mask);
     } else if (phase == GrammarPhase::kWantK) {
       ScoreBlocks(*c->mask);  // a layer's first vertex
+    } else if (phase == GrammarPhase::kWantS) {
+      ScoreLinks(*c->mask);  // the window
     } else {
       PrepareVertex();
       ScoreBetween(*c->mask);
       ScoreBlocks(*c->mask);  // after a B, the next vertex's block is legal too
     }
-    if (!scored_.empty()) Decide(c);
+    const size_t links = scored_.size();
+    if (phase == GrammarPhase::kAfterS) ScoreLinks(*c->mask);  // X ids, beside the B ids
+    if (!scored_.empty()) Decide(c, links == 0 ? scored_.size() : links);
     stats_->seconds.face_guidance += std::chrono::duration<double>(Clock::now() - t0).count();
   }
 
@@ -78,11 +83,14 @@ class FaceGuideStage : public SamplerStage {
   void ScoreOffsets(const TokenMask& mask);
   void ScoreBlocks(const TokenMask& mask);
   void PreparePosition(int32_t b, const QVec& centre);
+  void NearColumns(const QVec& centre);
   void PrepareInLayerFolds(int32_t b);
   double InLayerFolds(const QVec& p, double enough) const;
   double ColumnFaces(const QVec& p, int32_t c, double enough) const;
   double PositionScore(const QVec& p, bool interior_only, double enough);
-  void Decide(SamplerCandidates* c);
+  void ScoreLinks(const TokenMask& mask);
+  double LaterRow(int32_t d);
+  void Decide(SamplerCandidates* c, size_t main_end);
 
   const FaceGuide* guide_;
   FaceGuidance mode_;
@@ -127,6 +135,10 @@ class FaceGuideStage : public SamplerStage {
   std::vector<std::array<int32_t, 3>> col_faces_;  // (a, c, end of its apexes in col_apex_)
   std::vector<QVec> col_apex_;
   int32_t blocks_vertex_ = -1;  // the row whose block scores block_score_ holds
+  // S and X ids (per vertex, row links_vertex_): each later row b + d's best position score with
+  // the links already stated to it and one from row b, LaterRow; index d.
+  int32_t links_vertex_ = -1;
+  std::vector<double> later_ = std::vector<double>(vocab::k_layer_vertex_limit + 1, kUnscored);
   std::vector<double> block_score_ = std::vector<double>(512, kUnscored);
   std::vector<std::pair<int32_t, float>> penalties_;
   TokenMask guided_;
@@ -151,6 +163,7 @@ bool FaceGuideStage::PrepareLayer() {
   vertex_ = -1;
   blocks_vertex_ = -1;
   folds_vertex_ = -1;
+  links_vertex_ = -1;
   LoadPreviousLayer();
   return layer_ok_;
 }
@@ -370,7 +383,6 @@ void FaceGuideStage::ScoreBetween(const TokenMask& mask) {
 // stated an edge to it, the pairs of those rows joined to each other, and the previous layer's
 // kNearColumns vertices nearest `centre` (its first B joins one of them).
 void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
-  constexpr size_t kNearColumns = 4;
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   linked_rows_.clear();
   linked_pairs_.clear();
@@ -380,6 +392,12 @@ void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
     for (size_t j = i + 1; j < linked_rows_.size(); ++j)
       if (Linked(vs, linked_rows_[i], linked_rows_[j])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[j]});
   if (b != folds_vertex_) PrepareInLayerFolds(b);
+  NearColumns(centre);
+}
+
+// The previous layer's kNearColumns vertices nearest `centre` (a new vertex's first B joins one).
+void FaceGuideStage::NearColumns(const QVec& centre) {
+  constexpr size_t kNearColumns = 4;
   auto dist2 = [&](int32_t c) {
     const QVec& q = prev_pos_[c];
     return (q.x - centre.x) * (q.x - centre.x) + (q.y - centre.y) * (q.y - centre.y) +
@@ -400,6 +418,7 @@ void FaceGuideStage::PrepareInLayerFolds(int32_t b) {
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   auto next_to = [&](int32_t x, int32_t y) { return x < y ? Linked(vs, x, y) : Linked(vs, y, x); };
   folds_vertex_ = b;
+  b = std::min(b, static_cast<int32_t>(vs.size()));  // a later row (LaterRow): the rows written so far
   pos_rows_.resize(static_cast<size_t>(b));
   for (int32_t a = 0; a < b; ++a) {
     pos_rows_[a].reset();
@@ -544,15 +563,80 @@ void FaceGuideStage::ScoreBlocks(const TokenMask& mask) {
   }
 }
 
-// Hard: the judged ids scoring above 1 removed; when none passes, the ones within
-// kFallbackSlack of the best stay (a fallback). Ids not judged (U, E, X) stay either way. Soft:
-// penalties for the ones above 1.
-void FaceGuideStage::Decide(SamplerCandidates* c) {
+// S and X ids: an in-layer link from the vertex (row b) to a later row b + d of its layer commits
+// that row to faces with every row linked to it, before its position exists. Each id scores the
+// worst of its later rows' best position scores (LaterRow), so a window or X id that leaves a
+// later row no position whose faces pass is judged now, not at that row's fallback.
+void FaceGuideStage::ScoreLinks(const TokenMask& mask) {
+  const int32_t b = static_cast<int32_t>(grammar_->stream().components.back().layers.back().vertices.size()) - 1;
+  if (b != links_vertex_) {
+    links_vertex_ = b;
+    std::fill(later_.begin(), later_.end(), kUnscored);
+  }
+  for (int32_t id = mask.Next(vocab::kXBegin); id >= 0 && id < vocab::kSEnd; id = mask.Next(id + 1)) {
+    double worst = 0;
+    if (id >= vocab::kSBegin) {
+      for (int32_t d = 1; d <= vocab::k_self_window; ++d)
+        if (((id - vocab::kSBegin) >> (d - 1)) & 1) worst = std::max(worst, LaterRow(d));
+    } else {
+      worst = LaterRow(id - vocab::kXBegin + 1);
+    }
+    scored_.push_back({worst, id});
+  }
+}
+
+// The best PositionScore later row j = b + d could reach, linked to b and to the rows before b
+// whose windows or X ids reach it (its first B to one of the previous-layer vertices nearest the
+// links), over 27 candidate positions: the links' centroid first, then the lattice around it at
+// half their spread. 0 when j has one linked row. The first passing candidate ends the search
+// (only scores above 1 matter). Reuses the position step's buffers (the next position step
+// rebuilds them: folds_vertex_ is reset).
+double FaceGuideStage::LaterRow(int32_t d) {
+  double& score = later_[static_cast<size_t>(std::min(d, vocab::k_layer_vertex_limit))];
+  if (score != kUnscored) return score;
+  const auto& vs = grammar_->stream().components.back().layers.back().vertices;
+  const int32_t b = static_cast<int32_t>(vs.size()) - 1, j = b + d;
+  linked_rows_.clear();
+  linked_pairs_.clear();
+  for (int32_t a = 0; a < b; ++a)
+    if (Linked(vs, a, j)) linked_rows_.push_back(a);
+  linked_rows_.push_back(b);
+  if (linked_rows_.size() < 2) return score = 0;
+  for (size_t i = 0; i + 1 < linked_rows_.size(); ++i)
+    for (size_t k = i + 1; k < linked_rows_.size(); ++k)
+      if (Linked(vs, linked_rows_[i], linked_rows_[k])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[k]});
+  PrepareInLayerFolds(j);
+  double cx = 0, cy = 0, cz = 0, spread = 0;
+  for (int32_t a : linked_rows_) cx += vs[a].pos.x, cy += vs[a].pos.y, cz += vs[a].pos.z;
+  const double n = static_cast<double>(linked_rows_.size());
+  cx /= n, cy /= n, cz /= n;
+  for (int32_t a : linked_rows_)
+    spread = std::max(spread, std::hypot(vs[a].pos.x - cx, vs[a].pos.y - cy, vs[a].pos.z - cz));
+  const double step = std::max(1.0, spread / 2);
+  auto cell = [](double v) { return static_cast<int32_t>(std::clamp(std::lround(v), 0L, vocab::k_quant_bins - 1L)); };
+  NearColumns({cell(cx), cell(cy), cell(cz)});
+  score = HUGE_VAL;
+  for (int32_t r = 0; r < 27 && score > 1; ++r) {
+    const int32_t o[3] = {(r + 13) % 27 / 9 - 1, (r + 13) % 9 / 3 - 1, (r + 13) % 3 - 1};  // the centre first
+    const QVec p{cell(cx + o[0] * step), cell(cy + o[1] * step), cell(cz + o[2] * step)};
+    score = std::min(score, PositionScore(p, false, score));
+  }
+  folds_vertex_ = -1;
+  return score;
+}
+
+// Hard: the judged ids scoring above 1 removed; when none of the step's own ids (scored_ before
+// main_end: B, K, O, or S at a window step) passes, the ones within kFallbackSlack of their best
+// stay (a fallback). X ids beside B ids (from main_end on) that fail are removed either way: a
+// row must not take an extra in-layer link to escape its B ids' verdict. Ids not judged (U, E)
+// stay. Soft: penalties for the ones above 1.
+void FaceGuideStage::Decide(SamplerCandidates* c, size_t main_end) {
   double best = HUGE_VAL;
-  for (const auto& sc : scored_) best = std::min(best, sc.first);
+  for (size_t i = 0; i < main_end; ++i) best = std::min(best, scored_[i].first);
   ++stats_->face_guided_tokens;
   const bool none_pass = best > 1;
   stats_->face_fallbacks += none_pass ? 1 : 0;
+  c->face = none_pass ? FaceVerdict::kFallback : FaceVerdict::kPassed;
   if (mode_ == FaceGuidance::kSoft) {
     penalties_.clear();
     for (const auto& [score, id] : scored_)
@@ -563,8 +647,8 @@ void FaceGuideStage::Decide(SamplerCandidates* c) {
   }
   guided_ = *c->mask;
   const double keep = none_pass ? best * kFallbackSlack : 1.0;
-  for (const auto& [score, id] : scored_)
-    if (score > keep) guided_.Reset(id);
+  for (size_t i = 0; i < scored_.size(); ++i)
+    if (scored_[i].first > (i < main_end ? keep : 1.0)) guided_.Reset(scored_[i].second);
   c->mask = &guided_;
 }
 

@@ -23,12 +23,16 @@ struct GenerationStats;
 // holds the column. Its score is the worst of those faces, of its new edges alone (FaceGuide),
 // and of each such face's folds (FaceGuide::FoldScore) onto every other triangle of the edge
 // graph on one of its three edges (the layer before the previous one included): the surface
-// must not double back over itself, whichever way the faces will be wound. Hard: ids scoring above 1 are removed; when
-// none passes, a row that has its B may end (K, U or E stay), otherwise the legal B ids within 25 % of the best score
-// are kept (stats->face_fallbacks). Soft: nothing is removed; the step's logit penalties (id, amount), kFaceSoftPenalty
-// per unit past 1, go to SamplerCandidates::penalties for MakeFacePenaltyStage. Other ids and forced ids are never
-// touched, so the mask never empties. The vertex's and the previous layer's parts are computed once per vertex and
-// layer; nothing is allocated per id.
+// must not double back over itself, whichever way the faces will be wound. Positions (K, O) are
+// judged by the faces and edges they fix. S and X ids (in-layer links to later rows) are judged by
+// the later rows they link: each must keep a position whose faces with all its linked rows pass.
+// Hard: ids scoring above 1 are removed; when none of the step's own kind passes, a row that has
+// its B may end (K, U or E stay), otherwise the ones within 25 % of the best score are kept
+// (stats->face_fallbacks; SamplerCandidates::face). Soft: nothing is removed; the step's logit
+// penalties (id, amount), kFaceSoftPenalty per unit past 1, go to SamplerCandidates::penalties for
+// MakeFacePenaltyStage. U, E and forced ids are never touched, so the mask never empties. The
+// vertex's and the previous layer's parts are computed once per vertex and layer, a later row's
+// link score once per vertex and distance; nothing is allocated per id.
 std::unique_ptr<SamplerStage> MakeFaceGuideStage(const FaceGuide* guide, FaceGuidance mode, const Grammar* grammar,
                                                  GenerationStats* stats);
 

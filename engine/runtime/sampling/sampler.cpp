@@ -13,6 +13,7 @@ const SamplerCandidates& SamplerChain::Narrow() {
   c_.forced = -1;
   c_.mask = nullptr;
   c_.penalties = nullptr;
+  c_.face = FaceVerdict::kNotJudged;
   c_.id = -1;
   c_.done = false;
   for (const auto& stage : before_logits_) {

@@ -34,6 +34,10 @@ struct SamplingParams {
   uint64_t seed = 0;
 };
 
+// Face guidance's verdict on one step, for the trace: not judged (forced, off, or an id kind it
+// does not judge), some legal id passed, or none did (the fallback kept the best-scoring ones).
+enum class FaceVerdict : int8_t { kNotJudged = 0, kPassed = 1, kFallback = 2 };
+
 // What the stages of one step share. Before the logits: the forced id and the mask; then the
 // candidate ids, their scores (best first once ranked), the survivors' weights, the choice.
 struct SamplerCandidates {
@@ -41,6 +45,7 @@ struct SamplerCandidates {
   const TokenMask* mask = nullptr;  // the ids that may be chosen; null: every id but PAD
   // Soft face guidance: logit penalties (id, amount subtracted) of this step; null: none.
   const std::vector<std::pair<int32_t, float>>* penalties = nullptr;
+  FaceVerdict face = FaceVerdict::kNotJudged;      // face guidance's verdict (the trace records it)
   const float* logits = nullptr;                   // vocab::k_model_vocab_size entries
   std::vector<int32_t> ids;                        // the candidates, ascending
   std::vector<std::pair<double, int32_t>> scored;  // (score, id)

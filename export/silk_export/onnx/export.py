@@ -232,6 +232,22 @@ def logits_head_matmuls(path: Path) -> list[str]:
     return [n.name for n in m.graph.node if n.op_type == "MatMul" and shapes.get(n.input[1], [0])[-1] == width]
 
 
+def int4_unblocked_matmuls(path: Path, block_size: int) -> list[str]:
+    """The weight MatMuls whose K is not a multiple of `block_size`: MatMulNBits would pad them,
+    libsilk's Int4MatMul does not compute them, and onnxruntime's MatMulNBits is not row-exact on
+    every CPU (on AVX2 without AVX-512 a batch's rows differ from each row alone), so they stay
+    fp32 (small by construction: K below a block or not a whole number of blocks)."""
+    import onnx
+
+    m = onnx.load(str(path), load_external_data=False)
+    shapes = {i.name: list(i.dims) for i in m.graph.initializer}
+    return [
+        n.name
+        for n in m.graph.node
+        if n.op_type == "MatMul" and len(shapes.get(n.input[1], [])) == 2 and shapes[n.input[1]][0] % block_size
+    ]
+
+
 def quantize_decoder(src: Path, dst: Path) -> None:
     """Dynamic INT8 quantization of the weight MatMuls (activations quantized at run time)."""
     from onnxruntime.quantization import QuantType, quantize_dynamic
@@ -250,7 +266,8 @@ def quantize_decoder(src: Path, dst: Path) -> None:
 def quantize_decoder_int4(src: Path, dst: Path, block_size: int = 32, accuracy_level: int = 4) -> None:
     """4-bit weight-only quantization of the weight MatMuls (com.microsoft MatMulNBits, symmetric,
     `block_size` weights per scale; accuracy_level 4 = int8 activations in the kernel). The logits
-    head stays fp32: 2 % of the weights, but 4-bit noise on it moves every logit directly."""
+    head stays fp32: 2 % of the weights, but 4-bit noise on it moves every logit directly; so do
+    MatMuls whose K is not a whole number of blocks (int4_unblocked_matmuls)."""
     import logging
 
     import onnx
@@ -262,7 +279,7 @@ def quantize_decoder_int4(src: Path, dst: Path, block_size: int = 32, accuracy_l
         block_size=block_size,
         is_symmetric=True,
         accuracy_level=accuracy_level,
-        nodes_to_exclude=logits_head_matmuls(src),
+        nodes_to_exclude=logits_head_matmuls(src) + int4_unblocked_matmuls(src, block_size),
     )
     q.process()
     q.model.save_model_to_file(str(dst), use_external_data_format=False)

@@ -45,8 +45,9 @@ TEST(MatMulRows, Int4EveryRowOfABatchIsBitIdenticalToItAlone) {
   // whose scales start mid-block), K = 32 mod 64 (the odd last group), group counts that are not a
   // multiple of 16 (the group lanes' masked last block: K 96, 4160, 32), N not a multiple of the
   // 256-row tile; 9 rows take two passes of the group-lane kernel.
-  for (const Shape& sh : {Shape{1024, 300, 32}, Shape{256, 513, 64}, Shape{96, 40, 32}, Shape{384, 77, 128},
-                          Shape{2048, 70, 32}, Shape{4160, 9, 64}, Shape{32, 33, 32}, Shape{768, 20, 192}})
+  for (const Shape& sh :
+       {Shape{1024, 300, 32}, Shape{256, 513, 64}, Shape{96, 40, 32}, Shape{384, 77, 128}, Shape{2048, 70, 32},
+        Shape{4160, 9, 64}, Shape{32, 33, 32}, Shape{768, 20, 192}, Shape{64, 16, 32}, Shape{64, 16, 64}})
     for (int64_t rows : {2, 3, 4, 5, 8, 9})
       for (RowKernels kernels : {RowKernels::kBest, RowKernels::kAvx2, RowKernels::kScalar}) {
         std::mt19937 rng(static_cast<uint32_t>(sh.k + sh.n + rows));
@@ -72,9 +73,9 @@ TEST(MatMulRows, Int4EveryRowOfABatchIsBitIdenticalToItAlone) {
 }
 
 TEST(MatMulRows, HalfEveryRowOfABatchIsBitIdenticalToItAlone) {
-  for (int64_t k : {1024, 40})
+  for (int64_t k : {1024, 40, 16})
     for (int64_t rows : {2, 5, 8})
-      for (RowKernels kernels : {RowKernels::kBest, RowKernels::kScalar}) {
+      for (RowKernels kernels : {RowKernels::kBest, RowKernels::kAvx2, RowKernels::kScalar}) {
         const int64_t n = 300;
         std::vector<uint16_t> w(static_cast<size_t>(n * k));
         std::mt19937 rng(3);
