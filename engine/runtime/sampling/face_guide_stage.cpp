@@ -82,12 +82,30 @@ class FaceGuideStage : public SamplerStage {
   void ScoreBetween(const TokenMask& mask);
   void ScoreOffsets(const TokenMask& mask);
   void ScoreBlocks(const TokenMask& mask);
+  // What a new row of the layer must join before its position is chosen (PositionScore): the
+  // row being placed (position_) or a later row an S or X id links (later_row_), each its own.
+  struct NewRow {
+    int32_t row = -1;                                       // the row its folds were prepared for (PrepareInLayerFolds)
+    std::vector<int32_t> linked_rows, near_columns;         // linked earlier rows, columns near it
+    std::vector<std::pair<int32_t, int32_t>> linked_pairs;  // linked rows linked to each other
+    // The earlier rows' columns; for each linked pair, the third corners of the triangles
+    // already on its edge (CSR); the pairs of linked pairs that share a row s, as (s, x, y):
+    // faces (s, x, p) and (s, y, p) share edge (s, p).
+    std::vector<Columns> rows;
+    std::vector<int32_t> pair_apex_begin;
+    std::vector<QVec> pair_apex;
+    std::vector<std::array<int32_t, 3>> fan_pairs;
+    // For each linked row a and column c it joins (face (p, a, w_c) if p's first B joins c): the
+    // third corners of the triangles already on edge (a, w_c), CSR over the (a, c) entries.
+    std::vector<std::array<int32_t, 3>> col_faces;  // (a, c, end of its apexes in col_apex)
+    std::vector<QVec> col_apex;
+  };
   void PreparePosition(int32_t b, const QVec& centre);
-  void NearColumns(const QVec& centre);
-  void PrepareInLayerFolds(int32_t b);
-  double InLayerFolds(const QVec& p, double enough) const;
-  double ColumnFaces(const QVec& p, int32_t c, double enough) const;
-  double PositionScore(const QVec& p, bool interior_only, double enough);
+  void NearColumns(const QVec& centre, NewRow* r) const;
+  void PrepareInLayerFolds(int32_t b, NewRow* r) const;
+  double InLayerFolds(const NewRow& r, const QVec& p, double enough) const;
+  double ColumnFaces(const NewRow& r, const QVec& p, int32_t c, double enough) const;
+  double PositionScore(const NewRow& r, const QVec& p, bool interior_only, double enough) const;
   void ScoreLinks(const TokenMask& mask);
   double LaterRow(int32_t d);
   void Decide(SamplerCandidates* c, size_t main_end);
@@ -119,22 +137,9 @@ class FaceGuideStage : public SamplerStage {
   // This step: the row's columns so far and each column's score with them.
   Columns row_;
   std::vector<double> column_;
-  std::vector<std::pair<double, int32_t>> scored_;         // (score, id) of the legal ids judged
-  std::vector<int32_t> linked_rows_, near_columns_;        // offsets: linked earlier rows, columns near the block
-  std::vector<std::pair<int32_t, int32_t>> linked_pairs_;  // offsets: linked rows linked to each other
-  // Positions, per new vertex (row folds_vertex_): the earlier rows' columns; for each linked
-  // pair, the third corners of the triangles already on its edge (CSR); the pairs of linked
-  // pairs that share a row s, as (s, x, y): faces (s, x, p) and (s, y, p) share edge (s, p).
-  int32_t folds_vertex_ = -1;
-  std::vector<Columns> pos_rows_;
-  std::vector<int32_t> pair_apex_begin_;
-  std::vector<QVec> pair_apex_;
-  std::vector<std::array<int32_t, 3>> fan_pairs_;
-  // For each linked row a and column c it joins (face (p, a, w_c) if p's first B joins c): the
-  // third corners of the triangles already on edge (a, w_c), CSR over the (a, c) entries.
-  std::vector<std::array<int32_t, 3>> col_faces_;  // (a, c, end of its apexes in col_apex_)
-  std::vector<QVec> col_apex_;
-  int32_t blocks_vertex_ = -1;  // the row whose block scores block_score_ holds
+  std::vector<std::pair<double, int32_t>> scored_;  // (score, id) of the legal ids judged
+  NewRow position_, later_row_;                     // K and O steps' new row; LaterRow's
+  int32_t blocks_vertex_ = -1;                      // the row whose block scores block_score_ holds
   // S and X ids (per vertex, row links_vertex_): each later row b + d's best position score with
   // the links already stated to it and one from row b, LaterRow; index d.
   int32_t links_vertex_ = -1;
@@ -162,7 +167,7 @@ bool FaceGuideStage::PrepareLayer() {
   layer_count_ = layers;
   vertex_ = -1;
   blocks_vertex_ = -1;
-  folds_vertex_ = -1;
+  position_.row = -1;
   links_vertex_ = -1;
   LoadPreviousLayer();
   return layer_ok_;
@@ -384,108 +389,113 @@ void FaceGuideStage::ScoreBetween(const TokenMask& mask) {
 // kNearColumns vertices nearest `centre` (its first B joins one of them).
 void FaceGuideStage::PreparePosition(int32_t b, const QVec& centre) {
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
-  linked_rows_.clear();
-  linked_pairs_.clear();
+  NewRow& r = position_;
+  r.linked_rows.clear();
+  r.linked_pairs.clear();
   for (int32_t a = 0; a < b; ++a)
-    if (Linked(vs, a, b)) linked_rows_.push_back(a);
-  for (size_t i = 0; i < linked_rows_.size(); ++i)
-    for (size_t j = i + 1; j < linked_rows_.size(); ++j)
-      if (Linked(vs, linked_rows_[i], linked_rows_[j])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[j]});
-  if (b != folds_vertex_) PrepareInLayerFolds(b);
-  NearColumns(centre);
+    if (Linked(vs, a, b)) r.linked_rows.push_back(a);
+  for (size_t i = 0; i < r.linked_rows.size(); ++i)
+    for (size_t j = i + 1; j < r.linked_rows.size(); ++j)
+      if (Linked(vs, r.linked_rows[i], r.linked_rows[j]))
+        r.linked_pairs.push_back({r.linked_rows[i], r.linked_rows[j]});
+  if (b != r.row) PrepareInLayerFolds(b, &r);
+  NearColumns(centre, &r);
 }
 
 // The previous layer's kNearColumns vertices nearest `centre` (a new vertex's first B joins one).
-void FaceGuideStage::NearColumns(const QVec& centre) {
+void FaceGuideStage::NearColumns(const QVec& centre, NewRow* r) const {
   constexpr size_t kNearColumns = 4;
   auto dist2 = [&](int32_t c) {
     const QVec& q = prev_pos_[c];
     return (q.x - centre.x) * (q.x - centre.x) + (q.y - centre.y) * (q.y - centre.y) +
            (q.z - centre.z) * (q.z - centre.z);
   };
-  near_columns_.resize(prev_pos_.size());
-  for (size_t c = 0; c < near_columns_.size(); ++c) near_columns_[c] = static_cast<int32_t>(c);
-  const size_t near = std::min(kNearColumns, near_columns_.size());
-  std::partial_sort(near_columns_.begin(), near_columns_.begin() + near, near_columns_.end(),
+  std::vector<int32_t>& near = r->near_columns;
+  near.resize(prev_pos_.size());
+  for (size_t c = 0; c < near.size(); ++c) near[c] = static_cast<int32_t>(c);
+  const size_t n = std::min(kNearColumns, near.size());
+  std::partial_sort(near.begin(), near.begin() + n, near.end(),
                     [&](int32_t x, int32_t y) { return dist2(x) < dist2(y) || (dist2(x) == dist2(y) && x < y); });
-  near_columns_.resize(near);
+  near.resize(n);
 }
 
 // The in-layer faces (a1, a2, p) a position p closes with each linked pair can fold onto the
 // triangles already on edge (a1, a2) (a row next to both, a previous-layer vertex both rows
-// join) and onto each other around p. Their parts that do not depend on p, once per vertex.
-void FaceGuideStage::PrepareInLayerFolds(int32_t b) {
+// join) and onto each other around p. Their parts that do not depend on p, once per new row b
+// (a later row, LaterRow: of the rows written so far).
+void FaceGuideStage::PrepareInLayerFolds(int32_t b, NewRow* r) const {
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   auto next_to = [&](int32_t x, int32_t y) { return x < y ? Linked(vs, x, y) : Linked(vs, y, x); };
-  folds_vertex_ = b;
-  b = std::min(b, static_cast<int32_t>(vs.size()));  // a later row (LaterRow): the rows written so far
-  pos_rows_.resize(static_cast<size_t>(b));
+  r->row = b;
+  b = std::min(b, static_cast<int32_t>(vs.size()));
+  r->rows.resize(static_cast<size_t>(b));
   for (int32_t a = 0; a < b; ++a) {
-    pos_rows_[a].reset();
-    AddRowColumns(vs[a].between, &pos_rows_[a]);
+    r->rows[a].reset();
+    AddRowColumns(vs[a].between, &r->rows[a]);
   }
-  pair_apex_begin_.assign(1, 0);
-  pair_apex_.clear();
-  fan_pairs_.clear();
-  for (size_t k = 0; k < linked_pairs_.size(); ++k) {
-    const auto [a1, a2] = linked_pairs_[k];
+  r->pair_apex_begin.assign(1, 0);
+  r->pair_apex.clear();
+  r->fan_pairs.clear();
+  const auto& pairs = r->linked_pairs;
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const auto [a1, a2] = pairs[k];
     for (int32_t a3 = 0; a3 < b; ++a3)
-      if (a3 != a1 && a3 != a2 && next_to(a3, a1) && next_to(a3, a2)) pair_apex_.push_back(vs[a3].pos);
-    const Columns common = pos_rows_[a1] & pos_rows_[a2];
+      if (a3 != a1 && a3 != a2 && next_to(a3, a1) && next_to(a3, a2)) r->pair_apex.push_back(vs[a3].pos);
+    const Columns common = r->rows[a1] & r->rows[a2];
     for (size_t c = 0; c < prev_pos_.size() && c < common.size(); ++c)
-      if (common.test(c)) pair_apex_.push_back(prev_pos_[c]);
-    pair_apex_begin_.push_back(static_cast<int32_t>(pair_apex_.size()));
-    for (size_t j = k + 1; j < linked_pairs_.size(); ++j) {
-      const auto [b1, b2] = linked_pairs_[j];
-      if (a1 == b1 || a1 == b2) fan_pairs_.push_back({a1, a2, a1 == b1 ? b2 : b1});
-      if (a2 == b1 || a2 == b2) fan_pairs_.push_back({a2, a1, a2 == b1 ? b2 : b1});
+      if (common.test(c)) r->pair_apex.push_back(prev_pos_[c]);
+    r->pair_apex_begin.push_back(static_cast<int32_t>(r->pair_apex.size()));
+    for (size_t j = k + 1; j < pairs.size(); ++j) {
+      const auto [b1, b2] = pairs[j];
+      if (a1 == b1 || a1 == b2) r->fan_pairs.push_back({a1, a2, a1 == b1 ? b2 : b1});
+      if (a2 == b1 || a2 == b2) r->fan_pairs.push_back({a2, a1, a2 == b1 ? b2 : b1});
     }
   }
-  col_faces_.clear();
-  col_apex_.clear();
-  for (int32_t a : linked_rows_)
+  r->col_faces.clear();
+  r->col_apex.clear();
+  for (int32_t a : r->linked_rows)
     for (int32_t c = 0; c < static_cast<int32_t>(prev_pos_.size()); ++c) {
-      if (!pos_rows_[a].test(static_cast<size_t>(c))) continue;
+      if (!r->rows[a].test(static_cast<size_t>(c))) continue;
       for (int32_t a2 = 0; a2 < b; ++a2)
-        if (a2 != a && next_to(a2, a) && pos_rows_[a2].test(static_cast<size_t>(c))) col_apex_.push_back(vs[a2].pos);
+        if (a2 != a && next_to(a2, a) && r->rows[a2].test(static_cast<size_t>(c))) r->col_apex.push_back(vs[a2].pos);
       for (int32_t e = adj_begin_[c]; e < adj_begin_[c + 1]; ++e)
-        if (pos_rows_[a].test(static_cast<size_t>(adj_[e]))) col_apex_.push_back(prev_pos_[adj_[e]]);
-      col_faces_.push_back({a, c, static_cast<int32_t>(col_apex_.size())});
+        if (r->rows[a].test(static_cast<size_t>(adj_[e]))) r->col_apex.push_back(prev_pos_[adj_[e]]);
+      r->col_faces.push_back({a, c, static_cast<int32_t>(r->col_apex.size())});
     }
 }
 
 // Faces (p, a, w_c) that p's first B closes if it joins column c, with each linked row a that
 // joins c: their distance part and folds onto the triangles on edge (a, w_c), onto each other
 // around edge (p, w_c), and onto the in-layer faces (p, a, a2) around edge (p, a).
-double FaceGuideStage::ColumnFaces(const QVec& p, int32_t c, double enough) const {
+double FaceGuideStage::ColumnFaces(const NewRow& r, const QVec& p, int32_t c, double enough) const {
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   const QVec& w = prev_pos_[c];
   double worst = 0;
-  for (size_t k = 0; k < col_faces_.size() && worst <= enough; ++k) {
-    const auto [a, kc, end] = col_faces_[k];
+  for (size_t k = 0; k < r.col_faces.size() && worst <= enough; ++k) {
+    const auto [a, kc, end] = r.col_faces[k];
     if (kc != c) continue;
     const QVec& pa = vs[a].pos;
     worst = std::max(worst, guide_->FaceDistance(p, pa, w));
-    for (int32_t i = k == 0 ? 0 : col_faces_[k - 1][2]; i < end; ++i)
-      worst = std::max(worst, guide_->FoldScore(pa, w, p, col_apex_[static_cast<size_t>(i)]));
-    for (size_t j = k + 1; j < col_faces_.size(); ++j)
-      if (col_faces_[j][1] == c) worst = std::max(worst, guide_->FoldScore(p, w, pa, vs[col_faces_[j][0]].pos));
-    for (const auto& [a1, a2] : linked_pairs_)
+    for (int32_t i = k == 0 ? 0 : r.col_faces[k - 1][2]; i < end; ++i)
+      worst = std::max(worst, guide_->FoldScore(pa, w, p, r.col_apex[static_cast<size_t>(i)]));
+    for (size_t j = k + 1; j < r.col_faces.size(); ++j)
+      if (r.col_faces[j][1] == c) worst = std::max(worst, guide_->FoldScore(p, w, pa, vs[r.col_faces[j][0]].pos));
+    for (const auto& [a1, a2] : r.linked_pairs)
       if (a1 == a || a2 == a) worst = std::max(worst, guide_->FoldScore(p, pa, w, vs[a1 == a ? a2 : a1].pos));
   }
   return worst;
 }
 
 // The worst fold of the faces position p closes with the linked pairs (PrepareInLayerFolds).
-double FaceGuideStage::InLayerFolds(const QVec& p, double enough) const {
+double FaceGuideStage::InLayerFolds(const NewRow& r, const QVec& p, double enough) const {
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   double worst = 0;
-  for (size_t k = 0; k < linked_pairs_.size() && worst <= enough; ++k) {
-    const QVec &p1 = vs[linked_pairs_[k].first].pos, &p2 = vs[linked_pairs_[k].second].pos;
-    for (int32_t i = pair_apex_begin_[k]; i < pair_apex_begin_[k + 1]; ++i)
-      worst = std::max(worst, guide_->FoldScore(p1, p2, p, pair_apex_[static_cast<size_t>(i)]));
+  for (size_t k = 0; k < r.linked_pairs.size() && worst <= enough; ++k) {
+    const QVec &p1 = vs[r.linked_pairs[k].first].pos, &p2 = vs[r.linked_pairs[k].second].pos;
+    for (int32_t i = r.pair_apex_begin[k]; i < r.pair_apex_begin[k + 1]; ++i)
+      worst = std::max(worst, guide_->FoldScore(p1, p2, p, r.pair_apex[static_cast<size_t>(i)]));
   }
-  for (const auto& [s, x, y] : fan_pairs_) {
+  for (const auto& [s, x, y] : r.fan_pairs) {
     if (worst > enough) break;
     worst = std::max(worst, guide_->FoldScore(vs[s].pos, p, vs[x].pos, vs[y].pos));
   }
@@ -496,21 +506,21 @@ double FaceGuideStage::InLayerFolds(const QVec& p, double enough) const {
 // first B can go: the worst of those (distance only), the B part being the best edge to a near
 // column. interior_only: edges without their ends (a representative cell of a block). Work
 // stops once the score is known to exceed `enough` (the caller keeps only smaller ones).
-double FaceGuideStage::PositionScore(const QVec& p, bool interior_only, double enough) {
+double FaceGuideStage::PositionScore(const NewRow& r, const QVec& p, bool interior_only, double enough) const {
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   auto edge = [&](const QVec& q) { return interior_only ? guide_->EdgeInterior(q, p) : guide_->EdgeScore(q, p); };
   double worst = 0;
-  for (int32_t a : linked_rows_) worst = std::max(worst, edge(vs[a].pos));
-  for (const auto& [a1, a2] : linked_pairs_) {
+  for (int32_t a : r.linked_rows) worst = std::max(worst, edge(vs[a].pos));
+  for (const auto& [a1, a2] : r.linked_pairs) {
     if (worst > enough) return worst;
     worst = std::max(worst, guide_->FaceDistance(vs[a1].pos, vs[a2].pos, p));
   }
-  if (worst <= enough) worst = std::max(worst, InLayerFolds(p, enough));
-  if (worst > enough || near_columns_.empty()) return worst;
+  if (worst <= enough) worst = std::max(worst, InLayerFolds(r, p, enough));
+  if (worst > enough || r.near_columns.empty()) return worst;
   double column = HUGE_VAL;
-  for (int32_t c : near_columns_) {
+  for (int32_t c : r.near_columns) {
     double cs = edge(prev_pos_[c]);
-    if (cs < column) cs = std::max(cs, ColumnFaces(p, c, std::min(column, enough)));
+    if (cs < column) cs = std::max(cs, ColumnFaces(r, p, c, std::min(column, enough)));
     column = std::min(column, cs);
     if (column <= worst) break;  // the linked part decides
   }
@@ -527,11 +537,11 @@ void FaceGuideStage::ScoreOffsets(const TokenMask& mask) {
   const double enough = mode_ == FaceGuidance::kHard ? 1.0 : HUGE_VAL;
   bool any_pass = false;
   for (int32_t id = mask.Next(vocab::kOBegin); id >= 0 && id < vocab::kOEnd; id = mask.Next(id + 1)) {
-    scored_.push_back({PositionScore(VertexOfTokens(block, id), false, enough), id});
+    scored_.push_back({PositionScore(position_, VertexOfTokens(block, id), false, enough), id});
     any_pass = any_pass || scored_.back().first <= 1;
   }
   if (any_pass || enough == HUGE_VAL) return;
-  for (auto& [score, id] : scored_) score = PositionScore(VertexOfTokens(block, id), false, HUGE_VAL);
+  for (auto& [score, id] : scored_) score = PositionScore(position_, VertexOfTokens(block, id), false, HUGE_VAL);
 }
 
 // K ids (the next vertex's block, legal once a row has its B): each block's best of 8
@@ -556,7 +566,7 @@ void FaceGuideStage::ScoreBlocks(const TokenMask& mask) {
       for (int32_t r = 0; r < 8 && best > 1; ++r) {
         const QVec q = VertexOfTokens(
             id, vocab::kOBegin + (4 + 8 * (r >> 2)) * 256 + (4 + 8 * ((r >> 1) & 1)) * 16 + 4 + 8 * (r & 1));
-        if (guide_->CellDistance(q) <= reach) best = std::min(best, PositionScore(q, true, best));
+        if (guide_->CellDistance(q) <= reach) best = std::min(best, PositionScore(position_, q, true, best));
       }
     }
     scored_.push_back({best, id});
@@ -589,39 +599,39 @@ void FaceGuideStage::ScoreLinks(const TokenMask& mask) {
 // whose windows or X ids reach it (its first B to one of the previous-layer vertices nearest the
 // links), over 27 candidate positions: the links' centroid first, then the lattice around it at
 // half their spread. 0 when j has one linked row. The first passing candidate ends the search
-// (only scores above 1 matter). Reuses the position step's buffers (the next position step
-// rebuilds them: folds_vertex_ is reset).
+// (only scores above 1 matter).
 double FaceGuideStage::LaterRow(int32_t d) {
   double& score = later_[static_cast<size_t>(std::min(d, vocab::k_layer_vertex_limit))];
   if (score != kUnscored) return score;
   const auto& vs = grammar_->stream().components.back().layers.back().vertices;
   const int32_t b = static_cast<int32_t>(vs.size()) - 1, j = b + d;
-  linked_rows_.clear();
-  linked_pairs_.clear();
+  NewRow& r = later_row_;
+  r.linked_rows.clear();
+  r.linked_pairs.clear();
   for (int32_t a = 0; a < b; ++a)
-    if (Linked(vs, a, j)) linked_rows_.push_back(a);
-  linked_rows_.push_back(b);
-  if (linked_rows_.size() < 2) return score = 0;
-  for (size_t i = 0; i + 1 < linked_rows_.size(); ++i)
-    for (size_t k = i + 1; k < linked_rows_.size(); ++k)
-      if (Linked(vs, linked_rows_[i], linked_rows_[k])) linked_pairs_.push_back({linked_rows_[i], linked_rows_[k]});
-  PrepareInLayerFolds(j);
+    if (Linked(vs, a, j)) r.linked_rows.push_back(a);
+  r.linked_rows.push_back(b);
+  if (r.linked_rows.size() < 2) return score = 0;
+  for (size_t i = 0; i + 1 < r.linked_rows.size(); ++i)
+    for (size_t k = i + 1; k < r.linked_rows.size(); ++k)
+      if (Linked(vs, r.linked_rows[i], r.linked_rows[k]))
+        r.linked_pairs.push_back({r.linked_rows[i], r.linked_rows[k]});
+  PrepareInLayerFolds(j, &r);
   double cx = 0, cy = 0, cz = 0, spread = 0;
-  for (int32_t a : linked_rows_) cx += vs[a].pos.x, cy += vs[a].pos.y, cz += vs[a].pos.z;
-  const double n = static_cast<double>(linked_rows_.size());
+  for (int32_t a : r.linked_rows) cx += vs[a].pos.x, cy += vs[a].pos.y, cz += vs[a].pos.z;
+  const double n = static_cast<double>(r.linked_rows.size());
   cx /= n, cy /= n, cz /= n;
-  for (int32_t a : linked_rows_)
+  for (int32_t a : r.linked_rows)
     spread = std::max(spread, std::hypot(vs[a].pos.x - cx, vs[a].pos.y - cy, vs[a].pos.z - cz));
   const double step = std::max(1.0, spread / 2);
   auto cell = [](double v) { return static_cast<int32_t>(std::clamp(std::lround(v), 0L, vocab::k_quant_bins - 1L)); };
-  NearColumns({cell(cx), cell(cy), cell(cz)});
+  NearColumns({cell(cx), cell(cy), cell(cz)}, &r);
   score = HUGE_VAL;
-  for (int32_t r = 0; r < 27 && score > 1; ++r) {
-    const int32_t o[3] = {(r + 13) % 27 / 9 - 1, (r + 13) % 9 / 3 - 1, (r + 13) % 3 - 1};  // the centre first
+  for (int32_t k = 0; k < 27 && score > 1; ++k) {
+    const int32_t o[3] = {(k + 13) % 27 / 9 - 1, (k + 13) % 9 / 3 - 1, (k + 13) % 3 - 1};  // the centre first
     const QVec p{cell(cx + o[0] * step), cell(cy + o[1] * step), cell(cz + o[2] * step)};
-    score = std::min(score, PositionScore(p, false, score));
+    score = std::min(score, PositionScore(r, p, false, score));
   }
-  folds_vertex_ = -1;
   return score;
 }
 
