@@ -2,12 +2,13 @@
 """Why NC stays near 0 (issue 33): for each generated mesh of an eval_quality.sh set, how much of
 each part faces against the part's own majority (the input's normals nearest each face, area
 weighted) and how many interior edges join two faces that face opposite sides of the input.
+A part here is a surface patch (faces joined by shared edges), the unit `--orient input` turns.
 
     PYTHONPATH=export SILK_LIBRARY=build/engine/libsilk.so python3 scripts/face_sign_check.py OUT/test
 
 Per mesh and as means: NC and |NC| over the faces (area weighted, each face against the input
 normal nearest its centroid), "disagree" (the share of area whose sign differs from its part's
-area-weighted majority: what `--orient input`, which turns whole parts, cannot fix), "edge flips"
+area-weighted majority: what `--orient input`, which turns whole patches, cannot fix), "edge flips"
 (interior edges whose two faces disagree in sign) and the same with both faces within 60 deg of
 the input's normals (what the signed pair score of commit 18e0c90 scored past 1)."""
 
@@ -20,6 +21,7 @@ import numpy as np
 
 import silk_mesh
 from silk_export.evaluation.metrics import nearest, surface_samples
+from silk_export.evaluation.structure import surface_patches
 
 
 def normalised(v: np.ndarray) -> np.ndarray:
@@ -27,24 +29,13 @@ def normalised(v: np.ndarray) -> np.ndarray:
     return (v - (lo + hi) / 2) * (1.9 / (hi - lo).max())
 
 
-def parts(faces: np.ndarray) -> tuple[np.ndarray, dict]:
-    """Each face's part (faces joined by shared edges) and the faces on each edge."""
-    parent = list(range(len(faces)))
-
-    def find(x: int) -> int:
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
+def edge_faces(faces: np.ndarray) -> dict:
+    """The faces on each edge."""
     edges: dict = {}
-    for i, f in enumerate(faces):
+    for i, f in enumerate(faces.tolist()):
         for k in range(3):
-            edges.setdefault(tuple(sorted((int(f[k]), int(f[(k + 1) % 3])))), []).append(i)
-    for on_edge in edges.values():
-        for j in on_edge[1:]:
-            parent[find(j)] = find(on_edge[0])
-    return np.array([find(i) for i in range(len(faces))]), edges
+            edges.setdefault((min(f[k], f[k - 2]), max(f[k], f[k - 2])), []).append(i)
+    return edges
 
 
 def check(generated: Path, reference: Path) -> dict:
@@ -59,7 +50,7 @@ def check(generated: Path, reference: Path) -> dict:
     unit = np.divide(cross, 2 * area[:, None], out=np.zeros_like(cross), where=area[:, None] > 0)
     _, idx = nearest((a + b + c) / 3, ref_points)
     cos = np.einsum("ij,ij->i", unit, ref_normals[idx])
-    part, edges = parts(fg)
+    part, edges = surface_patches(fg), edge_faces(fg)
     vote: dict = {}
     for p, w in zip(part, area * cos):
         vote[p] = vote.get(p, 0.0) + w

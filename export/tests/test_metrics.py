@@ -13,7 +13,7 @@ import pytest
 import silk_mesh
 from silk_export.cli import main
 from silk_export.evaluation.metrics import compare_meshes
-from silk_export.evaluation.structure import mesh_structure
+from silk_export.evaluation.structure import mesh_structure, surface_patches
 
 CUBE_V = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=np.float64)
 CUBE_F = np.array(
@@ -66,6 +66,17 @@ def test_structure_flags():
     f2 = CUBE_F.copy()
     f2[::2] += 8
     assert mesh_structure(v2, f2)["watertight"]
+
+
+def test_surface_patches_join_faces_by_edges_not_vertices():
+    assert len(set(surface_patches(CUBE_F))) == 1
+    two = surface_patches(np.vstack([CUBE_F, CUBE_F + 8]))
+    assert len(set(two)) == 2 and len(set(two[:12])) == 1 and two[0] != two[12]
+    bowtie = [[0, 1, 2], [0, 3, 4], [0, 4, 5]]  # the first shares only vertex 0 with the others
+    p = surface_patches(bowtie)
+    assert p[1] == p[2] != p[0]
+    assert mesh_structure(np.zeros((6, 3)) + np.arange(6)[:, None], np.array(bowtie))["components"] == 1
+    assert surface_patches(np.zeros((0, 3), int)) == []
 
 
 def test_mesh_against_itself_is_zero():

@@ -423,32 +423,14 @@ def encoder_points(path):
     return rows[:, :3], normals / np.maximum(np.linalg.norm(normals, axis=1, keepdims=True), 1e-300)
 
 
-def patches(faces):
-    """Each face's surface patch (faces joined by shared edges: the unit --orient input turns)."""
-    parent = list(range(len(faces)))
-
-    def find(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
-    first = {}
-    for i, f in enumerate(faces):
-        for k in range(3):
-            e = tuple(sorted((int(f[k]), int(f[(k + 1) % 3]))))
-            if e in first:
-                parent[find(i)] = find(first[e])
-            else:
-                first[e] = i
-    return [find(i) for i in range(len(faces))]
-
-
 def compare_parts(tag, tparts, iparts, s_points, s_normal, failures):
     """Each surface patch of each part of the --orient input run against the same faces of the
     --orient tokens run: kept or wholly reversed. Returns (patches reversed, each patch's
     area-weighted vote against the input's normals)."""
     import numpy as np
+
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "export"))
+    from silk_export.evaluation.structure import surface_patches  # patches in Python (numpy), not libsilk
 
     reversed_parts, votes = 0, []
     for k, ((tv, tf), (iv, i_f)) in enumerate(zip(tparts, iparts)):
@@ -462,7 +444,7 @@ def compare_parts(tag, tparts, iparts, s_points, s_normal, failures):
             return np.any([np.all(np.roll(y, r, axis=1) == x, axis=(1, 2)) for r in range(3)], axis=0)
 
         same, rev = cyclic_equal(pi, pt), cyclic_equal(pi, pt[:, [0, 2, 1]])
-        patch = np.array(patches(i_f))
+        patch = np.array(surface_patches(i_f))
         for p in np.unique(patch):
             on = patch == p
             if not (np.all(same[on]) or np.all(rev[on])):

@@ -10,21 +10,39 @@ from collections import Counter
 import numpy as np
 
 
-def _components(n_vertices: int, faces: np.ndarray) -> int:
-    parent = list(range(n_vertices))
+def _roots(n: int, pairs) -> list[int]:
+    """Each of n items' group (a representative) after joining every pair (union-find)."""
+    parent = list(range(n))
 
-    def find(x):
+    def find(x: int) -> int:
         while parent[x] != x:
             parent[x] = parent[parent[x]]
             x = parent[x]
         return x
 
-    for a, b, c in faces.tolist():
-        ra, rb, rc = find(a), find(b), find(c)
-        parent[rb] = ra
-        parent[find(rc)] = ra
-    used = np.unique(faces)
-    return len({find(int(x)) for x in used})
+    for a, b in pairs:
+        parent[find(b)] = find(a)
+    return [find(x) for x in range(n)]
+
+
+def _components(n_vertices: int, faces: np.ndarray) -> int:
+    roots = _roots(n_vertices, ((a, x) for a, b, c in faces.tolist() for x in (b, c)))
+    return len({roots[int(x)] for x in np.unique(faces)})
+
+
+def surface_patches(faces) -> list[int]:
+    """Each face's surface patch: faces joined by shared edges (the unit `--orient input` turns).
+    Faces are (a, b, c) vertex indices; the result is one representative face index per face."""
+    first: dict = {}
+    pairs = []
+    for i, f in enumerate(np.asarray(faces, np.int64).reshape(-1, 3).tolist()):
+        for k in range(3):
+            e = (min(f[k], f[k - 2]), max(f[k], f[k - 2]))
+            if e in first:
+                pairs.append((first[e], i))
+            else:
+                first[e] = i
+    return _roots(len(faces), pairs)
 
 
 def mesh_structure(v: np.ndarray, f: np.ndarray) -> dict:
