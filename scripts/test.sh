@@ -17,16 +17,28 @@ fi
 export SILK_SHARED_DIR
 echo "test: shared material from $SILK_SHARED_DIR"
 
+# Seconds per stage, printed when the script ends (passed or not): where a CI run's time went.
+STAGE="build + ctest"
+STAGE_START=$SECONDS
+STAGE_TIMES=()
+stage() {  # closes the running stage and opens the next under a header
+  STAGE_TIMES+=("$STAGE: $((SECONDS - STAGE_START)) s")
+  STAGE=$1
+  STAGE_START=$SECONDS
+  echo "=== $1 ==="
+}
+trap 'stage end >/dev/null; printf "test: %s\n" "${STAGE_TIMES[@]}" "total: $SECONDS s"' EXIT
+
 bash scripts/build.sh -DSILK_BUILD_TESTS=ON -DSILK_SHARED_DIR="$SILK_SHARED_DIR"  # fails where GoogleTest/OpenMesh are missing (setup.sh --test)
 (cd build && ctest --output-on-failure -j "$JOBS")
 
-echo "=== export/ (pytest, through build/engine/libsilk.so) ==="
+stage "export/ (pytest, through build/engine/libsilk.so)"
 SILK_LIBRARY="$PWD/build/engine/libsilk.so" python3 -m pytest -q export/tests
 
 # The pip wheel (scripts/build_wheel.sh: a Release build of libsilk, ~9 min on 2 cores without
 # ccache) installed into a fresh venv with onnxruntime and numpy from PyPI: ctest wheel_fresh_venv.
 # Needs python3's venv module and PyPI; SILK_WHEEL_TESTS=0 turns it off.
-echo "=== pip wheel in a fresh venv (ctest wheel_fresh_venv) ==="
+stage "pip wheel in a fresh venv (ctest wheel_fresh_venv)"
 if [ "${SILK_WHEEL_TESTS:-1}" = 0 ]; then
   echo "skipped (SILK_WHEEL_TESTS=0)"
 else
@@ -36,7 +48,7 @@ fi
 # Windows x64 (MinGW-w64 cross-build, run under Wine): where scripts/setup_windows.sh (part of
 # `setup.sh --test`) has installed MinGW-w64 and Wine; required in CI (CI=true) and with
 # SILK_WINDOWS_TESTS=1, skipped with SILK_WINDOWS_TESTS=0.
-echo "=== Windows x64 build under Wine (scripts/build_windows.sh, scripts/test_windows.sh) ==="
+stage "Windows x64 build under Wine (scripts/build_windows.sh, scripts/test_windows.sh)"
 WINDOWS_TESTS=${SILK_WINDOWS_TESTS:-auto}
 [ "$WINDOWS_TESTS" = auto ] && [ "${CI:-}" = true ] && WINDOWS_TESTS=1
 if [ "$WINDOWS_TESTS" = 0 ]; then
@@ -51,7 +63,7 @@ else
   echo "skipped (MinGW-w64, Wine or .deps/onnxruntime-windows missing here: scripts/setup_windows.sh installs them)"
 fi
 
-echo "=== sanitizer build (ASan + UBSan) ==="
+stage "sanitizer build (ASan + UBSan)"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DSILK_SANITIZE=ON -DSILK_BUILD_BENCH=OFF -DSILK_BUILD_TESTS=ON \
   -DSILK_SHARED_DIR="$SILK_SHARED_DIR" >/dev/null
 cmake --build build-asan -j "$JOBS"
